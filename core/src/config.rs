@@ -1,0 +1,190 @@
+//! Hardware parameters, validated once.
+//!
+//! Everything a designer chooses — target size, tile size, subpixel bits,
+//! depth unit, max-z culling — is a parameter here. [`RasterConfig::new`]
+//! checks it against the fixed-point budget in [`crate::snap`] and
+//! [`crate::setup`]; afterwards the hot path trusts it.
+
+use core::fmt;
+
+/// Largest target side: `2^MAX_TARGET_BITS` pixels.
+pub const MAX_TARGET_BITS: u32 = 14;
+/// Smallest and largest tile side (tiles are square, sides a power of two).
+pub const TILE_SIZES: core::ops::RangeInclusive<u32> = 8..=128;
+/// Largest number of subpixel bits the coordinate budget allows.
+pub const MAX_SUBPIXEL_BITS: u32 = 8;
+
+/// The rasterizer's geometry: target, tiles and subpixel grid.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RasterConfig {
+    width: u32,
+    height: u32,
+    tile_shift: u32,
+    subpixel_bits: u32,
+}
+
+impl RasterConfig {
+    /// The subpixel precision of D3D11-class hardware.
+    pub const DEFAULT_SUBPIXEL_BITS: u32 = 8;
+    /// A tile size that suits most targets.
+    pub const DEFAULT_TILE_SIZE: u32 = 32;
+
+    /// Validate a raster configuration.
+    ///
+    /// # Errors
+    /// [`ConfigError::TargetSize`] unless `1 ≤ width, height ≤ 2^14`;
+    /// [`ConfigError::TileSize`] unless the tile size is a power of two in
+    /// `8..=128`; [`ConfigError::SubpixelBits`] unless `1 ≤ bits ≤ 8` (pixel
+    /// centres sit half a pixel off the grid, so at least one bit is needed).
+    pub fn new(width: u32, height: u32, tile_size: u32, subpixel_bits: u32) -> Result<Self, ConfigError> {
+        let max = 1 << MAX_TARGET_BITS;
+        if width == 0 || height == 0 || width > max || height > max {
+            return Err(ConfigError::TargetSize { width, height });
+        }
+        if !TILE_SIZES.contains(&tile_size) || !tile_size.is_power_of_two() {
+            return Err(ConfigError::TileSize { size: tile_size });
+        }
+        if subpixel_bits == 0 || subpixel_bits > MAX_SUBPIXEL_BITS {
+            return Err(ConfigError::SubpixelBits { bits: subpixel_bits });
+        }
+        Ok(Self { width, height, tile_shift: tile_size.trailing_zeros(), subpixel_bits })
+    }
+
+    /// Target width in pixels (texels of the map).
+    #[must_use]
+    pub const fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Target height in pixels.
+    #[must_use]
+    pub const fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// Tile side in pixels.
+    #[must_use]
+    pub const fn tile_size(&self) -> u32 {
+        1 << self.tile_shift
+    }
+
+    /// `log2` of the tile side.
+    #[must_use]
+    pub const fn tile_shift(&self) -> u32 {
+        self.tile_shift
+    }
+
+    /// Fraction bits of the snapped vertex coordinates.
+    #[must_use]
+    pub const fn subpixel_bits(&self) -> u32 {
+        self.subpixel_bits
+    }
+
+    /// Tiles across and down (partial tiles at the right and bottom count).
+    #[must_use]
+    pub const fn tiles(&self) -> (u32, u32) {
+        let t = self.tile_size();
+        (self.width.div_ceil(t), self.height.div_ceil(t))
+    }
+
+    /// Number of tiles.
+    #[must_use]
+    pub const fn tile_count(&self) -> usize {
+        let (x, y) = self.tiles();
+        x as usize * y as usize
+    }
+
+    /// Number of texels of the target.
+    #[must_use]
+    pub const fn texel_count(&self) -> usize {
+        self.width as usize * self.height as usize
+    }
+}
+
+/// Which depths the depth unit keeps per texel (Wang & Molnar 1994, §3).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum DepthUnit {
+    /// The nearest depth `z1` only (Williams' map; with [`CullMode::Front`]
+    /// the nearest light-averted surface: second depth by front-face culling).
+    Single,
+    /// Nearest `z1` and second nearest `z2`, both updated per fragment.
+    Dual,
+}
+
+/// Which triangles the light pass discards by their facing. Facing is seen
+/// from the light: counter-clockwise in normalised device coordinates
+/// (y up) is front-facing, i.e. faces the light.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum CullMode {
+    /// Keep every triangle (open, two-sided surfaces).
+    #[default]
+    None,
+    /// Discard light-averted triangles (solids; first depth).
+    Back,
+    /// Discard light-facing triangles (solids; second depth by front-face culling).
+    Front,
+}
+
+/// Everything the light pass needs to know besides its buffers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LightPassConfig {
+    /// Target, tiles and subpixel grid.
+    pub raster: RasterConfig,
+    /// Single or dual depth.
+    pub unit: DepthUnit,
+    /// Skip triangles and blocks that lie behind the tile's max stored depth.
+    pub max_z_cull: bool,
+}
+
+/// A configuration or buffer the hardware cannot use.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum ConfigError {
+    /// Width or height is zero or larger than `2^14`.
+    TargetSize {
+        /// The width asked for.
+        width: u32,
+        /// The height asked for.
+        height: u32,
+    },
+    /// The tile side is not a power of two in `8..=128`.
+    TileSize {
+        /// The side asked for.
+        size: u32,
+    },
+    /// Subpixel bits outside `1..=8`.
+    SubpixelBits {
+        /// The bits asked for.
+        bits: u32,
+    },
+    /// A caller-owned buffer has the wrong length.
+    BufferLength {
+        /// Which buffer.
+        buffer: &'static str,
+        /// The length the configuration needs.
+        expected: usize,
+        /// The length given.
+        found: usize,
+    },
+}
+
+impl fmt::Display for ConfigError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Self::TargetSize { width, height } => write!(
+                f,
+                "target size {width}x{height} is outside 1..={} on each side",
+                1u32 << MAX_TARGET_BITS
+            ),
+            Self::TileSize { size } => write!(f, "tile size {size} is not a power of two in 8..=128"),
+            Self::SubpixelBits { bits } => {
+                write!(f, "subpixel bits {bits} is outside 1..={MAX_SUBPIXEL_BITS}")
+            }
+            Self::BufferLength { buffer, expected, found } => {
+                write!(f, "buffer `{buffer}` has length {found}, the configuration needs {expected}")
+            }
+        }
+    }
+}
+
+impl core::error::Error for ConfigError {}

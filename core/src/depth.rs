@@ -1,0 +1,245 @@
+//! Depth formats: what a texel of the map stores, and how the rasterizer's
+//! fixed-point depth becomes one.
+//!
+//! Depth follows the D3D / Vulkan convention: light clip space maps `z/w` to
+//! `[0, 1]` (near = 0, far = 1), and an `n`-bit unsigned format stores
+//! `round(z · (2ⁿ − 1))`, so `0` is the near plane and `2ⁿ − 1` the far plane
+//! (the clear value). The f32 reference format stores the IEEE bits of `z`
+//! itself; for non-negative floats those bits order exactly as the values do,
+//! so every format compares texels as unsigned integers.
+//!
+//! # The interpolator's fixed point
+//! Vertex depths enter the rasterizer as [`PlaneZ`]: an `I32F32` number of
+//! *format LSBs* (for the f32 reference format, of `2⁻²⁴`), so 32 fraction
+//! bits below the stored precision. The depth plane is stepped in that type
+//! and every fragment is rounded once, to nearest, half up.
+//!
+//! # Out-of-range and non-finite depths
+//! Quantisation is monotonic and saturating: depths below the near plane
+//! (`z < 0`, including `−∞`) store `0`, depths beyond the far plane (`z > 1`,
+//! including `+∞`) store the far value, and NaN stores the far value (it can
+//! occlude nothing). The light pass clips against near and far before any of
+//! this, so a rasterized fragment never needs to saturate by more than the
+//! rounding of its vertices.
+
+use fixed::types::I32F32;
+
+/// Depth in the interpolator: format LSBs with 32 fraction bits.
+pub type PlaneZ = I32F32;
+
+/// Fraction bits of [`PlaneZ`] below one stored LSB.
+pub const PLANE_FRACTION_BITS: u32 = 32;
+
+/// A stored depth value: compared as an unsigned integer, whatever the format.
+pub trait Texel: Copy + Ord + Default + core::fmt::Debug + Send + Sync + 'static {
+    /// The raw bits widened to `u32` (for checksums, images and `.npy` output).
+    fn to_raw(self) -> u32;
+}
+
+impl Texel for u16 {
+    #[inline]
+    fn to_raw(self) -> u32 {
+        u32::from(self)
+    }
+}
+
+impl Texel for u32 {
+    #[inline]
+    fn to_raw(self) -> u32 {
+        self
+    }
+}
+
+/// A depth format of the map. Implemented by the zero-sized [`D16`], [`D24`]
+/// and [`F32`]; the light pass is generic over it, so each format compiles to
+/// its own loops.
+pub trait DepthFormat: Copy + Default + core::fmt::Debug + Send + Sync + 'static {
+    /// What one texel holds in the caller's buffer.
+    type Texel: Texel;
+    /// The runtime name of this format.
+    const KIND: DepthFormatKind;
+    /// Depth `1.0` (the far plane) in [`PlaneZ`] integer units.
+    const SCALE: i64;
+    /// The far plane as a texel: the clear value.
+    const FAR: Self::Texel;
+
+    /// Round an interpolated depth to a texel, saturating at `0` and
+    /// [`Self::FAR`]. This is the per-fragment path: integer only, except for
+    /// the f32 reference format, whose whole point is the float.
+    fn texel(z: PlaneZ) -> Self::Texel;
+
+    /// Convert a depth in `[0, 1]` to the interpolator's fixed point,
+    /// saturating and monotonic (see the module documentation for what
+    /// happens outside `[0, 1]` and to NaN).
+    #[inline]
+    fn plane_z(z: f64) -> PlaneZ {
+        let top = Self::SCALE << PLANE_FRACTION_BITS;
+        if z.is_nan() || z >= 1.0 {
+            return PlaneZ::from_bits(top);
+        }
+        if z <= 0.0 {
+            return PlaneZ::ZERO;
+        }
+        // z · SCALE · 2³² < 2⁵⁷: exact in i64 after rounding.
+        #[allow(clippy::cast_possible_truncation, reason = "0 < z < 1 bounds the product below 2^57")]
+        let bits = libm::round(z * (Self::SCALE as f64) * 4_294_967_296.0) as i64;
+        PlaneZ::from_bits(bits.clamp(0, top))
+    }
+
+    /// Quantise a depth `z` (light clip space `z/w`) to a texel.
+    #[inline]
+    fn quantize(z: f32) -> Self::Texel {
+        Self::texel(Self::plane_z(f64::from(z)))
+    }
+
+    /// The depth a texel stands for, in `[0, 1]` (for previews and reports).
+    fn unquantize(t: Self::Texel) -> f64;
+}
+
+/// Round half up to whole LSBs, clamped to `[0, max]`, without overflow for
+/// any input.
+#[inline(always)]
+fn round_lsb(z: PlaneZ, max: i64) -> i64 {
+    let bits = z.to_bits();
+    let lsb = (bits >> PLANE_FRACTION_BITS) + ((bits >> (PLANE_FRACTION_BITS - 1)) & 1);
+    lsb.clamp(0, max)
+}
+
+/// 16-bit unsigned fixed-point depth.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct D16;
+
+/// 24-bit unsigned fixed-point depth (held in a `u32`, moved as 3 bytes).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct D24;
+
+/// The f32 reference format: the IEEE bits of the depth.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct F32;
+
+impl DepthFormat for D16 {
+    type Texel = u16;
+    const KIND: DepthFormatKind = DepthFormatKind::D16;
+    const SCALE: i64 = (1 << 16) - 1;
+    const FAR: u16 = u16::MAX;
+
+    #[inline(always)]
+    fn texel(z: PlaneZ) -> u16 {
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "clamped to [0, 2^16 - 1]")]
+        let t = round_lsb(z, Self::SCALE) as u16;
+        t
+    }
+
+    fn unquantize(t: u16) -> f64 {
+        f64::from(t) / (Self::SCALE as f64)
+    }
+}
+
+impl DepthFormat for D24 {
+    type Texel = u32;
+    const KIND: DepthFormatKind = DepthFormatKind::D24;
+    const SCALE: i64 = (1 << 24) - 1;
+    const FAR: u32 = (1 << 24) - 1;
+
+    #[inline(always)]
+    fn texel(z: PlaneZ) -> u32 {
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "clamped to [0, 2^24 - 1]")]
+        let t = round_lsb(z, Self::SCALE) as u32;
+        t
+    }
+
+    fn unquantize(t: u32) -> f64 {
+        f64::from(t) / (Self::SCALE as f64)
+    }
+}
+
+/// `2⁻⁵⁶`: one [`PlaneZ`] bit of the f32 reference format, as a depth.
+const F32_UNIT: f32 = 1.0 / 72_057_594_037_927_936.0;
+
+impl DepthFormat for F32 {
+    type Texel = u32;
+    const KIND: DepthFormatKind = DepthFormatKind::F32;
+    const SCALE: i64 = 1 << 24;
+    const FAR: u32 = 0x3f80_0000; // 1.0f32
+
+    #[inline(always)]
+    fn texel(z: PlaneZ) -> u32 {
+        let bits = z.to_bits().clamp(0, Self::SCALE << PLANE_FRACTION_BITS);
+        // i64 → f32 rounds to nearest (monotonic); the scale is a power of two (exact).
+        #[allow(clippy::cast_precision_loss, reason = "the f32 format's precision is the point")]
+        let value = bits as f32 * F32_UNIT;
+        value.to_bits()
+    }
+
+    fn unquantize(t: u32) -> f64 {
+        f64::from(f32::from_bits(t))
+    }
+}
+
+/// A depth format chosen at run time (the formats themselves are types).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum DepthFormatKind {
+    /// [`D16`].
+    D16,
+    /// [`D24`].
+    D24,
+    /// [`F32`].
+    F32,
+}
+
+impl DepthFormatKind {
+    /// Every format, coarsest first.
+    pub const ALL: [Self; 3] = [Self::D16, Self::D24, Self::F32];
+
+    /// Bits a texel of this format holds.
+    #[must_use]
+    pub const fn bits(self) -> u32 {
+        match self {
+            Self::D16 => 16,
+            Self::D24 => 24,
+            Self::F32 => 32,
+        }
+    }
+
+    /// Bytes one texel of this format moves across a memory interface.
+    #[must_use]
+    pub const fn bytes(self) -> u32 {
+        self.bits() / 8
+    }
+
+    /// A short name: `d16`, `d24`, `f32`.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::D16 => "d16",
+            Self::D24 => "d24",
+            Self::F32 => "f32",
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn d3d_rounding_of_exact_values() {
+        assert_eq!(D16::quantize(0.0), 0);
+        assert_eq!(D16::quantize(1.0), 65535);
+        assert_eq!(D16::quantize(0.5), 32768); // 32767.5 rounds half up
+        assert_eq!(D24::quantize(0.25), 4_194_304); // round(0.25 · 16777215) = 4194303.75 → 4194304
+        assert_eq!(F32::quantize(0.375), 0.375f32.to_bits());
+    }
+
+    #[test]
+    fn saturation_and_nan() {
+        assert_eq!(D16::quantize(-1.0), 0);
+        assert_eq!(D16::quantize(f32::NEG_INFINITY), 0);
+        assert_eq!(D16::quantize(7.0), D16::FAR);
+        assert_eq!(D24::quantize(f32::INFINITY), D24::FAR);
+        assert_eq!(D24::quantize(f32::NAN), D24::FAR);
+        assert_eq!(F32::quantize(f32::NAN), F32::FAR);
+        assert_eq!(D16::texel(PlaneZ::from_bits(i64::MAX)), D16::FAR);
+        assert_eq!(D16::texel(PlaneZ::from_bits(i64::MIN)), 0);
+    }
+}

@@ -1,0 +1,24 @@
+#![no_std]
+#![forbid(unsafe_code)]
+#![doc = include_str!("../README.md")]
+
+pub mod bin;
+pub mod clip;
+pub mod config;
+pub mod depth;
+pub mod light_pass;
+pub mod probe;
+pub mod raster;
+pub mod setup;
+pub mod snap;
+pub mod tile;
+pub mod zbuffer;
+
+pub use config::{ConfigError, CullMode, DepthUnit, LightPassConfig, RasterConfig};
+pub use depth::{D16, D24, DepthFormat, DepthFormatKind, F32};
+pub use light_pass::{LightBuffers, LightPass, SubmitError};
+pub use probe::{Event, Fragment, NoProbe, Probe};
+pub use tile::{TileId, TileRect};
+pub use zbuffer::TileState;
+
+pub use glam;

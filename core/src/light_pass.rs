@@ -1,0 +1,305 @@
+//! The light-pass driver: triangles in, depth maps out, over buffers the
+//! caller owns.
+//!
+//! ```text
+//! submit ─► clip ─► snap ─► setup ─► bin ──(bin full / setup store full / finish)──►
+//!   rasterize tile: load (or clear) ─► each binned triangle ─► resolve ─► store
+//! ```
+//!
+//! The map is row-major, `width × height` texels, row 0 at the top (see
+//! [`crate::snap`] for the orientation). [`LightPass::new`] clears it to the
+//! far value; [`LightPass::finish`] drains every bin. Results do not depend on
+//! the bin capacity, the setup-store size or the tile size: only the events
+//! reported on the way do.
+
+use glam::{Mat4, Vec3, Vec4};
+
+use crate::bin::{Bin, MAX_SETUPS, SetupIndex, touches};
+use crate::clip::{ClipVertex, Clipped, clip_triangle};
+use crate::config::{ConfigError, CullMode, DepthUnit, LightPassConfig};
+use crate::depth::DepthFormat;
+use crate::probe::{Event, FlushReason, NoProbe, Probe, RejectReason};
+use crate::raster::{TileView, rasterize};
+use crate::setup::Setup;
+use crate::tile::TileId;
+use crate::zbuffer::{TileState, max_and_count, min_max, tile_rows};
+
+/// The caller-owned memory of a light pass.
+pub struct LightBuffers<'a, F: DepthFormat, const B: usize> {
+    /// Nearest depth, `width × height` texels.
+    pub z1: &'a mut [F::Texel],
+    /// Second-nearest depth: `width × height` texels for [`DepthUnit::Dual`], empty for single.
+    pub z2: &'a mut [F::Texel],
+    /// One summary per tile, row-major.
+    pub tiles: &'a mut [TileState<F::Texel>],
+    /// One bin per tile, row-major.
+    pub bins: &'a mut [Bin<B>],
+    /// The triangle-setup store: any length in `1..=65536`.
+    pub setups: &'a mut [Setup],
+}
+
+/// A triangle list that cannot be drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum SubmitError {
+    /// A triangle names a vertex that does not exist.
+    IndexOutOfRange {
+        /// Position of the triangle in the index list.
+        triangle: usize,
+        /// The index it holds.
+        index: u32,
+        /// How many vertices there are.
+        vertices: usize,
+    },
+}
+
+impl core::fmt::Display for SubmitError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match *self {
+            Self::IndexOutOfRange { triangle, index, vertices } => write!(
+                f,
+                "triangle {triangle} names vertex {index}, but there are only {vertices} vertices"
+            ),
+        }
+    }
+}
+
+impl core::error::Error for SubmitError {}
+
+/// A light pass in progress.
+pub struct LightPass<'a, F: DepthFormat, P: Probe = NoProbe, const B: usize = 64> {
+    cfg: LightPassConfig,
+    buf: LightBuffers<'a, F, B>,
+    setups_used: usize,
+    triangles: u32,
+    probe: P,
+}
+
+impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
+    /// Start a light pass: check the buffers against the configuration and
+    /// clear the map.
+    ///
+    /// # Errors
+    /// [`ConfigError::BufferLength`] naming the first buffer whose length is wrong.
+    pub fn new(cfg: LightPassConfig, buf: LightBuffers<'a, F, B>, probe: P) -> Result<Self, ConfigError> {
+        const { assert!(B > 0, "a bin must hold at least one triangle") };
+        let r = &cfg.raster;
+        let texels = r.texel_count();
+        let z2_len = if cfg.unit == DepthUnit::Dual { texels } else { 0 };
+        let check = |buffer: &'static str, expected: usize, found: usize| {
+            if expected == found { Ok(()) } else { Err(ConfigError::BufferLength { buffer, expected, found }) }
+        };
+        check("z1", texels, buf.z1.len())?;
+        check("z2", z2_len, buf.z2.len())?;
+        check("tiles", r.tile_count(), buf.tiles.len())?;
+        check("bins", r.tile_count(), buf.bins.len())?;
+        if buf.setups.is_empty() || buf.setups.len() > MAX_SETUPS {
+            return Err(ConfigError::BufferLength { buffer: "setups", expected: MAX_SETUPS, found: buf.setups.len() });
+        }
+        buf.z1.fill(F::FAR);
+        buf.z2.fill(F::FAR);
+        for (i, t) in buf.tiles.iter_mut().enumerate() {
+            *t = TileState::cleared(F::FAR, r.tile_rect(r.tile_id(i)).area());
+        }
+        buf.bins.iter_mut().for_each(Bin::clear);
+        Ok(Self { cfg, buf, setups_used: 0, triangles: 0, probe })
+    }
+
+    /// The configuration.
+    pub const fn config(&self) -> &LightPassConfig {
+        &self.cfg
+    }
+
+    /// The probe.
+    pub const fn probe(&mut self) -> &mut P {
+        &mut self.probe
+    }
+
+    /// Draw an indexed mesh: positions in object space, `transform` to light
+    /// clip space (row vectors in the matrix's columns, as glam does). The
+    /// transform is f32 (the vertex unit); everything after it is clipped in
+    /// f64 and rasterized in fixed point.
+    ///
+    /// # Errors
+    /// [`SubmitError::IndexOutOfRange`] before anything is drawn.
+    pub fn draw_mesh(
+        &mut self,
+        positions: &[Vec3],
+        triangles: &[[u32; 3]],
+        transform: &Mat4,
+        cull: CullMode,
+    ) -> Result<(), SubmitError> {
+        let vertices = positions.len();
+        for (triangle, t) in triangles.iter().enumerate() {
+            if let Some(&index) = t.iter().find(|&&i| i as usize >= vertices) {
+                return Err(SubmitError::IndexOutOfRange { triangle, index, vertices });
+            }
+        }
+        for t in triangles {
+            let v = t.map(|i| positions.get(i as usize).map_or(Vec4::NAN, |p| *transform * p.extend(1.0)));
+            self.draw_clip(v, cull);
+        }
+        Ok(())
+    }
+
+    /// Draw one triangle given in light clip space. Any input is accepted:
+    /// non-finite vertices are rejected and reported, never rasterized.
+    pub fn draw_clip(&mut self, tri: [Vec4; 3], cull: CullMode) {
+        let id = self.triangles;
+        self.triangles = self.triangles.wrapping_add(1);
+        self.probe.event(Event::TriangleSubmitted);
+        if !tri.iter().all(|v| v.is_finite()) {
+            self.reject(RejectReason::NonFinite);
+            return;
+        }
+        let v: [ClipVertex; 3] = tri.map(|v| v.to_array().map(f64::from));
+        match clip_triangle(&v, self.cfg.raster.guard()) {
+            Clipped::Inside => self.setup_and_bin(&v, cull, id),
+            Clipped::Polygon(p) => {
+                for i in 1..p.len().saturating_sub(1) {
+                    self.setup_and_bin(&[p[0], p[i], p[i + 1]], cull, id);
+                }
+            }
+            Clipped::Outside => self.reject(RejectReason::Clipped),
+        }
+    }
+
+    fn reject(&mut self, reason: RejectReason) {
+        self.probe.event(Event::TriangleRejected { reason });
+    }
+
+    fn setup_and_bin(&mut self, v: &[ClipVertex; 3], cull: CullMode, id: u32) {
+        let raster = self.cfg.raster;
+        let (Some(a), Some(b), Some(c)) = (raster.snap::<F>(&v[0]), raster.snap::<F>(&v[1]), raster.snap::<F>(&v[2]))
+        else {
+            self.reject(RejectReason::NonFinite);
+            return;
+        };
+        let setup = match Setup::new(&raster, [a, b, c], cull, id) {
+            Ok(s) => s,
+            Err(reason) => {
+                self.reject(reason);
+                return;
+            }
+        };
+        self.probe.event(Event::TriangleSetup);
+        if self.setups_used == self.buf.setups.len() {
+            self.flush_all(FlushReason::SetupFull);
+        }
+        let index = self.setups_used;
+        let Some(slot) = self.buf.setups.get_mut(index) else { return };
+        *slot = setup;
+        self.setups_used += 1;
+        #[allow(clippy::cast_possible_truncation, reason = "the store holds at most 2^16 setups")]
+        let entry = index as SetupIndex;
+
+        let shift = raster.tile_shift();
+        let (tx0, tx1) = (setup.bbox.x0 >> shift, (setup.bbox.x1 - 1) >> shift);
+        let (ty0, ty1) = (setup.bbox.y0 >> shift, (setup.bbox.y1 - 1) >> shift);
+        let mut binned = 0;
+        for ty in ty0..=ty1 {
+            for tx in tx0..=tx1 {
+                #[allow(clippy::cast_possible_truncation, reason = "at most 2^11 tiles per side")]
+                let tile = TileId { x: tx as u16, y: ty as u16 };
+                if !touches(&setup, &self.cfg.raster.tile_rect(tile)) {
+                    continue;
+                }
+                binned += 1;
+                let t = self.cfg.raster.tile_index(tile);
+                let full = self.buf.bins.get(t).is_some_and(Bin::is_full);
+                if full {
+                    self.flush_tile(t, FlushReason::BinFull);
+                }
+                if let Some(bin) = self.buf.bins.get_mut(t) {
+                    // The bin is not full here: it was just drained, B > 0.
+                    let _ = bin.push(entry);
+                }
+            }
+        }
+        self.probe.event(Event::TriangleBinned { tiles: binned });
+    }
+
+    fn flush_all(&mut self, reason: FlushReason) {
+        for t in 0..self.buf.bins.len() {
+            if !self.buf.bins[t].is_empty() {
+                self.flush_tile(t, reason);
+            }
+        }
+        self.setups_used = 0;
+    }
+
+    /// Rasterize a tile's bin: load (or clear), every triangle, resolve, store.
+    fn flush_tile(&mut self, t: usize, reason: FlushReason) {
+        let raster = self.cfg.raster;
+        let tile = raster.tile_id(t);
+        let rect = raster.tile_rect(tile);
+        let LightBuffers { z1, z2, tiles, bins, setups } = &mut self.buf;
+        let (Some(bin), Some(state)) = (bins.get_mut(t), tiles.get_mut(t)) else { return };
+        let tile_bytes = rect.area() * F::KIND.bytes() * self.cfg.unit.buffers();
+        #[allow(clippy::cast_possible_truncation, reason = "a bin holds at most B ≤ 2^16 entries")]
+        let triangles = bin.len() as u32;
+        self.probe.event(Event::BinFlush { tile, triangles, reason });
+        if state.stores > 0 {
+            self.probe.event(Event::TileLoad { tile, bytes: tile_bytes });
+        }
+        let width = raster.width() as usize;
+        let mut view = TileView { z1, z2, width, state, tile, rect };
+        let dual = self.cfg.unit == DepthUnit::Dual;
+        for &i in bin.iter() {
+            let Some(s) = setups.get(usize::from(i)) else { continue };
+            match (dual, self.cfg.max_z_cull) {
+                (false, false) => rasterize::<F, P, false, false>(s, &mut view, &mut self.probe),
+                (false, true) => rasterize::<F, P, false, true>(s, &mut view, &mut self.probe),
+                (true, false) => rasterize::<F, P, true, false>(s, &mut view, &mut self.probe),
+                (true, true) => rasterize::<F, P, true, true>(s, &mut view, &mut self.probe),
+            }
+        }
+        bin.clear();
+        resolve::<F>(&mut view, dual);
+        view.state.stores += 1;
+        self.probe.event(Event::TileStore { tile, bytes: tile_bytes, cleared: false });
+    }
+
+    /// Drain every bin, store every tile, and hand back the probe.
+    pub fn finish(mut self) -> P {
+        for t in 0..self.buf.bins.len() {
+            if !self.buf.bins[t].is_empty() {
+                self.flush_tile(t, FlushReason::Finish);
+            } else if self.buf.tiles[t].stores == 0 {
+                let tile = self.cfg.raster.tile_id(t);
+                let rect = self.cfg.raster.tile_rect(tile);
+                let bytes = rect.area() * F::KIND.bytes() * self.cfg.unit.buffers();
+                self.buf.tiles[t].stores = 1;
+                self.probe.event(Event::TileStore { tile, bytes, cleared: true });
+            }
+        }
+        self.setups_used = 0;
+        self.probe
+    }
+}
+
+/// Exact bounds of a tile at store time (the resolve).
+fn resolve<F: DepthFormat>(view: &mut TileView<'_, F::Texel>, dual: bool) {
+    let (r, width) = (view.rect, view.width);
+    let rows = |buf| tile_rows(buf, r, width);
+    let (z1_min, z1_max) = min_max(rows(&*view.z1), F::FAR);
+    let st = &mut *view.state;
+    (st.z1_min, st.z1_max) = (z1_min, z1_max);
+    if dual {
+        let (z2_min, z2_max) = min_max(rows(&*view.z2), F::FAR);
+        (st.z2_min, st.z2_max) = (z2_min, z2_max);
+    }
+    let culled: &[F::Texel] = if dual { &*view.z2 } else { &*view.z1 };
+    (st.cull_max, st.cull_count) = max_and_count(rows(culled));
+}
+
+impl DepthUnit {
+    /// Depth buffers this unit keeps.
+    #[must_use]
+    pub const fn buffers(self) -> u32 {
+        match self {
+            Self::Single => 1,
+            Self::Dual => 2,
+        }
+    }
+}

@@ -1,0 +1,271 @@
+//! Triangle setup: integer edge functions with the top-left fill rule, and
+//! the depth plane `z = A·x + B·y + C` in fixed point.
+//!
+//! Setup computes; the rasterizer only adds.
+//!
+//! # Edge functions
+//! For an edge from `a` to `b` (snapped, y down),
+//! `E(X, Y) = (Xb − Xa)(Y − Ya) − (Yb − Ya)(X − Xa)`; vertices are ordered so
+//! the interior has `E > 0` on all three edges. Pixel centres lie on the
+//! subpixel grid (`X = px·2^s + 2^(s−1)`), so `E` is an exact integer there.
+//! An [`Edge`] holds `E` at pixel `(0, 0)` and its steps per pixel.
+//!
+//! **Budget.** Snapped coordinates satisfy `|X|, |Y| ≤ 2^24`
+//! ([`crate::snap::COORD_BITS`]), so `|Xb − Xa| ≤ 2^25` and every value of
+//! `E` at a pixel centre of the target is below `2·2^25·2^25 = 2^51`: an
+//! `i64` accumulator cannot overflow (checked at compile time below).
+//!
+//! **Fill rule.** The D3D top-left rule in this y-down orientation: a pixel
+//! centre exactly on an edge belongs to the triangle iff the edge is a *top*
+//! edge (horizontal, interior below) or a *left* edge (interior to its
+//! right). It is applied once, as a bias of −1 on the other edges, so the
+//! rasterizer's test is always `E ≥ 0`.
+//!
+//! # Depth plane
+//! Vertex depths are [`PlaneZ`] (format LSBs with 32 fraction bits). The
+//! plane's per-pixel steps `A`, `B` and its value `C` at pixel `(0, 0)` are
+//! solved exactly in `i128` and rounded once, so the depth at pixel
+//! `(px, py)` is `C + A·px + B·py` whatever path the rasterizer took to get
+//! there. The rasterizer steps it in `i64` with wrapping adds: the sum is
+//! exact modulo 2⁶⁴, and at every pixel centre inside the triangle the true
+//! value lies in `[0, 2^56]`, so wrapping never shows. The rounding of the
+//! three coefficients costs at most `½(1 + |px| + |py|)` units of 2⁻³²
+//! LSB — below 2⁻¹⁸ LSB on the largest target.
+
+use crate::config::{CullMode, RasterConfig};
+use crate::depth::PlaneZ;
+use crate::probe::RejectReason;
+use crate::snap::{COORD_BITS, SnappedVertex};
+use crate::tile::TileRect;
+
+const _: () = assert!(2 * (COORD_BITS + 1) + 1 < 63, "edge functions must fit in i64");
+// Depth numerators: |dZ| ≤ 2^57, |dY| ≤ 2^25 → |a_num| ≤ 2^83; times a
+// coordinate difference (≤ 2^25) stays below 2^109 < 2^127.
+const _: () = assert!(57 + (COORD_BITS + 1) + 1 + (COORD_BITS + 1) < 127, "depth plane must fit in i128");
+
+/// One edge function, evaluated at pixel centres: `E(px, py) = c + dx·px + dy·py`.
+/// A pixel centre is inside the edge iff `E ≥ 0` (fill-rule bias included).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Edge {
+    /// Step per pixel to the right.
+    pub dx: i64,
+    /// Step per pixel down.
+    pub dy: i64,
+    /// Value at the centre of pixel `(0, 0)`, fill-rule bias included.
+    pub c: i64,
+}
+
+impl Edge {
+    /// The value at the centre of pixel `(px, py)`.
+    #[inline(always)]
+    #[must_use]
+    pub const fn at(&self, px: i64, py: i64) -> i64 {
+        self.c + self.dx * px + self.dy * py
+    }
+
+    /// The smallest and largest value over the pixel centres of `r`.
+    #[inline]
+    #[must_use]
+    pub fn range_over(&self, r: &TileRect) -> (i64, i64) {
+        let (x0, x1) = (i64::from(r.x0) * self.dx, i64::from(r.x1 - 1) * self.dx);
+        let (y0, y1) = (i64::from(r.y0) * self.dy, i64::from(r.y1 - 1) * self.dy);
+        (self.c + x0.min(x1) + y0.min(y1), self.c + x0.max(x1) + y0.max(y1))
+    }
+}
+
+/// The depth plane in [`PlaneZ`] bits: `z(px, py) = c + a·px + b·py`,
+/// exact coefficients (see the module documentation).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DepthPlane {
+    /// Step per pixel to the right.
+    pub a: i128,
+    /// Step per pixel down.
+    pub b: i128,
+    /// Value at the centre of pixel `(0, 0)`.
+    pub c: i128,
+}
+
+/// Reduce modulo 2⁶⁴: the interpolator's wrapping representation.
+#[inline(always)]
+#[allow(clippy::cast_possible_truncation, reason = "modular arithmetic by design")]
+const fn wrap(v: i128) -> i64 {
+    v as i64
+}
+
+impl DepthPlane {
+    /// The value at the centre of pixel `(px, py)` as the rasterizer steps
+    /// it: modulo 2⁶⁴, exact inside the triangle.
+    #[inline(always)]
+    #[must_use]
+    pub const fn at(&self, px: i64, py: i64) -> PlaneZ {
+        PlaneZ::from_bits(wrap(self.c).wrapping_add(wrap(self.a).wrapping_mul(px)).wrapping_add(wrap(self.b).wrapping_mul(py)))
+    }
+
+    /// The step per pixel to the right, as the rasterizer adds it.
+    #[inline(always)]
+    #[must_use]
+    pub const fn step_x(&self) -> PlaneZ {
+        PlaneZ::from_bits(wrap(self.a))
+    }
+
+    /// The smallest value over the pixel centres of `r`, saturated to [`PlaneZ`].
+    /// A plane takes its minimum over a rectangle at a corner, so this bounds
+    /// every fragment of the triangle in `r` from below.
+    #[inline]
+    #[must_use]
+    pub fn min_over(&self, r: &TileRect) -> PlaneZ {
+        let xa = self.a * i128::from(r.x0);
+        let xb = self.a * i128::from(r.x1 - 1);
+        let ya = self.b * i128::from(r.y0);
+        let yb = self.b * i128::from(r.y1 - 1);
+        let v = self.c + xa.min(xb) + ya.min(yb);
+        #[allow(clippy::cast_possible_truncation, reason = "clamped to the i64 range first")]
+        let bits = v.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64;
+        PlaneZ::from_bits(bits)
+    }
+}
+
+/// A triangle ready for rasterization.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Setup {
+    /// The three edge functions.
+    pub edges: [Edge; 3],
+    /// The depth plane.
+    pub plane: DepthPlane,
+    /// Pixels whose centres may be covered, clipped to the target.
+    pub bbox: TileRect,
+    /// The nearest vertex depth: a lower bound on every fragment.
+    pub z_min: PlaneZ,
+    /// Index of the submitted triangle.
+    pub triangle: u32,
+}
+
+/// `round(n / d)` (half up) for `d > 0`.
+#[inline]
+fn round_div(n: i128, d: i128) -> i128 {
+    (2 * n + d).div_euclid(2 * d)
+}
+
+/// `floor(v / 2^s)` and `ceil(v / 2^s)`.
+#[inline]
+const fn floor_shift(v: i64, s: u32) -> i64 {
+    v >> s
+}
+
+#[inline]
+const fn ceil_shift(v: i64, s: u32) -> i64 {
+    -((-v) >> s)
+}
+
+impl Setup {
+    /// A placeholder that covers nothing, to fill a setup store.
+    pub const EMPTY: Self = Self {
+        edges: [Edge { dx: 0, dy: 0, c: -1 }; 3],
+        plane: DepthPlane { a: 0, b: 0, c: 0 },
+        bbox: TileRect { x0: 0, y0: 0, x1: 0, y1: 0 },
+        z_min: PlaneZ::ZERO,
+        triangle: 0,
+    };
+
+    /// Set up a snapped triangle, or say why it produces nothing.
+    ///
+    /// # Errors
+    /// [`RejectReason::Degenerate`] for zero area on the subpixel grid,
+    /// [`RejectReason::Facing`] when `cull` discards it,
+    /// [`RejectReason::NoCoverage`] when no pixel centre of the target lies
+    /// in its bounding box.
+    pub fn new(cfg: &RasterConfig, v: [SnappedVertex; 3], cull: CullMode, triangle: u32) -> Result<Self, RejectReason> {
+        let [v0, mut v1, mut v2] = v;
+        let area2 = |a: &SnappedVertex, b: &SnappedVertex, c: &SnappedVertex| {
+            (b.x.0 - a.x.0) * (c.y.0 - a.y.0) - (b.y.0 - a.y.0) * (c.x.0 - a.x.0)
+        };
+        let mut d = area2(&v0, &v1, &v2);
+        if d == 0 {
+            return Err(RejectReason::Degenerate);
+        }
+        // d < 0: counter-clockwise in NDC (y up), i.e. facing the light.
+        let facing_light = d < 0;
+        match (cull, facing_light) {
+            (CullMode::Back, false) | (CullMode::Front, true) => return Err(RejectReason::Facing),
+            _ => {}
+        }
+        if d < 0 {
+            core::mem::swap(&mut v1, &mut v2);
+            d = -d;
+        }
+
+        let s = cfg.subpixel_bits();
+        let half = 1i64 << (s - 1);
+        let unit = 1i64 << s;
+        let x_min = v0.x.0.min(v1.x.0).min(v2.x.0);
+        let x_max = v0.x.0.max(v1.x.0).max(v2.x.0);
+        let y_min = v0.y.0.min(v1.y.0).min(v2.y.0);
+        let y_max = v0.y.0.max(v1.y.0).max(v2.y.0);
+        let px0 = ceil_shift(x_min - half, s).max(0);
+        let py0 = ceil_shift(y_min - half, s).max(0);
+        let px1 = floor_shift(x_max - half, s).min(i64::from(cfg.width()) - 1);
+        let py1 = floor_shift(y_max - half, s).min(i64::from(cfg.height()) - 1);
+        if px0 > px1 || py0 > py1 {
+            return Err(RejectReason::NoCoverage);
+        }
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "clamped to the target")]
+        let bbox = TileRect { x0: px0 as u32, y0: py0 as u32, x1: px1 as u32 + 1, y1: py1 as u32 + 1 };
+
+        let edge = |a: &SnappedVertex, b: &SnappedVertex| {
+            let (ex, ey) = (b.x.0 - a.x.0, b.y.0 - a.y.0);
+            let top_left = ey < 0 || (ey == 0 && ex > 0);
+            let bias = if top_left { 0 } else { -1 };
+            Edge { dx: -ey * unit, dy: ex * unit, c: ex * (half - a.y.0) - ey * (half - a.x.0) + bias }
+        };
+        let edges = [edge(&v0, &v1), edge(&v1, &v2), edge(&v2, &v0)];
+
+        let (x0, y0, z0) = (i128::from(v0.x.0), i128::from(v0.y.0), i128::from(v0.z.to_bits()));
+        let (dx1, dy1, dz1) = (i128::from(v1.x.0) - x0, i128::from(v1.y.0) - y0, i128::from(v1.z.to_bits()) - z0);
+        let (dx2, dy2, dz2) = (i128::from(v2.x.0) - x0, i128::from(v2.y.0) - y0, i128::from(v2.z.to_bits()) - z0);
+        let a_num = dz1 * dy2 - dz2 * dy1;
+        let b_num = dx1 * dz2 - dx2 * dz1;
+        let d = i128::from(d);
+        let h = i128::from(half);
+        let plane = DepthPlane {
+            a: round_div(a_num * i128::from(unit), d),
+            b: round_div(b_num * i128::from(unit), d),
+            c: z0 + round_div(a_num * (h - x0) + b_num * (h - y0), d),
+        };
+        let z_min = v0.z.min(v1.z).min(v2.z);
+        Ok(Self { edges, plane, bbox, z_min, triangle })
+    }
+
+    /// Whether the centre of pixel `(px, py)` is covered.
+    #[inline]
+    #[must_use]
+    pub fn covers(&self, px: i64, py: i64) -> bool {
+        self.edges.iter().all(|e| e.at(px, py) >= 0)
+    }
+
+    /// How the triangle meets the pixel centres of `r`.
+    #[inline]
+    #[must_use]
+    pub fn classify(&self, r: &TileRect) -> Coverage {
+        let mut full = true;
+        for e in &self.edges {
+            let (lo, hi) = e.range_over(r);
+            if hi < 0 {
+                return Coverage::Empty;
+            }
+            full &= lo >= 0;
+        }
+        if full { Coverage::Full } else { Coverage::Partial }
+    }
+}
+
+/// How a triangle meets a rectangle of pixel centres, from corner tests of
+/// its edge functions (Mesa llvmpipe's trivial reject / accept).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Coverage {
+    /// Some edge excludes every centre.
+    Empty,
+    /// Every edge includes every centre.
+    Full,
+    /// Neither: test per pixel.
+    Partial,
+}

@@ -1,0 +1,72 @@
+//! Viewport transform and vertex snap to the subpixel grid.
+//!
+//! Raster orientation: x to the right, y **down**, row 0 at the top. A
+//! vertex at NDC `(x, y)` lands at pixel coordinates
+//! `((x + 1)·W/2, (1 − y)·H/2)`; pixel `(px, py)` samples its centre
+//! `(px + ½, py + ½)`. Coordinates are snapped (rounded to nearest) to
+//! `1/2^s` pixel, `s` the subpixel bits, in f64 — one rounding per vertex,
+//! the same on every target.
+//!
+//! # Integer budget
+//! The guard band keeps every snapped coordinate inside `±2^GUARD_BITS`
+//! pixels, so with at most 8 subpixel bits it fits in [`COORD_BITS`] bits
+//! plus sign. Edge functions in [`crate::setup`] build on that bound.
+
+use crate::clip::ClipVertex;
+use crate::config::{MAX_SUBPIXEL_BITS, MAX_TARGET_BITS, RasterConfig};
+use crate::depth::{DepthFormat, PlaneZ};
+
+/// Snapped coordinates lie within `±2^GUARD_BITS` pixels.
+pub const GUARD_BITS: u32 = 16;
+/// Snapped coordinates lie within `±2^COORD_BITS` subpixels.
+pub const COORD_BITS: u32 = GUARD_BITS + MAX_SUBPIXEL_BITS;
+
+const _: () = assert!(GUARD_BITS > MAX_TARGET_BITS, "the guard band must contain the target");
+
+/// A coordinate on the subpixel grid: `value / 2^subpixel_bits` pixels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct SubPx(pub i64);
+
+/// A vertex after the viewport transform and snap.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SnappedVertex {
+    /// Column, in subpixels.
+    pub x: SubPx,
+    /// Row (down), in subpixels.
+    pub y: SubPx,
+    /// Depth in the interpolator's fixed point.
+    pub z: PlaneZ,
+}
+
+impl RasterConfig {
+    /// The guard-band factors `[g_x, g_y]` for [`crate::clip`]: NDC `|x| ≤ g_x`
+    /// keeps the pixel coordinate inside `±2^GUARD_BITS`.
+    #[must_use]
+    pub fn guard(&self) -> [f64; 2] {
+        let reach = f64::from(1u32 << (GUARD_BITS + 1));
+        [reach / f64::from(self.width()) - 1.0, reach / f64::from(self.height()) - 1.0]
+    }
+
+    /// Project a clipped vertex and snap it to the subpixel grid. `None` when
+    /// `w ≤ 0` (the one point of the guard-band cone with `w = 0`) or the
+    /// result is not finite.
+    #[must_use]
+    pub fn snap<F: DepthFormat>(&self, v: &ClipVertex) -> Option<SnappedVertex> {
+        let [x, y, z, w] = *v;
+        if w.is_nan() || w <= 0.0 {
+            return None;
+        }
+        let unit = f64::from(1u32 << self.subpixel_bits());
+        let limit = f64::from(1u32 << COORD_BITS);
+        let sx = (x / w + 1.0) * 0.5 * f64::from(self.width()) * unit;
+        let sy = (1.0 - y / w) * 0.5 * f64::from(self.height()) * unit;
+        if !sx.is_finite() || !sy.is_finite() {
+            return None;
+        }
+        // Rounding overshoot at the guard band is clamped; the band lies
+        // far outside the target, so no sample moves.
+        #[allow(clippy::cast_possible_truncation, reason = "clamped to ±2^24 first")]
+        let snap = |s: f64| SubPx(libm::round(s.clamp(-limit, limit)) as i64);
+        Some(SnappedVertex { x: snap(sx), y: snap(sy), z: F::plane_z(z / w) })
+    }
+}

@@ -1,0 +1,94 @@
+//! The tile grid: square tiles of `2^tile_shift` pixels, in row-major order,
+//! and half-open rectangles of pixels.
+
+use crate::config::RasterConfig;
+
+/// A tile's column and row in the grid.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct TileId {
+    /// Tile column.
+    pub x: u16,
+    /// Tile row.
+    pub y: u16,
+}
+
+/// A half-open rectangle of pixels `[x0, x1) × [y0, y1)`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct TileRect {
+    /// First column.
+    pub x0: u32,
+    /// First row.
+    pub y0: u32,
+    /// One past the last column.
+    pub x1: u32,
+    /// One past the last row.
+    pub y1: u32,
+}
+
+impl TileRect {
+    /// The intersection, or `None` when it is empty.
+    #[must_use]
+    pub fn intersect(&self, other: &Self) -> Option<Self> {
+        let r = Self {
+            x0: self.x0.max(other.x0),
+            y0: self.y0.max(other.y0),
+            x1: self.x1.min(other.x1),
+            y1: self.y1.min(other.y1),
+        };
+        (r.x0 < r.x1 && r.y0 < r.y1).then_some(r)
+    }
+
+    /// Width in pixels.
+    #[must_use]
+    pub const fn width(&self) -> u32 {
+        self.x1 - self.x0
+    }
+
+    /// Height in pixels.
+    #[must_use]
+    pub const fn height(&self) -> u32 {
+        self.y1 - self.y0
+    }
+
+    /// Number of pixels.
+    #[must_use]
+    pub const fn area(&self) -> u32 {
+        self.width() * self.height()
+    }
+}
+
+impl RasterConfig {
+    /// The tile at a flat (row-major) index.
+    #[must_use]
+    pub fn tile_id(&self, index: usize) -> TileId {
+        let across = self.tiles().0 as usize;
+        #[allow(clippy::cast_possible_truncation, reason = "at most 2^14 / 8 tiles per side")]
+        TileId { x: (index % across) as u16, y: (index / across) as u16 }
+    }
+
+    /// The flat (row-major) index of a tile.
+    #[must_use]
+    pub fn tile_index(&self, tile: TileId) -> usize {
+        usize::from(tile.y) * self.tiles().0 as usize + usize::from(tile.x)
+    }
+
+    /// The pixels of a tile, clipped to the target.
+    #[must_use]
+    pub fn tile_rect(&self, tile: TileId) -> TileRect {
+        let s = self.tile_shift();
+        let x0 = u32::from(tile.x) << s;
+        let y0 = u32::from(tile.y) << s;
+        TileRect {
+            x0,
+            y0,
+            x1: (x0 + self.tile_size()).min(self.width()),
+            y1: (y0 + self.tile_size()).min(self.height()),
+        }
+    }
+
+    /// The whole target.
+    #[must_use]
+    pub const fn target_rect(&self) -> TileRect {
+        TileRect { x0: 0, y0: 0, x1: self.width(), y1: self.height() }
+    }
+}
