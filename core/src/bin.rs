@@ -24,6 +24,5 @@ pub type Bin<const B: usize> = heapless::Vec<SetupIndex, B>;
 #[inline]
 #[must_use]
 pub fn touches(s: &Setup, r: &crate::tile::TileRect) -> bool {
-    r.intersect(&s.bbox)
-        .is_some_and(|r| s.classify(&r) != crate::setup::Coverage::Empty)
+    r.intersect(&s.bbox).is_some_and(|r| s.classify(&r) != crate::setup::Coverage::Empty)
 }

@@ -88,8 +88,7 @@ pub fn clip_triangle(tri: &[ClipVertex; 3], guard: [f64; 2]) -> Clipped {
                 return Clipped::Outside;
             }
             if (dc >= 0.0) != (dn >= 0.0) {
-                let (inside, outside, d_in, d_out) =
-                    if dc >= 0.0 { (cur, nxt, dc, dn) } else { (nxt, cur, dn, dc) };
+                let (inside, outside, d_in, d_out) = if dc >= 0.0 { (cur, nxt, dc, dn) } else { (nxt, cur, dn, dc) };
                 let t = d_in / (d_in - d_out);
                 let mut p = [0.0; 4];
                 for k in 0..4 {

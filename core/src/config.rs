@@ -171,11 +171,9 @@ pub enum ConfigError {
 impl fmt::Display for ConfigError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
-            Self::TargetSize { width, height } => write!(
-                f,
-                "target size {width}x{height} is outside 1..={} on each side",
-                1u32 << MAX_TARGET_BITS
-            ),
+            Self::TargetSize { width, height } => {
+                write!(f, "target size {width}x{height} is outside 1..={} on each side", 1u32 << MAX_TARGET_BITS)
+            }
             Self::TileSize { size } => write!(f, "tile size {size} is not a power of two in 8..=128"),
             Self::SubpixelBits { bits } => {
                 write!(f, "subpixel bits {bits} is outside 1..={MAX_SUBPIXEL_BITS}")

@@ -56,10 +56,9 @@ pub enum SubmitError {
 impl core::fmt::Display for SubmitError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match *self {
-            Self::IndexOutOfRange { triangle, index, vertices } => write!(
-                f,
-                "triangle {triangle} names vertex {index}, but there are only {vertices} vertices"
-            ),
+            Self::IndexOutOfRange { triangle, index, vertices } => {
+                write!(f, "triangle {triangle} names vertex {index}, but there are only {vertices} vertices")
+            }
         }
     }
 }

@@ -98,7 +98,9 @@ impl DepthPlane {
     #[inline(always)]
     #[must_use]
     pub const fn at(&self, px: i64, py: i64) -> PlaneZ {
-        PlaneZ::from_bits(wrap(self.c).wrapping_add(wrap(self.a).wrapping_mul(px)).wrapping_add(wrap(self.b).wrapping_mul(py)))
+        PlaneZ::from_bits(
+            wrap(self.c).wrapping_add(wrap(self.a).wrapping_mul(px)).wrapping_add(wrap(self.b).wrapping_mul(py)),
+        )
     }
 
     /// The step per pixel to the right, as the rasterizer adds it.

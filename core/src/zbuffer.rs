@@ -49,6 +49,21 @@ impl<T: Copy> TileState<T> {
         Self { z1_min: far, z1_max: far, z2_min: far, z2_max: far, stores: 0, cull_max: far, cull_count: texels }
     }
 
+    /// The same summary with every depth converted by `f` (which must be
+    /// monotonic, e.g. widening to raw bits).
+    #[must_use]
+    pub fn map<U>(self, f: impl Fn(T) -> U) -> TileState<U> {
+        TileState {
+            z1_min: f(self.z1_min),
+            z1_max: f(self.z1_max),
+            z2_min: f(self.z2_min),
+            z2_max: f(self.z2_max),
+            stores: self.stores,
+            cull_max: f(self.cull_max),
+            cull_count: self.cull_count,
+        }
+    }
+
     /// The max stored depth that culling compares against.
     #[must_use]
     pub const fn cull_max(&self) -> T {

@@ -1,1 +1,11 @@
-//! placeholder
+#![forbid(unsafe_code)]
+#![doc = include_str!("../README.md")]
+
+pub mod counters;
+pub mod light;
+pub mod mesh;
+pub mod output;
+pub mod scene;
+
+pub use glam;
+pub use umbra_core as core;

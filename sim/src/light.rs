@@ -1,0 +1,153 @@
+//! Run the core's light pass over buffers owned here.
+
+use glam::{Mat4, Vec3};
+use umbra_core::bin::Bin;
+use umbra_core::setup::Setup;
+use umbra_core::{
+    ConfigError, CullMode, D16, D24, DepthFormat, DepthFormatKind, DepthUnit, F32, LightBuffers, LightPass,
+    LightPassConfig, Probe, SubmitError, TileState,
+};
+
+/// Bin capacity the simulator uses unless told otherwise.
+pub const DEFAULT_BIN_CAPACITY: usize = 64;
+/// Setup-store size the simulator uses unless told otherwise.
+pub const DEFAULT_SETUPS: usize = 4096;
+
+/// One draw call: a mesh, its transform to light clip space and its cull mode.
+#[derive(Clone, Copy, Debug)]
+pub struct Draw<'a> {
+    /// Object-space positions.
+    pub positions: &'a [Vec3],
+    /// Vertex indices, three per triangle.
+    pub triangles: &'a [[u32; 3]],
+    /// Object space to light clip space.
+    pub transform: Mat4,
+    /// Which facing to discard.
+    pub cull: CullMode,
+}
+
+/// The maps of one light pass.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct LightMaps<T> {
+    /// The configuration they were rendered with.
+    pub config: LightPassConfig,
+    /// Nearest depth, row-major.
+    pub z1: Vec<T>,
+    /// Second-nearest depth (empty unless the unit is dual).
+    pub z2: Vec<T>,
+    /// Per-tile summaries, row-major.
+    pub tiles: Vec<TileState<T>>,
+}
+
+/// Why a light pass could not run.
+#[derive(Debug, thiserror::Error)]
+pub enum LightError {
+    /// The configuration or a buffer is unusable.
+    #[error("light pass configuration: {0}")]
+    Config(#[from] ConfigError),
+    /// A draw call is malformed.
+    #[error("draw call {draw}: {source}")]
+    Submit {
+        /// Which draw call.
+        draw: usize,
+        /// What is wrong with it.
+        source: SubmitError,
+    },
+}
+
+/// Render the light pass of `draws` in format `F` with bin capacity `B` and a
+/// setup store of `setups` entries.
+///
+/// # Errors
+/// See [`LightError`].
+pub fn render_with<F: DepthFormat, P: Probe, const B: usize>(
+    config: LightPassConfig,
+    draws: &[Draw<'_>],
+    setups: usize,
+    probe: P,
+) -> Result<(LightMaps<F::Texel>, P), LightError> {
+    let r = config.raster;
+    let texels = r.texel_count();
+    let mut z1 = vec![F::FAR; texels];
+    let mut z2 = vec![F::FAR; if config.unit == DepthUnit::Dual { texels } else { 0 }];
+    let mut tiles = vec![TileState::cleared(F::FAR, 0); r.tile_count()];
+    let mut bins = vec![Bin::<B>::new(); r.tile_count()];
+    let mut store = vec![Setup::EMPTY; setups];
+    let buffers = LightBuffers { z1: &mut z1, z2: &mut z2, tiles: &mut tiles, bins: &mut bins, setups: &mut store };
+    let mut pass = LightPass::<F, P, B>::new(config, buffers, probe)?;
+    for (draw, d) in draws.iter().enumerate() {
+        pass.draw_mesh(d.positions, d.triangles, &d.transform, d.cull)
+            .map_err(|source| LightError::Submit { draw, source })?;
+    }
+    let probe = pass.finish();
+    Ok((LightMaps { config, z1, z2, tiles }, probe))
+}
+
+/// Render with the default bin capacity and setup store.
+///
+/// # Errors
+/// See [`LightError`].
+pub fn render<F: DepthFormat, P: Probe>(
+    config: LightPassConfig,
+    draws: &[Draw<'_>],
+    probe: P,
+) -> Result<(LightMaps<F::Texel>, P), LightError> {
+    render_with::<F, P, DEFAULT_BIN_CAPACITY>(config, draws, DEFAULT_SETUPS, probe)
+}
+
+/// Maps of a format chosen at run time, texels widened to their raw `u32` bits.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RawMaps {
+    /// The depth format.
+    pub format: DepthFormatKind,
+    /// The maps.
+    pub maps: LightMaps<u32>,
+}
+
+fn widen<T: umbra_core::depth::Texel>(m: LightMaps<T>) -> LightMaps<u32> {
+    let raw = |v: Vec<T>| v.into_iter().map(T::to_raw).collect();
+    LightMaps {
+        config: m.config,
+        z1: raw(m.z1),
+        z2: raw(m.z2),
+        tiles: m.tiles.into_iter().map(|t| t.map(T::to_raw)).collect(),
+    }
+}
+
+/// Render in a format chosen at run time.
+///
+/// # Errors
+/// See [`LightError`].
+pub fn render_raw<P: Probe>(
+    config: LightPassConfig,
+    format: DepthFormatKind,
+    draws: &[Draw<'_>],
+    probe: P,
+) -> Result<(RawMaps, P), LightError> {
+    let (maps, probe) = match format {
+        DepthFormatKind::D16 => render::<D16, P>(config, draws, probe).map(|(m, p)| (widen(m), p))?,
+        DepthFormatKind::D24 => render::<D24, P>(config, draws, probe).map(|(m, p)| (widen(m), p))?,
+        DepthFormatKind::F32 => render::<F32, P>(config, draws, probe).map(|(m, p)| (widen(m), p))?,
+    };
+    Ok((RawMaps { format, maps }, probe))
+}
+
+/// The depth a raw texel of `format` stands for, in `[0, 1]`.
+#[must_use]
+pub fn raw_depth(format: DepthFormatKind, raw: u32) -> f64 {
+    match format {
+        DepthFormatKind::D16 => D16::unquantize(u16::try_from(raw).unwrap_or(u16::MAX)),
+        DepthFormatKind::D24 => D24::unquantize(raw),
+        DepthFormatKind::F32 => F32::unquantize(raw),
+    }
+}
+
+/// The clear (far) value of `format`, as raw bits.
+#[must_use]
+pub fn raw_far(format: DepthFormatKind) -> u32 {
+    match format {
+        DepthFormatKind::D16 => u32::from(D16::FAR),
+        DepthFormatKind::D24 => D24::FAR,
+        DepthFormatKind::F32 => F32::FAR,
+    }
+}
