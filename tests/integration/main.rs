@@ -1,1 +1,18 @@
-//! tests
+//! Integration and property tests of Umbra, as one binary.
+#![allow(
+    clippy::cast_possible_truncation,
+    clippy::cast_sign_loss,
+    clippy::cast_possible_wrap,
+    clippy::cast_precision_loss,
+    reason = "test arithmetic on small, bounded values"
+)]
+
+mod common;
+
+mod culling;
+mod dual_depth;
+mod fill_rule;
+mod hostile;
+mod quantize;
+mod tiling;
+mod watertight;

@@ -1,0 +1,214 @@
+//! Shared harness: a light pass over clip-space triangles, a probe that
+//! records every fragment, a plain whole-target reference rasterizer, and
+//! proptest strategies.
+
+use proptest::prelude::*;
+use umbra::core::bin::Bin;
+use umbra::core::depth::Texel;
+use umbra::core::glam::Vec4;
+use umbra::core::probe::{Event, FlushReason, Fragment, Probe};
+use umbra::core::setup::Setup;
+use umbra::core::{
+    CullMode, DepthFormat, DepthUnit, LightBuffers, LightPass, LightPassConfig, RasterConfig, TileState,
+};
+
+/// Records every fragment and counts the events tests look at.
+#[derive(Default, Debug, Clone)]
+pub struct Recorder {
+    pub fragments: Vec<Fragment>,
+    pub bin_full_flushes: u32,
+    pub setup_full_flushes: u32,
+    pub culled: u32,
+    pub fragment_events: u64,
+    pub rejected: u32,
+}
+
+impl Probe for Recorder {
+    const FRAGMENTS: bool = true;
+
+    fn event(&mut self, e: Event) {
+        match e {
+            Event::BinFlush { reason: FlushReason::BinFull, .. } => self.bin_full_flushes += 1,
+            Event::BinFlush { reason: FlushReason::SetupFull, .. } => self.setup_full_flushes += 1,
+            Event::Culled { .. } => self.culled += 1,
+            Event::Fragments { count, .. } => self.fragment_events += u64::from(count),
+            Event::TriangleRejected { .. } => self.rejected += 1,
+            _ => {}
+        }
+    }
+
+    fn fragment(&mut self, f: Fragment) {
+        self.fragments.push(f);
+    }
+}
+
+impl Recorder {
+    /// The fragments as a sorted multiset.
+    pub fn sorted(mut self) -> Vec<Fragment> {
+        self.fragments.sort_unstable();
+        self.fragments
+    }
+}
+
+/// The buffers a pass left behind.
+pub struct Maps<T> {
+    pub z1: Vec<T>,
+    pub z2: Vec<T>,
+    pub tiles: Vec<TileState<T>>,
+}
+
+pub fn config(size: u32, tile: u32, unit: DepthUnit, max_z_cull: bool) -> LightPassConfig {
+    LightPassConfig {
+        raster: RasterConfig::new(size, size, tile, 8).expect("valid test configuration"),
+        unit,
+        max_z_cull,
+    }
+}
+
+/// Run a light pass over clip-space triangles with bin capacity `B`.
+pub fn run<F: DepthFormat, P: Probe, const B: usize>(
+    cfg: LightPassConfig,
+    tris: &[[Vec4; 3]],
+    cull: CullMode,
+    setups: usize,
+    probe: P,
+) -> (Maps<F::Texel>, P) {
+    let r = cfg.raster;
+    let n = r.texel_count();
+    let mut z1 = vec![F::Texel::default(); n];
+    let mut z2 = vec![F::Texel::default(); if cfg.unit == DepthUnit::Dual { n } else { 0 }];
+    let mut tiles = vec![TileState::cleared(F::FAR, 0); r.tile_count()];
+    let mut bins = vec![Bin::<B>::new(); r.tile_count()];
+    let mut store = vec![Setup::EMPTY; setups];
+    let buffers = LightBuffers { z1: &mut z1, z2: &mut z2, tiles: &mut tiles, bins: &mut bins, setups: &mut store };
+    let mut pass = LightPass::<F, P, B>::new(cfg, buffers, probe).expect("buffers sized from the configuration");
+    for t in tris {
+        pass.draw_clip(*t, cull);
+    }
+    let probe = pass.finish();
+    (Maps { z1, z2, tiles }, probe)
+}
+
+/// Snap like the hardware's documented viewport transform (f64, round half
+/// away from zero): `((x/w + 1)·W/2, (1 − y/w)·H/2)` in 1/256 pixel.
+pub fn snap(v: Vec4, size: u32) -> (i128, i128) {
+    let (w, half) = (f64::from(v.w), f64::from(size) * 0.5 * 256.0);
+    let x = ((f64::from(v.x) / w + 1.0) * half).round();
+    let y = ((1.0 - f64::from(v.y) / w) * half).round();
+    (x as i128, y as i128)
+}
+
+/// A fragment of the reference rasterizer, with how close its exact depth
+/// came to a rounding tie (so a 1-LSB difference there is not a failure).
+#[derive(Clone, Copy, Debug)]
+pub struct RefFragment {
+    pub x: u32,
+    pub y: u32,
+    pub depth: u32,
+    pub near_tie: bool,
+    pub triangle: u32,
+}
+
+/// The plain reference: every pixel centre of the target against every
+/// triangle, edge functions and depth evaluated directly (no tiles, no
+/// stepping) in i128, depth as the exact rational, rounded half up to the
+/// format's LSB. For triangles that need no clipping (`0 ≤ z ≤ w`, `w > 0`).
+/// Fill rule: a centre on an edge belongs to the triangle iff the edge is a
+/// top edge (horizontal, interior below, y down) or a left edge.
+pub fn reference<F: DepthFormat>(size: u32, tris: &[[Vec4; 3]], cull: CullMode) -> Vec<RefFragment> {
+    let mut out = Vec::new();
+    for (id, t) in tris.iter().enumerate() {
+        let p: Vec<(i128, i128)> = t.iter().map(|v| snap(*v, size)).collect();
+        let z: Vec<i128> =
+            t.iter().map(|v| i128::from(F::plane_z(f64::from(v.z) / f64::from(v.w)).to_bits())).collect();
+        let (a, mut b, mut c) = (0usize, 1usize, 2usize);
+        let cross =
+            |a: (i128, i128), b: (i128, i128), q: (i128, i128)| (b.0 - a.0) * (q.1 - a.1) - (b.1 - a.1) * (q.0 - a.0);
+        let area = cross(p[0], p[1], p[2]);
+        if area == 0 {
+            continue;
+        }
+        // Negative area in y-down raster = counter-clockwise in NDC = facing the light.
+        let facing = area < 0;
+        if (cull == CullMode::Back && !facing) || (cull == CullMode::Front && facing) {
+            continue;
+        }
+        if area < 0 {
+            std::mem::swap(&mut b, &mut c);
+        }
+        let area = area.abs();
+        let top_left = |from: (i128, i128), to: (i128, i128)| {
+            let (ex, ey) = (to.0 - from.0, to.1 - from.1);
+            ey < 0 || (ey == 0 && ex > 0)
+        };
+        let inside = |e: i128, from, to| e > 0 || (e == 0 && top_left(from, to));
+        let unit = i128::from(1u32 << 31) * 2;
+        let scale = i128::from(F::SCALE);
+        for py in 0..size {
+            for px in 0..size {
+                let q = (i128::from(px) * 256 + 128, i128::from(py) * 256 + 128);
+                let (wa, wb, wc) = (cross(p[b], p[c], q), cross(p[c], p[a], q), cross(p[a], p[b], q));
+                if !(inside(wa, p[b], p[c]) && inside(wb, p[c], p[a]) && inside(wc, p[a], p[b])) {
+                    continue;
+                }
+                let num = wa * z[a] + wb * z[b] + wc * z[c];
+                let den = area * unit;
+                let q = ((2 * num + den).div_euclid(2 * den)).clamp(0, scale);
+                let rem = num.rem_euclid(den);
+                let near_tie = (2 * rem - den).abs() < den >> 10;
+                out.push(RefFragment { x: px, y: py, depth: q as u32, near_tie, triangle: id as u32 });
+            }
+        }
+    }
+    out
+}
+
+/// Assert that recorded fragments equal the reference's: the same pixels of
+/// the same triangles, and the same depths except within 2⁻¹⁰ LSB of a tie,
+/// where they may differ by one.
+pub fn assert_matches_reference(mut got: Vec<Fragment>, mut want: Vec<RefFragment>) -> Result<(), TestCaseError> {
+    got.sort_unstable_by_key(|f| (f.triangle, f.y, f.x));
+    want.sort_unstable_by_key(|f| (f.triangle, f.y, f.x));
+    prop_assert_eq!(got.len(), want.len(), "fragment counts differ");
+    for (g, w) in got.iter().zip(&want) {
+        prop_assert_eq!((g.triangle, g.x, g.y), (w.triangle, w.x, w.y), "different pixels");
+        let ok = g.depth == w.depth || (w.near_tie && g.depth.abs_diff(w.depth) == 1);
+        prop_assert!(ok, "depth at ({}, {}) of triangle {}: got {}, want {}", g.x, g.y, g.triangle, g.depth, w.depth);
+    }
+    Ok(())
+}
+
+/// Per texel, all fragment depths that landed there.
+pub fn depths_per_texel(frags: &[Fragment], size: u32) -> Vec<Vec<u32>> {
+    let mut per = vec![Vec::new(); (size * size) as usize];
+    for f in frags {
+        per[(f.y * size + f.x) as usize].push(f.depth);
+    }
+    per
+}
+
+/// A vertex in clip space with `w` in `[0.5, 2]`, NDC `x, y` in `[-1.3, 1.3]`
+/// and depth in `[0, 1]`: inside near, far and the guard band.
+pub fn clip_vertex() -> impl Strategy<Value = Vec4> {
+    (-1.3f32..1.3, -1.3f32..1.3, 0.0f32..=1.0, 0.5f32..2.0).prop_map(|(x, y, z, w)| Vec4::new(x * w, y * w, z * w, w))
+}
+
+pub fn triangle() -> impl Strategy<Value = [Vec4; 3]> {
+    [clip_vertex(), clip_vertex(), clip_vertex()]
+}
+
+/// A list of triangles, each either random or small (a few pixels across).
+pub fn triangles(max: usize) -> impl Strategy<Value = Vec<[Vec4; 3]>> {
+    let small = (clip_vertex(), [(-0.1f32..0.1, -0.1f32..0.1), (-0.1f32..0.1, -0.1f32..0.1)], 0.0f32..1.0).prop_map(
+        |(v, d, z)| {
+            let at = |(dx, dy): (f32, f32)| Vec4::new(v.x / v.w + dx, v.y / v.w + dy, z, 1.0);
+            [Vec4::new(v.x / v.w, v.y / v.w, v.z / v.w, 1.0), at(d[0]), at(d[1])]
+        },
+    );
+    prop::collection::vec(prop_oneof![triangle(), small], 1..max)
+}
+
+/// Raw bits of a depth buffer.
+pub fn raw<T: Texel>(v: &[T]) -> Vec<u32> {
+    v.iter().map(|t| t.to_raw()).collect()
+}

@@ -1,0 +1,80 @@
+//! The tiled rasterizer emits exactly the fragments of the plain
+//! whole-target reference, for every tile size, bin capacity and setup
+//! store size — including ones small enough to force early flushes.
+
+use proptest::prelude::*;
+use umbra::core::glam::Vec4;
+use umbra::core::probe::Fragment;
+use umbra::core::{CullMode, D16, D24, DepthFormat, DepthUnit, F32};
+
+use crate::common::{Recorder, assert_matches_reference, config, reference, run, triangles};
+
+const SIZE: u32 = 64;
+
+fn fragments<F: DepthFormat, const B: usize>(
+    tris: &[[Vec4; 3]],
+    tile: u32,
+    setups: usize,
+    cull: CullMode,
+) -> (Vec<Fragment>, Recorder) {
+    let (_, rec) = run::<F, _, B>(config(SIZE, tile, DepthUnit::Dual, false), tris, cull, setups, Recorder::default());
+    let counts = rec.clone();
+    (rec.sorted(), counts)
+}
+
+fn every_tiling_agrees<F: DepthFormat>(tris: &[[Vec4; 3]], cull: CullMode) -> Result<Vec<Fragment>, TestCaseError> {
+    let (base, _) = fragments::<F, 64>(tris, 128, 4096, cull);
+    for tile in [8, 16, 32, 64] {
+        prop_assert_eq!(&fragments::<F, 64>(tris, tile, 4096, cull).0, &base, "tile {}", tile);
+    }
+    prop_assert_eq!(&fragments::<F, 1>(tris, 8, 4096, cull).0, &base, "bin capacity 1");
+    prop_assert_eq!(&fragments::<F, 2>(tris, 16, 3, cull).0, &base, "bin capacity 2, 3 setups");
+    prop_assert_eq!(&fragments::<F, 3>(tris, 32, 1, cull).0, &base, "bin capacity 3, 1 setup");
+    Ok(base)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    #[test]
+    fn tiled_fragments_equal_the_reference_d16(tris in triangles(12)) {
+        let got = every_tiling_agrees::<D16>(&tris, CullMode::None)?;
+        assert_matches_reference(got, reference::<D16>(SIZE, &tris, CullMode::None))?;
+    }
+
+    #[test]
+    fn tiled_fragments_equal_the_reference_d24_with_culling(tris in triangles(12), back in any::<bool>()) {
+        let cull = if back { CullMode::Back } else { CullMode::Front };
+        let got = every_tiling_agrees::<D24>(&tris, cull)?;
+        assert_matches_reference(got, reference::<D24>(SIZE, &tris, cull))?;
+    }
+
+    #[test]
+    fn f32_fragments_do_not_depend_on_tiling(tris in triangles(12)) {
+        every_tiling_agrees::<F32>(&tris, CullMode::None)?;
+    }
+}
+
+/// Many triangles over one tile with bins of one entry: the bin flushes
+/// early again and again, and the result is unchanged.
+#[test]
+fn full_bins_flush_early_and_change_nothing() {
+    let quad = |z: f32| {
+        let v = |x: f32, y: f32| Vec4::new(x, y, z, 1.0);
+        [[v(-1.0, -1.0), v(1.0, -1.0), v(1.0, 1.0)], [v(-1.0, -1.0), v(1.0, 1.0), v(-1.0, 1.0)]]
+    };
+    let tris: Vec<[Vec4; 3]> = (0..6).flat_map(|i| quad(0.9 - 0.1 * i as f32)).collect();
+    let (small, rec_small) = fragments::<D24, 1>(&tris, 32, 5, CullMode::None);
+    let (large, rec_large) = fragments::<D24, 64>(&tris, 32, 4096, CullMode::None);
+    assert_eq!(small, large);
+    // 12 triangles, two per quad; a quad's diagonal crosses the two
+    // off-diagonal tiles, so those bin every triangle and the other two bin
+    // every other one. The 5-entry setup store drains every bin after
+    // triangles 5 and 10 (4 tiles each: 8 flushes); in between, a bin of one
+    // entry flushes whenever a second triangle arrives: groups of 5, 5 and 2
+    // triangles give 4+4+2+1, 4+4+1+2 and 1+1+0+0 = 24 early flushes.
+    assert_eq!(rec_small.bin_full_flushes, 24);
+    assert_eq!(rec_small.setup_full_flushes, 8);
+    assert_eq!(rec_large.bin_full_flushes, 0);
+    assert_eq!(small.len(), 12 * (SIZE * SIZE) as usize / 2);
+}
