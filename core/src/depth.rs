@@ -68,6 +68,16 @@ pub trait DepthFormat: Copy + Default + core::fmt::Debug + Send + Sync + 'static
     /// the f32 reference format, whose whole point is the float.
     fn texel(z: PlaneZ) -> Self::Texel;
 
+    /// The texel of a depth known to lie inside `[0, 1]` up to the
+    /// interpolator's rounding error (a pixel centre inside the triangle),
+    /// given as [`PlaneZ`] bits **plus [`ROUND_HALF`]**: then rounding is a
+    /// shift and no clamp is needed (see [`crate::setup`] for the bound).
+    /// Any other input gives an unspecified texel, never a panic.
+    #[inline(always)]
+    fn texel_inside(biased_bits: i64) -> Self::Texel {
+        Self::texel(PlaneZ::from_bits(biased_bits.wrapping_sub(ROUND_HALF)))
+    }
+
     /// Convert a depth in `[0, 1]` to the interpolator's fixed point,
     /// saturating and monotonic (see the module documentation for what
     /// happens outside `[0, 1]` and to NaN).
@@ -95,6 +105,9 @@ pub trait DepthFormat: Copy + Default + core::fmt::Debug + Send + Sync + 'static
     /// The depth a texel stands for, in `[0, 1]` (for previews and reports).
     fn unquantize(t: Self::Texel) -> f64;
 }
+
+/// Half an LSB in [`PlaneZ`] bits: added once so that rounding is a shift.
+pub const ROUND_HALF: i64 = 1 << (PLANE_FRACTION_BITS - 1);
 
 /// Round half up to whole LSBs, clamped to `[0, max]`, without overflow for
 /// any input.
@@ -130,6 +143,13 @@ impl DepthFormat for D16 {
         t
     }
 
+    #[inline(always)]
+    fn texel_inside(biased_bits: i64) -> u16 {
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "in [0, 2^16 - 1] inside the triangle")]
+        let t = (biased_bits >> PLANE_FRACTION_BITS) as u16;
+        t
+    }
+
     fn unquantize(t: u16) -> f64 {
         f64::from(t) / (Self::SCALE as f64)
     }
@@ -145,6 +165,13 @@ impl DepthFormat for D24 {
     fn texel(z: PlaneZ) -> u32 {
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "clamped to [0, 2^24 - 1]")]
         let t = round_lsb(z, Self::SCALE) as u32;
+        t
+    }
+
+    #[inline(always)]
+    fn texel_inside(biased_bits: i64) -> u32 {
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "in [0, 2^24 - 1] inside the triangle")]
+        let t = (biased_bits >> PLANE_FRACTION_BITS) as u32;
         t
     }
 

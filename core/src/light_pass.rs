@@ -22,7 +22,7 @@ use crate::probe::{Event, FlushReason, NoProbe, Probe, RejectReason};
 use crate::raster::{TileView, rasterize};
 use crate::setup::Setup;
 use crate::tile::TileId;
-use crate::zbuffer::{TileState, max_and_count, min_max, tile_rows};
+use crate::zbuffer::{TileState, count_of, min_max, tile_rows};
 
 /// The caller-owned memory of a light pass.
 pub struct LightBuffers<'a, F: DepthFormat, const B: usize> {
@@ -284,12 +284,15 @@ fn resolve<F: DepthFormat>(view: &mut TileView<'_, F::Texel>, dual: bool) {
     let (z1_min, z1_max) = min_max(rows(&*view.z1), F::FAR);
     let st = &mut *view.state;
     (st.z1_min, st.z1_max) = (z1_min, z1_max);
-    if dual {
+    let (culled, max): (&[F::Texel], _) = if dual {
         let (z2_min, z2_max) = min_max(rows(&*view.z2), F::FAR);
         (st.z2_min, st.z2_max) = (z2_min, z2_max);
-    }
-    let culled: &[F::Texel] = if dual { &*view.z2 } else { &*view.z1 };
-    (st.cull_max, st.cull_count) = max_and_count(rows(culled));
+        (&*view.z2, z2_max)
+    } else {
+        (&*view.z1, z1_max)
+    };
+    st.cull_max = max;
+    st.cull_count = count_of(rows(culled), max);
 }
 
 impl DepthUnit {

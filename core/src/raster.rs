@@ -20,11 +20,11 @@
 //! Fragments come out per tile, per triangle in bin order, in row-major
 //! order within each block, blocks in row-major order.
 
-use crate::depth::{DepthFormat, PlaneZ};
+use crate::depth::{DepthFormat, ROUND_HALF};
 use crate::probe::{Buffer, CullLevel, Event, Fragment, Probe};
 use crate::setup::{Coverage, Setup};
 use crate::tile::{TileId, TileRect};
-use crate::zbuffer::{SpanEdges, SpanOut, TileState, max_and_count, span, tile_rows};
+use crate::zbuffer::{SpanEdges, SpanOut, TileState, count_of, min_max, span, tile_rows};
 
 /// Side of the fragment blocks a partial tile is split into.
 pub const BLOCK: u32 = 8;
@@ -59,6 +59,24 @@ fn nearest<F: DepthFormat>(s: &Setup, r: &TileRect) -> F::Texel {
     F::texel(s.z_min.max(s.plane.min_over(r)))
 }
 
+/// The nearest and farthest depth of `s` over the pixel centres of `r`.
+#[inline]
+fn depth_range<F: DepthFormat>(s: &Setup, r: &TileRect) -> (F::Texel, F::Texel) {
+    let (lo, hi) = s.plane.range_over(r);
+    (F::texel(s.z_min.max(lo)), F::texel(s.z_max.min(hi)))
+}
+
+/// A horizontal run of blocks in one block row: full (no edge tests) or masked.
+#[derive(Clone, Copy, Debug)]
+struct Run {
+    x0: u32,
+    x1: u32,
+    masked: bool,
+}
+
+/// Most blocks in one row of the largest tile.
+const MAX_RUNS: usize = (*crate::config::TILE_SIZES.end() / BLOCK) as usize;
+
 /// Rasterize one set-up triangle into one tile.
 pub(crate) fn rasterize<F: DepthFormat, P: Probe, const DUAL: bool, const CULL: bool>(
     s: &Setup,
@@ -70,94 +88,160 @@ pub(crate) fn rasterize<F: DepthFormat, P: Probe, const DUAL: bool, const CULL: 
     if coverage == Coverage::Empty {
         return;
     }
-    if CULL && nearest::<F>(s, &rect) >= view.state.cull_max {
-        probe.event(Event::Culled { tile: view.tile, level: CullLevel::Triangle, texels: rect.area() });
-        return;
+    if CULL {
+        let (bound, farthest) = depth_range::<F>(s, &rect);
+        let st = &*view.state;
+        // The max is stale once every texel that held it was lowered. Making
+        // it exact is worth a reduction only if this triangle lies wholly
+        // behind the tile's min: otherwise the exact max (≥ the min) cannot
+        // cull it — so drawing back to front never pays for it.
+        let culled_min = if DUAL { st.z2_min } else { st.z1_min };
+        if st.cull_count == 0 && bound > culled_min {
+            refresh_max::<F, P, DUAL>(view, probe);
+        }
+        if bound >= view.state.cull_max {
+            probe.event(Event::Culled { tile: view.tile, level: CullLevel::Triangle, texels: rect.area() });
+            return;
+        }
+        // Blocks can be culled only if part of the triangle reaches the max.
+        let cull_blocks = farthest >= view.state.cull_max;
+        if view.state.cull_count > 0 {
+            return traverse::<F, P, DUAL, true>(s, view, &rect, coverage, cull_blocks, probe);
+        }
+        return traverse::<F, P, DUAL, false>(s, view, &rect, coverage, cull_blocks, probe);
     }
+    traverse::<F, P, DUAL, false>(s, view, &rect, coverage, false, probe);
+}
+
+/// Walk the triangle's rectangle in the tile: whole rows when it is full,
+/// block rows of runs otherwise. `COUNT` tracks how many texels still hold
+/// the tile's max. Not inlined: one copy per variant, shared by callers.
+#[inline(never)]
+fn traverse<F: DepthFormat, P: Probe, const DUAL: bool, const COUNT: bool>(
+    s: &Setup,
+    view: &mut TileView<'_, F::Texel>,
+    rect: &TileRect,
+    coverage: Coverage,
+    cull_blocks: bool,
+    probe: &mut P,
+) {
     let mut out = SpanOut::new(F::FAR);
     if coverage == Coverage::Full {
-        rows::<F, P, DUAL, false, CULL>(s, view, &rect, &mut out, probe);
+        let run = Run { x0: rect.x0, x1: rect.x1, masked: false };
+        rows::<F, P, DUAL, COUNT>(s, view, rect.y0, rect.y1, &[run], &mut out, probe);
     } else {
-        let mask = !(BLOCK - 1);
-        let mut by = rect.y0 & mask;
+        let mut by = rect.y0 & !(BLOCK - 1);
         while by < rect.y1 {
-            let mut bx = rect.x0 & mask;
-            while bx < rect.x1 {
-                let block = TileRect { x0: bx, y0: by, x1: bx + BLOCK, y1: by + BLOCK };
-                if let Some(b) = block.intersect(&rect) {
-                    block_step::<F, P, DUAL, CULL>(s, view, &b, &mut out, probe);
-                }
-                bx += BLOCK;
-            }
+            let (y0, y1) = (by.max(rect.y0), (by + BLOCK).min(rect.y1));
+            let runs = block_row::<F, P>(s, view, rect, y0, y1, cull_blocks, probe);
+            rows::<F, P, DUAL, COUNT>(s, view, y0, y1, &runs, &mut out, probe);
             by += BLOCK;
         }
     }
-    finish_triangle::<F, P, DUAL, CULL>(view, &out, probe);
+    finish_triangle::<F, P, DUAL, COUNT>(view, &out, probe);
 }
 
+/// Make the tile's max exact again: a reduction over the culled buffer.
+fn refresh_max<F: DepthFormat, P: Probe, const DUAL: bool>(view: &mut TileView<'_, F::Texel>, probe: &mut P) {
+    let (r, width) = (view.rect, view.width);
+    let buf: &[F::Texel] = if DUAL { view.z2 } else { view.z1 };
+    let (_, max) = min_max(tile_rows(buf, r, width), F::FAR);
+    view.state.cull_max = max;
+    view.state.cull_count = count_of(tile_rows(buf, r, width), max);
+    let texels = r.area();
+    let buffer = if DUAL { Buffer::Z2 } else { Buffer::Z1 };
+    probe.event(Event::TileMaxUpdate { tile: view.tile });
+    probe.event(Event::DepthRead { buffer, texels, bytes: texels * F::KIND.bytes() });
+}
+
+/// Classify (and cull) the blocks of one block row, merging neighbours of
+/// the same kind into runs.
 #[inline(always)]
-fn block_step<F: DepthFormat, P: Probe, const DUAL: bool, const CULL: bool>(
+fn block_row<F: DepthFormat, P: Probe>(
     s: &Setup,
-    view: &mut TileView<'_, F::Texel>,
-    b: &TileRect,
-    out: &mut SpanOut<F::Texel>,
+    view: &TileView<'_, F::Texel>,
+    rect: &TileRect,
+    y0: u32,
+    y1: u32,
+    cull_blocks: bool,
     probe: &mut P,
-) {
-    match s.classify(b) {
-        Coverage::Empty => {}
-        coverage => {
-            if CULL && nearest::<F>(s, b) >= view.state.cull_max {
-                probe.event(Event::Culled { tile: view.tile, level: CullLevel::Block, texels: b.area() });
-            } else if coverage == Coverage::Full {
-                rows::<F, P, DUAL, false, CULL>(s, view, b, out, probe);
-            } else {
-                rows::<F, P, DUAL, true, CULL>(s, view, b, out, probe);
+) -> heapless::Vec<Run, MAX_RUNS> {
+    let mut runs: heapless::Vec<Run, MAX_RUNS> = heapless::Vec::new();
+    let mut bx = rect.x0 & !(BLOCK - 1);
+    while bx < rect.x1 {
+        let b = TileRect { x0: bx.max(rect.x0), y0, x1: (bx + BLOCK).min(rect.x1), y1 };
+        bx += BLOCK;
+        let masked = match s.classify(&b) {
+            Coverage::Empty => continue,
+            Coverage::Full => false,
+            Coverage::Partial => true,
+        };
+        if cull_blocks && nearest::<F>(s, &b) >= view.state.cull_max {
+            probe.event(Event::Culled { tile: view.tile, level: CullLevel::Block, texels: b.area() });
+            continue;
+        }
+        match runs.last_mut() {
+            Some(last) if last.x1 == b.x0 && last.masked == masked => last.x1 = b.x1,
+            // At most one run per block of the row: never full.
+            _ => {
+                let _ = runs.push(Run { x0: b.x0, x1: b.x1, masked });
             }
         }
     }
+    runs
 }
 
+/// Run the rows `y0..y1` of each run through the depth unit. The plane and
+/// edge values are stepped from row to row by adds.
 #[inline(always)]
-fn rows<F: DepthFormat, P: Probe, const DUAL: bool, const MASKED: bool, const CULL: bool>(
+#[allow(clippy::too_many_arguments, reason = "the hot path's state, passed flat")]
+fn rows<F: DepthFormat, P: Probe, const DUAL: bool, const COUNT: bool>(
     s: &Setup,
     view: &mut TileView<'_, F::Texel>,
-    r: &TileRect,
+    y0: u32,
+    y1: u32,
+    runs: &[Run],
     out: &mut SpanOut<F::Texel>,
     probe: &mut P,
 ) {
-    let dz = s.plane.step_x();
+    let (dzx, dzy) = (s.plane.step_x().to_bits(), s.plane.step_y().to_bits());
     let de = [s.edges[0].dx, s.edges[1].dx, s.edges[2].dx];
     let cull_max = view.state.cull_max;
-    for y in r.y0..r.y1 {
-        let (px, py) = (i64::from(r.x0), i64::from(y));
-        let z = s.plane.at(px, py);
-        let edges = SpanEdges { e: [s.edges[0].at(px, py), s.edges[1].at(px, py), s.edges[2].at(px, py)], de };
-        let Some((z1, z2)) = view.rows(y, r.x0, r.x1) else { return };
-        let o = span::<F, DUAL, MASKED, CULL>(z1, z2, z, dz, edges, cull_max);
-        out.add(&o);
-        if P::FRAGMENTS {
-            report_fragments::<F, P, MASKED>(s, r.x0, r.x1, y, z, edges, probe);
+    let mut z_row = s.plane.at(0, i64::from(y0)).to_bits().wrapping_add(ROUND_HALF);
+    let mut e_row = [s.edges[0].at(0, i64::from(y0)), s.edges[1].at(0, i64::from(y0)), s.edges[2].at(0, i64::from(y0))];
+    for y in y0..y1 {
+        for run in runs {
+            let x = i64::from(run.x0);
+            let z = z_row.wrapping_add(dzx.wrapping_mul(x));
+            let edges = SpanEdges { e: [e_row[0] + de[0] * x, e_row[1] + de[1] * x, e_row[2] + de[2] * x], de };
+            let Some((z1, z2)) = view.rows(y, run.x0, run.x1) else { return };
+            let o = if run.masked {
+                span::<F, DUAL, true, COUNT>(z1, z2, z, dzx, edges, cull_max)
+            } else {
+                span::<F, DUAL, false, COUNT>(z1, z2, z, dzx, edges, cull_max)
+            };
+            out.add(&o);
+            if P::FRAGMENTS {
+                report_fragments::<F, P>(s, run.x0, run.x1, y, z, edges, probe);
+            }
+        }
+        z_row = z_row.wrapping_add(dzy);
+        for (e, edge) in e_row.iter_mut().zip(&s.edges) {
+            *e += edge.dy;
         }
     }
 }
 
 /// Per-fragment detail for probes that ask for it.
-fn report_fragments<F: DepthFormat, P: Probe, const MASKED: bool>(
-    s: &Setup,
-    x0: u32,
-    x1: u32,
-    y: u32,
-    z: PlaneZ,
-    edges: SpanEdges,
-    probe: &mut P,
-) {
+fn report_fragments<F: DepthFormat, P: Probe>(s: &Setup, x0: u32, x1: u32, y: u32, z: i64, edges: SpanEdges, probe: &mut P) {
     let mut z = z;
     let mut e = edges.e;
     for x in x0..x1 {
-        if !MASKED || e.iter().all(|&v| v >= 0) {
-            probe.fragment(Fragment { x, y, depth: crate::depth::Texel::to_raw(F::texel(z)), triangle: s.triangle });
+        if e.iter().all(|&v| v >= 0) {
+            let depth = crate::depth::Texel::to_raw(F::texel_inside(z));
+            probe.fragment(Fragment { x, y, depth, triangle: s.triangle });
         }
-        z = z.wrapping_add(s.plane.step_x());
+        z = z.wrapping_add(s.plane.step_x().to_bits());
         for (v, d) in e.iter_mut().zip(edges.de) {
             *v += d;
         }
@@ -165,7 +249,7 @@ fn report_fragments<F: DepthFormat, P: Probe, const MASKED: bool>(
 }
 
 /// Report a triangle's work in a tile and bring the tile's summary up to date.
-fn finish_triangle<F: DepthFormat, P: Probe, const DUAL: bool, const CULL: bool>(
+fn finish_triangle<F: DepthFormat, P: Probe, const DUAL: bool, const COUNT: bool>(
     view: &mut TileView<'_, F::Texel>,
     out: &SpanOut<F::Texel>,
     probe: &mut P,
@@ -188,20 +272,7 @@ fn finish_triangle<F: DepthFormat, P: Probe, const DUAL: bool, const CULL: bool>
     let st = &mut *view.state;
     st.z1_min = st.z1_min.min(out.min1);
     st.z2_min = st.z2_min.min(out.min2);
-    if CULL && out.lost_max > 0 {
+    if COUNT {
         st.cull_count = st.cull_count.saturating_sub(out.lost_max);
-        if st.cull_count == 0 {
-            let r = view.rect;
-            let width = view.width;
-            let buf: &[F::Texel] = if DUAL { view.z2 } else { view.z1 };
-            let rows = tile_rows(buf, r, width);
-            let (max, count) = max_and_count(rows);
-            view.state.cull_max = max;
-            view.state.cull_count = count;
-            let texels = r.area();
-            let buffer = if DUAL { Buffer::Z2 } else { Buffer::Z1 };
-            probe.event(Event::TileMaxUpdate { tile });
-            probe.event(Event::DepthRead { buffer, texels, bytes: texels * F::KIND.bytes() });
-        }
     }
 }

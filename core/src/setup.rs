@@ -30,7 +30,10 @@
 //! exact modulo 2⁶⁴, and at every pixel centre inside the triangle the true
 //! value lies in `[0, 2^56]`, so wrapping never shows. The rounding of the
 //! three coefficients costs at most `½(1 + |px| + |py|)` units of 2⁻³²
-//! LSB — below 2⁻¹⁸ LSB on the largest target.
+//! LSB — below 2⁻¹⁸ LSB on the largest target. So a fragment inside the
+//! triangle lies within 2⁻¹⁸ LSB of `[0, SCALE]`, and rounding it to a
+//! texel is an add of half an LSB and a shift: no clamp
+//! ([`crate::depth::DepthFormat::texel_inside`]).
 
 use crate::config::{CullMode, RasterConfig};
 use crate::depth::PlaneZ;
@@ -110,20 +113,34 @@ impl DepthPlane {
         PlaneZ::from_bits(wrap(self.a))
     }
 
+    /// The step per pixel down, as the rasterizer adds it.
+    #[inline(always)]
+    #[must_use]
+    pub const fn step_y(&self) -> PlaneZ {
+        PlaneZ::from_bits(wrap(self.b))
+    }
+
     /// The smallest value over the pixel centres of `r`, saturated to [`PlaneZ`].
     /// A plane takes its minimum over a rectangle at a corner, so this bounds
     /// every fragment of the triangle in `r` from below.
     #[inline]
     #[must_use]
     pub fn min_over(&self, r: &TileRect) -> PlaneZ {
+        self.range_over(r).0
+    }
+
+    /// The smallest and largest values over the pixel centres of `r`,
+    /// saturated to [`PlaneZ`].
+    #[inline]
+    #[must_use]
+    pub fn range_over(&self, r: &TileRect) -> (PlaneZ, PlaneZ) {
         let xa = self.a * i128::from(r.x0);
         let xb = self.a * i128::from(r.x1 - 1);
         let ya = self.b * i128::from(r.y0);
         let yb = self.b * i128::from(r.y1 - 1);
-        let v = self.c + xa.min(xb) + ya.min(yb);
         #[allow(clippy::cast_possible_truncation, reason = "clamped to the i64 range first")]
-        let bits = v.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64;
-        PlaneZ::from_bits(bits)
+        let sat = |v: i128| PlaneZ::from_bits(v.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64);
+        (sat(self.c + xa.min(xb) + ya.min(yb)), sat(self.c + xa.max(xb) + ya.max(yb)))
     }
 }
 
@@ -138,6 +155,8 @@ pub struct Setup {
     pub bbox: TileRect,
     /// The nearest vertex depth: a lower bound on every fragment.
     pub z_min: PlaneZ,
+    /// The farthest vertex depth: an upper bound on every fragment.
+    pub z_max: PlaneZ,
     /// Index of the submitted triangle.
     pub triangle: u32,
 }
@@ -166,6 +185,7 @@ impl Setup {
         plane: DepthPlane { a: 0, b: 0, c: 0 },
         bbox: TileRect { x0: 0, y0: 0, x1: 0, y1: 0 },
         z_min: PlaneZ::ZERO,
+        z_max: PlaneZ::ZERO,
         triangle: 0,
     };
 
@@ -234,7 +254,8 @@ impl Setup {
             c: z0 + round_div(a_num * (h - x0) + b_num * (h - y0), d),
         };
         let z_min = v0.z.min(v1.z).min(v2.z);
-        Ok(Self { edges, plane, bbox, z_min, triangle })
+        let z_max = v0.z.max(v1.z).max(v2.z);
+        Ok(Self { edges, plane, bbox, z_min, z_max, triangle })
     }
 
     /// Whether the centre of pixel `(px, py)` is covered.

@@ -13,15 +13,18 @@
 //! replaces; equal depths change nothing.
 //!
 //! # Per-tile summaries
-//! Each tile keeps the min of `z1` and `z2` as fragments land, and the exact
+//! Each tile keeps the min of `z1` and `z2` as fragments land, and the
 //! **max of the buffer that culling tests** (`z1` for single, `z2` for
-//! dual) together with how many texels hold it: when a fragment lowers a
-//! texel that held the max, the count drops, and when it reaches zero the
-//! max is recomputed by a reduction over the tile — so the max is exact
-//! after every triangle, at a cost of one reduction per "layer" of depth.
+//! dual) together with how many texels hold it. When a fragment lowers a
+//! texel that held the max, the count drops; at zero the max is *stale* —
+//! still an upper bound, so culling against it stays correct. A stale max
+//! is made exact by a reduction over the tile only when a triangle's
+//! nearest depth lies beyond the tile's min, the case where the exact max
+//! may cull it: drawing front to back refreshes it once per
+//! layer and then culls, drawing back to front never pays for it.
 //! When the tile is stored, all four bounds are resolved exactly.
 
-use crate::depth::{DepthFormat, PlaneZ};
+use crate::depth::DepthFormat;
 
 /// What the map keeps about one tile.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -113,68 +116,75 @@ pub(crate) struct SpanEdges {
 
 /// Run one row of fragments through the depth unit.
 ///
-/// `z` is the depth at the first pixel and `dz` its step; with `MASKED`,
-/// only pixels whose three edge values are `≥ 0` are covered, otherwise all
-/// are. `DUAL` selects the unit, `CULL` whether the culled buffer's max is
-/// tracked. The loop only adds.
+/// `z` is the depth at the first pixel as [`PlaneZ`] bits plus
+/// [`crate::depth::ROUND_HALF`], and `dz` its step; with `MASKED`, only
+/// pixels whose three edge values are `≥ 0` are covered, otherwise all are
+/// (and all lie inside the triangle). `DUAL` selects the unit, `CULL`
+/// whether the culled buffer's max is tracked. The loop only adds.
 #[inline(always)]
 pub(crate) fn span<F: DepthFormat, const DUAL: bool, const MASKED: bool, const CULL: bool>(
     z1: &mut [F::Texel],
     z2: &mut [F::Texel],
-    z: PlaneZ,
-    dz: PlaneZ,
+    z: i64,
+    dz: i64,
     edges: SpanEdges,
     cull_max: F::Texel,
 ) -> SpanOut<F::Texel> {
     let mut out = SpanOut::new(F::FAR);
-    let mut z = z.to_bits();
-    let dz = dz.to_bits();
+    let mut z = z;
     let [mut e0, mut e1, mut e2] = edges.e;
     let [d0, d1, d2] = edges.de;
-    let mut covered = || {
+    let mut next = || {
         let inside = !MASKED || (e0 | e1 | e2) >= 0;
-        let q = F::texel(PlaneZ::from_bits(z));
+        let q = F::texel_inside(z);
+        let q = if inside { q } else { F::FAR };
         z = z.wrapping_add(dz);
         if MASKED {
             e0 += d0;
             e1 += d1;
             e2 += d2;
+            out.fragments += u32::from(inside);
         }
-        (inside, q)
+        q
     };
+    let (mut written1, mut written2, mut lost, mut min1, mut min2) = (0u32, 0u32, 0u32, F::FAR, F::FAR);
     if DUAL {
         for (a, b) in z1.iter_mut().zip(z2.iter_mut()) {
-            let (inside, q) = covered();
+            let q = next();
             let (old1, old2) = (*a, *b);
-            let q = if inside { q } else { F::FAR };
-            let new1 = old1.min(q);
             let new2 = old2.min(old1.max(q));
-            *a = new1;
+            *a = old1.min(q);
             *b = new2;
-            out.fragments += u32::from(inside);
-            out.written1 += u32::from(new1 != old1);
-            out.written2 += u32::from(new2 != old2);
+            written1 += u32::from(q < old1);
+            written2 += u32::from(new2 < old2);
             if CULL {
-                out.lost_max += u32::from(old2 == cull_max && new2 != old2);
+                lost += u32::from(old2 == cull_max && new2 < old2);
             }
-            out.min1 = out.min1.min(new1);
-            out.min2 = out.min2.min(new2);
+            min1 = min1.min(q);
+            min2 = min2.min(new2);
         }
     } else {
         for a in z1.iter_mut() {
-            let (inside, q) = covered();
+            let q = next();
             let old = *a;
-            let q = if inside { q } else { F::FAR };
-            let new = old.min(q);
-            *a = new;
-            out.fragments += u32::from(inside);
-            out.written1 += u32::from(new != old);
+            *a = old.min(q);
+            written1 += u32::from(q < old);
             if CULL {
-                out.lost_max += u32::from(old == cull_max && new != old);
+                lost += u32::from(old == cull_max && q < old);
             }
-            out.min1 = out.min1.min(new);
+            min1 = min1.min(q);
         }
     }
+    if !MASKED {
+        #[allow(clippy::cast_possible_truncation, reason = "a span is at most one tile row")]
+        let n = z1.len() as u32;
+        out.fragments = n;
+    }
+    out.written1 = written1;
+    out.written2 = written2;
+    out.lost_max = lost;
+    out.min1 = min1;
+    out.min2 = min2;
     out
 }
 
@@ -186,28 +196,14 @@ pub(crate) fn tile_rows<T>(buf: &[T], r: crate::tile::TileRect, width: usize) ->
     })
 }
 
-/// The max of a set of rows of texels and how many texels hold it.
-pub(crate) fn max_and_count<'r, T: Copy + Ord + Default + 'r>(rows: impl Iterator<Item = &'r [T]>) -> (T, u32) {
-    let (mut max, mut count) = (T::default(), 0u32);
-    for row in rows {
-        for &t in row {
-            if t > max {
-                (max, count) = (t, 0);
-            }
-            count += u32::from(t == max);
-        }
-    }
-    (max, count)
+/// How many texels of a set of rows hold `value` (a vectorizable count).
+pub(crate) fn count_of<'r, T: Copy + Eq + 'r>(rows: impl Iterator<Item = &'r [T]>, value: T) -> u32 {
+    rows.map(|row| row.iter().map(|&t| u32::from(t == value)).sum::<u32>()).sum()
 }
 
 /// The min and max of a set of rows of texels (`far` and `0` when empty).
 pub(crate) fn min_max<'r, T: Copy + Ord + Default + 'r>(rows: impl Iterator<Item = &'r [T]>, far: T) -> (T, T) {
-    let (mut lo, mut hi) = (far, T::default());
-    for row in rows {
-        for &t in row {
-            lo = lo.min(t);
-            hi = hi.max(t);
-        }
-    }
-    (lo, hi)
+    rows.fold((far, T::default()), |(lo, hi), row| {
+        row.iter().fold((lo, hi), |(lo, hi), &t| (lo.min(t), hi.max(t)))
+    })
 }

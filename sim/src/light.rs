@@ -8,10 +8,13 @@ use umbra_core::{
     LightPassConfig, Probe, SubmitError, TileState,
 };
 
-/// Bin capacity the simulator uses unless told otherwise.
-pub const DEFAULT_BIN_CAPACITY: usize = 64;
-/// Setup-store size the simulator uses unless told otherwise.
-pub const DEFAULT_SETUPS: usize = 4096;
+/// Bin capacity the simulator uses unless told otherwise: bins live in
+/// memory, so they are deep (a bin of 2-byte entries is 512 bytes).
+pub const DEFAULT_BIN_CAPACITY: usize = 256;
+/// Setup-store size the simulator uses unless told otherwise: the most the
+/// bins can address, so a scene of up to 64k triangles is captured whole
+/// before any tile is rasterized.
+pub const DEFAULT_SETUPS: usize = umbra_core::bin::MAX_SETUPS;
 
 /// One draw call: a mesh, its transform to light clip space and its cull mode.
 #[derive(Clone, Copy, Debug)]
