@@ -91,8 +91,7 @@ pub trait DepthFormat: Copy + Default + core::fmt::Debug + Send + Sync + 'static
             return PlaneZ::ZERO;
         }
         // z · SCALE · 2³² < 2⁵⁷: exact in i64 after rounding.
-        #[allow(clippy::cast_possible_truncation, reason = "0 < z < 1 bounds the product below 2^57")]
-        let bits = libm::round(z * (Self::SCALE as f64) * 4_294_967_296.0) as i64;
+        let bits = crate::round::round_ties_even(z * (Self::SCALE as f64) * 4_294_967_296.0);
         PlaneZ::from_bits(bits.clamp(0, top))
     }
 

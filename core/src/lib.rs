@@ -9,6 +9,7 @@ pub mod depth;
 pub mod light_pass;
 pub mod probe;
 pub mod raster;
+pub mod round;
 pub mod setup;
 pub mod snap;
 pub mod tile;

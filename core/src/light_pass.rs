@@ -191,7 +191,6 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
         self.setups_used += 1;
         #[allow(clippy::cast_possible_truncation, reason = "the store holds at most 2^16 setups")]
         let entry = index as SetupIndex;
-
         let shift = raster.tile_shift();
         let (tx0, tx1) = (setup.bbox.x0 >> shift, (setup.bbox.x1 - 1) >> shift);
         let (ty0, ty1) = (setup.bbox.y0 >> shift, (setup.bbox.y1 - 1) >> shift);

@@ -84,10 +84,6 @@ pub(crate) fn rasterize<F: DepthFormat, P: Probe, const DUAL: bool, const CULL: 
     probe: &mut P,
 ) {
     let Some(rect) = view.rect.intersect(&s.bbox) else { return };
-    let coverage = s.classify(&rect);
-    if coverage == Coverage::Empty {
-        return;
-    }
     if CULL {
         let (bound, farthest) = depth_range::<F>(s, &rect);
         let st = &*view.state;
@@ -103,6 +99,10 @@ pub(crate) fn rasterize<F: DepthFormat, P: Probe, const DUAL: bool, const CULL: 
             probe.event(Event::Culled { tile: view.tile, level: CullLevel::Triangle, texels: rect.area() });
             return;
         }
+        let coverage = s.classify(&rect);
+        if coverage == Coverage::Empty {
+            return;
+        }
         // Blocks can be culled only if part of the triangle reaches the max.
         let cull_blocks = farthest >= view.state.cull_max;
         if view.state.cull_count > 0 {
@@ -110,7 +110,10 @@ pub(crate) fn rasterize<F: DepthFormat, P: Probe, const DUAL: bool, const CULL: 
         }
         return traverse::<F, P, DUAL, false>(s, view, &rect, coverage, cull_blocks, probe);
     }
-    traverse::<F, P, DUAL, false>(s, view, &rect, coverage, false, probe);
+    let coverage = s.classify(&rect);
+    if coverage != Coverage::Empty {
+        traverse::<F, P, DUAL, false>(s, view, &rect, coverage, false, probe);
+    }
 }
 
 /// Walk the triangle's rectangle in the tile: whole rows when it is full,

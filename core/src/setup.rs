@@ -29,9 +29,10 @@
 //! there. The rasterizer steps it in `i64` with wrapping adds: the sum is
 //! exact modulo 2⁶⁴, and at every pixel centre inside the triangle the true
 //! value lies in `[0, 2^56]`, so wrapping never shows. The rounding of the
-//! three coefficients costs at most `½(1 + |px| + |py|)` units of 2⁻³²
-//! LSB — below 2⁻¹⁸ LSB on the largest target. So a fragment inside the
-//! triangle lies within 2⁻¹⁸ LSB of `[0, SCALE]`, and rounding it to a
+//! steps costs at most `½` unit of 2⁻³² LSB per pixel of distance from
+//! vertex 0 (at most `2·2^16` pixels inside the guard band), plus `½` for
+//! `C`: below 2⁻¹⁵ LSB. So a fragment inside the triangle lies within
+//! 2⁻¹⁵ LSB of `[0, SCALE]`, and rounding it to a
 //! texel is an add of half an LSB and a shift: no clamp
 //! ([`crate::depth::DepthFormat::texel_inside`]).
 
@@ -42,9 +43,12 @@ use crate::snap::{COORD_BITS, SnappedVertex};
 use crate::tile::TileRect;
 
 const _: () = assert!(2 * (COORD_BITS + 1) + 1 < 63, "edge functions must fit in i64");
-// Depth numerators: |dZ| ≤ 2^57, |dY| ≤ 2^25 → |a_num| ≤ 2^83; times a
-// coordinate difference (≤ 2^25) stays below 2^109 < 2^127.
-const _: () = assert!(57 + (COORD_BITS + 1) + 1 + (COORD_BITS + 1) < 127, "depth plane must fit in i128");
+// Depth numerators: |dZ| ≤ 2^57, |dY| ≤ 2^25 → |a_num| ≤ 2^83; a per-pixel
+// step (≤ 2^83 · 2^8) times a coordinate difference (≤ 2^25) stays below 2^127.
+const _: () = assert!(
+    57 + (COORD_BITS + 1) + 1 + crate::config::MAX_SUBPIXEL_BITS + (COORD_BITS + 1) < 127,
+    "depth plane must fit in i128"
+);
 
 /// One edge function, evaluated at pixel centres: `E(px, py) = c + dx·px + dy·py`.
 /// A pixel centre is inside the edge iff `E ≥ 0` (fill-rule bias included).
@@ -247,12 +251,11 @@ impl Setup {
         let a_num = dz1 * dy2 - dz2 * dy1;
         let b_num = dx1 * dz2 - dx2 * dz1;
         let d = i128::from(d);
-        let h = i128::from(half);
-        let plane = DepthPlane {
-            a: round_div(a_num * i128::from(unit), d),
-            b: round_div(b_num * i128::from(unit), d),
-            c: z0 + round_div(a_num * (h - x0) + b_num * (h - y0), d),
-        };
+        let (a, b) = (round_div(a_num << s, d), round_div(b_num << s, d));
+        // The value at pixel (0, 0) from vertex 0 and the rounded per-pixel
+        // steps: a multiply and a shift, no third division.
+        let offset = a * (i128::from(half) - x0) + b * (i128::from(half) - y0);
+        let plane = DepthPlane { a, b, c: z0 + ((offset + (1 << (s - 1))) >> s) };
         let z_min = v0.z.min(v1.z).min(v2.z);
         let z_max = v0.z.max(v1.z).max(v2.z);
         Ok(Self { edges, plane, bbox, z_min, z_max, triangle })

@@ -3,9 +3,9 @@
 //! Raster orientation: x to the right, y **down**, row 0 at the top. A
 //! vertex at NDC `(x, y)` lands at pixel coordinates
 //! `((x + 1)·W/2, (1 − y)·H/2)`; pixel `(px, py)` samples its centre
-//! `(px + ½, py + ½)`. Coordinates are snapped (rounded to nearest) to
-//! `1/2^s` pixel, `s` the subpixel bits, in f64 — one rounding per vertex,
-//! the same on every target.
+//! `(px + ½, py + ½)`. Coordinates are snapped to `1/2^s` pixel, `s` the
+//! subpixel bits: in f64, `x·(1/w)`, then `(· + 1)·(W/2)·2^s` rounded to
+//! nearest with ties to even — the same on every target.
 //!
 //! # Integer budget
 //! The guard band keeps every snapped coordinate inside `±2^GUARD_BITS`
@@ -58,15 +58,15 @@ impl RasterConfig {
         }
         let unit = f64::from(1u32 << self.subpixel_bits());
         let limit = f64::from(1u32 << COORD_BITS);
-        let sx = (x / w + 1.0) * 0.5 * f64::from(self.width()) * unit;
-        let sy = (1.0 - y / w) * 0.5 * f64::from(self.height()) * unit;
+        let inv_w = 1.0 / w;
+        let sx = (x * inv_w + 1.0) * 0.5 * f64::from(self.width()) * unit;
+        let sy = (1.0 - y * inv_w) * 0.5 * f64::from(self.height()) * unit;
         if !sx.is_finite() || !sy.is_finite() {
             return None;
         }
         // Rounding overshoot at the guard band is clamped; the band lies
         // far outside the target, so no sample moves.
-        #[allow(clippy::cast_possible_truncation, reason = "clamped to ±2^24 first")]
-        let snap = |s: f64| SubPx(libm::round(s.clamp(-limit, limit)) as i64);
-        Some(SnappedVertex { x: snap(sx), y: snap(sy), z: F::plane_z(z / w) })
+        let snap = |s: f64| SubPx(crate::round::round_ties_even(s.clamp(-limit, limit)));
+        Some(SnappedVertex { x: snap(sx), y: snap(sy), z: F::plane_z(z * inv_w) })
     }
 }

@@ -89,12 +89,12 @@ pub fn run<F: DepthFormat, P: Probe, const B: usize>(
     (Maps { z1, z2, tiles }, probe)
 }
 
-/// Snap like the hardware's documented viewport transform (f64, round half
-/// away from zero): `((x/w + 1)·W/2, (1 − y/w)·H/2)` in 1/256 pixel.
+/// Snap like the hardware's documented viewport transform (f64,
+/// `x·(1/w)`, ties to even): `((x/w + 1)·W/2, (1 − y/w)·H/2)` in 1/256 pixel.
 pub fn snap(v: Vec4, size: u32) -> (i128, i128) {
-    let (w, half) = (f64::from(v.w), f64::from(size) * 0.5 * 256.0);
-    let x = ((f64::from(v.x) / w + 1.0) * half).round();
-    let y = ((1.0 - f64::from(v.y) / w) * half).round();
+    let (inv, half) = (1.0 / f64::from(v.w), f64::from(size) * 0.5 * 256.0);
+    let x = ((f64::from(v.x) * inv + 1.0) * half).round_ties_even();
+    let y = ((1.0 - f64::from(v.y) * inv) * half).round_ties_even();
     (x as i128, y as i128)
 }
 
