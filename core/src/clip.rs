@@ -29,13 +29,12 @@ const PLANES: usize = 6;
 pub type Polygon = Vec<ClipVertex, MAX_POLYGON>;
 
 /// The result of clipping one triangle.
-#[allow(clippy::large_enum_variant, reason = "one lives on the stack per triangle; the core never allocates")]
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Clipped {
     /// Every vertex inside every plane: the triangle as it was.
     Inside,
-    /// The part of the triangle inside every plane.
-    Polygon(Polygon),
+    /// Part of the triangle is inside: the polygon written to the caller's buffer.
+    Polygon,
     /// Nothing is inside.
     Outside,
 }
@@ -53,9 +52,10 @@ fn distance(v: &ClipVertex, plane: usize, guard: [f64; 2]) -> f64 {
     }
 }
 
-/// Clip a triangle whose vertices are finite. `guard` is `[g_x, g_y]`.
+/// Clip a triangle whose vertices are finite. `guard` is `[g_x, g_y]`. The
+/// polygon, when there is one, goes to `poly`.
 #[must_use]
-pub fn clip_triangle(tri: &[ClipVertex; 3], guard: [f64; 2]) -> Clipped {
+pub fn clip_triangle(tri: &[ClipVertex; 3], guard: [f64; 2], poly: &mut Polygon) -> Clipped {
     let mut outside_all = [true; PLANES];
     let mut inside_all = true;
     for v in tri {
@@ -71,7 +71,7 @@ pub fn clip_triangle(tri: &[ClipVertex; 3], guard: [f64; 2]) -> Clipped {
     if outside_all.iter().any(|&o| o) {
         return Clipped::Outside;
     }
-    let mut poly: Polygon = Vec::new();
+    poly.clear();
     for v in tri {
         // Capacity is MAX_POLYGON ≥ 3.
         let _ = poly.push(*v);
@@ -104,9 +104,9 @@ pub fn clip_triangle(tri: &[ClipVertex; 3], guard: [f64; 2]) -> Clipped {
         if next.len() < 3 {
             return Clipped::Outside;
         }
-        poly = next;
+        *poly = next;
     }
-    Clipped::Polygon(poly)
+    Clipped::Polygon
 }
 
 #[cfg(test)]
@@ -118,15 +118,17 @@ mod tests {
     #[test]
     fn inside_and_outside() {
         let tri = [[0.0, 0.0, 0.5, 1.0], [0.5, 0.0, 0.5, 1.0], [0.0, 0.5, 0.5, 1.0]];
-        assert_eq!(clip_triangle(&tri, G), Clipped::Inside);
+        let mut p = Polygon::new();
+        assert_eq!(clip_triangle(&tri, G, &mut p), Clipped::Inside);
         let behind = [[0.0, 0.0, -0.5, 1.0], [0.5, 0.0, -0.5, 1.0], [0.0, 0.5, -0.1, 1.0]];
-        assert_eq!(clip_triangle(&behind, G), Clipped::Outside);
+        assert_eq!(clip_triangle(&behind, G, &mut p), Clipped::Outside);
     }
 
     #[test]
     fn near_plane_cut_gives_a_quad_on_the_plane() {
         let tri = [[0.0, 0.0, -1.0, 1.0], [1.0, 0.0, 1.0, 1.0], [0.0, 1.0, 1.0, 1.0]];
-        let Clipped::Polygon(p) = clip_triangle(&tri, G) else { panic!("expected a polygon") };
+        let mut p = Polygon::new();
+        assert_eq!(clip_triangle(&tri, G, &mut p), Clipped::Polygon);
         assert_eq!(p.len(), 4);
         assert!(p.iter().all(|v| v[2] >= 0.0));
         assert_eq!(p.iter().filter(|v| v[2] == 0.0).count(), 2);

@@ -15,7 +15,7 @@
 use glam::{Mat4, Vec3, Vec4};
 
 use crate::bin::{Bin, MAX_SETUPS, SetupIndex, touches};
-use crate::clip::{ClipVertex, Clipped, clip_triangle};
+use crate::clip::{ClipVertex, Clipped, Polygon, clip_triangle};
 use crate::config::{ConfigError, CullMode, DepthUnit, LightPassConfig};
 use crate::depth::DepthFormat;
 use crate::probe::{Event, FlushReason, NoProbe, Probe, RejectReason};
@@ -152,9 +152,10 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
             return;
         }
         let v: [ClipVertex; 3] = tri.map(|v| v.to_array().map(f64::from));
-        match clip_triangle(&v, self.cfg.raster.guard()) {
+        let mut p = Polygon::new();
+        match clip_triangle(&v, self.cfg.raster.guard(), &mut p) {
             Clipped::Inside => self.setup_and_bin(&v, cull, id),
-            Clipped::Polygon(p) => {
+            Clipped::Polygon => {
                 for i in 1..p.len().saturating_sub(1) {
                     self.setup_and_bin(&[p[0], p[i], p[i + 1]], cull, id);
                 }

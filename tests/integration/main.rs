@@ -13,6 +13,7 @@ mod culling;
 mod dual_depth;
 mod fill_rule;
 mod hostile;
+mod maps_io;
 mod quantize;
 mod tiling;
 mod watertight;

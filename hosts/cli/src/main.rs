@@ -3,7 +3,7 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use clap::{Parser, Subcommand, ValueEnum};
 use umbra_core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, RasterConfig};
 use umbra_sim::counters::Counters;
@@ -11,7 +11,7 @@ use umbra_sim::glam::{Mat4, Vec3};
 use umbra_sim::light::{RawMaps, render_raw};
 use umbra_sim::mesh::Mesh;
 use umbra_sim::output::{write_npy, write_preview, write_text};
-use umbra_sim::scene::{Object, Scene, SpotLight};
+use umbra_sim::scene::{Object, Scene, SpotLight, parse_matrix};
 
 /// Umbra: a bit-exact model of fixed-function shadow-mapping hardware.
 ///
@@ -112,31 +112,14 @@ fn main() -> Result<()> {
     }
 }
 
-/// Parse a row-major 4×4 JSON matrix given inline or as a file.
-fn parse_matrix(arg: &str) -> Result<Mat4> {
+/// Read the `--matrix` argument: inline JSON or a file holding it.
+fn read_matrix(arg: &str) -> Result<Mat4> {
     let text = if arg.trim_start().starts_with('[') {
         arg.to_owned()
     } else {
         std::fs::read_to_string(arg).with_context(|| format!("--matrix: cannot read file `{arg}`"))?
     };
-    let rows: Vec<Vec<f64>> = serde_json::from_str(&text)
-        .with_context(|| format!("--matrix `{arg}`: expected a 4×4 JSON array of numbers"))?;
-    if rows.len() != 4 || rows.iter().any(|r| r.len() != 4) {
-        bail!("--matrix `{arg}`: expected 4 rows of 4 numbers");
-    }
-    let mut m = [[0f32; 4]; 4];
-    for (r, row) in rows.iter().enumerate() {
-        for (c, &v) in row.iter().enumerate() {
-            #[allow(clippy::cast_possible_truncation, reason = "range checked against f32 next")]
-            let f = v as f32;
-            if !f.is_finite() {
-                bail!("--matrix `{arg}`: entry [{r}][{c}] = {v} is not a finite f32");
-            }
-            m[r][c] = f;
-        }
-    }
-    // glam stores columns: the transpose of the row-major array.
-    Ok(Mat4::from_cols_array_2d(&m).transpose())
+    parse_matrix(&text).with_context(|| format!("--matrix `{arg}`"))
 }
 
 /// A spot light that frames a mesh, looking down from above and to the side.
@@ -165,7 +148,7 @@ fn depth(args: &DepthArgs) -> Result<()> {
         None => Scene::default_scene(),
     };
     let matrix = match &args.matrix {
-        Some(m) => parse_matrix(m)?,
+        Some(m) => read_matrix(m)?,
         None => scene.light.view_projection(),
     };
     let raster = RasterConfig::new(args.size, args.size, args.tile, args.subpixel_bits)?;
