@@ -144,7 +144,11 @@ impl DepthFormat for D16 {
 
     #[inline(always)]
     fn texel_inside(biased_bits: i64) -> u16 {
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "in [0, 2^16 - 1] inside the triangle")]
+        #[allow(
+            clippy::cast_possible_truncation,
+            clippy::cast_sign_loss,
+            reason = "in [0, 2^16 - 1] inside the triangle"
+        )]
         let t = (biased_bits >> PLANE_FRACTION_BITS) as u16;
         t
     }
@@ -169,7 +173,11 @@ impl DepthFormat for D24 {
 
     #[inline(always)]
     fn texel_inside(biased_bits: i64) -> u32 {
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "in [0, 2^24 - 1] inside the triangle")]
+        #[allow(
+            clippy::cast_possible_truncation,
+            clippy::cast_sign_loss,
+            reason = "in [0, 2^24 - 1] inside the triangle"
+        )]
         let t = (biased_bits >> PLANE_FRACTION_BITS) as u32;
         t
     }

@@ -236,7 +236,15 @@ fn rows<F: DepthFormat, P: Probe, const DUAL: bool, const COUNT: bool>(
 }
 
 /// Per-fragment detail for probes that ask for it.
-fn report_fragments<F: DepthFormat, P: Probe>(s: &Setup, x0: u32, x1: u32, y: u32, z: i64, edges: SpanEdges, probe: &mut P) {
+fn report_fragments<F: DepthFormat, P: Probe>(
+    s: &Setup,
+    x0: u32,
+    x1: u32,
+    y: u32,
+    z: i64,
+    edges: SpanEdges,
+    probe: &mut P,
+) {
     let mut z = z;
     let mut e = edges.e;
     for x in x0..x1 {

@@ -203,7 +203,5 @@ pub(crate) fn count_of<'r, T: Copy + Eq + 'r>(rows: impl Iterator<Item = &'r [T]
 
 /// The min and max of a set of rows of texels (`far` and `0` when empty).
 pub(crate) fn min_max<'r, T: Copy + Ord + Default + 'r>(rows: impl Iterator<Item = &'r [T]>, far: T) -> (T, T) {
-    rows.fold((far, T::default()), |(lo, hi), row| {
-        row.iter().fold((lo, hi), |(lo, hi), &t| (lo.min(t), hi.max(t)))
-    })
+    rows.fold((far, T::default()), |(lo, hi), row| row.iter().fold((lo, hi), |(lo, hi), &t| (lo.min(t), hi.max(t))))
 }

@@ -23,7 +23,10 @@ fn matrices_are_row_major() {
     // Row 0 is clip x = 2x + 5: scale and a translation in the last column.
     assert_eq!(m * Vec4::new(1.0, 0.0, 0.0, 1.0), Vec4::new(7.0, 0.0, 0.0, 1.0));
     assert!(matches!(parse_matrix("[[1,0,0],[0,1,0],[0,0,1]]"), Err(MatrixError::Shape { rows: 3, .. })));
-    assert!(matches!(parse_matrix("[[1,0,0,0],[0,1,0,0],[0,0,1e39,0],[0,0,0,1]]"), Err(MatrixError::NonFinite { row: 2, col: 2, .. })));
+    assert!(matches!(
+        parse_matrix("[[1,0,0,0],[0,1,0,0],[0,0,1e39,0],[0,0,0,1]]"),
+        Err(MatrixError::NonFinite { row: 2, col: 2, .. })
+    ));
     assert!(matches!(parse_matrix("{\"a\": 1}"), Err(MatrixError::Json(_))));
 }
 
@@ -67,8 +70,19 @@ fn shared_meshes_all_render() {
         let (lo, hi) = mesh.bounds().expect("vertices");
         let c = (lo + hi) / 2.0;
         let r = (hi - lo).length() / 2.0;
-        let light = SpotLight { position: c + umbra::core::glam::Vec3::new(0.3, 1.0, 0.6).normalize() * 3.0 * r, target: c, fov_degrees: 45.0, near: 1.5 * r, far: 4.5 * r };
-        let draw = Draw { positions: &mesh.positions, triangles: &mesh.triangles, transform: light.view_projection(), cull: CullMode::None };
+        let light = SpotLight {
+            position: c + umbra::core::glam::Vec3::new(0.3, 1.0, 0.6).normalize() * 3.0 * r,
+            target: c,
+            fov_degrees: 45.0,
+            near: 1.5 * r,
+            far: 4.5 * r,
+        };
+        let draw = Draw {
+            positions: &mesh.positions,
+            triangles: &mesh.triangles,
+            transform: light.view_projection(),
+            cull: CullMode::None,
+        };
         let raster = RasterConfig::new(128, 128, 16, 8).expect("valid");
         let cfg = LightPassConfig { raster, unit: DepthUnit::Dual, max_z_cull: true };
         for format in DepthFormatKind::ALL {
@@ -104,10 +118,8 @@ fn npy_holds_raw_texels() {
         assert_eq!((10 + header_len) % 16, 0, "data aligned");
         let data = &file[10 + header_len..];
         assert_eq!(data.len(), 48 * 32 * bytes);
-        let values: Vec<u32> = data
-            .chunks_exact(bytes)
-            .map(|c| c.iter().rev().fold(0u32, |acc, &b| (acc << 8) | u32::from(b)))
-            .collect();
+        let values: Vec<u32> =
+            data.chunks_exact(bytes).map(|c| c.iter().rev().fold(0u32, |acc, &b| (acc << 8) | u32::from(b))).collect();
         assert_eq!(values, maps.maps.z1);
         assert!(values.iter().any(|&v| v != raw_far(format)));
     }
