@@ -34,6 +34,8 @@ pub enum RejectReason {
     Clipped,
     /// Covers no pixel centre of the target.
     NoCoverage,
+    /// A snapped coordinate outside the integer budget (a hand-made vertex).
+    OutOfRange,
 }
 
 /// Why a tile's bin was rasterized.

@@ -67,16 +67,21 @@ impl Edge {
     #[inline(always)]
     #[must_use]
     pub const fn at(&self, px: i64, py: i64) -> i64 {
-        self.c + self.dx * px + self.dy * py
+        // Never overflows for edges from [`Setup::new`] (see the budget);
+        // wrapping keeps hand-made edges from panicking.
+        self.c.wrapping_add(self.dx.wrapping_mul(px)).wrapping_add(self.dy.wrapping_mul(py))
     }
 
     /// The smallest and largest value over the pixel centres of `r`.
     #[inline]
     #[must_use]
     pub fn range_over(&self, r: &TileRect) -> (i64, i64) {
-        let (x0, x1) = (i64::from(r.x0) * self.dx, i64::from(r.x1 - 1) * self.dx);
-        let (y0, y1) = (i64::from(r.y0) * self.dy, i64::from(r.y1 - 1) * self.dy);
-        (self.c + x0.min(x1) + y0.min(y1), self.c + x0.max(x1) + y0.max(y1))
+        let x = |px: u32| i64::from(px).wrapping_mul(self.dx);
+        let y = |py: u32| i64::from(py).wrapping_mul(self.dy);
+        let (x0, x1) = (x(r.x0), x(r.x1.saturating_sub(1)));
+        let (y0, y1) = (y(r.y0), y(r.y1.saturating_sub(1)));
+        let lo = self.c.wrapping_add(x0.min(x1)).wrapping_add(y0.min(y1));
+        (lo, self.c.wrapping_add(x0.max(x1)).wrapping_add(y0.max(y1)))
     }
 }
 
@@ -138,13 +143,15 @@ impl DepthPlane {
     #[inline]
     #[must_use]
     pub fn range_over(&self, r: &TileRect) -> (PlaneZ, PlaneZ) {
-        let xa = self.a * i128::from(r.x0);
-        let xb = self.a * i128::from(r.x1 - 1);
-        let ya = self.b * i128::from(r.y0);
-        let yb = self.b * i128::from(r.y1 - 1);
+        // Exact for planes from [`Setup::new`]; saturating for hand-made ones.
+        let x = |px: u32| self.a.saturating_mul(i128::from(px));
+        let y = |py: u32| self.b.saturating_mul(i128::from(py));
+        let (xa, xb) = (x(r.x0), x(r.x1.saturating_sub(1)));
+        let (ya, yb) = (y(r.y0), y(r.y1.saturating_sub(1)));
         #[allow(clippy::cast_possible_truncation, reason = "clamped to the i64 range first")]
         let sat = |v: i128| PlaneZ::from_bits(v.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64);
-        (sat(self.c + xa.min(xb) + ya.min(yb)), sat(self.c + xa.max(xb) + ya.max(yb)))
+        let lo = self.c.saturating_add(xa.min(xb)).saturating_add(ya.min(yb));
+        (sat(lo), sat(self.c.saturating_add(xa.max(xb)).saturating_add(ya.max(yb))))
     }
 }
 
@@ -196,11 +203,17 @@ impl Setup {
     /// Set up a snapped triangle, or say why it produces nothing.
     ///
     /// # Errors
+    /// [`RejectReason::OutOfRange`] for a coordinate outside the snap's
+    /// `±2^24` budget (only a hand-made vertex can be);
     /// [`RejectReason::Degenerate`] for zero area on the subpixel grid,
     /// [`RejectReason::Facing`] when `cull` discards it,
     /// [`RejectReason::NoCoverage`] when no pixel centre of the target lies
     /// in its bounding box.
     pub fn new(cfg: &RasterConfig, v: [SnappedVertex; 3], cull: CullMode, triangle: u32) -> Result<Self, RejectReason> {
+        let limit = 1i64 << COORD_BITS;
+        if v.iter().any(|p| !(-limit..=limit).contains(&p.x.0) || !(-limit..=limit).contains(&p.y.0)) {
+            return Err(RejectReason::OutOfRange);
+        }
         let [v0, mut v1, mut v2] = v;
         let area2 = |a: &SnappedVertex, b: &SnappedVertex, c: &SnappedVertex| {
             (b.x.0 - a.x.0) * (c.y.0 - a.y.0) - (b.y.0 - a.y.0) * (c.x.0 - a.x.0)

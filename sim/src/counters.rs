@@ -19,6 +19,8 @@ pub struct Totals {
     pub rejected_clipped: u64,
     /// Rejected: no pixel centre in the bounding box.
     pub rejected_no_coverage: u64,
+    /// Rejected: a snapped coordinate outside the integer budget.
+    pub rejected_out_of_range: u64,
     /// Triangles set up (clipped pieces count separately).
     pub setups: u64,
     /// Bin entries written.
@@ -107,6 +109,7 @@ impl Probe for Counters {
                 RejectReason::Facing => t.rejected_facing += 1,
                 RejectReason::Clipped => t.rejected_clipped += 1,
                 RejectReason::NoCoverage => t.rejected_no_coverage += 1,
+                RejectReason::OutOfRange => t.rejected_out_of_range += 1,
             },
             Event::TriangleSetup => t.setups += 1,
             Event::TriangleBinned { tiles } => t.bin_entries += u64::from(tiles),

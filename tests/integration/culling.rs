@@ -42,7 +42,7 @@ fn culling_changes_nothing<F: DepthFormat>(
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(48))]
+    #![proptest_config(ProptestConfig::with_cases(128))]
 
     #[test]
     fn max_z_culling_never_changes_the_maps(tris in triangles(40), tile in prop::sample::select(vec![8u32, 16, 32, 64])) {

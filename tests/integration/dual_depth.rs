@@ -25,7 +25,7 @@ fn check_two_smallest<F: DepthFormat>(tris: &[[umbra::core::glam::Vec4; 3]]) -> 
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(ProptestConfig::with_cases(256))]
 
     #[test]
     fn dual_holds_the_two_smallest_fragment_depths_d16(tris in triangles(24)) {

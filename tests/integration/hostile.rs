@@ -63,6 +63,22 @@ proptest! {
         prop_assert!(rec.fragments.iter().all(|f| f.x < 24 && f.y < 24 && f.depth <= 0x00ff_ffff));
     }
 
+    /// Hand-made snapped vertices of any value: setup and every query on the
+    /// result are total.
+    #[test]
+    fn setup_of_any_snapped_vertices_never_panics(v in prop::array::uniform3((any::<i64>(), any::<i64>(), any::<i64>())), px in any::<i64>(), py in any::<i64>()) {
+        use umbra::core::depth::PlaneZ;
+        use umbra::core::snap::{SnappedVertex, SubPx};
+        use umbra::core::tile::TileRect;
+        let raster = RasterConfig::new(64, 64, 16, 8).expect("valid");
+        let verts = v.map(|(x, y, z)| SnappedVertex { x: SubPx(x), y: SubPx(y), z: PlaneZ::from_bits(z) });
+        if let Ok(s) = Setup::new(&raster, verts, CullMode::None, 0) {
+            prop_assert!(s.bbox.x1 <= 64 && s.bbox.y1 <= 64);
+            let r = TileRect { x0: 0, y0: 0, x1: 64, y1: 64 };
+            let _ = (s.covers(px, py), s.classify(&r), s.plane.at(px, py), s.plane.range_over(&r));
+        }
+    }
+
     /// Zero area on the grid: a repeated vertex or three points on one row.
     #[test]
     fn degenerate_triangles_emit_nothing(a in wild_vertex(), b in wild_vertex(), y in -1.0f32..1.0, xs in [-1.5f32..1.5, -1.5f32..1.5, -1.5f32..1.5], z in 0.0f32..1.0) {

@@ -34,7 +34,7 @@ fn every_tiling_agrees<F: DepthFormat>(tris: &[[Vec4; 3]], cull: CullMode) -> Re
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(48))]
+    #![proptest_config(ProptestConfig::with_cases(128))]
 
     #[test]
     fn tiled_fragments_equal_the_reference_d16(tris in triangles(12)) {

@@ -84,7 +84,7 @@ fn grid_point() -> impl Strategy<Value = P> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(64))]
+    #![proptest_config(ProptestConfig::with_cases(256))]
 
     /// A fan around an interior point of a convex polygon.
     #[test]
