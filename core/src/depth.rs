@@ -129,63 +129,43 @@ pub struct D24;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct F32;
 
-impl DepthFormat for D16 {
-    type Texel = u16;
-    const KIND: DepthFormatKind = DepthFormatKind::D16;
-    const SCALE: i64 = (1 << 16) - 1;
-    const FAR: u16 = u16::MAX;
+/// The n-bit unsigned formats: `round(z · (2ⁿ − 1))` in a `$texel`.
+macro_rules! unorm_format {
+    ($format:ident, $texel:ty, $bits:literal) => {
+        impl DepthFormat for $format {
+            type Texel = $texel;
+            const KIND: DepthFormatKind = DepthFormatKind::$format;
+            const SCALE: i64 = (1 << $bits) - 1;
+            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "2^bits - 1 fits the texel")]
+            const FAR: $texel = Self::SCALE as $texel;
 
-    #[inline(always)]
-    fn texel(z: PlaneZ) -> u16 {
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "clamped to [0, 2^16 - 1]")]
-        let t = round_lsb(z, Self::SCALE) as u16;
-        t
-    }
+            #[inline(always)]
+            fn texel(z: PlaneZ) -> $texel {
+                #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "clamped to [0, SCALE]")]
+                let t = round_lsb(z, Self::SCALE) as $texel;
+                t
+            }
 
-    #[inline(always)]
-    fn texel_inside(biased_bits: i64) -> u16 {
-        #[allow(
-            clippy::cast_possible_truncation,
-            clippy::cast_sign_loss,
-            reason = "in [0, 2^16 - 1] inside the triangle"
-        )]
-        let t = (biased_bits >> PLANE_FRACTION_BITS) as u16;
-        t
-    }
+            #[inline(always)]
+            fn texel_inside(biased_bits: i64) -> $texel {
+                #[allow(
+                    clippy::cast_possible_truncation,
+                    clippy::cast_sign_loss,
+                    reason = "in [0, SCALE] inside the triangle"
+                )]
+                let t = (biased_bits >> PLANE_FRACTION_BITS) as $texel;
+                t
+            }
 
-    fn unquantize(t: u16) -> f64 {
-        f64::from(t) / (Self::SCALE as f64)
-    }
+            fn unquantize(t: $texel) -> f64 {
+                f64::from(t) / (Self::SCALE as f64)
+            }
+        }
+    };
 }
 
-impl DepthFormat for D24 {
-    type Texel = u32;
-    const KIND: DepthFormatKind = DepthFormatKind::D24;
-    const SCALE: i64 = (1 << 24) - 1;
-    const FAR: u32 = (1 << 24) - 1;
-
-    #[inline(always)]
-    fn texel(z: PlaneZ) -> u32 {
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "clamped to [0, 2^24 - 1]")]
-        let t = round_lsb(z, Self::SCALE) as u32;
-        t
-    }
-
-    #[inline(always)]
-    fn texel_inside(biased_bits: i64) -> u32 {
-        #[allow(
-            clippy::cast_possible_truncation,
-            clippy::cast_sign_loss,
-            reason = "in [0, 2^24 - 1] inside the triangle"
-        )]
-        let t = (biased_bits >> PLANE_FRACTION_BITS) as u32;
-        t
-    }
-
-    fn unquantize(t: u32) -> f64 {
-        f64::from(t) / (Self::SCALE as f64)
-    }
-}
+unorm_format!(D16, u16, 16);
+unorm_format!(D24, u32, 24);
 
 /// `2⁻⁵⁶`: one [`PlaneZ`] bit of the f32 reference format, as a depth.
 const F32_UNIT: f32 = 1.0 / 72_057_594_037_927_936.0;

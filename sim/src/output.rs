@@ -34,18 +34,26 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> OutputError + '_ {
     move |source| OutputError::Io { path: path.to_owned(), source }
 }
 
+/// One depth map as raw texel bits, row-major.
+#[derive(Clone, Copy, Debug)]
+pub struct RawMap<'a> {
+    /// The depth format the bits belong to.
+    pub format: DepthFormatKind,
+    /// Width in texels.
+    pub width: u32,
+    /// Height in texels.
+    pub height: u32,
+    /// `width × height` raw texels.
+    pub raw: &'a [u32],
+}
+
 /// Write a `height × width` map of raw texels as a C-order `.npy` array:
 /// `<u2` for 16-bit depth, `<u4` for 24-bit depth and for the f32 format's bits.
 ///
 /// # Errors
 /// [`OutputError::Io`].
-pub fn write_npy(
-    path: &Path,
-    format: DepthFormatKind,
-    width: u32,
-    height: u32,
-    raw: &[u32],
-) -> Result<(), OutputError> {
+pub fn write_npy(path: &Path, map: &RawMap<'_>) -> Result<(), OutputError> {
+    let RawMap { format, width, height, raw } = *map;
     let file = File::create(path).map_err(io(path))?;
     let mut w = BufWriter::new(file);
     let shape = [u64::from(height), u64::from(width)];
@@ -73,13 +81,8 @@ fn npy_body<T: npyz::AutoSerialize>(
 ///
 /// # Errors
 /// [`OutputError::Image`].
-pub fn write_preview(
-    path: &Path,
-    format: DepthFormatKind,
-    width: u32,
-    height: u32,
-    raw: &[u32],
-) -> Result<(), OutputError> {
+pub fn write_preview(path: &Path, map: &RawMap<'_>) -> Result<(), OutputError> {
+    let RawMap { format, width, height, raw } = *map;
     let far = raw_far(format);
     let depths = raw.iter().filter(|&&v| v != far).map(|&v| raw_depth(format, v));
     let (lo, hi) = depths.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), d| (lo.min(d), hi.max(d)));

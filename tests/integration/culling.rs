@@ -68,20 +68,10 @@ fn front_to_back_layers_are_culled_and_back_to_front_are_not() {
     let back_to_front: Vec<f32> = front_to_back.iter().rev().copied().collect();
     for unit in [DepthUnit::Single, DepthUnit::Dual] {
         let kept = if unit == DepthUnit::Dual { 2 } else { 1 };
-        let (_, ftb) = run::<D24, _, 64>(
-            config(SIZE, 16, unit, true),
-            &layers(&front_to_back),
-            CullMode::None,
-            64,
-            Recorder::default(),
-        );
-        let (_, btf) = run::<D24, _, 64>(
-            config(SIZE, 16, unit, true),
-            &layers(&back_to_front),
-            CullMode::None,
-            64,
-            Recorder::default(),
-        );
+        let pass = |zs: &[f32]| {
+            run::<D24, _, 64>(config(SIZE, 16, unit, true), &layers(zs), CullMode::None, 64, Recorder::default()).1
+        };
+        let (ftb, btf) = (pass(&front_to_back), pass(&back_to_front));
         // Front to back, only the first `kept` layers reach the depth unit:
         // every later triangle lies behind its tile's max. A layer's two
         // triangles share the diagonal, which crosses the 4 diagonal tiles

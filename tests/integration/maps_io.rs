@@ -8,7 +8,7 @@ use umbra::core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, RasterC
 use umbra::sim::counters::Counters;
 use umbra::sim::light::{Draw, raw_far, render_raw};
 use umbra::sim::mesh::{Mesh, MeshError};
-use umbra::sim::output::write_npy;
+use umbra::sim::output::{RawMap, write_npy};
 use umbra::sim::scene::{MatrixError, Scene, SpotLight, parse_matrix};
 
 fn scratch(name: &str) -> PathBuf {
@@ -108,7 +108,7 @@ fn npy_holds_raw_texels() {
     for (format, descr, bytes) in [(DepthFormatKind::D16, "<u2", 2usize), (DepthFormatKind::D24, "<u4", 4)] {
         let (maps, _) = render_raw(cfg, format, &draws, umbra::core::NoProbe).expect("renders");
         let path = dir.join(format!("{}.npy", format.name()));
-        write_npy(&path, format, 48, 32, &maps.maps.z1).expect("writes");
+        write_npy(&path, &RawMap { format, width: 48, height: 32, raw: &maps.maps.z1 }).expect("writes");
         let file = std::fs::read(&path).expect("reads");
         assert_eq!(&file[..6], b"\x93NUMPY");
         let header_len = usize::from(u16::from_le_bytes([file[8], file[9]]));

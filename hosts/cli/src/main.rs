@@ -10,7 +10,7 @@ use umbra_sim::counters::Counters;
 use umbra_sim::glam::{Mat4, Vec3};
 use umbra_sim::light::{RawMaps, render_raw};
 use umbra_sim::mesh::Mesh;
-use umbra_sim::output::{write_npy, write_preview, write_text};
+use umbra_sim::output::{RawMap, write_npy, write_preview, write_text};
 use umbra_sim::scene::{Object, Scene, SpotLight, parse_matrix};
 
 /// Umbra: a bit-exact model of fixed-function shadow-mapping hardware.
@@ -191,30 +191,40 @@ fn write_maps(dir: &Path, maps: &RawMaps) -> Result<Vec<PathBuf>> {
         }
         let npy = dir.join(format!("{name}.npy"));
         let png = dir.join(format!("{name}.png"));
-        write_npy(&npy, maps.format, w, h, data)?;
-        write_preview(&png, maps.format, w, h, data)?;
+        let map = RawMap { format: maps.format, width: w, height: h, raw: data };
+        write_npy(&npy, &map)?;
+        write_preview(&png, &map)?;
         files.extend([npy, png]);
     }
     Ok(files)
+}
+
+/// The configuration of a pass in one line.
+fn describe(maps: &RawMaps) -> String {
+    let cfg = maps.maps.config;
+    let r = cfg.raster;
+    let (across, down) = r.tiles();
+    format!(
+        "{}×{} texels, {} depth, {:?} unit, {}×{} tiles of {} px, {} subpixel bits, max-z culling {}",
+        r.width(),
+        r.height(),
+        maps.format.name(),
+        cfg.unit,
+        across,
+        down,
+        r.tile_size(),
+        r.subpixel_bits(),
+        if cfg.max_z_cull { "on" } else { "off" }
+    )
 }
 
 /// Totals and a grid of fragments per tile, for the terminal.
 fn summary(maps: &RawMaps, c: &Counters) -> String {
     let t = &c.totals;
     let raster = maps.maps.config.raster;
-    let (across, down) = raster.tiles();
+    let across = raster.tiles().0;
     let mut s = String::new();
-    let _ = writeln!(
-        s,
-        "light pass {}x{} {} {:?}, tiles {}x{} of {} px",
-        raster.width(),
-        raster.height(),
-        maps.format.name(),
-        maps.maps.config.unit,
-        across,
-        down,
-        raster.tile_size()
-    );
+    let _ = writeln!(s, "light pass {}", describe(maps));
     let _ = writeln!(
         s,
         "triangles {} submitted, {} set up, {} rejected (facing {}, clipped {}, degenerate {}, no coverage {}, non-finite {})",
@@ -252,18 +262,7 @@ fn tile_report(scene: &Scene, maps: &RawMaps, c: &Counters, args: &DepthArgs) ->
     let raster = maps.maps.config.raster;
     let mut s = String::new();
     let _ = writeln!(s, "# Light-pass tiles: {}\n", scene.name);
-    let _ = writeln!(
-        s,
-        "{}×{} texels, {} depth, {:?} unit, cull {:?}, tiles of {} px, {} subpixel bits, max-z culling {}.\n",
-        raster.width(),
-        raster.height(),
-        maps.format.name(),
-        maps.maps.config.unit,
-        args.cull,
-        raster.tile_size(),
-        raster.subpixel_bits(),
-        if maps.maps.config.max_z_cull { "on" } else { "off" }
-    );
+    let _ = writeln!(s, "{}, cull {:?}.\n", describe(maps), args.cull);
     let _ = writeln!(s, "| tile | triangles | fragments | culled | flushes | z1 min | z1 max | z2 min | z2 max |");
     let _ = writeln!(s, "|---|---:|---:|---:|---:|---:|---:|---:|---:|");
     for (i, (k, st)) in c.tiles.iter().zip(&maps.maps.tiles).enumerate() {
