@@ -63,23 +63,31 @@ fn large_passing() -> Soup {
     s
 }
 
-/// A jittered grid of ≈10-pixel triangles covering the map: 2 × 228² ≈ 104k triangles.
+/// An indexed grid mesh of `nx × ny` quads over the map at depth `z(i, j)`,
+/// two triangles per quad sharing their vertices, as a real mesh does.
+fn grid(s: &mut Soup, nx: u32, ny: u32, z: impl Fn(u32, u32) -> f32) {
+    let base = s.positions.len() as u32;
+    for j in 0..=ny {
+        for i in 0..=nx {
+            s.positions.push(Vec3::new(-1.0 + 2.0 * i as f32 / nx as f32, -1.0 + 2.0 * j as f32 / ny as f32, z(i, j)));
+        }
+    }
+    let at = |i: u32, j: u32| base + j * (nx + 1) + i;
+    for j in 0..ny {
+        for i in 0..nx {
+            s.triangles.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+            s.triangles.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+        }
+    }
+}
+
+/// ≈10-pixel triangles covering the map: a 228² grid with random depths,
+/// 2 × 228² ≈ 104k triangles.
 fn small_triangles() -> Soup {
     let mut s = Soup::new();
     let mut rng = Rng(0x2545_f491_4f6c_dd1d);
-    let cells = 228;
-    let step = 2.0 / cells as f32;
-    let p = |i: u32, j: u32, rng: &mut Rng| {
-        Vec3::new(-1.0 + i as f32 * step, -1.0 + j as f32 * step, 0.2 + 0.6 * rng.next())
-    };
-    for j in 0..cells {
-        for i in 0..cells {
-            let (a, b, c, d) =
-                (p(i, j, &mut rng), p(i + 1, j, &mut rng), p(i + 1, j + 1, &mut rng), p(i, j + 1, &mut rng));
-            s.push(a, b, c);
-            s.push(a, c, d);
-        }
-    }
+    let depths: Vec<f32> = (0..229 * 229).map(|_| 0.2 + 0.6 * rng.next()).collect();
+    grid(&mut s, 228, 228, |i, j| depths[(j * 229 + i) as usize]);
     s
 }
 

@@ -52,21 +52,25 @@ fn distance(v: &ClipVertex, plane: usize, guard: [f64; 2]) -> f64 {
     }
 }
 
+/// Whether a vertex is inside every plane.
+#[inline]
+#[must_use]
+pub fn inside_all(v: &ClipVertex, guard: [f64; 2]) -> bool {
+    (0..PLANES).all(|p| distance(v, p, guard) >= 0.0)
+}
+
 /// Clip a triangle whose vertices are finite. `guard` is `[g_x, g_y]`. The
 /// polygon, when there is one, goes to `poly`.
 #[must_use]
 pub fn clip_triangle(tri: &[ClipVertex; 3], guard: [f64; 2], poly: &mut Polygon) -> Clipped {
+    if tri.iter().all(|v| inside_all(v, guard)) {
+        return Clipped::Inside;
+    }
     let mut outside_all = [true; PLANES];
-    let mut inside_all = true;
     for v in tri {
         for (p, out) in outside_all.iter_mut().enumerate() {
-            let inside = distance(v, p, guard) >= 0.0;
-            *out &= !inside;
-            inside_all &= inside;
+            *out &= distance(v, p, guard) < 0.0;
         }
-    }
-    if inside_all {
-        return Clipped::Inside;
     }
     if outside_all.iter().any(|&o| o) {
         return Clipped::Outside;

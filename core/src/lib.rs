@@ -13,6 +13,7 @@ pub mod round;
 pub mod setup;
 pub mod snap;
 pub mod tile;
+pub mod vertex;
 pub mod zbuffer;
 
 pub use config::{ConfigError, CullMode, DepthUnit, LightPassConfig, RasterConfig};

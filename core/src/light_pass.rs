@@ -14,6 +14,9 @@
 
 use glam::{Mat4, Vec3, Vec4};
 
+use crate::snap::SnappedVertex;
+use crate::vertex::VertexCache;
+
 use crate::bin::{Bin, MAX_SETUPS, SetupIndex, touches};
 use crate::clip::{ClipVertex, Clipped, Polygon, clip_triangle};
 use crate::config::{ConfigError, CullMode, DepthUnit, LightPassConfig};
@@ -71,6 +74,7 @@ pub struct LightPass<'a, F: DepthFormat, P: Probe = NoProbe, const B: usize = 64
     buf: LightBuffers<'a, F, B>,
     setups_used: usize,
     triangles: u32,
+    cache: VertexCache,
     probe: P,
 }
 
@@ -101,7 +105,7 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
             *t = TileState::cleared(F::FAR, r.tile_rect(r.tile_id(i)).area());
         }
         buf.bins.iter_mut().for_each(Bin::clear);
-        Ok(Self { cfg, buf, setups_used: 0, triangles: 0, probe })
+        Ok(Self { cfg, buf, setups_used: 0, triangles: 0, cache: VertexCache::new(), probe })
     }
 
     /// The configuration.
@@ -134,30 +138,51 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
                 return Err(SubmitError::IndexOutOfRange { triangle, index, vertices });
             }
         }
+        self.cache.clear();
+        let raster = self.cfg.raster;
         for t in triangles {
-            let v = t.map(|i| positions.get(i as usize).map_or(Vec4::NAN, |p| *transform * p.extend(1.0)));
-            self.draw_clip(v, cull);
+            let [a, b, c] = t.map(|i| self.cache.fetch::<F>(&raster, transform, positions, i));
+            let id = self.submit();
+            if let (Some(a), Some(b), Some(c)) = (a.snapped, b.snapped, c.snapped) {
+                // Trivially inside every clip plane: no clipping.
+                self.setup_and_bin(&[a, b, c], cull, id);
+            } else if a.finite && b.finite && c.finite {
+                let v = [a.clip, b.clip, c.clip];
+                self.clip_and_bin(&v, cull, id);
+            } else {
+                self.reject(RejectReason::NonFinite);
+            }
         }
         Ok(())
+    }
+
+    /// Number the next submitted triangle and report it.
+    fn submit(&mut self) -> u32 {
+        let id = self.triangles;
+        self.triangles = self.triangles.wrapping_add(1);
+        self.probe.event(Event::TriangleSubmitted);
+        id
     }
 
     /// Draw one triangle given in light clip space. Any input is accepted:
     /// non-finite vertices are rejected and reported, never rasterized.
     pub fn draw_clip(&mut self, tri: [Vec4; 3], cull: CullMode) {
-        let id = self.triangles;
-        self.triangles = self.triangles.wrapping_add(1);
-        self.probe.event(Event::TriangleSubmitted);
+        let id = self.submit();
         if !tri.iter().all(|v| v.is_finite()) {
             self.reject(RejectReason::NonFinite);
             return;
         }
-        let v: [ClipVertex; 3] = tri.map(|v| v.to_array().map(f64::from));
+        self.clip_and_bin(&tri.map(|v| v.to_array().map(f64::from)), cull, id);
+    }
+
+    /// Clip a triangle of finite vertices, then snap, set up and bin each piece.
+    fn clip_and_bin(&mut self, v: &[ClipVertex; 3], cull: CullMode, id: u32) {
         let mut p = Polygon::new();
-        match clip_triangle(&v, self.cfg.raster.guard(), &mut p) {
-            Clipped::Inside => self.setup_and_bin(&v, cull, id),
+        match clip_triangle(v, self.cfg.raster.guard(), &mut p) {
+            Clipped::Inside => self.snap_and_bin(v, cull, id),
             Clipped::Polygon => {
                 for i in 1..p.len().saturating_sub(1) {
-                    self.setup_and_bin(&[p[0], p[i], p[i + 1]], cull, id);
+                    self.snap_and_bin(&[p[0], p[i], p[i + 1]], cull, id);
                 }
             }
             Clipped::Outside => self.reject(RejectReason::Clipped),
@@ -168,14 +193,17 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
         self.probe.event(Event::TriangleRejected { reason });
     }
 
-    fn setup_and_bin(&mut self, v: &[ClipVertex; 3], cull: CullMode, id: u32) {
+    fn snap_and_bin(&mut self, v: &[ClipVertex; 3], cull: CullMode, id: u32) {
         let raster = self.cfg.raster;
-        let (Some(a), Some(b), Some(c)) = (raster.snap::<F>(&v[0]), raster.snap::<F>(&v[1]), raster.snap::<F>(&v[2]))
-        else {
-            self.reject(RejectReason::NonFinite);
-            return;
-        };
-        let setup = match Setup::new(&raster, [a, b, c], cull, id) {
+        match (raster.snap::<F>(&v[0]), raster.snap::<F>(&v[1]), raster.snap::<F>(&v[2])) {
+            (Some(a), Some(b), Some(c)) => self.setup_and_bin(&[a, b, c], cull, id),
+            _ => self.reject(RejectReason::NonFinite),
+        }
+    }
+
+    fn setup_and_bin(&mut self, v: &[SnappedVertex; 3], cull: CullMode, id: u32) {
+        let raster = self.cfg.raster;
+        let setup = match Setup::new(&raster, *v, cull, id) {
             Ok(s) => s,
             Err(reason) => {
                 self.reject(reason);

@@ -138,16 +138,33 @@ impl DepthPlane {
         self.range_over(r).0
     }
 
+    /// [`Self::range_over`] in `i64`, or `None` if anything overflows.
+    #[inline]
+    fn range_i64(&self, x0: i64, x1: i64, y0: i64, y1: i64) -> Option<(i64, i64)> {
+        let (a, b, c) = (i64::try_from(self.a).ok()?, i64::try_from(self.b).ok()?, i64::try_from(self.c).ok()?);
+        let (xa, xb) = (a.checked_mul(x0)?, a.checked_mul(x1)?);
+        let (ya, yb) = (b.checked_mul(y0)?, b.checked_mul(y1)?);
+        let lo = c.checked_add(xa.min(xb))?.checked_add(ya.min(yb))?;
+        let hi = c.checked_add(xa.max(xb))?.checked_add(ya.max(yb))?;
+        Some((lo, hi))
+    }
+
     /// The smallest and largest values over the pixel centres of `r`,
     /// saturated to [`PlaneZ`].
     #[inline]
     #[must_use]
     pub fn range_over(&self, r: &TileRect) -> (PlaneZ, PlaneZ) {
-        // Exact for planes from [`Setup::new`]; saturating for hand-made ones.
-        let x = |px: u32| self.a.saturating_mul(i128::from(px));
-        let y = |py: u32| self.b.saturating_mul(i128::from(py));
-        let (xa, xb) = (x(r.x0), x(r.x1.saturating_sub(1)));
-        let (ya, yb) = (y(r.y0), y(r.y1.saturating_sub(1)));
+        let (x0, x1) = (i64::from(r.x0), i64::from(r.x1.saturating_sub(1)));
+        let (y0, y1) = (i64::from(r.y0), i64::from(r.y1.saturating_sub(1)));
+        // Most planes fit in i64 over the target: checked arithmetic there,
+        // i128 (exact, saturated to PlaneZ) for the steep rest.
+        if let Some((lo, hi)) = self.range_i64(x0, x1, y0, y1) {
+            return (PlaneZ::from_bits(lo), PlaneZ::from_bits(hi));
+        }
+        let x = |px: i64| self.a.saturating_mul(i128::from(px));
+        let y = |py: i64| self.b.saturating_mul(i128::from(py));
+        let (xa, xb) = (x(x0), x(x1));
+        let (ya, yb) = (y(y0), y(y1));
         #[allow(clippy::cast_possible_truncation, reason = "clamped to the i64 range first")]
         let sat = |v: i128| PlaneZ::from_bits(v.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64);
         let lo = self.c.saturating_add(xa.min(xb)).saturating_add(ya.min(yb));

@@ -27,6 +27,7 @@ pub struct TileRect {
 
 impl TileRect {
     /// The intersection, or `None` when it is empty.
+    #[inline]
     #[must_use]
     pub fn intersect(&self, other: &Self) -> Option<Self> {
         let r = Self {

@@ -78,3 +78,48 @@ fn full_bins_flush_early_and_change_nothing() {
     assert_eq!(rec_large.bin_full_flushes, 0);
     assert_eq!(small.len(), 12 * (SIZE * SIZE) as usize / 2);
 }
+
+fn mesh_fragments(
+    positions: &[umbra::core::glam::Vec3],
+    tris: &[[u32; 3]],
+    m: &umbra::core::glam::Mat4,
+) -> Vec<Fragment> {
+    use umbra::core::bin::Bin;
+    use umbra::core::setup::Setup;
+    use umbra::core::{LightBuffers, LightPass, TileState};
+    let cfg = config(SIZE, 16, DepthUnit::Dual, false);
+    let r = cfg.raster;
+    let (mut z1, mut z2) = (vec![0u32; r.texel_count()], vec![0u32; r.texel_count()]);
+    let mut tiles = vec![TileState::cleared(0, 0); r.tile_count()];
+    let mut bins = vec![Bin::<8>::new(); r.tile_count()];
+    let mut setups = vec![Setup::EMPTY; 64];
+    let buffers =
+        LightBuffers::<D24, 8> { z1: &mut z1, z2: &mut z2, tiles: &mut tiles, bins: &mut bins, setups: &mut setups };
+    let mut pass = LightPass::<D24, Recorder, 8>::new(cfg, buffers, Recorder::default()).expect("valid");
+    pass.draw_mesh(positions, tris, m, CullMode::None).expect("valid indices");
+    pass.finish().sorted()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(128))]
+
+    /// Indexed meshes (through the post-transform cache, with indices that
+    /// collide in it, and vertices in front of the near plane and beyond the
+    /// far plane, so some triangles are clipped) give exactly the
+    /// fragments of the same triangles submitted one by one in clip space.
+    #[test]
+    fn indexed_meshes_equal_triangle_soup(
+        positions in prop::collection::vec((-2.0f32..2.0, -2.0f32..2.0, -4.0f32..2.8), 3..80),
+        picks in prop::collection::vec(prop::array::uniform3(any::<prop::sample::Index>()), 1..40),
+    ) {
+        use umbra::core::glam::{Mat4, Vec3};
+        let positions: Vec<Vec3> = positions.into_iter().map(|(x, y, z)| Vec3::new(x, y, z)).collect();
+        let tris: Vec<[u32; 3]> = picks.iter().map(|t| t.map(|i| i.index(positions.len()) as u32)).collect();
+        let view = umbra::core::glam::camera::rh::view::look_at_mat4(Vec3::new(0.0, 0.0, 3.0), Vec3::ZERO, Vec3::Y);
+        let proj = umbra::core::glam::camera::rh::proj::directx::perspective(1.2, 1.0, 1.0, 6.0);
+        let m: Mat4 = proj * view;
+        let soup: Vec<[Vec4; 3]> = tris.iter().map(|t| t.map(|i| m * positions[i as usize].extend(1.0))).collect();
+        let (_, rec) = run::<D24, _, 8>(config(SIZE, 16, DepthUnit::Dual, false), &soup, CullMode::None, 64, Recorder::default());
+        prop_assert_eq!(mesh_fragments(&positions, &tris, &m), rec.sorted());
+    }
+}
