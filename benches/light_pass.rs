@@ -112,7 +112,11 @@ fn layers(front_to_back: bool) -> Soup {
 }
 
 fn config(unit: DepthUnit, max_z_cull: bool) -> LightPassConfig {
-    let raster = RasterConfig::new(SIZE, SIZE, RasterConfig::DEFAULT_TILE_SIZE, 8).expect("valid");
+    config_tiled(unit, max_z_cull, RasterConfig::DEFAULT_TILE_SIZE)
+}
+
+fn config_tiled(unit: DepthUnit, max_z_cull: bool, tile: u32) -> LightPassConfig {
+    let raster = RasterConfig::new(SIZE, SIZE, tile, 8).expect("valid");
     LightPassConfig { raster, unit, max_z_cull }
 }
 
@@ -127,12 +131,12 @@ fn run<F: DepthFormat>(soup: &Soup, unit: DepthUnit, cull: bool) {
     black_box(maps);
 }
 
-fn variants() -> [(&'static str, DepthUnit, bool, bool); 4] {
+fn variants() -> [(&'static str, DepthUnit, bool); 4] {
     [
-        ("d16/single", DepthUnit::Single, false, true),
-        ("d24/single", DepthUnit::Single, true, true),
-        ("d16/dual", DepthUnit::Dual, false, true),
-        ("d24/dual", DepthUnit::Dual, true, true),
+        ("d16/single", DepthUnit::Single, false),
+        ("d24/single", DepthUnit::Single, true),
+        ("d16/dual", DepthUnit::Dual, false),
+        ("d24/dual", DepthUnit::Dual, true),
     ]
 }
 
@@ -140,7 +144,7 @@ fn bench_light_pass(c: &mut Criterion) {
     let large = large_passing();
     let mut g = c.benchmark_group("fill_large_passing");
     g.sample_size(10);
-    for (name, unit, d24, _) in variants() {
+    for (name, unit, d24) in variants() {
         for cull in [false, true] {
             g.throughput(Throughput::Elements(fragments(&large, unit, cull)));
             let id = BenchmarkId::new(name, if cull { "cull" } else { "nocull" });
@@ -153,11 +157,23 @@ fn bench_light_pass(c: &mut Criterion) {
     }
     g.finish();
 
+    let mut g = c.benchmark_group("fill_large_passing_by_tile");
+    g.sample_size(10);
+    g.throughput(Throughput::Elements(fragments(&large, DepthUnit::Single, false)));
+    for tile in [16, 32, 64, 128] {
+        g.bench_function(BenchmarkId::new("d16/single/nocull", tile), |b| {
+            b.iter(|| {
+                black_box(render::<D16, _>(config_tiled(DepthUnit::Single, false, tile), &[large.draw()], NoProbe))
+            })
+        });
+    }
+    g.finish();
+
     let small = small_triangles();
     let mut g = c.benchmark_group("small_triangles");
     g.sample_size(10);
     g.throughput(Throughput::Elements(small.triangles.len() as u64));
-    for (name, unit, d24, _) in variants() {
+    for (name, unit, d24) in variants() {
         if d24 {
             g.bench_function(name, |b| b.iter(|| run::<D24>(&small, unit, true)));
         } else {

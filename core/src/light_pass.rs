@@ -223,12 +223,15 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
         let shift = raster.tile_shift();
         let (tx0, tx1) = (setup.bbox.x0 >> shift, (setup.bbox.x1 - 1) >> shift);
         let (ty0, ty1) = (setup.bbox.y0 >> shift, (setup.bbox.y1 - 1) >> shift);
+        // A triangle whose bounding box lies in one tile goes to that bin
+        // without a corner test.
+        let single = tx0 == tx1 && ty0 == ty1;
         let mut binned = 0;
         for ty in ty0..=ty1 {
             for tx in tx0..=tx1 {
                 #[allow(clippy::cast_possible_truncation, reason = "at most 2^11 tiles per side")]
                 let tile = TileId { x: tx as u16, y: ty as u16 };
-                if !touches(&setup, &self.cfg.raster.tile_rect(tile)) {
+                if !single && !touches(&setup, &self.cfg.raster.tile_rect(tile)) {
                     continue;
                 }
                 binned += 1;

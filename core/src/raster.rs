@@ -129,8 +129,10 @@ fn traverse<F: DepthFormat, P: Probe, const DUAL: bool, const COUNT: bool>(
     probe: &mut P,
 ) {
     let mut out = SpanOut::new(F::FAR);
-    if coverage == Coverage::Full {
-        let run = Run { x0: rect.x0, x1: rect.x1, masked: false };
+    if coverage == Coverage::Full || (rect.width() <= BLOCK && rect.height() <= BLOCK) {
+        // Whole rows without edge tests, or a rectangle no bigger than a
+        // block (already classified): masked rows with no block step.
+        let run = Run { x0: rect.x0, x1: rect.x1, masked: coverage != Coverage::Full };
         rows::<F, P, DUAL, COUNT>(s, view, rect.y0, rect.y1, &[run], &mut out, probe);
     } else {
         let mut by = rect.y0 & !(BLOCK - 1);

@@ -31,7 +31,7 @@
 //! value lies in `[0, 2^56]`, so wrapping never shows. The rounding of the
 //! steps costs at most `½` unit of 2⁻³² LSB per pixel of distance from
 //! vertex 0 (at most `2·2^16` pixels inside the guard band), plus `½` for
-//! `C`: below 2⁻¹⁵ LSB. So a fragment inside the triangle lies within
+//! `C` and 2⁵ for an f64 setup: below 2⁻¹⁵ LSB. So a fragment inside the triangle lies within
 //! 2⁻¹⁵ LSB of `[0, SCALE]`, and rounding it to a
 //! texel is an add of half an LSB and a shift: no clamp
 //! ([`crate::depth::DepthFormat::texel_inside`]).
@@ -189,6 +189,27 @@ pub struct Setup {
     pub triangle: u32,
 }
 
+/// The per-pixel steps `round(num · 2^s / d)` of both axes, `d > 0`.
+///
+/// In f64 when that is accurate enough: the quotient `q` carries a relative
+/// error below 2⁻⁵¹, so if `(|q_a| + |q_b|)·extent < 2⁵⁶` the steps' error
+/// moves no fragment of the triangle by more than 2⁵ units (2⁻²⁷ LSB) beyond
+/// the rounding the exact path has too. Otherwise — slivers, whose depth
+/// changes by more than 2²⁴ LSB across their extent — exactly in i128.
+#[inline]
+fn slopes(a_num: i128, b_num: i128, s: u32, d: i64, extent: f64) -> (i128, i128) {
+    #[allow(clippy::cast_precision_loss, reason = "the error bound above accounts for it")]
+    let (na, nb, df) = (a_num as f64, b_num as f64, d as f64);
+    let scale = f64::from(1u32 << s);
+    let (qa, qb) = (na * scale / df, nb * scale / df);
+    if (qa.abs() + qb.abs()) * extent < 72_057_594_037_927_936.0 {
+        let r = |q: f64| i128::from(crate::round::round_ties_even(q));
+        return (r(qa), r(qb));
+    }
+    let d = i128::from(d);
+    (round_div(a_num << s, d), round_div(b_num << s, d))
+}
+
 /// `round(n / d)` (half up) for `d > 0`.
 #[inline]
 fn round_div(n: i128, d: i128) -> i128 {
@@ -280,8 +301,10 @@ impl Setup {
         let (dx2, dy2, dz2) = (i128::from(v2.x.0) - x0, i128::from(v2.y.0) - y0, i128::from(v2.z.to_bits()) - z0);
         let a_num = dz1 * dy2 - dz2 * dy1;
         let b_num = dx1 * dz2 - dx2 * dz1;
-        let d = i128::from(d);
-        let (a, b) = (round_div(a_num << s, d), round_div(b_num << s, d));
+        // Pixel distance, bounding |p − v0| for every pixel p of the triangle.
+        #[allow(clippy::cast_precision_loss, reason = "an estimate; below 2^26")]
+        let extent = ((x_max - x_min + y_max - y_min) >> s) as f64 + 2.0;
+        let (a, b) = slopes(a_num, b_num, s, d, extent);
         // The value at pixel (0, 0) from vertex 0 and the rounded per-pixel
         // steps: a multiply and a shift, no third division.
         let offset = a * (i128::from(half) - x0) + b * (i128::from(half) - y0);
