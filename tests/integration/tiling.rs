@@ -123,3 +123,27 @@ proptest! {
         prop_assert_eq!(mesh_fragments(&positions, &tris, &m), rec.sorted());
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(128))]
+
+    /// Slivers: two vertices a few subpixels apart with very different
+    /// depths and a third far away, so the depth plane is steep enough that
+    /// setup takes the exact i128 path; fragments still equal the reference.
+    #[test]
+    fn steep_slivers_equal_the_reference(
+        a in (-1.0f32..1.0, -1.0f32..1.0),
+        far in (-1.0f32..1.0, -1.0f32..1.0),
+        nudge in (1i32..4, -3i32..4),
+        z in (0.0f32..1.0, 0.0f32..1.0, 0.0f32..1.0),
+    ) {
+        let sub = 2.0 / (SIZE as f32 * 256.0);
+        let tri = [
+            Vec4::new(a.0, a.1, z.0, 1.0),
+            Vec4::new(a.0 + nudge.0 as f32 * sub, a.1 + nudge.1 as f32 * sub, z.1, 1.0),
+            Vec4::new(far.0, far.1, z.2, 1.0),
+        ];
+        let got = every_tiling_agrees::<D24>(&[tri], CullMode::None)?;
+        assert_matches_reference(got, reference::<D24>(SIZE, &[tri], CullMode::None))?;
+    }
+}
