@@ -113,7 +113,9 @@ pub enum DepthUnit {
 
 /// Which triangles the light pass discards by their facing. Facing is seen
 /// from the light: counter-clockwise in normalised device coordinates
-/// (y up) is front-facing, i.e. faces the light.
+/// (y up) is front-facing, i.e. faces the light. The mode is chosen per draw
+/// call, so culled solids and unculled open surfaces share one map
+/// (Wang & Molnar 1994 §3.3–3.4; Weiskopf & Ertl 2003).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum CullMode {
     /// Keep every triangle (open, two-sided surfaces).

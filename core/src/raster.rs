@@ -7,15 +7,17 @@
 //!
 //! Traversal, after Mesa llvmpipe:
 //! 1. the triangle's bounding box is clipped to the tile;
-//! 2. the rectangle is classified **empty / partial / full** by corner tests
+//! 2. **max-z culling** (the per-tile max z of Reeves et al. 1987 §3.3): if
+//!    the nearest depth of the triangle over the rectangle (the larger of its
+//!    nearest vertex and the plane's minimum at the rectangle's corners) is
+//!    at or beyond the tile's max stored depth (`z2` for dual), no fragment
+//!    can change the tile, and the triangle is skipped;
+//! 3. the rectangle is classified **empty / partial / full** by corner tests
 //!    of the edge functions ([`Setup::classify`]);
-//! 3. **max-z culling**: if the nearest depth of the triangle over the
-//!    rectangle (the smaller of its nearest vertex and the plane's minimum
-//!    at the rectangle's corners) is at or beyond the tile's max stored depth,
-//!    no fragment can change the tile, and the triangle is skipped;
-//! 4. a full rectangle runs whole rows without edge tests; a partial one is
-//!    split into [`BLOCK`]×[`BLOCK`] blocks, each classified and culled the
-//!    same way, and run as full rows or as masked rows.
+//! 4. a full rectangle (or one no bigger than a block) runs whole rows; a
+//!    larger partial one is split into [`BLOCK`]×[`BLOCK`] blocks, each
+//!    classified and culled the same way, and neighbouring blocks of a kind
+//!    are merged into runs of full rows (no edge tests) or masked rows.
 //!
 //! Fragments come out per tile, per triangle in bin order, in row-major
 //! order within each block, blocks in row-major order.
@@ -187,7 +189,7 @@ fn block_row<F: DepthFormat, P: Probe>(
         }
         match runs.last_mut() {
             Some(last) if last.x1 == b.x0 && last.masked == masked => last.x1 = b.x1,
-            // At most one run per block of the row: never full.
+            // One run per block at most, so the vector cannot overflow.
             _ => {
                 let _ = runs.push(Run { x0: b.x0, x1: b.x1, masked });
             }

@@ -2,9 +2,10 @@
 //!
 //! * **Single**: `z1 ← min(z1, z)` — the nearest depth (Williams 1978; with
 //!   front-face culling, the nearest light-averted surface: Wang & Molnar
-//!   1994 §3.1).
+//!   1994 §3.4).
 //! * **Dual**: nearest and second nearest, both updated per fragment
-//!   (Wang & Molnar 1994 §3.1, "two z-buffers"):
+//!   (Wang & Molnar 1994 §3.1: "two depth buffers … updated appropriately
+//!   as each primitive is rasterized"):
 //!   `z2 ← min(z2, max(z1, z))`, then `z1 ← min(z1, z)`. After any sequence
 //!   of fragments, `(z1, z2)` are the two smallest depths that landed (as a
 //!   multiset: two equal fragments give `z1 = z2`), whatever their order.
@@ -13,6 +14,11 @@
 //! replaces; equal depths change nothing.
 //!
 //! # Per-tile summaries
+//! Reeves, Salesin & Cook 1987 §3.3 propose storing "a maximum z value with
+//! each tile" of the map so that whole regions can be skipped; here the
+//! light pass keeps it live to skip work, and the camera pass can use the
+//! stored bounds to skip lookups.
+//!
 //! Each tile keeps the min of `z1` and `z2` as fragments land, and the
 //! **max of the buffer that culling tests** (`z1` for single, `z2` for
 //! dual) together with how many texels hold it. When a fragment lowers a
