@@ -118,10 +118,11 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
         &mut self.probe
     }
 
-    /// Draw an indexed mesh: positions in object space, `transform` to light
-    /// clip space (row vectors in the matrix's columns, as glam does). The
-    /// transform is f32 (the vertex unit); everything after it is clipped in
-    /// f64 and rasterized in fixed point.
+    /// Draw an indexed mesh: positions in object space and `transform` to
+    /// light clip space (`clip = transform · (p, 1)`, glam's column-vector
+    /// convention). The transform is f32 (the vertex unit); a triangle with
+    /// a vertex outside a clip plane is clipped in f64; everything after the
+    /// snap is fixed point.
     ///
     /// # Errors
     /// [`SubmitError::IndexOutOfRange`] before anything is drawn.
