@@ -101,6 +101,10 @@ pub trait DepthFormat: Copy + Default + core::fmt::Debug + Send + Sync + 'static
         Self::texel(Self::plane_z(f64::from(z)))
     }
 
+    /// A texel widened to [`PlaneZ`] bits, exactly (for comparisons with
+    /// the interpolator's depth).
+    fn widen(t: Self::Texel) -> i64;
+
     /// The depth a texel stands for, in `[0, 1]` (for previews and reports).
     fn unquantize(t: Self::Texel) -> f64;
 }
@@ -157,6 +161,11 @@ macro_rules! unorm_format {
                 t
             }
 
+            #[inline(always)]
+            fn widen(t: $texel) -> i64 {
+                i64::from(t) << PLANE_FRACTION_BITS
+            }
+
             fn unquantize(t: $texel) -> f64 {
                 f64::from(t) / (Self::SCALE as f64)
             }
@@ -183,6 +192,12 @@ impl DepthFormat for F32 {
         #[allow(clippy::cast_precision_loss, reason = "the f32 format's precision is the point")]
         let value = bits as f32 * F32_UNIT;
         value.to_bits()
+    }
+
+    #[inline]
+    fn widen(t: u32) -> i64 {
+        // The float times 2⁵⁶ (exact in f64), rounded: the inverse of `texel`.
+        crate::round::round_ties_even(f64::from(f32::from_bits(t)) * 72_057_594_037_927_936.0)
     }
 
     fn unquantize(t: u32) -> f64 {

@@ -11,6 +11,7 @@ pub mod probe;
 pub mod raster;
 pub mod round;
 pub mod setup;
+pub mod shadow;
 pub mod snap;
 pub mod tile;
 pub mod vertex;

@@ -145,6 +145,21 @@ pub enum Event {
         /// The tile.
         tile: TileId,
     },
+    /// Texels of the map read by the shadow unit (memory traffic).
+    MapRead {
+        /// Which buffer.
+        buffer: Buffer,
+        /// Texels read.
+        texels: u32,
+        /// Bytes read at the format's width.
+        bytes: u32,
+    },
+    /// A lookup decided by the tiles' stored bounds (or lying wholly outside
+    /// the map): no texel read.
+    LookupCulled {
+        /// Texels of the footprint not read.
+        texels: u32,
+    },
 }
 
 /// One fragment in detail, for probes that ask for it.

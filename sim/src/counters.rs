@@ -57,6 +57,12 @@ pub struct Totals {
     pub depth_bytes: u64,
     /// Reductions recomputing a tile's max.
     pub tile_max_updates: u64,
+    /// Map texels read by the shadow unit (`z1`, `z2`).
+    pub map_reads: [u64; 2],
+    /// Bytes of those reads.
+    pub map_read_bytes: u64,
+    /// Lookups decided without reading a texel.
+    pub lookups_culled: u64,
 }
 
 /// What happened in one tile.
@@ -161,6 +167,11 @@ impl Probe for Counters {
                 t.depth_bytes += u64::from(bytes);
             }
             Event::TileMaxUpdate { .. } => t.tile_max_updates += 1,
+            Event::MapRead { buffer, texels, bytes } => {
+                t.map_reads[buffer_index(buffer)] += u64::from(texels);
+                t.map_read_bytes += u64::from(bytes);
+            }
+            Event::LookupCulled { .. } => t.lookups_culled += 1,
             _ => {}
         }
     }

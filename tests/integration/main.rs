@@ -15,5 +15,6 @@ mod fill_rule;
 mod hostile;
 mod maps_io;
 mod quantize;
+mod shadow_unit;
 mod tiling;
 mod watertight;

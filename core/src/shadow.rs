@@ -1,0 +1,559 @@
+//! The shadow unit: compare a surface point's light-space depth with the
+//! map and filter the binary results — percentage-closer filtering
+//! (Reeves, Salesin & Cook 1987 §2): compare first, then filter.
+//!
+//! # Depth tests
+//! A sample is **shadowed** iff `z − bias > r`, where `z` is the point's
+//! depth and `r` the texel's reference depth:
+//!
+//! | test | `r` | paper |
+//! |---|---|---|
+//! | [`DepthTest::First`] | `z1` | Williams 1978 |
+//! | [`DepthTest::Second`] | `z2` (so `z ≤ z2` is lit: planar two-sided surfaces work) | Wang & Molnar 1994 §3.1 |
+//! | [`DepthTest::Midpoint`] | `(z1 + z2) / 2` | Woo 1992, via Weiskopf & Ertl 2003 §3 |
+//! | [`DepthTest::Dual`] | `z1 + min((z2 − z1) / 2, offset)` | Weiskopf & Ertl 2003 §4 |
+//!
+//! All of it in [`PlaneZ`] bits (format LSBs with 32 fraction bits): the
+//! point's depth keeps the interpolator's precision, stored texels are
+//! widened exactly. The bias is constant or, as Reeves' `[Bias0, Bias1]`,
+//! drawn per sample.
+//!
+//! # Filters
+//! Map coordinates are texels with 16 fraction bits ([`MapCoord`]); texel
+//! `(i, j)` covers `[i, i + 1) × [j, j + 1)`. [`Filter::Point`] reads the
+//! texel under the point; [`Filter::Bilinear`] the four nearest texel
+//! centres, weighted by the fractional position; [`Filter::Box`] the `n × n`
+//! texels centred on the point; [`Filter::Jittered`] Reeves' stochastic
+//! filter (Figure 4): the footprint, enlarged by `ResFactor` and at least
+//! `MinSize`, is split into `ns × nt` subregions (`NumSamples`,
+//! `MinSamples`) sampled with jitter from a seeded PCG generator, each
+//! sample with its own bias. Samples outside the map are lit, and a point
+//! nearer than the near plane (`z < 0`, which includes behind the light)
+//! is lit.
+//!
+//! # Culling lookups
+//! Before any texel is read, the tiles under the footprint are consulted:
+//! when their stored min/max prove that every sample agrees (all lit, or —
+//! with the whole footprint inside the map — all shadowed), no texel is
+//! read and the skip is reported (Reeves et al. 1987 §3.3's per-tile max z).
+//! The result is exactly the one the samples would give.
+
+use core::fmt;
+
+use fixed::types::{I16F16, U16F16};
+
+use crate::config::RasterConfig;
+use crate::depth::{DepthFormat, PLANE_FRACTION_BITS, PlaneZ};
+use crate::probe::{Buffer, Event, Probe};
+use crate::tile::{TileId, TileRect};
+use crate::zbuffer::TileState;
+
+/// A position on the map in texels, 16 fraction bits.
+pub type MapCoord = I16F16;
+
+/// The fraction of a lookup in shadow: 0 lit, 1 fully shadowed.
+pub type Shadow = U16F16;
+
+/// Which reference depth a sample compares against.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum DepthTest {
+    /// Nearest depth `z1`.
+    First,
+    /// Second-nearest depth `z2` (dual unit, or front-face culling into `z1`
+    /// of a single unit: then use [`DepthTest::First`] on that map).
+    Second,
+    /// Woo's midpoint `(z1 + z2) / 2`.
+    Midpoint,
+    /// Weiskopf & Ertl's dual depth `z1 + min((z2 − z1) / 2, offset)`.
+    Dual {
+        /// The largest distance above `z1`, in [`PlaneZ`] (format LSBs).
+        offset: PlaneZ,
+    },
+}
+
+impl DepthTest {
+    /// Whether the test reads `z2`.
+    #[must_use]
+    pub const fn needs_z2(self) -> bool {
+        !matches!(self, Self::First)
+    }
+
+    /// Whether the test reads `z1`.
+    #[must_use]
+    pub const fn needs_z1(self) -> bool {
+        !matches!(self, Self::Second)
+    }
+
+    /// The reference depth from `z1` and `z2` ([`PlaneZ`] bits). Monotonic
+    /// in both, so tile bounds bound it.
+    #[inline]
+    fn reference(self, z1: i64, z2: i64) -> i64 {
+        match self {
+            Self::First => z1,
+            Self::Second => z2,
+            Self::Midpoint => (z1 >> 1) + (z2 >> 1) + (z1 & z2 & 1),
+            Self::Dual { offset } => z1.saturating_add(((z2 - z1) >> 1).min(offset.to_bits().max(0))),
+        }
+    }
+}
+
+/// The depth bias, in [`PlaneZ`] (format LSBs).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Bias {
+    /// The same for every sample.
+    Constant(PlaneZ),
+    /// Drawn uniformly per sample from `[lo, hi]` (Reeves' `Bias0`, `Bias1`).
+    Range {
+        /// `Bias0`.
+        lo: PlaneZ,
+        /// `Bias1`.
+        hi: PlaneZ,
+    },
+}
+
+impl Bias {
+    /// No bias.
+    pub const ZERO: Self = Self::Constant(PlaneZ::ZERO);
+
+    /// The smallest and largest bias a sample can get.
+    #[must_use]
+    pub fn bounds(self) -> (i64, i64) {
+        match self {
+            Self::Constant(b) => (b.to_bits(), b.to_bits()),
+            Self::Range { lo, hi } => (lo.to_bits(), hi.to_bits()),
+        }
+    }
+}
+
+/// Reeves' stochastic filter parameters (Figure 4).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Jitter {
+    /// `NumSamples`: samples per lookup (before the per-axis clamps).
+    pub num_samples: u16,
+    /// `ResFactor`: enlarges the footprint (softer shadows).
+    pub res_factor: MapCoord,
+    /// `MinSamples`: fewest samples along each axis.
+    pub min_samples: u16,
+    /// `MinSize`: smallest half-size of the sampled region, texels.
+    pub min_size: MapCoord,
+}
+
+impl Jitter {
+    /// The values Reeves et al. list in Figure 4.
+    pub const REEVES: Self =
+        Self { num_samples: 16, res_factor: MapCoord::lit("3"), min_samples: 1, min_size: MapCoord::ZERO };
+}
+
+/// How the binary comparisons of a lookup are combined.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Filter {
+    /// The texel under the point.
+    Point,
+    /// The four nearest texel centres, weighted by the fractional position.
+    Bilinear,
+    /// `size × size` texels centred on the point, equally weighted.
+    Box {
+        /// Side in texels, `1..=16`.
+        size: u8,
+    },
+    /// Reeves' jittered stochastic sampling of the footprint.
+    Jittered(Jitter),
+}
+
+/// A validated shadow-unit configuration.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct ShadowConfig {
+    test: DepthTest,
+    bias: Bias,
+    filter: Filter,
+    cull_lookups: bool,
+}
+
+/// A shadow configuration the unit cannot use.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum ShadowConfigError {
+    /// A box filter side outside `1..=16`.
+    BoxSize {
+        /// The side asked for.
+        size: u8,
+    },
+    /// `NumSamples` outside `1..=256`, or `MinSamples` above it or zero.
+    Samples {
+        /// `NumSamples`.
+        num_samples: u16,
+        /// `MinSamples`.
+        min_samples: u16,
+    },
+    /// A negative `ResFactor` or `MinSize`.
+    Region,
+    /// A bias range with `lo > hi`.
+    BiasRange,
+    /// A negative dual-depth offset.
+    Offset,
+}
+
+impl fmt::Display for ShadowConfigError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Self::BoxSize { size } => write!(f, "box filter size {size} is outside 1..=16"),
+            Self::Samples { num_samples, min_samples } => {
+                write!(f, "NumSamples {num_samples} must be in 1..=256 and MinSamples {min_samples} in 1..=NumSamples")
+            }
+            Self::Region => write!(f, "ResFactor and MinSize must not be negative"),
+            Self::BiasRange => write!(f, "bias range has Bias0 > Bias1"),
+            Self::Offset => write!(f, "dual-depth offset must not be negative"),
+        }
+    }
+}
+
+impl core::error::Error for ShadowConfigError {}
+
+impl ShadowConfig {
+    /// Validate a configuration. `cull_lookups` enables per-tile culling.
+    ///
+    /// # Errors
+    /// See [`ShadowConfigError`].
+    pub fn new(test: DepthTest, bias: Bias, filter: Filter, cull_lookups: bool) -> Result<Self, ShadowConfigError> {
+        match filter {
+            Filter::Box { size } if !(1..=16).contains(&size) => return Err(ShadowConfigError::BoxSize { size }),
+            Filter::Jittered(j) => {
+                if !(1..=256).contains(&j.num_samples) || j.min_samples == 0 || j.min_samples > j.num_samples {
+                    return Err(ShadowConfigError::Samples { num_samples: j.num_samples, min_samples: j.min_samples });
+                }
+                if j.res_factor < 0 || j.min_size < 0 {
+                    return Err(ShadowConfigError::Region);
+                }
+            }
+            _ => {}
+        }
+        if let Bias::Range { lo, hi } = bias
+            && lo > hi
+        {
+            return Err(ShadowConfigError::BiasRange);
+        }
+        if let DepthTest::Dual { offset } = test
+            && offset < 0
+        {
+            return Err(ShadowConfigError::Offset);
+        }
+        Ok(Self { test, bias, filter, cull_lookups })
+    }
+
+    /// The depth test.
+    #[must_use]
+    pub const fn test(&self) -> DepthTest {
+        self.test
+    }
+
+    /// The filter.
+    #[must_use]
+    pub const fn filter(&self) -> Filter {
+        self.filter
+    }
+
+    /// The bias.
+    #[must_use]
+    pub const fn bias(&self) -> Bias {
+        self.bias
+    }
+
+    /// The same configuration with lookup culling on or off.
+    #[must_use]
+    pub const fn with_cull_lookups(self, cull_lookups: bool) -> Self {
+        Self { cull_lookups, ..self }
+    }
+}
+
+/// A light pass's maps, as the shadow unit reads them.
+#[derive(Clone, Copy, Debug)]
+pub struct MapView<'a, F: DepthFormat> {
+    raster: RasterConfig,
+    z1: &'a [F::Texel],
+    z2: &'a [F::Texel],
+    tiles: &'a [TileState<F::Texel>],
+}
+
+impl<'a, F: DepthFormat> MapView<'a, F> {
+    /// View finished maps. `z2` may be empty when no test reads it.
+    ///
+    /// # Errors
+    /// [`crate::ConfigError::BufferLength`] naming a buffer of the wrong length.
+    pub fn new(
+        raster: RasterConfig,
+        z1: &'a [F::Texel],
+        z2: &'a [F::Texel],
+        tiles: &'a [TileState<F::Texel>],
+    ) -> Result<Self, crate::ConfigError> {
+        let texels = raster.texel_count();
+        let wrong = |buffer, expected, found| crate::ConfigError::BufferLength { buffer, expected, found };
+        if z1.len() != texels {
+            return Err(wrong("z1", texels, z1.len()));
+        }
+        if !z2.is_empty() && z2.len() != texels {
+            return Err(wrong("z2", texels, z2.len()));
+        }
+        if tiles.len() != raster.tile_count() {
+            return Err(wrong("tiles", raster.tile_count(), tiles.len()));
+        }
+        Ok(Self { raster, z1, z2, tiles })
+    }
+
+    /// Texel `(x, y)` of `buf` widened to [`PlaneZ`] bits; the far value
+    /// when `buf` is empty (no second depth: nothing behind).
+    #[inline]
+    fn texel(&self, buf: &[F::Texel], x: u32, y: u32) -> i64 {
+        let i = y as usize * self.raster.width() as usize + x as usize;
+        F::widen(buf.get(i).copied().unwrap_or(F::FAR))
+    }
+
+    fn reference(&self, test: DepthTest, x: u32, y: u32) -> i64 {
+        let z1 = if test.needs_z1() { self.texel(self.z1, x, y) } else { 0 };
+        let z2 = if test.needs_z2() { self.texel(self.z2, x, y) } else { 0 };
+        test.reference(z1, z2)
+    }
+}
+
+/// One lookup: a surface point in light space and its footprint.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Lookup {
+    /// Column on the map, texels.
+    pub x: MapCoord,
+    /// Row on the map (down), texels.
+    pub y: MapCoord,
+    /// Light-space depth of the point.
+    pub z: PlaneZ,
+    /// Half-size of the pixel's footprint on the map, texels (for the
+    /// jittered filter; Reeves' `sres`, `tres` in texels).
+    pub footprint: [MapCoord; 2],
+    /// Seed of this lookup's random numbers (the same seed, the same result).
+    pub seed: u64,
+}
+
+/// An integer rectangle of texels, inclusive, possibly outside the map.
+#[derive(Clone, Copy, Debug)]
+struct Texels {
+    x0: i32,
+    y0: i32,
+    x1: i32,
+    y1: i32,
+}
+
+/// Whole texels of a map coordinate (floor).
+#[inline]
+fn floor(c: MapCoord) -> i32 {
+    c.to_bits() >> 16
+}
+
+impl Texels {
+    fn count(&self) -> u32 {
+        let side = |a: i32, b: i32| (i64::from(b) - i64::from(a) + 1).unsigned_abs();
+        u32::try_from(side(self.x0, self.x1) * side(self.y0, self.y1)).unwrap_or(u32::MAX)
+    }
+
+    /// The part inside a `w × h` map, if any, and whether all of it is inside.
+    fn clip(&self, w: u32, h: u32) -> (Option<TileRect>, bool) {
+        let (w, h) = (i32::try_from(w).unwrap_or(i32::MAX), i32::try_from(h).unwrap_or(i32::MAX));
+        let inside = self.x0 >= 0 && self.y0 >= 0 && self.x1 < w && self.y1 < h;
+        let (x0, y0, x1, y1) = (self.x0.max(0), self.y0.max(0), self.x1.min(w - 1), self.y1.min(h - 1));
+        if x0 > x1 || y0 > y1 {
+            return (None, inside);
+        }
+        let r = TileRect {
+            x0: x0.unsigned_abs(),
+            y0: y0.unsigned_abs(),
+            x1: x1.unsigned_abs() + 1,
+            y1: y1.unsigned_abs() + 1,
+        };
+        (Some(r), inside)
+    }
+}
+
+/// Reeves' sample grid for a footprint (Figure 4): the sampled region's
+/// half-sizes in texels (footprint × `ResFactor`, at least `MinSize`) and
+/// the number of samples along each axis.
+#[must_use]
+pub fn jitter_grid(j: &Jitter, footprint: [MapCoord; 2]) -> ([MapCoord; 2], [u32; 2]) {
+    let half = footprint.map(|f| f.saturating_abs().saturating_mul(j.res_factor).max(j.min_size));
+    let n = u32::from(j.num_samples);
+    let (lo, hi) = (u32::from(j.min_samples), n);
+    let round = |v: U16F16| v.saturating_add(U16F16::lit("0.5")).to_num::<u32>();
+    let unsigned = |v: MapCoord| U16F16::from_bits(v.to_bits().unsigned_abs());
+    let (s, t) = (unsigned(half[0]), unsigned(half[1]));
+    let area4 = s.saturating_mul(t).saturating_mul_int(4);
+    let counts = if area4 < U16F16::saturating_from_num(n) {
+        [round(s.saturating_mul_int(2)).clamp(lo, hi), round(t.saturating_mul_int(2)).clamp(lo, hi)]
+    } else {
+        // nt = sqrt(tres · N / sres) + ½, then ns = N / nt + ½ (both clamped).
+        let ratio = t.saturating_mul_int(n) / s.max(U16F16::DELTA);
+        let nt = ((u64::from(ratio.to_bits()) << 16).isqrt() + (1 << 15)) >> 16;
+        let nt = u32::try_from(nt).unwrap_or(hi).clamp(lo, hi);
+        let ns = ((2 * n + nt) / (2 * nt)).clamp(lo, hi);
+        [ns, nt]
+    };
+    (half, counts)
+}
+
+/// Shadow a lookup: the fraction of its samples in shadow.
+pub fn shadow<F: DepthFormat, P: Probe>(map: &MapView<'_, F>, cfg: &ShadowConfig, l: &Lookup, probe: &mut P) -> Shadow {
+    if l.z < 0 {
+        return Shadow::ZERO;
+    }
+    let (w, h) = (map.raster.width(), map.raster.height());
+    let grid = match cfg.filter {
+        Filter::Jittered(j) => Some(jitter_grid(&j, l.footprint)),
+        _ => None,
+    };
+    let footprint = match (cfg.filter, grid) {
+        (Filter::Point, _) => Texels { x0: floor(l.x), y0: floor(l.y), x1: floor(l.x), y1: floor(l.y) },
+        (Filter::Bilinear, _) => {
+            let (x, y) =
+                (floor(l.x.saturating_sub(MapCoord::lit("0.5"))), floor(l.y.saturating_sub(MapCoord::lit("0.5"))));
+            Texels { x0: x, y0: y, x1: x + 1, y1: y + 1 }
+        }
+        (Filter::Box { size }, _) => {
+            // First texel: floor(x − (n − 1)/2), the n texel centres nearest x.
+            let n = i32::from(size);
+            let back = MapCoord::from_bits((n - 1) << 15);
+            let (x, y) = (floor(l.x.saturating_sub(back)), floor(l.y.saturating_sub(back)));
+            Texels { x0: x, y0: y, x1: x + n - 1, y1: y + n - 1 }
+        }
+        (Filter::Jittered(_), Some((half, _))) => Texels {
+            x0: floor(l.x.saturating_sub(half[0])),
+            y0: floor(l.y.saturating_sub(half[1])),
+            x1: floor(l.x.saturating_add(half[0])),
+            y1: floor(l.y.saturating_add(half[1])),
+        },
+        (Filter::Jittered(_), None) => return Shadow::ZERO,
+    };
+    let z = l.z.to_bits();
+    let (bias_lo, bias_hi) = cfg.bias.bounds();
+    let (inside_map, whole) = footprint.clip(w, h);
+    let Some(inside_map) = inside_map else {
+        // Entirely outside the map: lit, and nothing to read.
+        probe.event(Event::LookupCulled { texels: footprint.count() });
+        return Shadow::ZERO;
+    };
+    if cfg.cull_lookups {
+        let (r_lo, r_hi) = reference_bounds(map, cfg.test, &inside_map);
+        if z.saturating_sub(bias_lo) <= r_lo {
+            probe.event(Event::LookupCulled { texels: footprint.count() });
+            return Shadow::ZERO;
+        }
+        if whole && z.saturating_sub(bias_hi) > r_hi {
+            probe.event(Event::LookupCulled { texels: footprint.count() });
+            return Shadow::ONE;
+        }
+    }
+    let mut rng = oorandom::Rand32::new(l.seed);
+    let mut reads = 0u32;
+    let mut sample = |x: i32, y: i32, rng: &mut oorandom::Rand32| -> bool {
+        let bias = match cfg.bias {
+            Bias::Constant(b) => b.to_bits(),
+            Bias::Range { lo, hi } => lerp_bits(lo.to_bits(), hi.to_bits(), rng.rand_u32()),
+        };
+        let (Ok(x), Ok(y)) = (u32::try_from(x), u32::try_from(y)) else { return false };
+        if x >= w || y >= h {
+            return false;
+        }
+        reads += 1;
+        z.saturating_sub(bias) > map.reference(cfg.test, x, y)
+    };
+    let result = match (cfg.filter, grid) {
+        (Filter::Point, _) => Shadow::from_num(u8::from(sample(footprint.x0, footprint.y0, &mut rng))),
+        (Filter::Bilinear, _) => {
+            // Weights from the fractional position, 16 bits each: they sum to 2³² exactly.
+            let fx = u64::from(l.x.saturating_sub(MapCoord::lit("0.5")).frac().to_bits().unsigned_abs());
+            let fy = u64::from(l.y.saturating_sub(MapCoord::lit("0.5")).frac().to_bits().unsigned_abs());
+            let one = 1u64 << 16;
+            let weights = [(one - fx) * (one - fy), fx * (one - fy), (one - fx) * fy, fx * fy];
+            let corners = [(0, 0), (1, 0), (0, 1), (1, 1)];
+            let shadowed: u64 = corners
+                .iter()
+                .zip(weights)
+                .map(|(&(dx, dy), wgt)| if sample(footprint.x0 + dx, footprint.y0 + dy, &mut rng) { wgt } else { 0 })
+                .sum();
+            fraction(shadowed, 1 << 32)
+        }
+        (Filter::Box { .. }, _) => {
+            let mut count = 0u64;
+            for y in footprint.y0..=footprint.y1 {
+                for x in footprint.x0..=footprint.x1 {
+                    count += u64::from(sample(x, y, &mut rng));
+                }
+            }
+            fraction(count, u64::from(footprint.count()))
+        }
+        (Filter::Jittered(_), Some((half, [ns, nt]))) => {
+            // Subregions of 2·half/n texels; each sample jittered within its own.
+            let step = |h: MapCoord, n: u32| {
+                MapCoord::from_bits(h.to_bits().saturating_mul(2) / i32::try_from(n.max(1)).unwrap_or(i32::MAX))
+            };
+            let (ds, dt) = (step(half[0], ns), step(half[1], nt));
+            let s0 = l.x.saturating_sub(half[0]).saturating_add(ds / 2);
+            let t0 = l.y.saturating_sub(half[1]).saturating_add(dt / 2);
+            let mut count = 0u64;
+            for i in 0..ns {
+                for j in 0..nt {
+                    let s = s0.saturating_add(ds.saturating_mul_int(i32::try_from(i).unwrap_or(i32::MAX)));
+                    let t = t0.saturating_add(dt.saturating_mul_int(i32::try_from(j).unwrap_or(i32::MAX)));
+                    let ju = jitter(ds / 2, rng.rand_u32());
+                    let jv = jitter(dt / 2, rng.rand_u32());
+                    count += u64::from(sample(floor(s.saturating_add(ju)), floor(t.saturating_add(jv)), &mut rng));
+                }
+            }
+            fraction(count, u64::from(ns * nt))
+        }
+        (Filter::Jittered(_), None) => Shadow::ZERO,
+    };
+    if reads > 0 {
+        for (needed, buffer) in [(cfg.test.needs_z1(), Buffer::Z1), (cfg.test.needs_z2(), Buffer::Z2)] {
+            if needed {
+                probe.event(Event::MapRead { buffer, texels: reads, bytes: reads * F::KIND.bytes() });
+            }
+        }
+    }
+    result
+}
+
+/// `k / n` as a [`Shadow`], rounded to nearest.
+fn fraction(k: u64, n: u64) -> Shadow {
+    let n = n.max(1);
+    let bits = ((k << 16) + n / 2) / n;
+    Shadow::from_bits(u32::try_from(bits.min(1 << 16)).unwrap_or(1 << 16))
+}
+
+/// A uniform offset in `[−half, half)` from 32 random bits.
+fn jitter(half: MapCoord, r: u32) -> MapCoord {
+    let signed = i64::from(r) - (1 << 31); // [−2³¹, 2³¹)
+    let v = (i64::from(half.to_bits()) * signed) >> 31;
+    MapCoord::from_bits(i32::try_from(v).unwrap_or(0))
+}
+
+/// `lo + (hi − lo)·r/2³²` in [`PlaneZ`] bits.
+fn lerp_bits(lo: i64, hi: i64, r: u32) -> i64 {
+    let span = i128::from(hi) - i128::from(lo);
+    let v = i128::from(lo) + ((span * i128::from(r)) >> 32);
+    i64::try_from(v).unwrap_or(lo)
+}
+
+/// The smallest and largest reference depth over the tiles under `r`, from
+/// their stored bounds.
+fn reference_bounds<F: DepthFormat>(map: &MapView<'_, F>, test: DepthTest, r: &TileRect) -> (i64, i64) {
+    let shift = map.raster.tile_shift();
+    let (mut lo, mut hi) = (i64::MAX, i64::MIN);
+    for ty in (r.y0 >> shift)..=((r.y1 - 1) >> shift) {
+        for tx in (r.x0 >> shift)..=((r.x1 - 1) >> shift) {
+            let (Ok(x), Ok(y)) = (u16::try_from(tx), u16::try_from(ty)) else { continue };
+            let Some(t) = map.tiles.get(map.raster.tile_index(TileId { x, y })) else { continue };
+            let z2_known = !map.z2.is_empty();
+            let far = F::widen(F::FAR);
+            let (z2_min, z2_max) = if z2_known { (F::widen(t.z2_min), F::widen(t.z2_max)) } else { (far, far) };
+            lo = lo.min(test.reference(F::widen(t.z1_min), z2_min));
+            hi = hi.max(test.reference(F::widen(t.z1_max), z2_max));
+        }
+    }
+    (lo, hi)
+}
+
+const _: () = assert!(PLANE_FRACTION_BITS == 32, "texels widen by a 32-bit shift");

@@ -1,0 +1,254 @@
+//! The shadow unit: depth tests and filters on hand-worked cases from the
+//! papers, and invariants on maps from the light pass.
+
+use proptest::prelude::*;
+use umbra::core::depth::PlaneZ;
+use umbra::core::probe::{Event, Probe};
+use umbra::core::shadow::{
+    Bias, DepthTest, Filter, Jitter, Lookup, MapCoord, MapView, Shadow, ShadowConfig, jitter_grid, shadow,
+};
+use umbra::core::{CullMode, D16, D24, DepthFormat, DepthUnit, NoProbe, RasterConfig, TileState};
+
+use crate::common::{config, run, triangles};
+
+/// A map from rows of depths in `[0, 1]`, with exact tile bounds.
+struct Map<F: DepthFormat> {
+    raster: RasterConfig,
+    z1: Vec<F::Texel>,
+    z2: Vec<F::Texel>,
+    tiles: Vec<TileState<F::Texel>>,
+}
+
+impl<F: DepthFormat> Map<F> {
+    fn new(w: u32, h: u32, z1: &[f32], z2: &[f32]) -> Self {
+        let raster = RasterConfig::new(w, h, 8, 8).expect("valid");
+        let q = |v: &[f32]| v.iter().map(|&z| F::quantize(z)).collect::<Vec<_>>();
+        let (z1, z2) = (q(z1), q(z2));
+        let tiles = (0..raster.tile_count())
+            .map(|i| {
+                let r = raster.tile_rect(raster.tile_id(i));
+                let mut t = TileState::cleared(F::FAR, r.area());
+                let texels: Vec<usize> =
+                    (r.y0..r.y1).flat_map(|y| (r.x0..r.x1).map(move |x| (y * w + x) as usize)).collect();
+                let bounds = |b: &[F::Texel]| {
+                    let v = texels.iter().map(|&i| b.get(i).copied().unwrap_or(F::FAR));
+                    (v.clone().min().unwrap_or(F::FAR), v.max().unwrap_or(F::FAR))
+                };
+                (t.z1_min, t.z1_max) = bounds(&z1);
+                (t.z2_min, t.z2_max) = bounds(&z2);
+                t
+            })
+            .collect();
+        Self { raster, z1, z2, tiles }
+    }
+
+    fn view(&self) -> MapView<'_, F> {
+        MapView::new(self.raster, &self.z1, &self.z2, &self.tiles).expect("sized")
+    }
+}
+
+/// A lookup at map position `(x, y)` and depth `z` in format `F`'s units.
+fn at<F: DepthFormat>(x: f32, y: f32, z: f32) -> Lookup {
+    let z = F::plane_z(f64::from(z.max(0.0))) - PlaneZ::from_num(u8::from(z < 0.0));
+    Lookup { x: MapCoord::from_num(x), y: MapCoord::from_num(y), z, footprint: [MapCoord::ZERO; 2], seed: 1 }
+}
+
+fn cfg(test: DepthTest, filter: Filter) -> ShadowConfig {
+    ShadowConfig::new(test, Bias::ZERO, filter, false).expect("valid")
+}
+
+/// Reeves et al. 1987, Figure 2: a 3×3 region of the map, a surface at
+/// z = 49.8. Averaging the depths first gives 22.9 < 49.8: "100% in
+/// shadow"; comparing first gives 5 of 9 in shadow: 0.55.
+#[test]
+fn reeves_figure_2() {
+    let depths = [50.2f32, 50.0, 50.0, 50.1, 1.3, 1.4, 1.2, 1.1, 1.3];
+    let mean: f32 = depths.iter().sum::<f32>() / 9.0;
+    assert!((mean - 22.9).abs() < 0.1 && mean < 49.8, "ordinary filtering: {mean}");
+    let map = Map::<D24>::new(3, 3, &depths.map(|d| d / 100.0), &[]);
+    let s =
+        shadow(&map.view(), &cfg(DepthTest::First, Filter::Box { size: 3 }), &at::<D24>(1.5, 1.5, 0.498), &mut NoProbe);
+    assert_eq!(s, Shadow::from_bits((5 * 65536 + 4) / 9));
+    assert!((s.to_num::<f64>() - 0.555).abs() < 0.001);
+}
+
+/// z1 = 0.3, z2 = 0.7 everywhere: midpoint 0.5, dual with offset 0.1 → 0.4.
+#[test]
+fn the_four_depth_tests() {
+    let map = Map::<D24>::new(4, 4, &[0.3; 16], &[0.7; 16]);
+    let view = map.view();
+    let off = |o: f64| DepthTest::Dual { offset: D24::plane_z(o) };
+    let s = |test, z| shadow(&view, &cfg(test, Filter::Point), &at::<D24>(1.5, 1.5, z), &mut NoProbe);
+    assert_eq!(s(DepthTest::First, 0.45), Shadow::ONE);
+    assert_eq!(s(DepthTest::Second, 0.45), Shadow::ZERO);
+    assert_eq!(s(DepthTest::Midpoint, 0.45), Shadow::ZERO);
+    assert_eq!(s(DepthTest::Midpoint, 0.55), Shadow::ONE);
+    assert_eq!(s(off(0.1), 0.45), Shadow::ONE);
+    assert_eq!(s(off(0.2), 0.45), Shadow::ZERO);
+    // Second depth: a point at exactly the stored z2 is lit (z ≤ z2), a
+    // point one LSB farther is not.
+    let on_z2 = PlaneZ::from_bits(D24::widen(D24::quantize(0.7)));
+    let second = cfg(DepthTest::Second, Filter::Point);
+    let at_depth = |z: PlaneZ| Lookup { z, ..at::<D24>(1.5, 1.5, 0.0) };
+    assert_eq!(shadow(&view, &second, &at_depth(on_z2), &mut NoProbe), Shadow::ZERO);
+    assert_eq!(shadow(&view, &second, &at_depth(on_z2 + PlaneZ::ONE), &mut NoProbe), Shadow::ONE);
+    // A constant bias moves the comparison: 0.45 − 0.2 ≤ 0.3.
+    let biased =
+        ShadowConfig::new(DepthTest::First, Bias::Constant(D24::plane_z(0.2)), Filter::Point, false).expect("valid");
+    assert_eq!(shadow(&view, &biased, &at::<D24>(1.5, 1.5, 0.45), &mut NoProbe), Shadow::ZERO);
+}
+
+/// One occluding texel of four: bilinear weights from the fractional
+/// position, worked by hand.
+#[test]
+fn bilinear_weights() {
+    let far = 1.0;
+    let map = Map::<D16>::new(2, 2, &[0.2, far, far, far], &[]);
+    let view = map.view();
+    let f = cfg(DepthTest::First, Filter::Bilinear);
+    let s = |x, y| shadow(&view, &f, &at::<D16>(x, y, 0.5), &mut NoProbe).to_num::<f64>();
+    assert_eq!(s(1.0, 1.0), 0.25); // midway between the four centres
+    assert_eq!(s(0.75, 1.0), 0.375); // (1 − 0.25)·(1 − 0.5)
+    assert_eq!(s(0.5, 0.5), 1.0); // on the occluder's centre
+    assert_eq!(s(1.5, 1.5), 0.0);
+}
+
+#[test]
+fn outside_the_map_and_in_front_of_the_near_plane_is_lit() {
+    let map = Map::<D16>::new(4, 4, &[0.1; 16], &[]);
+    let view = map.view();
+    for filter in [Filter::Point, Filter::Bilinear, Filter::Box { size: 3 }, Filter::Jittered(Jitter::REEVES)] {
+        let c = cfg(DepthTest::First, filter);
+        assert_eq!(shadow(&view, &c, &at::<D16>(-5.0, 1.0, 0.9), &mut NoProbe), Shadow::ZERO, "{filter:?}");
+        assert_eq!(shadow(&view, &c, &at::<D16>(1.0, 9.0, 0.9), &mut NoProbe), Shadow::ZERO, "{filter:?}");
+        assert_eq!(shadow(&view, &c, &at::<D16>(2.0, 2.0, -0.1), &mut NoProbe), Shadow::ZERO, "{filter:?}");
+        assert_eq!(shadow(&view, &c, &at::<D16>(2.0, 2.0, 0.9), &mut NoProbe), Shadow::ONE, "{filter:?}");
+    }
+    // Half of a 4×4 box outside the map: those samples are lit.
+    let c = cfg(DepthTest::First, Filter::Box { size: 4 });
+    assert_eq!(shadow(&view, &c, &at::<D16>(0.0, 2.0, 0.9), &mut NoProbe).to_num::<f64>(), 0.5);
+}
+
+/// Reeves' Figure 4 sample counts, worked by hand.
+#[test]
+fn reeves_sample_grid() {
+    let half = |v: f32| MapCoord::from_num(v);
+    // 0.5 × 3 = 1.5 per side: 4 · 1.5 · 1.5 = 9 < 16, so ns = nt = round(3).
+    assert_eq!(jitter_grid(&Jitter::REEVES, [half(0.5); 2]), ([half(1.5); 2], [3, 3]));
+    // 12 × 3: nt = round(sqrt(3 · 16 / 12)) = 2, ns = round(16 / 2) = 8.
+    assert_eq!(jitter_grid(&Jitter::REEVES, [half(4.0), half(1.0)]), ([half(12.0), half(3.0)], [8, 2]));
+    // MinSize and MinSamples floor a point-sized footprint.
+    let j = Jitter { min_size: half(2.0), min_samples: 2, ..Jitter::REEVES };
+    assert_eq!(jitter_grid(&j, [MapCoord::ZERO; 2]), ([half(2.0); 2], [4, 4]));
+    let one = Jitter { num_samples: 1, ..Jitter::REEVES };
+    assert_eq!(jitter_grid(&one, [half(0.1); 2]).1, [1, 1]);
+}
+
+#[derive(Default)]
+struct Lookups {
+    culled: u32,
+    read: u64,
+}
+
+impl Probe for Lookups {
+    fn event(&mut self, e: Event) {
+        match e {
+            Event::LookupCulled { .. } => self.culled += 1,
+            Event::MapRead { texels, .. } => self.read += u64::from(texels),
+            _ => {}
+        }
+    }
+}
+
+fn any_config() -> impl Strategy<Value = ShadowConfig> {
+    let test = prop_oneof![
+        Just(DepthTest::First),
+        Just(DepthTest::Second),
+        Just(DepthTest::Midpoint),
+        (0.0f64..0.3).prop_map(|o| DepthTest::Dual { offset: D16::plane_z(o) }),
+    ];
+    let bias = prop_oneof![
+        (0.0f64..0.05).prop_map(|b| Bias::Constant(D16::plane_z(b))),
+        (0.0f64..0.02, 0.0f64..0.03).prop_map(|(a, b)| Bias::Range { lo: D16::plane_z(a), hi: D16::plane_z(a + b) }),
+    ];
+    let filter = prop_oneof![
+        Just(Filter::Point),
+        Just(Filter::Bilinear),
+        (1u8..=5).prop_map(|size| Filter::Box { size }),
+        (1u16..=32, 0.5f32..4.0, 1u16..=2, 0.0f32..2.0).prop_map(|(n, r, m, s)| Filter::Jittered(Jitter {
+            num_samples: n,
+            res_factor: MapCoord::from_num(r),
+            min_samples: m.min(n),
+            min_size: MapCoord::from_num(s),
+        })),
+    ];
+    (test, bias, filter).prop_map(|(t, b, f)| ShadowConfig::new(t, b, f, false).expect("valid by construction"))
+}
+
+fn lookup() -> impl Strategy<Value = Lookup> {
+    (-4.0f32..52.0, -4.0f32..52.0, -0.1f64..1.1, [0.0f32..6.0, 0.0f32..6.0], any::<u64>()).prop_map(
+        |(x, y, z, f, seed)| Lookup {
+            x: MapCoord::from_num(x),
+            y: MapCoord::from_num(y),
+            z: D16::plane_z(z.max(0.0)) - PlaneZ::from_num(if z < 0.0 { 1 } else { 0 }),
+            footprint: f.map(MapCoord::from_num),
+            seed,
+        },
+    )
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(96))]
+
+    /// On maps from the light pass: every filter returns a fraction in
+    /// [0, 1], equal seeds give equal results, and culling lookups changes
+    /// no verdict (while reading fewer texels).
+    #[test]
+    fn fractions_seeds_and_culled_lookups(
+        tris in triangles(16),
+        configs in prop::collection::vec(any_config(), 4),
+        lookups in prop::collection::vec(lookup(), 24),
+    ) {
+        let (maps, _) = run::<D16, _, 16>(config(48, 8, DepthUnit::Dual, true), &tris, CullMode::None, 64, NoProbe);
+        let raster = config(48, 8, DepthUnit::Dual, true).raster;
+        let view = MapView::<D16>::new(raster, &maps.z1, &maps.z2, &maps.tiles).expect("sized");
+        let (mut culled, mut plain) = (Lookups::default(), Lookups::default());
+        for c in &configs {
+            let (with_culling, without) = (c.with_cull_lookups(true), c.with_cull_lookups(false));
+            for l in &lookups {
+                let s = shadow(&view, c, l, &mut NoProbe);
+                prop_assert!(s <= Shadow::ONE);
+                prop_assert_eq!(s, shadow(&view, c, l, &mut NoProbe), "same seed, same result");
+                prop_assert_eq!(shadow(&view, &with_culling, l, &mut culled), shadow(&view, &without, l, &mut plain));
+            }
+        }
+        prop_assert!(culled.read <= plain.read);
+        prop_assert!(plain.culled <= culled.culled, "culling off skips only lookups wholly outside the map");
+    }
+}
+
+/// A map far behind every lookup is skipped wholesale: lit without a read.
+#[test]
+fn lookups_in_front_of_every_tile_read_nothing() {
+    let map = Map::<D16>::new(16, 16, &[0.9; 256], &[0.95; 256]);
+    let view = map.view();
+    let c = ShadowConfig::new(DepthTest::Second, Bias::ZERO, Filter::Box { size: 3 }, true).expect("valid");
+    let mut p = Lookups::default();
+    assert_eq!(shadow(&view, &c, &at::<D16>(8.0, 8.0, 0.5), &mut p), Shadow::ZERO);
+    assert_eq!(shadow(&view, &c, &at::<D16>(8.0, 8.0, 0.99), &mut p), Shadow::ONE);
+    assert_eq!((p.culled, p.read), (2, 0));
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// Any lookup bits at all: no panic, a fraction in [0, 1].
+    #[test]
+    fn arbitrary_lookups_never_panic(c in any_config(), x in any::<i32>(), y in any::<i32>(), z in any::<i64>(), f in [any::<i32>(), any::<i32>()], seed in any::<u64>()) {
+        let map = Map::<D16>::new(16, 16, &[0.5; 256], &[0.6; 256]);
+        let l = Lookup { x: MapCoord::from_bits(x), y: MapCoord::from_bits(y), z: PlaneZ::from_bits(z), footprint: f.map(MapCoord::from_bits), seed };
+        for culling in [false, true] {
+            prop_assert!(shadow(&map.view(), &c.with_cull_lookups(culling), &l, &mut NoProbe) <= Shadow::ONE);
+        }
+    }
+}
