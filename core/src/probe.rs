@@ -160,6 +160,23 @@ pub enum Event {
         /// Texels of the footprint not read.
         texels: u32,
     },
+    /// Receiver depths evaluated on a tangent plane (virtual samples).
+    VirtualSamples {
+        /// How many.
+        count: u32,
+    },
+    /// A receiver's tangent plane was moved to light space and solved for
+    /// its slopes (one division).
+    TangentSetup,
+    /// The tangent plane was nearly parallel to the light ray: the lookup
+    /// fell back to the ordinary comparison.
+    TangentFallback,
+    /// Every sample of the ordinary comparison agreed: the pixel was decided
+    /// without virtual samples.
+    TrivialPixel {
+        /// Decided lit (else shadowed).
+        lit: bool,
+    },
 }
 
 /// One fragment in detail, for probes that ask for it.

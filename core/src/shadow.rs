@@ -13,10 +13,17 @@
 //! | [`DepthTest::Midpoint`] | `(z1 + z2) / 2` | Woo 1992, via Weiskopf & Ertl 2003 §3 |
 //! | [`DepthTest::Dual`] | `z1 + min((z2 − z1) / 2, offset)` | Weiskopf & Ertl 2003 §4 |
 //!
-//! All of it in [`PlaneZ`] bits (format LSBs with 32 fraction bits): the
-//! point's depth keeps the interpolator's precision, stored texels are
-//! widened exactly. The bias is constant or, as Reeves' `[Bias0, Bias1]`,
-//! drawn per sample.
+//! The receiver's depth (less the bias) is rounded to the map's format as
+//! the light pass rounds fragments, so a receiver exactly on a stored
+//! surface compares equal; references are formed from the widened texels in
+//! [`PlaneZ`] bits (so the midpoint keeps its half LSB). The bias is
+//! constant or, as Reeves' `[Bias0, Bias1]`, drawn per sample.
+//!
+//! # Virtual samples
+//! With a [`Slope`], each sample compares the receiver's tangent plane at
+//! that texel's centre instead of one depth (Wang & Molnar 1994 §3.2),
+//! evaluated once per footprint row and stepped by forward differences.
+//! [`shadow_with_virtual_samples`] is their second pass for one pixel.
 //!
 //! # Filters
 //! Map coordinates are texels with 16 fraction bits ([`MapCoord`]); texel
@@ -328,6 +335,42 @@ pub struct Lookup {
     pub footprint: [MapCoord; 2],
     /// Seed of this lookup's random numbers (the same seed, the same result).
     pub seed: u64,
+    /// The receiver's tangent plane, when each sample compares its own
+    /// depth (Wang & Molnar's virtual samples); `None` compares `z`.
+    pub slope: Option<Slope>,
+}
+
+/// A receiver's tangent plane on the map: its depth rises by `du` per texel
+/// to the right and `dv` per texel down ([`PlaneZ`] bits), through the
+/// lookup's point. Wang & Molnar 1994 §3.2: "virtual samples".
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Slope {
+    /// Depth step per texel to the right.
+    pub du: i64,
+    /// Depth step per texel down.
+    pub dv: i64,
+}
+
+/// `a · b / 2¹⁶`, floored, saturated to `i64`.
+#[inline]
+fn mul_shift(a: i64, b: i64) -> i64 {
+    let v = (i128::from(a) * i128::from(b)) >> 16;
+    i64::try_from(v).unwrap_or(if v < 0 { i64::MIN } else { i64::MAX })
+}
+
+impl Lookup {
+    /// The receiver's depth at the centre of texel `(x, y)`, evaluated
+    /// directly: `z + ⌊du·Δu⌋ + ⌊dv·Δv⌋` with `Δu`, `Δv` the centre's offset
+    /// from the point in 2⁻¹⁶ texels. Without a slope, `z`. Stepping one
+    /// texel adds exactly `du` (or `dv`): the filters step by forward
+    /// differences and get these same bits.
+    #[must_use]
+    pub fn depth_at(&self, x: i32, y: i32) -> i64 {
+        let z = self.z.to_bits();
+        let Some(s) = self.slope else { return z };
+        let centre = |t: i32, p: MapCoord| (i64::from(t) << 16) + (1 << 15) - i64::from(p.to_bits());
+        z.saturating_add(mul_shift(s.du, centre(x, self.x))).saturating_add(mul_shift(s.dv, centre(y, self.y)))
+    }
 }
 
 /// An integer rectangle of texels, inclusive, possibly outside the map.
@@ -426,8 +469,17 @@ pub fn shadow<F: DepthFormat, P: Probe>(map: &MapView<'_, F>, cfg: &ShadowConfig
         },
         (Filter::Jittered(_), None) => return Shadow::ZERO,
     };
-    let z = l.z.to_bits();
     let (bias_lo, bias_hi) = cfg.bias.bounds();
+    // The receiver's depth range over the footprint: a plane takes its
+    // extremes at the corners.
+    let corners = [
+        (footprint.x0, footprint.y0),
+        (footprint.x1, footprint.y0),
+        (footprint.x0, footprint.y1),
+        (footprint.x1, footprint.y1),
+    ]
+    .map(|(x, y)| l.depth_at(x, y));
+    let (z_lo, z_hi) = (corners.iter().copied().min().unwrap_or(0), corners.iter().copied().max().unwrap_or(0));
     let (inside_map, whole) = footprint.clip(w, h);
     let Some(inside_map) = inside_map else {
         // Entirely outside the map: lit, and nothing to read.
@@ -436,18 +488,18 @@ pub fn shadow<F: DepthFormat, P: Probe>(map: &MapView<'_, F>, cfg: &ShadowConfig
     };
     if cfg.cull_lookups {
         let (r_lo, r_hi) = reference_bounds(map, cfg.test, &inside_map);
-        if z.saturating_sub(bias_lo) <= r_lo {
+        if at_format::<F>(z_hi.saturating_sub(bias_lo)) <= r_lo {
             probe.event(Event::LookupCulled { texels: footprint.count() });
             return Shadow::ZERO;
         }
-        if whole && z.saturating_sub(bias_hi) > r_hi {
+        if whole && at_format::<F>(z_lo.saturating_sub(bias_hi)) > r_hi {
             probe.event(Event::LookupCulled { texels: footprint.count() });
             return Shadow::ONE;
         }
     }
     let mut rng = oorandom::Rand32::new(l.seed);
     let mut reads = 0u32;
-    let mut sample = |x: i32, y: i32, rng: &mut oorandom::Rand32| -> bool {
+    let mut sample = |x: i32, y: i32, z: i64, rng: &mut oorandom::Rand32| -> bool {
         let bias = match cfg.bias {
             Bias::Constant(b) => b.to_bits(),
             Bias::Range { lo, hi } => lerp_bits(lo.to_bits(), hi.to_bits(), rng.rand_u32()),
@@ -457,29 +509,45 @@ pub fn shadow<F: DepthFormat, P: Probe>(map: &MapView<'_, F>, cfg: &ShadowConfig
             return false;
         }
         reads += 1;
-        z.saturating_sub(bias) > map.reference(cfg.test, x, y)
+        at_format::<F>(z.saturating_sub(bias)) > map.reference(cfg.test, x, y)
     };
     let result = match (cfg.filter, grid) {
-        (Filter::Point, _) => Shadow::from_num(u8::from(sample(footprint.x0, footprint.y0, &mut rng))),
+        (Filter::Point, _) => {
+            let (x, y) = (footprint.x0, footprint.y0);
+            Shadow::from_num(u8::from(sample(x, y, l.depth_at(x, y), &mut rng)))
+        }
         (Filter::Bilinear, _) => {
             // Weights from the fractional position, 16 bits each: they sum to 2³² exactly.
             let fx = u64::from(l.x.saturating_sub(MapCoord::lit("0.5")).frac().to_bits().unsigned_abs());
             let fy = u64::from(l.y.saturating_sub(MapCoord::lit("0.5")).frac().to_bits().unsigned_abs());
             let one = 1u64 << 16;
             let weights = [(one - fx) * (one - fy), fx * (one - fy), (one - fx) * fy, fx * fy];
+            // The receiver at the four centres by forward differences.
+            let z00 = l.depth_at(footprint.x0, footprint.y0);
+            let (du, dv) = l.slope.map_or((0, 0), |s| (s.du, s.dv));
+            let z = [z00, z00.saturating_add(du), z00.saturating_add(dv), z00.saturating_add(du).saturating_add(dv)];
             let corners = [(0, 0), (1, 0), (0, 1), (1, 1)];
             let shadowed: u64 = corners
                 .iter()
                 .zip(weights)
-                .map(|(&(dx, dy), wgt)| if sample(footprint.x0 + dx, footprint.y0 + dy, &mut rng) { wgt } else { 0 })
+                .zip(z)
+                .map(
+                    |((&(dx, dy), wgt), z)| {
+                        if sample(footprint.x0 + dx, footprint.y0 + dy, z, &mut rng) { wgt } else { 0 }
+                    },
+                )
                 .sum();
             fraction(shadowed, 1 << 32)
         }
         (Filter::Box { .. }, _) => {
+            // One evaluation per row, then forward differences along it.
+            let du = l.slope.map_or(0, |s| s.du);
             let mut count = 0u64;
             for y in footprint.y0..=footprint.y1 {
+                let mut z = l.depth_at(footprint.x0, y);
                 for x in footprint.x0..=footprint.x1 {
-                    count += u64::from(sample(x, y, &mut rng));
+                    count += u64::from(sample(x, y, z, &mut rng));
+                    z = z.saturating_add(du);
                 }
             }
             fraction(count, u64::from(footprint.count()))
@@ -499,13 +567,18 @@ pub fn shadow<F: DepthFormat, P: Probe>(map: &MapView<'_, F>, cfg: &ShadowConfig
                     let t = t0.saturating_add(dt.saturating_mul_int(i32::try_from(j).unwrap_or(i32::MAX)));
                     let ju = jitter(ds / 2, rng.rand_u32());
                     let jv = jitter(dt / 2, rng.rand_u32());
-                    count += u64::from(sample(floor(s.saturating_add(ju)), floor(t.saturating_add(jv)), &mut rng));
+                    // Jittered texels are irregular: the plane is evaluated directly.
+                    let (u, v) = (floor(s.saturating_add(ju)), floor(t.saturating_add(jv)));
+                    count += u64::from(sample(u, v, l.depth_at(u, v), &mut rng));
                 }
             }
             fraction(count, u64::from(ns * nt))
         }
         (Filter::Jittered(_), None) => Shadow::ZERO,
     };
+    if reads > 0 && l.slope.is_some() {
+        probe.event(Event::VirtualSamples { count: reads });
+    }
     if reads > 0 {
         for (needed, buffer) in [(cfg.test.needs_z1(), Buffer::Z1), (cfg.test.needs_z2(), Buffer::Z2)] {
             if needed {
@@ -514,6 +587,14 @@ pub fn shadow<F: DepthFormat, P: Probe>(map: &MapView<'_, F>, cfg: &ShadowConfig
         }
     }
     result
+}
+
+/// A receiver depth rounded to the map's format (as the light pass rounds
+/// fragments), widened back: comparisons are at the stored precision, so a
+/// receiver exactly on a stored surface compares equal.
+#[inline]
+fn at_format<F: DepthFormat>(z: i64) -> i64 {
+    F::widen(F::texel(PlaneZ::from_bits(z)))
 }
 
 /// `k / n` as a [`Shadow`], rounded to nearest.
@@ -557,3 +638,70 @@ fn reference_bounds<F: DepthFormat>(map: &MapView<'_, F>, test: DepthTest, r: &T
 }
 
 const _: () = assert!(PLANE_FRACTION_BITS == 32, "texels widen by a 32-bit shift");
+
+/// A receiver's tangent plane in light clip space, `π′ = M⁻ᵀ·(n, −n·p)`:
+/// points on it satisfy `π′·(x, y, z, w) = 0` (Wang & Molnar 1994 §3.2:
+/// the plane is moved to light space with the inverse transpose).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TangentPlane(pub [f64; 4]);
+
+impl TangentPlane {
+    /// The tangent plane at world point `p` with normal `n`, given the
+    /// inverse transpose of the light's view-projection.
+    #[must_use]
+    pub fn new(p: glam::Vec3, n: glam::Vec3, light_inverse_transpose: &glam::Mat4) -> Self {
+        let n = n.to_array().map(f64::from);
+        let p = p.to_array().map(f64::from);
+        let world = [n[0], n[1], n[2], -(n[0] * p[0] + n[1] * p[1] + n[2] * p[2])];
+        let m = light_inverse_transpose.to_cols_array_2d();
+        let mut out = [0.0; 4];
+        for (r, o) in out.iter_mut().enumerate() {
+            *o = (0..4).map(|c| f64::from(m[c][r]) * world[c]).sum();
+        }
+        Self(out)
+    }
+
+    /// The plane's depth slopes on the map, in format `F`'s [`PlaneZ`] bits
+    /// per texel: `z = −(A·x + B·y + D)/C` in NDC, with `x = 2u/W − 1` and
+    /// `y = 1 − 2v/H`. `None` when the plane is (nearly) parallel to the
+    /// light ray (`C → 0`): a slope of more than the whole depth range per
+    /// texel, or nothing finite.
+    #[must_use]
+    pub fn slope<F: DepthFormat>(&self, raster: &RasterConfig) -> Option<Slope> {
+        let [a, b, c, _] = self.0;
+        let range = (F::SCALE as f64) * 4_294_967_296.0;
+        let du = -a / c * 2.0 / f64::from(raster.width()) * range;
+        let dv = b / c * 2.0 / f64::from(raster.height()) * range;
+        let ok = |v: f64| v.is_finite() && v.abs() <= range;
+        (ok(du) && ok(dv))
+            .then(|| Slope { du: crate::round::round_ties_even(du), dv: crate::round::round_ties_even(dv) })
+    }
+}
+
+/// Wang & Molnar's second pass for one pixel: the ordinary lookup first;
+/// when all its samples agree the pixel is decided (trivially lit or
+/// shadowed); otherwise the receiver's tangent plane is set up and the
+/// lookup repeated with virtual samples — unless the plane is nearly
+/// parallel to the light ray, when the ordinary result stands and the
+/// fallback is reported.
+pub fn shadow_with_virtual_samples<F: DepthFormat, P: Probe>(
+    map: &MapView<'_, F>,
+    cfg: &ShadowConfig,
+    l: &Lookup,
+    plane: &TangentPlane,
+    probe: &mut P,
+) -> Shadow {
+    let ordinary = shadow(map, cfg, &Lookup { slope: None, ..*l }, probe);
+    if ordinary == Shadow::ZERO || ordinary == Shadow::ONE {
+        probe.event(Event::TrivialPixel { lit: ordinary == Shadow::ZERO });
+        return ordinary;
+    }
+    probe.event(Event::TangentSetup);
+    match plane.slope::<F>(&map.raster) {
+        Some(slope) => shadow(map, cfg, &Lookup { slope: Some(slope), ..*l }, probe),
+        None => {
+            probe.event(Event::TangentFallback);
+            ordinary
+        }
+    }
+}
