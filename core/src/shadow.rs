@@ -61,6 +61,9 @@ pub type MapCoord = I16F16;
 /// The fraction of a lookup in shadow: 0 lit, 1 fully shadowed.
 pub type Shadow = U16F16;
 
+/// Half a texel.
+const HALF: MapCoord = MapCoord::from_bits(1 << 15);
+
 /// Which reference depth a sample compares against.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum DepthTest {
@@ -420,7 +423,7 @@ pub fn jitter_grid(j: &Jitter, footprint: [MapCoord; 2]) -> ([MapCoord; 2], [u32
     let half = footprint.map(|f| f.saturating_abs().saturating_mul(j.res_factor).max(j.min_size));
     let n = u32::from(j.num_samples);
     let (lo, hi) = (u32::from(j.min_samples), n);
-    let round = |v: U16F16| v.saturating_add(U16F16::lit("0.5")).to_num::<u32>();
+    let round = |v: U16F16| v.saturating_add(U16F16::from_bits(1 << 15)).to_num::<u32>();
     let unsigned = |v: MapCoord| U16F16::from_bits(v.to_bits().unsigned_abs());
     let (s, t) = (unsigned(half[0]), unsigned(half[1]));
     let area4 = s.saturating_mul(t).saturating_mul_int(4);
@@ -450,8 +453,7 @@ pub fn shadow<F: DepthFormat, P: Probe>(map: &MapView<'_, F>, cfg: &ShadowConfig
     let footprint = match (cfg.filter, grid) {
         (Filter::Point, _) => Texels { x0: floor(l.x), y0: floor(l.y), x1: floor(l.x), y1: floor(l.y) },
         (Filter::Bilinear, _) => {
-            let (x, y) =
-                (floor(l.x.saturating_sub(MapCoord::lit("0.5"))), floor(l.y.saturating_sub(MapCoord::lit("0.5"))));
+            let (x, y) = (floor(l.x.saturating_sub(HALF)), floor(l.y.saturating_sub(HALF)));
             Texels { x0: x, y0: y, x1: x + 1, y1: y + 1 }
         }
         (Filter::Box { size }, _) => {
@@ -518,8 +520,8 @@ pub fn shadow<F: DepthFormat, P: Probe>(map: &MapView<'_, F>, cfg: &ShadowConfig
         }
         (Filter::Bilinear, _) => {
             // Weights from the fractional position, 16 bits each: they sum to 2³² exactly.
-            let fx = u64::from(l.x.saturating_sub(MapCoord::lit("0.5")).frac().to_bits().unsigned_abs());
-            let fy = u64::from(l.y.saturating_sub(MapCoord::lit("0.5")).frac().to_bits().unsigned_abs());
+            let fx = u64::from(l.x.saturating_sub(HALF).frac().to_bits().unsigned_abs());
+            let fy = u64::from(l.y.saturating_sub(HALF).frac().to_bits().unsigned_abs());
             let one = 1u64 << 16;
             let weights = [(one - fx) * (one - fy), fx * (one - fy), (one - fx) * fy, fx * fy];
             // The receiver at the four centres by forward differences.
