@@ -19,7 +19,7 @@ pub mod zbuffer;
 
 pub use config::{ConfigError, CullMode, DepthUnit, LightPassConfig, RasterConfig};
 pub use depth::{D16, D24, DepthFormat, DepthFormatKind, F32};
-pub use light_pass::{LightBuffers, LightPass, SubmitError};
+pub use light_pass::{LightBuffers, LightPass, NO_TRIANGLE, SubmitError};
 pub use probe::{Event, Fragment, NoProbe, Probe};
 pub use tile::{TileId, TileRect};
 pub use zbuffer::TileState;

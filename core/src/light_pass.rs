@@ -33,6 +33,10 @@ pub struct LightBuffers<'a, F: DepthFormat, const B: usize> {
     pub z1: &'a mut [F::Texel],
     /// Second-nearest depth: `width × height` texels for [`DepthUnit::Dual`], empty for single.
     pub z2: &'a mut [F::Texel],
+    /// Visible-triangle ids, `width × height`, for a single unit that
+    /// records visibility (the camera pass); empty otherwise. A pixel no
+    /// triangle covers holds [`NO_TRIANGLE`].
+    pub ids: &'a mut [u32],
     /// One summary per tile, row-major.
     pub tiles: &'a mut [TileState<F::Texel>],
     /// One bin per tile, row-major.
@@ -40,6 +44,9 @@ pub struct LightBuffers<'a, F: DepthFormat, const B: usize> {
     /// The triangle-setup store: any length in `1..=65536`.
     pub setups: &'a mut [Setup],
 }
+
+/// The id of a pixel that no triangle covers.
+pub const NO_TRIANGLE: u32 = u32::MAX;
 
 /// A triangle list that cannot be drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -94,6 +101,9 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
         };
         check("z1", texels, buf.z1.len())?;
         check("z2", z2_len, buf.z2.len())?;
+        if !buf.ids.is_empty() {
+            check("ids", if cfg.unit == DepthUnit::Single { texels } else { 0 }, buf.ids.len())?;
+        }
         check("tiles", r.tile_count(), buf.tiles.len())?;
         check("bins", r.tile_count(), buf.bins.len())?;
         if buf.setups.is_empty() || buf.setups.len() > MAX_SETUPS {
@@ -101,6 +111,7 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
         }
         buf.z1.fill(F::FAR);
         buf.z2.fill(F::FAR);
+        buf.ids.fill(NO_TRIANGLE);
         for (i, t) in buf.tiles.iter_mut().enumerate() {
             *t = TileState::cleared(F::FAR, r.tile_rect(r.tile_id(i)).area());
         }
@@ -264,7 +275,7 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
         let raster = self.cfg.raster;
         let tile = raster.tile_id(t);
         let rect = raster.tile_rect(tile);
-        let LightBuffers { z1, z2, tiles, bins, setups } = &mut self.buf;
+        let LightBuffers { z1, z2, ids, tiles, bins, setups } = &mut self.buf;
         let (Some(bin), Some(state)) = (bins.get_mut(t), tiles.get_mut(t)) else { return };
         let tile_bytes = rect.area() * F::KIND.bytes() * self.cfg.unit.buffers();
         #[allow(clippy::cast_possible_truncation, reason = "a bin holds at most B ≤ 2^16 entries")]
@@ -274,15 +285,18 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
             self.probe.event(Event::TileLoad { tile, bytes: tile_bytes });
         }
         let width = raster.width() as usize;
-        let mut view = TileView { z1, z2, width, state, tile, rect };
+        let with_ids = !ids.is_empty();
+        let mut view = TileView { z1, z2, ids, width, state, tile, rect };
         let dual = self.cfg.unit == DepthUnit::Dual;
         for &i in bin.iter() {
             let Some(s) = setups.get(usize::from(i)) else { continue };
-            match (dual, self.cfg.max_z_cull) {
-                (false, false) => rasterize::<F, P, false, false>(s, &mut view, &mut self.probe),
-                (false, true) => rasterize::<F, P, false, true>(s, &mut view, &mut self.probe),
-                (true, false) => rasterize::<F, P, true, false>(s, &mut view, &mut self.probe),
-                (true, true) => rasterize::<F, P, true, true>(s, &mut view, &mut self.probe),
+            match (dual, with_ids, self.cfg.max_z_cull) {
+                (false, false, false) => rasterize::<F, P, false, false, false>(s, &mut view, &mut self.probe),
+                (false, false, true) => rasterize::<F, P, false, false, true>(s, &mut view, &mut self.probe),
+                (false, true, false) => rasterize::<F, P, false, true, false>(s, &mut view, &mut self.probe),
+                (false, true, true) => rasterize::<F, P, false, true, true>(s, &mut view, &mut self.probe),
+                (true, _, false) => rasterize::<F, P, true, false, false>(s, &mut view, &mut self.probe),
+                (true, _, true) => rasterize::<F, P, true, false, true>(s, &mut view, &mut self.probe),
             }
         }
         bin.clear();

@@ -12,13 +12,15 @@
 
 use crate::tile::TileId;
 
-/// A depth buffer of the map.
+/// A buffer of the depth unit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Buffer {
     /// Nearest depth.
     Z1,
     /// Second-nearest depth.
     Z2,
+    /// Visible-triangle ids (the camera pass's visibility).
+    Id,
 }
 
 /// Why a submitted triangle produced no fragments before binning.

@@ -28,6 +28,9 @@ use crate::setup::{Coverage, Setup};
 use crate::tile::{TileId, TileRect};
 use crate::zbuffer::{SpanEdges, SpanOut, TileState, count_of, min_max, span, tile_rows};
 
+/// Bytes of one visible-triangle id.
+const ID_BYTES: u32 = 4;
+
 /// Side of the fragment blocks a partial tile is split into.
 pub const BLOCK: u32 = 8;
 
@@ -37,6 +40,7 @@ const _: () = assert!(BLOCK <= *crate::config::TILE_SIZES.start(), "blocks must 
 pub(crate) struct TileView<'m, T> {
     pub z1: &'m mut [T],
     pub z2: &'m mut [T],
+    pub ids: &'m mut [u32],
     pub width: usize,
     pub state: &'m mut TileState<T>,
     pub tile: TileId,
@@ -44,14 +48,16 @@ pub(crate) struct TileView<'m, T> {
 }
 
 impl<T: Copy> TileView<'_, T> {
-    /// The slices of row `y`, columns `x0..x1`, of both buffers (`z2` empty for single).
+    /// The slices of row `y`, columns `x0..x1`, of every buffer (`z2` and
+    /// `ids` empty when the unit has none).
     #[inline(always)]
-    fn rows(&mut self, y: u32, x0: u32, x1: u32) -> Option<(&mut [T], &mut [T])> {
+    fn rows(&mut self, y: u32, x0: u32, x1: u32) -> Option<(&mut [T], &mut [T], &mut [u32])> {
         let base = y as usize * self.width;
         let range = base + x0 as usize..base + x1 as usize;
         let z1 = self.z1.get_mut(range.clone())?;
-        let z2 = if self.z2.is_empty() { &mut [][..] } else { self.z2.get_mut(range)? };
-        Some((z1, z2))
+        let z2 = if self.z2.is_empty() { &mut [][..] } else { self.z2.get_mut(range.clone())? };
+        let ids = if self.ids.is_empty() { &mut [][..] } else { self.ids.get_mut(range)? };
+        Some((z1, z2, ids))
     }
 }
 
@@ -80,7 +86,7 @@ struct Run {
 const MAX_RUNS: usize = (*crate::config::TILE_SIZES.end() / BLOCK) as usize;
 
 /// Rasterize one set-up triangle into one tile.
-pub(crate) fn rasterize<F: DepthFormat, P: Probe, const DUAL: bool, const CULL: bool>(
+pub(crate) fn rasterize<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const CULL: bool>(
     s: &Setup,
     view: &mut TileView<'_, F::Texel>,
     probe: &mut P,
@@ -108,13 +114,13 @@ pub(crate) fn rasterize<F: DepthFormat, P: Probe, const DUAL: bool, const CULL: 
         // Blocks can be culled only if part of the triangle reaches the max.
         let cull_blocks = farthest >= view.state.cull_max;
         if view.state.cull_count > 0 {
-            return traverse::<F, P, DUAL, true>(s, view, &rect, coverage, cull_blocks, probe);
+            return traverse::<F, P, DUAL, IDS, true>(s, view, &rect, coverage, cull_blocks, probe);
         }
-        return traverse::<F, P, DUAL, false>(s, view, &rect, coverage, cull_blocks, probe);
+        return traverse::<F, P, DUAL, IDS, false>(s, view, &rect, coverage, cull_blocks, probe);
     }
     let coverage = s.classify(&rect);
     if coverage != Coverage::Empty {
-        traverse::<F, P, DUAL, false>(s, view, &rect, coverage, false, probe);
+        traverse::<F, P, DUAL, IDS, false>(s, view, &rect, coverage, false, probe);
     }
 }
 
@@ -122,7 +128,7 @@ pub(crate) fn rasterize<F: DepthFormat, P: Probe, const DUAL: bool, const CULL: 
 /// block rows of runs otherwise. `COUNT` tracks how many texels still hold
 /// the tile's max. Not inlined: one copy per variant, shared by callers.
 #[inline(never)]
-fn traverse<F: DepthFormat, P: Probe, const DUAL: bool, const COUNT: bool>(
+fn traverse<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUNT: bool>(
     s: &Setup,
     view: &mut TileView<'_, F::Texel>,
     rect: &TileRect,
@@ -135,17 +141,17 @@ fn traverse<F: DepthFormat, P: Probe, const DUAL: bool, const COUNT: bool>(
         // Whole rows without edge tests, or a rectangle no bigger than a
         // block (already classified): masked rows with no block step.
         let run = Run { x0: rect.x0, x1: rect.x1, masked: coverage != Coverage::Full };
-        rows::<F, P, DUAL, COUNT>(s, view, rect.y0, rect.y1, &[run], &mut out, probe);
+        rows::<F, P, DUAL, IDS, COUNT>(s, view, rect.y0, rect.y1, &[run], &mut out, probe);
     } else {
         let mut by = rect.y0 & !(BLOCK - 1);
         while by < rect.y1 {
             let (y0, y1) = (by.max(rect.y0), (by + BLOCK).min(rect.y1));
             let runs = block_row::<F, P>(s, view, rect, y0, y1, cull_blocks, probe);
-            rows::<F, P, DUAL, COUNT>(s, view, y0, y1, &runs, &mut out, probe);
+            rows::<F, P, DUAL, IDS, COUNT>(s, view, y0, y1, &runs, &mut out, probe);
             by += BLOCK;
         }
     }
-    finish_triangle::<F, P, DUAL, COUNT>(view, &out, probe);
+    finish_triangle::<F, P, DUAL, IDS, COUNT>(view, &out, probe);
 }
 
 /// Make the tile's max exact again: a reduction over the culled buffer.
@@ -202,7 +208,7 @@ fn block_row<F: DepthFormat, P: Probe>(
 /// edge values are stepped from row to row by adds.
 #[inline(always)]
 #[allow(clippy::too_many_arguments, reason = "the hot path's state, passed flat")]
-fn rows<F: DepthFormat, P: Probe, const DUAL: bool, const COUNT: bool>(
+fn rows<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUNT: bool>(
     s: &Setup,
     view: &mut TileView<'_, F::Texel>,
     y0: u32,
@@ -221,11 +227,11 @@ fn rows<F: DepthFormat, P: Probe, const DUAL: bool, const COUNT: bool>(
             let x = i64::from(run.x0);
             let z = z_row.wrapping_add(dzx.wrapping_mul(x));
             let edges = SpanEdges { e: [e_row[0] + de[0] * x, e_row[1] + de[1] * x, e_row[2] + de[2] * x], de };
-            let Some((z1, z2)) = view.rows(y, run.x0, run.x1) else { return };
+            let Some((z1, z2, ids)) = view.rows(y, run.x0, run.x1) else { return };
             let o = if run.masked {
-                span::<F, DUAL, true, COUNT>(z1, z2, z, dzx, edges, cull_max)
+                span::<F, DUAL, IDS, true, COUNT>(z1, z2, ids, s.triangle, z, dzx, edges, cull_max)
             } else {
-                span::<F, DUAL, false, COUNT>(z1, z2, z, dzx, edges, cull_max)
+                span::<F, DUAL, IDS, false, COUNT>(z1, z2, ids, s.triangle, z, dzx, edges, cull_max)
             };
             out.add(&o);
             if P::FRAGMENTS {
@@ -264,7 +270,7 @@ fn report_fragments<F: DepthFormat, P: Probe>(
 }
 
 /// Report a triangle's work in a tile and bring the tile's summary up to date.
-fn finish_triangle<F: DepthFormat, P: Probe, const DUAL: bool, const COUNT: bool>(
+fn finish_triangle<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUNT: bool>(
     view: &mut TileView<'_, F::Texel>,
     out: &SpanOut<F::Texel>,
     probe: &mut P,
@@ -276,6 +282,10 @@ fn finish_triangle<F: DepthFormat, P: Probe, const DUAL: bool, const COUNT: bool
         probe.event(Event::DepthRead { buffer: Buffer::Z1, texels: out.fragments, bytes: bytes(out.fragments) });
         if out.written1 > 0 {
             probe.event(Event::DepthWrite { buffer: Buffer::Z1, texels: out.written1, bytes: bytes(out.written1) });
+        }
+        if IDS && out.written1 > 0 {
+            let texels = out.written1;
+            probe.event(Event::DepthWrite { buffer: Buffer::Id, texels, bytes: texels * ID_BYTES });
         }
         if DUAL {
             probe.event(Event::DepthRead { buffer: Buffer::Z2, texels: out.fragments, bytes: bytes(out.fragments) });

@@ -10,8 +10,12 @@
 //!   of fragments, `(z1, z2)` are the two smallest depths that landed (as a
 //!   multiset: two equal fragments give `z1 = z2`), whatever their order.
 //!
+//! * **Single with ids** (visibility, for the camera pass): `z1` as single,
+//!   and the id of the triangle whose fragment passed.
+//!
 //! A depth test passes when the fragment is strictly nearer than what it
-//! replaces; equal depths change nothing.
+//! replaces; equal depths change nothing (so of equally near triangles the
+//! first drawn stays visible).
 //!
 //! # Per-tile summaries
 //! Reeves, Salesin & Cook 1987 §3.3 propose storing "a maximum z value with
@@ -128,9 +132,12 @@ pub(crate) struct SpanEdges {
 /// (and all lie inside the triangle). `DUAL` selects the unit, `CULL`
 /// whether the culled buffer's max is tracked. The loop only adds.
 #[inline(always)]
-pub(crate) fn span<F: DepthFormat, const DUAL: bool, const MASKED: bool, const CULL: bool>(
+#[allow(clippy::too_many_arguments, reason = "the hot path's state, passed flat")]
+pub(crate) fn span<F: DepthFormat, const DUAL: bool, const IDS: bool, const MASKED: bool, const CULL: bool>(
     z1: &mut [F::Texel],
     z2: &mut [F::Texel],
+    ids: &mut [u32],
+    id: u32,
     z: i64,
     dz: i64,
     edges: SpanEdges,
@@ -168,6 +175,20 @@ pub(crate) fn span<F: DepthFormat, const DUAL: bool, const MASKED: bool, const C
             }
             min1 = min1.min(q);
             min2 = min2.min(new2);
+        }
+    } else if IDS {
+        // The visibility unit: the nearest depth and the triangle that put it there.
+        for (a, t) in z1.iter_mut().zip(ids.iter_mut()) {
+            let q = next();
+            let old = *a;
+            let pass = q < old;
+            *a = if pass { q } else { old };
+            *t = if pass { id } else { *t };
+            written1 += u32::from(pass);
+            if CULL {
+                lost += u32::from(old == cull_max && pass);
+            }
+            min1 = min1.min(q);
         }
     } else {
         for a in z1.iter_mut() {

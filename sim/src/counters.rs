@@ -49,16 +49,16 @@ pub struct Totals {
     pub culled_blocks: u64,
     /// Texels of the skipped regions.
     pub culled_texels: u64,
-    /// Depth texels read (`z1`, `z2`).
-    pub depth_reads: [u64; 2],
-    /// Depth texels written (`z1`, `z2`).
-    pub depth_writes: [u64; 2],
+    /// Depth-unit texels read (`z1`, `z2`, ids).
+    pub depth_reads: [u64; 3],
+    /// Depth-unit texels written (`z1`, `z2`, ids).
+    pub depth_writes: [u64; 3],
     /// Bytes of depth reads and writes on chip.
     pub depth_bytes: u64,
     /// Reductions recomputing a tile's max.
     pub tile_max_updates: u64,
-    /// Map texels read by the shadow unit (`z1`, `z2`).
-    pub map_reads: [u64; 2],
+    /// Map texels read by the shadow unit (`z1`, `z2`, ids).
+    pub map_reads: [u64; 3],
     /// Bytes of those reads.
     pub map_read_bytes: u64,
     /// Lookups decided without reading a texel.
@@ -181,5 +181,6 @@ const fn buffer_index(b: Buffer) -> usize {
     match b {
         Buffer::Z1 => 0,
         Buffer::Z2 => 1,
+        Buffer::Id => 2,
     }
 }

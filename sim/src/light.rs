@@ -76,7 +76,8 @@ pub fn render_with<F: DepthFormat, P: Probe, const B: usize>(
     let mut tiles = vec![TileState::cleared(F::FAR, 0); r.tile_count()];
     let mut bins = vec![Bin::<B>::new(); r.tile_count()];
     let mut store = vec![Setup::EMPTY; setups];
-    let buffers = LightBuffers { z1: &mut z1, z2: &mut z2, tiles: &mut tiles, bins: &mut bins, setups: &mut store };
+    let buffers =
+        LightBuffers { z1: &mut z1, z2: &mut z2, ids: &mut [], tiles: &mut tiles, bins: &mut bins, setups: &mut store };
     let mut pass = LightPass::<F, P, B>::new(config, buffers, probe)?;
     for (draw, d) in draws.iter().enumerate() {
         pass.draw_mesh(d.positions, d.triangles, &d.transform, d.cull)

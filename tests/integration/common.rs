@@ -80,13 +80,45 @@ pub fn run<F: DepthFormat, P: Probe, const B: usize>(
     let mut tiles = vec![TileState::cleared(F::FAR, 0); r.tile_count()];
     let mut bins = vec![Bin::<B>::new(); r.tile_count()];
     let mut store = vec![Setup::EMPTY; setups];
-    let buffers = LightBuffers { z1: &mut z1, z2: &mut z2, tiles: &mut tiles, bins: &mut bins, setups: &mut store };
+    let buffers =
+        LightBuffers { z1: &mut z1, z2: &mut z2, ids: &mut [], tiles: &mut tiles, bins: &mut bins, setups: &mut store };
     let mut pass = LightPass::<F, P, B>::new(cfg, buffers, probe).expect("buffers sized from the configuration");
     for t in tris {
         pass.draw_clip(*t, cull);
     }
     let probe = pass.finish();
     (Maps { z1, z2, tiles }, probe)
+}
+
+/// Run the visibility unit (single depth with triangle ids) over clip-space
+/// triangles; returns the ids, the depths and the recorded fragments.
+pub fn run_visibility<F: DepthFormat>(
+    size: u32,
+    tile: u32,
+    tris: &[[Vec4; 3]],
+    cull: bool,
+) -> (Vec<u32>, Vec<F::Texel>, Recorder) {
+    let cfg = config(size, tile, DepthUnit::Single, cull);
+    let r = cfg.raster;
+    let n = r.texel_count();
+    let (mut z1, mut ids) = (vec![F::Texel::default(); n], vec![0u32; n]);
+    let mut tiles = vec![TileState::cleared(F::FAR, 0); r.tile_count()];
+    let mut bins = vec![Bin::<8>::new(); r.tile_count()];
+    let mut store = vec![Setup::EMPTY; 16];
+    let buffers = LightBuffers {
+        z1: &mut z1,
+        z2: &mut [],
+        ids: &mut ids,
+        tiles: &mut tiles,
+        bins: &mut bins,
+        setups: &mut store,
+    };
+    let mut pass = LightPass::<F, Recorder, 8>::new(cfg, buffers, Recorder::default()).expect("sized");
+    for t in tris {
+        pass.draw_clip(*t, CullMode::None);
+    }
+    let rec = pass.finish();
+    (ids, z1, rec)
 }
 
 /// Snap like the hardware's documented viewport transform (f64,

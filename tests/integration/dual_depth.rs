@@ -85,3 +85,30 @@ fn front_face_culling_gives_the_far_side_of_a_solid() {
     assert_eq!(dual.z1, back.z1);
     assert_eq!(dual.z2, front.z1);
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(128))]
+
+    /// The visibility unit keeps, per pixel, the id of the nearest fragment
+    /// (the first drawn among equals), checked against every recorded
+    /// fragment; its depths are the single unit's; with culling or without.
+    #[test]
+    fn visibility_ids_are_the_nearest_fragments(tris in triangles(24), cull in any::<bool>(), tile in prop::sample::select(vec![8u32, 16, 64])) {
+        use crate::common::run_visibility;
+        use umbra::core::NO_TRIANGLE;
+        let (ids, z1, _) = run_visibility::<D24>(SIZE, tile, &tris, cull);
+        let (_, rec) = run::<D24, _, 64>(config(SIZE, 16, DepthUnit::Single, false), &tris, CullMode::None, 4096, Recorder::default());
+        let (single, _) = run::<D24, _, 64>(config(SIZE, 16, DepthUnit::Single, false), &tris, CullMode::None, 4096, NoProbe);
+        prop_assert_eq!(&z1, &single.z1);
+        let mut best: Vec<Option<(u32, u32)>> = vec![None; (SIZE * SIZE) as usize];
+        for f in &rec.fragments {
+            let b = &mut best[(f.y * SIZE + f.x) as usize];
+            if b.is_none_or(|(d, t)| (f.depth, f.triangle) < (d, t)) {
+                *b = Some((f.depth, f.triangle));
+            }
+        }
+        for (i, b) in best.iter().enumerate() {
+            prop_assert_eq!(ids[i], b.map_or(NO_TRIANGLE, |(_, t)| t), "pixel {}", i);
+        }
+    }
+}

@@ -56,7 +56,7 @@ proptest! {
         let mut tiles = vec![TileState::cleared(0, 0); r.tile_count()];
         let mut bins = vec![Bin::<4>::new(); r.tile_count()];
         let mut setups = vec![Setup::EMPTY; 2];
-        let buffers = LightBuffers::<D24, 4> { z1: &mut z1, z2: &mut z2, tiles: &mut tiles, bins: &mut bins, setups: &mut setups };
+        let buffers = LightBuffers::<D24, 4> { z1: &mut z1, z2: &mut z2, ids: &mut [], tiles: &mut tiles, bins: &mut bins, setups: &mut setups };
         let mut pass = LightPass::<D24, Recorder, 4>::new(cfg, buffers, Recorder::default()).expect("valid");
         pass.draw_mesh(&positions, &triangles, &Mat4::from_cols_array(&m), CullMode::None).expect("indices valid");
         let rec = pass.finish();
@@ -113,8 +113,14 @@ fn wrong_buffers_are_named() {
     let mut tiles = vec![TileState::cleared(0, 0); 4];
     let mut bins = vec![Bin::<4>::new(); 4];
     let mut setups = vec![Setup::EMPTY; 4];
-    let buffers =
-        LightBuffers::<D16, 4> { z1: &mut z1, z2: &mut z2, tiles: &mut tiles, bins: &mut bins, setups: &mut setups };
+    let buffers = LightBuffers::<D16, 4> {
+        z1: &mut z1,
+        z2: &mut z2,
+        ids: &mut [],
+        tiles: &mut tiles,
+        bins: &mut bins,
+        setups: &mut setups,
+    };
     let err = LightPass::<D16, Recorder, 4>::new(cfg, buffers, Recorder::default()).err();
     assert_eq!(err, Some(ConfigError::BufferLength { buffer: "z2", expected: 256, found: 255 }));
 }
@@ -126,8 +132,14 @@ fn bad_indices_are_reported_before_drawing() {
     let mut tiles = vec![TileState::cleared(0, 0); 4];
     let mut bins = vec![Bin::<4>::new(); 4];
     let mut setups = vec![Setup::EMPTY; 4];
-    let buffers =
-        LightBuffers::<D16, 4> { z1: &mut z1, z2: &mut z2, tiles: &mut tiles, bins: &mut bins, setups: &mut setups };
+    let buffers = LightBuffers::<D16, 4> {
+        z1: &mut z1,
+        z2: &mut z2,
+        ids: &mut [],
+        tiles: &mut tiles,
+        bins: &mut bins,
+        setups: &mut setups,
+    };
     let mut pass = LightPass::<D16, Recorder, 4>::new(cfg, buffers, Recorder::default()).expect("valid");
     let positions = [Vec3::ZERO, Vec3::X, Vec3::Y];
     let err = pass.draw_mesh(&positions, &[[0, 1, 2], [0, 1, 7]], &Mat4::IDENTITY, CullMode::None);

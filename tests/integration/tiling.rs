@@ -93,8 +93,14 @@ fn mesh_fragments(
     let mut tiles = vec![TileState::cleared(0, 0); r.tile_count()];
     let mut bins = vec![Bin::<8>::new(); r.tile_count()];
     let mut setups = vec![Setup::EMPTY; 64];
-    let buffers =
-        LightBuffers::<D24, 8> { z1: &mut z1, z2: &mut z2, tiles: &mut tiles, bins: &mut bins, setups: &mut setups };
+    let buffers = LightBuffers::<D24, 8> {
+        z1: &mut z1,
+        z2: &mut z2,
+        ids: &mut [],
+        tiles: &mut tiles,
+        bins: &mut bins,
+        setups: &mut setups,
+    };
     let mut pass = LightPass::<D24, Recorder, 8>::new(cfg, buffers, Recorder::default()).expect("valid");
     pass.draw_mesh(positions, tris, m, CullMode::None).expect("valid indices");
     pass.finish().sorted()
