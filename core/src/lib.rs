@@ -3,6 +3,7 @@
 #![doc = include_str!("../README.md")]
 
 pub mod bin;
+pub mod camera;
 pub mod clip;
 pub mod config;
 pub mod depth;

@@ -285,6 +285,12 @@ pub struct MapView<'a, F: DepthFormat> {
 }
 
 impl<'a, F: DepthFormat> MapView<'a, F> {
+    /// The map's raster configuration.
+    #[must_use]
+    pub const fn raster(&self) -> &RasterConfig {
+        &self.raster
+    }
+
     /// View finished maps. `z2` may be empty when no test reads it.
     ///
     /// # Errors
@@ -680,26 +686,32 @@ impl TangentPlane {
     }
 }
 
-/// Wang & Molnar's second pass for one pixel: the ordinary lookup first;
-/// when all its samples agree the pixel is decided (trivially lit or
-/// shadowed); otherwise the receiver's tangent plane is set up and the
-/// lookup repeated with virtual samples — unless the plane is nearly
-/// parallel to the light ray, when the ordinary result stands and the
-/// fallback is reported.
+/// Wang & Molnar's second pass for one pixel (§3.2's three rules): the
+/// ordinary lookup first; when all nearby samples agree the pixel is decided
+/// (trivially lit or shadowed); otherwise the receiver's tangent plane is set up (`setup`,
+/// e.g. [`TangentPlane::slope`]) and the lookup repeated with virtual
+/// samples — unless the plane is nearly parallel to the light ray (`setup`
+/// gives `None`), when the ordinary result stands and the fallback is
+/// reported.
 pub fn shadow_with_virtual_samples<F: DepthFormat, P: Probe>(
     map: &MapView<'_, F>,
     cfg: &ShadowConfig,
     l: &Lookup,
-    plane: &TangentPlane,
+    setup: impl FnOnce() -> Option<Slope>,
     probe: &mut P,
 ) -> Shadow {
-    let ordinary = shadow(map, cfg, &Lookup { slope: None, ..*l }, probe);
-    if ordinary == Shadow::ZERO || ordinary == Shadow::ONE {
+    // "All nearby samples": the filter's own and the 2×2 texels around the
+    // point, so that a lone sample (a point filter, or a jittered filter on
+    // a footprint under a texel) is not taken as agreement with itself.
+    let plain = Lookup { slope: None, ..*l };
+    let ordinary = shadow(map, cfg, &plain, probe);
+    let around = ShadowConfig { filter: Filter::Box { size: 2 }, ..*cfg };
+    if (ordinary == Shadow::ZERO || ordinary == Shadow::ONE) && shadow(map, &around, &plain, probe) == ordinary {
         probe.event(Event::TrivialPixel { lit: ordinary == Shadow::ZERO });
         return ordinary;
     }
     probe.event(Event::TangentSetup);
-    match plane.slope::<F>(&map.raster) {
+    match setup() {
         Some(slope) => shadow(map, cfg, &Lookup { slope: Some(slope), ..*l }, probe),
         None => {
             probe.event(Event::TangentFallback);

@@ -9,6 +9,7 @@
 
 mod common;
 
+mod camera_pass;
 mod culling;
 mod dual_depth;
 mod fill_rule;

@@ -312,7 +312,7 @@ fn grazing_tangent_planes_fall_back() {
     let c = cfg(DepthTest::First, Filter::Box { size: 3 });
     let mut events = Recorded::default();
     let l = at::<D16>(8.0, 8.0, 0.5);
-    let s = shadow_with_virtual_samples(&map.view(), &c, &l, &grazing, &mut events);
+    let s = shadow_with_virtual_samples(&map.view(), &c, &l, || grazing.slope::<D16>(&raster), &mut events);
     assert_eq!(s, shadow(&map.view(), &c, &l, &mut NoProbe));
     assert_eq!((events.setups, events.fallbacks, events.trivial, events.virtual_samples), (1, 1, 0, 0));
 }
@@ -385,7 +385,9 @@ fn virtual_samples_remove_self_shadowing_on_a_planar_receiver() {
         };
         acne_plain += u32::from(shadow(&view, &c, &l, &mut NoProbe) > Shadow::ZERO);
         let plane = TangentPlane::new(p, Vec3::Z, &inv_t);
-        acne_virtual += u32::from(shadow_with_virtual_samples(&view, &c, &l, &plane, &mut events) > Shadow::ZERO);
+        acne_virtual += u32::from(
+            shadow_with_virtual_samples(&view, &c, &l, || plane.slope::<D16>(&raster), &mut events) > Shadow::ZERO,
+        );
     }
     let total = (n * n) as u32;
     // Measured: 728 of 1600 (45 %) for this plane and grid.

@@ -1,0 +1,383 @@
+//! The camera pass's shading unit: for every pixel the visibility unit left
+//! a triangle id in, the surface point in light space (fixed point), the
+//! interpolated normal, and the shadow fraction from the [`crate::shadow`]
+//! unit.
+//!
+//! # Projective interpolation
+//! For a triangle with camera clip vertices `cᵢ`, the unnormalised
+//! barycentrics of the pixel centre `s = (px + ½, py + ½, 1)` are
+//! `β = K·s` with `K = [cₓ c_y c_w]⁻¹·A` (`A` maps pixels to NDC).
+//! Everything linear in the vertices — light clip coordinates, normals,
+//! world positions — is then linear in `s` up to one common scale. So the
+//! setup unit forms, once per triangle and in f64, the map-space numerators
+//! `U = (Λx + Λw)·W/2`, `V = (Λw − Λy)·H/2`, `Z = Λz` and the denominator
+//! `Λw` as linear functions of the pixel, and scales them to integers; per
+//! pixel the interpolator evaluates them in integers and divides once per
+//! coordinate: `u = U/Λw` (texels, 16 fraction bits), `v`, `z = Z/Λw`
+//! ([`PlaneZ`]). This is projective texture mapping, as shadow-map hardware
+//! does it. A point with `Λw ≤ 0` is behind the light: lit.
+//!
+//! # The receiver's tangent plane
+//! **Flat normals**: the tangent plane is the triangle's own plane, and its
+//! slopes on the map are exactly the light pass's depth-plane steps for
+//! this triangle (same snap, same setup): virtual samples reproduce the
+//! depths the light pass stored, bit for bit up to two units of 2⁻³² LSB, so
+//! a planar receiver does not shadow itself at bias 0 at any precision. The
+//! receiver's depth is that plane at `(u, v)`. If the triangle cannot be set
+//! up on the map (clipped by the light's near plane, off the guard band, or
+//! edge-on to the light) the tangent plane is solved from its face normal.
+//! **Smooth normals**: the plane through the interpolated world point with
+//! the interpolated normal, moved to light space by the inverse transpose
+//! (Wang & Molnar 1994 §3.2).
+//!
+//! The footprint for Reeves' filter is the pixel's extent on the map at the
+//! triangle's centroid (one Jacobian per triangle).
+
+use glam::{Mat4, Vec3};
+
+use crate::clip::inside_all;
+use crate::config::{ConfigError, CullMode};
+use crate::depth::{DepthFormat, PLANE_FRACTION_BITS, PlaneZ};
+use crate::light_pass::NO_TRIANGLE;
+use crate::probe::Probe;
+use crate::setup::{DepthPlane, Setup};
+use crate::shadow::{
+    Lookup, MapCoord, MapView, Shadow, ShadowConfig, Slope, TangentPlane, shadow, shadow_with_virtual_samples,
+};
+
+/// One triangle of the scene, in world space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SceneTriangle {
+    /// Vertex positions.
+    pub positions: [Vec3; 3],
+    /// Vertex normals (for smooth shading and tangent planes).
+    pub normals: [Vec3; 3],
+}
+
+/// Where the shading unit finds the triangle behind an id the visibility
+/// unit recorded (the index of the submitted triangle).
+pub trait TriangleSource {
+    /// The triangle with this id, if there is one.
+    fn triangle(&self, id: u32) -> Option<SceneTriangle>;
+}
+
+impl<T: Fn(u32) -> Option<SceneTriangle>> TriangleSource for T {
+    fn triangle(&self, id: u32) -> Option<SceneTriangle> {
+        self(id)
+    }
+}
+
+/// Which normal the receiver's tangent plane uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Normals {
+    /// The face's own plane.
+    Flat,
+    /// The interpolated vertex normal.
+    Smooth,
+}
+
+/// Everything the shading unit needs besides its buffers.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraConfig {
+    /// World to camera clip space.
+    pub camera: Mat4,
+    /// World to light clip space (the map's view-projection).
+    pub light: Mat4,
+    /// Camera target width in pixels.
+    pub width: u32,
+    /// Camera target height in pixels.
+    pub height: u32,
+    /// The shadow test and filter.
+    pub shadow: ShadowConfig,
+    /// Wang & Molnar's virtual samples for pixels whose samples disagree.
+    pub virtual_samples: bool,
+    /// Flat or smooth tangent planes.
+    pub normals: Normals,
+    /// Seed of the jittered filter (each pixel derives its own).
+    pub seed: u64,
+}
+
+/// A surface point on the map.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LightPoint {
+    /// Column, texels.
+    pub x: MapCoord,
+    /// Row (down), texels.
+    pub y: MapCoord,
+    /// Light-space depth.
+    pub z: PlaneZ,
+}
+
+/// What the camera pass produces for one pixel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Shaded {
+    /// The visible triangle, or [`NO_TRIANGLE`].
+    pub triangle: u32,
+    /// The surface point in light space; `None` for the background and for
+    /// points behind the light.
+    pub light: Option<LightPoint>,
+    /// The interpolated normal (unit length; zero for the background).
+    pub normal: Vec3,
+    /// The fraction in shadow.
+    pub shadow: Shadow,
+}
+
+impl Shaded {
+    /// A pixel no triangle covers.
+    pub const BACKGROUND: Self = Self { triangle: NO_TRIANGLE, light: None, normal: Vec3::ZERO, shadow: Shadow::ZERO };
+}
+
+/// Entries of the per-triangle setup cache.
+const SETUP_CACHE: usize = 16;
+
+/// `2⁴⁴`: the scale of the denominator `Λw` over the target, so that the
+/// numerators (up to `W/2` times larger) and their products with pixel
+/// coordinates stay well inside `i128`, and the rounding of each coefficient
+/// moves `u` by under 2⁻²⁰ texel.
+const DENOMINATOR_SCALE: f64 = 17_592_186_044_416.0;
+
+/// A triangle's setup for the interpolator.
+#[derive(Clone, Copy, Debug)]
+struct Interp {
+    id: u32,
+    /// `U, V, Z, Λw` as integer linear forms in `(px + ½, py + ½, 1)`,
+    /// evaluated at twice that (`2px + 1`, `2py + 1`, `2`) to stay in integers.
+    light: Option<[[i64; 3]; 4]>,
+    /// Normal rows (x, y, z) over `s`, f64.
+    normal: [[f64; 3]; 3],
+    /// Homogeneous world point rows over `s`, f64.
+    world: [[f64; 3]; 4],
+    /// The light pass's depth plane of this triangle on the map.
+    plane: Option<DepthPlane>,
+    /// Face normal (flat tangent planes without a map plane).
+    face: Vec3,
+    footprint: [MapCoord; 2],
+}
+
+fn dot3(a: &[f64; 3], s: &[f64; 3]) -> f64 {
+    a[0] * s[0] + a[1] * s[1] + a[2] * s[2]
+}
+
+/// `rows × K` for rows over the three vertices.
+fn through<const R: usize>(rows: &[[f64; 3]; R], k: &[[f64; 3]; 3]) -> [[f64; 3]; R] {
+    rows.map(|r| [0, 1, 2].map(|j| r[0] * k[0][j] + r[1] * k[1][j] + r[2] * k[2][j]))
+}
+
+/// The inverse of a 3×3 matrix, or `None` when it is (nearly) singular.
+fn inverse3(m: &[[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
+    let c = |r: usize, k: usize| {
+        let (r1, r2) = ((r + 1) % 3, (r + 2) % 3);
+        let (k1, k2) = ((k + 1) % 3, (k + 2) % 3);
+        m[r1][k1] * m[r2][k2] - m[r1][k2] * m[r2][k1]
+    };
+    let det = m[0][0] * c(0, 0) + m[0][1] * c(0, 1) + m[0][2] * c(0, 2);
+    if !det.is_finite() || det.abs() < f64::MIN_POSITIVE * 1e10 {
+        return None;
+    }
+    // inverse[i][j] = cofactor(j, i) / det
+    Some([0, 1, 2].map(|i| [0, 1, 2].map(|j| c(j, i) / det)))
+}
+
+impl Interp {
+    fn new<F: DepthFormat>(cfg: &CameraConfig, map: &MapView<'_, F>, id: u32, t: &SceneTriangle) -> Self {
+        let to_clip = |m: &Mat4, p: Vec3| (*m * p.extend(1.0)).to_array().map(f64::from);
+        let c = t.positions.map(|p| to_clip(&cfg.camera, p));
+        let l = t.positions.map(|p| to_clip(&cfg.light, p));
+        let (wc, hc) = (f64::from(cfg.width), f64::from(cfg.height));
+        // Columns (cₓ, c_y, c_w) per vertex; A maps pixels to NDC.
+        let m = [[c[0][0], c[1][0], c[2][0]], [c[0][1], c[1][1], c[2][1]], [c[0][3], c[1][3], c[2][3]]];
+        let a = [[2.0 / wc, 0.0, -1.0], [0.0, -2.0 / hc, 1.0], [0.0, 0.0, 1.0]];
+        let raster = *map.raster();
+        let face = (t.positions[1] - t.positions[0]).cross(t.positions[2] - t.positions[0]);
+        let mut out = Self {
+            id,
+            light: None,
+            normal: [[0.0; 3]; 3],
+            world: [[0.0; 3]; 4],
+            plane: None,
+            face,
+            footprint: [MapCoord::ZERO; 2],
+        };
+        let Some(minv) = inverse3(&m) else { return out };
+        let k: [[f64; 3]; 3] = [0, 1, 2].map(|i| [0, 1, 2].map(|j| (0..3).map(|x| minv[i][x] * a[x][j]).sum()));
+        let light_rows: [[f64; 3]; 4] = [0, 1, 2, 3].map(|r| [l[0][r], l[1][r], l[2][r]]);
+        let lr = through(&light_rows, &k);
+        let (wm, hm) = (f64::from(raster.width()), f64::from(raster.height()));
+        let u = [0, 1, 2].map(|j| (lr[0][j] + lr[3][j]) * wm / 2.0);
+        let v = [0, 1, 2].map(|j| (lr[3][j] - lr[1][j]) * hm / 2.0);
+        let forms = [u, v, lr[2], lr[3]];
+        let normals: [[f64; 3]; 3] = [0, 1, 2].map(|r| t.normals.map(|n| f64::from(n.to_array()[r])));
+        out.normal = through(&normals, &k);
+        let world: [[f64; 3]; 4] =
+            [0, 1, 2, 3].map(|r| t.positions.map(|p| if r == 3 { 1.0 } else { f64::from(p.to_array()[r]) }));
+        out.world = through(&world, &k);
+        // Scale so |Λw| stays near 2⁴⁴ over the target, in integers.
+        let w = forms[3];
+        let reach = w[0].abs() * wc + w[1].abs() * hc + w[2].abs();
+        if reach.is_finite() && reach > 0.0 {
+            let sigma = DENOMINATOR_SCALE / reach;
+            let fixed = |x: f64| {
+                let v = x * sigma;
+                (v.is_finite() && v.abs() < 9.0e18).then(|| crate::round::round_ties_even(v))
+            };
+            let mut ints = [[0i64; 3]; 4];
+            let mut ok = true;
+            for (row, f) in ints.iter_mut().zip(&forms) {
+                for (slot, &x) in row.iter_mut().zip(f) {
+                    match fixed(x) {
+                        Some(v) => *slot = v,
+                        None => ok = false,
+                    }
+                }
+            }
+            if ok {
+                out.light = Some(ints);
+            }
+            // Reeves' footprint: the pixel's half-extent on the map at the centroid.
+            let cs = [c[0], c[1], c[2]].map(|v| {
+                if v[3] > 0.0 { [(v[0] / v[3] + 1.0) * wc / 2.0, (1.0 - v[1] / v[3]) * hc / 2.0] } else { [0.0, 0.0] }
+            });
+            let s = [(cs[0][0] + cs[1][0] + cs[2][0]) / 3.0, (cs[0][1] + cs[1][1] + cs[2][1]) / 3.0, 1.0];
+            let wv = dot3(&w, &s);
+            if wv > 0.0 {
+                let d = |f: &[f64; 3], axis: usize| (f[axis] * wv - dot3(f, &s) * w[axis]) / (wv * wv);
+                let half = |f: &[f64; 3]| MapCoord::saturating_from_num(0.5 * (d(f, 0).abs() + d(f, 1).abs()));
+                out.footprint = [half(&u), half(&v)];
+            }
+        }
+        // The light pass's own plane for this triangle, when it can be set up.
+        let guard = raster.guard();
+        if l.iter().all(|v| inside_all(v, guard))
+            && let [Some(a), Some(b), Some(cc)] = l.map(|v| raster.snap::<F>(&v))
+            && let Ok(setup) = Setup::new(&raster, [a, b, cc], CullMode::None, id)
+        {
+            out.plane = Some(setup.plane);
+        }
+        out
+    }
+
+    /// The light point of pixel `(px, py)`; `None` behind the light.
+    fn light_point<F: DepthFormat>(&self, px: u32, py: u32) -> Option<LightPoint> {
+        let f = self.light?;
+        let (sx, sy) = (i128::from(px) * 2 + 1, i128::from(py) * 2 + 1);
+        let eval = |r: &[i64; 3]| i128::from(r[0]) * sx + i128::from(r[1]) * sy + 2 * i128::from(r[2]);
+        let w = eval(&f[3]);
+        if w <= 0 {
+            return None;
+        }
+        let coord = |n: i128| {
+            let q = n.checked_mul(1 << 16)? / w;
+            Some(MapCoord::from_bits(i32::try_from(q.clamp(i128::from(i32::MIN), i128::from(i32::MAX))).ok()?))
+        };
+        let z = eval(&f[2]).checked_mul(i128::from(F::SCALE) << PLANE_FRACTION_BITS)? / w;
+        let z = PlaneZ::from_bits(i64::try_from(z.clamp(i128::from(i64::MIN), i128::from(i64::MAX))).ok()?);
+        Some(LightPoint { x: coord(eval(&f[0]))?, y: coord(eval(&f[1]))?, z })
+    }
+
+    /// The depth of the light pass's plane at a map position, and its slopes.
+    fn plane_at(&self, p: &LightPoint) -> Option<(PlaneZ, Slope)> {
+        let plane = self.plane?;
+        let off = |c: MapCoord| i128::from(c.to_bits()) - (1 << 15);
+        let z = plane.c + ((plane.a * off(p.x) + plane.b * off(p.y)) >> 16);
+        let sat = |v: i128| i64::try_from(v.clamp(i128::from(i64::MIN), i128::from(i64::MAX))).unwrap_or(0);
+        Some((PlaneZ::from_bits(sat(z)), Slope { du: sat(plane.a), dv: sat(plane.b) }))
+    }
+
+    fn at_pixel(rows: &[[f64; 3]], px: u32, py: u32) -> impl Iterator<Item = f64> + '_ {
+        let s = [f64::from(px) + 0.5, f64::from(py) + 0.5, 1.0];
+        rows.iter().map(move |r| dot3(r, &s))
+    }
+}
+
+/// A 64-bit mix of the seed and the pixel (splitmix64's finaliser).
+fn pixel_seed(seed: u64, px: u32, py: u32) -> u64 {
+    let mut z = seed ^ (u64::from(px) << 32 | u64::from(py)).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+/// Shade every pixel: `ids` from the visibility unit, `out` receives one
+/// [`Shaded`] per pixel, row-major.
+///
+/// # Errors
+/// [`ConfigError::BufferLength`] when `ids` or `out` is not `width × height`.
+pub fn shade<F: DepthFormat, S: TriangleSource, P: Probe>(
+    cfg: &CameraConfig,
+    ids: &[u32],
+    map: &MapView<'_, F>,
+    scene: &S,
+    out: &mut [Shaded],
+    probe: &mut P,
+) -> Result<(), ConfigError> {
+    let texels = cfg.width as usize * cfg.height as usize;
+    for (buffer, found) in [("ids", ids.len()), ("out", out.len())] {
+        if found != texels {
+            return Err(ConfigError::BufferLength { buffer, expected: texels, found });
+        }
+    }
+    let light_inverse_transpose = cfg.light.inverse().transpose();
+    let mut cache: [Option<Interp>; SETUP_CACHE] = [None; SETUP_CACHE];
+    for (i, (&id, o)) in ids.iter().zip(out.iter_mut()).enumerate() {
+        let width = cfg.width as usize;
+        let (Ok(px), Ok(py)) = (u32::try_from(i % width), u32::try_from(i / width)) else { break };
+        let Some(tri) = (id != NO_TRIANGLE).then(|| scene.triangle(id)).flatten() else {
+            *o = Shaded::BACKGROUND;
+            continue;
+        };
+        let slot = id as usize % SETUP_CACHE;
+        let interp = match cache[slot] {
+            Some(c) if c.id == id => c,
+            _ => {
+                let c = Interp::new::<F>(cfg, map, id, &tri);
+                cache[slot] = Some(c);
+                c
+            }
+        };
+        let normal = {
+            let mut n = Interp::at_pixel(&interp.normal, px, py);
+            let mut next = || {
+                #[allow(clippy::cast_possible_truncation, reason = "a direction, normalised next")]
+                let c = n.next().unwrap_or(0.0) as f32;
+                c
+            };
+            Vec3::new(next(), next(), next()).normalize_or_zero()
+        };
+        let Some(point) = interp.light_point::<F>(px, py) else {
+            *o = Shaded { triangle: id, light: None, normal, shadow: Shadow::ZERO };
+            continue;
+        };
+        let flat = if cfg.normals == Normals::Flat { interp.plane_at(&point) } else { None };
+        let z = flat.map_or(point.z, |(z, _)| z);
+        let lookup = Lookup {
+            x: point.x,
+            y: point.y,
+            z,
+            footprint: interp.footprint,
+            seed: pixel_seed(cfg.seed, px, py),
+            slope: None,
+        };
+        let s = if cfg.virtual_samples {
+            let raster = *map.raster();
+            let tangent = || match (cfg.normals, flat) {
+                (Normals::Flat, Some((_, slope))) => Some(slope),
+                (Normals::Flat, None) => {
+                    let p = tri.positions[0];
+                    TangentPlane::new(p, interp.face, &light_inverse_transpose).slope::<F>(&raster)
+                }
+                (Normals::Smooth, _) => {
+                    let mut w = Interp::at_pixel(&interp.world, px, py);
+                    let (x, y, zz, ww) = (w.next()?, w.next()?, w.next()?, w.next()?);
+                    #[allow(clippy::cast_possible_truncation, reason = "a world point, as the scene gives it")]
+                    let p = Vec3::new((x / ww) as f32, (y / ww) as f32, (zz / ww) as f32);
+                    TangentPlane::new(p, normal, &light_inverse_transpose).slope::<F>(&raster)
+                }
+            };
+            shadow_with_virtual_samples(map, &cfg.shadow, &lookup, tangent, probe)
+        } else {
+            shadow(map, &cfg.shadow, &lookup, probe)
+        };
+        *o = Shaded { triangle: id, light: Some(LightPoint { z, ..point }), normal, shadow: s };
+    }
+    Ok(())
+}
