@@ -69,8 +69,8 @@ const HALF: MapCoord = MapCoord::from_bits(1 << 15);
 pub enum DepthTest {
     /// Nearest depth `z1`.
     First,
-    /// Second-nearest depth `z2` (dual unit, or front-face culling into `z1`
-    /// of a single unit: then use [`DepthTest::First`] on that map).
+    /// Second-nearest depth `z2`: from the dual unit, or the single buffer
+    /// of a front-face-culled pass ([`MapView::front_culled`]).
     Second,
     /// Woo's midpoint `(z1 + z2) / 2`.
     Midpoint,
@@ -282,6 +282,8 @@ pub struct MapView<'a, F: DepthFormat> {
     z1: &'a [F::Texel],
     z2: &'a [F::Texel],
     tiles: &'a [TileState<F::Texel>],
+    /// The second depth is the single buffer of a front-face-culled pass.
+    second_in_z1: bool,
 }
 
 impl<'a, F: DepthFormat> MapView<'a, F> {
@@ -312,7 +314,22 @@ impl<'a, F: DepthFormat> MapView<'a, F> {
         if tiles.len() != raster.tile_count() {
             return Err(wrong("tiles", raster.tile_count(), tiles.len()));
         }
-        Ok(Self { raster, z1, z2, tiles })
+        Ok(Self { raster, z1, z2, tiles, second_in_z1: false })
+    }
+
+    /// View the map of a single-depth pass with front-face culling: its one
+    /// buffer holds the second depth (Wang & Molnar 1994 §3.4), which
+    /// [`DepthTest::Second`] then reads (so do the tests that need `z1`:
+    /// there is no first depth in such a map).
+    ///
+    /// # Errors
+    /// [`crate::ConfigError::BufferLength`] naming a buffer of the wrong length.
+    pub fn front_culled(
+        raster: RasterConfig,
+        z: &'a [F::Texel],
+        tiles: &'a [TileState<F::Texel>],
+    ) -> Result<Self, crate::ConfigError> {
+        Ok(Self { second_in_z1: true, ..Self::new(raster, z, &[], tiles)? })
     }
 
     /// Texel `(x, y)` of `buf` widened to [`PlaneZ`] bits; the far value
@@ -325,7 +342,8 @@ impl<'a, F: DepthFormat> MapView<'a, F> {
 
     fn reference(&self, test: DepthTest, x: u32, y: u32) -> i64 {
         let z1 = if test.needs_z1() { self.texel(self.z1, x, y) } else { 0 };
-        let z2 = if test.needs_z2() { self.texel(self.z2, x, y) } else { 0 };
+        let second = if self.second_in_z1 { self.z1 } else { self.z2 };
+        let z2 = if test.needs_z2() { self.texel(second, x, y) } else { 0 };
         test.reference(z1, z2)
     }
 }
@@ -635,9 +653,14 @@ fn reference_bounds<F: DepthFormat>(map: &MapView<'_, F>, test: DepthTest, r: &T
         for tx in (r.x0 >> shift)..=((r.x1 - 1) >> shift) {
             let (Ok(x), Ok(y)) = (u16::try_from(tx), u16::try_from(ty)) else { continue };
             let Some(t) = map.tiles.get(map.raster.tile_index(TileId { x, y })) else { continue };
-            let z2_known = !map.z2.is_empty();
             let far = F::widen(F::FAR);
-            let (z2_min, z2_max) = if z2_known { (F::widen(t.z2_min), F::widen(t.z2_max)) } else { (far, far) };
+            let (z2_min, z2_max) = if map.second_in_z1 {
+                (F::widen(t.z1_min), F::widen(t.z1_max))
+            } else if map.z2.is_empty() {
+                (far, far)
+            } else {
+                (F::widen(t.z2_min), F::widen(t.z2_max))
+            };
             lo = lo.min(test.reference(F::widen(t.z1_min), z2_min));
             hi = hi.max(test.reference(F::widen(t.z1_max), z2_max));
         }

@@ -221,3 +221,42 @@ fn culled_camera_pass_equals_unculled() {
         }
     }
 }
+
+/// Second depth from front-face culling: for a scene of closed solids the
+/// single culled buffer is the dual unit's `z2`, so the camera pass gives
+/// the same verdicts either way.
+#[test]
+fn front_face_culled_map_gives_the_dual_verdicts() {
+    let mut scene = Scene { tris: Vec::new() };
+    scene.cuboid(Vec3::new(-3.0, -0.3, -3.0), Vec3::new(3.0, 0.0, 3.0));
+    scene.cuboid(Vec3::new(-0.5, 0.4, -0.5), Vec3::new(0.5, 1.0, 0.2));
+    let light = perspective(Vec3::new(1.0, 5.0, 1.5), Vec3::ZERO, 1.4, 1.0, 20.0);
+    let cfg = config(128, 16, DepthUnit::Single, true);
+    let (ffc, _) = run::<D24, _, 64>(cfg, &scene.clip(&light, false), CullMode::Front, 4096, NoProbe);
+    let dual_cfg = config(128, 16, DepthUnit::Dual, true);
+    let (dual, _) = run::<D24, _, 64>(dual_cfg, &scene.clip(&light, false), CullMode::None, 4096, NoProbe);
+    let (ids, _, _) = run_visibility::<D24>(CAMERA, 16, &scene.clip(&camera(), false), true);
+    let source = |id: u32| scene.tris.get(id as usize).copied();
+    for filter in filters() {
+        let cam = CameraConfig {
+            camera: camera(),
+            light,
+            width: CAMERA,
+            height: CAMERA,
+            shadow: second(filter),
+            virtual_samples: true,
+            normals: Normals::Flat,
+            seed: 3,
+        };
+        let shade_with = |view: &MapView<'_, D24>| {
+            let mut out = vec![Shaded::BACKGROUND; (CAMERA * CAMERA) as usize];
+            shade(&cam, &ids, view, &source, &mut out, &mut NoProbe).expect("sized");
+            out
+        };
+        let a = shade_with(&MapView::front_culled(cfg.raster, &ffc.z1, &ffc.tiles).expect("sized"));
+        let b = shade_with(&MapView::new(dual_cfg.raster, &dual.z1, &dual.z2, &dual.tiles).expect("sized"));
+        assert_eq!(ffc.z1, dual.z2, "the culled buffer is the second depth");
+        assert_eq!(a, b, "{filter:?}");
+        assert!(a.iter().any(|s| s.shadow == Shadow::ONE), "the small box shadows the slab");
+    }
+}
