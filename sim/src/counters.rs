@@ -63,6 +63,14 @@ pub struct Totals {
     pub map_read_bytes: u64,
     /// Lookups decided without reading a texel.
     pub lookups_culled: u64,
+    /// Receiver depths evaluated on tangent planes.
+    pub virtual_samples: u64,
+    /// Tangent planes set up (pixels that needed virtual samples).
+    pub tangent_setups: u64,
+    /// Tangent planes too close to the light ray: ordinary comparison kept.
+    pub tangent_fallbacks: u64,
+    /// Pixels decided by the ordinary comparison alone.
+    pub trivial_pixels: u64,
 }
 
 /// What happened in one tile.
@@ -172,6 +180,10 @@ impl Probe for Counters {
                 t.map_read_bytes += u64::from(bytes);
             }
             Event::LookupCulled { .. } => t.lookups_culled += 1,
+            Event::VirtualSamples { count } => t.virtual_samples += u64::from(count),
+            Event::TangentSetup => t.tangent_setups += 1,
+            Event::TangentFallback => t.tangent_fallbacks += 1,
+            Event::TrivialPixel { .. } => t.trivial_pixels += 1,
             _ => {}
         }
     }

@@ -113,3 +113,37 @@ pub fn write_text(path: &Path, text: &str) -> Result<(), OutputError> {
     }
     std::fs::write(path, text).map_err(io(path))
 }
+
+/// Write the camera pass as a picture a person can read: surfaces grey by
+/// their facing to the light (`light_dir`, from the light into the scene;
+/// faces turned away are dark), shadowed parts dark in proportion to the
+/// shadow fraction, the background black.
+///
+/// # Errors
+/// [`OutputError::Image`].
+pub fn write_shadow_image(
+    path: &Path,
+    image: &crate::camera::CameraImage,
+    light_dir: umbra_core::glam::Vec3,
+) -> Result<(), OutputError> {
+    let to_light = -light_dir.normalize_or_zero();
+    let pixels: Vec<u8> = image
+        .pixels
+        .iter()
+        .map(|p| {
+            if p.triangle == umbra_core::NO_TRIANGLE {
+                return 0;
+            }
+            let lambert = f64::from(p.normal.dot(to_light).max(0.0));
+            let lit = 1.0 - p.shadow.to_num::<f64>();
+            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "clamped to 40..=255")]
+            let g = (40.0 + 215.0 * lit * lambert).round().clamp(40.0, 255.0) as u8;
+            g
+        })
+        .collect();
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir).map_err(io(path))?;
+    }
+    image::save_buffer(path, &pixels, image.width, image.height, image::ColorType::L8)
+        .map_err(|source| OutputError::Image { path: path.to_owned(), source })
+}

@@ -17,10 +17,10 @@ pub struct Object {
     pub solid: bool,
 }
 
-/// A perspective spot light.
+/// A perspective view: a spot light, or the camera.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SpotLight {
-    /// Where the light is.
+pub struct Perspective {
+    /// Where the eye is.
     pub position: Vec3,
     /// The point it looks at.
     pub target: Vec3,
@@ -32,15 +32,22 @@ pub struct SpotLight {
     pub far: f32,
 }
 
-impl SpotLight {
-    /// World space to light clip space (depth `[0, 1]`, y up, right-handed).
+impl Perspective {
+    /// World space to clip space (depth `[0, 1]`, y up, right-handed).
     #[must_use]
     pub fn view_projection(&self) -> Mat4 {
+        self.view_projection_aspect(1.0)
+    }
+
+    /// The same for a target `aspect = width / height` (the field of view
+    /// is vertical).
+    #[must_use]
+    pub fn view_projection_aspect(&self, aspect: f32) -> Mat4 {
         let dir = (self.target - self.position).normalize_or(Vec3::NEG_Y);
         let up = if dir.cross(Vec3::Y).length_squared() < 1e-6 { Vec3::Z } else { Vec3::Y };
         let view = glam::camera::rh::view::look_at_mat4(self.position, self.target, up);
         let proj =
-            glam::camera::rh::proj::directx::perspective(self.fov_degrees.to_radians(), 1.0, self.near, self.far);
+            glam::camera::rh::proj::directx::perspective(self.fov_degrees.to_radians(), aspect, self.near, self.far);
         proj * view
     }
 }
@@ -53,7 +60,9 @@ pub struct Scene {
     /// The objects.
     pub objects: Vec<Object>,
     /// The light.
-    pub light: SpotLight,
+    pub light: Perspective,
+    /// The camera.
+    pub camera: Perspective,
 }
 
 impl Scene {
@@ -72,14 +81,37 @@ impl Scene {
                 Object { name: "table".into(), mesh: table, solid: true },
                 Object { name: "sphere".into(), mesh: sphere, solid: true },
             ],
-            light: SpotLight {
+            light: Perspective {
                 position: Vec3::new(1.5, 6.0, 2.5),
                 target: Vec3::new(0.5, 0.0, 0.3),
                 fov_degrees: 70.0,
                 near: 2.0,
                 far: 10.0,
             },
+            camera: Perspective {
+                position: Vec3::new(-2.5, 3.0, 5.0),
+                target: Vec3::new(0.5, 0.3, 0.3),
+                fov_degrees: 50.0,
+                near: 0.5,
+                far: 20.0,
+            },
         }
+    }
+
+    /// Every triangle of every object in draw order, with flat normals: the
+    /// ids the visibility unit records index this list.
+    #[must_use]
+    pub fn triangles(&self) -> Vec<umbra_core::camera::SceneTriangle> {
+        self.objects
+            .iter()
+            .flat_map(|o| {
+                o.mesh.triangles.iter().map(|t| {
+                    let p = t.map(|i| o.mesh.positions.get(i as usize).copied().unwrap_or(Vec3::ZERO));
+                    let n = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero();
+                    umbra_core::camera::SceneTriangle { positions: p, normals: [n; 3] }
+                })
+            })
+            .collect()
     }
 
     /// One draw call per object under `transform`, all with cull mode `cull`.

@@ -9,7 +9,7 @@ use umbra::sim::counters::Counters;
 use umbra::sim::light::{Draw, raw_far, render_raw};
 use umbra::sim::mesh::{Mesh, MeshError};
 use umbra::sim::output::{RawMap, write_npy};
-use umbra::sim::scene::{MatrixError, Scene, SpotLight, parse_matrix};
+use umbra::sim::scene::{MatrixError, Perspective, Scene, parse_matrix};
 
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("umbra-test-{}-{name}", std::process::id()));
@@ -70,7 +70,7 @@ fn shared_meshes_all_render() {
         let (lo, hi) = mesh.bounds().expect("vertices");
         let c = (lo + hi) / 2.0;
         let r = (hi - lo).length() / 2.0;
-        let light = SpotLight {
+        let light = Perspective {
             position: c + umbra::core::glam::Vec3::new(0.3, 1.0, 0.6).normalize() * 3.0 * r,
             target: c,
             fov_degrees: 45.0,
