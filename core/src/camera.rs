@@ -116,7 +116,8 @@ pub struct Shaded {
     /// The surface point in light space; `None` for the background and for
     /// points behind the light.
     pub light: Option<LightPoint>,
-    /// The interpolated normal (unit length; zero for the background).
+    /// The interpolated normal, perspective-correct but not normalised
+    /// (only its direction is meaningful; zero for the background).
     pub normal: Vec3,
     /// The fraction in shadow.
     pub shadow: Shadow,
@@ -341,7 +342,7 @@ pub fn shade<F: DepthFormat, S: TriangleSource, P: Probe>(
                 let c = n.next().unwrap_or(0.0) as f32;
                 c
             };
-            Vec3::new(next(), next(), next()).normalize_or_zero()
+            Vec3::new(next(), next(), next())
         };
         let Some(point) = interp.light_point::<F>(px, py) else {
             *o = Shaded { triangle: id, light: None, normal, shadow: Shadow::ZERO };

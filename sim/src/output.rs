@@ -134,7 +134,7 @@ pub fn write_shadow_image(
             if p.triangle == umbra_core::NO_TRIANGLE {
                 return 0;
             }
-            let lambert = f64::from(p.normal.dot(to_light).max(0.0));
+            let lambert = f64::from(p.normal.normalize_or_zero().dot(to_light).max(0.0));
             let lit = 1.0 - p.shadow.to_num::<f64>();
             #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "clamped to 40..=255")]
             let g = (40.0 + 215.0 * lit * lambert).round().clamp(40.0, 255.0) as u8;

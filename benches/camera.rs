@@ -1,0 +1,53 @@
+//! The camera pass at 1920×1080 on one core, per filter: visibility with
+//! the camera's matrix, then shading against a 1024² dual 24-bit map of the
+//! bundled default scene (second depth, virtual samples). Also prints the
+//! fraction of covered pixels that needed virtual samples.
+#![allow(missing_docs, clippy::cast_precision_loss, reason = "bench harness")]
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use std::hint::black_box;
+use umbra::core::shadow::{Bias, DepthTest, Filter, Jitter, ShadowConfig};
+use umbra::core::{CullMode, D24, DepthUnit, LightPassConfig, NO_TRIANGLE, NoProbe, RasterConfig};
+use umbra::sim::camera::render_camera;
+use umbra::sim::counters::Counters;
+use umbra::sim::light::render;
+use umbra::sim::scene::Scene;
+
+const W: u32 = 1920;
+const H: u32 = 1080;
+
+fn bench_camera(c: &mut Criterion) {
+    let scene = Scene::default_scene();
+    let raster = RasterConfig::new(1024, 1024, 32, 8).expect("valid");
+    let config = LightPassConfig { raster, unit: DepthUnit::Dual, max_z_cull: true };
+    let (maps, _) = render::<D24, _>(config, &scene.draws(scene.light.view_projection(), CullMode::None), NoProbe)
+        .expect("renders");
+    let filters = [
+        ("point", Filter::Point),
+        ("bilinear", Filter::Bilinear),
+        ("box3", Filter::Box { size: 3 }),
+        ("jitter4", Filter::Jittered(Jitter { num_samples: 4, ..Jitter::REEVES })),
+        ("jitter16", Filter::Jittered(Jitter::REEVES)),
+    ];
+    let mut g = c.benchmark_group("camera_pass_1080p");
+    g.sample_size(10);
+    g.throughput(Throughput::Elements(u64::from(W * H)));
+    for (name, filter) in filters {
+        let shadow = ShadowConfig::new(DepthTest::Second, Bias::ZERO, filter, true).expect("valid");
+        let mut counters = Counters::new(&RasterConfig::new(W, H, 32, 8).expect("valid"));
+        let image = render_camera::<D24, _>(&scene, &maps, false, shadow, true, W, H, &mut counters).expect("renders");
+        let covered = image.pixels.iter().filter(|p| p.triangle != NO_TRIANGLE).count() as f64;
+        eprintln!(
+            "{name}: virtual samples for {:.2} % of {covered} covered pixels, {} lookups culled",
+            100.0 * counters.totals.tangent_setups as f64 / covered,
+            counters.totals.lookups_culled
+        );
+        g.bench_function(BenchmarkId::new(name, "virtual_samples"), |b| {
+            b.iter(|| black_box(render_camera::<D24, _>(&scene, &maps, false, shadow, true, W, H, &mut NoProbe)))
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench_camera);
+criterion_main!(benches);
