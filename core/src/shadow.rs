@@ -121,6 +121,13 @@ pub enum Bias {
     },
 }
 
+impl Default for Bias {
+    /// No bias: Wang & Molnar's default for second depth.
+    fn default() -> Self {
+        Self::ZERO
+    }
+}
+
 impl Bias {
     /// No bias.
     pub const ZERO: Self = Self::Constant(PlaneZ::ZERO);

@@ -260,3 +260,51 @@ fn front_face_culled_map_gives_the_dual_verdicts() {
         assert!(a.iter().any(|s| s.shadow == Shadow::ONE), "the small box shadows the slab");
     }
 }
+
+fn wild() -> impl Strategy<Value = f32> {
+    prop_oneof![4 => -3.0f32..3.0, 1 => Just(f32::NAN), 1 => Just(f32::INFINITY), 1 => Just(1.0e30f32), 1 => Just(0.0f32)]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Any matrices and triangles, NaN and infinities included: the camera
+    /// pass never panics and every fraction stays in [0, 1].
+    #[test]
+    fn the_camera_pass_takes_any_input(
+        cam in prop::array::uniform16(wild()),
+        light in prop::array::uniform16(wild()),
+        verts in prop::collection::vec(prop::array::uniform3((wild(), wild(), wild())), 1..6),
+        smooth in any::<bool>(),
+    ) {
+        let tris: Vec<SceneTriangle> = verts
+            .iter()
+            .map(|t| {
+                let p = t.map(|(x, y, z)| Vec3::new(x, y, z));
+                SceneTriangle { positions: p, normals: [p[0], p[1], p[2]] }
+            })
+            .collect();
+        let (cam, light) = (Mat4::from_cols_array(&cam), Mat4::from_cols_array(&light));
+        let clip = |m: &Mat4| tris.iter().map(|t| t.positions.map(|p| *m * p.extend(1.0))).collect::<Vec<_>>();
+        let cfg = config(32, 8, DepthUnit::Dual, true);
+        let (maps, _) = run::<D16, _, 8>(cfg, &clip(&light), CullMode::None, 16, NoProbe);
+        let view = MapView::<D16>::new(cfg.raster, &maps.z1, &maps.z2, &maps.tiles).expect("sized");
+        let (ids, _, _) = run_visibility::<D24>(CAMERA, 16, &clip(&cam), true);
+        for filter in filters() {
+            let c = CameraConfig {
+                camera: cam,
+                light,
+                width: CAMERA,
+                height: CAMERA,
+                shadow: second(filter),
+                virtual_samples: true,
+                normals: if smooth { Normals::Smooth } else { Normals::Flat },
+                seed: 1,
+            };
+            let mut out = vec![Shaded::BACKGROUND; (CAMERA * CAMERA) as usize];
+            let source = |id: u32| tris.get(id as usize).copied();
+            shade(&c, &ids, &view, &source, &mut out, &mut NoProbe).expect("sized");
+            prop_assert!(out.iter().all(|s| s.shadow <= Shadow::ONE));
+        }
+    }
+}
