@@ -6,7 +6,7 @@
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use std::hint::black_box;
-use umbra::core::shadow::{Bias, DepthTest, Filter, Jitter, ShadowConfig};
+use umbra::core::shadow::{Bias, DepthTest, ShadowConfig};
 use umbra::core::{CullMode, D24, DepthUnit, LightPassConfig, NO_TRIANGLE, NoProbe, RasterConfig};
 use umbra::sim::camera::render_camera;
 use umbra::sim::counters::Counters;
@@ -22,13 +22,7 @@ fn bench_camera(c: &mut Criterion) {
     let config = LightPassConfig { raster, unit: DepthUnit::Dual, max_z_cull: true };
     let (maps, _) = render::<D24, _>(config, &scene.draws(scene.light.view_projection(), CullMode::None), NoProbe)
         .expect("renders");
-    let filters = [
-        ("point", Filter::Point),
-        ("bilinear", Filter::Bilinear),
-        ("box3", Filter::Box { size: 3 }),
-        ("jitter4", Filter::Jittered(Jitter { num_samples: 4, ..Jitter::REEVES })),
-        ("jitter16", Filter::Jittered(Jitter::REEVES)),
-    ];
+    let filters = umbra::sim::presets::FILTERS;
     let mut g = c.benchmark_group("camera_pass_1080p");
     g.sample_size(10);
     g.throughput(Throughput::Elements(u64::from(W * H)));

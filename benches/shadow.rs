@@ -13,7 +13,7 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 use std::hint::black_box;
 use umbra::core::depth::PlaneZ;
 use umbra::core::glam::{Mat4, Vec3};
-use umbra::core::shadow::{Bias, DepthTest, Filter, Jitter, Lookup, MapCoord, MapView, ShadowConfig, shadow};
+use umbra::core::shadow::{Bias, DepthTest, Lookup, MapCoord, MapView, ShadowConfig, shadow};
 use umbra::core::{CullMode, D24, DepthFormat, DepthUnit, LightPassConfig, NoProbe, RasterConfig};
 use umbra::sim::light::{Draw, LightMaps, render};
 
@@ -69,13 +69,7 @@ fn bench_lookups(c: &mut Criterion) {
     let mut g = c.benchmark_group("shadow_lookups_1080p");
     g.sample_size(10);
     g.throughput(Throughput::Elements(u64::from(W * H)));
-    let filters = [
-        ("point", Filter::Point),
-        ("bilinear", Filter::Bilinear),
-        ("box3", Filter::Box { size: 3 }),
-        ("jitter4", Filter::Jittered(Jitter { num_samples: 4, ..Jitter::REEVES })),
-        ("jitter16", Filter::Jittered(Jitter::REEVES)),
-    ];
+    let filters = umbra::sim::presets::FILTERS;
     for (name, filter) in filters {
         for cull in [false, true] {
             let cfg = ShadowConfig::new(DepthTest::Second, Bias::ZERO, filter, cull).expect("valid");

@@ -6,6 +6,7 @@ pub mod counters;
 pub mod light;
 pub mod mesh;
 pub mod output;
+pub mod presets;
 pub mod scene;
 
 pub use glam;

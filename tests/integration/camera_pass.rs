@@ -4,11 +4,11 @@
 use proptest::prelude::*;
 use umbra::core::camera::{CameraConfig, Normals, SceneTriangle, Shaded, shade};
 use umbra::core::glam::{Mat4, Vec3, Vec4};
-use umbra::core::probe::{Event, Probe};
+use umbra::core::probe::Probe;
 use umbra::core::shadow::{Bias, DepthTest, Filter, Jitter, MapView, Shadow, ShadowConfig};
 use umbra::core::{CullMode, D16, D24, DepthFormat, DepthUnit, F32, NO_TRIANGLE, NoProbe};
 
-use crate::common::{config, run, run_visibility};
+use crate::common::{ShadowEvents, config, run, run_visibility};
 
 const CAMERA: u32 = 64;
 
@@ -66,20 +66,16 @@ fn render<F: DepthFormat, P: Probe>(
     let (maps, _) = run::<F, _, 64>(cfg, &scene.clip(&light, true), CullMode::None, 4096, NoProbe);
     let view = MapView::<F>::new(cfg.raster, &maps.z1, &maps.z2, &maps.tiles).expect("sized");
     let (ids, _, _) = run_visibility::<D24>(CAMERA, 16, &scene.clip(&camera(), false), true);
-    let cam = CameraConfig {
-        camera: camera(),
-        light,
-        width: CAMERA,
-        height: CAMERA,
-        shadow: shadow_cfg,
-        virtual_samples: true,
-        normals,
-        seed: 7,
-    };
+    let cam = camera_config(light, shadow_cfg, true, normals);
     let mut out = vec![Shaded::BACKGROUND; (CAMERA * CAMERA) as usize];
     let source = |id: u32| scene.tris.get(id as usize).copied();
     shade(&cam, &ids, &view, &source, &mut out, probe).expect("sized");
     out
+}
+
+/// The camera of these tests, looking at the origin, shading with `shadow`.
+fn camera_config(light: Mat4, shadow: ShadowConfig, virtual_samples: bool, normals: Normals) -> CameraConfig {
+    CameraConfig { camera: camera(), light, width: CAMERA, height: CAMERA, shadow, virtual_samples, normals, seed: 7 }
 }
 
 fn filters() -> [Filter; 4] {
@@ -93,26 +89,6 @@ fn second(filter: Filter) -> ShadowConfig {
 /// A direction on the unit sphere from two angles.
 fn direction(theta: f32, phi: f32) -> Vec3 {
     Vec3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin())
-}
-
-#[derive(Default)]
-struct Counts {
-    setups: u64,
-    trivial: u64,
-    fallbacks: u64,
-    culled: u64,
-}
-
-impl Probe for Counts {
-    fn event(&mut self, e: Event) {
-        match e {
-            Event::TangentSetup => self.setups += 1,
-            Event::TrivialPixel { .. } => self.trivial += 1,
-            Event::TangentFallback => self.fallbacks += 1,
-            Event::LookupCulled { .. } => self.culled += 1,
-            _ => {}
-        }
-    }
 }
 
 proptest! {
@@ -129,7 +105,7 @@ proptest! {
         scene.add(Vec3::new(-4.0, 0.0, 3.0), Vec3::new(4.0, 0.0, 3.0), Vec3::new(0.0, 0.0, -5.0));
         let d = direction(theta, phi) * if below { -1.0 } else { 1.0 };
         let light = perspective(d * 6.0, Vec3::ZERO, 1.6, 1.0, 20.0);
-        let mut counts = Counts::default();
+        let mut counts = ShadowEvents::default();
         for size in [64, 128, 256] {
             for filter in filters() {
                 for (name, out) in [
@@ -159,16 +135,7 @@ fn acne_without_virtual_samples_and_a_plane_behind_a_box() {
     let (maps, _) = run::<D24, _, 64>(cfg, &scene.clip(&light, true), CullMode::None, 4096, NoProbe);
     let view = MapView::<D24>::new(cfg.raster, &maps.z1, &maps.z2, &maps.tiles).expect("sized");
     let (ids, _, _) = run_visibility::<D24>(CAMERA, 16, &scene.clip(&camera(), false), true);
-    let cam = CameraConfig {
-        camera: camera(),
-        light,
-        width: CAMERA,
-        height: CAMERA,
-        shadow: second(Filter::Box { size: 3 }),
-        virtual_samples: false,
-        normals: Normals::Flat,
-        seed: 7,
-    };
+    let cam = camera_config(light, second(Filter::Box { size: 3 }), false, Normals::Flat);
     let mut out = vec![Shaded::BACKGROUND; (CAMERA * CAMERA) as usize];
     let source = |id: u32| scene.tris.get(id as usize).copied();
     shade(&cam, &ids, &view, &source, &mut out, &mut NoProbe).expect("sized");
@@ -183,7 +150,7 @@ fn acne_without_virtual_samples_and_a_plane_behind_a_box() {
     scene.cuboid(Vec3::new(-2.5, -0.5, -3.0), Vec3::new(-2.0, 3.0, 3.0));
     let light = perspective(Vec3::new(-6.0, 3.0, 0.0), Vec3::ZERO, 1.2, 1.0, 20.0);
     for filter in filters() {
-        let mut counts = Counts::default();
+        let mut counts = ShadowEvents::default();
         let out = render::<D24, _>(&scene, light, 128, second(filter), Normals::Flat, &mut counts);
         let plane: Vec<&Shaded> = out.iter().filter(|s| s.triangle == 0).collect();
         assert!(!plane.is_empty());
@@ -210,7 +177,7 @@ fn culled_camera_pass_equals_unculled() {
             ] {
                 let on = ShadowConfig::new(test, Bias::Constant(D24::plane_z(0.0005)), filter, true).expect("valid");
                 let off = on.with_cull_lookups(false);
-                let mut counts = Counts::default();
+                let mut counts = ShadowEvents::default();
                 let culled = render::<D24, _>(&scene, light, 128, on, normals, &mut counts);
                 let plain = render::<D24, _>(&scene, light, 128, off, normals, &mut NoProbe);
                 assert_eq!(culled, plain, "{normals:?} {filter:?} {test:?}");
@@ -238,16 +205,7 @@ fn front_face_culled_map_gives_the_dual_verdicts() {
     let (ids, _, _) = run_visibility::<D24>(CAMERA, 16, &scene.clip(&camera(), false), true);
     let source = |id: u32| scene.tris.get(id as usize).copied();
     for filter in filters() {
-        let cam = CameraConfig {
-            camera: camera(),
-            light,
-            width: CAMERA,
-            height: CAMERA,
-            shadow: second(filter),
-            virtual_samples: true,
-            normals: Normals::Flat,
-            seed: 3,
-        };
+        let cam = camera_config(light, second(filter), true, Normals::Flat);
         let shade_with = |view: &MapView<'_, D24>| {
             let mut out = vec![Shaded::BACKGROUND; (CAMERA * CAMERA) as usize];
             shade(&cam, &ids, view, &source, &mut out, &mut NoProbe).expect("sized");
@@ -291,16 +249,8 @@ proptest! {
         let view = MapView::<D16>::new(cfg.raster, &maps.z1, &maps.z2, &maps.tiles).expect("sized");
         let (ids, _, _) = run_visibility::<D24>(CAMERA, 16, &clip(&cam), true);
         for filter in filters() {
-            let c = CameraConfig {
-                camera: cam,
-                light,
-                width: CAMERA,
-                height: CAMERA,
-                shadow: second(filter),
-                virtual_samples: true,
-                normals: if smooth { Normals::Smooth } else { Normals::Flat },
-                seed: 1,
-            };
+            let normals = if smooth { Normals::Smooth } else { Normals::Flat };
+            let c = CameraConfig { camera: cam, ..camera_config(light, second(filter), true, normals) };
             let mut out = vec![Shaded::BACKGROUND; (CAMERA * CAMERA) as usize];
             let source = |id: u32| tris.get(id as usize).copied();
             shade(&c, &ids, &view, &source, &mut out, &mut NoProbe).expect("sized");

@@ -50,6 +50,31 @@ impl Recorder {
     }
 }
 
+/// Counts the shadow and camera units' events.
+#[derive(Default, Debug, Clone)]
+pub struct ShadowEvents {
+    pub setups: u64,
+    pub trivial: u64,
+    pub fallbacks: u64,
+    pub culled: u64,
+    pub virtual_samples: u64,
+    pub read: u64,
+}
+
+impl Probe for ShadowEvents {
+    fn event(&mut self, e: Event) {
+        match e {
+            Event::TangentSetup => self.setups += 1,
+            Event::TrivialPixel { .. } => self.trivial += 1,
+            Event::TangentFallback => self.fallbacks += 1,
+            Event::LookupCulled { .. } => self.culled += 1,
+            Event::VirtualSamples { count } => self.virtual_samples += u64::from(count),
+            Event::MapRead { texels, .. } => self.read += u64::from(texels),
+            _ => {}
+        }
+    }
+}
+
 /// The buffers a pass left behind.
 pub struct Maps<T> {
     pub z1: Vec<T>,
@@ -65,6 +90,50 @@ pub fn config(size: u32, tile: u32, unit: DepthUnit, max_z_cull: bool) -> LightP
     }
 }
 
+/// Owned buffers for a pass, sized from its configuration.
+pub struct Buffers<F: DepthFormat, const B: usize> {
+    pub z1: Vec<F::Texel>,
+    pub z2: Vec<F::Texel>,
+    pub ids: Vec<u32>,
+    pub tiles: Vec<TileState<F::Texel>>,
+    bins: Vec<Bin<B>>,
+    setups: Vec<Setup>,
+}
+
+impl<F: DepthFormat, const B: usize> Buffers<F, B> {
+    /// Buffers for `cfg` with a setup store of `setups`; `ids` adds the
+    /// visibility unit's id buffer.
+    pub fn new(cfg: &LightPassConfig, setups: usize, ids: bool) -> Self {
+        let r = cfg.raster;
+        let n = r.texel_count();
+        Self {
+            z1: vec![F::Texel::default(); n],
+            z2: vec![F::Texel::default(); if cfg.unit == DepthUnit::Dual { n } else { 0 }],
+            ids: vec![0; if ids { n } else { 0 }],
+            tiles: vec![TileState::cleared(F::FAR, 0); r.tile_count()],
+            bins: vec![Bin::<B>::new(); r.tile_count()],
+            setups: vec![Setup::EMPTY; setups],
+        }
+    }
+
+    /// Start a pass over these buffers.
+    pub fn pass<P: Probe>(&mut self, cfg: LightPassConfig, probe: P) -> LightPass<'_, F, P, B> {
+        let buffers = LightBuffers {
+            z1: &mut self.z1,
+            z2: &mut self.z2,
+            ids: &mut self.ids,
+            tiles: &mut self.tiles,
+            bins: &mut self.bins,
+            setups: &mut self.setups,
+        };
+        LightPass::new(cfg, buffers, probe).expect("buffers sized from the configuration")
+    }
+
+    fn maps(self) -> Maps<F::Texel> {
+        Maps { z1: self.z1, z2: self.z2, tiles: self.tiles }
+    }
+}
+
 /// Run a light pass over clip-space triangles with bin capacity `B`.
 pub fn run<F: DepthFormat, P: Probe, const B: usize>(
     cfg: LightPassConfig,
@@ -73,21 +142,13 @@ pub fn run<F: DepthFormat, P: Probe, const B: usize>(
     setups: usize,
     probe: P,
 ) -> (Maps<F::Texel>, P) {
-    let r = cfg.raster;
-    let n = r.texel_count();
-    let mut z1 = vec![F::Texel::default(); n];
-    let mut z2 = vec![F::Texel::default(); if cfg.unit == DepthUnit::Dual { n } else { 0 }];
-    let mut tiles = vec![TileState::cleared(F::FAR, 0); r.tile_count()];
-    let mut bins = vec![Bin::<B>::new(); r.tile_count()];
-    let mut store = vec![Setup::EMPTY; setups];
-    let buffers =
-        LightBuffers { z1: &mut z1, z2: &mut z2, ids: &mut [], tiles: &mut tiles, bins: &mut bins, setups: &mut store };
-    let mut pass = LightPass::<F, P, B>::new(cfg, buffers, probe).expect("buffers sized from the configuration");
+    let mut b = Buffers::<F, B>::new(&cfg, setups, false);
+    let mut pass = b.pass(cfg, probe);
     for t in tris {
         pass.draw_clip(*t, cull);
     }
     let probe = pass.finish();
-    (Maps { z1, z2, tiles }, probe)
+    (b.maps(), probe)
 }
 
 /// Run the visibility unit (single depth with triangle ids) over clip-space
@@ -99,26 +160,13 @@ pub fn run_visibility<F: DepthFormat>(
     cull: bool,
 ) -> (Vec<u32>, Vec<F::Texel>, Recorder) {
     let cfg = config(size, tile, DepthUnit::Single, cull);
-    let r = cfg.raster;
-    let n = r.texel_count();
-    let (mut z1, mut ids) = (vec![F::Texel::default(); n], vec![0u32; n]);
-    let mut tiles = vec![TileState::cleared(F::FAR, 0); r.tile_count()];
-    let mut bins = vec![Bin::<8>::new(); r.tile_count()];
-    let mut store = vec![Setup::EMPTY; 16];
-    let buffers = LightBuffers {
-        z1: &mut z1,
-        z2: &mut [],
-        ids: &mut ids,
-        tiles: &mut tiles,
-        bins: &mut bins,
-        setups: &mut store,
-    };
-    let mut pass = LightPass::<F, Recorder, 8>::new(cfg, buffers, Recorder::default()).expect("sized");
+    let mut b = Buffers::<F, 8>::new(&cfg, 16, true);
+    let mut pass = b.pass(cfg, Recorder::default());
     for t in tris {
         pass.draw_clip(*t, CullMode::None);
     }
     let rec = pass.finish();
-    (ids, z1, rec)
+    (b.ids, b.z1, rec)
 }
 
 /// Snap like the hardware's documented viewport transform (f64,

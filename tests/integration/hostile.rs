@@ -10,7 +10,7 @@ use umbra::core::{
     RasterConfig, SubmitError, TileState,
 };
 
-use crate::common::{Recorder, config, run};
+use crate::common::{Buffers, Recorder, config, run};
 
 fn wild() -> impl Strategy<Value = f32> {
     prop_oneof![
@@ -51,13 +51,8 @@ proptest! {
         let n = positions.len() as u32;
         let triangles: Vec<[u32; 3]> = (0..n - 2).map(|i| [i, i + 1, i + 2]).collect();
         let cfg = config(24, 8, DepthUnit::Dual, true);
-        let r = cfg.raster;
-        let (mut z1, mut z2) = (vec![0u32; r.texel_count()], vec![0u32; r.texel_count()]);
-        let mut tiles = vec![TileState::cleared(0, 0); r.tile_count()];
-        let mut bins = vec![Bin::<4>::new(); r.tile_count()];
-        let mut setups = vec![Setup::EMPTY; 2];
-        let buffers = LightBuffers::<D24, 4> { z1: &mut z1, z2: &mut z2, ids: &mut [], tiles: &mut tiles, bins: &mut bins, setups: &mut setups };
-        let mut pass = LightPass::<D24, Recorder, 4>::new(cfg, buffers, Recorder::default()).expect("valid");
+        let mut b = Buffers::<D24, 4>::new(&cfg, 2, false);
+        let mut pass = b.pass(cfg, Recorder::default());
         pass.draw_mesh(&positions, &triangles, &Mat4::from_cols_array(&m), CullMode::None).expect("indices valid");
         let rec = pass.finish();
         prop_assert!(rec.fragments.iter().all(|f| f.x < 24 && f.y < 24 && f.depth <= 0x00ff_ffff));
@@ -128,19 +123,8 @@ fn wrong_buffers_are_named() {
 #[test]
 fn bad_indices_are_reported_before_drawing() {
     let cfg = config(16, 8, DepthUnit::Single, true);
-    let (mut z1, mut z2) = (vec![0u16; 256], vec![]);
-    let mut tiles = vec![TileState::cleared(0, 0); 4];
-    let mut bins = vec![Bin::<4>::new(); 4];
-    let mut setups = vec![Setup::EMPTY; 4];
-    let buffers = LightBuffers::<D16, 4> {
-        z1: &mut z1,
-        z2: &mut z2,
-        ids: &mut [],
-        tiles: &mut tiles,
-        bins: &mut bins,
-        setups: &mut setups,
-    };
-    let mut pass = LightPass::<D16, Recorder, 4>::new(cfg, buffers, Recorder::default()).expect("valid");
+    let mut b = Buffers::<D16, 4>::new(&cfg, 4, false);
+    let mut pass = b.pass(cfg, Recorder::default());
     let positions = [Vec3::ZERO, Vec3::X, Vec3::Y];
     let err = pass.draw_mesh(&positions, &[[0, 1, 2], [0, 1, 7]], &Mat4::IDENTITY, CullMode::None);
     assert_eq!(err, Err(SubmitError::IndexOutOfRange { triangle: 1, index: 7, vertices: 3 }));

@@ -3,14 +3,13 @@
 
 use proptest::prelude::*;
 use umbra::core::depth::PlaneZ;
-use umbra::core::probe::{Event, Probe};
 use umbra::core::shadow::{
     Bias, DepthTest, Filter, Jitter, Lookup, MapCoord, MapView, Shadow, ShadowConfig, Slope, TangentPlane, jitter_grid,
     shadow, shadow_with_virtual_samples,
 };
 use umbra::core::{CullMode, D16, D24, DepthFormat, DepthUnit, NoProbe, RasterConfig, TileState};
 
-use crate::common::{config, run, triangles};
+use crate::common::{ShadowEvents, config, run, triangles};
 
 /// A map from rows of depths in `[0, 1]`, with exact tile bounds.
 struct Map<F: DepthFormat> {
@@ -152,22 +151,6 @@ fn reeves_sample_grid() {
     assert_eq!(jitter_grid(&one, [half(0.1); 2]).1, [1, 1]);
 }
 
-#[derive(Default)]
-struct Lookups {
-    culled: u32,
-    read: u64,
-}
-
-impl Probe for Lookups {
-    fn event(&mut self, e: Event) {
-        match e {
-            Event::LookupCulled { .. } => self.culled += 1,
-            Event::MapRead { texels, .. } => self.read += u64::from(texels),
-            _ => {}
-        }
-    }
-}
-
 fn any_config() -> impl Strategy<Value = ShadowConfig> {
     let test = prop_oneof![
         Just(DepthTest::First),
@@ -217,7 +200,7 @@ proptest! {
         let (maps, _) = run::<D16, _, 16>(config(48, 8, DepthUnit::Dual, true), &tris, CullMode::None, 64, NoProbe);
         let raster = config(48, 8, DepthUnit::Dual, true).raster;
         let view = MapView::<D16>::new(raster, &maps.z1, &maps.z2, &maps.tiles).expect("sized");
-        let (mut culled, mut plain) = (Lookups::default(), Lookups::default());
+        let (mut culled, mut plain) = (ShadowEvents::default(), ShadowEvents::default());
         for c in &configs {
             let (with_culling, without) = (c.with_cull_lookups(true), c.with_cull_lookups(false));
             for l in &lookups {
@@ -238,7 +221,7 @@ fn lookups_in_front_of_every_tile_read_nothing() {
     let map = Map::<D16>::new(16, 16, &[0.9; 256], &[0.95; 256]);
     let view = map.view();
     let c = ShadowConfig::new(DepthTest::Second, Bias::ZERO, Filter::Box { size: 3 }, true).expect("valid");
-    let mut p = Lookups::default();
+    let mut p = ShadowEvents::default();
     assert_eq!(shadow(&view, &c, &at::<D16>(8.0, 8.0, 0.5), &mut p), Shadow::ZERO);
     assert_eq!(shadow(&view, &c, &at::<D16>(8.0, 8.0, 0.99), &mut p), Shadow::ONE);
     assert_eq!((p.culled, p.read), (2, 0));
@@ -310,31 +293,11 @@ fn grazing_tangent_planes_fall_back() {
     // A pixel whose ordinary samples disagree, with a grazing tangent plane.
     let map = Map::<D16>::new(16, 16, &(0..256).map(|i| if i % 2 == 0 { 0.2 } else { 0.8 }).collect::<Vec<_>>(), &[]);
     let c = cfg(DepthTest::First, Filter::Box { size: 3 });
-    let mut events = Recorded::default();
+    let mut events = ShadowEvents::default();
     let l = at::<D16>(8.0, 8.0, 0.5);
     let s = shadow_with_virtual_samples(&map.view(), &c, &l, || grazing.slope::<D16>(&raster), &mut events);
     assert_eq!(s, shadow(&map.view(), &c, &l, &mut NoProbe));
     assert_eq!((events.setups, events.fallbacks, events.trivial, events.virtual_samples), (1, 1, 0, 0));
-}
-
-#[derive(Default)]
-struct Recorded {
-    setups: u32,
-    fallbacks: u32,
-    trivial: u32,
-    virtual_samples: u32,
-}
-
-impl Probe for Recorded {
-    fn event(&mut self, e: Event) {
-        match e {
-            Event::TangentSetup => self.setups += 1,
-            Event::TangentFallback => self.fallbacks += 1,
-            Event::TrivialPixel { .. } => self.trivial += 1,
-            Event::VirtualSamples { count } => self.virtual_samples += count,
-            _ => {}
-        }
-    }
 }
 
 /// A tilted plane drawn twice (both windings) by the light pass: `z1` and
@@ -365,7 +328,7 @@ fn virtual_samples_remove_self_shadowing_on_a_planar_receiver() {
     let view = MapView::<D16>::new(raster, &maps.z1, &maps.z2, &maps.tiles).expect("sized");
     let c = cfg(DepthTest::Second, Filter::Box { size: 3 });
     let inv_t = light.inverse().transpose();
-    let (mut acne_plain, mut acne_virtual, mut events) = (0, 0, Recorded::default());
+    let (mut acne_plain, mut acne_virtual, mut events) = (0, 0, ShadowEvents::default());
     let n = 40;
     for k in 0..n * n {
         // World points spread over the middle of the plane, off texel centres.
@@ -395,6 +358,6 @@ fn virtual_samples_remove_self_shadowing_on_a_planar_receiver() {
     // A rounding tie could flip a sample in principle; on this fixed grid none
     // does (measured: 0 of 1600, with 728 pixels needing a tangent plane).
     assert_eq!(acne_virtual, 0, "virtual samples: {acne_virtual} of {total} pixels shadowed");
-    assert_eq!(events.setups + events.trivial, total);
+    assert_eq!(events.setups + events.trivial, u64::from(total));
     assert!(events.virtual_samples > 0);
 }

@@ -84,24 +84,9 @@ fn mesh_fragments(
     tris: &[[u32; 3]],
     m: &umbra::core::glam::Mat4,
 ) -> Vec<Fragment> {
-    use umbra::core::bin::Bin;
-    use umbra::core::setup::Setup;
-    use umbra::core::{LightBuffers, LightPass, TileState};
     let cfg = config(SIZE, 16, DepthUnit::Dual, false);
-    let r = cfg.raster;
-    let (mut z1, mut z2) = (vec![0u32; r.texel_count()], vec![0u32; r.texel_count()]);
-    let mut tiles = vec![TileState::cleared(0, 0); r.tile_count()];
-    let mut bins = vec![Bin::<8>::new(); r.tile_count()];
-    let mut setups = vec![Setup::EMPTY; 64];
-    let buffers = LightBuffers::<D24, 8> {
-        z1: &mut z1,
-        z2: &mut z2,
-        ids: &mut [],
-        tiles: &mut tiles,
-        bins: &mut bins,
-        setups: &mut setups,
-    };
-    let mut pass = LightPass::<D24, Recorder, 8>::new(cfg, buffers, Recorder::default()).expect("valid");
+    let mut b = crate::common::Buffers::<D24, 8>::new(&cfg, 64, false);
+    let mut pass = b.pass(cfg, Recorder::default());
     pass.draw_mesh(positions, tris, m, CullMode::None).expect("valid indices");
     pass.finish().sorted()
 }
