@@ -1,6 +1,7 @@
 //! The camera pass over owned buffers: the visibility unit with the camera's
 //! matrix, then the shading unit against a light pass's maps.
 
+use glam::Mat4;
 use umbra_core::bin::Bin;
 use umbra_core::camera::{CameraConfig, Normals, Shaded, shade};
 use umbra_core::setup::Setup;
@@ -23,23 +24,18 @@ pub struct CameraImage {
     pub pixels: Vec<Shaded>,
 }
 
-/// Render `scene` from its camera at `width × height` and shade it against
-/// `maps` (a dual map, or a single front-face-culled one when
-/// `front_culled`), reporting every event of both units to `probe`.
+/// The visibility unit over `scene` from its camera at `width × height`:
+/// the camera's matrix (world to clip) and the visible triangle per pixel,
+/// numbered as [`Scene::triangles`] lists them.
 ///
 /// # Errors
 /// [`LightError`] for an unusable size or a malformed mesh.
-#[allow(clippy::too_many_arguments, reason = "the pass's inputs, each a separate choice")]
-pub fn render_camera<F: DepthFormat, P: Probe>(
+pub fn visibility<P: Probe>(
     scene: &Scene,
-    maps: &LightMaps<F::Texel>,
-    front_culled: bool,
-    shadow: ShadowConfig,
-    virtual_samples: bool,
     width: u32,
     height: u32,
     probe: &mut P,
-) -> Result<CameraImage, LightError> {
+) -> Result<(Mat4, Vec<u32>), LightError> {
     let raster =
         RasterConfig::new(width, height, RasterConfig::DEFAULT_TILE_SIZE, RasterConfig::DEFAULT_SUBPIXEL_BITS)?;
     let config = LightPassConfig { raster, unit: DepthUnit::Single, max_z_cull: true };
@@ -58,6 +54,27 @@ pub fn render_camera<F: DepthFormat, P: Probe>(
             .map_err(|source| LightError::Submit { draw, source })?;
     }
     pass.finish();
+    Ok((camera, ids))
+}
+
+/// Render `scene` from its camera at `width × height` and shade it against
+/// `maps` (a dual map, or a single front-face-culled one when
+/// `front_culled`), reporting every event of both units to `probe`.
+///
+/// # Errors
+/// [`LightError`] for an unusable size or a malformed mesh.
+#[allow(clippy::too_many_arguments, reason = "the pass's inputs, each a separate choice")]
+pub fn render_camera<F: DepthFormat, P: Probe>(
+    scene: &Scene,
+    maps: &LightMaps<F::Texel>,
+    front_culled: bool,
+    shadow: ShadowConfig,
+    virtual_samples: bool,
+    width: u32,
+    height: u32,
+    probe: &mut P,
+) -> Result<CameraImage, LightError> {
+    let (camera, ids) = visibility(scene, width, height, probe)?;
     let map_raster = maps.config.raster;
     let view = if front_culled {
         MapView::<F>::front_culled(map_raster, &maps.z1, &maps.tiles)?
@@ -76,7 +93,7 @@ pub fn render_camera<F: DepthFormat, P: Probe>(
     };
     let triangles = scene.triangles();
     let source = |id: u32| triangles.get(id as usize).copied();
-    let mut pixels = vec![Shaded::BACKGROUND; texels];
+    let mut pixels = vec![Shaded::BACKGROUND; ids.len()];
     shade(&cfg, &ids, &view, &source, &mut pixels, probe)?;
     Ok(CameraImage { width, height, pixels })
 }

@@ -5,8 +5,10 @@ pub mod camera;
 pub mod counters;
 pub mod light;
 pub mod mesh;
+pub mod metrics;
 pub mod output;
 pub mod presets;
+pub mod reference;
 pub mod scene;
 
 pub use glam;

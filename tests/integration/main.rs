@@ -16,6 +16,7 @@ mod fill_rule;
 mod hostile;
 mod maps_io;
 mod quantize;
+mod reference;
 mod shadow_unit;
 mod tiling;
 mod watertight;
