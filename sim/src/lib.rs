@@ -9,6 +9,7 @@ pub mod metrics;
 pub mod output;
 pub mod presets;
 pub mod reference;
+pub mod render;
 pub mod scene;
 
 pub use glam;

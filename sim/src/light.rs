@@ -108,7 +108,8 @@ pub struct RawMaps {
     pub maps: LightMaps<u32>,
 }
 
-fn widen<T: umbra_core::depth::Texel>(m: LightMaps<T>) -> LightMaps<u32> {
+/// The same maps with every texel widened to its raw `u32` bits.
+pub(crate) fn widen<T: umbra_core::depth::Texel>(m: LightMaps<T>) -> LightMaps<u32> {
     let raw = |v: Vec<T>| v.into_iter().map(T::to_raw).collect();
     LightMaps {
         config: m.config,

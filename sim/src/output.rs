@@ -141,9 +141,63 @@ pub fn write_shadow_image(
             g
         })
         .collect();
+    save(path, &pixels, image.width, image.height, image::ColorType::L8)
+}
+
+fn save(path: &Path, pixels: &[u8], width: u32, height: u32, color: image::ColorType) -> Result<(), OutputError> {
     if let Some(dir) = path.parent() {
         std::fs::create_dir_all(dir).map_err(io(path))?;
     }
-    image::save_buffer(path, &pixels, image.width, image.height, image::ColorType::L8)
+    image::save_buffer(path, pixels, width, height, color)
         .map_err(|source| OutputError::Image { path: path.to_owned(), source })
+}
+
+/// Write the shadow term alone: white lit, black fully shadowed, the
+/// background a dark grey (24).
+///
+/// # Errors
+/// [`OutputError::Image`].
+pub fn write_shadow_term(path: &Path, image: &crate::camera::CameraImage) -> Result<(), OutputError> {
+    let pixels: Vec<u8> = image
+        .pixels
+        .iter()
+        .map(|p| {
+            if p.triangle == umbra_core::NO_TRIANGLE {
+                return 24;
+            }
+            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "clamped to 0..=255")]
+            let g = (255.0 * (1.0 - p.shadow.to_num::<f64>())).round().clamp(0.0, 255.0) as u8;
+            g
+        })
+        .collect();
+    save(path, &pixels, image.width, image.height, image::ColorType::L8)
+}
+
+/// Write the error map: pixels the metrics evaluate in mid grey, false
+/// shadows in red, false lights in blue; surfaces facing away from the
+/// light in dark grey, the background black.
+///
+/// # Errors
+/// [`OutputError::Image`].
+pub fn write_error_image(
+    path: &Path,
+    image: &crate::camera::CameraImage,
+    truth: &[Option<crate::reference::PixelTruth>],
+) -> Result<(), OutputError> {
+    let half = umbra_core::shadow::Shadow::from_bits(1 << 15);
+    let pixels: Vec<u8> = image
+        .pixels
+        .iter()
+        .zip(truth)
+        .flat_map(|(p, t)| match t {
+            None => [0, 0, 0],
+            Some(t) if !t.faces_light => [60, 60, 60],
+            Some(t) => match (p.shadow > half, t.lit) {
+                (true, true) => [220, 40, 40],
+                (false, false) => [40, 90, 230],
+                _ => [150, 150, 150],
+            },
+        })
+        .collect();
+    save(path, &pixels, image.width, image.height, image::ColorType::Rgb8)
 }

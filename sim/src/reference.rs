@@ -10,9 +10,11 @@
 //! the same triangle's plane.
 
 use glam::{DMat4, DVec3, DVec4, Mat4};
+use indicatif::ProgressBar;
 use parry3d_f64::math::Vector;
 use parry3d_f64::query::{Ray, RayCast};
 use parry3d_f64::shape::TriMesh;
+use rayon::prelude::*;
 use umbra_core::NO_TRIANGLE;
 use umbra_core::camera::SceneTriangle;
 
@@ -115,8 +117,12 @@ impl Reference {
 
     /// The truth for every camera pixel, given the ids the visibility unit
     /// recorded and the camera (world to clip); `n × n` points per pixel for
-    /// the area-averaged visibility. Background pixels are `None`.
+    /// the area-averaged visibility. Background pixels are `None`. Rows run
+    /// in parallel (each pixel is a pure function of the scene, so the
+    /// result does not depend on the thread count); `progress` is ticked
+    /// once per row.
     #[must_use]
+    #[allow(clippy::too_many_arguments, reason = "the camera, the light and the sampling, each a separate choice")]
     pub fn image(
         &self,
         ids: &[u32],
@@ -125,12 +131,18 @@ impl Reference {
         height: u32,
         light: &LightSource,
         n: u32,
+        progress: &ProgressBar,
     ) -> Vec<Option<PixelTruth>> {
         let inverse: DMat4 = camera.as_dmat4().inverse();
         let (w, h) = (f64::from(width), f64::from(height));
-        ids.iter()
+        let row = width as usize;
+        ids.par_chunks(row.max(1))
             .enumerate()
-            .map(|(i, &id)| {
+            .flat_map_iter(|(y, chunk)| {
+                progress.inc(1);
+                chunk.iter().enumerate().map(move |(x, &id)| (y * row + x, id))
+            })
+            .map(|(i, id)| {
                 let tri = self.triangles.get(usize::try_from(id).ok()?).filter(|_| id != NO_TRIANGLE)?;
                 let (px, py) = ((i % width as usize) as f64, (i / width as usize) as f64);
                 let point = |sx: f64, sy: f64| -> Option<(DVec3, DVec3)> {

@@ -117,9 +117,21 @@ impl Scene {
     /// One draw call per object under `transform`, all with cull mode `cull`.
     #[must_use]
     pub fn draws(&self, transform: Mat4, cull: CullMode) -> Vec<Draw<'_>> {
+        self.draws_culled(transform, |_| cull)
+    }
+
+    /// One draw call per object, culled by whether the object is solid
+    /// (Weiskopf & Ertl cull solids and leave open surfaces two-sided).
+    #[must_use]
+    pub fn draws_culled(&self, transform: Mat4, cull: impl Fn(bool) -> CullMode) -> Vec<Draw<'_>> {
         self.objects
             .iter()
-            .map(|o| Draw { positions: &o.mesh.positions, triangles: &o.mesh.triangles, transform, cull })
+            .map(|o| Draw {
+                positions: &o.mesh.positions,
+                triangles: &o.mesh.triangles,
+                transform,
+                cull: cull(o.solid),
+            })
             .collect()
     }
 }

@@ -34,7 +34,7 @@ fn a_sphere_casts_a_disc_under_a_directional_light() {
     let (camera, ids) = visibility(&scene, w, h, &mut umbra::core::NoProbe).expect("renders");
     let reference = Reference::new(&scene.triangles()).expect("builds");
     let light = LightSource::Directional(DVec3::NEG_Y);
-    let truth = reference.image(&ids, &camera, w, h, &light, 1);
+    let truth = reference.image(&ids, &camera, w, h, &light, 1, &indicatif::ProgressBar::hidden());
     let inverse = camera.as_dmat4().inverse();
     let (mut inside, mut outside, mut checked) = (0, 0, 0);
     for (i, (&id, t)) in ids.iter().zip(&truth).enumerate() {

@@ -3,16 +3,18 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
 use clap::{Parser, Subcommand, ValueEnum};
-use umbra_core::shadow::{Bias, DepthTest, Filter, Shadow, ShadowConfig};
-use umbra_core::{CullMode, D24, DepthFormatKind, DepthUnit, LightPassConfig, NoProbe, RasterConfig};
-use umbra_sim::camera::render_camera;
+use indicatif::ProgressBar;
+use umbra_core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, RasterConfig};
 use umbra_sim::counters::Counters;
 use umbra_sim::glam::{Mat4, Vec3};
 use umbra_sim::light::{RawMaps, render_raw};
 use umbra_sim::mesh::Mesh;
-use umbra_sim::output::{RawMap, write_npy, write_preview, write_shadow_image, write_text};
+use umbra_sim::output::{
+    RawMap, write_error_image, write_npy, write_preview, write_shadow_image, write_shadow_term, write_text,
+};
+use umbra_sim::render::{Algorithm, RenderConfig};
 use umbra_sim::scene::{Object, Perspective, Scene, parse_matrix};
 
 /// Umbra: a bit-exact model of fixed-function shadow-mapping hardware.
@@ -30,6 +32,91 @@ struct Cli {
 enum Command {
     /// Render the light-view depth maps (z1, z2) of a mesh or scene.
     Depth(DepthArgs),
+    /// Render a scene with a shadow algorithm, compare it with the exact
+    /// reference, and write the pictures and the metrics.
+    Render(RenderArgs),
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum Algo {
+    /// Williams' first depth (use --bias).
+    First,
+    /// Wang & Molnar's second depth from the dual unit.
+    Second,
+    /// Second depth by front-face culling.
+    SecondFfc,
+    /// Woo's midpoint.
+    Midpoint,
+    /// Weiskopf & Ertl's dual depth (use --offset).
+    Dual,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum FilterArg {
+    Point,
+    Bilinear,
+    Box3,
+    Jitter4,
+    Jitter16,
+}
+
+#[derive(clap::Args, Debug)]
+struct RenderArgs {
+    /// The scene (the bundled `default`).
+    #[arg(default_value = "default")]
+    scene: String,
+    /// Shadow algorithm.
+    #[arg(long, value_enum, default_value_t = Algo::Second)]
+    algo: Algo,
+    /// Depth format of the map.
+    #[arg(long, value_enum, default_value_t = Format::D24)]
+    depth: Format,
+    /// Map side in texels.
+    #[arg(long, default_value_t = 1024)]
+    map: u32,
+    /// Percentage-closer filter.
+    #[arg(long, value_enum, default_value_t = FilterArg::Bilinear)]
+    filter: FilterArg,
+    /// Depth bias, as a depth in [0, 1].
+    #[arg(long, default_value_t = 0.0)]
+    bias: f64,
+    /// The dual-depth offset, as a depth in [0, 1].
+    #[arg(long, default_value_t = 0.01)]
+    offset: f64,
+    /// Turn Wang & Molnar's virtual samples off.
+    #[arg(long)]
+    no_virtual_samples: bool,
+    /// Image width.
+    #[arg(long, default_value_t = 960)]
+    width: u32,
+    /// Image height.
+    #[arg(long, default_value_t = 540)]
+    height: u32,
+    /// Reference rays per pixel side for the area-averaged visibility.
+    #[arg(long, default_value_t = 2)]
+    reference_samples: u32,
+    /// Output folder.
+    #[arg(long, default_value = "out/render")]
+    out: PathBuf,
+}
+
+impl Default for RenderArgs {
+    fn default() -> Self {
+        Self {
+            scene: "default".into(),
+            algo: Algo::Second,
+            depth: Format::D24,
+            map: 1024,
+            filter: FilterArg::Bilinear,
+            bias: 0.0,
+            offset: 0.01,
+            no_virtual_samples: false,
+            width: 960,
+            height: 540,
+            reference_samples: 2,
+            out: PathBuf::from("out/render"),
+        }
+    }
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -110,46 +197,109 @@ fn main() -> Result<()> {
     let cli = Cli::parse();
     match cli.command {
         Some(Command::Depth(args)) => depth(&args),
+        Some(Command::Render(args)) => render(&args),
         None => {
             depth(&DepthArgs::default())?;
-            shadows(&Scene::default_scene(), Path::new("out/camera"))
+            render(&RenderArgs::default())
         }
     }
 }
 
-/// The camera view of a scene with second-depth shadows (dual 24-bit map at
-/// 1024², virtual samples, bilinear percentage-closer filtering), as a
-/// picture and with the shadow unit's statistics.
-fn shadows(scene: &Scene, out: &Path) -> Result<()> {
-    let raster = RasterConfig::new(1024, 1024, RasterConfig::DEFAULT_TILE_SIZE, RasterConfig::DEFAULT_SUBPIXEL_BITS)?;
-    let config = LightPassConfig { raster, unit: DepthUnit::Dual, max_z_cull: true };
-    let (maps, _) = umbra_sim::light::render::<D24, _>(
-        config,
-        &scene.draws(scene.light.view_projection(), CullMode::None),
-        NoProbe,
-    )?;
-    let shadow = ShadowConfig::new(DepthTest::Second, Bias::ZERO, Filter::Bilinear, true)?;
-    let (width, height) = (960, 540);
-    let mut counters = Counters::new(&RasterConfig::new(width, height, RasterConfig::DEFAULT_TILE_SIZE, 8)?);
-    let image = render_camera::<D24, _>(scene, &maps, false, shadow, true, width, height, &mut counters)?;
-    let path = out.join("shadows.png");
-    write_shadow_image(&path, &image, scene.light.target - scene.light.position)?;
-    let t = &counters.totals;
-    let covered = image.pixels.iter().filter(|p| p.triangle != umbra_core::NO_TRIANGLE).count();
-    let shadowed = image.pixels.iter().filter(|p| p.shadow > Shadow::ZERO).count();
-    let percent = |n: u64| 100.0 * n as f64 / covered.max(1) as f64;
+/// `umbra render`: the pictures, the metrics and the events of one render.
+fn render(args: &RenderArgs) -> Result<()> {
+    let scene = match args.scene.as_str() {
+        "default" => Scene::default_scene(),
+        other => bail!("unknown scene `{other}`: the bundled scene is `default`"),
+    };
+    for (name, v) in [("--bias", args.bias), ("--offset", args.offset)] {
+        if !v.is_finite() || !(0.0..=1.0).contains(&v) {
+            bail!("{name} {v} is not a depth in [0, 1]");
+        }
+    }
+    if args.reference_samples == 0 || args.reference_samples > 16 {
+        bail!("--reference-samples {} is outside 1..=16", args.reference_samples);
+    }
+    let filter = match args.filter {
+        FilterArg::Point => 0,
+        FilterArg::Bilinear => 1,
+        FilterArg::Box3 => 2,
+        FilterArg::Jitter4 => 3,
+        FilterArg::Jitter16 => 4,
+    };
+    let (filter_name, filter) = umbra_sim::presets::FILTERS[filter];
+    let algorithm = match args.algo {
+        Algo::First => Algorithm::First,
+        Algo::Second => Algorithm::Second,
+        Algo::SecondFfc => Algorithm::SecondFrontCulled,
+        Algo::Midpoint => Algorithm::Midpoint,
+        Algo::Dual => Algorithm::Dual { offset: args.offset },
+    };
+    let cfg = RenderConfig {
+        algorithm,
+        format: format_kind(args.depth),
+        map_size: args.map,
+        filter,
+        bias: args.bias,
+        virtual_samples: !args.no_virtual_samples,
+        width: args.width,
+        height: args.height,
+        reference_samples: args.reference_samples,
+    };
+    let progress = ProgressBar::new(u64::from(args.height)).with_message("reference rays");
+    let r = umbra_sim::render::render(&scene, &cfg, &progress)?;
+    progress.finish_and_clear();
+    let out = &args.out;
+    let (w, h) = (r.maps.maps.config.raster.width(), r.maps.maps.config.raster.height());
+    write_shadow_image(&out.join("shaded.png"), &r.image, scene.light.target - scene.light.position)?;
+    write_shadow_term(&out.join("shadow.png"), &r.image)?;
+    write_error_image(&out.join("error.png"), &r.image, &r.truth)?;
+    for (name, data) in [("z1", &r.maps.maps.z1), ("z2", &r.maps.maps.z2)] {
+        if !data.is_empty() {
+            write_preview(
+                &out.join(format!("{name}.png")),
+                &RawMap { format: r.maps.format, width: w, height: h, raw: data },
+            )?;
+        }
+    }
+    write_text(&out.join("metrics.json"), &serde_json::to_string_pretty(&r.metrics)?)?;
+    let m = &r.metrics;
+    let t = &r.camera_events.totals;
     println!(
-        "camera pass {width}×{height}: {covered} pixels on geometry, {shadowed} in shadow ({:.1} %); virtual samples for {} pixels ({:.2} %), {} trivially decided, {} tangent fallbacks; {} lookups culled, {} map bytes read",
-        percent(shadowed as u64),
-        t.tangent_setups,
-        percent(t.tangent_setups),
-        t.trivial_pixels,
-        t.tangent_fallbacks,
-        t.lookups_culled,
-        t.map_read_bytes
+        "render `{}`: {:?}, {} map {}², {filter_name} filter, bias {}, {}×{}",
+        scene.name,
+        cfg.algorithm,
+        cfg.format.name(),
+        cfg.map_size,
+        cfg.bias,
+        cfg.width,
+        cfg.height
     );
-    println!("wrote {}", path.display());
+    println!("| pixels evaluated | false shadow | false light | misclassified | mean abs error |");
+    println!("|---:|---:|---:|---:|---:|");
+    println!(
+        "| {} | {:.3} % | {:.3} % | {:.3} % | {:.4} |",
+        m.evaluated,
+        100.0 * m.false_shadow_rate,
+        100.0 * m.false_light_rate,
+        m.misclassified_percent,
+        m.mean_abs_error
+    );
+    println!(
+        "virtual samples for {} pixels, {} trivially decided, {} tangent fallbacks, {} lookups culled, {} map bytes read",
+        t.tangent_setups, t.trivial_pixels, t.tangent_fallbacks, t.lookups_culled, t.map_read_bytes
+    );
+    for f in ["shaded.png", "shadow.png", "error.png", "z1.png", "metrics.json"] {
+        println!("wrote {}", out.join(f).display());
+    }
     Ok(())
+}
+
+fn format_kind(f: Format) -> DepthFormatKind {
+    match f {
+        Format::D16 => DepthFormatKind::D16,
+        Format::D24 => DepthFormatKind::D24,
+        Format::F32 => DepthFormatKind::F32,
+    }
 }
 
 /// Read the `--matrix` argument: inline JSON or a file holding it.
@@ -196,11 +346,7 @@ fn depth(args: &DepthArgs) -> Result<()> {
         Unit::Single => DepthUnit::Single,
         Unit::Dual => DepthUnit::Dual,
     };
-    let format = match args.format {
-        Format::D16 => DepthFormatKind::D16,
-        Format::D24 => DepthFormatKind::D24,
-        Format::F32 => DepthFormatKind::F32,
-    };
+    let format = format_kind(args.format);
     let cull = match args.cull {
         Cull::None => CullMode::None,
         Cull::Back => CullMode::Back,

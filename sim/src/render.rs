@@ -1,0 +1,148 @@
+//! One render: the light pass for a shadow algorithm, the camera pass, the
+//! exact reference and the metrics between them.
+
+use indicatif::ProgressBar;
+use serde::Serialize;
+use umbra_core::shadow::{Bias, DepthTest, Filter, ShadowConfig, ShadowConfigError};
+use umbra_core::{CullMode, D16, D24, DepthFormat, DepthFormatKind, DepthUnit, F32, LightPassConfig, RasterConfig};
+
+use crate::camera::{CameraImage, render_camera, visibility};
+use crate::counters::Counters;
+use crate::light::{LightError, LightMaps, RawMaps, render as light_render};
+use crate::metrics::{Metrics, compare};
+use crate::reference::{LightSource, PixelTruth, Reference, ReferenceError};
+use crate::scene::Scene;
+
+/// A shadow algorithm of the four papers.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub enum Algorithm {
+    /// Williams' first depth with a bias.
+    First,
+    /// Wang & Molnar's second depth from the dual unit.
+    Second,
+    /// Second depth from front-face culling (solids culled, open surfaces not).
+    SecondFrontCulled,
+    /// Woo's midpoint of the dual unit.
+    Midpoint,
+    /// Weiskopf & Ertl's dual depth; solids back-face culled, open surfaces not.
+    Dual {
+        /// The largest distance above `z1`, as a depth in `[0, 1]`.
+        offset: f64,
+    },
+}
+
+/// What to render and how.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct RenderConfig {
+    /// The shadow algorithm.
+    pub algorithm: Algorithm,
+    /// The map's depth format.
+    #[serde(skip)]
+    pub format: DepthFormatKind,
+    /// The map's side in texels.
+    pub map_size: u32,
+    /// The filter.
+    #[serde(skip)]
+    pub filter: Filter,
+    /// The bias, as a depth in `[0, 1]`.
+    pub bias: f64,
+    /// Wang & Molnar's virtual samples (second-depth algorithms).
+    pub virtual_samples: bool,
+    /// Camera image width.
+    pub width: u32,
+    /// Camera image height.
+    pub height: u32,
+    /// Reference rays per pixel side for the area-averaged visibility.
+    pub reference_samples: u32,
+}
+
+/// Why a render failed.
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    /// The light or camera pass could not run.
+    #[error(transparent)]
+    Pass(#[from] LightError),
+    /// The shadow configuration is unusable.
+    #[error("shadow configuration: {0}")]
+    Shadow(#[from] ShadowConfigError),
+    /// The reference could not be built.
+    #[error(transparent)]
+    Reference(#[from] ReferenceError),
+    /// A size is unusable.
+    #[error(transparent)]
+    Config(#[from] umbra_core::ConfigError),
+}
+
+/// Everything a render produced.
+pub struct Render {
+    /// The camera pass.
+    pub image: CameraImage,
+    /// The light pass's maps, raw bits.
+    pub maps: RawMaps,
+    /// The exact reference per pixel.
+    pub truth: Vec<Option<PixelTruth>>,
+    /// The render against the reference.
+    pub metrics: Metrics,
+    /// Events of the light pass.
+    pub light_events: Counters,
+    /// Events of the camera pass.
+    pub camera_events: Counters,
+}
+
+/// Render `scene` with `cfg`; `progress` ticks once per reference row.
+///
+/// # Errors
+/// See [`RenderError`].
+pub fn render(scene: &Scene, cfg: &RenderConfig, progress: &ProgressBar) -> Result<Render, RenderError> {
+    match cfg.format {
+        DepthFormatKind::D16 => render_in::<D16>(scene, cfg, progress),
+        DepthFormatKind::D24 => render_in::<D24>(scene, cfg, progress),
+        DepthFormatKind::F32 => render_in::<F32>(scene, cfg, progress),
+    }
+}
+
+fn render_in<F: DepthFormat>(scene: &Scene, cfg: &RenderConfig, progress: &ProgressBar) -> Result<Render, RenderError> {
+    let (unit, front_culled, test) = match cfg.algorithm {
+        Algorithm::First => (DepthUnit::Single, false, DepthTest::First),
+        Algorithm::Second => (DepthUnit::Dual, false, DepthTest::Second),
+        Algorithm::SecondFrontCulled => (DepthUnit::Single, true, DepthTest::Second),
+        Algorithm::Midpoint => (DepthUnit::Dual, false, DepthTest::Midpoint),
+        Algorithm::Dual { offset } => (DepthUnit::Dual, false, DepthTest::Dual { offset: F::plane_z(offset) }),
+    };
+    let cull = |solid: bool| match (cfg.algorithm, solid) {
+        (Algorithm::SecondFrontCulled, true) => CullMode::Front,
+        (Algorithm::Dual { .. }, true) => CullMode::Back,
+        _ => CullMode::None,
+    };
+    let raster = RasterConfig::new(
+        cfg.map_size,
+        cfg.map_size,
+        RasterConfig::DEFAULT_TILE_SIZE,
+        RasterConfig::DEFAULT_SUBPIXEL_BITS,
+    )?;
+    let light_config = LightPassConfig { raster, unit, max_z_cull: true };
+    let draws = scene.draws_culled(scene.light.view_projection(), cull);
+    let (maps, light_events): (LightMaps<F::Texel>, Counters) =
+        light_render::<F, _>(light_config, &draws, Counters::new(&raster))?;
+    let shadow = ShadowConfig::new(test, Bias::Constant(F::plane_z(cfg.bias)), cfg.filter, true)?;
+    let camera_raster = RasterConfig::new(cfg.width, cfg.height, RasterConfig::DEFAULT_TILE_SIZE, 8)?;
+    let mut camera_events = Counters::new(&camera_raster);
+    let virtual_samples = cfg.virtual_samples && test == DepthTest::Second;
+    let image = render_camera::<F, _>(
+        scene,
+        &maps,
+        front_culled,
+        shadow,
+        virtual_samples,
+        cfg.width,
+        cfg.height,
+        &mut camera_events,
+    )?;
+    let (camera, ids) = visibility(scene, cfg.width, cfg.height, &mut umbra_core::NoProbe)?;
+    let reference = Reference::new(&scene.triangles())?;
+    let light = LightSource::Point(scene.light.position.as_dvec3());
+    let truth = reference.image(&ids, &camera, cfg.width, cfg.height, &light, cfg.reference_samples, progress);
+    let metrics = compare(&image.pixels, &truth);
+    let maps = RawMaps { format: cfg.format, maps: crate::light::widen(maps) };
+    Ok(Render { image, maps, truth, metrics, light_events, camera_events })
+}
