@@ -20,7 +20,7 @@ fn bench_camera(c: &mut Criterion) {
     let scene = Scene::default_scene();
     let raster = RasterConfig::new(1024, 1024, 32, 8).expect("valid");
     let config = LightPassConfig { raster, unit: DepthUnit::Dual, max_z_cull: true };
-    let (maps, _) = render::<D24, _>(config, &scene.draws(scene.light.view_projection(), CullMode::None), NoProbe)
+    let (maps, _) = render::<D24, _>(config, &scene.draws(scene.light().view_projection(), CullMode::None), NoProbe)
         .expect("renders");
     let filters = umbra::sim::presets::FILTERS;
     let mut g = c.benchmark_group("camera_pass_1080p");

@@ -83,7 +83,7 @@ pub fn render_camera<F: DepthFormat, P: Probe>(
     };
     let cfg = CameraConfig {
         camera,
-        light: scene.light.view_projection(),
+        light: scene.light().view_projection(),
         width,
         height,
         shadow,

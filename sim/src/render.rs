@@ -10,7 +10,7 @@ use crate::camera::{CameraImage, render_camera, visibility};
 use crate::counters::Counters;
 use crate::light::{LightError, LightMaps, RawMaps, render as light_render};
 use crate::metrics::{Metrics, compare};
-use crate::reference::{LightSource, PixelTruth, Reference, ReferenceError};
+use crate::reference::{PixelTruth, Reference, ReferenceError};
 use crate::scene::Scene;
 
 /// A shadow algorithm of the four papers.
@@ -121,7 +121,7 @@ fn render_in<F: DepthFormat>(scene: &Scene, cfg: &RenderConfig, progress: &Progr
         RasterConfig::DEFAULT_SUBPIXEL_BITS,
     )?;
     let light_config = LightPassConfig { raster, unit, max_z_cull: true };
-    let draws = scene.draws_culled(scene.light.view_projection(), cull);
+    let draws = scene.draws_culled(scene.light().view_projection(), cull);
     let (maps, light_events): (LightMaps<F::Texel>, Counters) =
         light_render::<F, _>(light_config, &draws, Counters::new(&raster))?;
     let shadow = ShadowConfig::new(test, Bias::Constant(F::plane_z(cfg.bias)), cfg.filter, true)?;
@@ -140,7 +140,7 @@ fn render_in<F: DepthFormat>(scene: &Scene, cfg: &RenderConfig, progress: &Progr
     )?;
     let (camera, ids) = visibility(scene, cfg.width, cfg.height, &mut umbra_core::NoProbe)?;
     let reference = Reference::new(&scene.triangles())?;
-    let light = LightSource::Point(scene.light.position.as_dvec3());
+    let light = scene.light().source();
     let truth = reference.image(&ids, &camera, cfg.width, cfg.height, &light, cfg.reference_samples, progress);
     let metrics = compare(&image.pixels, &truth);
     let maps = RawMaps { format: cfg.format, maps: crate::light::widen(maps) };

@@ -1,4 +1,4 @@
-//! Scenes: objects in world space and a light.
+//! Scenes: objects in world space, lights and a camera.
 
 use glam::{Mat4, Vec3};
 use umbra_core::CullMode;
@@ -43,26 +43,99 @@ impl Perspective {
     /// is vertical).
     #[must_use]
     pub fn view_projection_aspect(&self, aspect: f32) -> Mat4 {
-        let dir = (self.target - self.position).normalize_or(Vec3::NEG_Y);
-        let up = if dir.cross(Vec3::Y).length_squared() < 1e-6 { Vec3::Z } else { Vec3::Y };
-        let view = glam::camera::rh::view::look_at_mat4(self.position, self.target, up);
+        let view = look_at(self.position, self.target);
         let proj =
             glam::camera::rh::proj::directx::perspective(self.fov_degrees.to_radians(), aspect, self.near, self.far);
         proj * view
     }
 }
 
-/// Objects and a light.
+/// An orthographic view: a directional light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Orthographic {
+    /// A point on the light's side of the scene.
+    pub position: Vec3,
+    /// The point it looks at (the light shines from `position` to `target`).
+    pub target: Vec3,
+    /// Half the side of the square the map covers.
+    pub extent: f32,
+    /// Near plane distance.
+    pub near: f32,
+    /// Far plane distance.
+    pub far: f32,
+}
+
+/// A light of the scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Light {
+    /// A perspective spot light.
+    Spot(Perspective),
+    /// An orthographic directional light.
+    Directional(Orthographic),
+}
+
+/// A view matrix looking from `eye` at `target` with a usable up vector.
+fn look_at(eye: Vec3, target: Vec3) -> Mat4 {
+    let dir = (target - eye).normalize_or(Vec3::NEG_Y);
+    let up = if dir.cross(Vec3::Y).length_squared() < 1e-6 { Vec3::Z } else { Vec3::Y };
+    glam::camera::rh::view::look_at_mat4(eye, target, up)
+}
+
+impl Light {
+    /// World space to light clip space.
+    #[must_use]
+    pub fn view_projection(&self) -> Mat4 {
+        match self {
+            Self::Spot(p) => p.view_projection(),
+            Self::Directional(o) => {
+                let e = o.extent;
+                glam::camera::rh::proj::directx::orthographic(-e, e, -e, e, o.near, o.far)
+                    * look_at(o.position, o.target)
+            }
+        }
+    }
+
+    /// Where the light is (for a directional light, a point on its side).
+    #[must_use]
+    pub fn position(&self) -> Vec3 {
+        match self {
+            Self::Spot(p) => p.position,
+            Self::Directional(o) => o.position,
+        }
+    }
+
+    /// The direction the light shines in (from the light into the scene).
+    #[must_use]
+    pub fn direction(&self) -> Vec3 {
+        match self {
+            Self::Spot(p) => p.target - p.position,
+            Self::Directional(o) => o.target - o.position,
+        }
+    }
+
+    /// The light as the exact reference sees it.
+    #[must_use]
+    pub fn source(&self) -> crate::reference::LightSource {
+        match self {
+            Self::Spot(p) => crate::reference::LightSource::Point(p.position.as_dvec3()),
+            Self::Directional(_) => crate::reference::LightSource::Directional(self.direction().as_dvec3()),
+        }
+    }
+}
+
+/// Objects, lights, a camera and an image size.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
     /// A name for reports.
     pub name: String,
     /// The objects.
     pub objects: Vec<Object>,
-    /// The light.
-    pub light: Perspective,
+    /// The lights; the first casts the shadows the pipeline renders.
+    pub lights: Vec<Light>,
     /// The camera.
     pub camera: Perspective,
+    /// Image width and height in pixels.
+    pub image: [u32; 2],
 }
 
 impl Scene {
@@ -81,13 +154,13 @@ impl Scene {
                 Object { name: "table".into(), mesh: table, solid: true },
                 Object { name: "sphere".into(), mesh: sphere, solid: true },
             ],
-            light: Perspective {
+            lights: vec![Light::Spot(Perspective {
                 position: Vec3::new(1.5, 6.0, 2.5),
                 target: Vec3::new(0.5, 0.0, 0.3),
                 fov_degrees: 70.0,
                 near: 2.0,
                 far: 10.0,
-            },
+            })],
             camera: Perspective {
                 position: Vec3::new(-2.5, 3.0, 5.0),
                 target: Vec3::new(0.5, 0.3, 0.3),
@@ -95,7 +168,18 @@ impl Scene {
                 near: 0.5,
                 far: 20.0,
             },
+            image: [960, 540],
         }
+    }
+
+    /// The light whose shadows the pipeline renders: the first.
+    ///
+    /// # Panics
+    /// Never for a scene from [`Scene::default_scene`] or a scene file, which
+    /// validate that there is a light.
+    #[must_use]
+    pub fn light(&self) -> Light {
+        self.lights.first().copied().unwrap_or(Light::Spot(self.camera))
     }
 
     /// Every triangle of every object in draw order, with flat normals: the

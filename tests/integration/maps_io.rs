@@ -103,7 +103,7 @@ fn npy_holds_raw_texels() {
     let scene = Scene::default_scene();
     let raster = RasterConfig::new(48, 32, 16, 8).expect("valid");
     let cfg = LightPassConfig { raster, unit: DepthUnit::Dual, max_z_cull: true };
-    let draws = scene.draws(scene.light.view_projection(), CullMode::None);
+    let draws = scene.draws(scene.light().view_projection(), CullMode::None);
     let dir = scratch("npy");
     for (format, descr, bytes) in [(DepthFormatKind::D16, "<u2", 2usize), (DepthFormatKind::D24, "<u4", 4)] {
         let (maps, _) = render_raw(cfg, format, &draws, umbra::core::NoProbe).expect("renders");

@@ -9,7 +9,7 @@ use umbra::sim::camera::visibility;
 use umbra::sim::mesh::Mesh;
 use umbra::sim::metrics::compare;
 use umbra::sim::reference::{LightSource, PixelTruth, Reference};
-use umbra::sim::scene::{Object, Perspective, Scene};
+use umbra::sim::scene::{Light, Object, Perspective, Scene};
 
 /// A sphere of radius ½ centred 1 above the plane y = 0, under a light
 /// straight down: its shadow is the disc x² + z² < ¼. Every plane pixel
@@ -27,8 +27,9 @@ fn a_sphere_casts_a_disc_under_a_directional_light() {
             Object { name: "plane".into(), mesh: plane, solid: false },
             Object { name: "sphere".into(), mesh: sphere, solid: true },
         ],
-        light: view,
+        lights: vec![Light::Spot(view)],
         camera: view,
+        image: [160, 120],
     };
     let (w, h) = (160u32, 120u32);
     let (camera, ids) = visibility(&scene, w, h, &mut umbra::core::NoProbe).expect("renders");

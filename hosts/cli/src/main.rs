@@ -15,7 +15,7 @@ use umbra_sim::output::{
     RawMap, write_error_image, write_npy, write_preview, write_shadow_image, write_shadow_term, write_text,
 };
 use umbra_sim::render::{Algorithm, RenderConfig};
-use umbra_sim::scene::{Object, Perspective, Scene, parse_matrix};
+use umbra_sim::scene::{Light, Object, Perspective, Scene, parse_matrix};
 
 /// Umbra: a bit-exact model of fixed-function shadow-mapping hardware.
 ///
@@ -250,7 +250,7 @@ fn render(args: &RenderArgs) -> Result<()> {
     progress.finish_and_clear();
     let out = &args.out;
     let (w, h) = (r.maps.maps.config.raster.width(), r.maps.maps.config.raster.height());
-    write_shadow_image(&out.join("shaded.png"), &r.image, scene.light.target - scene.light.position)?;
+    write_shadow_image(&out.join("shaded.png"), &r.image, scene.light().direction())?;
     write_shadow_term(&out.join("shadow.png"), &r.image)?;
     write_error_image(&out.join("error.png"), &r.image, &r.truth)?;
     for (name, data) in [("z1", &r.maps.maps.z1), ("z2", &r.maps.maps.z2)] {
@@ -333,13 +333,20 @@ fn depth(args: &DepthArgs) -> Result<()> {
             let mesh = Mesh::load_obj(path)?;
             let light = framing_light(&mesh)?;
             let name = path.file_stem().map_or_else(|| "mesh".into(), |s| s.to_string_lossy().into_owned());
-            Scene { name: name.clone(), objects: vec![Object { name, mesh, solid: false }], light, camera: light }
+            let lights = vec![Light::Spot(light)];
+            Scene {
+                name: name.clone(),
+                objects: vec![Object { name, mesh, solid: false }],
+                lights,
+                camera: light,
+                image: [512, 512],
+            }
         }
         None => Scene::default_scene(),
     };
     let matrix = match &args.matrix {
         Some(m) => read_matrix(m)?,
-        None => scene.light.view_projection(),
+        None => scene.light().view_projection(),
     };
     let raster = RasterConfig::new(args.size, args.size, args.tile, args.subpixel_bits)?;
     let unit = match args.unit {
