@@ -11,6 +11,7 @@ pub mod presets;
 pub mod reference;
 pub mod render;
 pub mod scene;
+pub mod scene_file;
 
 pub use glam;
 pub use umbra_core as core;

@@ -42,6 +42,25 @@ pub enum MeshError {
         /// Index of the vertex.
         vertex: usize,
     },
+    /// The file cannot be read (missing, unreadable).
+    #[error("{path}: cannot read: {source}")]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// The OS error.
+        source: std::io::Error,
+    },
+    /// A line of the file is not OBJ (a truncated record, a bad number, bytes
+    /// that are not text).
+    #[error("{path}:{line}: {problem}")]
+    Syntax {
+        /// The file.
+        path: PathBuf,
+        /// The line, from 1.
+        line: usize,
+        /// What is wrong with it.
+        problem: String,
+    },
     /// A face names a vertex that does not exist.
     #[error("{path}: triangle {triangle} names a vertex that does not exist")]
     BadIndex {
@@ -52,12 +71,50 @@ pub enum MeshError {
     },
 }
 
+/// Check every vertex and face record of an OBJ file, so that a truncated
+/// or foreign file is reported with its line (the loader reports none).
+fn check_obj(path: &Path) -> Result<(), MeshError> {
+    let bytes = std::fs::read(path).map_err(|source| MeshError::Read { path: path.to_owned(), source })?;
+    let fail = |line: usize, problem: String| MeshError::Syntax { path: path.to_owned(), line, problem };
+    let mut vertices = 0usize;
+    for (i, raw) in bytes.split(|&b| b == b'\n').enumerate() {
+        let line = i + 1;
+        let text = std::str::from_utf8(raw).map_err(|_| fail(line, "not text".into()))?;
+        let mut words = text.split_whitespace();
+        match words.next() {
+            Some("v") => {
+                let n = words.by_ref().take(3).map(str::parse::<f32>).filter(Result::is_ok).count();
+                if n < 3 {
+                    return Err(fail(line, format!("a vertex needs three numbers: `{}`", text.trim())));
+                }
+                vertices += 1;
+            }
+            Some("f") => {
+                let corners: Vec<&str> = words.collect();
+                if corners.len() < 3 {
+                    return Err(fail(line, format!("a face needs three corners: `{}`", text.trim())));
+                }
+                for c in corners {
+                    let index = c.split('/').next().and_then(|v| v.parse::<i64>().ok());
+                    let ok = index.is_some_and(|v| v != 0 && v.unsigned_abs() as usize <= vertices);
+                    if !ok {
+                        return Err(fail(line, format!("face corner `{c}` names no vertex defined above it")));
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
 impl Mesh {
     /// Load every model of an OBJ file as one mesh (faces triangulated as fans).
     ///
     /// # Errors
     /// See [`MeshError`].
     pub fn load_obj(path: &Path) -> Result<Self, MeshError> {
+        check_obj(path)?;
         let opts = tobj::LoadOptions { triangulate: true, single_index: true, ..tobj::LoadOptions::default() };
         let (models, _) =
             tobj::load_obj(path, &opts).map_err(|source| MeshError::Load { path: path.to_owned(), source })?;
@@ -137,32 +194,35 @@ impl Mesh {
         m
     }
 
-    /// A closed UV sphere.
+    /// A closed UV sphere: one vertex at each pole, `stacks − 1` rings of
+    /// `slices` vertices between them.
     #[must_use]
     pub fn sphere(center: Vec3, radius: f32, stacks: u32, slices: u32) -> Self {
         let (stacks, slices) = (stacks.max(2), slices.max(3));
         let mut m = Self::default();
-        #[allow(clippy::cast_precision_loss, reason = "small counts")]
-        let point = |i: u32, j: u32| {
+        m.positions.push(center + Vec3::Y * radius);
+        for i in 1..stacks {
+            #[allow(clippy::cast_precision_loss, reason = "small counts")]
             let theta = std::f32::consts::PI * i as f32 / stacks as f32;
-            let phi = TAU * (j % slices) as f32 / slices as f32;
-            center + radius * Vec3::new(theta.sin() * phi.cos(), theta.cos(), -theta.sin() * phi.sin())
-        };
-        for i in 0..=stacks {
             for j in 0..slices {
-                m.positions.push(point(i, j));
+                #[allow(clippy::cast_precision_loss, reason = "small counts")]
+                let phi = TAU * j as f32 / slices as f32;
+                m.positions
+                    .push(center + radius * Vec3::new(theta.sin() * phi.cos(), theta.cos(), -theta.sin() * phi.sin()));
             }
         }
-        let idx = |i: u32, j: u32| i * slices + j % slices;
-        for i in 0..stacks {
+        let bottom = 1 + (stacks - 1) * slices;
+        m.positions.push(center - Vec3::Y * radius);
+        let ring = |i: u32, j: u32| 1 + (i - 1) * slices + j % slices;
+        for j in 0..slices {
+            m.triangles.push([0, ring(1, j), ring(1, j + 1)]);
+            m.triangles.push([ring(stacks - 1, j), bottom, ring(stacks - 1, j + 1)]);
+        }
+        for i in 1..stacks - 1 {
             for j in 0..slices {
-                let (a, b, c, d) = (idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1));
-                if i != 0 {
-                    m.triangles.push([a, b, d]);
-                }
-                if i != stacks - 1 {
-                    m.triangles.push([b, c, d]);
-                }
+                let (a, b, c, d) = (ring(i, j), ring(i + 1, j), ring(i + 1, j + 1), ring(i, j + 1));
+                m.triangles.push([a, b, d]);
+                m.triangles.push([b, c, d]);
             }
         }
         m
@@ -191,6 +251,79 @@ impl Mesh {
                 m.triangles.push([a, c, d]);
             }
         }
+        m
+    }
+
+    /// Whether the surface is closed and consistently wound: with vertices
+    /// welded by position, every directed edge appears once and its reverse
+    /// once (so back- and front-face culling are meaningful).
+    #[must_use]
+    pub fn is_closed(&self) -> bool {
+        use std::collections::HashMap;
+        // `+ 0.0` turns −0 into +0, so the two weld.
+        let key = |p: Vec3| p.to_array().map(|c| (c + 0.0).to_bits());
+        let mut weld: HashMap<[u32; 3], usize> = HashMap::new();
+        let ids: Vec<usize> = self
+            .positions
+            .iter()
+            .map(|&p| {
+                let n = weld.len();
+                *weld.entry(key(p)).or_insert(n)
+            })
+            .collect();
+        let mut edges: HashMap<(usize, usize), u32> = HashMap::new();
+        for t in &self.triangles {
+            let v = t.map(|i| ids.get(i as usize).copied().unwrap_or(usize::MAX));
+            for k in 0..3 {
+                *edges.entry((v[k], v[(k + 1) % 3])).or_insert(0) += 1;
+            }
+        }
+        !edges.is_empty() && edges.iter().all(|(&(a, b), &n)| n == 1 && edges.get(&(b, a)) == Some(&1))
+    }
+
+    /// An open, curved, two-sided sheet: an arc of `bend` radians of a
+    /// cylinder about the y axis, `width` long and `height` tall, centred at
+    /// `center` (a flat rectangle when `bend` is 0).
+    #[must_use]
+    pub fn sheet(center: Vec3, width: f32, height: f32, bend: f32, nx: u32, ny: u32) -> Self {
+        let (nx, ny) = (nx.max(1), ny.max(1));
+        let mut m = Self::default();
+        for j in 0..=ny {
+            for i in 0..=nx {
+                #[allow(clippy::cast_precision_loss, reason = "small counts")]
+                let (u, v) = (i as f32 / nx as f32 - 0.5, j as f32 / ny as f32 - 0.5);
+                let p = if bend.abs() < 1e-6 {
+                    Vec3::new(u * width, v * height, 0.0)
+                } else {
+                    let r = width / bend;
+                    let a = u * bend;
+                    Vec3::new(r * a.sin(), v * height, r * (1.0 - a.cos()))
+                };
+                m.positions.push(center + p);
+            }
+        }
+        let at = |i: u32, j: u32| j * (nx + 1) + i;
+        for j in 0..ny {
+            for i in 0..nx {
+                m.triangles.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                m.triangles.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+        m
+    }
+
+    /// A simple character standing on `y = 0` at `feet`, `height` tall: two
+    /// legs, a body and arms as boxes, a head as a sphere — each part closed.
+    #[must_use]
+    pub fn figure(feet: Vec3, height: f32) -> Self {
+        let u = height / 8.0;
+        let part = |lo: Vec3, hi: Vec3| Self::cuboid(feet + lo * u, feet + hi * u);
+        let mut m = part(Vec3::new(-0.9, 0.0, -0.4), Vec3::new(-0.1, 3.6, 0.4));
+        m.append(&part(Vec3::new(0.1, 0.0, -0.4), Vec3::new(0.9, 3.6, 0.4)));
+        m.append(&part(Vec3::new(-1.1, 3.7, -0.6), Vec3::new(1.1, 6.3, 0.6)));
+        m.append(&part(Vec3::new(-1.7, 3.9, -0.3), Vec3::new(-1.2, 6.2, 0.3)));
+        m.append(&part(Vec3::new(1.2, 3.9, -0.3), Vec3::new(1.7, 6.2, 0.3)));
+        m.append(&Self::sphere(feet + Vec3::new(0.0, 7.1, 0.0) * u, 0.8 * u, 10, 16));
         m
     }
 

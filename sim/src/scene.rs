@@ -141,35 +141,13 @@ pub struct Scene {
 impl Scene {
     /// The bundled default: Wang & Molnar's table on a floor (legs touching
     /// the floor, the case no bias fixes), with a sphere beside it, lit by a
-    /// spot light from above.
+    /// spot light from above (`scenes/table.toml`).
+    ///
+    /// # Panics
+    /// Never: the bundled scenes are validated by the tests.
     #[must_use]
     pub fn default_scene() -> Self {
-        let floor = Mesh::cuboid(Vec3::new(-4.0, -0.1, -4.0), Vec3::new(4.0, 0.0, 4.0));
-        let table = Mesh::table(2.0, 1.2, 1.0, 0.08, 0.1);
-        let sphere = Mesh::sphere(Vec3::new(2.0, 0.6, 1.2), 0.6, 24, 48);
-        Self {
-            name: "table".into(),
-            objects: vec![
-                Object { name: "floor".into(), mesh: floor, solid: true },
-                Object { name: "table".into(), mesh: table, solid: true },
-                Object { name: "sphere".into(), mesh: sphere, solid: true },
-            ],
-            lights: vec![Light::Spot(Perspective {
-                position: Vec3::new(1.5, 6.0, 2.5),
-                target: Vec3::new(0.5, 0.0, 0.3),
-                fov_degrees: 70.0,
-                near: 2.0,
-                far: 10.0,
-            })],
-            camera: Perspective {
-                position: Vec3::new(-2.5, 3.0, 5.0),
-                target: Vec3::new(0.5, 0.3, 0.3),
-                fov_degrees: 50.0,
-                near: 0.5,
-                far: 20.0,
-            },
-            image: [960, 540],
-        }
+        Self::bundled("table").expect("the bundled table scene is valid")
     }
 
     /// The light whose shadows the pipeline renders: the first.

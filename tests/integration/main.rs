@@ -17,6 +17,7 @@ mod hostile;
 mod maps_io;
 mod quantize;
 mod reference;
+mod scenes;
 mod shadow_unit;
 mod tiling;
 mod watertight;

@@ -35,11 +35,24 @@ fn mesh_errors_name_the_file_and_the_problem() {
     let dir = scratch("obj");
     let missing = dir.join("missing.obj");
     let err = Mesh::load_obj(&missing).expect_err("missing file");
-    assert!(matches!(err, MeshError::Load { .. }));
+    assert!(matches!(err, MeshError::Read { .. }));
     assert!(err.to_string().contains("missing.obj"), "{err}");
     let nan = dir.join("nan.obj");
     std::fs::write(&nan, "v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n").expect("write");
     assert!(matches!(Mesh::load_obj(&nan), Err(MeshError::NonFinite { vertex: 2, .. })));
+    // Truncated mid-record, and not an OBJ at all: the file and the line.
+    let cut = dir.join("cut.obj");
+    std::fs::write(&cut, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nv 0.5 0.").expect("write");
+    let err = Mesh::load_obj(&cut).expect_err("truncated");
+    assert!(matches!(err, MeshError::Syntax { line: 5, .. }), "{err}");
+    assert!(err.to_string().contains("cut.obj:5"), "{err}");
+    let png = dir.join("picture.obj");
+    std::fs::write(&png, b"\x89PNG\r\n\x1a\n\x00\x00\xff\xfe").expect("write");
+    let err = Mesh::load_obj(&png).expect_err("not an OBJ");
+    assert!(matches!(err, MeshError::Syntax { line: 1, .. }), "{err}");
+    let dangling = dir.join("dangling.obj");
+    std::fs::write(&dangling, "v 0 0 0\nv 1 0 0\nf 1 2 3\n").expect("write");
+    assert!(matches!(Mesh::load_obj(&dangling), Err(MeshError::Syntax { line: 3, .. })));
     let empty = dir.join("empty.obj");
     std::fs::write(&empty, "v 0 0 0\n").expect("write");
     assert!(matches!(Mesh::load_obj(&empty), Err(MeshError::Empty { .. })));

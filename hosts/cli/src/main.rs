@@ -62,8 +62,9 @@ enum FilterArg {
 
 #[derive(clap::Args, Debug)]
 struct RenderArgs {
-    /// The scene (the bundled `default`).
-    #[arg(default_value = "default")]
+    /// A bundled scene by name (table, reeves-sphere, weiskopf-l,
+    /// double-torus, thin, open-sheet, crowd, grazing) or a scene file.
+    #[arg(default_value = "table")]
     scene: String,
     /// Shadow algorithm.
     #[arg(long, value_enum, default_value_t = Algo::Second)]
@@ -86,12 +87,12 @@ struct RenderArgs {
     /// Turn Wang & Molnar's virtual samples off.
     #[arg(long)]
     no_virtual_samples: bool,
-    /// Image width.
-    #[arg(long, default_value_t = 960)]
-    width: u32,
-    /// Image height.
-    #[arg(long, default_value_t = 540)]
-    height: u32,
+    /// Image width (default: the scene's).
+    #[arg(long)]
+    width: Option<u32>,
+    /// Image height (default: the scene's).
+    #[arg(long)]
+    height: Option<u32>,
     /// Reference rays per pixel side for the area-averaged visibility.
     #[arg(long, default_value_t = 2)]
     reference_samples: u32,
@@ -103,7 +104,7 @@ struct RenderArgs {
 impl Default for RenderArgs {
     fn default() -> Self {
         Self {
-            scene: "default".into(),
+            scene: "table".into(),
             algo: Algo::Second,
             depth: Format::D24,
             map: 1024,
@@ -111,8 +112,8 @@ impl Default for RenderArgs {
             bias: 0.0,
             offset: 0.01,
             no_virtual_samples: false,
-            width: 960,
-            height: 540,
+            width: None,
+            height: None,
             reference_samples: 2,
             out: PathBuf::from("out/render"),
         }
@@ -207,10 +208,10 @@ fn main() -> Result<()> {
 
 /// `umbra render`: the pictures, the metrics and the events of one render.
 fn render(args: &RenderArgs) -> Result<()> {
-    let scene = match args.scene.as_str() {
-        "default" => Scene::default_scene(),
-        other => bail!("unknown scene `{other}`: the bundled scene is `default`"),
-    };
+    let path = Path::new(&args.scene);
+    let scene = if path.is_file() { Scene::load(path)? } else { Scene::bundled(&args.scene)? };
+    let [width, height] = scene.image;
+    let (width, height) = (args.width.unwrap_or(width), args.height.unwrap_or(height));
     for (name, v) in [("--bias", args.bias), ("--offset", args.offset)] {
         if !v.is_finite() || !(0.0..=1.0).contains(&v) {
             bail!("{name} {v} is not a depth in [0, 1]");
@@ -241,11 +242,11 @@ fn render(args: &RenderArgs) -> Result<()> {
         filter,
         bias: args.bias,
         virtual_samples: !args.no_virtual_samples,
-        width: args.width,
-        height: args.height,
+        width,
+        height,
         reference_samples: args.reference_samples,
     };
-    let progress = ProgressBar::new(u64::from(args.height)).with_message("reference rays");
+    let progress = ProgressBar::new(u64::from(height)).with_message("reference rays");
     let r = umbra_sim::render::render(&scene, &cfg, &progress)?;
     progress.finish_and_clear();
     let out = &args.out;

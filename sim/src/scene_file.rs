@@ -1,0 +1,389 @@
+//! Scene files: TOML naming meshes (OBJ files, the shared meshes by name,
+//! procedural generators), per-object transforms, solid/open flags, lights,
+//! the camera and the image size — validated, every error naming the file,
+//! the key and the problem.
+//!
+//! ```toml
+//! name = "sphere over a wall"
+//! image = [960, 540]
+//!
+//! [camera]
+//! position = [0.0, 2.0, 6.0]
+//! target = [0.0, 1.0, 0.0]
+//! fov = 50.0
+//! near = 0.5
+//! far = 30.0
+//!
+//! [[lights]]
+//! kind = "spot"          # or "directional" with `extent` instead of `fov`
+//! position = [-5.0, 3.0, 2.0]
+//! target = [0.0, 1.0, 0.0]
+//! fov = 60.0
+//! near = 1.0
+//! far = 20.0
+//!
+//! [[objects]]
+//! name = "ball"
+//! mesh = { sphere = { center = [0.0, 1.0, 0.0], radius = 0.6, stacks = 24, slices = 48 } }
+//! translate = [0.0, 0.0, 0.0]  # optional, as are `rotate` (degrees about x, y, z) and `scale`
+//! solid = true                 # optional: detected from the mesh's closedness
+//! ```
+//!
+//! Meshes: `obj = "path"` (relative to the scene file), `shared = "bunny"`
+//! (from `../shared/meshes/` of the working directory, or `$UMBRA_MESHES`),
+//! `box`, `quad`, `sphere`, `torus`, `table`, `sheet`, `figure`.
+
+use std::path::{Path, PathBuf};
+
+use glam::{EulerRot, Mat4, Quat, Vec3};
+use serde::Deserialize;
+
+use crate::mesh::{Mesh, MeshError};
+use crate::scene::{Light, Object, Orthographic, Perspective, Scene};
+
+/// The bundled scenes, by name: the papers' set-ups, built procedurally.
+pub const BUNDLED: [(&str, &str); 8] = [
+    ("table", include_str!("../../scenes/table.toml")),
+    ("reeves-sphere", include_str!("../../scenes/reeves-sphere.toml")),
+    ("weiskopf-l", include_str!("../../scenes/weiskopf-l.toml")),
+    ("double-torus", include_str!("../../scenes/double-torus.toml")),
+    ("thin", include_str!("../../scenes/thin.toml")),
+    ("open-sheet", include_str!("../../scenes/open-sheet.toml")),
+    ("crowd", include_str!("../../scenes/crowd.toml")),
+    ("grazing", include_str!("../../scenes/grazing.toml")),
+];
+
+/// Largest image side a scene may ask for.
+pub const MAX_IMAGE: u32 = 8192;
+/// Largest procedural subdivision count.
+pub const MAX_SUBDIVISION: u32 = 1024;
+
+/// What is wrong with a scene file.
+#[derive(Debug, thiserror::Error)]
+#[error("{file}: {key}: {problem}")]
+pub struct SceneError {
+    /// The scene file.
+    pub file: PathBuf,
+    /// The key, as a dotted path (`objects[2].mesh`).
+    pub key: String,
+    /// What is wrong.
+    pub problem: Problem,
+}
+
+/// The kinds of problem a scene file can have.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum Problem {
+    /// The file cannot be read.
+    #[error("cannot read: {0}")]
+    Read(std::io::Error),
+    /// Not valid TOML, an unknown key, or a value of the wrong type.
+    #[error("{0}")]
+    Syntax(String),
+    /// A number is NaN or infinite.
+    #[error("{value} is not a finite number")]
+    NonFinite {
+        /// The value.
+        value: f64,
+    },
+    /// `near` is not below `far`, or not positive.
+    #[error("near {near} must be positive and below far {far}")]
+    NearFar {
+        /// Near.
+        near: f64,
+        /// Far.
+        far: f64,
+    },
+    /// A size is zero, negative or absurd.
+    #[error("{value} is outside {min}..={max}")]
+    Size {
+        /// The value.
+        value: f64,
+        /// Smallest allowed.
+        min: f64,
+        /// Largest allowed.
+        max: f64,
+    },
+    /// The mesh file is missing or malformed.
+    #[error(transparent)]
+    Mesh(MeshError),
+    /// No shared mesh by that name.
+    #[error("no shared mesh `{name}` in {folder}")]
+    UnknownShared {
+        /// The name asked for.
+        name: String,
+        /// Where it was looked for.
+        folder: PathBuf,
+    },
+    /// An open mesh was marked solid.
+    #[error("the mesh is open (not closed and consistently wound), so it cannot be solid")]
+    OpenMarkedSolid,
+    /// A scene needs at least one light and one object.
+    #[error("a scene needs at least one {0}")]
+    Missing(&'static str),
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SceneFile {
+    name: Option<String>,
+    image: [f64; 2],
+    camera: ViewFile,
+    lights: Vec<LightFile>,
+    objects: Vec<ObjectFile>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ViewFile {
+    position: [f64; 3],
+    target: [f64; 3],
+    fov: f64,
+    near: f64,
+    far: f64,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields, tag = "kind", rename_all = "lowercase")]
+enum LightFile {
+    Spot { position: [f64; 3], target: [f64; 3], fov: f64, near: f64, far: f64 },
+    Directional { position: [f64; 3], target: [f64; 3], extent: f64, near: f64, far: f64 },
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ObjectFile {
+    name: Option<String>,
+    mesh: MeshFile,
+    translate: Option<[f64; 3]>,
+    rotate: Option<[f64; 3]>,
+    scale: Option<f64>,
+    solid: Option<bool>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields, rename_all = "lowercase")]
+enum MeshFile {
+    Obj(String),
+    Shared(String),
+    Box { min: [f64; 3], max: [f64; 3] },
+    Quad { corner: [f64; 3], u: [f64; 3], v: [f64; 3] },
+    Sphere { center: [f64; 3], radius: f64, stacks: u32, slices: u32 },
+    Torus { center: [f64; 3], major: f64, minor: f64, rings: u32, sides: u32 },
+    Table { width: f64, depth: f64, height: f64, top: f64, leg: f64 },
+    Sheet { center: [f64; 3], width: f64, height: f64, bend: f64, nx: u32, ny: u32 },
+    Figure { feet: [f64; 3], height: f64 },
+}
+
+/// Checks with the file and the key at hand.
+struct Check<'a> {
+    file: &'a Path,
+}
+
+impl Check<'_> {
+    fn err(&self, key: impl Into<String>, problem: Problem) -> SceneError {
+        SceneError { file: self.file.to_owned(), key: key.into(), problem }
+    }
+
+    #[allow(clippy::cast_possible_truncation, reason = "checked finite; the pipeline's vertex unit is f32")]
+    fn num(&self, key: &str, v: f64) -> Result<f32, SceneError> {
+        if v.is_finite() && v.abs() < 1e30 { Ok(v as f32) } else { Err(self.err(key, Problem::NonFinite { value: v })) }
+    }
+
+    fn vec3(&self, key: &str, v: [f64; 3]) -> Result<Vec3, SceneError> {
+        Ok(Vec3::new(self.num(key, v[0])?, self.num(key, v[1])?, self.num(key, v[2])?))
+    }
+
+    fn range(&self, key: &str, v: f64, min: f64, max: f64) -> Result<f32, SceneError> {
+        let f = self.num(key, v)?;
+        if v < min || v > max {
+            return Err(self.err(key, Problem::Size { value: v, min, max }));
+        }
+        Ok(f)
+    }
+
+    fn count(&self, key: &str, v: u32) -> Result<u32, SceneError> {
+        self.range(key, f64::from(v), 1.0, f64::from(MAX_SUBDIVISION)).map(|_| v)
+    }
+
+    fn near_far(&self, key: &str, near: f64, far: f64) -> Result<(f32, f32), SceneError> {
+        let (n, f) = (self.num(&format!("{key}.near"), near)?, self.num(&format!("{key}.far"), far)?);
+        if near <= 0.0 || near >= far {
+            return Err(self.err(format!("{key}.near"), Problem::NearFar { near, far }));
+        }
+        Ok((n, f))
+    }
+
+    fn view(&self, key: &str, v: &ViewFile) -> Result<Perspective, SceneError> {
+        let (near, far) = self.near_far(key, v.near, v.far)?;
+        Ok(Perspective {
+            position: self.vec3(&format!("{key}.position"), v.position)?,
+            target: self.vec3(&format!("{key}.target"), v.target)?,
+            fov_degrees: self.range(&format!("{key}.fov"), v.fov, 1.0, 170.0)?,
+            near,
+            far,
+        })
+    }
+}
+
+/// Where shared meshes are looked for.
+#[must_use]
+pub fn shared_meshes() -> PathBuf {
+    std::env::var_os("UMBRA_MESHES").map_or_else(|| PathBuf::from("../shared/meshes"), PathBuf::from)
+}
+
+impl Scene {
+    /// Load and validate a scene file.
+    ///
+    /// # Errors
+    /// [`SceneError`] naming the file, the key and the problem.
+    pub fn load(file: &Path) -> Result<Self, SceneError> {
+        let text = std::fs::read_to_string(file).map_err(|e| Check { file }.err("(file)", Problem::Read(e)))?;
+        Self::parse(&text, file)
+    }
+
+    /// One of the bundled scenes by name (see [`BUNDLED`]).
+    ///
+    /// # Errors
+    /// [`SceneError`] with key `(name)` for an unknown name.
+    pub fn bundled(name: &str) -> Result<Self, SceneError> {
+        let file = PathBuf::from(format!("scenes/{name}.toml"));
+        match BUNDLED.iter().find(|(n, _)| *n == name) {
+            Some((_, text)) => Self::parse(text, &file),
+            None => Err(Check { file: &file }.err(
+                "(name)",
+                Problem::Syntax(format!("no bundled scene `{name}`; there are {}", BUNDLED.map(|(n, _)| n).join(", "))),
+            )),
+        }
+    }
+
+    /// Parse and validate scene text; `file` names it in errors and anchors
+    /// relative mesh paths.
+    ///
+    /// # Errors
+    /// [`SceneError`] naming the file, the key and the problem.
+    pub fn parse(text: &str, file: &Path) -> Result<Self, SceneError> {
+        let c = Check { file };
+        let parsed: SceneFile = toml::from_str(text).map_err(|e| {
+            let key = e.span().map_or_else(
+                || "(file)".to_owned(),
+                |s| format!("line {}", text.get(..s.start).map_or(0, |t| t.matches('\n').count()) + 1),
+            );
+            c.err(key, Problem::Syntax(e.message().trim().to_owned()))
+        })?;
+        let image = [
+            c.range("image[0]", parsed.image[0], 1.0, f64::from(MAX_IMAGE))?,
+            c.range("image[1]", parsed.image[1], 1.0, f64::from(MAX_IMAGE))?,
+        ];
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "checked in 1..=8192")]
+        let image = image.map(|v| v.round() as u32);
+        let camera = c.view("camera", &parsed.camera)?;
+        if parsed.lights.is_empty() {
+            return Err(c.err("lights", Problem::Missing("light")));
+        }
+        let mut lights = Vec::new();
+        for (i, l) in parsed.lights.iter().enumerate() {
+            let key = format!("lights[{i}]");
+            lights.push(match l {
+                LightFile::Spot { position, target, fov, near, far } => Light::Spot(c.view(
+                    &key,
+                    &ViewFile { position: *position, target: *target, fov: *fov, near: *near, far: *far },
+                )?),
+                LightFile::Directional { position, target, extent, near, far } => {
+                    let (near, far) = c.near_far(&key, *near, *far)?;
+                    Light::Directional(Orthographic {
+                        position: c.vec3(&format!("{key}.position"), *position)?,
+                        target: c.vec3(&format!("{key}.target"), *target)?,
+                        extent: c.range(&format!("{key}.extent"), *extent, 1e-6, 1e6)?,
+                        near,
+                        far,
+                    })
+                }
+            });
+        }
+        if parsed.objects.is_empty() {
+            return Err(c.err("objects", Problem::Missing("object")));
+        }
+        let dir = file.parent().unwrap_or_else(|| Path::new("."));
+        let mut objects = Vec::new();
+        for (i, o) in parsed.objects.iter().enumerate() {
+            let key = format!("objects[{i}]");
+            let mesh = build_mesh(&c, &format!("{key}.mesh"), &o.mesh, dir)?;
+            let t = c.vec3(&format!("{key}.translate"), o.translate.unwrap_or([0.0; 3]))?;
+            let r = c.vec3(&format!("{key}.rotate"), o.rotate.unwrap_or([0.0; 3]))?;
+            let s = c.range(&format!("{key}.scale"), o.scale.unwrap_or(1.0), 1e-6, 1e6)?;
+            let rotation = Quat::from_euler(EulerRot::XYZ, r.x.to_radians(), r.y.to_radians(), r.z.to_radians());
+            let mesh = mesh.transformed(&Mat4::from_scale_rotation_translation(Vec3::splat(s), rotation, t));
+            let closed = mesh.is_closed();
+            let solid = match o.solid {
+                Some(true) if !closed => return Err(c.err(format!("{key}.solid"), Problem::OpenMarkedSolid)),
+                Some(s) => s,
+                None => closed,
+            };
+            objects.push(Object { name: o.name.clone().unwrap_or_else(|| format!("object {i}")), mesh, solid });
+        }
+        let name = parsed
+            .name
+            .unwrap_or_else(|| file.file_stem().map_or_else(String::new, |s| s.to_string_lossy().into_owned()));
+        Ok(Self { name, objects, lights, camera, image })
+    }
+}
+
+fn build_mesh(c: &Check<'_>, key: &str, m: &MeshFile, dir: &Path) -> Result<Mesh, SceneError> {
+    let field = |f: &str| format!("{key}.{f}");
+    Ok(match m {
+        MeshFile::Obj(path) => Mesh::load_obj(&dir.join(path)).map_err(|e| c.err(key, Problem::Mesh(e)))?,
+        MeshFile::Shared(name) => {
+            let folder = shared_meshes();
+            let path = folder.join(format!("{name}.obj"));
+            if !path.is_file() {
+                return Err(c.err(key, Problem::UnknownShared { name: name.clone(), folder }));
+            }
+            Mesh::load_obj(&path).map_err(|e| c.err(key, Problem::Mesh(e)))?
+        }
+        MeshFile::Box { min, max } => {
+            let (lo, hi) = (c.vec3(&field("min"), *min)?, c.vec3(&field("max"), *max)?);
+            if !(lo.cmplt(hi).all()) {
+                return Err(c.err(
+                    field("max"),
+                    Problem::Size { value: f64::from((hi - lo).min_element()), min: 1e-9, max: 1e9 },
+                ));
+            }
+            Mesh::cuboid(lo, hi)
+        }
+        MeshFile::Quad { corner, u, v } => {
+            Mesh::quad(c.vec3(&field("corner"), *corner)?, c.vec3(&field("u"), *u)?, c.vec3(&field("v"), *v)?)
+        }
+        MeshFile::Sphere { center, radius, stacks, slices } => Mesh::sphere(
+            c.vec3(&field("center"), *center)?,
+            c.range(&field("radius"), *radius, 1e-6, 1e6)?,
+            c.count(&field("stacks"), *stacks)?,
+            c.count(&field("slices"), *slices)?,
+        ),
+        MeshFile::Torus { center, major, minor, rings, sides } => Mesh::torus(
+            c.vec3(&field("center"), *center)?,
+            c.range(&field("major"), *major, 1e-6, 1e6)?,
+            c.range(&field("minor"), *minor, 1e-6, 1e6)?,
+            c.count(&field("rings"), *rings)?,
+            c.count(&field("sides"), *sides)?,
+        ),
+        MeshFile::Table { width, depth, height, top, leg } => Mesh::table(
+            c.range(&field("width"), *width, 1e-6, 1e6)?,
+            c.range(&field("depth"), *depth, 1e-6, 1e6)?,
+            c.range(&field("height"), *height, 1e-6, 1e6)?,
+            c.range(&field("top"), *top, 1e-6, 1e6)?,
+            c.range(&field("leg"), *leg, 1e-6, 1e6)?,
+        ),
+        MeshFile::Sheet { center, width, height, bend, nx, ny } => Mesh::sheet(
+            c.vec3(&field("center"), *center)?,
+            c.range(&field("width"), *width, 1e-6, 1e6)?,
+            c.range(&field("height"), *height, 1e-6, 1e6)?,
+            c.range(&field("bend"), *bend, -6.3, 6.3)?,
+            c.count(&field("nx"), *nx)?,
+            c.count(&field("ny"), *ny)?,
+        ),
+        MeshFile::Figure { feet, height } => {
+            Mesh::figure(c.vec3(&field("feet"), *feet)?, c.range(&field("height"), *height, 1e-6, 1e6)?)
+        }
+    })
+}
