@@ -79,7 +79,7 @@ fn closedness_is_detected() {
 }
 
 fn problem(r: Result<Scene, SceneError>, key: &str) -> Problem {
-    let e = r.err().expect("must be rejected");
+    let e = r.expect_err("must be rejected");
     assert_eq!(e.key, key, "{e}");
     assert!(e.to_string().starts_with("probe.toml: "), "{e}");
     e.problem
