@@ -96,7 +96,8 @@ fn check_obj(path: &Path) -> Result<(), MeshError> {
                 }
                 for c in corners {
                     let index = c.split('/').next().and_then(|v| v.parse::<i64>().ok());
-                    let ok = index.is_some_and(|v| v != 0 && usize::try_from(v.unsigned_abs()).is_ok_and(|v| v <= vertices));
+                    let ok =
+                        index.is_some_and(|v| v != 0 && usize::try_from(v.unsigned_abs()).is_ok_and(|v| v <= vertices));
                     if !ok {
                         return Err(fail(line, format!("face corner `{c}` names no vertex defined above it")));
                     }
