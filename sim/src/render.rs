@@ -68,9 +68,12 @@ pub enum RenderError {
     /// The reference could not be built.
     #[error(transparent)]
     Reference(#[from] ReferenceError),
-    /// A size is unusable.
-    #[error(transparent)]
-    Config(#[from] umbra_core::ConfigError),
+    /// The map size is unusable.
+    #[error("map: {0}")]
+    MapSize(umbra_core::ConfigError),
+    /// The camera image size is unusable.
+    #[error("camera image: {0}")]
+    ImageSize(umbra_core::ConfigError),
 }
 
 /// Everything a render produced.
@@ -114,18 +117,15 @@ fn render_in<F: DepthFormat>(scene: &Scene, cfg: &RenderConfig, progress: &Progr
         (Algorithm::Dual { .. }, true) => CullMode::Back,
         _ => CullMode::None,
     };
-    let raster = RasterConfig::new(
-        cfg.map_size,
-        cfg.map_size,
-        RasterConfig::DEFAULT_TILE_SIZE,
-        RasterConfig::DEFAULT_SUBPIXEL_BITS,
-    )?;
+    let raster = RasterConfig::new(cfg.map_size, cfg.map_size, RasterConfig::DEFAULT_TILE_SIZE, 8)
+        .map_err(RenderError::MapSize)?;
     let light_config = LightPassConfig { raster, unit, max_z_cull: true };
     let draws = scene.draws_culled(scene.light().view_projection(), cull);
     let (maps, light_events): (LightMaps<F::Texel>, Counters) =
         light_render::<F, _>(light_config, &draws, Counters::new(&raster))?;
     let shadow = ShadowConfig::new(test, Bias::Constant(F::plane_z(cfg.bias)), cfg.filter, true)?;
-    let camera_raster = RasterConfig::new(cfg.width, cfg.height, RasterConfig::DEFAULT_TILE_SIZE, 8)?;
+    let camera_raster =
+        RasterConfig::new(cfg.width, cfg.height, RasterConfig::DEFAULT_TILE_SIZE, 8).map_err(RenderError::ImageSize)?;
     let mut camera_events = Counters::new(&camera_raster);
     let virtual_samples = cfg.virtual_samples && test == DepthTest::Second;
     let image = render_camera::<F, _>(
