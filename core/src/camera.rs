@@ -257,8 +257,9 @@ impl Interp {
         out
     }
 
-    /// The light point of pixel `(px, py)`; `None` behind the light.
-    fn light_point<F: DepthFormat>(&self, px: u32, py: u32) -> Option<LightPoint> {
+    /// The light point of pixel `(px, py)`; `None` behind the light. The
+    /// depth division is skipped (`z` left 0) unless `with_depth`.
+    fn light_point<F: DepthFormat>(&self, px: u32, py: u32, with_depth: bool) -> Option<LightPoint> {
         let f = self.light?;
         let (sx, sy) = (i128::from(px) * 2 + 1, i128::from(py) * 2 + 1);
         let eval = |r: &[i64; 3]| i128::from(r[0]) * sx + i128::from(r[1]) * sy + 2 * i128::from(r[2]);
@@ -270,8 +271,12 @@ impl Interp {
             let q = n.checked_mul(1 << 16)? / w;
             Some(MapCoord::from_bits(i32::try_from(q.clamp(i128::from(i32::MIN), i128::from(i32::MAX))).ok()?))
         };
-        let z = eval(&f[2]).checked_mul(i128::from(F::SCALE) << PLANE_FRACTION_BITS)? / w;
-        let z = PlaneZ::from_bits(i64::try_from(z.clamp(i128::from(i64::MIN), i128::from(i64::MAX))).ok()?);
+        let z = if with_depth {
+            let z = eval(&f[2]).checked_mul(i128::from(F::SCALE) << PLANE_FRACTION_BITS)? / w;
+            PlaneZ::from_bits(i64::try_from(z.clamp(i128::from(i64::MIN), i128::from(i64::MAX))).ok()?)
+        } else {
+            PlaneZ::ZERO
+        };
         Some(LightPoint { x: coord(eval(&f[0]))?, y: coord(eval(&f[1]))?, z })
     }
 
@@ -344,7 +349,9 @@ pub fn shade<F: DepthFormat, S: TriangleSource, P: Probe>(
             };
             Vec3::new(next(), next(), next())
         };
-        let Some(point) = interp.light_point::<F>(px, py) else {
+        // Flat receivers take their depth from the light pass's own plane.
+        let flat_plane = cfg.normals == Normals::Flat && interp.plane.is_some();
+        let Some(point) = interp.light_point::<F>(px, py, !flat_plane) else {
             *o = Shaded { triangle: id, light: None, normal, shadow: Shadow::ZERO };
             continue;
         };

@@ -735,8 +735,11 @@ pub fn shadow_with_virtual_samples<F: DepthFormat, P: Probe>(
     // a footprint under a texel) is not taken as agreement with itself.
     let plain = Lookup { slope: None, ..*l };
     let ordinary = shadow(map, cfg, &plain, probe);
+    // Bilinear and boxes of 2 or more already read those texels.
+    let covers_2x2 = matches!(cfg.filter, Filter::Bilinear) || matches!(cfg.filter, Filter::Box { size } if size >= 2);
     let around = ShadowConfig { filter: Filter::Box { size: 2 }, ..*cfg };
-    if (ordinary == Shadow::ZERO || ordinary == Shadow::ONE) && shadow(map, &around, &plain, probe) == ordinary {
+    let agree = |s: Shadow| s == Shadow::ZERO || s == Shadow::ONE;
+    if agree(ordinary) && (covers_2x2 || shadow(map, &around, &plain, probe) == ordinary) {
         probe.event(Event::TrivialPixel { lit: ordinary == Shadow::ZERO });
         return ordinary;
     }

@@ -45,7 +45,8 @@ pub fn visibility<P: Probe>(
     let (mut z, mut ids) = (vec![D24::FAR; texels], vec![0u32; texels]);
     let mut tiles = vec![TileState::cleared(D24::FAR, 0); raster.tile_count()];
     let mut bins = vec![Bin::<DEFAULT_BIN_CAPACITY>::new(); raster.tile_count()];
-    let mut store = vec![Setup::EMPTY; DEFAULT_SETUPS];
+    let triangles: usize = scene.objects.iter().map(|o| o.mesh.triangles.len()).sum();
+    let mut store = vec![Setup::EMPTY; triangles.clamp(1, DEFAULT_SETUPS)];
     let buffers =
         LightBuffers { z1: &mut z, z2: &mut [], ids: &mut ids, tiles: &mut tiles, bins: &mut bins, setups: &mut store };
     let mut pass = LightPass::<D24, &mut P, DEFAULT_BIN_CAPACITY>::new(config, buffers, &mut *probe)?;

@@ -96,7 +96,9 @@ pub fn render<F: DepthFormat, P: Probe>(
     draws: &[Draw<'_>],
     probe: P,
 ) -> Result<(LightMaps<F::Texel>, P), LightError> {
-    render_with::<F, P, DEFAULT_BIN_CAPACITY>(config, draws, DEFAULT_SETUPS, probe)
+    // A setup store as large as the scene (at most the bins' reach).
+    let triangles: usize = draws.iter().map(|d| d.triangles.len()).sum();
+    render_with::<F, P, DEFAULT_BIN_CAPACITY>(config, draws, triangles.clamp(1, DEFAULT_SETUPS), probe)
 }
 
 /// Maps of a format chosen at run time, texels widened to their raw `u32` bits.
