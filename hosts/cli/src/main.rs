@@ -94,7 +94,7 @@ struct RenderArgs {
     #[arg(long)]
     height: Option<u32>,
     /// Reference rays per pixel side for the area-averaged visibility.
-    #[arg(long, default_value_t = 2)]
+    #[arg(long, default_value_t = 4)]
     reference_samples: u32,
     /// Output folder.
     #[arg(long, default_value = "out/render")]
@@ -114,7 +114,7 @@ impl Default for RenderArgs {
             no_virtual_samples: false,
             width: None,
             height: None,
-            reference_samples: 2,
+            reference_samples: 4,
             out: PathBuf::from("out/render"),
         }
     }
