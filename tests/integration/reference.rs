@@ -89,3 +89,22 @@ fn metrics_count_what_they_should() {
     // |errors|: 0, 1, 0.25, 1, 0, 0, 0, 0 → 2.25 / 8
     assert!((m.mean_abs_error - 2.25 / 8.0).abs() < 1e-9, "{}", m.mean_abs_error);
 }
+
+/// The reference is the same on one thread and on several: each pixel is a
+/// pure function of the scene.
+#[test]
+fn the_reference_does_not_depend_on_the_thread_count() {
+    let scene = Scene::bundled("crowd").expect("bundled");
+    let (w, h) = (96u32, 64u32);
+    let (camera, ids) = visibility(&scene, w, h, &mut umbra::core::NoProbe).expect("renders");
+    let reference = Reference::new(&scene.triangles()).expect("builds");
+    let light = scene.light().source();
+    let on = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool");
+        pool.install(|| reference.image(&ids, &camera, w, h, &light, 3, &indicatif::ProgressBar::hidden()))
+    };
+    let one = on(1);
+    assert_eq!(one, on(2));
+    assert_eq!(one, on(4));
+    assert!(one.iter().flatten().any(|t| !t.lit) && one.iter().flatten().any(|t| t.lit));
+}
