@@ -194,11 +194,26 @@ pub struct Fragment {
     pub triangle: u32,
 }
 
+/// One texel of the map read by the shadow unit, for probes that model
+/// memory (caches, address streams).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct TexelRead {
+    /// Which buffer.
+    pub buffer: Buffer,
+    /// Column of the texel.
+    pub x: u32,
+    /// Row of the texel.
+    pub y: u32,
+}
+
 /// Receives unit events. Every method has an empty default.
 pub trait Probe {
     /// Whether [`Probe::fragment`] is called. When `false` (the default) the
     /// per-fragment reporting is not compiled in.
     const FRAGMENTS: bool = false;
+
+    /// Whether [`Probe::texel_read`] is called (off by default, compiled out).
+    const TEXELS: bool = false;
 
     /// A unit event.
     #[inline(always)]
@@ -211,6 +226,12 @@ pub trait Probe {
     fn fragment(&mut self, fragment: Fragment) {
         let _ = fragment;
     }
+
+    /// A texel the shadow unit read (only when [`Probe::TEXELS`] is set).
+    #[inline(always)]
+    fn texel_read(&mut self, read: TexelRead) {
+        let _ = read;
+    }
 }
 
 /// The probe that does nothing and costs nothing.
@@ -221,6 +242,7 @@ impl Probe for NoProbe {}
 
 impl<P: Probe + ?Sized> Probe for &mut P {
     const FRAGMENTS: bool = P::FRAGMENTS;
+    const TEXELS: bool = P::TEXELS;
 
     #[inline(always)]
     fn event(&mut self, event: Event) {
@@ -230,5 +252,10 @@ impl<P: Probe + ?Sized> Probe for &mut P {
     #[inline(always)]
     fn fragment(&mut self, fragment: Fragment) {
         (**self).fragment(fragment);
+    }
+
+    #[inline(always)]
+    fn texel_read(&mut self, read: TexelRead) {
+        (**self).texel_read(read);
     }
 }

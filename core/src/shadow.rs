@@ -51,7 +51,7 @@ use fixed::types::{I16F16, U16F16};
 
 use crate::config::RasterConfig;
 use crate::depth::{DepthFormat, PLANE_FRACTION_BITS, PlaneZ};
-use crate::probe::{Buffer, Event, Probe};
+use crate::probe::{Buffer, Event, Probe, TexelRead};
 use crate::tile::{TileId, TileRect};
 use crate::zbuffer::TileState;
 
@@ -347,6 +347,13 @@ impl<'a, F: DepthFormat> MapView<'a, F> {
         F::widen(buf.get(i).copied().unwrap_or(F::FAR))
     }
 
+    /// The buffers a test reads from this map (one, or both).
+    fn buffers_read(&self, test: DepthTest) -> impl Iterator<Item = Buffer> {
+        let z1 = test.needs_z1() || (test.needs_z2() && self.second_in_z1);
+        let z2 = test.needs_z2() && !self.second_in_z1;
+        [(z1, Buffer::Z1), (z2, Buffer::Z2)].into_iter().filter_map(|(read, b)| read.then_some(b))
+    }
+
     fn reference(&self, test: DepthTest, x: u32, y: u32) -> i64 {
         let z1 = if test.needs_z1() { self.texel(self.z1, x, y) } else { 0 };
         let second = if self.second_in_z1 { self.z1 } else { self.z2 };
@@ -542,6 +549,11 @@ pub fn shadow<F: DepthFormat, P: Probe>(map: &MapView<'_, F>, cfg: &ShadowConfig
             return false;
         }
         reads += 1;
+        if P::TEXELS {
+            for buffer in map.buffers_read(cfg.test) {
+                probe.texel_read(TexelRead { buffer, x, y });
+            }
+        }
         at_format::<F>(z.saturating_sub(bias)) > map.reference(cfg.test, x, y)
     };
     let result = match (cfg.filter, grid) {
@@ -613,10 +625,8 @@ pub fn shadow<F: DepthFormat, P: Probe>(map: &MapView<'_, F>, cfg: &ShadowConfig
         probe.event(Event::VirtualSamples { count: reads });
     }
     if reads > 0 {
-        for (needed, buffer) in [(cfg.test.needs_z1(), Buffer::Z1), (cfg.test.needs_z2(), Buffer::Z2)] {
-            if needed {
-                probe.event(Event::MapRead { buffer, texels: reads, bytes: reads * F::KIND.bytes() });
-            }
+        for buffer in map.buffers_read(cfg.test) {
+            probe.event(Event::MapRead { buffer, texels: reads, bytes: reads * F::KIND.bytes() });
         }
     }
     result

@@ -9,6 +9,7 @@
 
 mod common;
 
+mod cache;
 mod camera_pass;
 mod culling;
 mod dual_depth;
