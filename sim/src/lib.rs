@@ -1,6 +1,7 @@
 #![forbid(unsafe_code)]
 #![doc = include_str!("../README.md")]
 
+pub mod arch;
 pub mod cache;
 pub mod camera;
 pub mod counters;

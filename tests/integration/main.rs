@@ -9,6 +9,7 @@
 
 mod common;
 
+mod arch;
 mod cache;
 mod camera_pass;
 mod culling;

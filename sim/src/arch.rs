@@ -1,0 +1,283 @@
+//! Architecture models: probes that turn the core's events into cycles per
+//! pipeline stage and bytes per memory, the way Sen et al.'s bandwidth model
+//! counts a frame.
+//!
+//! Stages run pipelined; a pass takes as long as its slowest stage (the
+//! bottleneck). Every cost is a parameter of the preset, and every
+//! parameter says why it has its value.
+
+use serde::Serialize;
+use umbra_core::probe::{Buffer, CullLevel, Event};
+use umbra_core::{DepthFormatKind, DepthUnit, Probe};
+
+/// The pipeline stages a cost is charged to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+pub enum Stage {
+    /// Triangle setup.
+    Setup,
+    /// Scan conversion.
+    Raster,
+    /// The depth unit.
+    Depth,
+    /// The shadow unit (camera pass).
+    Shadow,
+    /// Writing tiles back (resolve).
+    Resolve,
+}
+
+impl Stage {
+    /// Every stage, in pipeline order.
+    pub const ALL: [Self; 5] = [Self::Setup, Self::Raster, Self::Depth, Self::Shadow, Self::Resolve];
+}
+
+/// The parameters of an architecture. See the presets for values and reasons.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct ArchParams {
+    /// Name for reports.
+    pub name: &'static str,
+    /// Cycles to set up one triangle.
+    pub setup_cycles: u64,
+    /// Raster cycles per triangle per tile it touches, whatever its
+    /// fragment count (a linear-expression evaluator); 0 if fragment-bound.
+    pub raster_cycles_per_tile: u64,
+    /// Fragments scan-converted per clock (0: not fragment-bound).
+    pub fragments_per_clock: u64,
+    /// Depth-unit cycles per triangle per tile for each depth bit and
+    /// buffer (bit-serial processors; 0 if per fragment).
+    pub depth_cycles_per_bit: u64,
+    /// Depth-unit fragments per clock (0: bit-serial instead).
+    pub depth_fragments_per_clock: u64,
+    /// The depth buffers live off chip, read and written per fragment.
+    pub off_chip_depth: bool,
+    /// The resolve writes only the value the shadow test needs (one buffer).
+    pub resolve_test_value_only: bool,
+    /// Bytes of one bin entry in memory.
+    pub bin_entry_bytes: u64,
+    /// Bytes of one triangle's setup record in memory (written at binning,
+    /// read at each flush of a tile it is binned to).
+    pub setup_record_bytes: u64,
+    /// DRAM bytes per cycle (for the resolve stage).
+    pub dram_bytes_per_cycle: u64,
+    /// Shadow-unit map samples compared per clock.
+    pub samples_per_clock: u64,
+    /// Cycles of one tangent-plane setup (a division).
+    pub tangent_setup_cycles: u64,
+    /// Side of the on-chip tile (region, chunk) in pixels.
+    pub tile: u32,
+}
+
+impl ArchParams {
+    /// PixelFlow-style (Molnar, Eyles & Poulton 1992): 128×128 SIMD regions
+    /// fed by a linear-expression evaluator; bit-serial pixel processors.
+    pub const PIXELFLOW: Self = Self {
+        name: "pixelflow",
+        // The geometry processors' setup of edge and depth coefficients.
+        setup_cycles: 100,
+        // The evaluator broadcasts 4 linear expressions (3 edges, depth) to a
+        // region: a fixed cost per region touched, not per fragment.
+        raster_cycles_per_tile: 4 * 32,
+        fragments_per_clock: 0,
+        // Bit-serial compare and conditional write: 2 cycles per bit per buffer,
+        // all pixels of the region at once.
+        depth_cycles_per_bit: 2,
+        depth_fragments_per_clock: 0,
+        off_chip_depth: false,
+        resolve_test_value_only: false,
+        bin_entry_bytes: 4,
+        setup_record_bytes: 48,
+        // A 64-bit DRAM interface at the pixel clock.
+        dram_bytes_per_cycle: 8,
+        // Bit-serial shading processors: a sample compare costs about a cycle
+        // per region-parallel pixel; modelled as one sample per clock per pixel lane.
+        samples_per_clock: 1,
+        tangent_setup_cycles: 30,
+        tile: 128,
+    };
+
+    /// Talisman-style (Torborg & Kajiya 1996): 32×32 chunks, triangles binned
+    /// per chunk, scan conversion at 2 fragments per clock into on-chip
+    /// chunk depth buffers; DRAM traffic for bins and at resolve only.
+    pub const TALISMAN: Self = Self {
+        name: "talisman",
+        // A fixed-function setup engine, pipelined: a triangle every 20 cycles.
+        setup_cycles: 20,
+        raster_cycles_per_tile: 0,
+        // Talisman's polygon engine rasterises 2 pixels per clock.
+        fragments_per_clock: 2,
+        depth_cycles_per_bit: 0,
+        // The on-chip chunk z-buffer keeps up with the rasteriser.
+        depth_fragments_per_clock: 2,
+        off_chip_depth: false,
+        // The resolve writes only what the shadow test reads.
+        resolve_test_value_only: true,
+        // A 32-bit pointer to the setup record per bin entry.
+        bin_entry_bytes: 4,
+        // Three edges and a depth plane at 32 bits each, plus bounds.
+        setup_record_bytes: 64,
+        dram_bytes_per_cycle: 8,
+        // A texture-filter-like unit: 4 samples per clock.
+        samples_per_clock: 4,
+        tangent_setup_cycles: 20,
+        tile: 32,
+    };
+
+    /// An immediate-mode baseline: depth buffers off chip, read-modify-written
+    /// per fragment, an on-chip max-z per tile.
+    pub const IMMEDIATE: Self = Self {
+        name: "immediate",
+        setup_cycles: 20,
+        raster_cycles_per_tile: 0,
+        fragments_per_clock: 2,
+        depth_cycles_per_bit: 0,
+        depth_fragments_per_clock: 2,
+        off_chip_depth: true,
+        resolve_test_value_only: false,
+        bin_entry_bytes: 0,
+        setup_record_bytes: 0,
+        dram_bytes_per_cycle: 8,
+        samples_per_clock: 4,
+        tangent_setup_cycles: 20,
+        tile: 32,
+    };
+
+    /// The presets by name.
+    pub const PRESETS: [Self; 3] = [Self::PIXELFLOW, Self::TALISMAN, Self::IMMEDIATE];
+}
+
+/// DRAM traffic per buffer, bytes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct Dram {
+    /// Map texels written (resolve, or per-fragment writes off chip).
+    pub map_writes: u64,
+    /// Depth read back by the light pass (tile loads, or per-fragment reads off chip).
+    pub map_rmw_reads: u64,
+    /// Map texels read by the camera pass.
+    pub map_reads: u64,
+    /// Bins and setup records written and read.
+    pub bins: u64,
+}
+
+/// A probe charging an architecture's costs.
+#[derive(Clone, Debug)]
+pub struct ArchProbe {
+    /// The parameters.
+    pub params: ArchParams,
+    format: DepthFormatKind,
+    buffers: u64,
+    /// Cycles per stage, in [`Stage::ALL`] order.
+    pub cycles: [u64; 5],
+    /// DRAM bytes.
+    pub dram: Dram,
+    /// Triangle-tile pairs rasterised.
+    pub pairs: u64,
+    /// Triangle-tile pairs and blocks skipped by max-z culling.
+    pub culled: u64,
+    /// Shadow lookups decided by the tiles' bounds.
+    pub lookups_culled: u64,
+    /// Map samples compared.
+    pub samples: u64,
+    /// Pixels that needed virtual samples.
+    pub tangent_setups: u64,
+    /// Pixels decided by the ordinary comparison.
+    pub trivial: u64,
+    /// Per triangle-tile pair in processing order: the tile and the cycles it
+    /// took (the slower of raster and depth), for the timeline.
+    pub tile_cycles: Vec<(u16, u16, u64)>,
+}
+
+impl ArchProbe {
+    /// A probe for a light pass of `unit` in `format`.
+    #[must_use]
+    pub fn new(params: ArchParams, format: DepthFormatKind, unit: DepthUnit) -> Self {
+        Self {
+            params,
+            format,
+            buffers: u64::from(unit.buffers()),
+            cycles: [0; 5],
+            dram: Dram::default(),
+            pairs: 0,
+            culled: 0,
+            lookups_culled: 0,
+            samples: 0,
+            tangent_setups: 0,
+            trivial: 0,
+            tile_cycles: Vec::new(),
+        }
+    }
+
+    fn charge(&mut self, stage: Stage, cycles: u64) {
+        let i = Stage::ALL.iter().position(|&s| s == stage).unwrap_or(0);
+        self.cycles[i] += cycles;
+    }
+
+    /// The bottleneck stage and its cycles.
+    #[must_use]
+    pub fn bottleneck(&self) -> (Stage, u64) {
+        Stage::ALL.iter().zip(self.cycles).max_by_key(|(_, c)| *c).map_or((Stage::Setup, 0), |(s, c)| (*s, c))
+    }
+
+    /// On-chip depth storage, bytes.
+    #[must_use]
+    pub fn on_chip_bytes(&self) -> u64 {
+        let texels = u64::from(self.params.tile) * u64::from(self.params.tile);
+        if self.params.off_chip_depth {
+            // The max-z cache: one value per tile (counted for a 1024² map).
+            (1024 / u64::from(self.params.tile)).pow(2) * u64::from(self.format.bytes())
+        } else {
+            texels * u64::from(self.format.bytes()) * self.buffers
+        }
+    }
+}
+
+impl Probe for ArchProbe {
+    fn event(&mut self, e: Event) {
+        let p = self.params;
+        let bytes = u64::from(self.format.bytes());
+        match e {
+            Event::TriangleSetup => self.charge(Stage::Setup, p.setup_cycles),
+            Event::TriangleBinned { tiles } => {
+                // Written at binning, read back when the bin is drained.
+                self.dram.bins += 2 * (u64::from(tiles) * p.bin_entry_bytes) + 2 * p.setup_record_bytes;
+            }
+            Event::Fragments { tile, count } => {
+                let count = u64::from(count);
+                self.pairs += 1;
+                let raster = p.raster_cycles_per_tile + count.div_ceil(p.fragments_per_clock.max(1)) * u64::from(p.fragments_per_clock > 0);
+                let depth = if p.depth_fragments_per_clock > 0 {
+                    count.div_ceil(p.depth_fragments_per_clock) * self.buffers
+                } else {
+                    p.depth_cycles_per_bit * u64::from(self.format.bits()) * self.buffers
+                };
+                self.charge(Stage::Raster, raster);
+                self.charge(Stage::Depth, depth);
+                self.tile_cycles.push((tile.x, tile.y, raster.max(depth)));
+                if p.off_chip_depth {
+                    self.dram.map_rmw_reads += count * bytes * self.buffers;
+                }
+            }
+            Event::DepthWrite { buffer, texels, .. } if p.off_chip_depth && buffer != Buffer::Id => {
+                self.dram.map_writes += u64::from(texels) * bytes;
+            }
+            Event::Culled { level: CullLevel::Triangle | CullLevel::Block, .. } => self.culled += 1,
+            Event::TileLoad { bytes: b, .. } if !p.off_chip_depth => self.dram.map_rmw_reads += u64::from(b),
+            Event::TileStore { bytes: b, cleared, .. } if !p.off_chip_depth => {
+                let written = if p.resolve_test_value_only { u64::from(b) / self.buffers.max(1) } else { u64::from(b) };
+                let written = if cleared { 0 } else { written };
+                self.dram.map_writes += written;
+                self.charge(Stage::Resolve, written.div_ceil(p.dram_bytes_per_cycle.max(1)));
+            }
+            Event::MapRead { texels, bytes: b, .. } => {
+                self.samples += u64::from(texels);
+                self.dram.map_reads += u64::from(b);
+                self.charge(Stage::Shadow, u64::from(texels).div_ceil(p.samples_per_clock.max(1)));
+            }
+            Event::LookupCulled { .. } => self.lookups_culled += 1,
+            Event::TangentSetup => {
+                self.tangent_setups += 1;
+                self.charge(Stage::Shadow, p.tangent_setup_cycles);
+            }
+            Event::TrivialPixel { .. } => self.trivial += 1,
+            _ => {}
+        }
+    }
+}
