@@ -197,5 +197,25 @@ fn bench_light_pass(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench_light_pass);
+/// The cycle-counting path (the Talisman model as the probe) against the
+/// functional path (no probe) on the same render, in one run.
+fn bench_probe_overhead(c: &mut Criterion) {
+    use umbra::core::DepthFormatKind;
+    use umbra::sim::arch::{ArchParams, ArchProbe};
+    let small = small_triangles();
+    let mut g = c.benchmark_group("probe_overhead");
+    g.sample_size(10);
+    g.throughput(Throughput::Elements(small.triangles.len() as u64));
+    let cfg = config(DepthUnit::Dual, true);
+    g.bench_function("functional", |b| b.iter(|| black_box(render::<D24, _>(cfg, &[small.draw()], NoProbe))));
+    g.bench_function("talisman_model", |b| {
+        b.iter(|| {
+            let probe = ArchProbe::new(ArchParams::TALISMAN, DepthFormatKind::D24, DepthUnit::Dual);
+            black_box(render::<D24, _>(cfg, &[small.draw()], probe))
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, bench_light_pass, bench_probe_overhead);
 criterion_main!(benches);

@@ -12,6 +12,7 @@ use umbra_core::{DepthFormatKind, DepthUnit, Probe};
 
 /// The pipeline stages a cost is charged to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+#[repr(usize)]
 pub enum Stage {
     /// Triangle setup.
     Setup,
@@ -183,6 +184,7 @@ pub struct ArchProbe {
     /// Per triangle-tile pair in processing order: the tile and the cycles it
     /// took (the slower of raster and depth), for the timeline.
     pub tile_cycles: Vec<(u16, u16, u64)>,
+    timeline: bool,
 }
 
 impl ArchProbe {
@@ -202,12 +204,22 @@ impl ArchProbe {
             tangent_setups: 0,
             trivial: 0,
             tile_cycles: Vec::new(),
+            timeline: false,
         }
     }
 
+    /// Also keep the per-tile timeline (for `umbra trace`).
+    #[must_use]
+    pub const fn with_timeline(mut self) -> Self {
+        self.timeline = true;
+        self
+    }
+
+    #[inline]
     fn charge(&mut self, stage: Stage, cycles: u64) {
-        let i = Stage::ALL.iter().position(|&s| s == stage).unwrap_or(0);
-        self.cycles[i] += cycles;
+        if let Some(c) = self.cycles.get_mut(stage as usize) {
+            *c += cycles;
+        }
     }
 
     /// The bottleneck stage and its cycles.
@@ -230,6 +242,7 @@ impl ArchProbe {
 }
 
 impl Probe for ArchProbe {
+    #[inline]
     fn event(&mut self, e: Event) {
         let p = self.params;
         let bytes = u64::from(self.format.bytes());
@@ -242,7 +255,8 @@ impl Probe for ArchProbe {
             Event::Fragments { tile, count } => {
                 let count = u64::from(count);
                 self.pairs += 1;
-                let raster = p.raster_cycles_per_tile + count.div_ceil(p.fragments_per_clock.max(1)) * u64::from(p.fragments_per_clock > 0);
+                let raster = p.raster_cycles_per_tile
+                    + count.div_ceil(p.fragments_per_clock.max(1)) * u64::from(p.fragments_per_clock > 0);
                 let depth = if p.depth_fragments_per_clock > 0 {
                     count.div_ceil(p.depth_fragments_per_clock) * self.buffers
                 } else {
@@ -250,7 +264,9 @@ impl Probe for ArchProbe {
                 };
                 self.charge(Stage::Raster, raster);
                 self.charge(Stage::Depth, depth);
-                self.tile_cycles.push((tile.x, tile.y, raster.max(depth)));
+                if self.timeline {
+                    self.tile_cycles.push((tile.x, tile.y, raster.max(depth)));
+                }
                 if p.off_chip_depth {
                     self.dram.map_rmw_reads += count * bytes * self.buffers;
                 }
@@ -279,5 +295,139 @@ impl Probe for ArchProbe {
             Event::TrivialPixel { .. } => self.trivial += 1,
             _ => {}
         }
+    }
+}
+
+/// The cost of one render on one architecture.
+#[derive(Clone, Debug, Serialize)]
+pub struct CostReport {
+    /// The architecture.
+    pub arch: &'static str,
+    /// Light-pass cycles per stage, in [`Stage::ALL`] order.
+    pub light_cycles: [u64; 5],
+    /// The light pass's bottleneck stage and its cycles.
+    pub light_bottleneck: (Stage, u64),
+    /// Camera-pass cycles per stage.
+    pub camera_cycles: [u64; 5],
+    /// The camera pass's bottleneck stage and its cycles.
+    pub camera_bottleneck: (Stage, u64),
+    /// Light-pass DRAM traffic.
+    pub light_dram: Dram,
+    /// Camera-pass DRAM traffic (map reads; visibility depth if off chip).
+    pub camera_dram: Dram,
+    /// On-chip depth storage, bytes.
+    pub on_chip_bytes: u64,
+    /// Triangle-tile pairs and blocks skipped by max-z culling, as a
+    /// fraction of those considered, light pass and camera visibility.
+    pub max_z_cull_rate: [f64; 2],
+    /// Shadow lookups decided by the tiles' bounds, per shaded pixel.
+    pub lookups_culled_per_pixel: f64,
+    /// Pixels that needed virtual samples, as a fraction of shaded pixels.
+    pub virtual_sample_fraction: f64,
+    /// Camera pixels on geometry.
+    pub pixels: u64,
+    /// Simulated camera-pass map bytes per pixel.
+    pub map_bytes_per_pixel: f64,
+    /// Sen et al.'s analytic shadow-map figure: 4 bytes per depth sample,
+    /// times the samples the filter takes per pixel.
+    pub sen_shadow_map_bytes_per_pixel: f64,
+}
+
+#[allow(clippy::cast_precision_loss, reason = "ratios of counts")]
+fn ratio(a: u64, b: u64) -> f64 {
+    if b == 0 { 0.0 } else { a as f64 / b as f64 }
+}
+
+impl CostReport {
+    /// Combine the probes of the light pass and of the camera pass.
+    #[must_use]
+    pub fn new(light: &ArchProbe, camera: &ArchProbe, pixels: u64, samples_per_pixel: u64) -> Self {
+        let lookups = camera.trivial + camera.tangent_setups;
+        Self {
+            arch: light.params.name,
+            light_cycles: light.cycles,
+            light_bottleneck: light.bottleneck(),
+            camera_cycles: camera.cycles,
+            camera_bottleneck: camera.bottleneck(),
+            light_dram: light.dram,
+            camera_dram: camera.dram,
+            on_chip_bytes: light.on_chip_bytes(),
+            max_z_cull_rate: [
+                ratio(light.culled, light.culled + light.pairs),
+                ratio(camera.culled, camera.culled + camera.pairs),
+            ],
+            lookups_culled_per_pixel: ratio(camera.lookups_culled, pixels),
+            virtual_sample_fraction: ratio(camera.tangent_setups, lookups),
+            pixels,
+            map_bytes_per_pixel: ratio(camera.dram.map_reads, pixels),
+            #[allow(clippy::cast_precision_loss, reason = "a small count")]
+            sen_shadow_map_bytes_per_pixel: 4.0 * samples_per_pixel as f64,
+        }
+    }
+
+    /// The report as a Markdown table.
+    #[must_use]
+    pub fn markdown(&self) -> String {
+        use std::fmt::Write as _;
+        let mut s = String::new();
+        let _ = writeln!(s, "### {}\n", self.arch);
+        let _ = writeln!(s, "| pass | setup | raster | depth | shadow | resolve | bottleneck |");
+        let _ = writeln!(s, "|---|---:|---:|---:|---:|---:|---|");
+        for (name, c, b) in [
+            ("light", self.light_cycles, self.light_bottleneck),
+            ("camera", self.camera_cycles, self.camera_bottleneck),
+        ] {
+            let _ = writeln!(
+                s,
+                "| {name} | {} | {} | {} | {} | {} | {:?} ({} cycles) |",
+                c[0], c[1], c[2], c[3], c[4], b.0, b.1
+            );
+        }
+        let d = &self.light_dram;
+        let _ = writeln!(
+            s,
+            "\nDRAM bytes: map writes {}, light-pass depth reads {}, bins {}, camera map reads {}; on-chip depth {} bytes.",
+            d.map_writes, d.map_rmw_reads, d.bins, self.camera_dram.map_reads, self.on_chip_bytes
+        );
+        let _ = writeln!(
+            s,
+            "Max-z culled: {:.1} % (light), {:.1} % (camera visibility); {:.2} lookups culled per pixel; virtual samples for {:.2} % of pixels.",
+            100.0 * self.max_z_cull_rate[0],
+            100.0 * self.max_z_cull_rate[1],
+            self.lookups_culled_per_pixel,
+            100.0 * self.virtual_sample_fraction
+        );
+        let _ = writeln!(
+            s,
+            "Camera-pass map bytes per pixel: simulated {:.2}, Sen's shadow-map model {:.1} (4 B per depth sample; silhouette maps and shadow volumes are not modelled yet).",
+            self.map_bytes_per_pixel, self.sen_shadow_map_bytes_per_pixel
+        );
+        s
+    }
+
+    /// A per-tile timeline of the light pass in Chrome trace-event JSON
+    /// (opens in Perfetto): one slice per triangle-tile pair, in processing
+    /// order, one microsecond per cycle, one track per tile row.
+    #[must_use]
+    pub fn trace(light: &ArchProbe) -> serde_json::Value {
+        let mut t = 0u64;
+        let events: Vec<serde_json::Value> = light
+            .tile_cycles
+            .iter()
+            .map(|&(x, y, cycles)| {
+                let e = serde_json::json!({
+                    "name": format!("tile ({x}, {y})"),
+                    "cat": "light",
+                    "ph": "X",
+                    "ts": t,
+                    "dur": cycles.max(1),
+                    "pid": 1,
+                    "tid": y,
+                });
+                t += cycles.max(1);
+                e
+            })
+            .collect();
+        serde_json::json!({ "traceEvents": events, "displayTimeUnit": "ns" })
     }
 }

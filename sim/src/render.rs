@@ -4,8 +4,11 @@
 use indicatif::ProgressBar;
 use serde::Serialize;
 use umbra_core::shadow::{Bias, DepthTest, Filter, ShadowConfig, ShadowConfigError};
-use umbra_core::{CullMode, D16, D24, DepthFormat, DepthFormatKind, DepthUnit, F32, LightPassConfig, RasterConfig};
+use umbra_core::{
+    CullMode, D16, D24, DepthFormat, DepthFormatKind, DepthUnit, F32, LightPassConfig, Probe, RasterConfig,
+};
 
+use crate::arch::{ArchParams, ArchProbe, CostReport};
 use crate::camera::{CameraImage, render_camera, visibility};
 use crate::counters::Counters;
 use crate::light::{LightError, LightMaps, RawMaps, render as light_render};
@@ -104,29 +107,34 @@ pub fn render(scene: &Scene, cfg: &RenderConfig, progress: &ProgressBar) -> Resu
     }
 }
 
-fn render_in<F: DepthFormat>(scene: &Scene, cfg: &RenderConfig, progress: &ProgressBar) -> Result<Render, RenderError> {
-    let (unit, front_culled, test) = match cfg.algorithm {
-        Algorithm::First => (DepthUnit::Single, false, DepthTest::First),
-        Algorithm::Second => (DepthUnit::Dual, false, DepthTest::Second),
-        Algorithm::SecondFrontCulled => (DepthUnit::Single, true, DepthTest::Second),
-        Algorithm::Midpoint => (DepthUnit::Dual, false, DepthTest::Midpoint),
-        Algorithm::Dual { offset } => (DepthUnit::Dual, false, DepthTest::Dual { offset: F::plane_z(offset) }),
+/// The light pass (tiles of `tile` pixels) and the camera pass of a render,
+/// reporting to the two probes.
+fn passes<F: DepthFormat, L: Probe, C: Probe>(
+    scene: &Scene,
+    cfg: &RenderConfig,
+    tile: u32,
+    light_probe: L,
+    camera_probe: &mut C,
+) -> Result<(LightMaps<F::Texel>, L, CameraImage), RenderError> {
+    let unit = unit_of(cfg.algorithm);
+    let (front_culled, test) = match cfg.algorithm {
+        Algorithm::First => (false, DepthTest::First),
+        Algorithm::Second => (false, DepthTest::Second),
+        Algorithm::SecondFrontCulled => (true, DepthTest::Second),
+        Algorithm::Midpoint => (false, DepthTest::Midpoint),
+        Algorithm::Dual { offset } => (false, DepthTest::Dual { offset: F::plane_z(offset) }),
     };
     let cull = |solid: bool| match (cfg.algorithm, solid) {
         (Algorithm::SecondFrontCulled, true) => CullMode::Front,
         (Algorithm::Dual { .. }, true) => CullMode::Back,
         _ => CullMode::None,
     };
-    let raster = RasterConfig::new(cfg.map_size, cfg.map_size, RasterConfig::DEFAULT_TILE_SIZE, 8)
-        .map_err(RenderError::MapSize)?;
+    let raster = RasterConfig::new(cfg.map_size, cfg.map_size, tile, 8).map_err(RenderError::MapSize)?;
     let light_config = LightPassConfig { raster, unit, max_z_cull: true };
     let draws = scene.draws_culled(scene.light().view_projection(), cull);
-    let (maps, light_events): (LightMaps<F::Texel>, Counters) =
-        light_render::<F, _>(light_config, &draws, Counters::new(&raster))?;
+    let (maps, light_probe) = light_render::<F, _>(light_config, &draws, light_probe)?;
     let shadow = ShadowConfig::new(test, Bias::Constant(F::plane_z(cfg.bias)), cfg.filter, true)?;
-    let camera_raster =
-        RasterConfig::new(cfg.width, cfg.height, RasterConfig::DEFAULT_TILE_SIZE, 8).map_err(RenderError::ImageSize)?;
-    let mut camera_events = Counters::new(&camera_raster);
+    RasterConfig::new(cfg.width, cfg.height, RasterConfig::DEFAULT_TILE_SIZE, 8).map_err(RenderError::ImageSize)?;
     let virtual_samples = cfg.virtual_samples && test == DepthTest::Second;
     let image = render_camera::<F, _>(
         scene,
@@ -136,8 +144,27 @@ fn render_in<F: DepthFormat>(scene: &Scene, cfg: &RenderConfig, progress: &Progr
         virtual_samples,
         cfg.width,
         cfg.height,
-        &mut camera_events,
+        camera_probe,
     )?;
+    Ok((maps, light_probe, image))
+}
+
+/// The light pass's unit for an algorithm.
+const fn unit_of(a: Algorithm) -> DepthUnit {
+    match a {
+        Algorithm::First | Algorithm::SecondFrontCulled => DepthUnit::Single,
+        _ => DepthUnit::Dual,
+    }
+}
+
+fn render_in<F: DepthFormat>(scene: &Scene, cfg: &RenderConfig, progress: &ProgressBar) -> Result<Render, RenderError> {
+    let map_raster = RasterConfig::new(cfg.map_size, cfg.map_size, RasterConfig::DEFAULT_TILE_SIZE, 8)
+        .map_err(RenderError::MapSize)?;
+    let camera_raster =
+        RasterConfig::new(cfg.width, cfg.height, RasterConfig::DEFAULT_TILE_SIZE, 8).map_err(RenderError::ImageSize)?;
+    let mut camera_events = Counters::new(&camera_raster);
+    let (maps, light_events, image) =
+        passes::<F, _, _>(scene, cfg, RasterConfig::DEFAULT_TILE_SIZE, Counters::new(&map_raster), &mut camera_events)?;
     let (camera, ids) = visibility(scene, cfg.width, cfg.height, &mut umbra_core::NoProbe)?;
     let reference = Reference::new(&scene.triangles())?;
     let light = scene.light().source();
@@ -145,4 +172,36 @@ fn render_in<F: DepthFormat>(scene: &Scene, cfg: &RenderConfig, progress: &Progr
     let metrics = compare(&image.pixels, &truth);
     let maps = RawMaps { format: cfg.format, maps: crate::light::widen(maps) };
     Ok(Render { image, maps, truth, metrics, light_events, camera_events })
+}
+
+/// The cost of a render on an architecture: both passes through its model.
+/// Returns the report and the light pass's probe (for the timeline).
+///
+/// # Errors
+/// See [`RenderError`].
+pub fn cost(scene: &Scene, cfg: &RenderConfig, arch: ArchParams) -> Result<(CostReport, ArchProbe), RenderError> {
+    match cfg.format {
+        DepthFormatKind::D16 => cost_in::<D16>(scene, cfg, arch),
+        DepthFormatKind::D24 => cost_in::<D24>(scene, cfg, arch),
+        DepthFormatKind::F32 => cost_in::<F32>(scene, cfg, arch),
+    }
+}
+
+fn cost_in<F: DepthFormat>(
+    scene: &Scene,
+    cfg: &RenderConfig,
+    arch: ArchParams,
+) -> Result<(CostReport, ArchProbe), RenderError> {
+    let unit = unit_of(cfg.algorithm);
+    let mut camera = ArchProbe::new(arch, cfg.format, DepthUnit::Single);
+    let light = ArchProbe::new(arch, cfg.format, unit).with_timeline();
+    let (_, light, image) = passes::<F, _, _>(scene, cfg, arch.tile, light, &mut camera)?;
+    let pixels = image.pixels.iter().filter(|p| p.triangle != umbra_core::NO_TRIANGLE).count() as u64;
+    let samples = match cfg.filter {
+        Filter::Point => 1,
+        Filter::Bilinear => 4,
+        Filter::Box { size } => u64::from(size) * u64::from(size),
+        Filter::Jittered(j) => u64::from(j.num_samples),
+    };
+    Ok((CostReport::new(&light, &camera, pixels, samples), light))
 }

@@ -60,7 +60,10 @@ fn pixelflow_quad_by_hand_and_depth_bits() {
 /// unit writes the same bytes as the single one.
 #[test]
 fn talisman_dual_resolve_writes_what_single_does() {
-    let scene: Vec<[Vec4; 3]> = quad().into_iter().chain(quad().into_iter().map(|t| t.map(|v| Vec4::new(v.x * 0.5, v.y * 0.5, 0.3, 1.0)))).collect();
+    let scene: Vec<[Vec4; 3]> = quad()
+        .into_iter()
+        .chain(quad().into_iter().map(|t| t.map(|v| Vec4::new(v.x * 0.5, v.y * 0.5, 0.3, 1.0))))
+        .collect();
     let single = pass::<D24>(ArchParams::TALISMAN, DepthUnit::Single, &scene, 128);
     let dual = pass::<D24>(ArchParams::TALISMAN, DepthUnit::Dual, &scene, 128);
     assert_eq!(single.dram.map_writes, dual.dram.map_writes);

@@ -7,6 +7,7 @@ use anyhow::{Context, Result, bail};
 use clap::{Parser, Subcommand, ValueEnum};
 use indicatif::ProgressBar;
 use umbra_core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, RasterConfig};
+use umbra_sim::arch::ArchParams;
 use umbra_sim::counters::Counters;
 use umbra_sim::glam::{Mat4, Vec3};
 use umbra_sim::light::{RawMaps, render_raw};
@@ -35,6 +36,29 @@ enum Command {
     /// Render a scene with a shadow algorithm, compare it with the exact
     /// reference, and write the pictures and the metrics.
     Render(RenderArgs),
+    /// The cost of a render on the architecture presets: cycles per stage,
+    /// DRAM bytes, culling rates, Sen's bandwidth model (table and JSON).
+    Cost(CostArgs),
+    /// A per-tile timeline of the light pass in Chrome trace-event JSON
+    /// (open it in Perfetto).
+    Trace(CostArgs),
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+enum ArchArg {
+    Pixelflow,
+    Talisman,
+    Immediate,
+    All,
+}
+
+#[derive(clap::Args, Debug)]
+struct CostArgs {
+    /// Architecture preset.
+    #[arg(long, value_enum, default_value_t = ArchArg::All)]
+    arch: ArchArg,
+    #[command(flatten)]
+    render: RenderArgs,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -199,6 +223,8 @@ fn main() -> Result<()> {
     match cli.command {
         Some(Command::Depth(args)) => depth(&args),
         Some(Command::Render(args)) => render(&args),
+        Some(Command::Cost(args)) => cost(&args, false),
+        Some(Command::Trace(args)) => cost(&args, true),
         None => {
             depth(&DepthArgs::default())?;
             render(&RenderArgs::default())
@@ -206,8 +232,38 @@ fn main() -> Result<()> {
     }
 }
 
-/// `umbra render`: the pictures, the metrics and the events of one render.
-fn render(args: &RenderArgs) -> Result<()> {
+/// `umbra cost` and `umbra trace`.
+fn cost(args: &CostArgs, trace: bool) -> Result<()> {
+    let (scene, cfg, _) = render_config(&args.render)?;
+    let presets: Vec<ArchParams> = match args.arch {
+        ArchArg::Pixelflow => vec![ArchParams::PIXELFLOW],
+        ArchArg::Talisman => vec![ArchParams::TALISMAN],
+        ArchArg::Immediate => vec![ArchParams::IMMEDIATE],
+        ArchArg::All => ArchParams::PRESETS.to_vec(),
+    };
+    let out = &args.render.out;
+    let mut reports = Vec::new();
+    for arch in presets {
+        let (report, light) = umbra_sim::render::cost(&scene, &cfg, arch)?;
+        if trace {
+            let path = out.join(format!("trace-{}.json", arch.name));
+            write_text(&path, &serde_json::to_string(&umbra_sim::arch::CostReport::trace(&light))?)?;
+            println!("wrote {} ({} slices)", path.display(), light.tile_cycles.len());
+        } else {
+            println!("{}", report.markdown());
+        }
+        reports.push(report);
+    }
+    if !trace {
+        let path = out.join("cost.json");
+        write_text(&path, &serde_json::to_string_pretty(&reports)?)?;
+        println!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+/// The scene and render configuration the arguments ask for.
+fn render_config(args: &RenderArgs) -> Result<(Scene, RenderConfig, &'static str)> {
     let path = Path::new(&args.scene);
     let scene = if path.is_file() { Scene::load(path)? } else { Scene::bundled(&args.scene)? };
     let [width, height] = scene.image;
@@ -246,7 +302,13 @@ fn render(args: &RenderArgs) -> Result<()> {
         height,
         reference_samples: args.reference_samples,
     };
-    let progress = ProgressBar::new(u64::from(height)).with_message("reference rays");
+    Ok((scene, cfg, filter_name))
+}
+
+/// `umbra render`: the pictures, the metrics and the events of one render.
+fn render(args: &RenderArgs) -> Result<()> {
+    let (scene, cfg, filter_name) = render_config(args)?;
+    let progress = ProgressBar::new(u64::from(cfg.height)).with_message("reference rays");
     let r = umbra_sim::render::render(&scene, &cfg, &progress)?;
     progress.finish_and_clear();
     let out = &args.out;
