@@ -65,6 +65,9 @@ pub struct ArchParams {
     pub tangent_setup_cycles: u64,
     /// Side of the on-chip tile (region, chunk) in pixels.
     pub tile: u32,
+    /// The shadow unit's map cache: bytes, line bytes, ways (none: every
+    /// sample reads memory).
+    pub map_cache: Option<(u64, u32, u32)>,
 }
 
 impl ArchParams {
@@ -93,6 +96,8 @@ impl ArchParams {
         samples_per_clock: 1,
         tangent_setup_cycles: 30,
         tile: 128,
+        // No texture cache: each region's map reads stream from memory.
+        map_cache: None,
     };
 
     /// Talisman-style (Torborg & Kajiya 1996): 32×32 chunks, triangles binned
@@ -120,6 +125,8 @@ impl ArchParams {
         samples_per_clock: 4,
         tangent_setup_cycles: 20,
         tile: 32,
+        // A small on-chip texture cache, as Talisman's texture unit had.
+        map_cache: Some((16 * 1024, 64, 4)),
     };
 
     /// An immediate-mode baseline: depth buffers off chip, read-modify-written
@@ -139,6 +146,8 @@ impl ArchParams {
         samples_per_clock: 4,
         tangent_setup_cycles: 20,
         tile: 32,
+        // A conventional 16 KB, 4-way texture cache with 64-byte lines.
+        map_cache: Some((16 * 1024, 64, 4)),
     };
 
     /// The presets by name.
@@ -313,8 +322,12 @@ pub struct CostReport {
     pub camera_bottleneck: (Stage, u64),
     /// Light-pass DRAM traffic.
     pub light_dram: Dram,
-    /// Camera-pass DRAM traffic (map reads; visibility depth if off chip).
+    /// Camera-pass DRAM traffic (map reads as requested by the shadow unit;
+    /// visibility depth if off chip).
     pub camera_dram: Dram,
+    /// Map bytes actually fetched through the preset's map cache (the
+    /// requested bytes when it has none).
+    pub map_bytes_fetched: u64,
     /// On-chip depth storage, bytes.
     pub on_chip_bytes: u64,
     /// Triangle-tile pairs and blocks skipped by max-z culling, as a
@@ -341,7 +354,13 @@ fn ratio(a: u64, b: u64) -> f64 {
 impl CostReport {
     /// Combine the probes of the light pass and of the camera pass.
     #[must_use]
-    pub fn new(light: &ArchProbe, camera: &ArchProbe, pixels: u64, samples_per_pixel: u64) -> Self {
+    pub fn new(
+        light: &ArchProbe,
+        camera: &ArchProbe,
+        fetched: Option<u64>,
+        pixels: u64,
+        samples_per_pixel: u64,
+    ) -> Self {
         let lookups = camera.trivial + camera.tangent_setups;
         Self {
             arch: light.params.name,
@@ -351,6 +370,7 @@ impl CostReport {
             camera_bottleneck: camera.bottleneck(),
             light_dram: light.dram,
             camera_dram: camera.dram,
+            map_bytes_fetched: fetched.unwrap_or(camera.dram.map_reads),
             on_chip_bytes: light.on_chip_bytes(),
             max_z_cull_rate: [
                 ratio(light.culled, light.culled + light.pairs),
@@ -359,7 +379,7 @@ impl CostReport {
             lookups_culled_per_pixel: ratio(camera.lookups_culled, pixels),
             virtual_sample_fraction: ratio(camera.tangent_setups, lookups),
             pixels,
-            map_bytes_per_pixel: ratio(camera.dram.map_reads, pixels),
+            map_bytes_per_pixel: ratio(fetched.unwrap_or(camera.dram.map_reads), pixels),
             #[allow(clippy::cast_precision_loss, reason = "a small count")]
             sen_shadow_map_bytes_per_pixel: 4.0 * samples_per_pixel as f64,
         }
@@ -386,8 +406,13 @@ impl CostReport {
         let d = &self.light_dram;
         let _ = writeln!(
             s,
-            "\nDRAM bytes: map writes {}, light-pass depth reads {}, bins {}, camera map reads {}; on-chip depth {} bytes.",
-            d.map_writes, d.map_rmw_reads, d.bins, self.camera_dram.map_reads, self.on_chip_bytes
+            "\nDRAM bytes: map writes {}, light-pass depth reads {}, bins {}, camera map reads {} requested / {} fetched; on-chip depth {} bytes.",
+            d.map_writes,
+            d.map_rmw_reads,
+            d.bins,
+            self.camera_dram.map_reads,
+            self.map_bytes_fetched,
+            self.on_chip_bytes
         );
         let _ = writeln!(
             s,
@@ -429,5 +454,32 @@ impl CostReport {
             })
             .collect();
         serde_json::json!({ "traceEvents": events, "displayTimeUnit": "ns" })
+    }
+}
+
+/// Forwards every event, fragment and texel read to two probes.
+#[derive(Clone, Debug, Default)]
+pub struct Tee<A, B>(pub A, pub B);
+
+impl<A: Probe, B: Probe> Probe for Tee<A, B> {
+    const FRAGMENTS: bool = A::FRAGMENTS || B::FRAGMENTS;
+    const TEXELS: bool = A::TEXELS || B::TEXELS;
+
+    #[inline]
+    fn event(&mut self, e: Event) {
+        self.0.event(e);
+        self.1.event(e);
+    }
+
+    #[inline]
+    fn fragment(&mut self, f: umbra_core::probe::Fragment) {
+        self.0.fragment(f);
+        self.1.fragment(f);
+    }
+
+    #[inline]
+    fn texel_read(&mut self, r: umbra_core::probe::TexelRead) {
+        self.0.texel_read(r);
+        self.1.texel_read(r);
     }
 }

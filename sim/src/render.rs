@@ -8,7 +8,7 @@ use umbra_core::{
     CullMode, D16, D24, DepthFormat, DepthFormatKind, DepthUnit, F32, LightPassConfig, Probe, RasterConfig,
 };
 
-use crate::arch::{ArchParams, ArchProbe, CostReport};
+use crate::arch::{ArchParams, ArchProbe, CostReport, Tee};
 use crate::camera::{CameraImage, render_camera, visibility};
 use crate::counters::Counters;
 use crate::light::{LightError, LightMaps, RawMaps, render as light_render};
@@ -71,6 +71,9 @@ pub enum RenderError {
     /// The reference could not be built.
     #[error(transparent)]
     Reference(#[from] ReferenceError),
+    /// The architecture's cache geometry is unusable.
+    #[error("map cache: {0}")]
+    Cache(String),
     /// The map size is unusable.
     #[error("map: {0}")]
     MapSize(umbra_core::ConfigError),
@@ -193,9 +196,20 @@ fn cost_in<F: DepthFormat>(
     arch: ArchParams,
 ) -> Result<(CostReport, ArchProbe), RenderError> {
     let unit = unit_of(cfg.algorithm);
-    let mut camera = ArchProbe::new(arch, cfg.format, DepthUnit::Single);
     let light = ArchProbe::new(arch, cfg.format, unit).with_timeline();
-    let (_, light, image) = passes::<F, _, _>(scene, cfg, arch.tile, light, &mut camera)?;
+    let camera = ArchProbe::new(arch, cfg.format, DepthUnit::Single);
+    let (camera, light, image, fetched) = if let Some((size, line, ways)) = arch.map_cache {
+        let cache = crate::cache::Cache::new(size, line, ways).map_err(|e| RenderError::Cache(e.to_string()))?;
+        let map = crate::cache::MapCache::new(cache, cfg.map_size, cfg.map_size, cfg.format.bytes());
+        let mut probe = Tee(camera, map);
+        let (_, light, image) = passes::<F, _, _>(scene, cfg, arch.tile, light, &mut probe)?;
+        let fetched = probe.1.cache.fetched_bytes();
+        (probe.0, light, image, Some(fetched))
+    } else {
+        let mut camera = camera;
+        let (_, light, image) = passes::<F, _, _>(scene, cfg, arch.tile, light, &mut camera)?;
+        (camera, light, image, None)
+    };
     let pixels = image.pixels.iter().filter(|p| p.triangle != umbra_core::NO_TRIANGLE).count() as u64;
     let samples = match cfg.filter {
         Filter::Point => 1,
@@ -203,5 +217,5 @@ fn cost_in<F: DepthFormat>(
         Filter::Box { size } => u64::from(size) * u64::from(size),
         Filter::Jittered(j) => u64::from(j.num_samples),
     };
-    Ok((CostReport::new(&light, &camera, pixels, samples), light))
+    Ok((CostReport::new(&light, &camera, fetched, pixels, samples), light))
 }

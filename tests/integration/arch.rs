@@ -2,9 +2,8 @@
 //! parameters, and totals recomputed independently from the fragments.
 
 use umbra::core::glam::Vec4;
-use umbra::core::probe::{Event, Fragment, Probe};
 use umbra::core::{CullMode, D16, D24, DepthFormat, DepthFormatKind, DepthUnit, LightPassConfig, RasterConfig};
-use umbra::sim::arch::{ArchParams, ArchProbe, Stage};
+use umbra::sim::arch::{ArchParams, ArchProbe, Stage, Tee};
 
 use crate::common::{Recorder, run, triangles};
 
@@ -70,21 +69,6 @@ fn talisman_dual_resolve_writes_what_single_does() {
     assert_eq!(single.dram.map_writes, 128 * 128 * 3);
     // But the dual unit does twice the depth work.
     assert_eq!(stage(&dual, Stage::Depth), 2 * stage(&single, Stage::Depth));
-}
-
-/// Forwards every event and fragment to two probes.
-struct Tee<A, B>(A, B);
-
-impl<A: Probe, B: Probe> Probe for Tee<A, B> {
-    const FRAGMENTS: bool = A::FRAGMENTS || B::FRAGMENTS;
-    fn event(&mut self, e: Event) {
-        self.0.event(e);
-        self.1.event(e);
-    }
-    fn fragment(&mut self, f: Fragment) {
-        self.0.fragment(f);
-        self.1.fragment(f);
-    }
 }
 
 proptest::proptest! {
