@@ -30,8 +30,9 @@
 //! the interpolated normal, moved to light space by the inverse transpose
 //! (Wang & Molnar 1994 §3.2).
 //!
-//! The footprint for Reeves' filter is the pixel's extent on the map at the
-//! triangle's centroid (one Jacobian per triangle).
+//! The footprint for Reeves' filter is the pixel's extent on the map, from
+//! the light-space points of its right and lower neighbours on the same
+//! triangle's plane (two more evaluations, for the jittered filter only).
 
 use glam::{Mat4, Vec3};
 
@@ -280,6 +281,22 @@ impl Interp {
         Some(LightPoint { x: coord(eval(&f[0]))?, y: coord(eval(&f[1]))?, z })
     }
 
+    /// Reeves' footprint of pixel `(px, py)`: half the extent on the map of
+    /// the steps to its right and lower neighbours (the per-triangle
+    /// centroid estimate where a neighbour is behind the light).
+    fn footprint_at<F: DepthFormat>(&self, p: &LightPoint, px: u32, py: u32) -> [MapCoord; 2] {
+        let (Some(r), Some(d)) = (
+            self.light_point::<F>(px.saturating_add(1), py, false),
+            self.light_point::<F>(px, py.saturating_add(1), false),
+        ) else {
+            return self.footprint;
+        };
+        let half = |a: MapCoord, b: MapCoord, c: MapCoord| {
+            (a.saturating_sub(b).saturating_abs().saturating_add(c.saturating_sub(b).saturating_abs())) / 2
+        };
+        [half(r.x, p.x, d.x), half(r.y, p.y, d.y)]
+    }
+
     /// The depth of the light pass's plane at a map position, and its slopes.
     fn plane_at(&self, p: &LightPoint) -> Option<(PlaneZ, Slope)> {
         let plane = self.plane?;
@@ -361,7 +378,11 @@ pub fn shade<F: DepthFormat, S: TriangleSource, P: Probe>(
             x: point.x,
             y: point.y,
             z,
-            footprint: interp.footprint,
+            footprint: if matches!(cfg.shadow.filter(), crate::shadow::Filter::Jittered(_)) {
+                interp.footprint_at::<F>(&point, px, py)
+            } else {
+                interp.footprint
+            },
             seed: pixel_seed(cfg.seed, px, py),
             slope: None,
         };
