@@ -45,6 +45,7 @@ use crate::setup::{DepthPlane, Setup};
 use crate::shadow::{
     Lookup, MapCoord, MapView, Shadow, ShadowConfig, Slope, TangentPlane, shadow, shadow_with_virtual_samples,
 };
+use crate::silhouette::{SilStore, SilhouetteMap};
 
 /// One triangle of the scene, in world space.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -333,6 +334,76 @@ pub fn shade<F: DepthFormat, S: TriangleSource, P: Probe>(
     out: &mut [Shaded],
     probe: &mut P,
 ) -> Result<(), ConfigError> {
+    shade_with(cfg, ids, map, scene, out, &MapUnit, probe)
+}
+
+/// The unit that turns a pixel's lookup into its shadow fraction.
+pub trait ShadowUnit<F: DepthFormat> {
+    /// Decide one lookup against `map`; `tangent` solves the receiver's
+    /// tangent plane on the map, for units that use virtual samples.
+    fn decide<P: Probe, T: FnOnce() -> Option<Slope>>(
+        &self,
+        map: &MapView<'_, F>,
+        cfg: &CameraConfig,
+        lookup: &Lookup,
+        tangent: T,
+        probe: &mut P,
+    ) -> Shadow;
+}
+
+/// The shadow unit of [`crate::shadow`]: the configured test and filter,
+/// with Wang & Molnar's virtual samples when the configuration asks.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct MapUnit;
+
+impl<F: DepthFormat> ShadowUnit<F> for MapUnit {
+    fn decide<P: Probe, T: FnOnce() -> Option<Slope>>(
+        &self,
+        map: &MapView<'_, F>,
+        cfg: &CameraConfig,
+        lookup: &Lookup,
+        tangent: T,
+        probe: &mut P,
+    ) -> Shadow {
+        if cfg.virtual_samples {
+            shadow_with_virtual_samples(map, &cfg.shadow, lookup, tangent, probe)
+        } else {
+            shadow(map, &cfg.shadow, lookup, probe)
+        }
+    }
+}
+
+/// Sen et al.'s silhouette-map test ([`crate::silhouette`]) in place of the
+/// filter: four corner tests, then the skewed quadrants.
+#[derive(Debug)]
+pub struct SilhouetteUnit<'s, 'a, S: SilStore>(pub &'s SilhouetteMap<'a, S>);
+
+impl<F: DepthFormat, S: SilStore> ShadowUnit<F> for SilhouetteUnit<'_, '_, S> {
+    fn decide<P: Probe, T: FnOnce() -> Option<Slope>>(
+        &self,
+        map: &MapView<'_, F>,
+        cfg: &CameraConfig,
+        lookup: &Lookup,
+        _tangent: T,
+        probe: &mut P,
+    ) -> Shadow {
+        crate::silhouette::shadow(self.0, map, &cfg.shadow, lookup.x, lookup.y, lookup.z, probe)
+    }
+}
+
+/// [`shade`] with any [`ShadowUnit`].
+///
+/// # Errors
+/// [`ConfigError::BufferLength`] when `ids` or `out` is not `width × height`.
+pub fn shade_with<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, P: Probe>(
+    cfg: &CameraConfig,
+    ids: &[u32],
+    map: &MapView<'_, F>,
+    scene: &S,
+    out: &mut [Shaded],
+    unit: &U,
+    probe: &mut P,
+) -> Result<(), ConfigError> {
     let texels = cfg.width as usize * cfg.height as usize;
     for (buffer, found) in [("ids", ids.len()), ("out", out.len())] {
         if found != texels {
@@ -386,7 +457,7 @@ pub fn shade<F: DepthFormat, S: TriangleSource, P: Probe>(
             seed: pixel_seed(cfg.seed, px, py),
             slope: None,
         };
-        let s = if cfg.virtual_samples {
+        let s = {
             let raster = *map.raster();
             let tangent = || match (cfg.normals, flat) {
                 (Normals::Flat, Some((_, slope))) => Some(slope),
@@ -402,9 +473,7 @@ pub fn shade<F: DepthFormat, S: TriangleSource, P: Probe>(
                     TangentPlane::new(p, normal, &light_inverse_transpose).slope::<F>(&raster)
                 }
             };
-            shadow_with_virtual_samples(map, &cfg.shadow, &lookup, tangent, probe)
-        } else {
-            shadow(map, &cfg.shadow, &lookup, probe)
+            unit.decide(map, cfg, &lookup, tangent, probe)
         };
         *o = Shaded { triangle: id, light: Some(LightPoint { z, ..point }), normal, shadow: s };
     }

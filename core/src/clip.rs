@@ -39,6 +39,17 @@ pub enum Clipped {
     Outside,
 }
 
+/// Which depth planes clip.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DepthClip {
+    /// Near and far (the light and camera passes).
+    NearFar,
+    /// Near only: depth beyond the far plane is clamped to it by the
+    /// format's saturation (the depth clamp that depth-fail shadow volumes
+    /// need, so their far caps are not cut away).
+    Near,
+}
+
 #[inline]
 fn distance(v: &ClipVertex, plane: usize, guard: [f64; 2]) -> f64 {
     let [x, y, z, w] = *v;
@@ -63,13 +74,21 @@ pub fn inside_all(v: &ClipVertex, guard: [f64; 2]) -> bool {
 /// polygon, when there is one, goes to `poly`.
 #[must_use]
 pub fn clip_triangle(tri: &[ClipVertex; 3], guard: [f64; 2], poly: &mut Polygon) -> Clipped {
-    if tri.iter().all(|v| inside_all(v, guard)) {
+    clip_triangle_with(tri, guard, DepthClip::NearFar, poly)
+}
+
+/// [`clip_triangle`] with a choice of depth planes.
+#[must_use]
+pub fn clip_triangle_with(tri: &[ClipVertex; 3], guard: [f64; 2], depth: DepthClip, poly: &mut Polygon) -> Clipped {
+    let active = |p: usize| p != 1 || depth == DepthClip::NearFar;
+    let inside = |v: &ClipVertex| (0..PLANES).filter(|&p| active(p)).all(|p| distance(v, p, guard) >= 0.0);
+    if tri.iter().all(inside) {
         return Clipped::Inside;
     }
     let mut outside_all = [true; PLANES];
     for v in tri {
         for (p, out) in outside_all.iter_mut().enumerate() {
-            *out &= distance(v, p, guard) < 0.0;
+            *out &= active(p) && distance(v, p, guard) < 0.0;
         }
     }
     if outside_all.iter().any(|&o| o) {
@@ -80,7 +99,7 @@ pub fn clip_triangle(tri: &[ClipVertex; 3], guard: [f64; 2], poly: &mut Polygon)
         // Capacity is MAX_POLYGON ≥ 3.
         let _ = poly.push(*v);
     }
-    for plane in 0..PLANES {
+    for plane in (0..PLANES).filter(|&p| active(p)) {
         let mut next: Polygon = Vec::new();
         let n = poly.len();
         for i in 0..n {

@@ -179,6 +179,48 @@ pub enum Event {
         /// Decided lit (else shadowed).
         lit: bool,
     },
+    /// One silhouette edge through the silhouette pass (Sen et al. 2003
+    /// §3.1): fragments of its conservative rasterization, and the points
+    /// they stored (the rest were killed: outside the texel or hidden).
+    SilhouetteFragments {
+        /// Fragments generated.
+        fragments: u32,
+        /// Points written.
+        stored: u32,
+        /// Bytes written.
+        bytes: u32,
+    },
+    /// Silhouette points read by the camera pass (the texel's and its four
+    /// neighbours').
+    SilhouetteRead {
+        /// Points read.
+        points: u32,
+        /// Bytes read.
+        bytes: u32,
+    },
+    /// Fragments of one shadow-volume triangle on the camera's raster, each
+    /// reading the scene depth.
+    VolumeFragments {
+        /// Fragments generated.
+        fragments: u32,
+        /// Scene depth bytes read.
+        depth_bytes: u32,
+    },
+    /// Stencil texels read by the volume fragments of one triangle.
+    StencilRead {
+        /// Texels read.
+        texels: u32,
+        /// Bytes read.
+        bytes: u32,
+    },
+    /// Stencil texels written (incremented or decremented) by the volume
+    /// fragments of one triangle that failed the depth test.
+    StencilWrite {
+        /// Texels written.
+        texels: u32,
+        /// Bytes written.
+        bytes: u32,
+    },
 }
 
 /// One fragment in detail, for probes that ask for it.

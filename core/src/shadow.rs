@@ -347,8 +347,19 @@ impl<'a, F: DepthFormat> MapView<'a, F> {
         F::widen(buf.get(i).copied().unwrap_or(F::FAR))
     }
 
+    /// Whether a receiver at depth `z` less `bias` ([`PlaneZ`] bits),
+    /// rounded to the map's format, lies behind the test's reference at
+    /// texel `(x, y)`; `None` outside the map (lit, nothing read).
+    pub(crate) fn compare(&self, cfg: &ShadowConfig, x: i64, y: i64, z: i64, bias: i64) -> Option<bool> {
+        let (x, y) = (u32::try_from(x).ok()?, u32::try_from(y).ok()?);
+        if x >= self.raster.width() || y >= self.raster.height() {
+            return None;
+        }
+        Some(at_format::<F>(z.saturating_sub(bias)) > self.reference(cfg.test, x, y))
+    }
+
     /// The buffers a test reads from this map (one, or both).
-    fn buffers_read(&self, test: DepthTest) -> impl Iterator<Item = Buffer> {
+    pub(crate) fn buffers_read(&self, test: DepthTest) -> impl Iterator<Item = Buffer> {
         let z1 = test.needs_z1() || (test.needs_z2() && self.second_in_z1);
         let z2 = test.needs_z2() && !self.second_in_z1;
         [(z1, Buffer::Z1), (z2, Buffer::Z2)].into_iter().filter_map(|(read, b)| read.then_some(b))
