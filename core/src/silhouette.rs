@@ -38,7 +38,7 @@ use glam::Mat4;
 use crate::clip::ClipVertex;
 use crate::config::ConfigError;
 use crate::depth::{DepthFormat, PlaneZ};
-use crate::probe::{Event, Probe};
+use crate::probe::{Event, Probe, TexelRead};
 use crate::shadow::{MapCoord, MapView, Shadow, ShadowConfig};
 
 /// One texel unit in the silhouette unit's fixed point (16 fraction bits).
@@ -426,6 +426,13 @@ pub fn shadow<S: SilStore, F: DepthFormat, P: Probe>(
     let verdicts = corners(i, j).map(|(cx, cy)| match map.compare(cfg, cx, cy, z.to_bits(), bias) {
         Some(s) => {
             reads += 1;
+            if P::TEXELS
+                && let (Ok(x), Ok(y)) = (u32::try_from(cx), u32::try_from(cy))
+            {
+                for buffer in map.buffers_read(cfg.test()) {
+                    probe.texel_read(TexelRead { buffer, x, y });
+                }
+            }
             s
         }
         None => false,

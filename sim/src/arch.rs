@@ -165,6 +165,22 @@ pub struct Dram {
     pub map_reads: u64,
     /// Bins and setup records written and read.
     pub bins: u64,
+    /// Silhouette points written by the silhouette pass.
+    pub silhouette_writes: u64,
+    /// Silhouette points read by the camera pass.
+    pub silhouette_reads: u64,
+    /// Scene depth read by shadow-volume fragments.
+    pub volume_depth_reads: u64,
+    /// Stencil read and written by shadow-volume fragments.
+    pub stencil: u64,
+}
+
+impl Dram {
+    /// The camera pass's shadow traffic: map, silhouette, volume depth and stencil.
+    #[must_use]
+    pub const fn camera_shadow_bytes(&self) -> u64 {
+        self.map_reads + self.silhouette_reads + self.volume_depth_reads + self.stencil
+    }
 }
 
 /// A probe charging an architecture's costs.
@@ -190,6 +206,12 @@ pub struct ArchProbe {
     pub tangent_setups: u64,
     /// Pixels decided by the ordinary comparison.
     pub trivial: u64,
+    /// Fragments generated (the scene fill of a camera pass).
+    pub fragments: u64,
+    /// Silhouette-pass fragments.
+    pub silhouette_fragments: u64,
+    /// Shadow-volume fragments.
+    pub volume_fragments: u64,
     /// Per triangle-tile pair in processing order: the tile and the cycles it
     /// took (the slower of raster and depth), for the timeline.
     pub tile_cycles: Vec<(u16, u16, u64)>,
@@ -212,6 +234,9 @@ impl ArchProbe {
             samples: 0,
             tangent_setups: 0,
             trivial: 0,
+            fragments: 0,
+            silhouette_fragments: 0,
+            volume_fragments: 0,
             tile_cycles: Vec::new(),
             timeline: false,
         }
@@ -264,6 +289,7 @@ impl Probe for ArchProbe {
             Event::Fragments { tile, count } => {
                 let count = u64::from(count);
                 self.pairs += 1;
+                self.fragments += count;
                 let raster = p.raster_cycles_per_tile
                     + count.div_ceil(p.fragments_per_clock.max(1)) * u64::from(p.fragments_per_clock > 0);
                 let depth = if p.depth_fragments_per_clock > 0 {
@@ -302,6 +328,29 @@ impl Probe for ArchProbe {
                 self.charge(Stage::Shadow, p.tangent_setup_cycles);
             }
             Event::TrivialPixel { .. } => self.trivial += 1,
+            Event::SilhouetteFragments { fragments, bytes: b, .. } => {
+                // Conservative line rasterization at the scan converter's rate;
+                // the points go to memory like map texels.
+                self.silhouette_fragments += u64::from(fragments);
+                self.charge(Stage::Raster, u64::from(fragments).div_ceil(p.fragments_per_clock.max(1)));
+                self.dram.silhouette_writes += u64::from(b);
+            }
+            Event::SilhouetteRead { points, bytes: b } => {
+                self.dram.silhouette_reads += u64::from(b);
+                self.charge(Stage::Shadow, u64::from(points).div_ceil(p.samples_per_clock.max(1)));
+            }
+            Event::VolumeFragments { fragments, depth_bytes } => {
+                // Volume fragments are scan converted and depth tested like
+                // scene fragments; the scene depth and stencil live off chip.
+                let n = u64::from(fragments);
+                self.volume_fragments += n;
+                self.charge(Stage::Raster, n.div_ceil(p.fragments_per_clock.max(1)));
+                self.charge(Stage::Depth, n.div_ceil(p.depth_fragments_per_clock.max(1)));
+                self.dram.volume_depth_reads += u64::from(depth_bytes);
+            }
+            Event::StencilRead { bytes: b, .. } | Event::StencilWrite { bytes: b, .. } => {
+                self.dram.stencil += u64::from(b);
+            }
             _ => {}
         }
     }
@@ -344,6 +393,17 @@ pub struct CostReport {
     /// Sen et al.'s analytic shadow-map figure: 4 bytes per depth sample,
     /// times the samples the filter takes per pixel.
     pub sen_shadow_map_bytes_per_pixel: f64,
+    /// Simulated camera-pass shadow bytes per pixel: map, silhouette
+    /// points, volume depth and stencil.
+    pub shadow_bytes_per_pixel: f64,
+    /// Sen et al.'s `P`: silhouette fragments over scene fill.
+    pub silhouette_fill: f64,
+    /// Sen et al.'s `O`: shadow-volume fragments over scene fill.
+    pub overdraw: f64,
+    /// Sen et al.'s silhouette-map figure, `4 + 24·P` bytes per pixel.
+    pub sen_silhouette_bytes_per_pixel: f64,
+    /// Sen et al.'s shadow-volume figure, `5.5·O` bytes per pixel.
+    pub sen_volume_bytes_per_pixel: f64,
 }
 
 #[allow(clippy::cast_precision_loss, reason = "ratios of counts")]
@@ -382,6 +442,14 @@ impl CostReport {
             map_bytes_per_pixel: ratio(fetched.unwrap_or(camera.dram.map_reads), pixels),
             #[allow(clippy::cast_precision_loss, reason = "a small count")]
             sen_shadow_map_bytes_per_pixel: 4.0 * samples_per_pixel as f64,
+            shadow_bytes_per_pixel: ratio(
+                camera.dram.camera_shadow_bytes() - camera.dram.map_reads + fetched.unwrap_or(camera.dram.map_reads),
+                pixels,
+            ),
+            silhouette_fill: ratio(light.silhouette_fragments, camera.fragments),
+            overdraw: ratio(camera.volume_fragments, camera.fragments),
+            sen_silhouette_bytes_per_pixel: 4.0 + 24.0 * ratio(light.silhouette_fragments, camera.fragments),
+            sen_volume_bytes_per_pixel: 5.5 * ratio(camera.volume_fragments, camera.fragments),
         }
     }
 
@@ -424,8 +492,17 @@ impl CostReport {
         );
         let _ = writeln!(
             s,
-            "Camera-pass map bytes per pixel: simulated {:.2}, Sen's shadow-map model {:.1} (4 B per depth sample; silhouette maps and shadow volumes are not modelled yet).",
+            "Camera-pass map bytes per pixel: simulated {:.2}, Sen's shadow-map model {:.1} (4 B per depth sample).",
             self.map_bytes_per_pixel, self.sen_shadow_map_bytes_per_pixel
+        );
+        let _ = writeln!(
+            s,
+            "Camera-pass shadow bytes per pixel (map, silhouette points, volume depth, stencil): simulated {:.2}; Sen's model: silhouette map 4 + 24·P = {:.2} (P = {:.3}), shadow volumes 5.5·O = {:.2} (O = {:.2}).",
+            self.shadow_bytes_per_pixel,
+            self.sen_silhouette_bytes_per_pixel,
+            self.silhouette_fill,
+            self.sen_volume_bytes_per_pixel,
+            self.overdraw
         );
         s
     }

@@ -3,9 +3,9 @@
 
 use glam::Mat4;
 use umbra_core::bin::Bin;
-use umbra_core::camera::{CameraConfig, Normals, Shaded, shade};
+use umbra_core::camera::{CameraConfig, MapUnit, Normals, Shaded, ShadowUnit, shade_with};
 use umbra_core::setup::Setup;
-use umbra_core::shadow::{MapView, ShadowConfig};
+use umbra_core::shadow::{MapView, Shadow, ShadowConfig};
 use umbra_core::{
     CullMode, D24, DepthFormat, DepthUnit, LightBuffers, LightPass, LightPassConfig, Probe, RasterConfig, TileState,
 };
@@ -36,6 +36,34 @@ pub fn visibility<P: Probe>(
     height: u32,
     probe: &mut P,
 ) -> Result<(Mat4, Vec<u32>), LightError> {
+    visibility_depth(scene, width, height, probe).map(|v| (v.camera, v.ids))
+}
+
+/// What the visibility unit leaves: the camera's matrix, the visible
+/// triangle and its (24-bit) depth per pixel.
+#[derive(Clone, Debug)]
+pub struct Visibility {
+    /// World to camera clip space.
+    pub camera: Mat4,
+    /// The camera target.
+    pub raster: RasterConfig,
+    /// Visible triangle per pixel, row-major ([`umbra_core::NO_TRIANGLE`] for none).
+    pub ids: Vec<u32>,
+    /// Its depth, 24-bit.
+    pub depth: Vec<u32>,
+}
+
+/// [`visibility`] keeping the depth buffer too (the stencil unit tests
+/// shadow volumes against it).
+///
+/// # Errors
+/// [`LightError`] for an unusable size or a malformed mesh.
+pub fn visibility_depth<P: Probe>(
+    scene: &Scene,
+    width: u32,
+    height: u32,
+    probe: &mut P,
+) -> Result<Visibility, LightError> {
     let raster =
         RasterConfig::new(width, height, RasterConfig::DEFAULT_TILE_SIZE, RasterConfig::DEFAULT_SUBPIXEL_BITS)?;
     let config = LightPassConfig { raster, unit: DepthUnit::Single, max_z_cull: true };
@@ -55,7 +83,7 @@ pub fn visibility<P: Probe>(
             .map_err(|source| LightError::Submit { draw, source })?;
     }
     pass.finish();
-    Ok((camera, ids))
+    Ok(Visibility { camera, raster, ids, depth: z })
 }
 
 /// Render `scene` from its camera at `width × height` and shade it against
@@ -75,13 +103,40 @@ pub fn render_camera<F: DepthFormat, P: Probe>(
     height: u32,
     probe: &mut P,
 ) -> Result<CameraImage, LightError> {
-    let (camera, ids) = visibility(scene, width, height, probe)?;
+    let view = map_view::<F>(maps, front_culled)?;
+    render_camera_with(scene, &view, shadow, virtual_samples, width, height, &MapUnit, probe)
+}
+
+/// The shadow unit's view of a light pass's maps.
+///
+/// # Errors
+/// [`LightError`] when the maps do not fit their configuration.
+pub fn map_view<F: DepthFormat>(maps: &LightMaps<F::Texel>, front_culled: bool) -> Result<MapView<'_, F>, LightError> {
     let map_raster = maps.config.raster;
-    let view = if front_culled {
+    Ok(if front_culled {
         MapView::<F>::front_culled(map_raster, &maps.z1, &maps.tiles)?
     } else {
         MapView::<F>::new(map_raster, &maps.z1, &maps.z2, &maps.tiles)?
-    };
+    })
+}
+
+/// [`render_camera`] with any shadow unit (the map's, or Sen et al.'s
+/// silhouette unit) over a map view.
+///
+/// # Errors
+/// [`LightError`] for an unusable size or a malformed mesh.
+#[allow(clippy::too_many_arguments, reason = "the pass's inputs, each a separate choice")]
+pub fn render_camera_with<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
+    scene: &Scene,
+    view: &MapView<'_, F>,
+    shadow: ShadowConfig,
+    virtual_samples: bool,
+    width: u32,
+    height: u32,
+    unit: &U,
+    probe: &mut P,
+) -> Result<CameraImage, LightError> {
+    let (camera, ids) = visibility(scene, width, height, probe)?;
     let cfg = CameraConfig {
         camera,
         light: scene.light().view_projection(),
@@ -95,6 +150,39 @@ pub fn render_camera<F: DepthFormat, P: Probe>(
     let triangles = scene.triangles();
     let source = |id: u32| triangles.get(id as usize).copied();
     let mut pixels = vec![Shaded::BACKGROUND; ids.len()];
-    shade(&cfg, &ids, &view, &source, &mut pixels, probe)?;
+    shade_with(&cfg, &ids, view, &source, &mut pixels, unit, probe)?;
+    Ok(CameraImage { width, height, pixels })
+}
+
+/// The camera image of depth-fail shadow volumes: the visibility unit,
+/// then the stencil unit over every occluder's volume; a pixel is in
+/// shadow where its stencil is non-zero.
+///
+/// # Errors
+/// [`LightError`] for an unusable size or a malformed mesh.
+pub fn render_volumes<P: Probe>(
+    scene: &Scene,
+    width: u32,
+    height: u32,
+    probe: &mut P,
+) -> Result<CameraImage, LightError> {
+    let vis = visibility_depth(scene, width, height, probe)?;
+    let occluders = crate::occluders::Occluders::new(scene);
+    let stencil = crate::occluders::stencil::<D24, _>(scene, &occluders, &vis.camera, vis.raster, &vis.depth, probe)?;
+    let triangles = scene.triangles();
+    let pixels = vis
+        .ids
+        .iter()
+        .zip(&stencil)
+        .map(|(&id, &s)| match triangles.get(id as usize) {
+            Some(t) => Shaded {
+                triangle: id,
+                light: None,
+                normal: t.normals[0],
+                shadow: if s == 0 { Shadow::ZERO } else { Shadow::ONE },
+            },
+            None => Shaded::BACKGROUND,
+        })
+        .collect();
     Ok(CameraImage { width, height, pixels })
 }

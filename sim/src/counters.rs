@@ -71,6 +71,18 @@ pub struct Totals {
     pub tangent_fallbacks: u64,
     /// Pixels decided by the ordinary comparison alone.
     pub trivial_pixels: u64,
+    /// Silhouette-pass fragments (Sen et al.'s silhouette fill).
+    pub silhouette_fragments: u64,
+    /// Silhouette points written.
+    pub silhouette_stored: u64,
+    /// Silhouette points read by the camera pass.
+    pub silhouette_reads: u64,
+    /// Shadow-volume fragments (Sen et al.'s volume fill).
+    pub volume_fragments: u64,
+    /// Stencil texels read.
+    pub stencil_reads: u64,
+    /// Stencil texels written.
+    pub stencil_writes: u64,
 }
 
 /// What happened in one tile.
@@ -184,6 +196,14 @@ impl Probe for Counters {
             Event::TangentSetup => t.tangent_setups += 1,
             Event::TangentFallback => t.tangent_fallbacks += 1,
             Event::TrivialPixel { .. } => t.trivial_pixels += 1,
+            Event::SilhouetteFragments { fragments, stored, .. } => {
+                t.silhouette_fragments += u64::from(fragments);
+                t.silhouette_stored += u64::from(stored);
+            }
+            Event::SilhouetteRead { points, .. } => t.silhouette_reads += u64::from(points),
+            Event::VolumeFragments { fragments, .. } => t.volume_fragments += u64::from(fragments),
+            Event::StencilRead { texels, .. } => t.stencil_reads += u64::from(texels),
+            Event::StencilWrite { texels, .. } => t.stencil_writes += u64::from(texels),
             _ => {}
         }
     }
