@@ -15,6 +15,7 @@ mod camera_pass;
 mod culling;
 mod dual_depth;
 mod fill_rule;
+mod firmware;
 mod hostile;
 mod maps_io;
 mod quantize;
