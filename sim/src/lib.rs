@@ -14,6 +14,7 @@ pub mod reference;
 pub mod render;
 pub mod scene;
 pub mod scene_file;
+pub mod storage;
 
 pub use glam;
 pub use umbra_core as core;

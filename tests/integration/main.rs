@@ -22,5 +22,6 @@ mod quantize;
 mod reference;
 mod scenes;
 mod shadow_unit;
+mod storage;
 mod tiling;
 mod watertight;
