@@ -8,13 +8,14 @@ pub mod counters;
 pub mod light;
 pub mod mesh;
 pub mod metrics;
+pub mod occluders;
 pub mod output;
 pub mod presets;
 pub mod reference;
 pub mod render;
 pub mod scene;
 pub mod scene_file;
-pub mod storage;
+pub mod study;
 
 pub use glam;
 pub use umbra_core as core;

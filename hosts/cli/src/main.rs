@@ -42,6 +42,45 @@ enum Command {
     /// A per-tile timeline of the light pass in Chrome trace-event JSON
     /// (open it in Perfetto).
     Trace(CostArgs),
+    /// The speed/accuracy trade study: scene × algorithm × depth format ×
+    /// map size × filter × architecture; results.jsonl/.csv, Pareto plots
+    /// and summary.md.
+    Study(StudyArgs),
+    /// Merge the results.jsonl of `study --shard` runs into the whole run's
+    /// files.
+    Merge(MergeArgs),
+}
+
+#[derive(clap::Args, Debug)]
+struct StudyArgs {
+    /// Bundled scene names or scene files (default: every bundled scene, or
+    /// the quick set with --quick).
+    scenes: Vec<String>,
+    /// The small sweep: 3 scenes, fewer biases, formats, map sizes and
+    /// filters, 160×90 images.
+    #[arg(long)]
+    quick: bool,
+    /// Run only shard i of n (configurations whose index is i mod n) and
+    /// write a partial results.jsonl; `umbra merge` joins the shards.
+    #[arg(long)]
+    shard: Option<String>,
+    /// Also run the numerical extremes (near/far ratio, grazing light,
+    /// guard band, slivers, coincident surfaces): extremes.md, precision plot.
+    #[arg(long)]
+    extremes: bool,
+    /// Output folder.
+    #[arg(long, default_value = "out/study")]
+    out: PathBuf,
+}
+
+#[derive(clap::Args, Debug)]
+struct MergeArgs {
+    /// Shard output folders or results.jsonl files.
+    #[arg(required = true)]
+    inputs: Vec<PathBuf>,
+    /// Output folder.
+    #[arg(long, default_value = "out/study")]
+    out: PathBuf,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -225,11 +264,66 @@ fn main() -> Result<()> {
         Some(Command::Render(args)) => render(&args),
         Some(Command::Cost(args)) => cost(&args, false),
         Some(Command::Trace(args)) => cost(&args, true),
+        Some(Command::Study(args)) => study(&args),
+        Some(Command::Merge(args)) => {
+            let n = umbra_sim::study::merge(&args.inputs, &args.out)?;
+            println!("merged {n} rows into {}", args.out.display());
+            Ok(())
+        }
         None => {
             depth(&DepthArgs::default())?;
-            render(&RenderArgs::default())
+            render(&RenderArgs::default())?;
+            study(&StudyArgs {
+                scenes: Vec::new(),
+                quick: true,
+                shard: None,
+                extremes: false,
+                out: PathBuf::from("out/study"),
+            })
         }
     }
+}
+
+/// `umbra study`.
+fn study(args: &StudyArgs) -> Result<()> {
+    use umbra_sim::study::{self, QUICK_SCENES, Shard, Spec};
+    let names: Vec<String> = if !args.scenes.is_empty() {
+        args.scenes.clone()
+    } else if args.quick {
+        QUICK_SCENES.iter().map(|s| (*s).to_owned()).collect()
+    } else {
+        umbra_sim::scene_file::BUNDLED.iter().map(|(n, _)| (*n).to_owned()).collect()
+    };
+    let scenes = study::load_scenes(&names)?;
+    let spec = if args.quick { Spec::quick(scenes) } else { Spec::full(scenes) };
+    let shard = args.shard.as_deref().map(Shard::parse).transpose()?.unwrap_or(Shard::ALL);
+    let style =
+        indicatif::ProgressStyle::with_template("{prefix} [{elapsed_precise}] {wide_bar} {pos}/{len} ETA {eta}")
+            .context("progress bar template")?;
+    let progress = ProgressBar::new(0).with_style(style).with_prefix("study");
+    let start = std::time::Instant::now();
+    let rows = study::run(&spec, shard, &progress);
+    progress.finish_and_clear();
+    let configs = rows.iter().map(|r| r.index).collect::<std::collections::BTreeSet<_>>().len();
+    let skipped = rows.iter().filter(|r| r.status != "ok").count();
+    if shard == Shard::ALL {
+        study::write_outputs(&args.out, &rows)?;
+        println!("{}", study::summary(&rows));
+    } else {
+        study::write_partial(&args.out, &rows)?;
+    }
+    println!(
+        "study: {configs} configurations, {} rows ({skipped} skipped) in {:.1} s; wrote {}",
+        rows.len(),
+        start.elapsed().as_secs_f64(),
+        args.out.display()
+    );
+    if args.extremes {
+        let report = study::extremes::run_all(&args.out)?;
+        println!("{report}");
+        println!("wrote {}", args.out.join("extremes.md").display());
+    }
+    Ok(())
 }
 
 /// `umbra cost` and `umbra trace`.
