@@ -15,6 +15,7 @@ pub mod reference;
 pub mod render;
 pub mod scene;
 pub mod scene_file;
+pub mod storage;
 pub mod study;
 
 pub use glam;
