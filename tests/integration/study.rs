@@ -183,7 +183,7 @@ fn finite(r: &Row) -> bool {
 /// pixels as the ratio grows, within 0.05 points (4 pixels of the ~8000
 /// evaluated: the map's texel centres move with the projection, so a
 /// handful of edge pixels may flip either way). Measured, d16: second
-/// 0.025 → 5.5 %, breaking down (5 points over its ratio-10 error) at 10⁶;
+/// 0.025 → 5.5 %, breaking down (1 point over its ratio-10 error) at 10⁵;
 /// d24: second stays at 0.22 % and dual at 0.06 % at 10⁶; d24 and f32
 /// (standard z, whose steps near 1 are 2⁻²⁴ too) agree.
 #[test]

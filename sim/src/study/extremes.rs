@@ -187,8 +187,8 @@ fn curve<'a>(rows: &'a [Row], algorithm: &'a str, format: &'a str) -> impl Itera
 }
 
 /// A misclassified percentage beyond which the near/far sweep counts a
-/// format as broken down: 5 points above what it scores at ratio 10.
-pub const BREAKDOWN_POINTS: f64 = 5.0;
+/// format as broken down: 1 point above what it scores at ratio 10.
+pub const BREAKDOWN_POINTS: f64 = 1.0;
 
 /// The smallest swept ratio at which `algorithm` in `format` misclassifies
 /// [`BREAKDOWN_POINTS`] more than at ratio 10; `None` if it never does.
