@@ -244,7 +244,12 @@ impl Interp {
             let wv = dot3(&w, &s);
             if wv > 0.0 {
                 let d = |f: &[f64; 3], axis: usize| (f[axis] * wv - dot3(f, &s) * w[axis]) / (wv * wv);
-                let half = |f: &[f64; 3]| MapCoord::saturating_from_num(0.5 * (d(f, 0).abs() + d(f, 1).abs()));
+                // NaN (a light matrix with NaN in a row `w` does not use):
+                // no footprint, as for a point behind the camera.
+                let half = |f: &[f64; 3]| {
+                    let h = 0.5 * (d(f, 0).abs() + d(f, 1).abs());
+                    if h.is_nan() { MapCoord::ZERO } else { MapCoord::saturating_from_num(h) }
+                };
                 out.footprint = [half(&u), half(&v)];
             }
         }

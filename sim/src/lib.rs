@@ -6,6 +6,7 @@ pub mod cache;
 pub mod camera;
 pub mod counters;
 pub mod light;
+pub mod limits;
 pub mod mesh;
 pub mod metrics;
 pub mod occluders;

@@ -8,6 +8,8 @@ use std::path::{Path, PathBuf};
 
 use glam::{Mat4, Vec3};
 
+use crate::limits::{FileError, LimitError, Limits};
+
 /// An indexed triangle mesh.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Mesh {
@@ -61,6 +63,20 @@ pub enum MeshError {
         /// What is wrong with it.
         problem: String,
     },
+    /// The path is a directory, a device or a pipe.
+    #[error("{path}: not a regular file")]
+    NotAFile {
+        /// The path.
+        path: PathBuf,
+    },
+    /// The file or its triangle count is beyond the [`Limits`].
+    #[error("{path}: {source}")]
+    Limit {
+        /// The file.
+        path: PathBuf,
+        /// Which limit.
+        source: LimitError,
+    },
     /// A face names a vertex that does not exist.
     #[error("{path}: triangle {triangle} names a vertex that does not exist")]
     BadIndex {
@@ -72,11 +88,12 @@ pub enum MeshError {
 }
 
 /// Check every vertex and face record of an OBJ file, so that a truncated
-/// or foreign file is reported with its line (the loader reports none).
-fn check_obj(path: &Path) -> Result<(), MeshError> {
-    let bytes = std::fs::read(path).map_err(|source| MeshError::Read { path: path.to_owned(), source })?;
+/// or foreign file is reported with its line (the loader reports none), and
+/// count the triangles its faces make (a face of `n` corners makes `n − 2`).
+fn check_obj(path: &Path, bytes: &[u8]) -> Result<u64, MeshError> {
     let fail = |line: usize, problem: String| MeshError::Syntax { path: path.to_owned(), line, problem };
     let mut vertices = 0usize;
+    let mut triangles = 0u64;
     for (i, raw) in bytes.split(|&b| b == b'\n').enumerate() {
         let line = i + 1;
         let text = std::str::from_utf8(raw).map_err(|_| fail(line, "not text".into()))?;
@@ -94,7 +111,7 @@ fn check_obj(path: &Path) -> Result<(), MeshError> {
                 if corners.len() < 3 {
                     return Err(fail(line, format!("a face needs three corners: `{}`", text.trim())));
                 }
-                for c in corners {
+                for c in &corners {
                     let index = c.split('/').next().and_then(|v| v.parse::<i64>().ok());
                     let ok =
                         index.is_some_and(|v| v != 0 && usize::try_from(v.unsigned_abs()).is_ok_and(|v| v <= vertices));
@@ -102,23 +119,42 @@ fn check_obj(path: &Path) -> Result<(), MeshError> {
                         return Err(fail(line, format!("face corner `{c}` names no vertex defined above it")));
                     }
                 }
+                triangles += u64::try_from(corners.len() - 2).unwrap_or(u64::MAX);
             }
             _ => {}
         }
     }
-    Ok(())
+    Ok(triangles)
 }
 
 impl Mesh {
-    /// Load every model of an OBJ file as one mesh (faces triangulated as fans).
+    /// Load every model of an OBJ file as one mesh (faces triangulated as
+    /// fans), within the default [`Limits`].
     ///
     /// # Errors
     /// See [`MeshError`].
     pub fn load_obj(path: &Path) -> Result<Self, MeshError> {
-        check_obj(path)?;
+        Self::load_obj_within(path, &Limits::DEFAULT)
+    }
+
+    /// Load an OBJ file within `limits`: a file larger than
+    /// [`Limits::max_file_bytes`] is rejected before it is read, and one whose
+    /// faces make more than [`Limits::max_triangles`] before any triangle is
+    /// stored. Material libraries (`mtllib`) are not read.
+    ///
+    /// # Errors
+    /// See [`MeshError`].
+    pub fn load_obj_within(path: &Path, limits: &Limits) -> Result<Self, MeshError> {
+        let bytes = limits.read_file(path).map_err(|e| match e {
+            FileError::Io(source) => MeshError::Read { path: path.to_owned(), source },
+            FileError::NotAFile => MeshError::NotAFile { path: path.to_owned() },
+            FileError::Limit(source) => MeshError::Limit { path: path.to_owned(), source },
+        })?;
+        let triangles = check_obj(path, &bytes)?;
+        limits.check_triangles(triangles).map_err(|source| MeshError::Limit { path: path.to_owned(), source })?;
         let opts = tobj::LoadOptions { triangulate: true, single_index: true, ..tobj::LoadOptions::default() };
-        let (models, _) =
-            tobj::load_obj(path, &opts).map_err(|source| MeshError::Load { path: path.to_owned(), source })?;
+        let (models, _) = tobj::load_obj_buf(&mut bytes.as_slice(), &opts, |_| Err(tobj::LoadError::OpenFileFailed))
+            .map_err(|source| MeshError::Load { path: path.to_owned(), source })?;
         let mut mesh = Self::default();
         for m in models {
             let base = u32::try_from(mesh.positions.len()).unwrap_or(u32::MAX);

@@ -12,6 +12,7 @@ use crate::arch::{ArchParams, ArchProbe, CostReport, Tee};
 use crate::camera::{CameraImage, render_camera, visibility};
 use crate::counters::Counters;
 use crate::light::{LightError, LightMaps, RawMaps, render as light_render};
+use crate::limits::{LimitError, Limits};
 use crate::metrics::{Metrics, compare};
 use crate::reference::{PixelTruth, Reference, ReferenceError};
 use crate::scene::Scene;
@@ -80,6 +81,9 @@ pub enum RenderError {
     /// The camera image size is unusable.
     #[error("camera image: {0}")]
     ImageSize(umbra_core::ConfigError),
+    /// The map, the image or the scene is beyond the [`Limits`].
+    #[error(transparent)]
+    Limit(#[from] LimitError),
 }
 
 /// Everything a render produced.
@@ -103,11 +107,34 @@ pub struct Render {
 /// # Errors
 /// See [`RenderError`].
 pub fn render(scene: &Scene, cfg: &RenderConfig, progress: &ProgressBar) -> Result<Render, RenderError> {
+    render_within(scene, cfg, &Limits::DEFAULT, progress)
+}
+
+/// [`render`] within `limits`: the map side, the image and the scene's
+/// triangles are checked before any buffer is allocated.
+///
+/// # Errors
+/// See [`RenderError`].
+pub fn render_within(
+    scene: &Scene,
+    cfg: &RenderConfig,
+    limits: &Limits,
+    progress: &ProgressBar,
+) -> Result<Render, RenderError> {
+    check_limits(scene, cfg, limits)?;
     match cfg.format {
         DepthFormatKind::D16 => render_in::<D16>(scene, cfg, progress),
         DepthFormatKind::D24 => render_in::<D24>(scene, cfg, progress),
         DepthFormatKind::F32 => render_in::<F32>(scene, cfg, progress),
     }
+}
+
+/// The map side, the image size and the scene's triangles against `limits`.
+fn check_limits(scene: &Scene, cfg: &RenderConfig, limits: &Limits) -> Result<(), LimitError> {
+    limits.check_map(cfg.map_size)?;
+    limits.check_image(cfg.width, cfg.height)?;
+    let triangles: usize = scene.objects.iter().map(|o| o.mesh.triangles.len()).sum();
+    limits.check_triangles(u64::try_from(triangles).unwrap_or(u64::MAX))
 }
 
 /// The light pass (tiles of `tile` pixels) and the camera pass of a render,
@@ -183,6 +210,7 @@ fn render_in<F: DepthFormat>(scene: &Scene, cfg: &RenderConfig, progress: &Progr
 /// # Errors
 /// See [`RenderError`].
 pub fn cost(scene: &Scene, cfg: &RenderConfig, arch: ArchParams) -> Result<(CostReport, ArchProbe), RenderError> {
+    check_limits(scene, cfg, &Limits::DEFAULT)?;
     match cfg.format {
         DepthFormatKind::D16 => cost_in::<D16>(scene, cfg, arch),
         DepthFormatKind::D24 => cost_in::<D24>(scene, cfg, arch),

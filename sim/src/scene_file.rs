@@ -38,6 +38,7 @@ use std::path::{Path, PathBuf};
 use glam::{EulerRot, Mat4, Quat, Vec3};
 use serde::Deserialize;
 
+use crate::limits::{FileError, LimitError, Limits};
 use crate::mesh::{Mesh, MeshError};
 use crate::scene::{Light, Object, Orthographic, Perspective, Scene};
 
@@ -53,8 +54,6 @@ pub const BUNDLED: [(&str, &str); 8] = [
     ("grazing", include_str!("../../scenes/grazing.toml")),
 ];
 
-/// Largest image side a scene may ask for.
-pub const MAX_IMAGE: u32 = 8192;
 /// Largest procedural subdivision count.
 pub const MAX_SUBDIVISION: u32 = 1024;
 
@@ -80,8 +79,9 @@ pub enum Problem {
     /// Not valid TOML, an unknown key, or a value of the wrong type.
     #[error("{0}")]
     Syntax(String),
-    /// A number is NaN or infinite.
-    #[error("{value} is not a finite number")]
+    /// A number is NaN, infinite, or of magnitude 10³⁰ or more (beyond what
+    /// the f32 vertex unit can transform without overflow).
+    #[error("{value} is not a finite number below 1e30 in magnitude")]
     NonFinite {
         /// The value.
         value: f64,
@@ -118,6 +118,12 @@ pub enum Problem {
     /// An open mesh was marked solid.
     #[error("the mesh is open (not closed and consistently wound), so it cannot be solid")]
     OpenMarkedSolid,
+    /// The path is a directory, a device or a pipe.
+    #[error("not a regular file")]
+    NotAFile,
+    /// The file, the image or the scene's triangles are beyond the [`Limits`].
+    #[error(transparent)]
+    Limit(LimitError),
     /// A scene needs at least one light and one object.
     #[error("a scene needs at least one {0}")]
     Missing(&'static str),
@@ -238,8 +244,42 @@ impl Scene {
     /// # Errors
     /// [`SceneError`] naming the file, the key and the problem.
     pub fn load(file: &Path) -> Result<Self, SceneError> {
-        let text = std::fs::read_to_string(file).map_err(|e| Check { file }.err("(file)", Problem::Read(e)))?;
-        Self::parse(&text, file)
+        Self::load_within(file, &Limits::DEFAULT)
+    }
+
+    /// Load and validate a scene file within `limits` (the file's size, the
+    /// image and the triangles of every mesh, counted before any is built).
+    ///
+    /// # Errors
+    /// [`SceneError`] naming the file, the key and the problem.
+    pub fn load_within(file: &Path, limits: &Limits) -> Result<Self, SceneError> {
+        let c = Check { file };
+        let bytes = limits.read_file(file).map_err(|e| {
+            c.err(
+                "(file)",
+                match e {
+                    FileError::Io(e) => Problem::Read(e),
+                    FileError::NotAFile => Problem::NotAFile,
+                    FileError::Limit(l) => Problem::Limit(l),
+                },
+            )
+        })?;
+        Self::parse_bytes(&bytes, file, limits)
+    }
+
+    /// Parse and validate the bytes of a scene file within `limits`; bytes
+    /// that are not UTF-8 are an error naming the line.
+    ///
+    /// # Errors
+    /// [`SceneError`] naming the file, the key and the problem.
+    pub fn parse_bytes(bytes: &[u8], file: &Path, limits: &Limits) -> Result<Self, SceneError> {
+        let text = std::str::from_utf8(bytes).map_err(|e| {
+            let before = bytes.get(..e.valid_up_to()).unwrap_or_default();
+            let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
+            Check { file }
+                .err(format!("line {line}"), Problem::Syntax(format!("not UTF-8 text at byte {}", e.valid_up_to())))
+        })?;
+        Self::parse_within(text, file, limits)
     }
 
     /// One of the bundled scenes by name (see [`BUNDLED`]).
@@ -263,6 +303,14 @@ impl Scene {
     /// # Errors
     /// [`SceneError`] naming the file, the key and the problem.
     pub fn parse(text: &str, file: &Path) -> Result<Self, SceneError> {
+        Self::parse_within(text, file, &Limits::DEFAULT)
+    }
+
+    /// [`Scene::parse`] within `limits`.
+    ///
+    /// # Errors
+    /// [`SceneError`] naming the file, the key and the problem.
+    pub fn parse_within(text: &str, file: &Path, limits: &Limits) -> Result<Self, SceneError> {
         let c = Check { file };
         let parsed: SceneFile = toml::from_str(text).map_err(|e| {
             let key = e.span().map_or_else(
@@ -271,12 +319,14 @@ impl Scene {
             );
             c.err(key, Problem::Syntax(e.message().trim().to_owned()))
         })?;
+        let max_side = f64::from(limits.max_image_side);
         let image = [
-            c.range("image[0]", parsed.image[0], 1.0, f64::from(MAX_IMAGE))?,
-            c.range("image[1]", parsed.image[1], 1.0, f64::from(MAX_IMAGE))?,
+            c.range("image[0]", parsed.image[0], 1.0, max_side)?,
+            c.range("image[1]", parsed.image[1], 1.0, max_side)?,
         ];
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "checked in 1..=8192")]
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "checked in 1..=max_image_side")]
         let image = image.map(|v| v.round() as u32);
+        limits.check_image(image[0], image[1]).map_err(|l| c.err("image", Problem::Limit(l)))?;
         let camera = c.view("camera", &parsed.camera)?;
         if parsed.lights.is_empty() {
             return Err(c.err("lights", Problem::Missing("light")));
@@ -304,11 +354,26 @@ impl Scene {
         if parsed.objects.is_empty() {
             return Err(c.err("objects", Problem::Missing("object")));
         }
+        // Every generator's triangles, counted before any mesh is built.
+        let mut generated = 0u64;
+        for (i, o) in parsed.objects.iter().enumerate() {
+            generated = generated.saturating_add(generated_triangles(&c, &format!("objects[{i}].mesh"), &o.mesh)?);
+        }
+        limits.check_triangles(generated).map_err(|l| c.err("objects", Problem::Limit(l)))?;
         let dir = file.parent().unwrap_or_else(|| Path::new("."));
         let mut objects = Vec::new();
+        let mut loaded = 0u64;
         for (i, o) in parsed.objects.iter().enumerate() {
             let key = format!("objects[{i}]");
-            let mesh = build_mesh(&c, &format!("{key}.mesh"), &o.mesh, dir)?;
+            // Files get what the generators and the files before them leave.
+            let left = Limits {
+                max_triangles: limits.max_triangles.saturating_sub(generated.saturating_add(loaded)),
+                ..*limits
+            };
+            let mesh = build_mesh(&c, &format!("{key}.mesh"), &o.mesh, dir, &left)?;
+            if matches!(o.mesh, MeshFile::Obj(_) | MeshFile::Shared(_)) {
+                loaded += u64::try_from(mesh.triangles.len()).unwrap_or(u64::MAX);
+            }
             let t = c.vec3(&format!("{key}.translate"), o.translate.unwrap_or([0.0; 3]))?;
             let r = c.vec3(&format!("{key}.rotate"), o.rotate.unwrap_or([0.0; 3]))?;
             let s = c.range(&format!("{key}.scale"), o.scale.unwrap_or(1.0), 1e-6, 1e6)?;
@@ -329,17 +394,39 @@ impl Scene {
     }
 }
 
-fn build_mesh(c: &Check<'_>, key: &str, m: &MeshFile, dir: &Path) -> Result<Mesh, SceneError> {
+/// The triangles a generator makes, from its validated counts (0 for mesh
+/// files, which are counted as they load).
+fn generated_triangles(c: &Check<'_>, key: &str, m: &MeshFile) -> Result<u64, SceneError> {
+    let field = |f: &str| format!("{key}.{f}");
+    let count = |f: &str, v: u32| c.count(&field(f), v).map(u64::from);
+    Ok(match m {
+        MeshFile::Obj(_) | MeshFile::Shared(_) => 0,
+        MeshFile::Quad { .. } => 2,
+        MeshFile::Box { .. } => 12,
+        MeshFile::Table { .. } => 5 * 12,
+        // Five boxes and a 10 × 16 sphere.
+        MeshFile::Figure { .. } => 5 * 12 + 2 * 16 * 9,
+        MeshFile::Sphere { stacks, slices, .. } => {
+            2 * count("slices", *slices)?.max(3) * (count("stacks", *stacks)?.max(2) - 1)
+        }
+        MeshFile::Torus { rings, sides, .. } => 2 * count("rings", *rings)?.max(3) * count("sides", *sides)?.max(3),
+        MeshFile::Sheet { nx, ny, .. } => 2 * count("nx", *nx)? * count("ny", *ny)?,
+    })
+}
+
+fn build_mesh(c: &Check<'_>, key: &str, m: &MeshFile, dir: &Path, limits: &Limits) -> Result<Mesh, SceneError> {
     let field = |f: &str| format!("{key}.{f}");
     Ok(match m {
-        MeshFile::Obj(path) => Mesh::load_obj(&dir.join(path)).map_err(|e| c.err(key, Problem::Mesh(e)))?,
+        MeshFile::Obj(path) => {
+            Mesh::load_obj_within(&dir.join(path), limits).map_err(|e| c.err(key, Problem::Mesh(e)))?
+        }
         MeshFile::Shared(name) => {
             let folder = shared_meshes();
             let path = folder.join(format!("{name}.obj"));
             if !path.is_file() {
                 return Err(c.err(key, Problem::UnknownShared { name: name.clone(), folder }));
             }
-            Mesh::load_obj(&path).map_err(|e| c.err(key, Problem::Mesh(e)))?
+            Mesh::load_obj_within(&path, limits).map_err(|e| c.err(key, Problem::Mesh(e)))?
         }
         MeshFile::Box { min, max } => {
             let (lo, hi) = (c.vec3(&field("min"), *min)?, c.vec3(&field("max"), *max)?);
@@ -386,4 +473,28 @@ fn build_mesh(c: &Check<'_>, key: &str, m: &MeshFile, dir: &Path) -> Result<Mesh
             Mesh::figure(c.vec3(&field("feet"), *feet)?, c.range(&field("height"), *height, 1e-6, 1e6)?)
         }
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The counts taken before building agree with what each generator builds.
+    #[test]
+    fn generated_triangle_counts_match_the_generators() {
+        let text = BUNDLED.iter().map(|(_, t)| *t).collect::<Vec<_>>();
+        let file = Path::new("probe.toml");
+        let c = Check { file };
+        let mut kinds = std::collections::HashSet::new();
+        for t in text {
+            let parsed: SceneFile = toml::from_str(t).expect("bundled scenes parse");
+            for o in &parsed.objects {
+                let mesh = build_mesh(&c, "m", &o.mesh, Path::new("."), &Limits::DEFAULT).expect("builds");
+                let n = generated_triangles(&c, "m", &o.mesh).expect("counts");
+                assert_eq!(n, mesh.triangles.len() as u64);
+                kinds.insert(std::mem::discriminant(&o.mesh));
+            }
+        }
+        assert_eq!(kinds.len(), 7, "the bundled scenes use every generator");
+    }
 }

@@ -292,3 +292,10 @@ pub fn triangles(max: usize) -> impl Strategy<Value = Vec<[Vec4; 3]>> {
 pub fn raw<T: Texel>(v: &[T]) -> Vec<u32> {
     v.iter().map(|t| t.to_raw()).collect()
 }
+
+/// A scratch directory of this test process, `name` apart from the others.
+pub fn scratch(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("umbra-test-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}

@@ -11,11 +11,7 @@ use umbra::sim::mesh::{Mesh, MeshError};
 use umbra::sim::output::{RawMap, write_npy};
 use umbra::sim::scene::{MatrixError, Perspective, Scene, parse_matrix};
 
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("umbra-test-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
-}
+use crate::common::scratch;
 
 #[test]
 fn matrices_are_row_major() {

@@ -8,7 +8,8 @@ use umbra::sim::mesh::{Mesh, MeshError};
 use umbra::sim::scene::{Light, Scene};
 use umbra::sim::scene_file::{BUNDLED, Problem, SceneError};
 
-const GOOD: &str = r#"
+/// A small valid scene, for tests that change one line of it.
+pub const GOOD: &str = r#"
 name = "probe"
 image = [64, 48]
 
@@ -37,7 +38,7 @@ fn parse(text: &str) -> Result<Scene, SceneError> {
 }
 
 /// `GOOD` with one line replaced.
-fn with(from: &str, to: &str) -> Result<Scene, SceneError> {
+pub fn with(from: &str, to: &str) -> Result<Scene, SceneError> {
     assert!(GOOD.contains(from), "{from}");
     parse(&GOOD.replacen(from, to, 1))
 }

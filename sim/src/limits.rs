@@ -1,0 +1,176 @@
+//! Resource limits of the simulator: how large a map, an image, a scene and
+//! a file it accepts. Each is checked before anything of that size is
+//! allocated, and each breach is a typed [`LimitError`] naming the quantity,
+//! the value asked for and the limit.
+//!
+//! The core has its own, fixed bounds (a target side of at most 2¹⁴, see
+//! `umbra_core::config`); these are the simulator's, below them, chosen so
+//! that one render fits comfortably in a workstation's memory. They are
+//! plain data: a caller that needs more builds its own [`Limits`].
+
+use std::io::Read;
+use std::path::Path;
+
+/// What the simulator accepts. [`Limits::DEFAULT`] is used unless a caller
+/// passes its own.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Limits {
+    /// Largest light-map side, texels (a dual 24-bit map of this side is
+    /// `2 · 4 · side²` bytes: 512 MiB at 8192).
+    pub max_map_side: u32,
+    /// Largest camera image side, pixels.
+    pub max_image_side: u32,
+    /// Most camera image pixels (the camera pass and the reference keep
+    /// about 100 bytes per pixel).
+    pub max_image_pixels: u64,
+    /// Most triangles in a scene, all objects together (the reference keeps
+    /// about 200 bytes per triangle).
+    pub max_triangles: u64,
+    /// Largest scene or mesh file, bytes.
+    pub max_file_bytes: u64,
+}
+
+impl Limits {
+    /// The defaults: 8192² maps, 8192-pixel image sides and 2²⁵ pixels (8K
+    /// UHD), 2²² triangles, 256 MiB files.
+    pub const DEFAULT: Self = Self {
+        max_map_side: 8192,
+        max_image_side: 8192,
+        max_image_pixels: 1 << 25,
+        max_triangles: 1 << 22,
+        max_file_bytes: 256 << 20,
+    };
+
+    /// Check a light-map side.
+    ///
+    /// # Errors
+    /// [`LimitError::MapSide`] above [`Limits::max_map_side`].
+    pub const fn check_map(&self, side: u32) -> Result<(), LimitError> {
+        if side > self.max_map_side {
+            return Err(LimitError::MapSide { side, max: self.max_map_side });
+        }
+        Ok(())
+    }
+
+    /// Check a camera image size.
+    ///
+    /// # Errors
+    /// [`LimitError::ImageSide`] or [`LimitError::ImagePixels`].
+    pub const fn check_image(&self, width: u32, height: u32) -> Result<(), LimitError> {
+        let side = if width > height { width } else { height };
+        if side > self.max_image_side {
+            return Err(LimitError::ImageSide { side, max: self.max_image_side });
+        }
+        let pixels = width as u64 * height as u64;
+        if pixels > self.max_image_pixels {
+            return Err(LimitError::ImagePixels { width, height, max: self.max_image_pixels });
+        }
+        Ok(())
+    }
+
+    /// Check a triangle count.
+    ///
+    /// # Errors
+    /// [`LimitError::Triangles`] above [`Limits::max_triangles`].
+    pub const fn check_triangles(&self, triangles: u64) -> Result<(), LimitError> {
+        if triangles > self.max_triangles {
+            return Err(LimitError::Triangles { triangles, max: self.max_triangles });
+        }
+        Ok(())
+    }
+
+    /// Read a whole regular file of at most [`Limits::max_file_bytes`],
+    /// never reading past the limit (devices and files that grow included).
+    ///
+    /// # Errors
+    /// [`FileError::Io`] when it cannot be opened or read,
+    /// [`FileError::NotAFile`] for a directory, device or pipe,
+    /// [`FileError::Limit`] when it is larger than the limit.
+    pub fn read_file(&self, path: &Path) -> Result<Vec<u8>, FileError> {
+        let file = std::fs::File::open(path)?;
+        let meta = file.metadata()?;
+        if !meta.is_file() {
+            return Err(FileError::NotAFile);
+        }
+        let max = self.max_file_bytes;
+        if meta.len() > max {
+            return Err(FileError::Limit(LimitError::FileBytes { bytes: meta.len(), max }));
+        }
+        let mut bytes = Vec::new();
+        file.take(max.saturating_add(1)).read_to_end(&mut bytes)?;
+        let read = u64::try_from(bytes.len()).unwrap_or(u64::MAX);
+        if read > max {
+            return Err(FileError::Limit(LimitError::FileBytes { bytes: read, max }));
+        }
+        Ok(bytes)
+    }
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// A request beyond a [`Limits`] value.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum LimitError {
+    /// A light map wider or taller than allowed.
+    #[error("map side {side} is above the limit of {max}")]
+    MapSide {
+        /// The side asked for.
+        side: u32,
+        /// The limit.
+        max: u32,
+    },
+    /// A camera image wider or taller than allowed.
+    #[error("image side {side} is above the limit of {max}")]
+    ImageSide {
+        /// The larger side asked for.
+        side: u32,
+        /// The limit.
+        max: u32,
+    },
+    /// A camera image of too many pixels.
+    #[error("image {width}x{height} has more pixels than the limit of {max}")]
+    ImagePixels {
+        /// Width asked for.
+        width: u32,
+        /// Height asked for.
+        height: u32,
+        /// The limit.
+        max: u64,
+    },
+    /// A scene of too many triangles.
+    #[error("{triangles} triangles is above the limit of {max}")]
+    Triangles {
+        /// Triangles asked for (so far, when counted object by object).
+        triangles: u64,
+        /// The limit.
+        max: u64,
+    },
+    /// A file larger than allowed.
+    #[error("file of {bytes} bytes is above the limit of {max}")]
+    FileBytes {
+        /// Its size (at least; reading stops past the limit).
+        bytes: u64,
+        /// The limit.
+        max: u64,
+    },
+}
+
+/// Why [`Limits::read_file`] failed.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum FileError {
+    /// The file cannot be opened or read.
+    #[error("cannot read: {0}")]
+    Io(#[from] std::io::Error),
+    /// Not a regular file.
+    #[error("not a regular file")]
+    NotAFile,
+    /// Larger than the limit.
+    #[error(transparent)]
+    Limit(LimitError),
+}

@@ -1,0 +1,100 @@
+//! The same input gives the same bits: the light pass's maps and a whole
+//! render (maps, camera pass, reference, metrics, event counts) are equal
+//! run after run and on 1, 2 and all cores. (`reference.rs` checks the
+//! reference alone across thread counts.)
+
+use umbra::core::camera::Shaded;
+use umbra::core::shadow::Filter;
+use umbra::core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, RasterConfig};
+use umbra::sim::counters::{Counters, Totals};
+use umbra::sim::light::{RawMaps, render_raw};
+use umbra::sim::render::{Algorithm, Render, RenderConfig, render};
+use umbra::sim::scene::Scene;
+
+/// 1, 2 and every core of the machine (at least 3, so the pools differ).
+fn thread_counts() -> [usize; 3] {
+    let all = std::thread::available_parallelism().map_or(1, usize::from);
+    [1, 2, all.max(3)]
+}
+
+fn on<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool").install(f)
+}
+
+/// Every output of a render as bits: floats by their bit patterns, so that
+/// `-0.0` and `0.0` (or two NaNs) would not pass as equal.
+fn bits(r: &Render) -> (RawMaps, Vec<u64>, Vec<u64>, Vec<u64>, [Totals; 2]) {
+    let shaded = |s: &Shaded| {
+        let [x, y, z] = s.normal.to_array().map(f32::to_bits);
+        let light = s.light.map_or([0; 3], |l| [l.x.to_bits() as u64, l.y.to_bits() as u64, l.z.to_bits() as u64]);
+        [u64::from(s.triangle), u64::from(s.shadow.to_bits()), u64::from(x), u64::from(y), u64::from(z)]
+            .into_iter()
+            .chain(light)
+            .collect::<Vec<_>>()
+    };
+    let truth = r
+        .truth
+        .iter()
+        .flat_map(|t| t.map_or([u64::MAX; 3], |t| [u64::from(t.faces_light), u64::from(t.lit), t.visibility.to_bits()]))
+        .collect();
+    let m = &r.metrics;
+    let metrics = vec![
+        m.evaluated,
+        m.false_shadow,
+        m.false_light,
+        m.false_shadow_rate.to_bits(),
+        m.false_light_rate.to_bits(),
+        m.misclassified_percent.to_bits(),
+        m.mean_abs_error.to_bits(),
+    ];
+    let events = [r.light_events.totals, r.camera_events.totals];
+    (r.maps.clone(), r.image.pixels.iter().flat_map(shaded).collect(), truth, metrics, events)
+}
+
+/// The light pass of a bundled scene in every format and unit: the same
+/// maps twice in a row and in pools of 1, 2 and all threads.
+#[test]
+fn light_maps_are_the_same_on_any_thread_count() {
+    let scene = Scene::bundled("double-torus").expect("bundled");
+    let draws = scene.draws(scene.light().view_projection(), CullMode::None);
+    for format in [DepthFormatKind::D16, DepthFormatKind::D24, DepthFormatKind::F32] {
+        for unit in [DepthUnit::Single, DepthUnit::Dual] {
+            let cfg =
+                LightPassConfig { raster: RasterConfig::new(160, 96, 16, 8).expect("valid"), unit, max_z_cull: true };
+            let pass = || render_raw(cfg, format, &draws, Counters::new(&cfg.raster)).expect("renders").0;
+            let first = pass();
+            assert_eq!(first, pass(), "{format:?} {unit:?}: a second run differs");
+            for threads in thread_counts() {
+                assert_eq!(first, on(threads, pass), "{format:?} {unit:?} on {threads} threads");
+            }
+            let far = umbra::sim::light::raw_far(format);
+            assert!(first.maps.z1.iter().any(|&t| t != far), "the scene is in view of the light");
+        }
+    }
+}
+
+/// A whole render of the default scene at a small size, on 1, 2 and all
+/// threads and twice on one: every output equal to the bit.
+#[test]
+fn a_render_is_the_same_on_any_thread_count() {
+    let scene = Scene::bundled("table").expect("bundled");
+    let cfg = RenderConfig {
+        algorithm: Algorithm::Second,
+        format: DepthFormatKind::D24,
+        map_size: 128,
+        filter: Filter::Bilinear,
+        bias: 0.0,
+        virtual_samples: true,
+        width: 80,
+        height: 45,
+        reference_samples: 2,
+    };
+    let hidden = indicatif::ProgressBar::hidden();
+    let go = || bits(&render(&scene, &cfg, &hidden).expect("renders"));
+    let first = go();
+    assert_eq!(first, go(), "a second run differs");
+    for threads in thread_counts() {
+        assert_eq!(first, on(threads, go), "on {threads} threads");
+    }
+    assert!(first.3[0] > 500, "most of the image is evaluated: {}", first.3[0]);
+}

@@ -1,0 +1,41 @@
+//! Inputs the fuzz targets (`fuzz/`) found, each inline, each with what it
+//! broke and what must hold now.
+
+use umbra::core::camera::{CameraConfig, Normals, SceneTriangle, Shaded, shade};
+use umbra::core::glam::{Mat4, Vec3};
+use umbra::core::shadow::{Bias, DepthTest, Filter, MapView, ShadowConfig};
+use umbra::core::{D16, DepthFormat, RasterConfig, TileState};
+
+/// `fuzz/fuzz_targets/shadow.rs`: a light matrix with NaN in its x row (the
+/// fuzzer's had `0xfffc0000` there) and a finite `w` row made Reeves'
+/// footprint NaN, and converting NaN to a map coordinate panicked. Now the
+/// pixel has no light point and no footprint, and is lit.
+#[test]
+fn a_light_matrix_with_nan_in_a_row_shades_without_panicking() {
+    let mut light = Mat4::IDENTITY.to_cols_array();
+    light[0] = f32::from_bits(0xfffc_0000); // column 0, row 0: a NaN
+    let raster = RasterConfig::new(16, 16, 8, 8).expect("valid");
+    let (z1, z2) = (vec![D16::FAR; 256], vec![D16::FAR; 256]);
+    let tiles = vec![TileState::cleared(D16::FAR, 64); 4];
+    let map = MapView::<D16>::new(raster, &z1, &z2, &tiles).expect("buffers fit");
+    let shadow = ShadowConfig::new(DepthTest::Second, Bias::ZERO, Filter::Bilinear, true).expect("valid");
+    let cfg = CameraConfig {
+        camera: Mat4::IDENTITY,
+        light: Mat4::from_cols_array(&light),
+        width: 8,
+        height: 8,
+        shadow,
+        virtual_samples: true,
+        normals: Normals::Flat,
+        seed: 0,
+    };
+    let triangle = SceneTriangle {
+        positions: [Vec3::new(-0.9, -0.9, 0.5), Vec3::new(0.9, -0.9, 0.5), Vec3::new(0.0, 0.9, 0.5)],
+        normals: [Vec3::Z; 3],
+    };
+    let source = |id: u32| (id == 0).then_some(triangle);
+    let ids = vec![0u32; 64];
+    let mut out = vec![Shaded::BACKGROUND; 64];
+    shade(&cfg, &ids, &map, &source, &mut out, &mut umbra::core::NoProbe).expect("buffers fit");
+    assert!(out.iter().all(|s| s.triangle == 0 && s.light.is_none() && s.shadow == 0), "{:?}", out[0]);
+}
