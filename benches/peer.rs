@@ -1,0 +1,145 @@
+#![allow(missing_docs, clippy::cast_possible_truncation, clippy::cast_precision_loss, reason = "bench harness")]
+//! The light pass beside a peer, and how its cost grows.
+//!
+//! * `peer`: the same procedural torus of 100 000 triangles drawn depth-only
+//!   at 1024² by Umbra's light pass (24-bit, one core, 32-pixel tiles, max-z
+//!   culling off and on) and by the `euc` software rasterizer (f32 depth,
+//!   less-or-equal test with writes, no culling of either facing). The
+//!   fragments each covers are counted once, outside the timing, and
+//!   printed, so that fragments per second follow from the times.
+//! * `scaling/triangles`: 1k … 1M triangles of the same torus at 1024².
+//! * `scaling/map`: the 100k torus at 64² … 4096².
+//!
+//! Run briefly: `cargo bench --bench peer -- --warm-up-time 1 --measurement-time 3`.
+
+use std::cell::Cell;
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use euc::buffer::Buffer2d;
+use euc::rasterizer::{BackfaceCullingDisabled, Triangles};
+use euc::{DepthStrategy, Pipeline};
+use std::hint::black_box;
+use umbra::core::glam::{Mat4, Vec3};
+use umbra::core::{CullMode, D24, DepthUnit, LightPassConfig, NoProbe, Probe, RasterConfig};
+use umbra::sim::counters::Counters;
+use umbra::sim::light::{Draw, render};
+use umbra::sim::mesh::Mesh;
+use umbra::sim::scene::Perspective;
+
+/// A torus of `2 · rings · sides` triangles, filling most of a spot light's view.
+fn torus(rings: u32, sides: u32) -> Mesh {
+    Mesh::torus(Vec3::ZERO, 1.0, 0.4, rings, sides)
+}
+
+fn light() -> Mat4 {
+    Perspective { position: Vec3::new(0.0, 2.2, 2.6), target: Vec3::ZERO, fov_degrees: 55.0, near: 1.0, far: 8.0 }
+        .view_projection()
+}
+
+fn umbra_pass<P: Probe>(mesh: &Mesh, size: u32, cull: bool, probe: P) -> P {
+    let cfg = LightPassConfig {
+        raster: RasterConfig::new(size, size, RasterConfig::DEFAULT_TILE_SIZE, RasterConfig::DEFAULT_SUBPIXEL_BITS)
+            .expect("valid"),
+        unit: DepthUnit::Single,
+        max_z_cull: cull,
+    };
+    let draw =
+        Draw { positions: &mesh.positions, triangles: &mesh.triangles, transform: light(), cull: CullMode::None };
+    render::<D24, P>(cfg, &[draw], probe).expect("renders").1
+}
+
+/// `euc`'s pipeline: positions through the light's matrix, no colour.
+struct Depth<'a> {
+    matrix: Mat4,
+    /// Counts the fragment shader's calls when present.
+    count: Option<&'a Cell<u64>>,
+}
+
+impl Pipeline for Depth<'_> {
+    type Vertex = Vec3;
+    type VsOut = ();
+    type Pixel = ();
+
+    #[inline]
+    fn vert(&self, p: &Vec3) -> ([f32; 4], ()) {
+        ((self.matrix * p.extend(1.0)).to_array(), ())
+    }
+
+    #[inline]
+    fn frag(&self, (): &()) {
+        if let Some(c) = self.count {
+            c.set(c.get() + 1);
+        }
+    }
+
+    fn get_depth_strategy(&self) -> DepthStrategy {
+        // Counting: every covered pixel reaches the fragment shader.
+        if self.count.is_some() { DepthStrategy::None } else { DepthStrategy::IfLessWrite }
+    }
+}
+
+/// The mesh as `euc` takes it: three vertices per triangle.
+fn soup(mesh: &Mesh) -> Vec<Vec3> {
+    mesh.triangles.iter().flat_map(|t| t.map(|i| mesh.positions[i as usize])).collect()
+}
+
+fn euc_pass(vertices: &[Vec3], size: usize, count: Option<&Cell<u64>>) -> Buffer2d<f32> {
+    let mut colour = Buffer2d::new([size, size], ());
+    let mut depth = Buffer2d::new([size, size], 1.0f32);
+    Depth { matrix: light(), count }.draw::<Triangles<'_, Buffer2d<f32>, BackfaceCullingDisabled>, _>(
+        vertices,
+        &mut colour,
+        Some(&mut depth),
+    );
+    depth
+}
+
+fn peer(c: &mut Criterion) {
+    let mesh = torus(250, 200);
+    let triangles = mesh.triangles.len() as u64;
+    let vertices = soup(&mesh);
+    let covered = umbra_pass(&mesh, 1024, false, Counters::new(&RasterConfig::new(1024, 1024, 32, 8).expect("valid")))
+        .totals
+        .fragments;
+    let culled = umbra_pass(&mesh, 1024, true, Counters::new(&RasterConfig::new(1024, 1024, 32, 8).expect("valid")))
+        .totals
+        .fragments;
+    let euc_covered = Cell::new(0);
+    euc_pass(&vertices, 1024, Some(&euc_covered));
+    eprintln!(
+        "peer: {triangles} triangles at 1024²; fragments covered: umbra {covered} ({culled} with max-z culling), euc {}",
+        euc_covered.get()
+    );
+    let mut g = c.benchmark_group("peer");
+    g.sample_size(10);
+    g.throughput(Throughput::Elements(triangles));
+    g.bench_function("umbra d24, culling off", |b| b.iter(|| umbra_pass(black_box(&mesh), 1024, false, NoProbe)));
+    g.bench_function("umbra d24, culling on", |b| b.iter(|| umbra_pass(black_box(&mesh), 1024, true, NoProbe)));
+    g.bench_function("euc f32", |b| b.iter(|| euc_pass(black_box(&vertices), 1024, None)));
+    g.finish();
+}
+
+fn scaling(c: &mut Criterion) {
+    let mut g = c.benchmark_group("scaling/triangles");
+    g.sample_size(10);
+    for (rings, sides) in [(25, 20), (100, 50), (250, 200), (1000, 500)] {
+        let mesh = torus(rings, sides);
+        let n = mesh.triangles.len() as u64;
+        g.throughput(Throughput::Elements(n));
+        g.bench_with_input(BenchmarkId::from_parameter(n), &mesh, |b, m| b.iter(|| umbra_pass(m, 1024, true, NoProbe)));
+    }
+    g.finish();
+    let mesh = torus(250, 200);
+    let mut g = c.benchmark_group("scaling/map");
+    g.sample_size(10);
+    for size in [64u32, 256, 1024, 4096] {
+        g.throughput(Throughput::Elements(u64::from(size) * u64::from(size)));
+        g.bench_with_input(BenchmarkId::from_parameter(size), &size, |b, &s| {
+            b.iter(|| umbra_pass(&mesh, s, true, NoProbe));
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, peer, scaling);
+criterion_main!(benches);
