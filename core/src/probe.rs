@@ -12,7 +12,7 @@
 
 use crate::tile::TileId;
 
-/// A buffer of the depth unit.
+/// A buffer the units read or write.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Buffer {
     /// Nearest depth.
@@ -21,6 +21,8 @@ pub enum Buffer {
     Z2,
     /// Visible-triangle ids (the camera pass's visibility).
     Id,
+    /// Silhouette points (Sen et al. 2003).
+    Silhouette,
 }
 
 /// Why a submitted triangle produced no fragments before binning.

@@ -38,7 +38,7 @@ use glam::Mat4;
 use crate::clip::ClipVertex;
 use crate::config::ConfigError;
 use crate::depth::{DepthFormat, PlaneZ};
-use crate::probe::{Event, Probe, TexelRead};
+use crate::probe::{Buffer, Event, Probe, TexelRead};
 use crate::shadow::{MapCoord, MapView, Shadow, ShadowConfig};
 
 /// One texel unit in the silhouette unit's fixed point (16 fraction bits).
@@ -448,6 +448,16 @@ pub fn shadow<S: SilStore, F: DepthFormat, P: Probe>(
         return lit(verdicts[0]);
     }
     probe.event(Event::SilhouetteRead { points: 5, bytes: 5 * S::BYTES });
+    if P::TEXELS {
+        for (di, dj) in [(0, 0), (0, -1), (1, 0), (0, 1), (-1, 0)] {
+            if let (Ok(x), Ok(y)) = (u32::try_from(i + di), u32::try_from(j + dj))
+                && x < sil.width
+                && y < sil.height
+            {
+                probe.texel_read(TexelRead { buffer: Buffer::Silhouette, x, y });
+            }
+        }
+    }
     let at = |di: i64, dj: i64| {
         let p = sil.point(i + di, j + dj);
         [i64::from(p.x) + di * ONE, i64::from(p.y) + dj * ONE]

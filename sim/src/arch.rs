@@ -176,6 +176,19 @@ pub struct Dram {
 }
 
 impl Dram {
+    /// Every byte of this pass's traffic.
+    #[must_use]
+    pub const fn total(&self) -> u64 {
+        self.map_writes
+            + self.map_rmw_reads
+            + self.map_reads
+            + self.bins
+            + self.silhouette_writes
+            + self.silhouette_reads
+            + self.volume_depth_reads
+            + self.stencil
+    }
+
     /// The camera pass's shadow traffic: map, silhouette, volume depth and stencil.
     #[must_use]
     pub const fn camera_shadow_bytes(&self) -> u64 {
@@ -374,8 +387,8 @@ pub struct CostReport {
     /// Camera-pass DRAM traffic (map reads as requested by the shadow unit;
     /// visibility depth if off chip).
     pub camera_dram: Dram,
-    /// Map bytes actually fetched through the preset's map cache (the
-    /// requested bytes when it has none).
+    /// Map and silhouette-point bytes actually fetched through the
+    /// preset's map cache (the requested bytes when it has none).
     pub map_bytes_fetched: u64,
     /// On-chip depth storage, bytes.
     pub on_chip_bytes: u64,
@@ -396,6 +409,8 @@ pub struct CostReport {
     /// Simulated camera-pass shadow bytes per pixel: map, silhouette
     /// points, volume depth and stencil.
     pub shadow_bytes_per_pixel: f64,
+    /// Fragments of the camera's visibility pass (Sen et al.'s scene fill).
+    pub scene_fill: u64,
     /// Sen et al.'s `P`: silhouette fragments over scene fill.
     pub silhouette_fill: f64,
     /// Sen et al.'s `O`: shadow-volume fragments over scene fill.
@@ -422,6 +437,9 @@ impl CostReport {
         samples_per_pixel: u64,
     ) -> Self {
         let lookups = camera.trivial + camera.tangent_setups;
+        // Map texels and silhouette points go through the cache, when there is one.
+        let requested = camera.dram.map_reads + camera.dram.silhouette_reads;
+        let fetched = fetched.unwrap_or(requested);
         Self {
             arch: light.params.name,
             light_cycles: light.cycles,
@@ -430,7 +448,7 @@ impl CostReport {
             camera_bottleneck: camera.bottleneck(),
             light_dram: light.dram,
             camera_dram: camera.dram,
-            map_bytes_fetched: fetched.unwrap_or(camera.dram.map_reads),
+            map_bytes_fetched: fetched,
             on_chip_bytes: light.on_chip_bytes(),
             max_z_cull_rate: [
                 ratio(light.culled, light.culled + light.pairs),
@@ -439,18 +457,33 @@ impl CostReport {
             lookups_culled_per_pixel: ratio(camera.lookups_culled, pixels),
             virtual_sample_fraction: ratio(camera.tangent_setups, lookups),
             pixels,
-            map_bytes_per_pixel: ratio(fetched.unwrap_or(camera.dram.map_reads), pixels),
+            map_bytes_per_pixel: ratio(fetched, pixels),
             #[allow(clippy::cast_precision_loss, reason = "a small count")]
             sen_shadow_map_bytes_per_pixel: 4.0 * samples_per_pixel as f64,
-            shadow_bytes_per_pixel: ratio(
-                camera.dram.camera_shadow_bytes() - camera.dram.map_reads + fetched.unwrap_or(camera.dram.map_reads),
-                pixels,
-            ),
+            shadow_bytes_per_pixel: ratio(camera.dram.camera_shadow_bytes() - requested + fetched, pixels),
+            scene_fill: camera.fragments,
             silhouette_fill: ratio(light.silhouette_fragments, camera.fragments),
             overdraw: ratio(camera.volume_fragments, camera.fragments),
             sen_silhouette_bytes_per_pixel: 4.0 + 24.0 * ratio(light.silhouette_fragments, camera.fragments),
             sen_volume_bytes_per_pixel: 5.5 * ratio(camera.volume_fragments, camera.fragments),
         }
+    }
+
+    /// Light bottleneck plus camera bottleneck cycles: the passes run one
+    /// after the other, each as slow as its slowest stage.
+    #[must_use]
+    pub const fn total_cycles(&self) -> u64 {
+        self.light_bottleneck.1 + self.camera_bottleneck.1
+    }
+
+    /// Every DRAM byte of both passes, camera map reads as fetched through
+    /// the cache.
+    #[must_use]
+    pub const fn total_bytes(&self) -> u64 {
+        self.light_dram.total() + self.camera_dram.total()
+            - self.camera_dram.map_reads
+            - self.camera_dram.silhouette_reads
+            + self.map_bytes_fetched
     }
 
     /// The report as a Markdown table.

@@ -94,31 +94,64 @@ impl Cache {
 }
 
 /// A probe that sends the shadow unit's texel reads through a [`Cache`].
-/// The map lies row-major in memory, `z1` then `z2`, `bytes` per texel.
+///
+/// The map lies in memory as texture hardware swizzles it: texels in
+/// Morton (Z) order, so a 2-D neighbourhood falls in few lines and
+/// neighbouring rows do not alias onto the same sets (a row-major map
+/// with a power-of-two pitch maps every 16th row to the same set and
+/// thrashes), and a dual map's `z1` and `z2` side by side per texel,
+/// `bytes` each. A silhouette map, when there is one, lies in its own
+/// region, swizzled the same way.
 #[derive(Clone, Debug)]
 pub struct MapCache {
     /// The cache.
     pub cache: Cache,
-    width: u64,
-    height: u64,
+    buffers: u64,
     bytes: u64,
+    silhouette_bytes: u64,
+}
+
+/// Where the silhouette map starts (above any map's depths).
+const SILHOUETTE_BASE: u64 = 1 << 40;
+
+/// Interleave the bits of `x` (even positions) and `y` (odd positions).
+#[must_use]
+pub fn morton(x: u32, y: u32) -> u64 {
+    let spread = |v: u32| {
+        let mut v = u64::from(v);
+        v = (v | (v << 16)) & 0x0000_ffff_0000_ffff;
+        v = (v | (v << 8)) & 0x00ff_00ff_00ff_00ff;
+        v = (v | (v << 4)) & 0x0f0f_0f0f_0f0f_0f0f;
+        v = (v | (v << 2)) & 0x3333_3333_3333_3333;
+        (v | (v << 1)) & 0x5555_5555_5555_5555
+    };
+    spread(x) | (spread(y) << 1)
 }
 
 impl MapCache {
-    /// Model the reads of a `width × height` map of `bytes`-byte texels.
+    /// Model the reads of a map of `buffers` buffers (1 or 2) of
+    /// `bytes`-byte texels.
     #[must_use]
-    pub fn new(cache: Cache, width: u32, height: u32, bytes: u32) -> Self {
-        Self { cache, width: u64::from(width), height: u64::from(height), bytes: u64::from(bytes) }
+    pub fn new(cache: Cache, buffers: u32, bytes: u32) -> Self {
+        Self { cache, buffers: u64::from(buffers.max(1)), bytes: u64::from(bytes), silhouette_bytes: 4 }
+    }
+
+    /// With a silhouette map of `bytes`-byte points.
+    #[must_use]
+    pub const fn with_silhouette(mut self, bytes: u32) -> Self {
+        self.silhouette_bytes = bytes as u64;
+        self
     }
 
     /// The byte address of a texel.
     #[must_use]
     pub fn address(&self, r: TexelRead) -> u64 {
         let plane = match r.buffer {
-            Buffer::Z1 | Buffer::Id => 0,
-            Buffer::Z2 => 1,
+            Buffer::Silhouette => return SILHOUETTE_BASE + morton(r.x, r.y) * self.silhouette_bytes,
+            Buffer::Z2 if self.buffers > 1 => 1,
+            _ => 0,
         };
-        ((plane * self.height + u64::from(r.y)) * self.width + u64::from(r.x)) * self.bytes
+        (morton(r.x, r.y) * self.buffers + plane) * self.bytes
     }
 }
 

@@ -50,15 +50,15 @@ pub struct Totals {
     /// Texels of the skipped regions.
     pub culled_texels: u64,
     /// Depth-unit texels read (`z1`, `z2`, ids).
-    pub depth_reads: [u64; 3],
+    pub depth_reads: [u64; 4],
     /// Depth-unit texels written (`z1`, `z2`, ids).
-    pub depth_writes: [u64; 3],
+    pub depth_writes: [u64; 4],
     /// Bytes of depth reads and writes on chip.
     pub depth_bytes: u64,
     /// Reductions recomputing a tile's max.
     pub tile_max_updates: u64,
     /// Map texels read by the shadow unit (`z1`, `z2`, ids).
-    pub map_reads: [u64; 3],
+    pub map_reads: [u64; 4],
     /// Bytes of those reads.
     pub map_read_bytes: u64,
     /// Lookups decided without reading a texel.
@@ -214,5 +214,6 @@ const fn buffer_index(b: Buffer) -> usize {
         Buffer::Z1 => 0,
         Buffer::Z2 => 1,
         Buffer::Id => 2,
+        Buffer::Silhouette => 3,
     }
 }

@@ -11,6 +11,7 @@ pub mod mesh;
 pub mod metrics;
 pub mod occluders;
 pub mod output;
+pub mod plan;
 pub mod presets;
 pub mod reference;
 pub mod render;

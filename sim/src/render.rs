@@ -3,17 +3,20 @@
 
 use indicatif::ProgressBar;
 use serde::Serialize;
+use umbra_core::camera::SilhouetteUnit;
 use umbra_core::shadow::{Bias, DepthTest, Filter, ShadowConfig, ShadowConfigError};
+use umbra_core::silhouette::{Packed, SilPoint, SilStore, SilhouetteMap};
 use umbra_core::{
-    CullMode, D16, D24, DepthFormat, DepthFormatKind, DepthUnit, F32, LightPassConfig, Probe, RasterConfig,
+    CullMode, D16, D24, DepthFormat, DepthFormatKind, DepthUnit, F32, LightPassConfig, Probe, RasterConfig, TileState,
 };
 
 use crate::arch::{ArchParams, ArchProbe, CostReport, Tee};
-use crate::camera::{CameraImage, render_camera, visibility};
+use crate::camera::{CameraImage, map_view, render_camera, render_camera_with, render_volumes, visibility};
 use crate::counters::Counters;
 use crate::light::{LightError, LightMaps, RawMaps, render as light_render};
 use crate::limits::{LimitError, Limits};
 use crate::metrics::{Metrics, compare};
+use crate::occluders::{Occluders, silhouette_map};
 use crate::reference::{PixelTruth, Reference, ReferenceError};
 use crate::scene::Scene;
 
@@ -33,6 +36,16 @@ pub enum Algorithm {
         /// The largest distance above `z1`, as a depth in `[0, 1]`.
         offset: f64,
     },
+    /// Sen, Cammarano & Hanrahan's silhouette map over a first-depth map
+    /// (with the bias), decided by the skewed quadrants; no filter.
+    Silhouette {
+        /// Points packed to 4 bits per axis (one byte per texel) instead of
+        /// 16 bits per axis.
+        packed: bool,
+    },
+    /// Depth-fail stencil shadow volumes on the camera's raster: exact hard
+    /// shadows, no light pass and no map.
+    Volumes,
 }
 
 /// What to render and how.
@@ -146,9 +159,21 @@ fn passes<F: DepthFormat, L: Probe, C: Probe>(
     light_probe: L,
     camera_probe: &mut C,
 ) -> Result<(LightMaps<F::Texel>, L, CameraImage), RenderError> {
+    if cfg.algorithm == Algorithm::Volumes {
+        RasterConfig::new(cfg.width, cfg.height, RasterConfig::DEFAULT_TILE_SIZE, 8).map_err(RenderError::ImageSize)?;
+        let image = render_volumes(scene, cfg.width, cfg.height, camera_probe)?;
+        let raster = RasterConfig::new(1, 1, RasterConfig::DEFAULT_TILE_SIZE, 8).map_err(RenderError::MapSize)?;
+        let none = LightMaps {
+            config: LightPassConfig { raster, unit: DepthUnit::Single, max_z_cull: true },
+            z1: vec![F::FAR],
+            z2: Vec::new(),
+            tiles: vec![TileState::cleared(F::FAR, 1)],
+        };
+        return Ok((none, light_probe, image));
+    }
     let unit = unit_of(cfg.algorithm);
     let (front_culled, test) = match cfg.algorithm {
-        Algorithm::First => (false, DepthTest::First),
+        Algorithm::First | Algorithm::Silhouette { .. } | Algorithm::Volumes => (false, DepthTest::First),
         Algorithm::Second => (false, DepthTest::Second),
         Algorithm::SecondFrontCulled => (true, DepthTest::Second),
         Algorithm::Midpoint => (false, DepthTest::Midpoint),
@@ -162,10 +187,18 @@ fn passes<F: DepthFormat, L: Probe, C: Probe>(
     let raster = RasterConfig::new(cfg.map_size, cfg.map_size, tile, 8).map_err(RenderError::MapSize)?;
     let light_config = LightPassConfig { raster, unit, max_z_cull: true };
     let draws = scene.draws_culled(scene.light().view_projection(), cull);
-    let (maps, light_probe) = light_render::<F, _>(light_config, &draws, light_probe)?;
+    let (maps, mut light_probe) = light_render::<F, _>(light_config, &draws, light_probe)?;
     let shadow = ShadowConfig::new(test, Bias::Constant(F::plane_z(cfg.bias)), cfg.filter, true)?;
     RasterConfig::new(cfg.width, cfg.height, RasterConfig::DEFAULT_TILE_SIZE, 8).map_err(RenderError::ImageSize)?;
     let virtual_samples = cfg.virtual_samples && test == DepthTest::Second;
+    if let Algorithm::Silhouette { packed } = cfg.algorithm {
+        let image = if packed {
+            silhouette_image::<Packed, F, _, _>(scene, cfg, &maps, shadow, &mut light_probe, camera_probe)?
+        } else {
+            silhouette_image::<SilPoint, F, _, _>(scene, cfg, &maps, shadow, &mut light_probe, camera_probe)?
+        };
+        return Ok((maps, light_probe, image));
+    }
     let image = render_camera::<F, _>(
         scene,
         &maps,
@@ -179,10 +212,29 @@ fn passes<F: DepthFormat, L: Probe, C: Probe>(
     Ok((maps, light_probe, image))
 }
 
+/// The silhouette pass over `maps` (events to `light_probe`, as part of
+/// the light side) and the camera pass with the silhouette unit.
+fn silhouette_image<S: SilStore, F: DepthFormat, L: Probe, C: Probe>(
+    scene: &Scene,
+    cfg: &RenderConfig,
+    maps: &LightMaps<F::Texel>,
+    shadow: ShadowConfig,
+    light_probe: &mut L,
+    camera_probe: &mut C,
+) -> Result<CameraImage, LightError> {
+    let view = map_view::<F>(maps, false)?;
+    let light = scene.light().view_projection();
+    let texels = silhouette_map::<S, F, _>(&Occluders::new(scene), &light, &view, shadow, light_probe)?;
+    let sil = SilhouetteMap::view(cfg.map_size, cfg.map_size, &texels)?;
+    render_camera_with(scene, &view, shadow, false, cfg.width, cfg.height, &SilhouetteUnit(&sil), camera_probe)
+}
+
 /// The light pass's unit for an algorithm.
 const fn unit_of(a: Algorithm) -> DepthUnit {
     match a {
-        Algorithm::First | Algorithm::SecondFrontCulled => DepthUnit::Single,
+        Algorithm::First | Algorithm::SecondFrontCulled | Algorithm::Silhouette { .. } | Algorithm::Volumes => {
+            DepthUnit::Single
+        }
         _ => DepthUnit::Dual,
     }
 }
@@ -228,7 +280,9 @@ fn cost_in<F: DepthFormat>(
     let camera = ArchProbe::new(arch, cfg.format, DepthUnit::Single);
     let (camera, light, image, fetched) = if let Some((size, line, ways)) = arch.map_cache {
         let cache = crate::cache::Cache::new(size, line, ways).map_err(|e| RenderError::Cache(e.to_string()))?;
-        let map = crate::cache::MapCache::new(cache, cfg.map_size, cfg.map_size, cfg.format.bytes());
+        let sil =
+            if let Algorithm::Silhouette { packed: true } = cfg.algorithm { Packed::BYTES } else { SilPoint::BYTES };
+        let map = crate::cache::MapCache::new(cache, unit.buffers(), cfg.format.bytes()).with_silhouette(sil);
         let mut probe = Tee(camera, map);
         let (_, light, image) = passes::<F, _, _>(scene, cfg, arch.tile, light, &mut probe)?;
         let fetched = probe.1.cache.fetched_bytes();

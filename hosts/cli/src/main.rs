@@ -112,6 +112,12 @@ enum Algo {
     Midpoint,
     /// Weiskopf & Ertl's dual depth (use --offset).
     Dual,
+    /// Sen et al.'s silhouette map, 16-bit points (use --bias).
+    Silhouette,
+    /// Sen et al.'s silhouette map, points packed to one byte per texel.
+    SilhouettePacked,
+    /// Depth-fail stencil shadow volumes (exact hard shadows).
+    Volumes,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -384,6 +390,9 @@ fn render_config(args: &RenderArgs) -> Result<(Scene, RenderConfig, &'static str
         Algo::SecondFfc => Algorithm::SecondFrontCulled,
         Algo::Midpoint => Algorithm::Midpoint,
         Algo::Dual => Algorithm::Dual { offset: args.offset },
+        Algo::Silhouette => Algorithm::Silhouette { packed: false },
+        Algo::SilhouettePacked => Algorithm::Silhouette { packed: true },
+        Algo::Volumes => Algorithm::Volumes,
     };
     let cfg = RenderConfig {
         algorithm,
