@@ -528,9 +528,15 @@ impl Row {
         self.status == "ok" && self.misclassified_percent.is_some() && self.total_cycles.is_some()
     }
 
-    /// The configuration in words, for tables.
+    /// The configuration and preset in words, for tables.
     #[must_use]
     pub fn label(&self) -> String {
+        format!("{}, {}", self.render_label(), self.arch)
+    }
+
+    /// The render configuration in words (no preset).
+    #[must_use]
+    pub fn render_label(&self) -> String {
         let mut s = self.algorithm.clone();
         if self.algorithm == "first" || self.bias != 0.0 {
             let _ = write!(s, " bias {}", self.bias);
@@ -538,7 +544,7 @@ impl Row {
         if let Some(o) = self.offset.filter(|_| self.algorithm.starts_with("dual")) {
             let _ = write!(s, " offset {o}");
         }
-        let _ = write!(s, ", {}, {}², {}, {}", self.format, self.map, self.filter, self.arch);
+        let _ = write!(s, ", {}, {}², {}", self.format, self.map, self.filter);
         s
     }
 }
@@ -807,8 +813,17 @@ pub fn summary(rows: &[Row]) -> String {
             a.misclassified_percent.partial_cmp(&b.misclassified_percent).unwrap_or(std::cmp::Ordering::Equal)
         });
         if let Some(b) = best {
-            let _ =
-                writeln!(s, "\nLowest error: {} at {:.4} %.", b.label(), b.misclassified_percent.unwrap_or(f64::NAN));
+            let _ = writeln!(
+                s,
+                "\nLowest error: {} at {:.4} %.",
+                b.render_label(),
+                b.misclassified_percent.unwrap_or(f64::NAN)
+            );
+        }
+        if let Some(n) = mine.iter().find_map(|r| r.evaluated).filter(|&n| n > 0) {
+            #[allow(clippy::cast_precision_loss, reason = "a pixel count")]
+            let one = 100.0 / n as f64;
+            let _ = writeln!(s, "{n} pixels evaluated: one pixel is {one:.4} %.");
         }
         let _ = writeln!(s);
     }

@@ -79,6 +79,9 @@ fn same_bytes_on_one_and_two_threads() {
     for (x, y) in fa.iter().zip(&fb) {
         assert!(x == y, "{} differs between 1 and 2 threads", x.0);
     }
+    for d in [a, b] {
+        let _ = std::fs::remove_dir_all(d);
+    }
 }
 
 /// Three shards, merged (one given as a folder, two as files, out of
@@ -108,6 +111,9 @@ fn shards_merge_into_the_whole_run() {
     assert!(matches!(study::merge(&twice, &dir("twice")), Err(study::StudyError::Duplicate { .. })));
     for bad in ["3/3", "1", "a/2", "0/0"] {
         assert!(Shard::parse(bad).is_err(), "{bad}");
+    }
+    for d in shards.into_iter().chain([whole, merged, dir("twice")]) {
+        let _ = std::fs::remove_dir_all(d);
     }
 }
 
