@@ -26,11 +26,15 @@ use umbra_core::{CullMode, DepthFormat, DepthFormatKind, DepthUnit, F32, LightPa
 use crate::arch::{ArchParams, CostReport};
 use crate::light::render as light_render;
 use crate::presets::FILTERS;
-use crate::render::{Algorithm, RenderConfig, RenderError, cost, render};
+use crate::render::{Algorithm, Render, RenderConfig, RenderError, cost, render};
 use crate::scene::Scene;
+use crate::storage::StorageBytes;
 
 /// 16-bit steps the thinnest gaps between surfaces must span.
 pub const GAP_LSBS: f64 = 8.0;
+
+/// Tile side of the sparse storage scheme (Reeves et al. 1987 Table 2).
+pub const STORAGE_TILE: u32 = 32;
 
 /// The dual test's offset the planner uses, as a depth in `[0, 1]`.
 pub const DUAL_OFFSET: f64 = 0.01;
@@ -83,6 +87,8 @@ pub struct Plan {
     pub config: RenderConfig,
     /// Its filter's name.
     pub filter: &'static str,
+    /// Its depth format's name.
+    pub format: String,
     /// The thinnest gap between surfaces (1st percentile), in 16-bit steps.
     pub gap_lsbs: f64,
     /// Whether the scene has open surfaces.
@@ -99,6 +105,9 @@ pub struct Plan {
     pub predicted_to_meet: bool,
     /// The reasons, one line each.
     pub reasons: Vec<String>,
+    /// The chosen map's storage under Reeves et al.'s schemes (Table 2),
+    /// tiles of [`STORAGE_TILE`].
+    pub storage: StorageBytes,
 }
 
 impl Plan {
@@ -150,11 +159,11 @@ fn figures(r_err: f64, c: &CostReport) -> Figures {
     Figures { misclassified_percent: r_err, cycles: c.total_cycles(), bytes: c.total_bytes() }
 }
 
-/// Error and cost of `cfg` on `scene` under `arch`.
-fn evaluate(scene: &Scene, cfg: &RenderConfig, arch: ArchParams) -> Result<Figures, PlanError> {
+/// Error and cost of `cfg` on `scene` under `arch`, and the render.
+fn evaluate(scene: &Scene, cfg: &RenderConfig, arch: ArchParams) -> Result<(Figures, Render), PlanError> {
     let r = render(scene, cfg, &ProgressBar::hidden())?;
     let (c, _) = cost(scene, cfg, arch)?;
-    Ok(figures(r.metrics.misclassified_percent, &c))
+    Ok((figures(r.metrics.misclassified_percent, &c), r))
 }
 
 /// Plan `scene` within `spec`.
@@ -216,7 +225,7 @@ pub fn plan(scene: &Scene, spec: &PlanSpec) -> Result<Plan, PlanError> {
     let mut most_accurate: Option<(Figures, u32, (&'static str, Filter))> = None;
     for &map in &spec.map_sizes {
         for &(name, filter) in &filters {
-            let f = evaluate(scene, &at(quarter, map, filter, algorithm, format, 1), spec.arch)?;
+            let (f, _) = evaluate(scene, &at(quarter, map, filter, algorithm, format, 1), spec.arch)?;
             if most_accurate.is_none_or(|(b, ..)| f.misclassified_percent < b.misclassified_percent) {
                 most_accurate = Some((f, map, (name, filter)));
             }
@@ -246,13 +255,16 @@ pub fn plan(scene: &Scene, spec: &PlanSpec) -> Result<Plan, PlanError> {
         ));
     }
     let config = at(spec.image, map, filter, algorithm, format, 4);
-    let measured = evaluate(scene, &config, spec.arch)?;
+    let (measured, r) = evaluate(scene, &config, spec.arch)?;
+    let storage = crate::storage::of_maps(&r.maps.maps, r.maps.format, STORAGE_TILE)
+        .map_err(|e| PlanError::Spec(format!("map storage: {e}")))?;
     // The same test with everything: the dual unit's own z2 and 24 bits.
     let full_algorithm = if algorithm == Algorithm::SecondFrontCulled { Algorithm::Second } else { algorithm };
-    let full = evaluate(scene, &at(spec.image, map, filter, full_algorithm, DepthFormatKind::D24, 4), spec.arch)?;
+    let (full, _) = evaluate(scene, &at(spec.image, map, filter, full_algorithm, DepthFormatKind::D24, 4), spec.arch)?;
     Ok(Plan {
         config,
         filter: filter_name,
+        format: format!("{format:?}"),
         gap_lsbs,
         open_surfaces,
         predicted,
@@ -260,6 +272,7 @@ pub fn plan(scene: &Scene, spec: &PlanSpec) -> Result<Plan, PlanError> {
         full,
         predicted_to_meet,
         reasons,
+        storage,
     })
 }
 
@@ -286,6 +299,19 @@ impl Plan {
         ] {
             let _ = writeln!(s, "| {name} | {:.3} | {} | {} |", f.misclassified_percent, f.cycles, f.bytes);
         }
+        let st = &self.storage;
+        let _ = writeln!(
+            s,
+            "\nMap storage (Reeves et al. Table 2), {} buffer(s):\n\n| scheme | bytes | holds |\n|---|---:|---|",
+            st.buffers
+        );
+        let _ = writeln!(s, "| raw | {} | every texel |", st.raw);
+        let _ = writeln!(s, "| bounding box | {} | {} texels of finite depth |", st.bounding_box, st.box_texels);
+        let _ = writeln!(
+            s,
+            "| {STORAGE_TILE}×{STORAGE_TILE} tiles | {} | {} of {} tiles that received geometry |",
+            st.tiles, st.stored_tiles, st.grid_tiles
+        );
         s
     }
 }

@@ -49,6 +49,27 @@ enum Command {
     /// Merge the results.jsonl of `study --shard` runs into the whole run's
     /// files.
     Merge(MergeArgs),
+    /// The least costly configuration a scene needs for an error budget:
+    /// buffers, depth precision, map size and filter, with the reasons, the
+    /// predicted and measured error and cost, and the map's storage.
+    Plan(PlanArgs),
+}
+
+#[derive(clap::Args, Debug)]
+struct PlanArgs {
+    /// A bundled scene by name or a scene file.
+    #[arg(default_value = "table")]
+    scene: String,
+    /// Misclassified pixels allowed, e.g. `0.1%` (percent of the pixels
+    /// facing the light).
+    #[arg(long, default_value = "0.1%")]
+    error_budget: String,
+    /// Architecture preset whose cost is minimised.
+    #[arg(long, value_enum, default_value_t = ArchArg::Talisman)]
+    arch: ArchArg,
+    /// Output folder for plan.md and plan.json.
+    #[arg(long, default_value = "out/plan")]
+    out: PathBuf,
 }
 
 #[derive(clap::Args, Debug)]
@@ -271,6 +292,7 @@ fn main() -> Result<()> {
         Some(Command::Cost(args)) => cost(&args, false),
         Some(Command::Trace(args)) => cost(&args, true),
         Some(Command::Study(args)) => study(&args),
+        Some(Command::Plan(args)) => plan(&args),
         Some(Command::Merge(args)) => {
             let n = umbra_sim::study::merge(&args.inputs, &args.out)?;
             println!("merged {n} rows into {}", args.out.display());
@@ -288,6 +310,35 @@ fn main() -> Result<()> {
             })
         }
     }
+}
+
+/// `umbra plan`.
+fn plan(args: &PlanArgs) -> Result<()> {
+    use umbra_sim::plan::{PlanSpec, plan};
+    let text = args.error_budget.trim().trim_end_matches('%');
+    let budget: f64 =
+        text.trim().parse().with_context(|| format!("--error-budget `{}` is not a percentage", args.error_budget))?;
+    if !budget.is_finite() || !(0.0..=100.0).contains(&budget) {
+        bail!("--error-budget {budget}% is outside 0…100%");
+    }
+    let path = Path::new(&args.scene);
+    let scene = if path.is_file() { Scene::load(path)? } else { Scene::bundled(&args.scene)? };
+    let mut spec = PlanSpec::new(&scene, budget);
+    spec.arch = match args.arch {
+        ArchArg::Pixelflow => ArchParams::PIXELFLOW,
+        ArchArg::Immediate => ArchParams::IMMEDIATE,
+        ArchArg::Talisman | ArchArg::All => ArchParams::TALISMAN,
+    };
+    let p = plan(&scene, &spec)?;
+    let md = p.markdown(&scene.name, budget);
+    print!("{md}");
+    if !p.meets(budget) {
+        println!("\nThe measured error exceeds the budget: no candidate meets it at this image size.");
+    }
+    std::fs::create_dir_all(&args.out).with_context(|| format!("creating {}", args.out.display()))?;
+    write_text(&args.out.join("plan.md"), &md)?;
+    write_text(&args.out.join("plan.json"), &serde_json::to_string_pretty(&p)?)?;
+    Ok(())
 }
 
 /// `umbra study`.
