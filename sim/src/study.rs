@@ -122,8 +122,15 @@ pub fn algorithms(quick: bool) -> Vec<Variant> {
     v.push(Variant::new("midpoint-bfc", Algorithm::Dual { offset: UNLIMITED_OFFSET }, 0.0));
     v.extend(offsets.iter().map(|&offset| Variant::new("dual", Algorithm::Dual { offset }, 0.0)));
     v.push(Variant::new("dual-nocull", Algorithm::Dual { offset: offsets[0] }, 0.0).without_culling());
+    v.push(Variant::new("silhouette", Algorithm::Silhouette { packed: false }, SILHOUETTE_BIAS));
+    v.push(Variant::new("silhouette-packed", Algorithm::Silhouette { packed: true }, SILHOUETTE_BIAS));
+    v.push(Variant::new("volumes", Algorithm::Volumes, 0.0));
     v
 }
+
+/// The bias of the first-depth map under Sen et al.'s silhouette map (the
+/// study's middle first-depth bias).
+pub const SILHOUETTE_BIAS: f64 = 0.002;
 
 /// Reeves' jittered filter with `n` samples per lookup, his other Figure 4
 /// parameters unchanged.
