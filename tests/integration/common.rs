@@ -299,3 +299,16 @@ pub fn scratch(name: &str) -> std::path::PathBuf {
     std::fs::create_dir_all(&dir).expect("temp dir");
     dir
 }
+
+/// The point of the plane `y = 0` seen at the centre of pixel `i` of a
+/// `w`-wide, `h`-high image, given the inverse of the camera's matrix.
+pub fn ground_point(inverse: &umbra::core::glam::DMat4, w: u32, h: u32, i: usize) -> umbra::core::glam::DVec3 {
+    let (px, py) = ((i as u32 % w) as f64 + 0.5, (i as u32 / w) as f64 + 0.5);
+    let unproject = |z: f64| {
+        let v = *inverse
+            * umbra::core::glam::DVec4::new(2.0 * px / f64::from(w) - 1.0, 1.0 - 2.0 * py / f64::from(h), z, 1.0);
+        v.truncate() / v.w
+    };
+    let (a, b) = (unproject(0.0), unproject(1.0));
+    a + (b - a) * (-a.y / (b.y - a.y))
+}

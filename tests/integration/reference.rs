@@ -3,7 +3,7 @@
 
 use umbra::core::NO_TRIANGLE;
 use umbra::core::camera::Shaded;
-use umbra::core::glam::{DVec3, DVec4, Vec3};
+use umbra::core::glam::{DVec3, Vec3};
 use umbra::core::shadow::Shadow;
 use umbra::sim::camera::visibility;
 use umbra::sim::mesh::Mesh;
@@ -43,12 +43,7 @@ fn a_sphere_casts_a_disc_under_a_directional_light() {
             continue; // not the plane
         }
         let (px, py) = ((i as u32 % w) as f64 + 0.5, (i as u32 / w) as f64 + 0.5);
-        let unproject = |z: f64| {
-            let v = inverse * DVec4::new(2.0 * px / f64::from(w) - 1.0, 1.0 - 2.0 * py / f64::from(h), z, 1.0);
-            v.truncate() / v.w
-        };
-        let (a, b) = (unproject(0.0), unproject(1.0));
-        let p = a + (b - a) * (-a.y / (b.y - a.y));
+        let p = crate::common::ground_point(&inverse, w, h, i);
         let d = (p.x * p.x + p.z * p.z).sqrt();
         if (d - r).abs() < 2e-3 {
             continue;

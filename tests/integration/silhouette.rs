@@ -3,7 +3,7 @@
 
 use indicatif::ProgressBar;
 use umbra::core::DepthFormatKind;
-use umbra::core::glam::{DVec4, Mat4, Vec3};
+use umbra::core::glam::{Mat4, Vec3};
 use umbra::core::shadow::Filter;
 use umbra::sim::mesh::Mesh;
 use umbra::sim::render::{Algorithm, Render, RenderConfig, render};
@@ -50,14 +50,8 @@ fn config(algorithm: Algorithm, map: u32, scene: &Scene) -> RenderConfig {
 /// The floor point seen at the centre of pixel `i`.
 fn floor_point(scene: &Scene, i: usize) -> (f64, f64) {
     let [w, h] = scene.image;
-    let camera = scene.camera.view_projection_aspect(w as f32 / h as f32).as_dmat4().inverse();
-    let (px, py) = ((i as u32 % w) as f64 + 0.5, (i as u32 / w) as f64 + 0.5);
-    let unproject = |z: f64| {
-        let v = camera * DVec4::new(2.0 * px / f64::from(w) - 1.0, 1.0 - 2.0 * py / f64::from(h), z, 1.0);
-        v.truncate() / v.w
-    };
-    let (a, b) = (unproject(0.0), unproject(1.0));
-    let p = a + (b - a) * (-a.y / (b.y - a.y));
+    let inverse = scene.camera.view_projection_aspect(w as f32 / h as f32).as_dmat4().inverse();
+    let p = crate::common::ground_point(&inverse, w, h, i);
     (p.x, p.z)
 }
 
