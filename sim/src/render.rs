@@ -25,6 +25,12 @@ use crate::scene::Scene;
 pub enum Algorithm {
     /// Williams' first depth with a bias.
     First,
+    /// First depth with Reeves et al.'s bias range: each sample's bias drawn
+    /// uniformly from `[bias, hi]` (`Bias0`, `Bias1`; 1987 §3.2).
+    BiasRange {
+        /// `Bias1`, as a depth in `[0, 1]` (`Bias0` is the configuration's bias).
+        hi: f64,
+    },
     /// Wang & Molnar's second depth from the dual unit.
     Second,
     /// Second depth from front-face culling (solids culled, open surfaces not).
@@ -173,7 +179,9 @@ fn passes<F: DepthFormat, L: Probe, C: Probe>(
     }
     let unit = unit_of(cfg.algorithm);
     let (front_culled, test) = match cfg.algorithm {
-        Algorithm::First | Algorithm::Silhouette { .. } | Algorithm::Volumes => (false, DepthTest::First),
+        Algorithm::First | Algorithm::BiasRange { .. } | Algorithm::Silhouette { .. } | Algorithm::Volumes => {
+            (false, DepthTest::First)
+        }
         Algorithm::Second => (false, DepthTest::Second),
         Algorithm::SecondFrontCulled => (true, DepthTest::Second),
         Algorithm::Midpoint => (false, DepthTest::Midpoint),
@@ -188,7 +196,11 @@ fn passes<F: DepthFormat, L: Probe, C: Probe>(
     let light_config = LightPassConfig { raster, unit, max_z_cull: true };
     let draws = scene.draws_culled(scene.light().view_projection(), cull);
     let (maps, mut light_probe) = light_render::<F, _>(light_config, &draws, light_probe)?;
-    let shadow = ShadowConfig::new(test, Bias::Constant(F::plane_z(cfg.bias)), cfg.filter, true)?;
+    let bias = match cfg.algorithm {
+        Algorithm::BiasRange { hi } => Bias::Range { lo: F::plane_z(cfg.bias), hi: F::plane_z(hi) },
+        _ => Bias::Constant(F::plane_z(cfg.bias)),
+    };
+    let shadow = ShadowConfig::new(test, bias, cfg.filter, true)?;
     RasterConfig::new(cfg.width, cfg.height, RasterConfig::DEFAULT_TILE_SIZE, 8).map_err(RenderError::ImageSize)?;
     let virtual_samples = cfg.virtual_samples && test == DepthTest::Second;
     if let Algorithm::Silhouette { packed } = cfg.algorithm {
@@ -232,9 +244,11 @@ fn silhouette_image<S: SilStore, F: DepthFormat, L: Probe, C: Probe>(
 /// The light pass's unit for an algorithm.
 const fn unit_of(a: Algorithm) -> DepthUnit {
     match a {
-        Algorithm::First | Algorithm::SecondFrontCulled | Algorithm::Silhouette { .. } | Algorithm::Volumes => {
-            DepthUnit::Single
-        }
+        Algorithm::First
+        | Algorithm::BiasRange { .. }
+        | Algorithm::SecondFrontCulled
+        | Algorithm::Silhouette { .. }
+        | Algorithm::Volumes => DepthUnit::Single,
         _ => DepthUnit::Dual,
     }
 }

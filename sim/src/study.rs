@@ -86,6 +86,15 @@ impl Variant {
         self
     }
 
+    /// Reeves' `Bias1`, if the algorithm draws its bias from a range.
+    #[must_use]
+    pub const fn bias_hi(&self) -> Option<f64> {
+        match self.algorithm {
+            Algorithm::BiasRange { hi } => Some(hi),
+            _ => None,
+        }
+    }
+
     /// The dual offset, if the algorithm has one.
     #[must_use]
     pub const fn offset(&self) -> Option<f64> {
@@ -99,6 +108,10 @@ impl Variant {
 /// First-depth biases of the full sweep (depths in `[0, 1]`): from none,
 /// through the acne-free range of the bundled scenes, to clearly too much.
 pub const FIRST_BIASES: [f64; 7] = [0.0, 0.0002, 0.0005, 0.001, 0.002, 0.005, 0.01];
+
+/// Reeves et al.'s bias ranges `[Bias0, Bias1]` of the full sweep (depths
+/// in `[0, 1]`), around the acne-free constant biases.
+pub const BIAS_RANGES: [(f64, f64); 3] = [(0.0002, 0.001), (0.0005, 0.002), (0.001, 0.005)];
 
 /// Dual-depth offsets of the full sweep (Weiskopf & Ertl's `z_offset`).
 pub const DUAL_OFFSETS: [f64; 3] = [0.001, 0.005, 0.02];
@@ -115,6 +128,8 @@ pub fn algorithms(quick: bool) -> Vec<Variant> {
     let biases: &[f64] = if quick { &[0.0, 0.001, 0.005] } else { &FIRST_BIASES };
     let offsets: &[f64] = if quick { &[0.005] } else { &DUAL_OFFSETS };
     let mut v: Vec<Variant> = biases.iter().map(|&b| Variant::new("first", Algorithm::First, b)).collect();
+    let ranges: &[(f64, f64)] = if quick { &BIAS_RANGES[1..2] } else { &BIAS_RANGES };
+    v.extend(ranges.iter().map(|&(lo, hi)| Variant::new("first-range", Algorithm::BiasRange { hi }, lo)));
     v.push(Variant::new("second", Algorithm::Second, 0.0));
     v.push(Variant::new("second-novs", Algorithm::Second, 0.0).without_virtual_samples());
     v.push(Variant::new("second-ffc", Algorithm::SecondFrontCulled, 0.0));
@@ -347,6 +362,8 @@ pub struct Row {
     pub bias: f64,
     /// Dual offset, for dual depth.
     pub offset: Option<f64>,
+    /// Reeves' `Bias1`, for a bias range (`bias` is `Bias0`).
+    pub bias_hi: Option<f64>,
     /// Virtual samples on.
     pub virtual_samples: bool,
     /// Culling.
@@ -441,6 +458,7 @@ impl Row {
             algorithm: v.name.to_owned(),
             bias: v.bias,
             offset: v.offset(),
+            bias_hi: v.bias_hi(),
             virtual_samples: v.virtual_samples,
             culling: v.culling,
             format: c.format.name().to_owned(),
@@ -545,7 +563,9 @@ impl Row {
     #[must_use]
     pub fn render_label(&self) -> String {
         let mut s = self.algorithm.clone();
-        if self.algorithm == "first" || self.bias != 0.0 {
+        if let Some(hi) = self.bias_hi {
+            let _ = write!(s, " bias {}…{hi}", self.bias);
+        } else if self.algorithm == "first" || self.bias != 0.0 {
             let _ = write!(s, " bias {}", self.bias);
         }
         if let Some(o) = self.offset.filter(|_| self.algorithm.starts_with("dual")) {

@@ -125,6 +125,8 @@ struct CostArgs {
 enum Algo {
     /// Williams' first depth (use --bias).
     First,
+    /// First depth with Reeves' bias range: per sample from [--bias, --bias1].
+    BiasRange,
     /// Wang & Molnar's second depth from the dual unit.
     Second,
     /// Second depth by front-face culling.
@@ -168,9 +170,12 @@ struct RenderArgs {
     /// Percentage-closer filter.
     #[arg(long, value_enum, default_value_t = FilterArg::Bilinear)]
     filter: FilterArg,
-    /// Depth bias, as a depth in [0, 1].
+    /// Depth bias, as a depth in [0, 1] (`Bias0` of a bias range).
     #[arg(long, default_value_t = 0.0)]
     bias: f64,
+    /// `Bias1` of Reeves' bias range (--algo bias-range), as a depth in [0, 1].
+    #[arg(long, default_value_t = 0.005)]
+    bias1: f64,
     /// The dual-depth offset, as a depth in [0, 1].
     #[arg(long, default_value_t = 0.01)]
     offset: f64,
@@ -200,6 +205,7 @@ impl Default for RenderArgs {
             map: 1024,
             filter: FilterArg::Bilinear,
             bias: 0.0,
+            bias1: 0.005,
             offset: 0.01,
             no_virtual_samples: false,
             width: None,
@@ -419,7 +425,7 @@ fn render_config(args: &RenderArgs) -> Result<(Scene, RenderConfig, &'static str
     let scene = if path.is_file() { Scene::load(path)? } else { Scene::bundled(&args.scene)? };
     let [width, height] = scene.image;
     let (width, height) = (args.width.unwrap_or(width), args.height.unwrap_or(height));
-    for (name, v) in [("--bias", args.bias), ("--offset", args.offset)] {
+    for (name, v) in [("--bias", args.bias), ("--bias1", args.bias1), ("--offset", args.offset)] {
         if !v.is_finite() || !(0.0..=1.0).contains(&v) {
             bail!("{name} {v} is not a depth in [0, 1]");
         }
@@ -437,6 +443,7 @@ fn render_config(args: &RenderArgs) -> Result<(Scene, RenderConfig, &'static str
     let (filter_name, filter) = umbra_sim::presets::FILTERS[filter];
     let algorithm = match args.algo {
         Algo::First => Algorithm::First,
+        Algo::BiasRange => Algorithm::BiasRange { hi: args.bias1 },
         Algo::Second => Algorithm::Second,
         Algo::SecondFfc => Algorithm::SecondFrontCulled,
         Algo::Midpoint => Algorithm::Midpoint,
