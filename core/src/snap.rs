@@ -14,7 +14,7 @@
 
 use crate::clip::ClipVertex;
 use crate::config::{MAX_SUBPIXEL_BITS, MAX_TARGET_BITS, RasterConfig};
-use crate::depth::{DepthFormat, PlaneZ};
+use crate::depth::{DepthFormat, PLANE_FRACTION_BITS, PlaneZ};
 
 /// Snapped coordinates lie within `±2^GUARD_BITS` pixels.
 pub const GUARD_BITS: u32 = 16;
@@ -22,6 +22,11 @@ pub const GUARD_BITS: u32 = 16;
 pub const COORD_BITS: u32 = GUARD_BITS + MAX_SUBPIXEL_BITS;
 
 const _: () = assert!(GUARD_BITS > MAX_TARGET_BITS, "the guard band must contain the target");
+
+/// How far beyond the far plane [`RasterConfig::snap_beyond_far`] keeps
+/// depths, in multiples of it: a perspective camera's depth never exceeds
+/// `f/(f − n)`, and `16 · 2²⁴ · 2³²` stays inside the plane's `i64`.
+pub const BEYOND_FAR: i64 = 16;
 
 /// A coordinate on the subpixel grid: `value / 2^subpixel_bits` pixels.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -52,6 +57,29 @@ impl RasterConfig {
     /// result is not finite.
     #[must_use]
     pub fn snap<F: DepthFormat>(&self, v: &ClipVertex) -> Option<SnappedVertex> {
+        self.snap_to(v, F::plane_z)
+    }
+
+    /// [`RasterConfig::snap`] keeping depths beyond the far plane (up to
+    /// [`BEYOND_FAR`] times it) in the vertex, so that the plane through a
+    /// triangle that reaches past the far plane interpolates its nearer
+    /// fragments exactly; the depth clamp then happens per fragment, when a
+    /// fragment's depth is rounded to the format. The stencil unit's volumes
+    /// need this; everything else clips at the far plane.
+    #[must_use]
+    pub fn snap_beyond_far<F: DepthFormat>(&self, v: &ClipVertex) -> Option<SnappedVertex> {
+        self.snap_to(v, |z| {
+            let reach = (F::SCALE << PLANE_FRACTION_BITS) * BEYOND_FAR;
+            if z.is_nan() || z <= 0.0 {
+                return PlaneZ::ZERO;
+            }
+            #[allow(clippy::cast_precision_loss, reason = "a power of two")]
+            let bits = (z * (F::SCALE as f64) * 4_294_967_296.0).min(reach as f64);
+            PlaneZ::from_bits(crate::round::round_ties_even(bits).clamp(0, reach))
+        })
+    }
+
+    fn snap_to(&self, v: &ClipVertex, depth: impl Fn(f64) -> PlaneZ) -> Option<SnappedVertex> {
         let [x, y, z, w] = *v;
         if w.is_nan() || w <= 0.0 {
             return None;
@@ -67,6 +95,6 @@ impl RasterConfig {
         // Rounding overshoot at the guard band is clamped; the band lies
         // far outside the target, so no sample moves.
         let snap = |s: f64| SubPx(crate::round::round_ties_even(s.clamp(-limit, limit)));
-        Some(SnappedVertex { x: snap(sx), y: snap(sy), z: F::plane_z(z * inv_w) })
+        Some(SnappedVertex { x: snap(sx), y: snap(sy), z: depth(z * inv_w) })
     }
 }

@@ -16,8 +16,9 @@
 //!
 //! # Counting
 //! Each volume triangle is clipped (near plane and guard band; depth
-//! beyond the far plane is clamped, not clipped, so far caps survive),
-//! snapped and set up exactly like scene triangles, and every fragment
+//! beyond the far plane is clamped per fragment, not clipped, so far caps
+//! survive and side quads reaching past the far plane keep their true
+//! planes), snapped and set up exactly like scene triangles, and every fragment
 //! compares its depth with the scene depth the visibility unit stored.
 //! Where the volume lies at or behind the scene (the depth test fails),
 //! a face turned away from the camera increments the stencil and a face
@@ -136,7 +137,8 @@ impl<'a, F: DepthFormat> StencilPass<'a, F> {
 
     fn draw_snapped<P: Probe>(&mut self, tri: &[ClipVertex; 3], probe: &mut P) {
         let r = self.raster;
-        let (Some(a), Some(b), Some(c)) = (r.snap::<F>(&tri[0]), r.snap::<F>(&tri[1]), r.snap::<F>(&tri[2])) else {
+        let snap = |v: &ClipVertex| r.snap_beyond_far::<F>(v);
+        let (Some(a), Some(b), Some(c)) = (snap(&tri[0]), snap(&tri[1]), snap(&tri[2])) else {
             return;
         };
         let v = [a, b, c];
