@@ -108,6 +108,41 @@ fn log_range(values: impl Iterator<Item = f64>, floor: f64) -> std::ops::Range<f
     if lo.is_finite() && hi > 0.0 { (lo / 1.5)..(hi.max(lo) * 1.5) } else { floor..floor * 10.0 }
 }
 
+/// A chart on log–log axes.
+type LogLogChart<'a, DB> = ChartContext<'a, DB, Cartesian2d<LogCoord<f64>, LogCoord<f64>>>;
+
+/// A white area with a titled chart on log–log axes over `x` and `y`,
+/// its mesh and labels drawn.
+fn log_log_chart<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    title: &str,
+    x: std::ops::Range<f64>,
+    y: std::ops::Range<f64>,
+    x_desc: &str,
+    y_desc: &str,
+) -> Result<LogLogChart<'a, DB>, String> {
+    area.fill(&WHITE).map_err(|e| e.to_string())?;
+    let mut chart = ChartBuilder::on(area)
+        .caption(title, ("sans-serif", 22))
+        .margin(12)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d(x.log_scale(), y.log_scale())
+        .map_err(|e| e.to_string())?;
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .x_labels(6)
+        .y_labels(8)
+        .x_label_formatter(&|x| format!("{x:.0e}"))
+        .y_label_formatter(&|y| format!("{y:.0e}"))
+        .label_style(("sans-serif", 14))
+        .draw()
+        .map_err(|e| e.to_string())?;
+    Ok(chart)
+}
+
 /// A scatter of error against cost with its Pareto front.
 struct Pareto<'a> {
     title: String,
@@ -120,27 +155,10 @@ struct Pareto<'a> {
 
 impl Figure for Pareto<'_> {
     fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<(), String> {
-        area.fill(&WHITE).map_err(|e| e.to_string())?;
         let xr = log_range(self.points.iter().map(|p| p.0), 1.0);
         let yr = log_range(self.points.iter().map(|p| p.1), ERROR_FLOOR);
-        let mut chart = ChartBuilder::on(area)
-            .caption(&self.title, ("sans-serif", 22))
-            .margin(12)
-            .x_label_area_size(45)
-            .y_label_area_size(70)
-            .build_cartesian_2d(xr.log_scale(), yr.log_scale())
-            .map_err(|e| e.to_string())?;
-        chart
-            .configure_mesh()
-            .x_desc(self.axis)
-            .y_desc(format!("misclassified % (0 drawn at {ERROR_FLOOR})"))
-            .x_labels(6)
-            .y_labels(8)
-            .x_label_formatter(&|x| format!("{x:.0e}"))
-            .y_label_formatter(&|y| format!("{y:.0e}"))
-            .label_style(("sans-serif", 14))
-            .draw()
-            .map_err(|e| e.to_string())?;
+        let y_desc = format!("misclassified % (0 drawn at {ERROR_FLOOR})");
+        let mut chart = log_log_chart(area, &self.title, xr, yr, self.axis, &y_desc)?;
         for (k, arch) in self.archs.iter().enumerate() {
             let color = PALETTE[k % PALETTE.len()];
             let mine = self.points.iter().zip(&self.arch_of).filter(|(_, a)| **a == k).map(|(p, _)| *p);
@@ -216,27 +234,9 @@ struct Lines<'a> {
 
 impl Figure for Lines<'_> {
     fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<(), String> {
-        area.fill(&WHITE).map_err(|e| e.to_string())?;
         let xr = log_range(self.series.iter().flat_map(|s| s.1.iter().map(|p| p.0)), 1e-12);
         let yr = log_range(self.series.iter().flat_map(|s| s.1.iter().map(|p| p.1)), ERROR_FLOOR);
-        let mut chart = ChartBuilder::on(area)
-            .caption(self.title, ("sans-serif", 22))
-            .margin(12)
-            .x_label_area_size(45)
-            .y_label_area_size(70)
-            .build_cartesian_2d(xr.log_scale(), yr.log_scale())
-            .map_err(|e| e.to_string())?;
-        chart
-            .configure_mesh()
-            .x_desc(self.x_desc)
-            .y_desc(self.y_desc)
-            .x_labels(6)
-            .y_labels(8)
-            .x_label_formatter(&|x| format!("{x:.0e}"))
-            .y_label_formatter(&|y| format!("{y:.0e}"))
-            .label_style(("sans-serif", 14))
-            .draw()
-            .map_err(|e| e.to_string())?;
+        let mut chart = log_log_chart(area, self.title, xr, yr, self.x_desc, self.y_desc)?;
         for (k, (name, pts)) in self.series.iter().enumerate() {
             let color = PALETTE[k % PALETTE.len()];
             let pts: Vec<(f64, f64)> = pts.iter().map(|&(x, y)| (x, y.max(ERROR_FLOOR))).collect();
