@@ -22,7 +22,7 @@ use std::hint::black_box;
 use umbra::core::glam::{Mat4, Vec3};
 use umbra::core::{CullMode, D24, DepthUnit, LightPassConfig, NoProbe, Probe, RasterConfig};
 use umbra::sim::counters::Counters;
-use umbra::sim::light::{Draw, render};
+use umbra::sim::light::{Draw, render, render_bands};
 use umbra::sim::mesh::Mesh;
 use umbra::sim::scene::Perspective;
 
@@ -141,5 +141,30 @@ fn scaling(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, peer, scaling);
+/// The light pass on bands of tile rows in parallel, on 1, 2 and every core
+/// (`render_bands`, bit-identical to the single pass), at 2048² where each
+/// band has enough tiles to keep a core busy.
+fn cores(c: &mut Criterion) {
+    let mesh = torus(250, 200);
+    let cfg = LightPassConfig {
+        raster: RasterConfig::new(2048, 2048, RasterConfig::DEFAULT_TILE_SIZE, RasterConfig::DEFAULT_SUBPIXEL_BITS)
+            .expect("valid"),
+        unit: DepthUnit::Single,
+        max_z_cull: true,
+    };
+    let draw =
+        Draw { positions: &mesh.positions, triangles: &mesh.triangles, transform: light(), cull: CullMode::None };
+    let mut g = c.benchmark_group("cores");
+    g.sample_size(10);
+    let all = std::thread::available_parallelism().map_or(1, usize::from);
+    for threads in [1, 2, all] {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool");
+        g.bench_function(BenchmarkId::from_parameter(threads), |b| {
+            b.iter(|| pool.install(|| render_bands::<D24>(cfg, black_box(&[draw])).expect("renders")));
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, peer, scaling, cores);
 criterion_main!(benches);

@@ -21,6 +21,10 @@ pub struct RasterConfig {
     height: u32,
     tile_shift: u32,
     subpixel_bits: u32,
+    /// The whole target the viewport transform maps NDC onto.
+    view: [u32; 2],
+    /// Where this target sits in it (a window of it; `[0, 0]` for all of it).
+    origin: [u32; 2],
 }
 
 impl RasterConfig {
@@ -47,7 +51,48 @@ impl RasterConfig {
         if subpixel_bits == 0 || subpixel_bits > MAX_SUBPIXEL_BITS {
             return Err(ConfigError::SubpixelBits { bits: subpixel_bits });
         }
-        Ok(Self { width, height, tile_shift: tile_size.trailing_zeros(), subpixel_bits })
+        Ok(Self {
+            width,
+            height,
+            tile_shift: tile_size.trailing_zeros(),
+            subpixel_bits,
+            view: [width, height],
+            origin: [0, 0],
+        })
+    }
+
+    /// A window of this target: `width × height` pixels from `(x0, y0)`,
+    /// on tile boundaries. The viewport transform stays the whole target's
+    /// and snapped coordinates shift by the origin exactly, so a window
+    /// rasterizes exactly the fragments the whole target has in it: the
+    /// light pass can run on bands of tiles in parallel.
+    ///
+    /// # Errors
+    /// [`ConfigError::Window`] unless the window lies inside the target
+    /// and starts on a tile boundary.
+    pub fn window(&self, x0: u32, y0: u32, width: u32, height: u32) -> Result<Self, ConfigError> {
+        let t = self.tile_size();
+        let fits = |o: u32, n: u32, all: u32| n > 0 && o.checked_add(n).is_some_and(|e| e <= all);
+        if !fits(x0, width, self.width)
+            || !fits(y0, height, self.height)
+            || !x0.is_multiple_of(t)
+            || !y0.is_multiple_of(t)
+        {
+            return Err(ConfigError::Window { x0, y0, width, height });
+        }
+        Ok(Self { width, height, origin: [self.origin[0] + x0, self.origin[1] + y0], ..*self })
+    }
+
+    /// The whole target's size, which the viewport transform maps onto.
+    #[must_use]
+    pub const fn view(&self) -> [u32; 2] {
+        self.view
+    }
+
+    /// Where this target sits in the whole (`[0, 0]` unless a window).
+    #[must_use]
+    pub const fn origin(&self) -> [u32; 2] {
+        self.origin
     }
 
     /// Target width in pixels (texels of the map).
@@ -159,6 +204,17 @@ pub enum ConfigError {
         /// The bits asked for.
         bits: u32,
     },
+    /// A window outside the target or off the tile grid.
+    Window {
+        /// First column.
+        x0: u32,
+        /// First row.
+        y0: u32,
+        /// Width asked for.
+        width: u32,
+        /// Height asked for.
+        height: u32,
+    },
     /// A caller-owned buffer has the wrong length.
     BufferLength {
         /// Which buffer.
@@ -179,6 +235,9 @@ impl fmt::Display for ConfigError {
             Self::TileSize { size } => write!(f, "tile size {size} is not a power of two in 8..=128"),
             Self::SubpixelBits { bits } => {
                 write!(f, "subpixel bits {bits} is outside 1..={MAX_SUBPIXEL_BITS}")
+            }
+            Self::Window { x0, y0, width, height } => {
+                write!(f, "window {width}x{height} at ({x0}, {y0}) is not inside the target on tile boundaries")
             }
             Self::BufferLength { buffer, expected, found } => {
                 write!(f, "buffer `{buffer}` has length {found}, the configuration needs {expected}")

@@ -10,9 +10,10 @@
 //! subpixel grid (`X = px·2^s + 2^(s−1)`), so `E` is an exact integer there.
 //! An [`Edge`] holds `E` at pixel `(0, 0)` and its steps per pixel.
 //!
-//! **Budget.** Snapped coordinates satisfy `|X|, |Y| ≤ 2^24`
-//! ([`crate::snap::COORD_BITS`]), so `|Xb − Xa| ≤ 2^25` and every value of
-//! `E` at a pixel centre of the target is below `2·2^25·2^25 = 2^51`: an
+//! **Budget.** Snapped coordinates satisfy `|X|, |Y| ≤ 2^25` (the guard
+//! band's `2^24` of [`crate::snap::COORD_BITS`], plus a window's shift:
+//! [`crate::snap::WINDOW_COORD_BITS`]), so `|Xb − Xa| ≤ 2^26` and every value
+//! of `E` at a pixel centre of the target is below `2·2^26·2^26 = 2^53`: an
 //! `i64` accumulator cannot overflow (checked at compile time below).
 //!
 //! **Fill rule.** The D3D top-left rule in this y-down orientation: a pixel
@@ -39,14 +40,14 @@
 use crate::config::{CullMode, RasterConfig};
 use crate::depth::PlaneZ;
 use crate::probe::RejectReason;
-use crate::snap::{COORD_BITS, SnappedVertex};
+use crate::snap::{SnappedVertex, WINDOW_COORD_BITS};
 use crate::tile::TileRect;
 
-const _: () = assert!(2 * (COORD_BITS + 1) + 1 < 63, "edge functions must fit in i64");
+const _: () = assert!(2 * (WINDOW_COORD_BITS + 1) + 1 < 63, "edge functions must fit in i64");
 // Depth numerators: |dZ| ≤ 2^57, |dY| ≤ 2^25 → |a_num| ≤ 2^83; a per-pixel
 // step (≤ 2^83 · 2^8) times a coordinate difference (≤ 2^25) stays below 2^127.
 const _: () = assert!(
-    57 + (COORD_BITS + 1) + 1 + crate::config::MAX_SUBPIXEL_BITS + (COORD_BITS + 1) < 127,
+    57 + (WINDOW_COORD_BITS + 1) + 1 + crate::config::MAX_SUBPIXEL_BITS + (WINDOW_COORD_BITS + 1) < 127,
     "depth plane must fit in i128"
 );
 
@@ -241,14 +242,14 @@ impl Setup {
     /// Set up a snapped triangle, or say why it produces nothing.
     ///
     /// # Errors
-    /// [`RejectReason::OutOfRange`] for a coordinate outside the snap's
-    /// `±2^24` budget (only a hand-made vertex can be);
+    /// [`RejectReason::OutOfRange`] for a coordinate outside the setup's
+    /// `±2^25` budget (only a hand-made vertex can be);
     /// [`RejectReason::Degenerate`] for zero area on the subpixel grid,
     /// [`RejectReason::Facing`] when `cull` discards it,
     /// [`RejectReason::NoCoverage`] when no pixel centre of the target lies
     /// in its bounding box.
     pub fn new(cfg: &RasterConfig, v: [SnappedVertex; 3], cull: CullMode, triangle: u32) -> Result<Self, RejectReason> {
-        let limit = 1i64 << COORD_BITS;
+        let limit = 1i64 << WINDOW_COORD_BITS;
         if v.iter().any(|p| !(-limit..=limit).contains(&p.x.0) || !(-limit..=limit).contains(&p.y.0)) {
             return Err(RejectReason::OutOfRange);
         }

@@ -20,6 +20,11 @@ use crate::depth::{DepthFormat, PLANE_FRACTION_BITS, PlaneZ};
 pub const GUARD_BITS: u32 = 16;
 /// Snapped coordinates lie within `±2^COORD_BITS` subpixels.
 pub const COORD_BITS: u32 = GUARD_BITS + MAX_SUBPIXEL_BITS;
+/// Relative to a window's origin (at most `2^MAX_TARGET_BITS` pixels in),
+/// within `±2^WINDOW_COORD_BITS` subpixels: the setup's range.
+pub const WINDOW_COORD_BITS: u32 = COORD_BITS + 1;
+
+const _: () = assert!(MAX_TARGET_BITS < GUARD_BITS, "a window's shift must stay below the guard band's reach");
 
 const _: () = assert!(GUARD_BITS > MAX_TARGET_BITS, "the guard band must contain the target");
 
@@ -49,7 +54,8 @@ impl RasterConfig {
     #[must_use]
     pub fn guard(&self) -> [f64; 2] {
         let reach = f64::from(1u32 << (GUARD_BITS + 1));
-        [reach / f64::from(self.width()) - 1.0, reach / f64::from(self.height()) - 1.0]
+        let [w, h] = self.view();
+        [reach / f64::from(w) - 1.0, reach / f64::from(h) - 1.0]
     }
 
     /// Project a clipped vertex and snap it to the subpixel grid. `None` when
@@ -87,14 +93,17 @@ impl RasterConfig {
         let unit = f64::from(1u32 << self.subpixel_bits());
         let limit = f64::from(1u32 << COORD_BITS);
         let inv_w = 1.0 / w;
-        let sx = (x * inv_w + 1.0) * 0.5 * f64::from(self.width()) * unit;
-        let sy = (1.0 - y * inv_w) * 0.5 * f64::from(self.height()) * unit;
+        let [vw, vh] = self.view();
+        let sx = (x * inv_w + 1.0) * 0.5 * f64::from(vw) * unit;
+        let sy = (1.0 - y * inv_w) * 0.5 * f64::from(vh) * unit;
         if !sx.is_finite() || !sy.is_finite() {
             return None;
         }
         // Rounding overshoot at the guard band is clamped; the band lies
         // far outside the target, so no sample moves.
         let snap = |s: f64| SubPx(crate::round::round_ties_even(s.clamp(-limit, limit)));
-        Some(SnappedVertex { x: snap(sx), y: snap(sy), z: depth(z * inv_w) })
+        // A window's coordinates: the whole target's, shifted exactly.
+        let [ox, oy] = self.origin().map(|o| i64::from(o) << self.subpixel_bits());
+        Some(SnappedVertex { x: SubPx(snap(sx).0 - ox), y: SubPx(snap(sy).0 - oy), z: depth(z * inv_w) })
     }
 }

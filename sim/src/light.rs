@@ -87,6 +87,44 @@ pub fn render_with<F: DepthFormat, P: Probe, const B: usize>(
     Ok((LightMaps { config, z1, z2, tiles }, probe))
 }
 
+/// The light pass on bands of tile rows in parallel (rayon; one band per
+/// thread of the current pool, at most one per tile row): each band is a
+/// window of the target ([`umbra_core::RasterConfig::window`]) with its own
+/// bins, setup store and tiles, so the maps are exactly those of
+/// [`render`], on any number of threads.
+///
+/// # Errors
+/// See [`LightError`].
+pub fn render_bands<F: DepthFormat>(
+    config: LightPassConfig,
+    draws: &[Draw<'_>],
+) -> Result<LightMaps<F::Texel>, LightError> {
+    use rayon::prelude::*;
+    let r = config.raster;
+    let (across, down) = r.tiles();
+    let bands = u32::try_from(rayon::current_num_threads()).unwrap_or(1).clamp(1, down);
+    let t = r.tile_size();
+    let rows: Vec<(u32, u32)> = (0..bands)
+        .map(|b| (b * down / bands * t, ((b + 1) * down / bands * t).min(r.height())))
+        .filter(|(y0, y1)| y1 > y0)
+        .collect();
+    let parts = rows
+        .par_iter()
+        .map(|&(y0, y1)| {
+            let raster = r.window(0, y0, r.width(), y1 - y0)?;
+            render::<F, _>(LightPassConfig { raster, ..config }, draws, umbra_core::NoProbe).map(|(m, _)| m)
+        })
+        .collect::<Result<Vec<_>, LightError>>()?;
+    let mut maps = LightMaps { config, z1: Vec::new(), z2: Vec::new(), tiles: Vec::new() };
+    for part in parts {
+        maps.z1.extend(part.z1);
+        maps.z2.extend(part.z2);
+        maps.tiles.extend(part.tiles);
+    }
+    debug_assert_eq!(maps.tiles.len(), across as usize * down as usize);
+    Ok(maps)
+}
+
 /// Render with the default bin capacity and setup store.
 ///
 /// # Errors

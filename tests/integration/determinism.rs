@@ -98,3 +98,39 @@ fn a_render_is_the_same_on_any_thread_count() {
     }
     assert!(first.3[0] > 500, "most of the image is evaluated: {}", first.3[0]);
 }
+
+/// The light pass on bands of tile rows in parallel gives exactly the maps
+/// of one pass over the whole target — every texel of `z1` and `z2` and
+/// every tile's bounds — for scenes under both kinds of light, 16- and
+/// 24-bit, single and dual, on 1, 2 and more threads (so 1, 2 and more
+/// bands, bands of unequal height and a partial last tile row included).
+#[test]
+fn banded_light_passes_equal_the_whole_pass() {
+    use umbra::core::{D16, D24, DepthFormat};
+    use umbra::sim::light::{LightMaps, render, render_bands};
+    fn check<F: DepthFormat>(scene: &Scene, side: u32, tile: u32, unit: DepthUnit) {
+        let raster = RasterConfig::new(side, side - 8, tile, 8).expect("valid");
+        assert!(raster.window(0, tile / 2, side, tile).is_err(), "a window starts on a tile boundary");
+        assert!(raster.window(0, tile, side, side).is_err(), "a window lies inside the target");
+        let config = LightPassConfig { raster, unit, max_z_cull: true };
+        let draws = scene.draws(scene.light().view_projection(), CullMode::None);
+        let (whole, _) = render::<F, _>(config, &draws, umbra::core::NoProbe).expect("renders");
+        let bounds = |m: &LightMaps<F::Texel>| {
+            m.tiles.iter().map(|t| (t.z1_min, t.z1_max, t.z2_min, t.z2_max)).collect::<Vec<_>>()
+        };
+        for threads in [1, 2, 3, 5] {
+            let banded = on(threads, || render_bands::<F>(config, &draws)).expect("renders");
+            assert!(
+                banded.z1 == whole.z1 && banded.z2 == whole.z2,
+                "{}: texels differ on {threads} threads",
+                scene.name
+            );
+            assert!(bounds(&banded) == bounds(&whole), "{}: tile bounds differ on {threads} threads", scene.name);
+        }
+    }
+    for name in ["table", "weiskopf-l", "crowd"] {
+        let scene = Scene::bundled(name).expect("bundled");
+        check::<D16>(&scene, 200, 16, DepthUnit::Single);
+        check::<D24>(&scene, 256, 32, DepthUnit::Dual);
+    }
+}
