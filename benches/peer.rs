@@ -157,7 +157,9 @@ fn cores(c: &mut Criterion) {
     let mut g = c.benchmark_group("cores");
     g.sample_size(10);
     let all = std::thread::available_parallelism().map_or(1, usize::from);
-    for threads in [1, 2, all] {
+    let mut counts = vec![1, 2, all];
+    counts.dedup();
+    for threads in counts {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool");
         g.bench_function(BenchmarkId::from_parameter(threads), |b| {
             b.iter(|| pool.install(|| render_bands::<D24>(cfg, black_box(&[draw])).expect("renders")));
