@@ -347,15 +347,29 @@ impl<'a, F: DepthFormat> MapView<'a, F> {
         F::widen(buf.get(i).copied().unwrap_or(F::FAR))
     }
 
-    /// Whether a receiver at depth `z` less `bias` ([`PlaneZ`] bits),
-    /// rounded to the map's format, lies behind the test's reference at
-    /// texel `(x, y)`; `None` outside the map (lit, nothing read).
-    pub(crate) fn compare(&self, cfg: &ShadowConfig, x: i64, y: i64, z: i64, bias: i64) -> Option<bool> {
+    /// One sample: whether a receiver at depth `z` less `bias` ([`PlaneZ`]
+    /// bits), rounded to the map's format, lies behind the test's reference
+    /// at texel `(x, y)`, the texels read reported to probes that ask;
+    /// `None` outside the map (lit, nothing read).
+    #[inline]
+    pub(crate) fn sample<P: Probe>(
+        &self,
+        test: DepthTest,
+        (x, y): (i64, i64),
+        z: i64,
+        bias: i64,
+        probe: &mut P,
+    ) -> Option<bool> {
         let (x, y) = (u32::try_from(x).ok()?, u32::try_from(y).ok()?);
         if x >= self.raster.width() || y >= self.raster.height() {
             return None;
         }
-        Some(at_format::<F>(z.saturating_sub(bias)) > self.reference(cfg.test, x, y))
+        if P::TEXELS {
+            for buffer in self.buffers_read(test) {
+                probe.texel_read(TexelRead { buffer, x, y });
+            }
+        }
+        Some(at_format::<F>(z.saturating_sub(bias)) > self.reference(test, x, y))
     }
 
     /// The buffers a test reads from this map (one, or both).
@@ -555,17 +569,9 @@ pub fn shadow<F: DepthFormat, P: Probe>(map: &MapView<'_, F>, cfg: &ShadowConfig
             Bias::Constant(b) => b.to_bits(),
             Bias::Range { lo, hi } => lerp_bits(lo.to_bits(), hi.to_bits(), rng.rand_u32()),
         };
-        let (Ok(x), Ok(y)) = (u32::try_from(x), u32::try_from(y)) else { return false };
-        if x >= w || y >= h {
-            return false;
-        }
-        reads += 1;
-        if P::TEXELS {
-            for buffer in map.buffers_read(cfg.test) {
-                probe.texel_read(TexelRead { buffer, x, y });
-            }
-        }
-        at_format::<F>(z.saturating_sub(bias)) > map.reference(cfg.test, x, y)
+        let shadowed = map.sample(cfg.test, (x.into(), y.into()), z, bias, probe);
+        reads += u32::from(shadowed.is_some());
+        shadowed.unwrap_or(false)
     };
     let result = match (cfg.filter, grid) {
         (Filter::Point, _) => {

@@ -38,7 +38,7 @@ use glam::Mat4;
 use crate::clip::ClipVertex;
 use crate::config::ConfigError;
 use crate::depth::{DepthFormat, PlaneZ};
-use crate::probe::{Buffer, Event, Probe, TexelRead};
+use crate::probe::{Buffer, Event, NoProbe, Probe, TexelRead};
 use crate::shadow::{MapCoord, MapView, Shadow, ShadowConfig};
 
 /// One texel unit in the silhouette unit's fixed point (16 fraction bits).
@@ -383,9 +383,9 @@ impl<'m, S: SilStore, F: DepthFormat> SilhouettePass<'m, S, F> {
 
     /// Whether depth `z` lies behind all four corner depths of texel `(i, j)`.
     fn hidden(&self, i: i64, j: i64, z: i64) -> bool {
-        corners(i, j)
-            .iter()
-            .all(|&(x, y)| self.map.compare(&self.cfg, x, y, z, self.cfg.bias().bounds().0) == Some(true))
+        let bias = self.cfg.bias().bounds().0;
+        let test = self.cfg.test();
+        corners(i, j).into_iter().all(|c| self.map.sample(test, c, z, bias, &mut NoProbe) == Some(true))
     }
 }
 
@@ -423,16 +423,9 @@ pub fn shadow<S: SilStore, F: DepthFormat, P: Probe>(
     }
     let bias = cfg.bias().bounds().0;
     let mut reads = 0u32;
-    let verdicts = corners(i, j).map(|(cx, cy)| match map.compare(cfg, cx, cy, z.to_bits(), bias) {
+    let verdicts = corners(i, j).map(|c| match map.sample(cfg.test(), c, z.to_bits(), bias, probe) {
         Some(s) => {
             reads += 1;
-            if P::TEXELS
-                && let (Ok(x), Ok(y)) = (u32::try_from(cx), u32::try_from(cy))
-            {
-                for buffer in map.buffers_read(cfg.test()) {
-                    probe.texel_read(TexelRead { buffer, x, y });
-                }
-            }
             s
         }
         None => false,
@@ -512,7 +505,9 @@ mod tests {
         let (p, _) = select_point(&seg([-3.0, 0.25], [5.0, 0.25]), 0, 0).unwrap();
         assert_eq!((p.x, p.y), (0x8000, 0x4000));
         // A segment cutting the top-left corner, parallel to x + y = 1:
-        // one hit, on y = x at (0.05, 0.05).
+        // one hit, on y = x at (0.05, 0.05). The endpoints round to
+        // (−32768, 39322) and (39322, −32768) in 2⁻¹⁶ texels, so the hit is
+        // halfway, at −32768 + 72090/2 = 3277.
         let (p, _) = select_point(&seg([-0.5, 0.6], [0.6, -0.5]), 0, 0).unwrap();
         assert_eq!((p.x, p.y), (3277, 3277));
     }
