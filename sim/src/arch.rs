@@ -189,6 +189,13 @@ impl Dram {
             + self.stencil
     }
 
+    /// The reads that go through a preset's map cache: map texels and
+    /// silhouette points.
+    #[must_use]
+    pub const fn cached(&self) -> u64 {
+        self.map_reads + self.silhouette_reads
+    }
+
     /// The camera pass's shadow traffic: map, silhouette, volume depth and stencil.
     #[must_use]
     pub const fn camera_shadow_bytes(&self) -> u64 {
@@ -438,7 +445,7 @@ impl CostReport {
     ) -> Self {
         let lookups = camera.trivial + camera.tangent_setups;
         // Map texels and silhouette points go through the cache, when there is one.
-        let requested = camera.dram.map_reads + camera.dram.silhouette_reads;
+        let requested = camera.dram.cached();
         let fetched = fetched.unwrap_or(requested);
         Self {
             arch: light.params.name,
@@ -480,10 +487,7 @@ impl CostReport {
     /// the cache.
     #[must_use]
     pub const fn total_bytes(&self) -> u64 {
-        self.light_dram.total() + self.camera_dram.total()
-            - self.camera_dram.map_reads
-            - self.camera_dram.silhouette_reads
-            + self.map_bytes_fetched
+        self.light_dram.total() + self.camera_dram.total() - self.camera_dram.cached() + self.map_bytes_fetched
     }
 
     /// The report as a Markdown table.
