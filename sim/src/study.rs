@@ -431,6 +431,13 @@ pub struct Row {
     pub dram_map_reads_requested: Option<u64>,
     /// DRAM: map bytes fetched through the preset's cache.
     pub dram_map_reads_fetched: Option<u64>,
+    /// DRAM: silhouette points written and read (fetched through the cache
+    /// when the preset has one, with the map reads).
+    pub dram_silhouette: Option<u64>,
+    /// DRAM: scene depth read by shadow-volume fragments.
+    pub dram_volume_depth: Option<u64>,
+    /// DRAM: stencil read and written by shadow-volume fragments.
+    pub dram_stencil: Option<u64>,
     /// All DRAM bytes (fetched map reads, not requested).
     pub total_bytes: Option<u64>,
     /// On-chip depth storage.
@@ -492,6 +499,9 @@ impl Row {
             dram_camera_depth: None,
             dram_map_reads_requested: None,
             dram_map_reads_fetched: None,
+            dram_silhouette: None,
+            dram_volume_depth: None,
+            dram_stencil: None,
             total_bytes: None,
             on_chip_bytes: None,
             light_cull_rate: None,
@@ -528,7 +538,7 @@ impl Row {
         self.camera_depth_cycles = Some(cd);
         self.camera_shadow_cycles = Some(csh);
         self.camera_bottleneck = Some(format!("{:?}", r.camera_bottleneck.0).to_lowercase());
-        self.total_cycles = Some(r.light_bottleneck.1 + r.camera_bottleneck.1);
+        self.total_cycles = Some(r.total_cycles());
         let (l, c) = (&r.light_dram, &r.camera_dram);
         self.dram_map_writes = Some(l.map_writes);
         self.dram_map_rmw_reads = Some(l.map_rmw_reads);
@@ -536,9 +546,10 @@ impl Row {
         self.dram_camera_depth = Some(c.map_writes + c.map_rmw_reads);
         self.dram_map_reads_requested = Some(c.map_reads);
         self.dram_map_reads_fetched = Some(r.map_bytes_fetched);
-        self.total_bytes = Some(
-            l.map_writes + l.map_rmw_reads + l.bins + c.bins + c.map_writes + c.map_rmw_reads + r.map_bytes_fetched,
-        );
+        self.dram_silhouette = Some(l.silhouette_writes + c.silhouette_reads);
+        self.dram_volume_depth = Some(c.volume_depth_reads);
+        self.dram_stencil = Some(c.stencil);
+        self.total_bytes = Some(r.total_bytes());
         self.on_chip_bytes = Some(r.on_chip_bytes);
         self.light_cull_rate = Some(r.max_z_cull_rate[0]);
         self.camera_cull_rate = Some(r.max_z_cull_rate[1]);
