@@ -141,9 +141,10 @@ fn scaling(c: &mut Criterion) {
     g.finish();
 }
 
-/// The light pass on bands of tile rows in parallel, on 1, 2 and every core
-/// (`render_bands`, bit-identical to the single pass), at 2048² where each
-/// band has enough tiles to keep a core busy.
+/// The light pass on every core (`render_bands`: the front end on runs of
+/// triangles in parallel, then bands of tile rows in parallel; bit-identical
+/// to the single pass) on 1, 2 and every core, beside the whole pass on one,
+/// at 2048² where each band has enough tiles to keep a core busy.
 fn cores(c: &mut Criterion) {
     let mesh = torus(250, 200);
     let cfg = LightPassConfig {
@@ -156,6 +157,9 @@ fn cores(c: &mut Criterion) {
         Draw { positions: &mesh.positions, triangles: &mesh.triangles, transform: light(), cull: CullMode::None };
     let mut g = c.benchmark_group("cores");
     g.sample_size(10);
+    g.bench_function("whole pass", |b| {
+        b.iter(|| render::<D24, _>(cfg, black_box(&[draw]), NoProbe).expect("renders"));
+    });
     let all = std::thread::available_parallelism().map_or(1, usize::from);
     let mut counts = vec![1, 2, all];
     counts.dedup();

@@ -275,7 +275,7 @@ impl Interp {
             return None;
         }
         let coord = |n: i128| {
-            let q = n.checked_mul(1 << 16)? / w;
+            let q = div_shifted(n, w)?;
             Some(MapCoord::from_bits(i32::try_from(q.clamp(i128::from(i32::MIN), i128::from(i32::MAX))).ok()?))
         };
         let z = if with_depth {
@@ -316,6 +316,24 @@ impl Interp {
         let s = [f64::from(px) + 0.5, f64::from(py) + 0.5, 1.0];
         rows.iter().map(move |r| dot3(r, &s))
     }
+}
+
+/// `n·2¹⁶ / w`, truncated toward zero as `i128` division is, for `w > 0`;
+/// `None` if `n·2¹⁶` overflows. When `n` and `w` fit in `i64` (every pixel
+/// of a target whose denominator is scaled to 2⁴⁴), in two hardware
+/// divisions: `n = q·w + r` with `r` of the sign of `n` and `|r| < w`, so
+/// `n·2¹⁶ = (q·2¹⁶ + ⌊r·2¹⁶ / w⌋)·w + r'`, `r'` again of the sign of `n`:
+/// the same quotient, bit for bit.
+#[inline]
+fn div_shifted(n: i128, w: i128) -> Option<i128> {
+    if let (Ok(n), Ok(w)) = (i64::try_from(n), i64::try_from(w))
+        && w > 0
+        && w < 1 << 46
+    {
+        let (q, r) = (n / w, n % w);
+        return Some((i128::from(q) << 16) + i128::from((r << 16) / w));
+    }
+    Some(n.checked_mul(1 << 16)? / w)
 }
 
 /// A 64-bit mix of the seed and the pixel (splitmix64's finaliser).
@@ -424,15 +442,12 @@ pub fn shade_with<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, P: Probe>
             *o = Shaded::BACKGROUND;
             continue;
         };
-        let slot = id as usize % SETUP_CACHE;
-        let interp = match cache[slot] {
+        let slot = &mut cache[id as usize % SETUP_CACHE];
+        let interp = match slot {
             Some(c) if c.id == id => c,
-            _ => {
-                let c = Interp::new::<F>(cfg, map, id, &tri);
-                cache[slot] = Some(c);
-                c
-            }
+            _ => slot.insert(Interp::new::<F>(cfg, map, id, &tri)),
         };
+        let interp = &*interp;
         let normal = {
             let mut n = Interp::at_pixel(&interp.normal, px, py);
             let mut next = || {
@@ -483,4 +498,33 @@ pub fn shade_with<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, P: Probe>
         *o = Shaded { triangle: id, light: Some(LightPoint { z, ..point }), normal, shadow: s };
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::div_shifted;
+
+    /// The two-division path gives the `i128` quotient for numerators of
+    /// either sign, small and large denominators, and exact multiples.
+    #[test]
+    fn shifted_division_equals_the_wide_one() {
+        let mut rng = oorandom::Rand64::new(0x5eed);
+        let wide = |n: i128, w: i128| (n * 65_536) / w;
+        let check = |n: i128, w: i128| assert_eq!(div_shifted(n, w), Some(wide(n, w)), "{n} / {w}");
+        for (n, w) in
+            [(0, 1), (-1, 1), (1, 3), (-1, 3), (i128::from(i64::MIN), 7), (i128::from(i64::MAX), (1 << 46) - 1)]
+        {
+            check(n, w);
+        }
+        for _ in 0..100_000 {
+            let w = i128::from(rng.rand_range(1..1 << 46));
+            #[allow(clippy::cast_possible_wrap, reason = "any 64-bit pattern")]
+            let n = i128::from(rng.rand_u64() as i64 >> rng.rand_range(0..40));
+            check(n, w);
+            check(-n, w);
+            check(n / w * w, w);
+        }
+        // Outside i64: the wide path.
+        assert_eq!(div_shifted(i128::from(i64::MAX) * 4, 3), Some(wide(i128::from(i64::MAX) * 4, 3)));
+    }
 }

@@ -7,6 +7,7 @@ pub mod camera;
 pub mod clip;
 pub mod config;
 pub mod depth;
+pub mod front_end;
 pub mod light_pass;
 pub mod probe;
 pub mod raster;

@@ -2,7 +2,7 @@
 //! caller owns.
 //!
 //! ```text
-//! submit ─► clip ─► snap ─► setup ─► bin ──(bin full / setup store full / finish)──►
+//! submit ─► front end (vertex, clip, snap, setup) ─► bin ──(bin full / setup store full / finish)──►
 //!   rasterize tile: load (or clear) ─► each binned triangle ─► resolve ─► store
 //! ```
 //!
@@ -14,13 +14,10 @@
 
 use glam::{Mat4, Vec3, Vec4};
 
-use crate::snap::SnappedVertex;
-use crate::vertex::VertexCache;
-
 use crate::bin::{Bin, MAX_SETUPS, SetupIndex, touches};
-use crate::clip::{ClipVertex, Clipped, Polygon, clip_triangle};
 use crate::config::{ConfigError, CullMode, DepthUnit, LightPassConfig};
 use crate::depth::DepthFormat;
+use crate::front_end::{self, Output};
 use crate::probe::{Event, FlushReason, NoProbe, Probe, RejectReason};
 use crate::raster::{TileView, rasterize};
 use crate::setup::Setup;
@@ -81,7 +78,6 @@ pub struct LightPass<'a, F: DepthFormat, P: Probe = NoProbe, const B: usize = 64
     buf: LightBuffers<'a, F, B>,
     setups_used: usize,
     triangles: u32,
-    cache: VertexCache,
     probe: P,
 }
 
@@ -116,7 +112,7 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
             *t = TileState::cleared(F::FAR, r.tile_rect(r.tile_id(i)).area());
         }
         buf.bins.iter_mut().for_each(Bin::clear);
-        Ok(Self { cfg, buf, setups_used: 0, triangles: 0, cache: VertexCache::new(), probe })
+        Ok(Self { cfg, buf, setups_used: 0, triangles: 0, probe })
     }
 
     /// The configuration.
@@ -133,7 +129,7 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
     /// light clip space (`clip = transform · (p, 1)`, glam's column-vector
     /// convention). The transform is f32 (the vertex unit); a triangle with
     /// a vertex outside a clip plane is clipped in f64; everything after the
-    /// snap is fixed point.
+    /// snap is fixed point ([`crate::front_end`]).
     ///
     /// # Errors
     /// [`SubmitError::IndexOutOfRange`] before anything is drawn.
@@ -144,91 +140,50 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
         transform: &Mat4,
         cull: CullMode,
     ) -> Result<(), SubmitError> {
-        let vertices = positions.len();
-        for (triangle, t) in triangles.iter().enumerate() {
-            if let Some(&index) = t.iter().find(|&&i| i as usize >= vertices) {
-                return Err(SubmitError::IndexOutOfRange { triangle, index, vertices });
-            }
-        }
-        self.cache.clear();
+        front_end::check_indices(positions.len(), triangles)?;
         let raster = self.cfg.raster;
-        for t in triangles {
-            let [a, b, c] = t.map(|i| self.cache.fetch::<F>(&raster, transform, positions, i));
-            let id = self.submit();
-            if let (Some(a), Some(b), Some(c)) = (a.snapped, b.snapped, c.snapped) {
-                // Trivially inside every clip plane: no clipping.
-                self.setup_and_bin(&[a, b, c], cull, id);
-            } else if a.finite && b.finite && c.finite {
-                let v = [a.clip, b.clip, c.clip];
-                self.clip_and_bin(&v, cull, id);
-            } else {
-                self.reject(RejectReason::NonFinite);
-            }
-        }
+        front_end::mesh::<F>(&raster, positions, triangles, transform, cull, self.triangles, &mut |o| self.take(o));
         Ok(())
-    }
-
-    /// Number the next submitted triangle and report it.
-    fn submit(&mut self) -> u32 {
-        let id = self.triangles;
-        self.triangles = self.triangles.wrapping_add(1);
-        self.probe.event(Event::TriangleSubmitted);
-        id
     }
 
     /// Draw one triangle given in light clip space. Any input is accepted:
     /// non-finite vertices are rejected and reported, never rasterized.
     pub fn draw_clip(&mut self, tri: [Vec4; 3], cull: CullMode) {
-        let id = self.submit();
+        let id = self.triangles;
+        self.take(Output::Submitted);
         if !tri.iter().all(|v| v.is_finite()) {
-            self.reject(RejectReason::NonFinite);
+            self.take(Output::Rejected(RejectReason::NonFinite));
             return;
         }
-        self.clip_and_bin(&tri.map(|v| v.to_array().map(f64::from)), cull, id);
+        let raster = self.cfg.raster;
+        front_end::clip::<F>(&raster, &tri.map(|v| v.to_array().map(f64::from)), cull, id, &mut |o| self.take(o));
     }
 
-    /// Clip a triangle of finite vertices, then snap, set up and bin each piece.
-    fn clip_and_bin(&mut self, v: &[ClipVertex; 3], cull: CullMode, id: u32) {
-        let mut p = Polygon::new();
-        match clip_triangle(v, self.cfg.raster.guard(), &mut p) {
-            Clipped::Inside => self.snap_and_bin(v, cull, id),
-            Clipped::Polygon => {
-                for i in 1..p.len().saturating_sub(1) {
-                    self.snap_and_bin(&[p[0], p[i], p[i + 1]], cull, id);
-                }
+    /// Take what the front end made of a triangle: count and report it,
+    /// bin its pieces.
+    fn take(&mut self, o: Output) {
+        match o {
+            Output::Submitted => {
+                self.triangles = self.triangles.wrapping_add(1);
+                self.probe.event(Event::TriangleSubmitted);
             }
-            Clipped::Outside => self.reject(RejectReason::Clipped),
+            Output::Setup(s) => self.draw_setup(&s),
+            Output::Rejected(reason) => self.probe.event(Event::TriangleRejected { reason }),
         }
     }
 
-    fn reject(&mut self, reason: RejectReason) {
-        self.probe.event(Event::TriangleRejected { reason });
-    }
-
-    fn snap_and_bin(&mut self, v: &[ClipVertex; 3], cull: CullMode, id: u32) {
+    /// Bin a triangle the front end has set up for this target (or for the
+    /// whole target, moved into this window by [`Setup::in_window`]): the
+    /// way in for a front end run elsewhere, on another core say.
+    pub fn draw_setup(&mut self, setup: &Setup) {
         let raster = self.cfg.raster;
-        match (raster.snap::<F>(&v[0]), raster.snap::<F>(&v[1]), raster.snap::<F>(&v[2])) {
-            (Some(a), Some(b), Some(c)) => self.setup_and_bin(&[a, b, c], cull, id),
-            _ => self.reject(RejectReason::NonFinite),
-        }
-    }
-
-    fn setup_and_bin(&mut self, v: &[SnappedVertex; 3], cull: CullMode, id: u32) {
-        let raster = self.cfg.raster;
-        let setup = match Setup::new(&raster, *v, cull, id) {
-            Ok(s) => s,
-            Err(reason) => {
-                self.reject(reason);
-                return;
-            }
-        };
         self.probe.event(Event::TriangleSetup);
         if self.setups_used == self.buf.setups.len() {
             self.flush_all(FlushReason::SetupFull);
         }
         let index = self.setups_used;
         let Some(slot) = self.buf.setups.get_mut(index) else { return };
-        *slot = setup;
+        *slot = *setup;
         self.setups_used += 1;
         #[allow(clippy::cast_possible_truncation, reason = "the store holds at most 2^16 setups")]
         let entry = index as SetupIndex;
@@ -243,11 +198,11 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
             for tx in tx0..=tx1 {
                 #[allow(clippy::cast_possible_truncation, reason = "at most 2^11 tiles per side")]
                 let tile = TileId { x: tx as u16, y: ty as u16 };
-                if !single && !touches(&setup, &self.cfg.raster.tile_rect(tile)) {
+                if !single && !touches(setup, &raster.tile_rect(tile)) {
                     continue;
                 }
                 binned += 1;
-                let t = self.cfg.raster.tile_index(tile);
+                let t = raster.tile_index(tile);
                 let full = self.buf.bins.get(t).is_some_and(Bin::is_full);
                 if full {
                     self.flush_tile(t, FlushReason::BinFull);

@@ -199,8 +199,12 @@ pub struct Setup {
 /// changes by more than 2²⁴ LSB across their extent — exactly in i128.
 #[inline]
 fn slopes(a_num: i128, b_num: i128, s: u32, d: i64, extent: f64) -> (i128, i128) {
+    // Numerators that fit in i64 convert in hardware; the result is the
+    // same correctly rounded f64 either way.
     #[allow(clippy::cast_precision_loss, reason = "the error bound above accounts for it")]
-    let (na, nb, df) = (a_num as f64, b_num as f64, d as f64);
+    let wide = |n: i128| i64::try_from(n).map_or(n as f64, |n| n as f64);
+    #[allow(clippy::cast_precision_loss, reason = "the error bound above accounts for it")]
+    let (na, nb, df) = (wide(a_num), wide(b_num), d as f64);
     let scale = f64::from(1u32 << s);
     let (qa, qb) = (na * scale / df, nb * scale / df);
     if (qa.abs() + qb.abs()) * extent < 72_057_594_037_927_936.0 {
@@ -313,6 +317,33 @@ impl Setup {
         let z_min = v0.z.min(v1.z).min(v2.z);
         let z_max = v0.z.max(v1.z).max(v2.z);
         Ok(Self { edges, plane, bbox, z_min, z_max, triangle })
+    }
+
+    /// This setup, made for a target, as setup would make it for `window`,
+    /// a window of that target ([`RasterConfig::window`]) whose origin lies
+    /// `by` pixels past the target's; `None` when no pixel of the bounding
+    /// box is in the window. Moving by whole pixels is exact: the edge
+    /// functions and the plane are re-based at the window's first pixel in
+    /// integers, so the window rasterizes exactly the fragments it would
+    /// from its own snapped vertices (the light pass's bands set up once).
+    #[must_use]
+    pub fn in_window(&self, by: [u32; 2], window: &RasterConfig) -> Option<Self> {
+        let [dx, dy] = by;
+        let seen =
+            TileRect { x0: dx, y0: dy, x1: dx.saturating_add(window.width()), y1: dy.saturating_add(window.height()) };
+        let b = self.bbox.intersect(&seen)?;
+        let (x, y) = (i64::from(dx), i64::from(dy));
+        let edge = |e: &Edge| Edge { c: e.at(x, y), ..*e };
+        let p = &self.plane;
+        Some(Self {
+            edges: self.edges.each_ref().map(edge),
+            plane: DepthPlane {
+                c: p.c.wrapping_add(p.a.wrapping_mul(dx.into())).wrapping_add(p.b.wrapping_mul(dy.into())),
+                ..*p
+            },
+            bbox: TileRect { x0: b.x0 - dx, y0: b.y0 - dy, x1: b.x1 - dx, y1: b.y1 - dy },
+            ..*self
+        })
     }
 
     /// Whether the centre of pixel `(px, py)` is covered.

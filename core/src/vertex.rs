@@ -49,11 +49,6 @@ impl VertexCache {
         Self { tags: [u32::MAX; CACHE_ENTRIES], entries: [EMPTY; CACHE_ENTRIES] }
     }
 
-    /// Forget everything (a new transform).
-    pub(crate) fn clear(&mut self) {
-        self.tags = [u32::MAX; CACHE_ENTRIES];
-    }
-
     /// The processed vertex `index`, from the cache or computed (a copy:
     /// the next fetch may evict it).
     #[inline]

@@ -2,6 +2,7 @@
 
 use glam::{Mat4, Vec3};
 use umbra_core::bin::Bin;
+use umbra_core::front_end::{self, Output};
 use umbra_core::setup::Setup;
 use umbra_core::{
     ConfigError, CullMode, D16, D24, DepthFormat, DepthFormatKind, DepthUnit, F32, LightBuffers, LightPass,
@@ -69,29 +70,66 @@ pub fn render_with<F: DepthFormat, P: Probe, const B: usize>(
     setups: usize,
     probe: P,
 ) -> Result<(LightMaps<F::Texel>, P), LightError> {
-    let r = config.raster;
-    let texels = r.texel_count();
-    let mut z1 = vec![F::FAR; texels];
-    let mut z2 = vec![F::FAR; if config.unit == DepthUnit::Dual { texels } else { 0 }];
-    let mut tiles = vec![TileState::cleared(F::FAR, 0); r.tile_count()];
-    let mut bins = vec![Bin::<B>::new(); r.tile_count()];
-    let mut store = vec![Setup::EMPTY; setups];
-    let buffers =
-        LightBuffers { z1: &mut z1, z2: &mut z2, ids: &mut [], tiles: &mut tiles, bins: &mut bins, setups: &mut store };
-    let mut pass = LightPass::<F, P, B>::new(config, buffers, probe)?;
-    for (draw, d) in draws.iter().enumerate() {
-        pass.draw_mesh(d.positions, d.triangles, &d.transform, d.cull)
-            .map_err(|source| LightError::Submit { draw, source })?;
-    }
-    let probe = pass.finish();
-    Ok((LightMaps { config, z1, z2, tiles }, probe))
+    let mut maps = LightMaps::cleared(config);
+    let LightMaps { z1, z2, tiles, .. } = &mut maps;
+    let probe = run::<F, P, B>(config, z1, z2, tiles, setups, probe, |pass| {
+        for (draw, d) in draws.iter().enumerate() {
+            pass.draw_mesh(d.positions, d.triangles, &d.transform, d.cull)
+                .map_err(|source| LightError::Submit { draw, source })?;
+        }
+        Ok(())
+    })?;
+    Ok((maps, probe))
 }
 
-/// The light pass on bands of tile rows in parallel (rayon; one band per
-/// thread of the current pool, at most one per tile row): each band is a
-/// window of the target ([`umbra_core::RasterConfig::window`]) with its own
-/// bins, setup store and tiles, so the maps are exactly those of
-/// [`render`], on any number of threads.
+impl<T: Copy> LightMaps<T> {
+    /// Maps of the right sizes for `config`, before the pass clears them.
+    fn cleared(config: LightPassConfig) -> Self
+    where
+        T: Default,
+    {
+        let texels = config.raster.texel_count();
+        let z2 = if config.unit == DepthUnit::Dual { texels } else { 0 };
+        let tiles = config.raster.tile_count();
+        Self {
+            config,
+            z1: vec![T::default(); texels],
+            z2: vec![T::default(); z2],
+            tiles: vec![TileState::cleared(T::default(), 0); tiles],
+        }
+    }
+}
+
+/// Run one light pass over the given maps (the pass clears them), with bins
+/// and a setup store of its own: `feed` draws, then the pass is finished.
+#[allow(clippy::too_many_arguments, reason = "the buffers of one pass")]
+fn run<F: DepthFormat, P: Probe, const B: usize>(
+    config: LightPassConfig,
+    z1: &mut [F::Texel],
+    z2: &mut [F::Texel],
+    tiles: &mut [TileState<F::Texel>],
+    setups: usize,
+    probe: P,
+    feed: impl FnOnce(&mut LightPass<'_, F, P, B>) -> Result<(), LightError>,
+) -> Result<P, LightError> {
+    let mut bins = vec![Bin::<B>::new(); config.raster.tile_count()];
+    let mut store = vec![Setup::EMPTY; setups];
+    let buffers = LightBuffers { z1, z2, ids: &mut [], tiles, bins: &mut bins, setups: &mut store };
+    let mut pass = LightPass::<F, P, B>::new(config, buffers, probe)?;
+    feed(&mut pass)?;
+    Ok(pass.finish())
+}
+
+/// Triangles the front end sets up in one parallel job.
+const FRONT_END_RUN: usize = 2048;
+
+/// The light pass on every core of the current rayon pool, as parallel
+/// hardware would run it: the front end ([`umbra_core::front_end`]) sets up
+/// runs of triangles in parallel, in submission order; then bands of tile
+/// rows are rasterized in parallel, each a window of the target
+/// ([`umbra_core::RasterConfig::window`]) with its own bins, setup store and
+/// tiles, binning the setups that reach it ([`Setup::in_window`]). The maps
+/// are exactly those of [`render`], on any number of threads.
 ///
 /// # Errors
 /// See [`LightError`].
@@ -101,26 +139,73 @@ pub fn render_bands<F: DepthFormat>(
 ) -> Result<LightMaps<F::Texel>, LightError> {
     use rayon::prelude::*;
     let r = config.raster;
+    let mut jobs = Vec::new();
+    let mut first_id = 0u32;
+    for (draw, d) in draws.iter().enumerate() {
+        front_end::check_indices(d.positions.len(), d.triangles)
+            .map_err(|source| LightError::Submit { draw, source })?;
+        for (k, run) in d.triangles.chunks(FRONT_END_RUN).enumerate() {
+            #[allow(clippy::cast_possible_truncation, reason = "ids wrap, as the light pass numbers them")]
+            jobs.push((d, run, first_id.wrapping_add((k * FRONT_END_RUN) as u32)));
+        }
+        #[allow(clippy::cast_possible_truncation, reason = "ids wrap, as the light pass numbers them")]
+        let n = d.triangles.len() as u32;
+        first_id = first_id.wrapping_add(n);
+    }
+    let pieces: Vec<Vec<Setup>> = jobs
+        .par_iter()
+        .map(|&(d, run, id)| {
+            let mut set_up = Vec::with_capacity(run.len());
+            front_end::mesh::<F>(&r, d.positions, run, &d.transform, d.cull, id, &mut |o| {
+                if let Output::Setup(s) = o {
+                    set_up.push(s);
+                }
+            });
+            set_up
+        })
+        .collect();
+    let count: usize = pieces.iter().map(Vec::len).sum();
+    // Two bands a thread, so that a light band waits for a heavy one less.
     let (across, down) = r.tiles();
-    let bands = u32::try_from(rayon::current_num_threads()).unwrap_or(1).clamp(1, down);
+    let threads = u32::try_from(rayon::current_num_threads()).unwrap_or(1);
+    let bands = threads.saturating_mul(2).clamp(1, down);
     let t = r.tile_size();
     let rows: Vec<(u32, u32)> = (0..bands)
         .map(|b| (b * down / bands * t, ((b + 1) * down / bands * t).min(r.height())))
         .filter(|(y0, y1)| y1 > y0)
         .collect();
-    let parts = rows
-        .par_iter()
-        .map(|&(y0, y1)| {
-            let raster = r.window(0, y0, r.width(), y1 - y0)?;
-            render::<F, _>(LightPassConfig { raster, ..config }, draws, umbra_core::NoProbe).map(|(m, _)| m)
-        })
-        .collect::<Result<Vec<_>, LightError>>()?;
-    let mut maps = LightMaps { config, z1: Vec::new(), z2: Vec::new(), tiles: Vec::new() };
-    for part in parts {
-        maps.z1.extend(part.z1);
-        maps.z2.extend(part.z2);
-        maps.tiles.extend(part.tiles);
+    // Each band draws into its own rows of the maps and its own tiles.
+    let mut maps = LightMaps::cleared(config);
+    let mut jobs = Vec::with_capacity(rows.len());
+    let (mut z1, mut z2, mut tiles) = (&mut maps.z1[..], &mut maps.z2[..], &mut maps.tiles[..]);
+    let (width, dual) = (r.width() as usize, !z2.is_empty());
+    for &(y0, y1) in &rows {
+        let texels = (y1 - y0) as usize * width;
+        let (a, rest) = core::mem::take(&mut z1).split_at_mut(texels);
+        z1 = rest;
+        let (b, rest) = core::mem::take(&mut z2).split_at_mut(if dual { texels } else { 0 });
+        z2 = rest;
+        let (c, rest) = core::mem::take(&mut tiles)
+            .split_at_mut(((y1 - y0) / t + u32::from((y1 - y0) % t > 0)) as usize * across as usize);
+        tiles = rest;
+        jobs.push((y0, y1, a, b, c));
     }
+    jobs.into_par_iter()
+        .map(|(y0, y1, z1, z2, tiles)| {
+            let raster = r.window(0, y0, r.width(), y1 - y0)?;
+            let band = LightPassConfig { raster, ..config };
+            let store = count.clamp(1, DEFAULT_SETUPS);
+            run::<F, _, DEFAULT_BIN_CAPACITY>(band, z1, z2, tiles, store, umbra_core::NoProbe, |pass| {
+                // Rows first: most setups miss the band, and a miss costs no copy.
+                let reach = pieces.iter().flatten().filter(|s| s.bbox.y0 < y1 && s.bbox.y1 > y0);
+                for s in reach.filter_map(|s| s.in_window([0, y0], &raster)) {
+                    pass.draw_setup(&s);
+                }
+                Ok(())
+            })
+            .map(|_| ())
+        })
+        .collect::<Result<(), LightError>>()?;
     debug_assert_eq!(maps.tiles.len(), across as usize * down as usize);
     Ok(maps)
 }

@@ -100,6 +100,16 @@ pub enum RenderError {
     /// The camera image size is unusable.
     #[error("camera image: {0}")]
     ImageSize(umbra_core::ConfigError),
+    /// A reference built for another image size.
+    #[error("the reference has {found} pixels, the {width}x{height} image needs {}", *width as u64 * *height as u64)]
+    Truth {
+        /// Image width.
+        width: u32,
+        /// Image height.
+        height: u32,
+        /// Pixels the reference has.
+        found: usize,
+    },
     /// The map, the image or the scene is beyond the [`Limits`].
     #[error(transparent)]
     Limit(#[from] LimitError),
@@ -141,10 +151,52 @@ pub fn render_within(
     progress: &ProgressBar,
 ) -> Result<Render, RenderError> {
     check_limits(scene, cfg, limits)?;
+    let truth = truth(scene, cfg.width, cfg.height, cfg.reference_samples, progress)?;
+    render_checked(scene, cfg, truth)
+}
+
+/// The exact reference of `scene` seen from its camera at `width × height`
+/// with `samples²` rays per pixel (see [`Reference::image`]). It depends on
+/// nothing else, so a sweep builds it once per scene and image.
+///
+/// # Errors
+/// See [`RenderError`].
+pub fn truth(
+    scene: &Scene,
+    width: u32,
+    height: u32,
+    samples: u32,
+    progress: &ProgressBar,
+) -> Result<Vec<Option<PixelTruth>>, RenderError> {
+    let (camera, ids) = visibility(scene, width, height, &mut umbra_core::NoProbe)?;
+    let reference = Reference::new(&scene.triangles())?;
+    let light = scene.light().source();
+    Ok(reference.image(&ids, &camera, width, height, &light, samples, progress))
+}
+
+/// [`render`] against a reference [`truth`] built before, for the same
+/// scene, image size and rays (checked against the default [`Limits`]).
+///
+/// # Errors
+/// See [`RenderError`].
+pub fn render_against(
+    scene: &Scene,
+    cfg: &RenderConfig,
+    truth: Vec<Option<PixelTruth>>,
+) -> Result<Render, RenderError> {
+    check_limits(scene, cfg, &Limits::DEFAULT)?;
+    render_checked(scene, cfg, truth)
+}
+
+/// Both passes of a render within limits already checked, against `truth`.
+fn render_checked(scene: &Scene, cfg: &RenderConfig, truth: Vec<Option<PixelTruth>>) -> Result<Render, RenderError> {
+    if truth.len() as u64 != u64::from(cfg.width) * u64::from(cfg.height) {
+        return Err(RenderError::Truth { width: cfg.width, height: cfg.height, found: truth.len() });
+    }
     match cfg.format {
-        DepthFormatKind::D16 => render_in::<D16>(scene, cfg, progress),
-        DepthFormatKind::D24 => render_in::<D24>(scene, cfg, progress),
-        DepthFormatKind::F32 => render_in::<F32>(scene, cfg, progress),
+        DepthFormatKind::D16 => render_in::<D16>(scene, cfg, truth),
+        DepthFormatKind::D24 => render_in::<D24>(scene, cfg, truth),
+        DepthFormatKind::F32 => render_in::<F32>(scene, cfg, truth),
     }
 }
 
@@ -253,7 +305,11 @@ const fn unit_of(a: Algorithm) -> DepthUnit {
     }
 }
 
-fn render_in<F: DepthFormat>(scene: &Scene, cfg: &RenderConfig, progress: &ProgressBar) -> Result<Render, RenderError> {
+fn render_in<F: DepthFormat>(
+    scene: &Scene,
+    cfg: &RenderConfig,
+    truth: Vec<Option<PixelTruth>>,
+) -> Result<Render, RenderError> {
     let map_raster = RasterConfig::new(cfg.map_size, cfg.map_size, RasterConfig::DEFAULT_TILE_SIZE, 8)
         .map_err(RenderError::MapSize)?;
     let camera_raster =
@@ -261,10 +317,6 @@ fn render_in<F: DepthFormat>(scene: &Scene, cfg: &RenderConfig, progress: &Progr
     let mut camera_events = Counters::new(&camera_raster);
     let (maps, light_events, image) =
         passes::<F, _, _>(scene, cfg, RasterConfig::DEFAULT_TILE_SIZE, Counters::new(&map_raster), &mut camera_events)?;
-    let (camera, ids) = visibility(scene, cfg.width, cfg.height, &mut umbra_core::NoProbe)?;
-    let reference = Reference::new(&scene.triangles())?;
-    let light = scene.light().source();
-    let truth = reference.image(&ids, &camera, cfg.width, cfg.height, &light, cfg.reference_samples, progress);
     let metrics = compare(&image.pixels, &truth);
     let maps = RawMaps { format: cfg.format, maps: crate::light::widen(maps) };
     Ok(Render { image, maps, truth, metrics, light_events, camera_events })

@@ -30,7 +30,8 @@ use umbra_core::shadow::{Filter, Jitter};
 use crate::arch::{ArchParams, CostReport};
 use crate::metrics::Metrics;
 use crate::output::{OutputError, write_text};
-use crate::render::{Algorithm, RenderConfig, cost, render};
+use crate::reference::PixelTruth;
+use crate::render::{Algorithm, RenderConfig, cost, render_against, truth};
 use crate::scene::Scene;
 use crate::scene_file::SceneError;
 
@@ -618,21 +619,26 @@ pub fn uncullable(scene: &Scene) -> Scene {
 /// preset (one row when the sweep has none). A render or costing that fails
 /// gives skipped rows that say why.
 ///
-/// The render (light pass, camera pass, reference, metrics) runs once; each
+/// The render (light pass, camera pass, metrics against the scene's
+/// reference from [`truths`]) runs once; each
 /// preset re-runs the two passes through its own probe, because a preset's
 /// tile size changes the light pass's events (`PixelFlow`'s 128² regions
 /// bin and flush differently from 32² chunks), so one recorded event stream
 /// cannot stand for all three. The exact reference, the expensive part, is
 /// not recomputed.
 #[must_use]
-pub fn run_config(spec: &Spec, c: &Config, open: &[Scene]) -> Vec<Row> {
+pub fn run_config(spec: &Spec, c: &Config, open: &[Scene], truths: &[Truth]) -> Vec<Row> {
     let v = &spec.variants[c.variant];
     let scene = match v.culling {
         Culling::Scene => &spec.scenes[c.scene],
         Culling::Off => &open[c.scene],
     };
     let cfg = render_config(spec, c);
-    let metrics = render(scene, &cfg, &ProgressBar::hidden()).map(|r| {
+    let metrics = match &truths[c.scene] {
+        Ok(t) => render_against(scene, &cfg, t.clone()).map_err(|e| e.to_string()),
+        Err(e) => Err(format!("reference: {e}")),
+    };
+    let metrics = metrics.map(|r| {
         let t = &r.camera_events.totals;
         (r.metrics, ratio(t.tangent_setups, t.tangent_setups + t.trivial_pixels))
     });
@@ -667,18 +673,37 @@ pub fn run_config(spec: &Spec, c: &Config, open: &[Scene]) -> Vec<Row> {
         .collect()
 }
 
+/// A scene's exact reference at the study's image size, or why there is none.
+pub type Truth = Result<Vec<Option<PixelTruth>>, String>;
+
+/// The exact reference of every scene of `spec`, built once (in parallel):
+/// it depends only on the scene, the image size and the rays per pixel,
+/// not on the configuration. Culling changes no geometry, so the scenes
+/// with their culling turned off share it.
+#[must_use]
+pub fn truths(spec: &Spec) -> Vec<Truth> {
+    spec.scenes
+        .par_iter()
+        .map(|scene| {
+            truth(scene, spec.width, spec.height, spec.reference_samples, &ProgressBar::hidden())
+                .map_err(|e| e.to_string())
+        })
+        .collect()
+}
+
 /// Run the configurations of `shard` in parallel (on the current rayon pool),
 /// ticking `progress` once per configuration. Rows come back sorted by
 /// configuration and preset.
 #[must_use]
 pub fn run(spec: &Spec, shard: Shard, progress: &ProgressBar) -> Vec<Row> {
     let open: Vec<Scene> = spec.scenes.iter().map(uncullable).collect();
+    let truths = truths(spec);
     let configs: Vec<Config> = spec.configs().into_iter().filter(|c| shard.contains(c.index)).collect();
     progress.set_length(configs.len() as u64);
     let rows: Vec<Vec<Row>> = configs
         .par_iter()
         .map(|c| {
-            let rows = run_config(spec, c, &open);
+            let rows = run_config(spec, c, &open, &truths);
             progress.inc(1);
             rows
         })

@@ -138,3 +138,46 @@ proptest! {
         assert_matches_reference(got, reference::<D24>(SIZE, &[tri], CullMode::None))?;
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// A setup moved into a window ([`Setup::in_window`]: integer re-basing
+    /// of edges and plane) equals the setup made from the vertices snapped
+    /// in that window, and is `None` exactly when the window's own setup
+    /// finds no pixel to cover.
+    #[test]
+    fn setups_moved_into_a_window_equal_setups_made_there(
+        tris in triangles(12),
+        (wx, wy) in (0u32..4, 0u32..4),
+        (ww, wh) in (1u32..4, 1u32..4),
+    ) {
+        use umbra::core::RasterConfig;
+        use umbra::core::front_end::{self, Output};
+        use umbra::core::setup::Setup;
+        let whole = RasterConfig::new(128, 128, 16, 8).expect("valid");
+        let (x0, y0) = (wx * 32, wy * 32);
+        let window = whole.window(x0, y0, (ww * 32).min(128 - x0), (wh * 32).min(128 - y0)).expect("window");
+        let pieces = |raster: &RasterConfig, t: &[Vec4; 3]| {
+            let mut out = Vec::new();
+            front_end::clip::<D24>(raster, &t.map(|v| v.to_array().map(f64::from)), CullMode::None, 7, &mut |o| out.push(o));
+            out
+        };
+        for t in &tris {
+            let there = pieces(&window, t);
+            let moved: Vec<Option<Setup>> = pieces(&whole, t)
+                .into_iter()
+                .map(|o| match o { Output::Setup(s) => s.in_window([x0, y0], &window), _ => None })
+                .collect();
+            prop_assert_eq!(there.len(), moved.len());
+            for (a, b) in there.iter().zip(&moved) {
+                match (a, b) {
+                    (Output::Setup(a), Some(b)) => prop_assert_eq!(a, b),
+                    (Output::Setup(a), None) => prop_assert!(false, "the window covers {:?}, the moved setup nothing", a.bbox),
+                    (_, Some(b)) => prop_assert!(false, "the moved setup covers {:?}, the window nothing", b.bbox),
+                    (_, None) => {}
+                }
+            }
+        }
+    }
+}
