@@ -19,6 +19,7 @@ use euc::buffer::Buffer2d;
 use euc::rasterizer::{BackfaceCullingDisabled, Triangles};
 use euc::{DepthStrategy, Pipeline};
 use std::hint::black_box;
+use umbra::core::front_end;
 use umbra::core::glam::{Mat4, Vec3};
 use umbra::core::{CullMode, D24, DepthUnit, LightPassConfig, NoProbe, Probe, RasterConfig};
 use umbra::sim::counters::Counters;
@@ -116,6 +117,26 @@ fn peer(c: &mut Criterion) {
     g.bench_function("umbra d24, culling off", |b| b.iter(|| umbra_pass(black_box(&mesh), 1024, false, NoProbe)));
     g.bench_function("umbra d24, culling on", |b| b.iter(|| umbra_pass(black_box(&mesh), 1024, true, NoProbe)));
     g.bench_function("euc f32", |b| b.iter(|| euc_pass(black_box(&vertices), 1024, None)));
+    // The front end alone (vertex unit, clipping, snap, setup): the share of
+    // the light pass that comes before binning and rasterization.
+    let raster = RasterConfig::new(1024, 1024, 32, 8).expect("valid");
+    g.bench_function("umbra d24, front end only", |b| {
+        b.iter(|| {
+            let mut set_up = 0u32;
+            front_end::mesh::<D24>(
+                &raster,
+                &mesh.positions,
+                black_box(&mesh.triangles),
+                &light(),
+                CullMode::None,
+                0,
+                &mut |o| {
+                    set_up += u32::from(matches!(o, front_end::Output::Setup(_)));
+                },
+            );
+            set_up
+        });
+    });
     g.finish();
 }
 

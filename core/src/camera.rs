@@ -320,18 +320,40 @@ impl Interp {
 
 /// `n·2¹⁶ / w`, truncated toward zero as `i128` division is, for `w > 0`;
 /// `None` if `n·2¹⁶` overflows. When `n` and `w` fit in `i64` (every pixel
-/// of a target whose denominator is scaled to 2⁴⁴), in two hardware
-/// divisions: `n = q·w + r` with `r` of the sign of `n` and `|r| < w`, so
-/// `n·2¹⁶ = (q·2¹⁶ + ⌊r·2¹⁶ / w⌋)·w + r'`, `r'` again of the sign of `n`:
-/// the same quotient, bit for bit.
+/// of a target whose denominator is scaled to 2⁴⁴), as a divider with a
+/// reciprocal estimate does it: an f64 quotient (off by at most one unit
+/// below 2⁵⁰), then corrected until the remainder `n·2¹⁶ − q·w` has the
+/// sign of `n` and lies within `w` — the exact quotient, bit for bit.
 #[inline]
 fn div_shifted(n: i128, w: i128) -> Option<i128> {
-    if let (Ok(n), Ok(w)) = (i64::try_from(n), i64::try_from(w))
-        && w > 0
-        && w < 1 << 46
+    if let (Ok(n64), Ok(w64)) = (i64::try_from(n), i64::try_from(w))
+        && w64 > 0
     {
-        let (q, r) = (n / w, n % w);
-        return Some((i128::from(q) << 16) + i128::from((r << 16) / w));
+        #[allow(clippy::cast_precision_loss, reason = "an estimate, corrected below")]
+        let estimate = n64 as f64 * 65_536.0 / w64 as f64;
+        if estimate.abs() < 1.0e15 {
+            // The cast truncates toward zero, as the division does.
+            #[allow(clippy::cast_possible_truncation, reason = "below 2^50")]
+            let mut q = i128::from(estimate as i64);
+            let num = n << 16;
+            let mut r = num - q * w;
+            if num >= 0 {
+                while r < 0 {
+                    (q, r) = (q - 1, r + w);
+                }
+                while r >= w {
+                    (q, r) = (q + 1, r - w);
+                }
+            } else {
+                while r > 0 {
+                    (q, r) = (q + 1, r - w);
+                }
+                while r <= -w {
+                    (q, r) = (q - 1, r + w);
+                }
+            }
+            return Some(q);
+        }
     }
     Some(n.checked_mul(1 << 16)? / w)
 }
@@ -511,13 +533,21 @@ mod tests {
         let mut rng = oorandom::Rand64::new(0x5eed);
         let wide = |n: i128, w: i128| (n * 65_536) / w;
         let check = |n: i128, w: i128| assert_eq!(div_shifted(n, w), Some(wide(n, w)), "{n} / {w}");
-        for (n, w) in
-            [(0, 1), (-1, 1), (1, 3), (-1, 3), (i128::from(i64::MIN), 7), (i128::from(i64::MAX), (1 << 46) - 1)]
-        {
+        for (n, w) in [
+            (0, 1),
+            (-1, 1),
+            (1, 3),
+            (-1, 3),
+            (i128::from(i64::MIN), 7),
+            (i128::from(i64::MAX), (1 << 46) - 1),
+            (i128::from(i64::MIN), 1),
+            (i128::from(i64::MAX), i128::from(i64::MAX)),
+        ] {
             check(n, w);
         }
         for _ in 0..100_000 {
-            let w = i128::from(rng.rand_range(1..1 << 46));
+            let bits = rng.rand_range(1..63);
+            let w = i128::from(rng.rand_range(1..1 << bits));
             #[allow(clippy::cast_possible_wrap, reason = "any 64-bit pattern")]
             let n = i128::from(rng.rand_u64() as i64 >> rng.rand_range(0..40));
             check(n, w);

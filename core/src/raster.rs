@@ -137,11 +137,13 @@ fn traverse<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const C
     probe: &mut P,
 ) {
     let mut out = SpanOut::new(F::FAR);
-    if coverage == Coverage::Full || (rect.width() <= BLOCK && rect.height() <= BLOCK) {
-        // Whole rows without edge tests, or a rectangle no bigger than a
-        // block (already classified): masked rows with no block step.
-        let run = Run { x0: rect.x0, x1: rect.x1, masked: coverage != Coverage::Full };
+    if coverage == Coverage::Full {
+        // Whole rows without edge tests.
+        let run = Run { x0: rect.x0, x1: rect.x1, masked: false };
         rows::<F, P, DUAL, IDS, COUNT>(s, view, rect.y0, rect.y1, &[run], &mut out, probe);
+    } else if rect.width() <= BLOCK && rect.height() <= BLOCK {
+        // A rectangle no bigger than a block (already classified).
+        small::<F, P, DUAL, IDS, COUNT>(s, view, rect, &mut out, probe);
     } else {
         let mut by = rect.y0 & !(BLOCK - 1);
         while by < rect.y1 {
@@ -152,6 +154,65 @@ fn traverse<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const C
         }
     }
     finish_triangle::<F, P, DUAL, IDS, COUNT>(view, &out, probe);
+}
+
+/// A partial rectangle no bigger than a block — most of a small triangle's
+/// tiles — by coverage masks: per row, the covered pixels as bits of the
+/// three edge functions, then the depth unit on the set bits only. The
+/// same fragments in the same order as masked rows, without stepping the
+/// depth unit over the pixels the triangle misses.
+fn small<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUNT: bool>(
+    s: &Setup,
+    view: &mut TileView<'_, F::Texel>,
+    rect: &TileRect,
+    out: &mut SpanOut<F::Texel>,
+    probe: &mut P,
+) {
+    const _: () = assert!(BLOCK <= u64::BITS, "a row's coverage is one u64");
+    let (dzx, dzy) = (s.plane.step_x().to_bits(), s.plane.step_y().to_bits());
+    let cull_max = view.state.cull_max;
+    let (x0, y0) = (i64::from(rect.x0), i64::from(rect.y0));
+    let mut z_row = s.plane.at(x0, y0).to_bits().wrapping_add(ROUND_HALF);
+    let mut e_row = s.edges.map(|e| e.at(x0, y0));
+    for y in rect.y0..rect.y1 {
+        let [mut e0, mut e1, mut e2] = e_row;
+        let mut mask = 0u64;
+        for k in 0..rect.width() {
+            mask |= u64::from((e0 | e1 | e2) >= 0) << k;
+            e0 += s.edges[0].dx;
+            e1 += s.edges[1].dx;
+            e2 += s.edges[2].dx;
+        }
+        if mask != 0 {
+            let Some((z1, z2, ids)) = view.rows(y, rect.x0, rect.x1) else { return };
+            out.fragments += mask.count_ones();
+            while mask != 0 {
+                let k = mask.trailing_zeros();
+                mask &= mask - 1;
+                let q = F::texel_inside(z_row.wrapping_add(dzx.wrapping_mul(i64::from(k))));
+                let i = k as usize;
+                if DUAL {
+                    if let (Some(a), Some(b)) = (z1.get_mut(i), z2.get_mut(i)) {
+                        out.dual::<COUNT>(a, b, q, cull_max);
+                    }
+                } else if IDS {
+                    if let (Some(a), Some(t)) = (z1.get_mut(i), ids.get_mut(i)) {
+                        out.visible::<COUNT>(a, t, s.triangle, q, cull_max);
+                    }
+                } else if let Some(a) = z1.get_mut(i) {
+                    out.single::<COUNT>(a, q, cull_max);
+                }
+                if P::FRAGMENTS {
+                    let depth = crate::depth::Texel::to_raw(q);
+                    probe.fragment(Fragment { x: rect.x0 + k, y, depth, triangle: s.triangle });
+                }
+            }
+        }
+        z_row = z_row.wrapping_add(dzy);
+        for (e, edge) in e_row.iter_mut().zip(&s.edges) {
+            *e += edge.dy;
+        }
+    }
 }
 
 /// Make the tile's max exact again: a reduction over the culled buffer.

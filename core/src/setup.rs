@@ -202,7 +202,7 @@ fn slopes(a_num: i128, b_num: i128, s: u32, d: i64, extent: f64) -> (i128, i128)
     // Numerators that fit in i64 convert in hardware; the result is the
     // same correctly rounded f64 either way.
     #[allow(clippy::cast_precision_loss, reason = "the error bound above accounts for it")]
-    let wide = |n: i128| i64::try_from(n).map_or(n as f64, |n| n as f64);
+    let wide = |n: i128| i64::try_from(n).map_or_else(|_| n as f64, |n| n as f64);
     #[allow(clippy::cast_precision_loss, reason = "the error bound above accounts for it")]
     let (na, nb, df) = (wide(a_num), wide(b_num), d as f64);
     let scale = f64::from(1u32 << s);

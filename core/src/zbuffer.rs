@@ -144,6 +144,7 @@ pub(crate) fn span<F: DepthFormat, const DUAL: bool, const IDS: bool, const MASK
     cull_max: F::Texel,
 ) -> SpanOut<F::Texel> {
     let mut out = SpanOut::new(F::FAR);
+    let mut fragments = 0u32;
     let mut z = z;
     let [mut e0, mut e1, mut e2] = edges.e;
     let [d0, d1, d2] = edges.de;
@@ -156,63 +157,77 @@ pub(crate) fn span<F: DepthFormat, const DUAL: bool, const IDS: bool, const MASK
             e0 += d0;
             e1 += d1;
             e2 += d2;
-            out.fragments += u32::from(inside);
+            fragments += u32::from(inside);
         }
         q
     };
-    let (mut written1, mut written2, mut lost, mut min1, mut min2) = (0u32, 0u32, 0u32, F::FAR, F::FAR);
     if DUAL {
         for (a, b) in z1.iter_mut().zip(z2.iter_mut()) {
             let q = next();
-            let (old1, old2) = (*a, *b);
-            let new2 = old2.min(old1.max(q));
-            *a = old1.min(q);
-            *b = new2;
-            written1 += u32::from(q < old1);
-            written2 += u32::from(new2 < old2);
-            if CULL {
-                lost += u32::from(old2 == cull_max && new2 < old2);
-            }
-            min1 = min1.min(q);
-            min2 = min2.min(new2);
+            out.dual::<CULL>(a, b, q, cull_max);
         }
     } else if IDS {
-        // The visibility unit: the nearest depth and the triangle that put it there.
         for (a, t) in z1.iter_mut().zip(ids.iter_mut()) {
             let q = next();
-            let old = *a;
-            let pass = q < old;
-            *a = if pass { q } else { old };
-            *t = if pass { id } else { *t };
-            written1 += u32::from(pass);
-            if CULL {
-                lost += u32::from(old == cull_max && pass);
-            }
-            min1 = min1.min(q);
+            out.visible::<CULL>(a, t, id, q, cull_max);
         }
     } else {
         for a in z1.iter_mut() {
             let q = next();
-            let old = *a;
-            *a = old.min(q);
-            written1 += u32::from(q < old);
-            if CULL {
-                lost += u32::from(old == cull_max && q < old);
-            }
-            min1 = min1.min(q);
+            out.single::<CULL>(a, q, cull_max);
         }
     }
-    if !MASKED {
-        #[allow(clippy::cast_possible_truncation, reason = "a span is at most one tile row")]
-        let n = z1.len() as u32;
-        out.fragments = n;
-    }
-    out.written1 = written1;
-    out.written2 = written2;
-    out.lost_max = lost;
-    out.min1 = min1;
-    out.min2 = min2;
+    #[allow(clippy::cast_possible_truncation, reason = "a span is at most one tile row")]
+    let n = z1.len() as u32;
+    out.fragments = if MASKED { fragments } else { n };
     out
+}
+
+impl<T: Copy + Ord> SpanOut<T> {
+    /// The single unit at one texel: `z1 ← min(z1, q)`. `CULL` tracks
+    /// texels that held the tile's max `cull_max` and were lowered.
+    #[inline(always)]
+    pub(crate) fn single<const CULL: bool>(&mut self, a: &mut T, q: T, cull_max: T) {
+        let old = *a;
+        *a = old.min(q);
+        self.written1 += u32::from(q < old);
+        if CULL {
+            self.lost_max += u32::from(old == cull_max && q < old);
+        }
+        self.min1 = self.min1.min(q);
+    }
+
+    /// The visibility unit at one texel: the nearest depth and the
+    /// triangle that put it there.
+    #[inline(always)]
+    pub(crate) fn visible<const CULL: bool>(&mut self, a: &mut T, t: &mut u32, id: u32, q: T, cull_max: T) {
+        let old = *a;
+        let pass = q < old;
+        *a = if pass { q } else { old };
+        *t = if pass { id } else { *t };
+        self.written1 += u32::from(pass);
+        if CULL {
+            self.lost_max += u32::from(old == cull_max && pass);
+        }
+        self.min1 = self.min1.min(q);
+    }
+
+    /// The dual unit at one texel: `z2 ← min(z2, max(z1, q))`, then
+    /// `z1 ← min(z1, q)`.
+    #[inline(always)]
+    pub(crate) fn dual<const CULL: bool>(&mut self, a: &mut T, b: &mut T, q: T, cull_max: T) {
+        let (old1, old2) = (*a, *b);
+        let new2 = old2.min(old1.max(q));
+        *a = old1.min(q);
+        *b = new2;
+        self.written1 += u32::from(q < old1);
+        self.written2 += u32::from(new2 < old2);
+        if CULL {
+            self.lost_max += u32::from(old2 == cull_max && new2 < old2);
+        }
+        self.min1 = self.min1.min(q);
+        self.min2 = self.min2.min(new2);
+    }
 }
 
 /// The rows of a tile's rectangle `r` in a row-major buffer of `width` columns.

@@ -89,6 +89,10 @@ struct StudyArgs {
     /// guard band, slivers, coincident surfaces): extremes.md, precision plot.
     #[arg(long)]
     extremes: bool,
+    /// Map sides to sweep instead of the set's own (e.g. `--maps 2048` or
+    /// `--maps 256,1024`).
+    #[arg(long, value_delimiter = ',')]
+    maps: Vec<u32>,
     /// Output folder.
     #[arg(long, default_value = "out/study")]
     out: PathBuf,
@@ -312,6 +316,7 @@ fn main() -> Result<()> {
                 quick: true,
                 shard: None,
                 extremes: false,
+                maps: Vec::new(),
                 out: PathBuf::from("out/study"),
             })
         }
@@ -358,7 +363,14 @@ fn study(args: &StudyArgs) -> Result<()> {
         umbra_sim::scene_file::BUNDLED.iter().map(|(n, _)| (*n).to_owned()).collect()
     };
     let scenes = study::load_scenes(&names)?;
-    let spec = if args.quick { Spec::quick(scenes) } else { Spec::full(scenes) };
+    let mut spec = if args.quick { Spec::quick(scenes) } else { Spec::full(scenes) };
+    if !args.maps.is_empty() {
+        let limits = umbra_sim::limits::Limits::DEFAULT;
+        for &side in &args.maps {
+            limits.check_map(side).with_context(|| format!("--maps {side}"))?;
+        }
+        spec.map_sizes.clone_from(&args.maps);
+    }
     let shard = args.shard.as_deref().map(Shard::parse).transpose()?.unwrap_or(Shard::ALL);
     let style =
         indicatif::ProgressStyle::with_template("{prefix} [{elapsed_precise}] {wide_bar} {pos}/{len} ETA {eta}")
