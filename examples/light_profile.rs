@@ -1,10 +1,11 @@
 //! One light pass, repeated, for profilers: the `peer` bench's torus of
-//! 100 000 triangles at 1024² (24-bit, single, max-z culling off).
+//! 100 000 triangles, by default at 1024² (24-bit, single, max-z culling off).
 //!
 //! ```sh
 //! cargo build --release --example light_profile
 //! valgrind --tool=callgrind target/release/examples/light_profile 2
 //! perf record -g target/release/examples/light_profile 50
+//! target/release/examples/light_profile 50 bands 2048   # render_bands, 2048²
 //! ```
 //!
 //! Instruction counts under callgrind are the same from run to run, so they
@@ -12,22 +13,24 @@
 
 use umbra::core::glam::Vec3;
 use umbra::core::{CullMode, D24, DepthFormat, DepthUnit, LightPassConfig, NoProbe, RasterConfig};
-use umbra::sim::light::{Draw, render};
+use umbra::sim::light::{Draw, render, render_bands};
 use umbra::sim::mesh::Mesh;
 use umbra::sim::scene::Perspective;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let passes: u32 = std::env::args().nth(1).map_or(Ok(1), |s| s.parse())?;
+    let bands = std::env::args().nth(2).is_some_and(|a| a == "bands");
+    let side: u32 = std::env::args().nth(3).map_or(Ok(1024), |s| s.parse())?;
     let mesh = Mesh::torus(Vec3::ZERO, 1.0, 0.4, 250, 200);
     let light =
         Perspective { position: Vec3::new(0.0, 2.2, 2.6), target: Vec3::ZERO, fov_degrees: 55.0, near: 1.0, far: 8.0 }
             .view_projection();
-    let raster = RasterConfig::new(1024, 1024, 32, 8)?;
+    let raster = RasterConfig::new(side, side, 32, 8)?;
     let cfg = LightPassConfig { raster, unit: DepthUnit::Single, max_z_cull: false };
     let draw = Draw { positions: &mesh.positions, triangles: &mesh.triangles, transform: light, cull: CullMode::None };
     let mut lit = 0usize;
     for _ in 0..passes {
-        let (maps, _) = render::<D24, _>(cfg, &[draw], NoProbe)?;
+        let maps = if bands { render_bands::<D24>(cfg, &[draw])? } else { render::<D24, _>(cfg, &[draw], NoProbe)?.0 };
         lit += maps.z1.iter().filter(|&&z| z < D24::FAR).count();
     }
     println!("{passes} passes, {lit} covered texels");

@@ -120,6 +120,10 @@ fn run<F: DepthFormat, P: Probe, const B: usize>(
     Ok(pass.finish())
 }
 
+/// The setup store of one band: small enough to stay in cache (a band's
+/// bins drain whenever it fills; the maps do not depend on its size).
+const BAND_SETUPS: usize = 8192;
+
 /// Triangles the front end sets up in one parallel job.
 const FRONT_END_RUN: usize = 2048;
 
@@ -165,10 +169,11 @@ pub fn render_bands<F: DepthFormat>(
         })
         .collect();
     let count: usize = pieces.iter().map(Vec::len).sum();
-    // Two bands a thread, so that a light band waits for a heavy one less.
+    // Eight bands a thread, so that a thread done with light bands takes
+    // over heavy ones.
     let (across, down) = r.tiles();
     let threads = u32::try_from(rayon::current_num_threads()).unwrap_or(1);
-    let bands = threads.saturating_mul(2).clamp(1, down);
+    let bands = threads.saturating_mul(8).clamp(1, down);
     let t = r.tile_size();
     let rows: Vec<(u32, u32)> = (0..bands)
         .map(|b| (b * down / bands * t, ((b + 1) * down / bands * t).min(r.height())))
@@ -194,7 +199,7 @@ pub fn render_bands<F: DepthFormat>(
         .map(|(y0, y1, z1, z2, tiles)| {
             let raster = r.window(0, y0, r.width(), y1 - y0)?;
             let band = LightPassConfig { raster, ..config };
-            let store = count.clamp(1, DEFAULT_SETUPS);
+            let store = count.clamp(1, BAND_SETUPS);
             run::<F, _, DEFAULT_BIN_CAPACITY>(band, z1, z2, tiles, store, umbra_core::NoProbe, |pass| {
                 // Rows first: most setups miss the band, and a miss costs no copy.
                 let reach = pieces.iter().flatten().filter(|s| s.bbox.y0 < y1 && s.bbox.y1 > y0);
