@@ -28,11 +28,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let raster = RasterConfig::new(side, side, 32, 8)?;
     let cfg = LightPassConfig { raster, unit: DepthUnit::Single, max_z_cull: false };
     let draw = Draw { positions: &mesh.positions, triangles: &mesh.triangles, transform: light, cull: CullMode::None };
-    let mut lit = 0usize;
+    let mut maps = None;
     for _ in 0..passes {
-        let maps = if bands { render_bands::<D24>(cfg, &[draw])? } else { render::<D24, _>(cfg, &[draw], NoProbe)?.0 };
-        lit += maps.z1.iter().filter(|&&z| z < D24::FAR).count();
+        maps =
+            Some(if bands { render_bands::<D24>(cfg, &[draw])? } else { render::<D24, _>(cfg, &[draw], NoProbe)?.0 });
     }
-    println!("{passes} passes, {lit} covered texels");
+    let lit = maps.map_or(0, |m| m.z1.iter().filter(|&&z| z < D24::FAR).count());
+    println!("{passes} passes, {lit} texels covered");
     Ok(())
 }

@@ -129,11 +129,12 @@ const FRONT_END_RUN: usize = 2048;
 
 /// The light pass on every core of the current rayon pool, as parallel
 /// hardware would run it: the front end ([`umbra_core::front_end`]) sets up
-/// runs of triangles in parallel, in submission order; then bands of tile
-/// rows are rasterized in parallel, each a window of the target
-/// ([`umbra_core::RasterConfig::window`]) with its own bins, setup store and
-/// tiles, binning the setups that reach it ([`Setup::in_window`]). The maps
-/// are exactly those of [`render`], on any number of threads.
+/// runs of triangles in parallel, in submission order, and sorts each setup
+/// into the bands of tile rows it reaches, moved into each band's window
+/// ([`Setup::in_window`]); then the bands are rasterized in parallel, each a
+/// window of the target ([`umbra_core::RasterConfig::window`]) with its own
+/// bins, setup store and tiles. The maps are exactly those of [`render`], on
+/// any number of threads.
 ///
 /// # Errors
 /// See [`LightError`].
@@ -156,35 +157,46 @@ pub fn render_bands<F: DepthFormat>(
         let n = d.triangles.len() as u32;
         first_id = first_id.wrapping_add(n);
     }
-    let pieces: Vec<Vec<Setup>> = jobs
-        .par_iter()
-        .map(|&(d, run, id)| {
-            let mut set_up = Vec::with_capacity(run.len());
-            front_end::mesh::<F>(&r, d.positions, run, &d.transform, d.cull, id, &mut |o| {
-                if let Output::Setup(s) = o {
-                    set_up.push(s);
-                }
-            });
-            set_up
-        })
-        .collect();
-    let count: usize = pieces.iter().map(Vec::len).sum();
-    // Eight bands a thread, so that a thread done with light bands takes
-    // over heavy ones.
+    // Narrow bands (up to 32 a thread, one tile row at least), so that a
+    // thread done with light bands takes over heavy ones: a band costs only
+    // its bins, and reads only the setups that reach it.
     let (across, down) = r.tiles();
     let threads = u32::try_from(rayon::current_num_threads()).unwrap_or(1);
-    let bands = threads.saturating_mul(8).clamp(1, down);
+    let bands = threads.saturating_mul(32).clamp(1, down);
     let t = r.tile_size();
     let rows: Vec<(u32, u32)> = (0..bands)
         .map(|b| (b * down / bands * t, ((b + 1) * down / bands * t).min(r.height())))
         .filter(|(y0, y1)| y1 > y0)
+        .collect();
+    let windows = rows.iter().map(|&(y0, y1)| r.window(0, y0, r.width(), y1 - y0)).collect::<Result<Vec<_>, _>>()?;
+    // The front end, in parallel: each job's setups, moved into the bands
+    // they reach, so that a band reads only its own.
+    let band_of = |y: u32| rows.partition_point(|&(_, y1)| y1 <= y);
+    let pieces: Vec<Vec<Vec<Setup>>> = jobs
+        .par_iter()
+        .map(|&(d, run, id)| {
+            let mut by_band = vec![Vec::new(); rows.len()];
+            front_end::mesh::<F>(&r, d.positions, run, &d.transform, d.cull, id, &mut |o| {
+                if let Output::Setup(s) = o {
+                    for band in band_of(s.bbox.y0)..=band_of(s.bbox.y1 - 1) {
+                        let (Some(bucket), Some(w), Some(&(y0, _))) =
+                            (by_band.get_mut(band), windows.get(band), rows.get(band))
+                        else {
+                            continue;
+                        };
+                        bucket.extend(s.in_window([0, y0], w));
+                    }
+                }
+            });
+            by_band
+        })
         .collect();
     // Each band draws into its own rows of the maps and its own tiles.
     let mut maps = LightMaps::cleared(config);
     let mut jobs = Vec::with_capacity(rows.len());
     let (mut z1, mut z2, mut tiles) = (&mut maps.z1[..], &mut maps.z2[..], &mut maps.tiles[..]);
     let (width, dual) = (r.width() as usize, !z2.is_empty());
-    for &(y0, y1) in &rows {
+    for (band, &(y0, y1)) in rows.iter().enumerate() {
         let texels = (y1 - y0) as usize * width;
         let (a, rest) = core::mem::take(&mut z1).split_at_mut(texels);
         z1 = rest;
@@ -193,19 +205,15 @@ pub fn render_bands<F: DepthFormat>(
         let (c, rest) = core::mem::take(&mut tiles)
             .split_at_mut(((y1 - y0) / t + u32::from((y1 - y0) % t > 0)) as usize * across as usize);
         tiles = rest;
-        jobs.push((y0, y1, a, b, c));
+        jobs.push((band, a, b, c));
     }
     jobs.into_par_iter()
-        .map(|(y0, y1, z1, z2, tiles)| {
-            let raster = r.window(0, y0, r.width(), y1 - y0)?;
-            let band = LightPassConfig { raster, ..config };
-            let store = count.clamp(1, BAND_SETUPS);
+        .map(|(band, z1, z2, tiles)| {
+            let own = || pieces.iter().filter_map(move |job| job.get(band)).flatten();
+            let store = own().count().clamp(1, BAND_SETUPS);
+            let band = LightPassConfig { raster: windows[band], ..config };
             run::<F, _, DEFAULT_BIN_CAPACITY>(band, z1, z2, tiles, store, umbra_core::NoProbe, |pass| {
-                // Rows first: most setups miss the band, and a miss costs no copy.
-                let reach = pieces.iter().flatten().filter(|s| s.bbox.y0 < y1 && s.bbox.y1 > y0);
-                for s in reach.filter_map(|s| s.in_window([0, y0], &raster)) {
-                    pass.draw_setup(&s);
-                }
+                own().for_each(|s| pass.draw_setup(s));
                 Ok(())
             })
             .map(|_| ())
