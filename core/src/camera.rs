@@ -268,8 +268,10 @@ impl Interp {
     /// depth division is skipped (`z` left 0) unless `with_depth`.
     fn light_point<F: DepthFormat>(&self, px: u32, py: u32, with_depth: bool) -> Option<LightPoint> {
         let f = self.light?;
-        let (sx, sy) = (i128::from(px) * 2 + 1, i128::from(py) * 2 + 1);
-        let eval = |r: &[i64; 3]| i128::from(r[0]) * sx + i128::from(r[1]) * sy + 2 * i128::from(r[2]);
+        // 64 × 64 → 128-bit products (one multiply each).
+        let (sx, sy) = (i64::from(px) * 2 + 1, i64::from(py) * 2 + 1);
+        let eval =
+            |r: &[i64; 3]| i128::from(r[0]) * i128::from(sx) + i128::from(r[1]) * i128::from(sy) + 2 * i128::from(r[2]);
         let w = eval(&f[3]);
         if w <= 0 {
             return None;

@@ -26,7 +26,8 @@ use umbra_core::{CullMode, DepthFormat, DepthFormatKind, DepthUnit, F32, LightPa
 use crate::arch::{ArchParams, CostReport};
 use crate::light::render as light_render;
 use crate::presets::FILTERS;
-use crate::render::{Algorithm, Render, RenderConfig, RenderError, cost, render};
+use crate::reference::PixelTruth;
+use crate::render::{Algorithm, Render, RenderConfig, RenderError, cost, render_against, truth};
 use crate::scene::Scene;
 use crate::storage::StorageBytes;
 
@@ -159,9 +160,15 @@ fn figures(r_err: f64, c: &CostReport) -> Figures {
     Figures { misclassified_percent: r_err, cycles: c.total_cycles(), bytes: c.total_bytes() }
 }
 
-/// Error and cost of `cfg` on `scene` under `arch`, and the render.
-fn evaluate(scene: &Scene, cfg: &RenderConfig, arch: ArchParams) -> Result<(Figures, Render), PlanError> {
-    let r = render(scene, cfg, &ProgressBar::hidden())?;
+/// Error (against `truth`, the scene's reference at the configuration's
+/// image and rays) and cost of `cfg` on `scene` under `arch`, and the render.
+fn evaluate(
+    scene: &Scene,
+    cfg: &RenderConfig,
+    arch: ArchParams,
+    truth: &[Option<PixelTruth>],
+) -> Result<(Figures, Render), PlanError> {
+    let r = render_against(scene, cfg, truth.to_vec())?;
     let (c, _) = cost(scene, cfg, arch)?;
     Ok((figures(r.metrics.misclassified_percent, &c), r))
 }
@@ -221,11 +228,16 @@ pub fn plan(scene: &Scene, spec: &PlanSpec) -> Result<Plan, PlanError> {
         }
     };
     let quarter = [(spec.image[0] / 2).max(1), (spec.image[1] / 2).max(1)];
+    // The references, built once: candidates at a quarter of the image with
+    // one ray per pixel, the plan and the full configuration at the image.
+    let hidden = ProgressBar::hidden();
+    let quarter_truth = truth(scene, quarter[0], quarter[1], 1, &hidden)?;
+    let image_truth = truth(scene, spec.image[0], spec.image[1], 4, &hidden)?;
     let mut best: Option<(Figures, u32, (&'static str, Filter))> = None;
     let mut most_accurate: Option<(Figures, u32, (&'static str, Filter))> = None;
     for &map in &spec.map_sizes {
         for &(name, filter) in &filters {
-            let (f, _) = evaluate(scene, &at(quarter, map, filter, algorithm, format, 1), spec.arch)?;
+            let (f, _) = evaluate(scene, &at(quarter, map, filter, algorithm, format, 1), spec.arch, &quarter_truth)?;
             if most_accurate.is_none_or(|(b, ..)| f.misclassified_percent < b.misclassified_percent) {
                 most_accurate = Some((f, map, (name, filter)));
             }
@@ -255,12 +267,13 @@ pub fn plan(scene: &Scene, spec: &PlanSpec) -> Result<Plan, PlanError> {
         ));
     }
     let config = at(spec.image, map, filter, algorithm, format, 4);
-    let (measured, r) = evaluate(scene, &config, spec.arch)?;
+    let (measured, r) = evaluate(scene, &config, spec.arch, &image_truth)?;
     let storage = crate::storage::of_maps(&r.maps.maps, r.maps.format, STORAGE_TILE)
         .map_err(|e| PlanError::Spec(format!("map storage: {e}")))?;
     // The same test with everything: the dual unit's own z2 and 24 bits.
     let full_algorithm = if algorithm == Algorithm::SecondFrontCulled { Algorithm::Second } else { algorithm };
-    let (full, _) = evaluate(scene, &at(spec.image, map, filter, full_algorithm, DepthFormatKind::D24, 4), spec.arch)?;
+    let full_config = at(spec.image, map, filter, full_algorithm, DepthFormatKind::D24, 4);
+    let (full, _) = evaluate(scene, &full_config, spec.arch, &image_truth)?;
     Ok(Plan {
         config,
         filter: filter_name,
