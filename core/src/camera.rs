@@ -152,8 +152,9 @@ struct Interp {
     world: [[f64; 3]; 4],
     /// The light pass's depth plane of this triangle on the map.
     plane: Option<DepthPlane>,
-    /// Face normal (flat tangent planes without a map plane).
+    /// Face normal and first vertex (flat tangent planes without a map plane).
     face: Vec3,
+    corner: Vec3,
     footprint: [MapCoord; 2],
 }
 
@@ -199,6 +200,7 @@ impl Interp {
             world: [[0.0; 3]; 4],
             plane: None,
             face,
+            corner: t.positions[0],
             footprint: [MapCoord::ZERO; 2],
         };
         let Some(minv) = inverse3(&m) else { return out };
@@ -308,8 +310,15 @@ impl Interp {
     /// The depth of the light pass's plane at a map position, and its slopes.
     fn plane_at(&self, p: &LightPoint) -> Option<(PlaneZ, Slope)> {
         let plane = self.plane?;
-        let off = |c: MapCoord| i128::from(c.to_bits()) - (1 << 15);
-        let z = plane.c + ((plane.a * off(p.x) + plane.b * off(p.y)) >> 16);
+        let off = |c: MapCoord| i64::from(c.to_bits()) - (1 << 15);
+        let (dx, dy) = (off(p.x), off(p.y));
+        // Slopes that fit 64 bits (all but the most extreme planes): one
+        // 64 × 64 → 128-bit multiply each, the same value.
+        let steps = match (i64::try_from(plane.a), i64::try_from(plane.b)) {
+            (Ok(a), Ok(b)) => i128::from(a) * i128::from(dx) + i128::from(b) * i128::from(dy),
+            _ => plane.a * i128::from(dx) + plane.b * i128::from(dy),
+        };
+        let z = plane.c + (steps >> 16);
         let sat = |v: i128| i64::try_from(v.clamp(i128::from(i64::MIN), i128::from(i64::MAX))).unwrap_or(0);
         Some((PlaneZ::from_bits(sat(z)), Slope { du: sat(plane.a), dv: sat(plane.b) }))
     }
@@ -459,69 +468,95 @@ pub fn shade_with<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, P: Probe>
     }
     let light_inverse_transpose = cfg.light.inverse().transpose();
     let mut cache: [Option<Interp>; SETUP_CACHE] = [None; SETUP_CACHE];
-    for (i, (&id, o)) in ids.iter().zip(out.iter_mut()).enumerate() {
-        let width = cfg.width as usize;
-        let (Ok(px), Ok(py)) = (u32::try_from(i % width), u32::try_from(i / width)) else { break };
-        let Some(tri) = (id != NO_TRIANGLE).then(|| scene.triangle(id)).flatten() else {
-            *o = Shaded::BACKGROUND;
-            continue;
-        };
-        let slot = &mut cache[id as usize % SETUP_CACHE];
-        let interp = match slot {
-            Some(c) if c.id == id => c,
-            _ => slot.insert(Interp::new::<F>(cfg, map, id, &tri)),
-        };
-        let interp = &*interp;
-        let normal = {
-            let mut n = Interp::at_pixel(&interp.normal, px, py);
-            let mut next = || {
-                #[allow(clippy::cast_possible_truncation, reason = "a direction, normalised next")]
-                let c = n.next().unwrap_or(0.0) as f32;
-                c
+    let width = cfg.width as usize;
+    if width == 0 {
+        return Ok(());
+    }
+    // Only the jittered filter and a bias range draw random numbers.
+    let random = matches!(cfg.shadow.filter(), crate::shadow::Filter::Jittered(_))
+        || matches!(cfg.shadow.bias(), crate::shadow::Bias::Range { .. });
+    for (py, (ids, out)) in (0u32..).zip(ids.chunks_exact(width).zip(out.chunks_exact_mut(width))) {
+        for (px, (&id, o)) in (0u32..).zip(ids.iter().zip(out.iter_mut())) {
+            if id == NO_TRIANGLE {
+                *o = Shaded::BACKGROUND;
+                continue;
+            }
+            // The source is asked only when the cache misses.
+            let slot = &mut cache[id as usize % SETUP_CACHE];
+            let interp = match slot {
+                Some(c) if c.id == id => &*c,
+                _ => match scene.triangle(id) {
+                    Some(tri) => &*slot.insert(Interp::new::<F>(cfg, map, id, &tri)),
+                    None => {
+                        *o = Shaded::BACKGROUND;
+                        continue;
+                    }
+                },
             };
-            Vec3::new(next(), next(), next())
-        };
-        // Flat receivers take their depth from the light pass's own plane.
-        let flat_plane = cfg.normals == Normals::Flat && interp.plane.is_some();
-        let Some(point) = interp.light_point::<F>(px, py, !flat_plane) else {
-            *o = Shaded { triangle: id, light: None, normal, shadow: Shadow::ZERO };
-            continue;
-        };
-        let flat = if cfg.normals == Normals::Flat { interp.plane_at(&point) } else { None };
-        let z = flat.map_or(point.z, |(z, _)| z);
-        let lookup = Lookup {
-            x: point.x,
-            y: point.y,
-            z,
-            footprint: if matches!(cfg.shadow.filter(), crate::shadow::Filter::Jittered(_)) {
-                interp.footprint_at::<F>(&point, px, py)
-            } else {
-                interp.footprint
-            },
-            seed: pixel_seed(cfg.seed, px, py),
-            slope: None,
-        };
-        let s = {
-            let raster = *map.raster();
-            let tangent = || match (cfg.normals, flat) {
-                (Normals::Flat, Some((_, slope))) => Some(slope),
-                (Normals::Flat, None) => {
-                    let p = tri.positions[0];
-                    TangentPlane::new(p, interp.face, &light_inverse_transpose).slope::<F>(&raster)
-                }
-                (Normals::Smooth, _) => {
-                    let mut w = Interp::at_pixel(&interp.world, px, py);
-                    let (x, y, zz, ww) = (w.next()?, w.next()?, w.next()?, w.next()?);
-                    #[allow(clippy::cast_possible_truncation, reason = "a world point, as the scene gives it")]
-                    let p = Vec3::new((x / ww) as f32, (y / ww) as f32, (zz / ww) as f32);
-                    TangentPlane::new(p, normal, &light_inverse_transpose).slope::<F>(&raster)
-                }
-            };
-            unit.decide(map, cfg, &lookup, tangent, probe)
-        };
-        *o = Shaded { triangle: id, light: Some(LightPoint { z, ..point }), normal, shadow: s };
+            *o = shade_pixel(cfg, map, unit, probe, &light_inverse_transpose, (px, py), interp, random);
+        }
     }
     Ok(())
+}
+
+/// One pixel of [`shade_with`].
+#[allow(clippy::too_many_arguments, reason = "the pixel's inputs, threaded through the loop")]
+#[inline]
+fn shade_pixel<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
+    cfg: &CameraConfig,
+    map: &MapView<'_, F>,
+    unit: &U,
+    probe: &mut P,
+    light_inverse_transpose: &Mat4,
+    (px, py): (u32, u32),
+    interp: &Interp,
+    random: bool,
+) -> Shaded {
+    let id = interp.id;
+    let normal = {
+        let mut n = Interp::at_pixel(&interp.normal, px, py);
+        let mut next = || {
+            #[allow(clippy::cast_possible_truncation, reason = "a direction, normalised next")]
+            let c = n.next().unwrap_or(0.0) as f32;
+            c
+        };
+        Vec3::new(next(), next(), next())
+    };
+    // Flat receivers take their depth from the light pass's own plane.
+    let flat_plane = cfg.normals == Normals::Flat && interp.plane.is_some();
+    let Some(point) = interp.light_point::<F>(px, py, !flat_plane) else {
+        return Shaded { triangle: id, light: None, normal, shadow: Shadow::ZERO };
+    };
+    let flat = if cfg.normals == Normals::Flat { interp.plane_at(&point) } else { None };
+    let z = flat.map_or(point.z, |(z, _)| z);
+    let lookup = Lookup {
+        x: point.x,
+        y: point.y,
+        z,
+        footprint: if matches!(cfg.shadow.filter(), crate::shadow::Filter::Jittered(_)) {
+            interp.footprint_at::<F>(&point, px, py)
+        } else {
+            interp.footprint
+        },
+        seed: if random { pixel_seed(cfg.seed, px, py) } else { 0 },
+        slope: None,
+    };
+    let raster = *map.raster();
+    let tangent = || match (cfg.normals, flat) {
+        (Normals::Flat, Some((_, slope))) => Some(slope),
+        (Normals::Flat, None) => {
+            TangentPlane::new(interp.corner, interp.face, light_inverse_transpose).slope::<F>(&raster)
+        }
+        (Normals::Smooth, _) => {
+            let mut w = Interp::at_pixel(&interp.world, px, py);
+            let (x, y, zz, ww) = (w.next()?, w.next()?, w.next()?, w.next()?);
+            #[allow(clippy::cast_possible_truncation, reason = "a world point, as the scene gives it")]
+            let p = Vec3::new((x / ww) as f32, (y / ww) as f32, (zz / ww) as f32);
+            TangentPlane::new(p, normal, light_inverse_transpose).slope::<F>(&raster)
+        }
+    };
+    let s = unit.decide(map, cfg, &lookup, tangent, probe);
+    Shaded { triangle: id, light: Some(LightPoint { z, ..point }), normal, shadow: s }
 }
 
 #[cfg(test)]

@@ -494,7 +494,8 @@ pub fn jitter_grid(j: &Jitter, footprint: [MapCoord; 2]) -> ([MapCoord; 2], [u32
         [round(s.saturating_mul_int(2)).clamp(lo, hi), round(t.saturating_mul_int(2)).clamp(lo, hi)]
     } else {
         // nt = sqrt(tres · N / sres) + ½, then ns = N / nt + ½ (both clamped).
-        let ratio = t.saturating_mul_int(n) / s.max(U16F16::DELTA);
+        // A long, thin footprint saturates the ratio: `nt` is then clamped.
+        let ratio = t.saturating_mul_int(n).saturating_div(s.max(U16F16::DELTA));
         let nt = ((u64::from(ratio.to_bits()) << 16).isqrt() + (1 << 15)) >> 16;
         let nt = u32::try_from(nt).unwrap_or(hi).clamp(lo, hi);
         let ns = ((2 * n + nt) / (2 * nt)).clamp(lo, hi);
@@ -536,15 +537,19 @@ pub fn shadow<F: DepthFormat, P: Probe>(map: &MapView<'_, F>, cfg: &ShadowConfig
     };
     let (bias_lo, bias_hi) = cfg.bias.bounds();
     // The receiver's depth range over the footprint: a plane takes its
-    // extremes at the corners.
-    let corners = [
-        (footprint.x0, footprint.y0),
-        (footprint.x1, footprint.y0),
-        (footprint.x0, footprint.y1),
-        (footprint.x1, footprint.y1),
-    ]
-    .map(|(x, y)| l.depth_at(x, y));
-    let (z_lo, z_hi) = (corners.iter().copied().min().unwrap_or(0), corners.iter().copied().max().unwrap_or(0));
+    // extremes at the corners (a receiver without a slope is one depth).
+    let (z_lo, z_hi) = if l.slope.is_some() {
+        let corners = [
+            (footprint.x0, footprint.y0),
+            (footprint.x1, footprint.y0),
+            (footprint.x0, footprint.y1),
+            (footprint.x1, footprint.y1),
+        ]
+        .map(|(x, y)| l.depth_at(x, y));
+        (corners.iter().copied().min().unwrap_or(0), corners.iter().copied().max().unwrap_or(0))
+    } else {
+        (l.z.to_bits(), l.z.to_bits())
+    };
     let (inside_map, whole) = footprint.clip(w, h);
     let Some(inside_map) = inside_map else {
         // Entirely outside the map: lit, and nothing to read.

@@ -3,7 +3,7 @@
 
 use umbra::core::camera::{CameraConfig, Normals, SceneTriangle, Shaded, shade};
 use umbra::core::glam::{Mat4, Vec3};
-use umbra::core::shadow::{Bias, DepthTest, Filter, MapView, ShadowConfig};
+use umbra::core::shadow::{Bias, DepthTest, Filter, Jitter, MapCoord, MapView, ShadowConfig, jitter_grid};
 use umbra::core::{D16, DepthFormat, RasterConfig, TileState};
 
 /// `fuzz/fuzz_targets/shadow.rs`: a light matrix with NaN in its x row (the
@@ -38,4 +38,23 @@ fn a_light_matrix_with_nan_in_a_row_shades_without_panicking() {
     let mut out = vec![Shaded::BACKGROUND; 64];
     shade(&cfg, &ids, &map, &source, &mut out, &mut umbra::core::NoProbe).expect("buffers fit");
     assert!(out.iter().all(|s| s.triangle == 0 && s.light.is_none() && s.shadow == 0), "{:?}", out[0]);
+}
+
+/// `fuzz/fuzz_targets/shadow.rs`: a footprint 0.027 texels wide and 5 322
+/// texels tall (after `ResFactor` 0.1875) made Reeves' `tres · N / sres`
+/// overflow the fixed-point divider, which panicked. Now the ratio
+/// saturates and Figure 4's clamps decide: `nt` is at most `NumSamples`
+/// (255) and `ns = N / nt + ½ = 1` is raised to `MinSamples` (215).
+#[test]
+fn a_long_thin_jitter_footprint_clamps_its_sample_counts() {
+    let j = Jitter {
+        num_samples: 255,
+        res_factor: MapCoord::from_bits(12_288),
+        min_samples: 215,
+        min_size: MapCoord::ZERO,
+    };
+    let (half, counts) = jitter_grid(&j, [MapCoord::from_bits(9_509), MapCoord::from_bits(-1_859_836_672)]);
+    assert_eq!(counts, [215, 255]);
+    // 1 859 836 672 · 3/16, exactly.
+    assert_eq!(half[1], MapCoord::from_bits(348_719_376));
 }

@@ -1,0 +1,86 @@
+//! The camera pass's shading unit, repeated, for profilers: the bundled
+//! default scene at 1920×1080 against its 1024² dual 24-bit map, second
+//! depth with virtual samples and a 3×3 box, as the `camera` bench runs it.
+//! With `all`, it shades every bundled scene with every filter, flat and
+//! smooth normals, with and without virtual samples, once each, and prints
+//! one digest of all their bits: a change to the hot path that keeps the
+//! digest keeps the results.
+//!
+//! ```sh
+//! cargo build --release --example camera_profile
+//! perf record -g target/release/examples/camera_profile 20
+//! target/release/examples/camera_profile 1 all
+//! ```
+
+use std::hash::{DefaultHasher, Hash, Hasher};
+
+use umbra::core::camera::{CameraConfig, Normals, Shaded, shade};
+use umbra::core::depth::PlaneZ;
+use umbra::core::shadow::{Bias, DepthTest, Filter, ShadowConfig};
+use umbra::core::{CullMode, D24, DepthUnit, LightPassConfig, NoProbe, RasterConfig};
+use umbra::sim::camera::{map_view, visibility};
+use umbra::sim::light::render;
+use umbra::sim::presets::FILTERS;
+use umbra::sim::scene::Scene;
+use umbra::sim::scene_file::BUNDLED;
+
+/// Shade `scene` once per configuration and fold every pixel's bits into `digest`.
+fn shade_scene(
+    scene: &Scene,
+    configs: &[(ShadowConfig, bool, Normals)],
+    passes: u32,
+    (width, height): (u32, u32),
+    digest: &mut DefaultHasher,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let raster = RasterConfig::new(1024, 1024, 32, 8)?;
+    let config = LightPassConfig { raster, unit: DepthUnit::Dual, max_z_cull: true };
+    let (maps, _) = render::<D24, _>(config, &scene.draws(scene.light().view_projection(), CullMode::None), NoProbe)?;
+    let view = map_view::<D24>(&maps, false)?;
+    let (camera, ids) = visibility(scene, width, height, &mut NoProbe)?;
+    let triangles = scene.triangles();
+    let source = |id: u32| triangles.get(id as usize).copied();
+    let mut pixels = vec![Shaded::BACKGROUND; ids.len()];
+    for &(shadow, virtual_samples, normals) in configs {
+        let light = scene.light().view_projection();
+        let cfg = CameraConfig { camera, light, width, height, shadow, virtual_samples, normals, seed: 0x5eed };
+        for _ in 0..passes {
+            shade::<D24, _, _>(&cfg, &ids, &view, &source, &mut pixels, &mut NoProbe)?;
+        }
+        for p in &pixels {
+            p.triangle.hash(digest);
+            p.light.map(|l| (l.x.to_bits(), l.y.to_bits(), l.z.to_bits())).hash(digest);
+            p.normal.to_array().map(f32::to_bits).hash(digest);
+            p.shadow.to_bits().hash(digest);
+        }
+    }
+    Ok(())
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let passes: u32 = std::env::args().nth(1).map_or(Ok(1), |s| s.parse())?;
+    let all = std::env::args().nth(2).is_some_and(|a| a == "all");
+    let mut digest = DefaultHasher::new();
+    if all {
+        let mut configs = Vec::new();
+        for (_, filter) in FILTERS {
+            for (test, bias) in [
+                (DepthTest::Second, Bias::ZERO),
+                (DepthTest::First, Bias::Range { lo: PlaneZ::ZERO, hi: PlaneZ::from_num(300) }),
+            ] {
+                for virtual_samples in [false, true] {
+                    for normals in [Normals::Flat, Normals::Smooth] {
+                        configs.push((ShadowConfig::new(test, bias, filter, true)?, virtual_samples, normals));
+                    }
+                }
+            }
+        }
+        for (name, _) in BUNDLED {
+            shade_scene(&Scene::bundled(name)?, &configs, passes, (320, 200), &mut digest)?;
+        }
+    } else {
+        let shadow = ShadowConfig::new(DepthTest::Second, Bias::ZERO, Filter::Box { size: 3 }, true)?;
+        shade_scene(&Scene::default_scene(), &[(shadow, true, Normals::Flat)], passes, (1920, 1080), &mut digest)?;
+    }
+    println!("{passes} passes, digest {:016x}", digest.finish());
+    Ok(())
+}
