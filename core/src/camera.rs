@@ -278,8 +278,9 @@ impl Interp {
         if w <= 0 {
             return None;
         }
+        let divider = Reciprocal::new(w);
         let coord = |n: i128| {
-            let q = div_shifted(n, w)?;
+            let q = divider.div_shifted(n)?;
             Some(MapCoord::from_bits(i32::try_from(q.clamp(i128::from(i32::MIN), i128::from(i32::MAX))).ok()?))
         };
         let z = if with_depth {
@@ -329,44 +330,64 @@ impl Interp {
     }
 }
 
-/// `n·2¹⁶ / w`, truncated toward zero as `i128` division is, for `w > 0`;
-/// `None` if `n·2¹⁶` overflows. When `n` and `w` fit in `i64` (every pixel
-/// of a target whose denominator is scaled to 2⁴⁴), as a divider with a
-/// reciprocal estimate does it: an f64 quotient (off by at most one unit
-/// below 2⁵⁰), then corrected until the remainder `n·2¹⁶ − q·w` has the
-/// sign of `n` and lies within `w` — the exact quotient, bit for bit.
-#[inline]
-fn div_shifted(n: i128, w: i128) -> Option<i128> {
-    if let (Ok(n64), Ok(w64)) = (i64::try_from(n), i64::try_from(w))
-        && w64 > 0
-    {
-        #[allow(clippy::cast_precision_loss, reason = "an estimate, corrected below")]
-        let estimate = n64 as f64 * 65_536.0 / w64 as f64;
-        if estimate.abs() < 1.0e15 {
-            // The cast truncates toward zero, as the division does.
-            #[allow(clippy::cast_possible_truncation, reason = "below 2^50")]
-            let mut q = i128::from(estimate as i64);
-            let num = n << 16;
-            let mut r = num - q * w;
-            if num >= 0 {
-                while r < 0 {
-                    (q, r) = (q - 1, r + w);
-                }
-                while r >= w {
-                    (q, r) = (q + 1, r - w);
-                }
-            } else {
-                while r > 0 {
-                    (q, r) = (q + 1, r - w);
-                }
-                while r <= -w {
-                    (q, r) = (q - 1, r + w);
-                }
-            }
-            return Some(q);
-        }
+/// A divider by `w > 0` with a reciprocal estimate, as hardware divides:
+/// `n·2¹⁶ / w` (truncated toward zero as `i128` division is; `None` if
+/// `n·2¹⁶` overflows) is the f64 product `n · (2¹⁶/w)` (off by at most a unit or
+/// two below 2⁵⁰), then corrected until the remainder `n·2¹⁶ − q·w` has the
+/// sign of `n` and lies within `w` — the exact truncated quotient, bit for
+/// bit. One reciprocal serves every numerator over the same `w` (the two
+/// map coordinates of a pixel). Numerators or divisors outside `i64`, and
+/// quotients beyond 2⁵⁰, take the exact `i128` division.
+#[derive(Clone, Copy, Debug)]
+struct Reciprocal {
+    w: i128,
+    /// `w` when it fits the fast path (below 2⁶¹, so remainders of a few
+    /// `w` fit in `i64`).
+    w64: Option<i64>,
+    inverse: f64,
+}
+
+impl Reciprocal {
+    #[inline]
+    fn new(w: i128) -> Self {
+        let w64 = i64::try_from(w).ok().filter(|&w| w > 0 && w < 1 << 61);
+        #[allow(clippy::cast_precision_loss, reason = "an estimate, corrected after")]
+        let inverse = w64.map_or(0.0, |w| 65_536.0 / w as f64);
+        Self { w, w64, inverse }
     }
-    Some(n.checked_mul(1 << 16)? / w)
+
+    #[inline]
+    fn div_shifted(&self, n: i128) -> Option<i128> {
+        if let (Some(w), Ok(n)) = (self.w64, i64::try_from(n)) {
+            #[allow(clippy::cast_precision_loss, reason = "an estimate, corrected below")]
+            let estimate = n as f64 * self.inverse;
+            if estimate.abs() < 1.0e15 {
+                // The cast truncates toward zero, as the division does.
+                #[allow(clippy::cast_possible_truncation, reason = "below 2^50")]
+                let mut q = estimate as i64;
+                // The true remainder is within a few `w` of zero, so the
+                // wrapping 64-bit arithmetic gives it exactly.
+                let mut r = (n << 16).wrapping_sub(q.wrapping_mul(w));
+                if n >= 0 {
+                    while r < 0 {
+                        (q, r) = (q - 1, r + w);
+                    }
+                    while r >= w {
+                        (q, r) = (q + 1, r - w);
+                    }
+                } else {
+                    while r > 0 {
+                        (q, r) = (q + 1, r - w);
+                    }
+                    while r <= -w {
+                        (q, r) = (q - 1, r + w);
+                    }
+                }
+                return Some(i128::from(q));
+            }
+        }
+        Some(n.checked_mul(1 << 16)? / self.w)
+    }
 }
 
 /// A 64-bit mix of the seed and the pixel (splitmix64's finaliser).
@@ -561,7 +582,11 @@ fn shade_pixel<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
 
 #[cfg(test)]
 mod tests {
-    use super::div_shifted;
+    use super::Reciprocal;
+
+    fn div_shifted(n: i128, w: i128) -> Option<i128> {
+        Reciprocal::new(w).div_shifted(n)
+    }
 
     /// The two-division path gives the `i128` quotient for numerators of
     /// either sign, small and large denominators, and exact multiples.
