@@ -481,7 +481,8 @@ pub fn shade_with<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, P: Probe>
     unit: &U,
     probe: &mut P,
 ) -> Result<(), ConfigError> {
-    let texels = cfg.width as usize * cfg.height as usize;
+    // Saturating: on a 32-bit target the product of two `u32` sides can overflow.
+    let texels = (cfg.width as usize).saturating_mul(cfg.height as usize);
     for (buffer, found) in [("ids", ids.len()), ("out", out.len())] {
         if found != texels {
             return Err(ConfigError::BufferLength { buffer, expected: texels, found });

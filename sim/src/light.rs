@@ -169,26 +169,28 @@ pub fn render_bands<F: DepthFormat>(
         .filter(|(y0, y1)| y1 > y0)
         .collect();
     let windows = rows.iter().map(|&(y0, y1)| r.window(0, y0, r.width(), y1 - y0)).collect::<Result<Vec<_>, _>>()?;
-    // The front end, in parallel: each job's setups, moved into the bands
-    // they reach, so that a band reads only its own.
-    let band_of = |y: u32| rows.partition_point(|&(_, y1)| y1 <= y);
-    let pieces: Vec<Vec<Vec<Setup>>> = jobs
+    // The front end, in parallel: each job's setups, in order, and for each
+    // band the indices of those that reach it (each band moves its own into
+    // its window when it draws them).
+    // The band of each tile row (bands are whole tile rows).
+    let band_of_row: Vec<usize> = (0..down).map(|ty| rows.partition_point(|&(_, y1)| y1 <= ty * t)).collect();
+    let band_of = |y: u32| band_of_row.get((y >> r.tile_shift()) as usize).copied().unwrap_or(rows.len());
+    let pieces: Vec<(Vec<Setup>, Vec<Vec<u32>>)> = jobs
         .par_iter()
         .map(|&(d, run, id)| {
+            let mut setups = Vec::with_capacity(run.len());
             let mut by_band = vec![Vec::new(); rows.len()];
             front_end::mesh::<F>(&r, d.positions, run, &d.transform, d.cull, id, &mut |o| {
                 if let Output::Setup(s) = o {
-                    for band in band_of(s.bbox.y0)..=band_of(s.bbox.y1 - 1) {
-                        let (Some(bucket), Some(w), Some(&(y0, _))) =
-                            (by_band.get_mut(band), windows.get(band), rows.get(band))
-                        else {
-                            continue;
-                        };
-                        bucket.extend(s.in_window([0, y0], w));
+                    // A job holds at most FRONT_END_RUN setups.
+                    let k = u32::try_from(setups.len()).unwrap_or(u32::MAX);
+                    for bucket in by_band.iter_mut().take(band_of(s.bbox.y1 - 1) + 1).skip(band_of(s.bbox.y0)) {
+                        bucket.push(k);
                     }
+                    setups.push(s);
                 }
             });
-            by_band
+            (setups, by_band)
         })
         .collect();
     // Each band draws into its own rows of the maps and its own tiles.
@@ -209,11 +211,16 @@ pub fn render_bands<F: DepthFormat>(
     }
     jobs.into_par_iter()
         .map(|(band, z1, z2, tiles)| {
-            let own = || pieces.iter().filter_map(move |job| job.get(band)).flatten();
+            let own = || {
+                pieces.iter().flat_map(move |(setups, by_band)| {
+                    by_band.get(band).into_iter().flatten().filter_map(|&k| setups.get(k as usize))
+                })
+            };
             let store = own().count().clamp(1, BAND_SETUPS);
-            let band = LightPassConfig { raster: windows[band], ..config };
+            let (window, y0) = (windows[band], rows[band].0);
+            let band = LightPassConfig { raster: window, ..config };
             run::<F, _, DEFAULT_BIN_CAPACITY>(band, z1, z2, tiles, store, umbra_core::NoProbe, |pass| {
-                own().for_each(|s| pass.draw_setup(s));
+                own().filter_map(|s| s.in_window([0, y0], &window)).for_each(|s| pass.draw_setup(&s));
                 Ok(())
             })
             .map(|_| ())
