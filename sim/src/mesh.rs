@@ -92,7 +92,8 @@ pub enum MeshError {
 /// count the triangles its faces make (a face of `n` corners makes `n − 2`).
 fn check_obj(path: &Path, bytes: &[u8]) -> Result<u64, MeshError> {
     let fail = |line: usize, problem: String| MeshError::Syntax { path: path.to_owned(), line, problem };
-    let mut vertices = 0usize;
+    // Vertices, texture coordinates and normals defined so far.
+    let (mut vertices, mut texcoords, mut normals) = (0usize, 0usize, 0usize);
     let mut triangles = 0u64;
     for (i, raw) in bytes.split(|&b| b == b'\n').enumerate() {
         let line = i + 1;
@@ -106,17 +107,32 @@ fn check_obj(path: &Path, bytes: &[u8]) -> Result<u64, MeshError> {
                 }
                 vertices += 1;
             }
+            Some("vt") => texcoords += 1,
+            Some("vn") => normals += 1,
             Some("f") => {
                 let corners: Vec<&str> = words.collect();
                 if corners.len() < 3 {
                     return Err(fail(line, format!("a face needs three corners: `{}`", text.trim())));
                 }
+                // An index (1-based, or negative: back from the last one)
+                // must name an element defined above it.
+                let names = |index: &str, defined: usize| {
+                    index
+                        .parse::<i64>()
+                        .is_ok_and(|v| v != 0 && usize::try_from(v.unsigned_abs()).is_ok_and(|v| v <= defined))
+                };
                 for c in &corners {
-                    let index = c.split('/').next().and_then(|v| v.parse::<i64>().ok());
-                    let ok =
-                        index.is_some_and(|v| v != 0 && usize::try_from(v.unsigned_abs()).is_ok_and(|v| v <= vertices));
-                    if !ok {
+                    let parts: Vec<&str> = c.split('/').collect();
+                    if parts.len() > 3 {
+                        return Err(fail(line, format!("face corner `{c}` is not v, v/vt, v//vn or v/vt/vn")));
+                    }
+                    if !names(parts[0], vertices) {
                         return Err(fail(line, format!("face corner `{c}` names no vertex defined above it")));
+                    }
+                    for (part, defined, what) in [(1, texcoords, "texture coordinate"), (2, normals, "normal")] {
+                        if parts.get(part).is_some_and(|i| !i.is_empty() && !names(i, defined)) {
+                            return Err(fail(line, format!("face corner `{c}` names no {what} defined above it")));
+                        }
                     }
                 }
                 triangles += u64::try_from(corners.len() - 2).unwrap_or(u64::MAX);

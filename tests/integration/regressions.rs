@@ -58,3 +58,36 @@ fn a_long_thin_jitter_footprint_clamps_its_sample_counts() {
     // 1 859 836 672 · 3/16, exactly.
     assert_eq!(half[1], MapCoord::from_bits(348_719_376));
 }
+
+/// `fuzz/fuzz_targets/obj.rs`: a face corner `1/-3/1/` (a texture
+/// coordinate three back from the last, with one defined) made the OBJ
+/// loader's index arithmetic overflow, which panicked with overflow checks
+/// on. Corners are now checked for every index they name, and for their
+/// shape, before the loader sees them: each is a syntax error on its line.
+#[test]
+fn face_corners_naming_missing_texture_coordinates_or_normals_are_syntax_errors() {
+    use umbra::sim::mesh::{Mesh, MeshError};
+    let dir = crate::common::scratch("obj-corners");
+    let header = "o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\n";
+    for (face, names) in [
+        ("f 1/-3/1/ 1/1 3/1/1", "`1/-3/1/` is not v, v/vt, v//vn or v/vt/vn"),
+        ("f 1/-3/1 2/1/1 3/1/1", "`1/-3/1` names no texture coordinate"),
+        ("f 1/2 2/1 3/1", "`1/2` names no texture coordinate"),
+        ("f 1//1 2//-2 3//1", "`2//-2` names no normal"),
+        ("f 1/1/9 2/1/1 3/1/1", "`1/1/9` names no normal"),
+    ] {
+        let path = dir.join("mesh.obj");
+        std::fs::write(&path, format!("{header}{face}\n")).expect("writes");
+        match Mesh::load_obj(&path) {
+            Err(MeshError::Syntax { line: 7, problem, .. }) => assert!(problem.contains(names), "{face}: {problem}"),
+            other => panic!("{face}: {other:?}"),
+        }
+    }
+    // The same corners, each naming what is there, load.
+    for face in ["f 1/1/1 2/1/1 3/-1/-1", "f 1//1 2//1 3//1", "f 1/1 2/1 3/1", "f -3 -2 -1"] {
+        let path = dir.join("mesh.obj");
+        std::fs::write(&path, format!("{header}{face}\n")).expect("writes");
+        let mesh = Mesh::load_obj(&path).unwrap_or_else(|e| panic!("{face}: {e}"));
+        assert_eq!(mesh.triangles.len(), 1, "{face}");
+    }
+}
