@@ -494,9 +494,6 @@ pub fn shade_with<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, P: Probe>
     if width == 0 {
         return Ok(());
     }
-    // Only the jittered filter and a bias range draw random numbers.
-    let random = matches!(cfg.shadow.filter(), crate::shadow::Filter::Jittered(_))
-        || matches!(cfg.shadow.bias(), crate::shadow::Bias::Range { .. });
     for (py, (ids, out)) in (0u32..).zip(ids.chunks_exact(width).zip(out.chunks_exact_mut(width))) {
         for (px, (&id, o)) in (0u32..).zip(ids.iter().zip(out.iter_mut())) {
             if id == NO_TRIANGLE {
@@ -515,14 +512,13 @@ pub fn shade_with<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, P: Probe>
                     }
                 },
             };
-            *o = shade_pixel(cfg, map, unit, probe, &light_inverse_transpose, (px, py), interp, random);
+            *o = shade_pixel(cfg, map, unit, probe, &light_inverse_transpose, (px, py), interp);
         }
     }
     Ok(())
 }
 
 /// One pixel of [`shade_with`].
-#[allow(clippy::too_many_arguments, reason = "the pixel's inputs, threaded through the loop")]
 #[inline]
 fn shade_pixel<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
     cfg: &CameraConfig,
@@ -532,7 +528,6 @@ fn shade_pixel<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
     light_inverse_transpose: &Mat4,
     (px, py): (u32, u32),
     interp: &Interp,
-    random: bool,
 ) -> Shaded {
     let id = interp.id;
     let normal = {
@@ -560,7 +555,7 @@ fn shade_pixel<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
         } else {
             interp.footprint
         },
-        seed: if random { pixel_seed(cfg.seed, px, py) } else { 0 },
+        seed: if cfg.shadow.draws_random() { pixel_seed(cfg.seed, px, py) } else { 0 },
         slope: None,
     };
     let raster = *map.raster();

@@ -275,6 +275,14 @@ impl ShadowConfig {
         self.bias
     }
 
+    /// Whether a lookup draws random numbers (the jittered filter's
+    /// positions, or a bias range's per-sample bias): only then does its
+    /// [`Lookup::seed`] matter.
+    #[must_use]
+    pub const fn draws_random(&self) -> bool {
+        matches!(self.filter, Filter::Jittered(_)) || matches!(self.bias, Bias::Range { .. })
+    }
+
     /// The same configuration with lookup culling on or off.
     #[must_use]
     pub const fn with_cull_lookups(self, cull_lookups: bool) -> Self {

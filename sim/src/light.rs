@@ -169,12 +169,12 @@ pub fn render_bands<F: DepthFormat>(
         .filter(|(y0, y1)| y1 > y0)
         .collect();
     let windows = rows.iter().map(|&(y0, y1)| r.window(0, y0, r.width(), y1 - y0)).collect::<Result<Vec<_>, _>>()?;
-    // The front end, in parallel: each job's setups, in order, and for each
-    // band the indices of those that reach it (each band moves its own into
-    // its window when it draws them).
     // The band of each tile row (bands are whole tile rows).
     let band_of_row: Vec<usize> = (0..down).map(|ty| rows.partition_point(|&(_, y1)| y1 <= ty * t)).collect();
     let band_of = |y: u32| band_of_row.get((y >> r.tile_shift()) as usize).copied().unwrap_or(rows.len());
+    // The front end, in parallel: each job's setups, in order, and for each
+    // band the indices of those that reach it (each band moves its own into
+    // its window when it draws them).
     let pieces: Vec<(Vec<Setup>, Vec<Vec<u32>>)> = jobs
         .par_iter()
         .map(|&(d, run, id)| {
