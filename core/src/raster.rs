@@ -13,7 +13,8 @@
 //!    at or beyond the tile's max stored depth (`z2` for dual), no fragment
 //!    can change the tile, and the triangle is skipped;
 //! 3. the rectangle is classified **empty / partial / full** by corner tests
-//!    of the edge functions ([`Setup::classify`]);
+//!    of the edge functions ([`Setup::classify`]), unless it is no bigger
+//!    than a block: then per-row coverage masks find its pixels directly;
 //! 4. a full rectangle (or one no bigger than a block) runs whole rows; a
 //!    larger partial one is split into [`BLOCK`]×[`BLOCK`] blocks, each
 //!    classified and culled the same way, and neighbouring blocks of a kind
@@ -107,7 +108,7 @@ pub(crate) fn rasterize<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: b
             probe.event(Event::Culled { tile: view.tile, level: CullLevel::Triangle, texels: rect.area() });
             return;
         }
-        let coverage = s.classify(&rect);
+        let coverage = coverage(s, &rect);
         if coverage == Coverage::Empty {
             return;
         }
@@ -118,10 +119,19 @@ pub(crate) fn rasterize<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: b
         }
         return traverse::<F, P, DUAL, IDS, false>(s, view, &rect, coverage, cull_blocks, probe);
     }
-    let coverage = s.classify(&rect);
+    let coverage = coverage(s, &rect);
     if coverage != Coverage::Empty {
         traverse::<F, P, DUAL, IDS, false>(s, view, &rect, coverage, false, probe);
     }
+}
+
+/// How the triangle meets `rect`, as far as traversal needs to know: a
+/// rectangle no bigger than a block is taken as partial unclassified, since
+/// its coverage masks find the covered pixels (none, some or all) for less
+/// than the corner tests cost.
+#[inline(always)]
+fn coverage(s: &Setup, rect: &TileRect) -> Coverage {
+    if rect.width() <= BLOCK && rect.height() <= BLOCK { Coverage::Partial } else { s.classify(rect) }
 }
 
 /// Walk the triangle's rectangle in the tile: whole rows when it is full,
@@ -142,7 +152,7 @@ fn traverse<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const C
         let run = Run { x0: rect.x0, x1: rect.x1, masked: false };
         rows::<F, P, DUAL, IDS, COUNT>(s, view, rect.y0, rect.y1, &[run], &mut out, probe);
     } else if rect.width() <= BLOCK && rect.height() <= BLOCK {
-        // A rectangle no bigger than a block (already classified).
+        // A rectangle no bigger than a block.
         small::<F, P, DUAL, IDS, COUNT>(s, view, rect, &mut out, probe);
     } else {
         let mut by = rect.y0 & !(BLOCK - 1);

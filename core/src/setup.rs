@@ -40,6 +40,7 @@
 use crate::config::{CullMode, RasterConfig};
 use crate::depth::PlaneZ;
 use crate::probe::RejectReason;
+use crate::round::i128_to_f64;
 use crate::snap::{SnappedVertex, WINDOW_COORD_BITS};
 use crate::tile::TileRect;
 
@@ -199,12 +200,8 @@ pub struct Setup {
 /// changes by more than 2²⁴ LSB across their extent — exactly in i128.
 #[inline]
 fn slopes(a_num: i128, b_num: i128, s: u32, d: i64, extent: f64) -> (i128, i128) {
-    // Numerators that fit in i64 convert in hardware; the result is the
-    // same correctly rounded f64 either way.
     #[allow(clippy::cast_precision_loss, reason = "the error bound above accounts for it")]
-    let wide = |n: i128| i64::try_from(n).map_or_else(|_| n as f64, |n| n as f64);
-    #[allow(clippy::cast_precision_loss, reason = "the error bound above accounts for it")]
-    let (na, nb, df) = (wide(a_num), wide(b_num), d as f64);
+    let (na, nb, df) = (i128_to_f64(a_num), i128_to_f64(b_num), d as f64);
     let scale = f64::from(1u32 << s);
     let (qa, qb) = (na * scale / df, nb * scale / df);
     if (qa.abs() + qb.abs()) * extent < 72_057_594_037_927_936.0 {
