@@ -259,6 +259,11 @@ pub trait Probe {
     /// Whether [`Probe::texel_read`] is called (off by default, compiled out).
     const TEXELS: bool = false;
 
+    /// Whether the probe looks at [`Probe::event`] (on by default). A driver
+    /// may size the stores and bins of a pass no one watches for its own
+    /// speed: the maps do not depend on them, only the events do.
+    const EVENTS: bool = true;
+
     /// A unit event.
     #[inline(always)]
     fn event(&mut self, event: Event) {
@@ -282,11 +287,14 @@ pub trait Probe {
 #[derive(Clone, Copy, Debug, Default)]
 pub struct NoProbe;
 
-impl Probe for NoProbe {}
+impl Probe for NoProbe {
+    const EVENTS: bool = false;
+}
 
 impl<P: Probe + ?Sized> Probe for &mut P {
     const FRAGMENTS: bool = P::FRAGMENTS;
     const TEXELS: bool = P::TEXELS;
+    const EVENTS: bool = P::EVENTS;
 
     #[inline(always)]
     fn event(&mut self, event: Event) {

@@ -578,6 +578,7 @@ pub struct Tee<A, B>(pub A, pub B);
 impl<A: Probe, B: Probe> Probe for Tee<A, B> {
     const FRAGMENTS: bool = A::FRAGMENTS || B::FRAGMENTS;
     const TEXELS: bool = A::TEXELS || B::TEXELS;
+    const EVENTS: bool = A::EVENTS || B::EVENTS;
 
     #[inline]
     fn event(&mut self, e: Event) {

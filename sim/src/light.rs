@@ -17,6 +17,15 @@ pub const DEFAULT_BIN_CAPACITY: usize = 256;
 /// before any tile is rasterized.
 pub const DEFAULT_SETUPS: usize = umbra_core::bin::MAX_SETUPS;
 
+/// Setup-store size of a pass whose probe ignores events: four setups a
+/// tile, at least 4096 (640 KB, within a core's cache, where a store of
+/// [`DEFAULT_SETUPS`] is ten MB written and read back through memory) and at
+/// most that. Each time the store fills, every tile with work is resolved,
+/// so the store grows with the tiles.
+fn unwatched_setups(raster: &umbra_core::RasterConfig) -> usize {
+    raster.tile_count().saturating_mul(4).clamp(4096, DEFAULT_SETUPS)
+}
+
 /// One draw call: a mesh, its transform to light clip space and its cull mode.
 #[derive(Clone, Copy, Debug)]
 pub struct Draw<'a> {
@@ -239,9 +248,11 @@ pub fn render<F: DepthFormat, P: Probe>(
     draws: &[Draw<'_>],
     probe: P,
 ) -> Result<(LightMaps<F::Texel>, P), LightError> {
-    // A setup store as large as the scene (at most the bins' reach).
+    // A setup store as large as the scene (at most the bins' reach); a pass
+    // whose events no one counts keeps its store in cache instead.
     let triangles: usize = draws.iter().map(|d| d.triangles.len()).sum();
-    render_with::<F, P, DEFAULT_BIN_CAPACITY>(config, draws, triangles.clamp(1, DEFAULT_SETUPS), probe)
+    let most = if P::EVENTS { DEFAULT_SETUPS } else { unwatched_setups(&config.raster) };
+    render_with::<F, P, DEFAULT_BIN_CAPACITY>(config, draws, triangles.clamp(1, most), probe)
 }
 
 /// Maps of a format chosen at run time, texels widened to their raw `u32` bits.
