@@ -183,20 +183,24 @@ fn small<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUN
     let cull_max = view.state.cull_max;
     let (x0, y0) = (i64::from(rect.x0), i64::from(rect.y0));
     let mut z_row = s.plane.at(x0, y0).to_bits().wrapping_add(ROUND_HALF);
-    let mut e_row = s.edges.map(|e| e.at(x0, y0));
+    // The edges at the row's last pixel, stepped leftwards: the mask is
+    // built by shifting in one bit a pixel, a serial chain that costs no
+    // set-up for the few pixels of a row.
+    let last = x0 + i64::from(rect.width()) - 1;
+    let mut e_row = s.edges.map(|e| e.at(last, y0));
     for y in rect.y0..rect.y1 {
         let [mut e0, mut e1, mut e2] = e_row;
         let mut mask = 0u64;
-        for k in 0..rect.width() {
-            mask |= u64::from((e0 | e1 | e2) >= 0) << k;
-            e0 += s.edges[0].dx;
-            e1 += s.edges[1].dx;
-            e2 += s.edges[2].dx;
+        for _ in 0..rect.width() {
+            mask = mask << 1 | u64::from((e0 | e1 | e2) >= 0);
+            e0 -= s.edges[0].dx;
+            e1 -= s.edges[1].dx;
+            e2 -= s.edges[2].dx;
         }
         if mask != 0 {
             let Some((z1, z2, ids)) = view.rows(y, rect.x0, rect.x1) else { return };
-            out.fragments += mask.count_ones();
             while mask != 0 {
+                out.fragments += 1;
                 let k = mask.trailing_zeros();
                 mask &= mask - 1;
                 let q = F::texel_inside(z_row.wrapping_add(dzx.wrapping_mul(i64::from(k))));
