@@ -15,13 +15,16 @@
 //! 3. the rectangle is classified **empty / partial / full** by corner tests
 //!    of the edge functions ([`Setup::classify`]), unless it is no bigger
 //!    than a block: then per-row coverage masks find its pixels directly;
-//! 4. a full rectangle (or one no bigger than a block) runs whole rows; a
-//!    larger partial one is split into [`BLOCK`]×[`BLOCK`] blocks, each
-//!    classified and culled the same way, and neighbouring blocks of a kind
-//!    are merged into runs of full rows (no edge tests) or masked rows.
+//! 4. a full rectangle runs whole rows without edge tests; a partial one no
+//!    bigger than a block (or than [`SMALL`], when no block could be culled)
+//!    runs per-row coverage masks over the pixels it covers; a larger
+//!    partial one is split into [`BLOCK`]×[`BLOCK`] blocks, each classified
+//!    and culled the same way, and neighbouring blocks of a kind are merged
+//!    into runs of full rows (no edge tests) or masked rows.
 //!
 //! Fragments come out per tile, per triangle in bin order, in row-major
-//! order within each block, blocks in row-major order.
+//! order within each row of blocks, rows of blocks top to bottom — which is
+//! row-major order over the rectangle, whichever way it was walked.
 
 use crate::depth::{DepthFormat, ROUND_HALF};
 use crate::probe::{Buffer, CullLevel, Event, Fragment, Probe};
@@ -36,6 +39,12 @@ const ID_BYTES: u32 = 4;
 pub const BLOCK: u32 = 8;
 
 const _: () = assert!(BLOCK <= *crate::config::TILE_SIZES.start(), "blocks must fit in the smallest tile");
+
+/// Sides of the largest partial rectangle drawn by row masks
+/// ([`small`]) rather than split into blocks.
+const SMALL: u32 = 16;
+
+const _: () = assert!(SMALL <= u64::BITS, "a row's coverage is one u64");
 
 /// One tile of the map, as the rasterizer sees it.
 pub(crate) struct TileView<'m, T> {
@@ -131,7 +140,13 @@ pub(crate) fn rasterize<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: b
 /// than the corner tests cost.
 #[inline(always)]
 fn coverage(s: &Setup, rect: &TileRect) -> Coverage {
-    if rect.width() <= BLOCK && rect.height() <= BLOCK { Coverage::Partial } else { s.classify(rect) }
+    if within(rect, BLOCK) { Coverage::Partial } else { s.classify(rect) }
+}
+
+/// Whether `rect` is no wider and no taller than `side`.
+#[inline(always)]
+const fn within(rect: &TileRect, side: u32) -> bool {
+    rect.width() <= side && rect.height() <= side
 }
 
 /// Walk the triangle's rectangle in the tile: whole rows when it is full,
@@ -151,8 +166,10 @@ fn traverse<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const C
         // Whole rows without edge tests.
         let run = Run { x0: rect.x0, x1: rect.x1, masked: false };
         rows::<F, P, DUAL, IDS, COUNT>(s, view, rect.y0, rect.y1, &[run], &mut out, probe);
-    } else if rect.width() <= BLOCK && rect.height() <= BLOCK {
-        // A rectangle no bigger than a block.
+    } else if within(rect, BLOCK) || (within(rect, SMALL) && !cull_blocks) {
+        // A partial rectangle no bigger than a block, or (when no block can
+        // be culled, so that the blocks would only split the work) than
+        // [`SMALL`].
         small::<F, P, DUAL, IDS, COUNT>(s, view, rect, &mut out, probe);
     } else {
         let mut by = rect.y0 & !(BLOCK - 1);
@@ -166,8 +183,8 @@ fn traverse<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const C
     finish_triangle::<F, P, DUAL, IDS, COUNT>(view, &out, probe);
 }
 
-/// A partial rectangle no bigger than a block — most of a small triangle's
-/// tiles — by coverage masks: per row, the covered pixels as bits of the
+/// A partial rectangle no bigger than [`SMALL`] — most of a small
+/// triangle's tiles — by coverage masks: per row, the covered pixels as bits of the
 /// three edge functions, then the depth unit on the set bits only. The
 /// same fragments in the same order as masked rows, without stepping the
 /// depth unit over the pixels the triangle misses.
