@@ -195,7 +195,6 @@ fn small<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUN
     out: &mut SpanOut<F::Texel>,
     probe: &mut P,
 ) {
-    const _: () = assert!(BLOCK <= u64::BITS, "a row's coverage is one u64");
     let (dzx, dzy) = (s.plane.step_x().to_bits(), s.plane.step_y().to_bits());
     let cull_max = view.state.cull_max;
     let (x0, y0) = (i64::from(rect.x0), i64::from(rect.y0));

@@ -134,3 +134,39 @@ fn banded_light_passes_equal_the_whole_pass() {
         check::<D24>(&scene, 256, 32, DepthUnit::Dual);
     }
 }
+
+/// A pass no probe watches may flush on its own schedule (a setup store
+/// that stays in cache: 4096 setups here, for 10 000 triangles), and still
+/// draws exactly the texels and tile bounds of a counted pass, whose store
+/// holds the whole scene (only the count of stores per tile differs).
+#[test]
+fn an_unwatched_pass_draws_the_maps_of_a_counted_one() {
+    use umbra::core::D24;
+    use umbra::core::glam::Vec3;
+    use umbra::sim::counters::Counters;
+    use umbra::sim::light::{Draw, render};
+    use umbra::sim::mesh::Mesh;
+    use umbra::sim::scene::Perspective;
+    let mesh = Mesh::torus(Vec3::ZERO, 1.0, 0.4, 100, 50);
+    assert_eq!(mesh.triangles.len(), 10_000);
+    let light =
+        Perspective { position: Vec3::new(0.0, 2.2, 2.6), target: Vec3::ZERO, fov_degrees: 55.0, near: 1.0, far: 8.0 };
+    let draw = Draw {
+        positions: &mesh.positions,
+        triangles: &mesh.triangles,
+        transform: light.view_projection(),
+        cull: CullMode::None,
+    };
+    for unit in [DepthUnit::Single, DepthUnit::Dual] {
+        let raster = RasterConfig::new(96, 64, 16, 8).expect("valid");
+        let config = LightPassConfig { raster, unit, max_z_cull: true };
+        let (unwatched, _) = render::<D24, _>(config, &[draw], umbra::core::NoProbe).expect("renders");
+        let (counted, counters) = render::<D24, _>(config, &[draw], Counters::new(&raster)).expect("renders");
+        assert_eq!(counters.totals.flushes_setup_full, 0, "the counted store holds the scene");
+        assert!(unwatched.z1 == counted.z1 && unwatched.z2 == counted.z2, "{unit:?}: the texels differ");
+        let bounds = |m: &umbra::sim::light::LightMaps<u32>| {
+            m.tiles.iter().map(|t| (t.z1_min, t.z1_max, t.z2_min, t.z2_max)).collect::<Vec<_>>()
+        };
+        assert!(bounds(&unwatched) == bounds(&counted), "{unit:?}: the tile bounds differ");
+    }
+}
