@@ -66,15 +66,21 @@ pub fn mesh<F: DepthFormat>(
     let mut cache = VertexCache::new();
     let mut id = first_id;
     for t in triangles {
-        let [a, b, c] = t.map(|i| cache.fetch::<F>(raster, transform, positions, i));
+        let mut fetch = |i| cache.fetch::<F>(raster, transform, positions, i);
         out(Output::Submitted);
-        if let (Some(a), Some(b), Some(c)) = (a.snapped, b.snapped, c.snapped) {
-            // Trivially inside every clip plane: no clipping.
+        // Most triangles lie inside every clip plane: their snapped vertices
+        // are all they need from the cache.
+        if let [Some(a), Some(b), Some(c)] = t.map(|i| fetch(i).snapped) {
             set_up(raster, [a, b, c], cull, id, out);
-        } else if a.finite && b.finite && c.finite {
-            clip::<F>(raster, &[a.clip, b.clip, c.clip], cull, id, out);
         } else {
-            out(Output::Rejected(RejectReason::NonFinite));
+            // Fetched again (the same values: the unit is a function of the
+            // position), whole, for the clipper.
+            let [a, b, c] = t.map(fetch);
+            if a.finite && b.finite && c.finite {
+                clip::<F>(raster, &[a.clip, b.clip, c.clip], cull, id, out);
+            } else {
+                out(Output::Rejected(RejectReason::NonFinite));
+            }
         }
         id = id.wrapping_add(1);
     }
