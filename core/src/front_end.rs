@@ -26,11 +26,12 @@ use crate::vertex::VertexCache;
 
 /// What the front end reports, in submission order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Output {
+pub enum Output<'s> {
     /// A triangle entered the front end.
     Submitted,
-    /// A piece of it is set up, ready to bin.
-    Setup(Setup),
+    /// A piece of it is set up, ready to bin (lent: the receiver copies it
+    /// where it keeps setups).
+    Setup(&'s Setup),
     /// It (or a piece of it) produces nothing, and why.
     Rejected(RejectReason),
 }
@@ -61,7 +62,7 @@ pub fn mesh<F: DepthFormat>(
     transform: &Mat4,
     cull: CullMode,
     first_id: u32,
-    out: &mut impl FnMut(Output),
+    out: &mut impl FnMut(Output<'_>),
 ) {
     let mut cache = VertexCache::new();
     let mut id = first_id;
@@ -92,7 +93,7 @@ pub fn clip<F: DepthFormat>(
     v: &[ClipVertex; 3],
     cull: CullMode,
     id: u32,
-    out: &mut impl FnMut(Output),
+    out: &mut impl FnMut(Output<'_>),
 ) {
     let mut p = Polygon::new();
     match clip_triangle(v, raster.guard(), &mut p) {
@@ -111,7 +112,7 @@ fn snap<F: DepthFormat>(
     v: &[ClipVertex; 3],
     cull: CullMode,
     id: u32,
-    out: &mut impl FnMut(Output),
+    out: &mut impl FnMut(Output<'_>),
 ) {
     match (raster.snap::<F>(&v[0]), raster.snap::<F>(&v[1]), raster.snap::<F>(&v[2])) {
         (Some(a), Some(b), Some(c)) => set_up(raster, [a, b, c], cull, id, out),
@@ -119,9 +120,9 @@ fn snap<F: DepthFormat>(
     }
 }
 
-fn set_up(raster: &RasterConfig, v: [SnappedVertex; 3], cull: CullMode, id: u32, out: &mut impl FnMut(Output)) {
+fn set_up(raster: &RasterConfig, v: [SnappedVertex; 3], cull: CullMode, id: u32, out: &mut impl FnMut(Output<'_>)) {
     match Setup::new(raster, v, cull, id) {
-        Ok(s) => out(Output::Setup(s)),
+        Ok(s) => out(Output::Setup(&s)),
         Err(reason) => out(Output::Rejected(reason)),
     }
 }

@@ -161,13 +161,13 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
 
     /// Take what the front end made of a triangle: count and report it,
     /// bin its pieces.
-    fn take(&mut self, o: Output) {
+    fn take(&mut self, o: Output<'_>) {
         match o {
             Output::Submitted => {
                 self.triangles = self.triangles.wrapping_add(1);
                 self.probe.event(Event::TriangleSubmitted);
             }
-            Output::Setup(s) => self.draw_setup(&s),
+            Output::Setup(s) => self.draw_setup(s),
             Output::Rejected(reason) => self.probe.event(Event::TriangleRejected { reason }),
         }
     }

@@ -196,7 +196,7 @@ pub fn render_bands<F: DepthFormat>(
                     for bucket in by_band.iter_mut().take(band_of(s.bbox.y1 - 1) + 1).skip(band_of(s.bbox.y0)) {
                         bucket.push(k);
                     }
-                    setups.push(s);
+                    setups.push(*s);
                 }
             });
             (setups, by_band)
