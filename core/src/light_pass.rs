@@ -178,6 +178,12 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
     pub fn draw_setup(&mut self, setup: &Setup) {
         let raster = self.cfg.raster;
         self.probe.event(Event::TriangleSetup);
+        // A setup from the front end lies inside the target; a hand-made one
+        // is clamped to it, so that binning stays bounded.
+        let Some(bbox) = setup.bbox.intersect(&raster.target_rect()) else {
+            self.probe.event(Event::TriangleBinned { tiles: 0 });
+            return;
+        };
         if self.setups_used == self.buf.setups.len() {
             self.flush_all(FlushReason::SetupFull);
         }
@@ -188,8 +194,8 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
         #[allow(clippy::cast_possible_truncation, reason = "the store holds at most 2^16 setups")]
         let entry = index as SetupIndex;
         let shift = raster.tile_shift();
-        let (tx0, tx1) = (setup.bbox.x0 >> shift, (setup.bbox.x1 - 1) >> shift);
-        let (ty0, ty1) = (setup.bbox.y0 >> shift, (setup.bbox.y1 - 1) >> shift);
+        let (tx0, tx1) = (bbox.x0 >> shift, (bbox.x1 - 1) >> shift);
+        let (ty0, ty1) = (bbox.y0 >> shift, (bbox.y1 - 1) >> shift);
         // A triangle whose bounding box lies in one tile goes to that bin
         // without a corner test.
         let single = tx0 == tx1 && ty0 == ty1;

@@ -209,9 +209,9 @@ fn small<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUN
         let mut mask = 0u64;
         for _ in 0..rect.width() {
             mask = mask << 1 | u64::from((e0 | e1 | e2) >= 0);
-            e0 -= s.edges[0].dx;
-            e1 -= s.edges[1].dx;
-            e2 -= s.edges[2].dx;
+            e0 = e0.wrapping_sub(s.edges[0].dx);
+            e1 = e1.wrapping_sub(s.edges[1].dx);
+            e2 = e2.wrapping_sub(s.edges[2].dx);
         }
         if mask != 0 {
             let Some((z1, z2, ids)) = view.rows(y, rect.x0, rect.x1) else { return };
@@ -240,7 +240,7 @@ fn small<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUN
         }
         z_row = z_row.wrapping_add(dzy);
         for (e, edge) in e_row.iter_mut().zip(&s.edges) {
-            *e += edge.dy;
+            *e = e.wrapping_add(edge.dy);
         }
     }
 }
@@ -317,7 +317,8 @@ fn rows<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUNT
         for run in runs {
             let x = i64::from(run.x0);
             let z = z_row.wrapping_add(dzx.wrapping_mul(x));
-            let edges = SpanEdges { e: [e_row[0] + de[0] * x, e_row[1] + de[1] * x, e_row[2] + de[2] * x], de };
+            let at = |k: usize| e_row[k].wrapping_add(de[k].wrapping_mul(x));
+            let edges = SpanEdges { e: [at(0), at(1), at(2)], de };
             let Some((z1, z2, ids)) = view.rows(y, run.x0, run.x1) else { return };
             let o = if run.masked {
                 span::<F, DUAL, IDS, true, COUNT>(z1, z2, ids, s.triangle, z, dzx, edges, cull_max)
@@ -331,7 +332,7 @@ fn rows<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUNT
         }
         z_row = z_row.wrapping_add(dzy);
         for (e, edge) in e_row.iter_mut().zip(&s.edges) {
-            *e += edge.dy;
+            *e = e.wrapping_add(edge.dy);
         }
     }
 }
@@ -355,7 +356,7 @@ fn report_fragments<F: DepthFormat, P: Probe>(
         }
         z = z.wrapping_add(s.plane.step_x().to_bits());
         for (v, d) in e.iter_mut().zip(edges.de) {
-            *v += d;
+            *v = v.wrapping_add(d);
         }
     }
 }

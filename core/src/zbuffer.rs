@@ -154,9 +154,9 @@ pub(crate) fn span<F: DepthFormat, const DUAL: bool, const IDS: bool, const MASK
         let q = if inside { q } else { F::FAR };
         z = z.wrapping_add(dz);
         if MASKED {
-            e0 += d0;
-            e1 += d1;
-            e2 += d2;
+            e0 = e0.wrapping_add(d0);
+            e1 = e1.wrapping_add(d1);
+            e2 = e2.wrapping_add(d2);
             fragments += u32::from(inside);
         }
         q
