@@ -184,8 +184,8 @@ fn traverse<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const C
 }
 
 /// A partial rectangle no bigger than [`SMALL`] — most of a small
-/// triangle's tiles — by coverage masks: per row, the covered pixels as bits of the
-/// three edge functions, then the depth unit on the set bits only. The
+/// triangle's tiles — by coverage masks: per row, the covered pixels as
+/// bits of the three edge functions, then the depth unit on the set bits only. The
 /// same fragments in the same order as masked rows, without stepping the
 /// depth unit over the pixels the triangle misses.
 fn small<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUNT: bool>(

@@ -63,7 +63,8 @@ mod tests {
         }
         for _ in 0..200_000 {
             let raw = (u128::from(rng.rand_u64()) << 64 | u128::from(rng.rand_u64())).cast_signed();
-            // Every magnitude, and ties: 54 random high bits then a half.
+            // Every magnitude; and the same with its low twelve bits set to
+            // exactly half of 2^12 (a tie for magnitudes in [2^64, 2^65)).
             let bits = rng.rand_range(0..128) as u32;
             check(raw >> bits);
             check((raw >> bits) & !((1i128 << 12) - 1) | (1i128 << 11));

@@ -18,10 +18,10 @@ pub const DEFAULT_BIN_CAPACITY: usize = 256;
 pub const DEFAULT_SETUPS: usize = umbra_core::bin::MAX_SETUPS;
 
 /// Setup-store size of a pass whose probe ignores events: four setups a
-/// tile, at least 4096 (640 KB, within a core's cache, where a store of
-/// [`DEFAULT_SETUPS`] is ten MB written and read back through memory) and at
-/// most that. Each time the store fills, every tile with work is resolved,
-/// so the store grows with the tiles.
+/// tile, between 4096 (640 KB, within a core's cache) and
+/// [`DEFAULT_SETUPS`] (ten MB, written and read back through memory). Each
+/// time the store fills, every tile with work is resolved, so the store
+/// grows with the tiles.
 fn unwatched_setups(raster: &umbra_core::RasterConfig) -> usize {
     raster.tile_count().saturating_mul(4).clamp(4096, DEFAULT_SETUPS)
 }

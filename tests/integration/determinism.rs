@@ -99,6 +99,12 @@ fn a_render_is_the_same_on_any_thread_count() {
     assert!(first.3[0] > 500, "most of the image is evaluated: {}", first.3[0]);
 }
 
+/// Every tile's stored bounds of `z1` and `z2` (not how often it was
+/// stored, which depends on the flush schedule).
+fn tile_bounds<T: Copy>(m: &umbra::sim::light::LightMaps<T>) -> Vec<(T, T, T, T)> {
+    m.tiles.iter().map(|t| (t.z1_min, t.z1_max, t.z2_min, t.z2_max)).collect()
+}
+
 /// The light pass on bands of tile rows in parallel gives exactly the maps
 /// of one pass over the whole target — every texel of `z1` and `z2` and
 /// every tile's bounds — for scenes under both kinds of light, 16- and
@@ -107,7 +113,7 @@ fn a_render_is_the_same_on_any_thread_count() {
 #[test]
 fn banded_light_passes_equal_the_whole_pass() {
     use umbra::core::{D16, D24, DepthFormat};
-    use umbra::sim::light::{LightMaps, render, render_bands};
+    use umbra::sim::light::{render, render_bands};
     fn check<F: DepthFormat>(scene: &Scene, side: u32, tile: u32, unit: DepthUnit) {
         let raster = RasterConfig::new(side, side - 8, tile, 8).expect("valid");
         assert!(raster.window(0, tile / 2, side, tile).is_err(), "a window starts on a tile boundary");
@@ -115,9 +121,6 @@ fn banded_light_passes_equal_the_whole_pass() {
         let config = LightPassConfig { raster, unit, max_z_cull: true };
         let draws = scene.draws(scene.light().view_projection(), CullMode::None);
         let (whole, _) = render::<F, _>(config, &draws, umbra::core::NoProbe).expect("renders");
-        let bounds = |m: &LightMaps<F::Texel>| {
-            m.tiles.iter().map(|t| (t.z1_min, t.z1_max, t.z2_min, t.z2_max)).collect::<Vec<_>>()
-        };
         for threads in [1, 2, 3, 5] {
             let banded = on(threads, || render_bands::<F>(config, &draws)).expect("renders");
             assert!(
@@ -125,7 +128,11 @@ fn banded_light_passes_equal_the_whole_pass() {
                 "{}: texels differ on {threads} threads",
                 scene.name
             );
-            assert!(bounds(&banded) == bounds(&whole), "{}: tile bounds differ on {threads} threads", scene.name);
+            assert!(
+                tile_bounds(&banded) == tile_bounds(&whole),
+                "{}: tile bounds differ on {threads} threads",
+                scene.name
+            );
         }
     }
     for name in ["table", "weiskopf-l", "crowd"] {
@@ -164,9 +171,6 @@ fn an_unwatched_pass_draws_the_maps_of_a_counted_one() {
         let (counted, counters) = render::<D24, _>(config, &[draw], Counters::new(&raster)).expect("renders");
         assert_eq!(counters.totals.flushes_setup_full, 0, "the counted store holds the scene");
         assert!(unwatched.z1 == counted.z1 && unwatched.z2 == counted.z2, "{unit:?}: the texels differ");
-        let bounds = |m: &umbra::sim::light::LightMaps<u32>| {
-            m.tiles.iter().map(|t| (t.z1_min, t.z1_max, t.z2_min, t.z2_max)).collect::<Vec<_>>()
-        };
-        assert!(bounds(&unwatched) == bounds(&counted), "{unit:?}: the tile bounds differ");
+        assert!(tile_bounds(&unwatched) == tile_bounds(&counted), "{unit:?}: the tile bounds differ");
     }
 }
