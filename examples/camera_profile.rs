@@ -3,8 +3,9 @@
 //! depth with virtual samples and a 3×3 box, as the `camera` bench runs it.
 //! With `all`, it shades every bundled scene with every filter, flat and
 //! smooth normals, with and without virtual samples, once each, and prints
-//! one digest of all their bits: a change to the hot path that keeps the
-//! digest keeps the results.
+//! one digest of all their bits and of every event and texel read the
+//! shading unit reported: a change to the hot path that keeps the digest
+//! keeps the results and the counts.
 //!
 //! ```sh
 //! cargo build --release --example camera_profile
@@ -16,20 +17,38 @@ use std::hash::{DefaultHasher, Hash, Hasher};
 
 use umbra::core::camera::{CameraConfig, Normals, Shaded, shade};
 use umbra::core::depth::PlaneZ;
+use umbra::core::probe::TexelRead;
 use umbra::core::shadow::{Bias, DepthTest, Filter, ShadowConfig};
-use umbra::core::{CullMode, D24, DepthUnit, LightPassConfig, NoProbe, RasterConfig};
+use umbra::core::{CullMode, D24, DepthUnit, Event, LightPassConfig, NoProbe, Probe, RasterConfig};
 use umbra::sim::camera::{map_view, visibility};
 use umbra::sim::light::render;
 use umbra::sim::presets::FILTERS;
 use umbra::sim::scene::Scene;
 use umbra::sim::scene_file::BUNDLED;
 
-/// Shade `scene` once per configuration and fold every pixel's bits into `digest`.
+/// A probe that folds every event and texel read, in order, into a digest.
+struct Trace<'a>(&'a mut DefaultHasher);
+
+impl Probe for Trace<'_> {
+    const TEXELS: bool = true;
+
+    fn event(&mut self, event: Event) {
+        format!("{event:?}").hash(self.0);
+    }
+
+    fn texel_read(&mut self, read: TexelRead) {
+        read.hash(self.0);
+    }
+}
+
+/// Shade `scene` once per configuration and fold every pixel's bits into
+/// `digest`; with `trace`, the events and texel reads too.
 fn shade_scene(
     scene: &Scene,
     configs: &[(ShadowConfig, bool, Normals)],
     passes: u32,
     (width, height): (u32, u32),
+    trace: bool,
     digest: &mut DefaultHasher,
 ) -> Result<(), Box<dyn std::error::Error>> {
     let raster = RasterConfig::new(1024, 1024, 32, 8)?;
@@ -44,7 +63,11 @@ fn shade_scene(
         let light = scene.light().view_projection();
         let cfg = CameraConfig { camera, light, width, height, shadow, virtual_samples, normals, seed: 0x5eed };
         for _ in 0..passes {
-            shade::<D24, _, _>(&cfg, &ids, &view, &source, &mut pixels, &mut NoProbe)?;
+            if trace {
+                shade::<D24, _, _>(&cfg, &ids, &view, &source, &mut pixels, &mut Trace(digest))?;
+            } else {
+                shade::<D24, _, _>(&cfg, &ids, &view, &source, &mut pixels, &mut NoProbe)?;
+            }
         }
         for p in &pixels {
             p.triangle.hash(digest);
@@ -75,11 +98,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             }
         }
         for (name, _) in BUNDLED {
-            shade_scene(&Scene::bundled(name)?, &configs, passes, (320, 200), &mut digest)?;
+            shade_scene(&Scene::bundled(name)?, &configs, passes, (320, 200), true, &mut digest)?;
         }
     } else {
         let shadow = ShadowConfig::new(DepthTest::Second, Bias::ZERO, Filter::Box { size: 3 }, true)?;
-        shade_scene(&Scene::default_scene(), &[(shadow, true, Normals::Flat)], passes, (1920, 1080), &mut digest)?;
+        shade_scene(
+            &Scene::default_scene(),
+            &[(shadow, true, Normals::Flat)],
+            passes,
+            (1920, 1080),
+            false,
+            &mut digest,
+        )?;
     }
     println!("{passes} passes, digest {:016x}", digest.finish());
     Ok(())

@@ -309,6 +309,7 @@ impl Interp {
     }
 
     /// The depth of the light pass's plane at a map position, and its slopes.
+    #[inline]
     fn plane_at(&self, p: &LightPoint) -> Option<(PlaneZ, Slope)> {
         let plane = self.plane?;
         let off = |c: MapCoord| i64::from(c.to_bits()) - (1 << 15);

@@ -52,7 +52,7 @@ use fixed::types::{I16F16, U16F16};
 use crate::config::RasterConfig;
 use crate::depth::{DepthFormat, PLANE_FRACTION_BITS, PlaneZ};
 use crate::probe::{Buffer, Event, Probe, TexelRead};
-use crate::tile::{TileId, TileRect};
+use crate::tile::TileRect;
 use crate::zbuffer::TileState;
 
 /// A position on the map in texels, 16 fraction bits.
@@ -372,12 +372,20 @@ impl<'a, F: DepthFormat> MapView<'a, F> {
         if x >= self.raster.width() || y >= self.raster.height() {
             return None;
         }
+        Some(self.compare(test, x, y, at_format::<F>(z.saturating_sub(bias)), probe))
+    }
+
+    /// The sample of texel `(x, y)`, inside the map, for a receiver already
+    /// biased and rounded to the map's format: whether it lies behind the
+    /// test's reference, the texels read reported to probes that ask.
+    #[inline]
+    fn compare<P: Probe>(&self, test: DepthTest, x: u32, y: u32, receiver: i64, probe: &mut P) -> bool {
         if P::TEXELS {
             for buffer in self.buffers_read(test) {
                 probe.texel_read(TexelRead { buffer, x, y });
             }
         }
-        Some(at_format::<F>(z.saturating_sub(bias)) > self.reference(test, x, y))
+        receiver > self.reference(test, x, y)
     }
 
     /// The buffers a test reads from this map (one, or both).
@@ -463,12 +471,40 @@ fn floor(c: MapCoord) -> i32 {
 }
 
 impl Texels {
+    /// The texels a filter reads around a lookup (for the jittered filter,
+    /// its sample `grid`); `None` for a jittered filter without one.
+    #[inline]
+    fn under(filter: Filter, l: &Lookup, grid: Option<([MapCoord; 2], [u32; 2])>) -> Option<Self> {
+        Some(match (filter, grid) {
+            (Filter::Point, _) => Self { x0: floor(l.x), y0: floor(l.y), x1: floor(l.x), y1: floor(l.y) },
+            (Filter::Bilinear, _) => {
+                let (x, y) = (floor(l.x.saturating_sub(HALF)), floor(l.y.saturating_sub(HALF)));
+                Self { x0: x, y0: y, x1: x + 1, y1: y + 1 }
+            }
+            (Filter::Box { size }, _) => {
+                // First texel: floor(x − (n − 1)/2), the n texel centres nearest x.
+                let n = i32::from(size);
+                let back = MapCoord::from_bits((n - 1) << 15);
+                let (x, y) = (floor(l.x.saturating_sub(back)), floor(l.y.saturating_sub(back)));
+                Self { x0: x, y0: y, x1: x + n - 1, y1: y + n - 1 }
+            }
+            (Filter::Jittered(_), Some((half, _))) => Self {
+                x0: floor(l.x.saturating_sub(half[0])),
+                y0: floor(l.y.saturating_sub(half[1])),
+                x1: floor(l.x.saturating_add(half[0])),
+                y1: floor(l.y.saturating_add(half[1])),
+            },
+            (Filter::Jittered(_), None) => return None,
+        })
+    }
+
     fn count(&self) -> u32 {
         let side = |a: i32, b: i32| (i64::from(b) - i64::from(a) + 1).unsigned_abs();
         u32::try_from(side(self.x0, self.x1) * side(self.y0, self.y1)).unwrap_or(u32::MAX)
     }
 
     /// The part inside a `w × h` map, if any, and whether all of it is inside.
+    #[inline]
     fn clip(&self, w: u32, h: u32) -> (Option<TileRect>, bool) {
         let (w, h) = (i32::try_from(w).unwrap_or(i32::MAX), i32::try_from(h).unwrap_or(i32::MAX));
         let inside = self.x0 >= 0 && self.y0 >= 0 && self.x1 < w && self.y1 < h;
@@ -514,57 +550,52 @@ pub fn jitter_grid(j: &Jitter, footprint: [MapCoord; 2]) -> ([MapCoord; 2], [u32
 
 /// Shadow a lookup: the fraction of its samples in shadow.
 pub fn shadow<F: DepthFormat, P: Probe>(map: &MapView<'_, F>, cfg: &ShadowConfig, l: &Lookup, probe: &mut P) -> Shadow {
+    lookup(map, cfg, l, l.slope, probe)
+}
+
+/// [`shadow`] with the receiver's slope given apart from the lookup (a
+/// pixel's ordinary and virtual-sample lookups share the rest). The front
+/// of the unit (footprint, clip, the tile-bounds cull) decides most lookups
+/// on its own; the filter runs for the rest.
+#[inline]
+fn lookup<F: DepthFormat, P: Probe>(
+    map: &MapView<'_, F>,
+    cfg: &ShadowConfig,
+    l: &Lookup,
+    slope: Option<Slope>,
+    probe: &mut P,
+) -> Shadow {
     if l.z < 0 {
         return Shadow::ZERO;
     }
-    let (w, h) = (map.raster.width(), map.raster.height());
     let grid = match cfg.filter {
         Filter::Jittered(j) => Some(jitter_grid(&j, l.footprint)),
         _ => None,
     };
-    let footprint = match (cfg.filter, grid) {
-        (Filter::Point, _) => Texels { x0: floor(l.x), y0: floor(l.y), x1: floor(l.x), y1: floor(l.y) },
-        (Filter::Bilinear, _) => {
-            let (x, y) = (floor(l.x.saturating_sub(HALF)), floor(l.y.saturating_sub(HALF)));
-            Texels { x0: x, y0: y, x1: x + 1, y1: y + 1 }
-        }
-        (Filter::Box { size }, _) => {
-            // First texel: floor(x − (n − 1)/2), the n texel centres nearest x.
-            let n = i32::from(size);
-            let back = MapCoord::from_bits((n - 1) << 15);
-            let (x, y) = (floor(l.x.saturating_sub(back)), floor(l.y.saturating_sub(back)));
-            Texels { x0: x, y0: y, x1: x + n - 1, y1: y + n - 1 }
-        }
-        (Filter::Jittered(_), Some((half, _))) => Texels {
-            x0: floor(l.x.saturating_sub(half[0])),
-            y0: floor(l.y.saturating_sub(half[1])),
-            x1: floor(l.x.saturating_add(half[0])),
-            y1: floor(l.y.saturating_add(half[1])),
-        },
-        (Filter::Jittered(_), None) => return Shadow::ZERO,
-    };
-    let (bias_lo, bias_hi) = cfg.bias.bounds();
-    // The receiver's depth range over the footprint: a plane takes its
-    // extremes at the corners (a receiver without a slope is one depth).
-    let (z_lo, z_hi) = if l.slope.is_some() {
-        let corners = [
-            (footprint.x0, footprint.y0),
-            (footprint.x1, footprint.y0),
-            (footprint.x0, footprint.y1),
-            (footprint.x1, footprint.y1),
-        ]
-        .map(|(x, y)| l.depth_at(x, y));
-        (corners.iter().copied().min().unwrap_or(0), corners.iter().copied().max().unwrap_or(0))
-    } else {
-        (l.z.to_bits(), l.z.to_bits())
-    };
-    let (inside_map, whole) = footprint.clip(w, h);
+    let Some(footprint) = Texels::under(cfg.filter, l, grid) else { return Shadow::ZERO };
+    let (inside_map, whole) = footprint.clip(map.raster.width(), map.raster.height());
     let Some(inside_map) = inside_map else {
         // Entirely outside the map: lit, and nothing to read.
         probe.event(Event::LookupCulled { texels: footprint.count() });
         return Shadow::ZERO;
     };
+    let l = Lookup { slope, ..*l };
     if cfg.cull_lookups {
+        let (bias_lo, bias_hi) = cfg.bias.bounds();
+        // The receiver's depth range over the footprint: a plane takes its
+        // extremes at the corners (a receiver without a slope is one depth).
+        let (z_lo, z_hi) = if slope.is_some() {
+            let corners = [
+                (footprint.x0, footprint.y0),
+                (footprint.x1, footprint.y0),
+                (footprint.x0, footprint.y1),
+                (footprint.x1, footprint.y1),
+            ]
+            .map(|(x, y)| l.depth_at(x, y));
+            (corners.iter().copied().min().unwrap_or(0), corners.iter().copied().max().unwrap_or(0))
+        } else {
+            (l.z.to_bits(), l.z.to_bits())
+        };
         let (r_lo, r_hi) = reference_bounds(map, cfg.test, &inside_map);
         if at_format::<F>(z_hi.saturating_sub(bias_lo)) <= r_lo {
             probe.event(Event::LookupCulled { texels: footprint.count() });
@@ -575,6 +606,21 @@ pub fn shadow<F: DepthFormat, P: Probe>(map: &MapView<'_, F>, cfg: &ShadowConfig
             return Shadow::ONE;
         }
     }
+    filter(map, cfg, &l, (footprint, inside_map, whole), grid, probe)
+}
+
+/// The filter: the samples of a lookup the front did not decide, over its
+/// footprint (inclusive), the part of it on the map, and whether that is
+/// all of it.
+#[inline(never)]
+fn filter<F: DepthFormat, P: Probe>(
+    map: &MapView<'_, F>,
+    cfg: &ShadowConfig,
+    l: &Lookup,
+    (footprint, inside_map, whole): (Texels, TileRect, bool),
+    grid: Option<([MapCoord; 2], [u32; 2])>,
+    probe: &mut P,
+) -> Shadow {
     let mut rng = oorandom::Rand32::new(l.seed);
     let mut reads = 0u32;
     let mut sample = |x: i32, y: i32, z: i64, rng: &mut oorandom::Rand32| -> bool {
@@ -615,14 +661,29 @@ pub fn shadow<F: DepthFormat, P: Probe>(map: &MapView<'_, F>, cfg: &ShadowConfig
             fraction(shadowed, 1 << 32)
         }
         (Filter::Box { .. }, _) => {
-            // One evaluation per row, then forward differences along it.
-            let du = l.slope.map_or(0, |s| s.du);
             let mut count = 0u64;
-            for y in footprint.y0..=footprint.y1 {
-                let mut z = l.depth_at(footprint.x0, y);
-                for x in footprint.x0..=footprint.x1 {
-                    count += u64::from(sample(x, y, z, &mut rng));
-                    z = z.saturating_add(du);
+            match (whole, l.slope, cfg.bias) {
+                // All on the map and one receiver depth: it is biased and
+                // rounded once, and each texel is a compare.
+                (true, None, Bias::Constant(b)) => {
+                    let receiver = at_format::<F>(l.z.to_bits().saturating_sub(b.to_bits()));
+                    for y in inside_map.y0..inside_map.y1 {
+                        for x in inside_map.x0..inside_map.x1 {
+                            count += u64::from(map.compare(cfg.test, x, y, receiver, probe));
+                        }
+                    }
+                    reads = footprint.count();
+                }
+                // One evaluation per row, then forward differences along it.
+                _ => {
+                    let du = l.slope.map_or(0, |s| s.du);
+                    for y in footprint.y0..=footprint.y1 {
+                        let mut z = l.depth_at(footprint.x0, y);
+                        for x in footprint.x0..=footprint.x1 {
+                            count += u64::from(sample(x, y, z, &mut rng));
+                            z = z.saturating_add(du);
+                        }
+                    }
                 }
             }
             fraction(count, u64::from(footprint.count()))
@@ -692,27 +753,45 @@ fn lerp_bits(lo: i64, hi: i64, r: u32) -> i64 {
 }
 
 /// The smallest and largest reference depth over the tiles under `r`, from
-/// their stored bounds.
+/// their stored bounds. A test that reads one buffer takes that buffer's
+/// bounds; the others combine both per tile.
+#[inline]
 fn reference_bounds<F: DepthFormat>(map: &MapView<'_, F>, test: DepthTest, r: &TileRect) -> (i64, i64) {
-    let shift = map.raster.tile_shift();
     let (mut lo, mut hi) = (i64::MAX, i64::MIN);
-    for ty in (r.y0 >> shift)..=((r.y1 - 1) >> shift) {
-        for tx in (r.x0 >> shift)..=((r.x1 - 1) >> shift) {
-            let (Ok(x), Ok(y)) = (u16::try_from(tx), u16::try_from(ty)) else { continue };
-            let Some(t) = map.tiles.get(map.raster.tile_index(TileId { x, y })) else { continue };
-            let far = F::widen(F::FAR);
+    let mut include = |a: F::Texel, b: F::Texel| (lo, hi) = (lo.min(F::widen(a)), hi.max(F::widen(b)));
+    let far = F::FAR;
+    match (test, map.second_in_z1, map.z2.is_empty()) {
+        (DepthTest::First, ..) | (DepthTest::Second, true, _) => over_tiles(map, r, |t| include(t.z1_min, t.z1_max)),
+        (DepthTest::Second, false, true) => over_tiles(map, r, |_| include(far, far)),
+        (DepthTest::Second, false, false) => over_tiles(map, r, |t| include(t.z2_min, t.z2_max)),
+        _ => over_tiles(map, r, |t| {
             let (z2_min, z2_max) = if map.second_in_z1 {
-                (F::widen(t.z1_min), F::widen(t.z1_max))
+                (t.z1_min, t.z1_max)
             } else if map.z2.is_empty() {
                 (far, far)
             } else {
-                (F::widen(t.z2_min), F::widen(t.z2_max))
+                (t.z2_min, t.z2_max)
             };
-            lo = lo.min(test.reference(F::widen(t.z1_min), z2_min));
-            hi = hi.max(test.reference(F::widen(t.z1_max), z2_max));
-        }
+            lo = lo.min(test.reference(F::widen(t.z1_min), F::widen(z2_min)));
+            hi = hi.max(test.reference(F::widen(t.z1_max), F::widen(z2_max)));
+        }),
     }
     (lo, hi)
+}
+
+/// Visit the stored state of every tile under `r`.
+#[inline]
+fn over_tiles<F: DepthFormat>(map: &MapView<'_, F>, r: &TileRect, mut visit: impl FnMut(&TileState<F::Texel>)) {
+    let shift = map.raster.tile_shift();
+    let across = map.raster.tiles().0 as usize;
+    for ty in (r.y0 >> shift)..((r.y1 - 1) >> shift) + 1 {
+        let row = ty as usize * across;
+        for tx in (r.x0 >> shift)..((r.x1 - 1) >> shift) + 1 {
+            if let Some(t) = map.tiles.get(row + tx as usize) {
+                visit(t);
+            }
+        }
+    }
 }
 
 const _: () = assert!(PLANE_FRACTION_BITS == 32, "texels widen by a 32-bit shift");
@@ -773,19 +852,18 @@ pub fn shadow_with_virtual_samples<F: DepthFormat, P: Probe>(
     // "All nearby samples": the filter's own and the 2×2 texels around the
     // point, so that a lone sample (a point filter, or a jittered filter on
     // a footprint under a texel) is not taken as agreement with itself.
-    let plain = Lookup { slope: None, ..*l };
-    let ordinary = shadow(map, cfg, &plain, probe);
+    let ordinary = lookup(map, cfg, l, None, probe);
     // Bilinear and boxes of 2 or more already read those texels.
     let covers_2x2 = matches!(cfg.filter, Filter::Bilinear) || matches!(cfg.filter, Filter::Box { size } if size >= 2);
     let around = ShadowConfig { filter: Filter::Box { size: 2 }, ..*cfg };
     let agree = |s: Shadow| s == Shadow::ZERO || s == Shadow::ONE;
-    if agree(ordinary) && (covers_2x2 || shadow(map, &around, &plain, probe) == ordinary) {
+    if agree(ordinary) && (covers_2x2 || lookup(map, &around, l, None, probe) == ordinary) {
         probe.event(Event::TrivialPixel { lit: ordinary == Shadow::ZERO });
         return ordinary;
     }
     probe.event(Event::TangentSetup);
     match setup() {
-        Some(slope) => shadow(map, cfg, &Lookup { slope: Some(slope), ..*l }, probe),
+        Some(slope) => lookup(map, cfg, l, Some(slope), probe),
         None => {
             probe.event(Event::TangentFallback);
             ordinary
