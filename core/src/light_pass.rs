@@ -172,15 +172,31 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
         }
     }
 
-    /// Bin a triangle the front end has set up for this target (or for the
-    /// whole target, moved into this window by [`Setup::in_window`]): the
-    /// way in for a front end run elsewhere, on another core say.
+    /// Bin a triangle the front end has set up for this target: the way in
+    /// for a front end run elsewhere, on another core say.
+    #[inline(never)]
     pub fn draw_setup(&mut self, setup: &Setup) {
+        self.bin_setup(setup, [0, 0]);
+    }
+
+    /// Bin a triangle set up for a larger target of which this pass's target
+    /// is the window at `by` ([`crate::RasterConfig::window`]): it is stored
+    /// moved into the window, exactly as [`Setup::in_window`] moves it. A
+    /// triangle outside the window bins to no tile.
+    #[inline]
+    pub fn draw_setup_from(&mut self, setup: &Setup, by: [u32; 2]) {
+        self.bin_setup(setup, by);
+    }
+
+    /// The binning unit, for both ways in (inlined into each: a target's
+    /// own setups move by nothing, and pay nothing for it).
+    #[inline(always)]
+    fn bin_setup(&mut self, setup: &Setup, by: [u32; 2]) {
         let raster = self.cfg.raster;
         self.probe.event(Event::TriangleSetup);
-        // A setup from the front end lies inside the target; a hand-made one
-        // is clamped to it, so that binning stays bounded.
-        let Some(bbox) = setup.bbox.intersect(&raster.target_rect()) else {
+        // A setup from the front end lies inside its target; a hand-made one
+        // is clamped to the window, so that binning stays bounded.
+        let Some(seen) = setup.bbox.intersect(&raster.target_rect().moved(by)) else {
             self.probe.event(Event::TriangleBinned { tiles: 0 });
             return;
         };
@@ -190,12 +206,16 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
         let index = self.setups_used;
         let Some(slot) = self.buf.setups.get_mut(index) else { return };
         *slot = *setup;
+        if by != [0, 0] {
+            slot.move_by(by, seen);
+        }
         self.setups_used += 1;
         #[allow(clippy::cast_possible_truncation, reason = "the store holds at most 2^16 setups")]
         let entry = index as SetupIndex;
         let shift = raster.tile_shift();
-        let (tx0, tx1) = (bbox.x0 >> shift, (bbox.x1 - 1) >> shift);
-        let (ty0, ty1) = (bbox.y0 >> shift, (bbox.y1 - 1) >> shift);
+        let [dx, dy] = by;
+        let (tx0, tx1) = ((seen.x0 - dx) >> shift, (seen.x1 - 1 - dx) >> shift);
+        let (ty0, ty1) = ((seen.y0 - dy) >> shift, (seen.y1 - 1 - dy) >> shift);
         // A triangle whose bounding box lies in one tile goes to that bin
         // without a corner test.
         let single = tx0 == tx1 && ty0 == ty1;
@@ -204,7 +224,8 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
             for tx in tx0..=tx1 {
                 #[allow(clippy::cast_possible_truncation, reason = "at most 2^11 tiles per side")]
                 let tile = TileId { x: tx as u16, y: ty as u16 };
-                if !single && !touches(setup, &raster.tile_rect(tile)) {
+                // The unmoved setup over the tile moved back: the same test.
+                if !single && !touches(setup, &raster.tile_rect(tile).moved(by)) {
                     continue;
                 }
                 binned += 1;

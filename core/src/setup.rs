@@ -325,22 +325,26 @@ impl Setup {
     /// from its own snapped vertices (the light pass's bands set up once).
     #[must_use]
     pub fn in_window(&self, by: [u32; 2], window: &RasterConfig) -> Option<Self> {
+        let seen = self.bbox.intersect(&window.target_rect().moved(by))?;
+        let mut moved = *self;
+        moved.move_by(by, seen);
+        Some(moved)
+    }
+
+    /// Re-base this setup `by` pixels (the core of [`Setup::in_window`]):
+    /// the edge functions and the plane at the window's first pixel, and
+    /// the bounding box `seen` (in the old frame, inside the window) in the
+    /// window's frame.
+    #[inline]
+    pub(crate) fn move_by(&mut self, by: [u32; 2], seen: TileRect) {
         let [dx, dy] = by;
-        let seen =
-            TileRect { x0: dx, y0: dy, x1: dx.saturating_add(window.width()), y1: dy.saturating_add(window.height()) };
-        let b = self.bbox.intersect(&seen)?;
         let (x, y) = (i64::from(dx), i64::from(dy));
-        let edge = |e: &Edge| Edge { c: e.at(x, y), ..*e };
-        let p = &self.plane;
-        Some(Self {
-            edges: self.edges.each_ref().map(edge),
-            plane: DepthPlane {
-                c: p.c.wrapping_add(p.a.wrapping_mul(dx.into())).wrapping_add(p.b.wrapping_mul(dy.into())),
-                ..*p
-            },
-            bbox: TileRect { x0: b.x0 - dx, y0: b.y0 - dy, x1: b.x1 - dx, y1: b.y1 - dy },
-            ..*self
-        })
+        for e in &mut self.edges {
+            e.c = e.at(x, y);
+        }
+        let p = &mut self.plane;
+        p.c = p.c.wrapping_add(p.a.wrapping_mul(x.into())).wrapping_add(p.b.wrapping_mul(y.into()));
+        self.bbox = TileRect { x0: seen.x0 - dx, y0: seen.y0 - dy, x1: seen.x1 - dx, y1: seen.y1 - dy };
     }
 
     /// Whether the centre of pixel `(px, py)` is covered.

@@ -39,6 +39,18 @@ impl TileRect {
         (r.x0 < r.x1 && r.y0 < r.y1).then_some(r)
     }
 
+    /// This rectangle `by` pixels further right and down (saturating).
+    #[inline]
+    #[must_use]
+    pub const fn moved(&self, by: [u32; 2]) -> Self {
+        Self {
+            x0: self.x0.saturating_add(by[0]),
+            y0: self.y0.saturating_add(by[1]),
+            x1: self.x1.saturating_add(by[0]),
+            y1: self.y1.saturating_add(by[1]),
+        }
+    }
+
     /// Width in pixels.
     #[must_use]
     pub const fn width(&self) -> u32 {

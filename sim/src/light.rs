@@ -139,8 +139,8 @@ const FRONT_END_RUN: usize = 2048;
 /// The light pass on every core of the current rayon pool, as parallel
 /// hardware would run it: the front end ([`umbra_core::front_end`]) sets up
 /// runs of triangles in parallel, in submission order, and sorts each setup
-/// into the bands of tile rows it reaches, moved into each band's window
-/// ([`Setup::in_window`]); then the bands are rasterized in parallel, each a
+/// into the bands of tile rows it reaches; each band stores its own moved
+/// into its window ([`LightPass::draw_setup_from`]); then the bands are rasterized in parallel, each a
 /// window of the target ([`umbra_core::RasterConfig::window`]) with its own
 /// bins, setup store and tiles. The maps are exactly those of [`render`], on
 /// any number of threads.
@@ -229,7 +229,7 @@ pub fn render_bands<F: DepthFormat>(
             let (window, y0) = (windows[band], rows[band].0);
             let band = LightPassConfig { raster: window, ..config };
             run::<F, _, DEFAULT_BIN_CAPACITY>(band, z1, z2, tiles, store, umbra_core::NoProbe, |pass| {
-                own().filter_map(|s| s.in_window([0, y0], &window)).for_each(|s| pass.draw_setup(&s));
+                own().for_each(|s| pass.draw_setup_from(s, [0, y0]));
                 Ok(())
             })
             .map(|_| ())

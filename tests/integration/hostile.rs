@@ -75,14 +75,16 @@ proptest! {
     }
 
     /// Hand-made setups of any value, handed straight to the pass (the way
-    /// in for a front end run elsewhere): drawing them never panics or
-    /// hangs, and no fragment lands outside the target.
+    /// in for a front end run elsewhere), for the target or moved into it
+    /// as a window of a larger one at any offset: drawing them never panics
+    /// or hangs, and no fragment lands outside the target.
     #[test]
     fn hand_made_setups_of_any_value_never_panic(
         edges in prop::array::uniform3((any::<i64>(), any::<i64>(), any::<i64>())),
         plane in prop::array::uniform3(any::<i128>()),
         bbox in prop::array::uniform4(prop_oneof![0u32..48, any::<u32>()]),
         z in (any::<i64>(), any::<i64>()),
+        by in prop::array::uniform2(prop_oneof![0u32..48, any::<u32>()]),
     ) {
         use umbra::core::depth::PlaneZ;
         use umbra::core::setup::{DepthPlane, Edge};
@@ -102,6 +104,7 @@ proptest! {
                 let mut pass = b.pass(cfg, Recorder::default());
                 for _ in 0..3 {
                     pass.draw_setup(&setup);
+                    pass.draw_setup_from(&setup, by);
                 }
                 let rec = pass.finish();
                 prop_assert!(rec.fragments.iter().all(|f| f.x < 40 && f.y < 40));
