@@ -139,6 +139,32 @@ const SETUP_CACHE: usize = 16;
 /// moves `u` by under 2⁻²⁰ texel.
 const DENOMINATOR_SCALE: f64 = 17_592_186_044_416.0;
 
+/// The light pass's depth plane of a triangle, with what the shading unit
+/// needs of it at every pixel worked out once.
+#[derive(Clone, Copy, Debug)]
+struct MapPlane {
+    plane: DepthPlane,
+    /// The steps, when both fit 64 bits (all but the most extreme planes):
+    /// then each is one 64 × 64 → 128-bit multiply.
+    narrow: Option<(i64, i64)>,
+    /// The steps saturated to the receiver's slope.
+    slope: Slope,
+}
+
+impl MapPlane {
+    fn new(plane: DepthPlane) -> Self {
+        let narrow = i64::try_from(plane.a).ok().zip(i64::try_from(plane.b).ok());
+        let slope = Slope { du: saturate(plane.a), dv: saturate(plane.b) };
+        Self { plane, narrow, slope }
+    }
+}
+
+/// `v` clamped to `i64`.
+#[inline]
+fn saturate(v: i128) -> i64 {
+    i64::try_from(v.clamp(i128::from(i64::MIN), i128::from(i64::MAX))).unwrap_or(0)
+}
+
 /// A triangle's setup for the interpolator.
 #[derive(Clone, Copy, Debug)]
 struct Interp {
@@ -151,7 +177,7 @@ struct Interp {
     /// Homogeneous world point rows over `s`, f64.
     world: [[f64; 3]; 4],
     /// The light pass's depth plane of this triangle on the map.
-    plane: Option<DepthPlane>,
+    plane: Option<MapPlane>,
     /// Face normal and first vertex (flat tangent planes without a map plane).
     face: Vec3,
     corner: Vec3,
@@ -261,7 +287,7 @@ impl Interp {
             && let [Some(a), Some(b), Some(cc)] = l.map(|v| raster.snap::<F>(&v))
             && let Ok(setup) = Setup::new(&raster, [a, b, cc], CullMode::None, id)
         {
-            out.plane = Some(setup.plane);
+            out.plane = Some(MapPlane::new(setup.plane));
         }
         out
     }
@@ -311,18 +337,14 @@ impl Interp {
     /// The depth of the light pass's plane at a map position, and its slopes.
     #[inline]
     fn plane_at(&self, p: &LightPoint) -> Option<(PlaneZ, Slope)> {
-        let plane = self.plane?;
+        let MapPlane { plane, narrow, slope } = self.plane?;
         let off = |c: MapCoord| i64::from(c.to_bits()) - (1 << 15);
         let (dx, dy) = (off(p.x), off(p.y));
-        // Slopes that fit 64 bits (all but the most extreme planes): one
-        // 64 × 64 → 128-bit multiply each, the same value.
-        let steps = match (i64::try_from(plane.a), i64::try_from(plane.b)) {
-            (Ok(a), Ok(b)) => i128::from(a) * i128::from(dx) + i128::from(b) * i128::from(dy),
-            _ => plane.a * i128::from(dx) + plane.b * i128::from(dy),
+        let steps = match narrow {
+            Some((a, b)) => i128::from(a) * i128::from(dx) + i128::from(b) * i128::from(dy),
+            None => plane.a * i128::from(dx) + plane.b * i128::from(dy),
         };
-        let z = plane.c + (steps >> 16);
-        let sat = |v: i128| i64::try_from(v.clamp(i128::from(i64::MIN), i128::from(i64::MAX))).unwrap_or(0);
-        Some((PlaneZ::from_bits(sat(z)), Slope { du: sat(plane.a), dv: sat(plane.b) }))
+        Some((PlaneZ::from_bits(saturate(plane.c + (steps >> 16))), slope))
     }
 
     fn at_pixel(rows: &[[f64; 3]], px: u32, py: u32) -> impl Iterator<Item = f64> + '_ {

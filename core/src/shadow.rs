@@ -448,8 +448,13 @@ impl Lookup {
     /// differences and get these same bits.
     #[must_use]
     pub fn depth_at(&self, x: i32, y: i32) -> i64 {
+        self.depth_on(self.slope, x, y)
+    }
+
+    /// [`Lookup::depth_at`] for the receiver with slope `slope`.
+    fn depth_on(&self, slope: Option<Slope>, x: i32, y: i32) -> i64 {
         let z = self.z.to_bits();
-        let Some(s) = self.slope else { return z };
+        let Some(s) = slope else { return z };
         let centre = |t: i32, p: MapCoord| (i64::from(t) << 16) + (1 << 15) - i64::from(p.to_bits());
         z.saturating_add(mul_shift(s.du, centre(x, self.x))).saturating_add(mul_shift(s.dv, centre(y, self.y)))
     }
@@ -579,7 +584,6 @@ fn lookup<F: DepthFormat, P: Probe>(
         probe.event(Event::LookupCulled { texels: footprint.count() });
         return Shadow::ZERO;
     };
-    let l = Lookup { slope, ..*l };
     if cfg.cull_lookups {
         let (bias_lo, bias_hi) = cfg.bias.bounds();
         // The receiver's depth range over the footprint: a plane takes its
@@ -591,7 +595,7 @@ fn lookup<F: DepthFormat, P: Probe>(
                 (footprint.x0, footprint.y1),
                 (footprint.x1, footprint.y1),
             ]
-            .map(|(x, y)| l.depth_at(x, y));
+            .map(|(x, y)| l.depth_on(slope, x, y));
             (corners.iter().copied().min().unwrap_or(0), corners.iter().copied().max().unwrap_or(0))
         } else {
             (l.z.to_bits(), l.z.to_bits())
@@ -606,7 +610,7 @@ fn lookup<F: DepthFormat, P: Probe>(
             return Shadow::ONE;
         }
     }
-    filter(map, cfg, &l, (footprint, inside_map, whole), grid, probe)
+    filter(map, cfg, &Lookup { slope, ..*l }, (footprint, inside_map, whole), grid, probe)
 }
 
 /// The filter: the samples of a lookup the front did not decide, over its
@@ -842,6 +846,7 @@ impl TangentPlane {
 /// samples — unless the plane is nearly parallel to the light ray (`setup`
 /// gives `None`), when the ordinary result stands and the fallback is
 /// reported.
+#[inline]
 pub fn shadow_with_virtual_samples<F: DepthFormat, P: Probe>(
     map: &MapView<'_, F>,
     cfg: &ShadowConfig,
