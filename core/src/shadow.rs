@@ -297,6 +297,8 @@ pub struct MapView<'a, F: DepthFormat> {
     z1: &'a [F::Texel],
     z2: &'a [F::Texel],
     tiles: &'a [TileState<F::Texel>],
+    /// Tiles in a row of the map.
+    across: usize,
     /// The second depth is the single buffer of a front-face-culled pass.
     second_in_z1: bool,
 }
@@ -329,7 +331,7 @@ impl<'a, F: DepthFormat> MapView<'a, F> {
         if tiles.len() != raster.tile_count() {
             return Err(wrong("tiles", raster.tile_count(), tiles.len()));
         }
-        Ok(Self { raster, z1, z2, tiles, second_in_z1: false })
+        Ok(Self { raster, z1, z2, tiles, across: raster.tiles().0 as usize, second_in_z1: false })
     }
 
     /// View the map of a single-depth pass with front-face culling: its one
@@ -787,9 +789,8 @@ fn reference_bounds<F: DepthFormat>(map: &MapView<'_, F>, test: DepthTest, r: &T
 #[inline]
 fn over_tiles<F: DepthFormat>(map: &MapView<'_, F>, r: &TileRect, mut visit: impl FnMut(&TileState<F::Texel>)) {
     let shift = map.raster.tile_shift();
-    let across = map.raster.tiles().0 as usize;
     for ty in (r.y0 >> shift)..((r.y1 - 1) >> shift) + 1 {
-        let row = ty as usize * across;
+        let row = ty as usize * map.across;
         for tx in (r.x0 >> shift)..((r.x1 - 1) >> shift) + 1 {
             if let Some(t) = map.tiles.get(row + tx as usize) {
                 visit(t);
