@@ -1,6 +1,8 @@
 //! The camera pass at 1920×1080 on one core, per filter: visibility with
 //! the camera's matrix, then shading against a 1024² dual 24-bit map of the
-//! bundled default scene (second depth, virtual samples). Also prints the
+//! bundled default scene (second depth, virtual samples), into a frame kept
+//! from one pass to the next as a framebuffer is; for the 3×3 box also into
+//! a new frame each time (100 MB of results to allocate). Also prints the
 //! fraction of covered pixels that needed virtual samples.
 #![allow(missing_docs, clippy::cast_precision_loss, reason = "bench harness")]
 
@@ -8,7 +10,7 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 use std::hint::black_box;
 use umbra::core::shadow::{Bias, DepthTest, ShadowConfig};
 use umbra::core::{CullMode, D24, DepthUnit, LightPassConfig, NO_TRIANGLE, NoProbe, RasterConfig};
-use umbra::sim::camera::render_camera;
+use umbra::sim::camera::{CameraFrame, render_camera, render_camera_in};
 use umbra::sim::counters::Counters;
 use umbra::sim::light::render;
 use umbra::sim::scene::Scene;
@@ -36,9 +38,19 @@ fn bench_camera(c: &mut Criterion) {
             100.0 * counters.totals.tangent_setups as f64 / covered,
             counters.totals.lookups_culled
         );
+        let mut frame = CameraFrame::default();
         g.bench_function(BenchmarkId::new(name, "virtual_samples"), |b| {
-            b.iter(|| black_box(render_camera::<D24, _>(&scene, &maps, false, shadow, true, W, H, &mut NoProbe)))
+            b.iter(|| {
+                render_camera_in::<D24, _>(&scene, &maps, false, shadow, true, (W, H), &mut NoProbe, &mut frame)
+                    .expect("renders");
+                black_box(&frame.pixels);
+            })
         });
+        if name == "box3" {
+            g.bench_function(BenchmarkId::new(name, "new_frame"), |b| {
+                b.iter(|| black_box(render_camera::<D24, _>(&scene, &maps, false, shadow, true, W, H, &mut NoProbe)))
+            });
+        }
     }
     g.finish();
 }

@@ -7,7 +7,8 @@ use umbra_core::camera::{CameraConfig, MapUnit, Normals, Shaded, ShadowUnit, sha
 use umbra_core::setup::Setup;
 use umbra_core::shadow::{MapView, Shadow, ShadowConfig};
 use umbra_core::{
-    CullMode, D24, DepthFormat, DepthUnit, LightBuffers, LightPass, LightPassConfig, Probe, RasterConfig, TileState,
+    CullMode, D24, DepthFormat, DepthUnit, LightBuffers, LightPass, LightPassConfig, NO_TRIANGLE, Probe, RasterConfig,
+    TileState,
 };
 
 use crate::light::{DEFAULT_BIN_CAPACITY, DEFAULT_SETUPS, LightError, LightMaps};
@@ -64,26 +65,57 @@ pub fn visibility_depth<P: Probe>(
     height: u32,
     probe: &mut P,
 ) -> Result<Visibility, LightError> {
+    let mut frame = CameraFrame::default();
+    let (camera, raster) = visibility_in(scene, width, height, probe, &mut frame)?;
+    Ok(Visibility { camera, raster, ids: frame.ids, depth: frame.z })
+}
+
+/// The camera pass's memory, kept from frame to frame as hardware keeps its
+/// framebuffer: the visibility unit's depth, ids, tile states, bins and
+/// setup store, and the shaded pixels. A pass into a frame it has drawn
+/// at the same size before allocates nothing (the passes clear what they
+/// use).
+#[derive(Clone, Debug, Default)]
+pub struct CameraFrame {
+    z: Vec<u32>,
+    ids: Vec<u32>,
+    tiles: Vec<TileState<u32>>,
+    bins: Vec<Bin<DEFAULT_BIN_CAPACITY>>,
+    store: Vec<Setup>,
+    /// The shaded pixels of the last pass, row-major.
+    pub pixels: Vec<Shaded>,
+}
+
+/// The visibility unit into `frame`'s depth and ids: the camera's matrix
+/// and target.
+fn visibility_in<P: Probe>(
+    scene: &Scene,
+    width: u32,
+    height: u32,
+    probe: &mut P,
+    frame: &mut CameraFrame,
+) -> Result<(Mat4, RasterConfig), LightError> {
     let raster =
         RasterConfig::new(width, height, RasterConfig::DEFAULT_TILE_SIZE, RasterConfig::DEFAULT_SUBPIXEL_BITS)?;
     let config = LightPassConfig { raster, unit: DepthUnit::Single, max_z_cull: true };
     #[allow(clippy::cast_precision_loss, reason = "an aspect ratio")]
     let camera = scene.camera.view_projection_aspect(width as f32 / height as f32);
-    let texels = raster.texel_count();
-    let (mut z, mut ids) = (vec![D24::FAR; texels], vec![0u32; texels]);
-    let mut tiles = vec![TileState::cleared(D24::FAR, 0); raster.tile_count()];
-    let mut bins = vec![Bin::<DEFAULT_BIN_CAPACITY>::new(); raster.tile_count()];
+    let (texels, tiles) = (raster.texel_count(), raster.tile_count());
     let triangles: usize = scene.objects.iter().map(|o| o.mesh.triangles.len()).sum();
-    let mut store = vec![Setup::EMPTY; triangles.clamp(1, DEFAULT_SETUPS)];
-    let buffers =
-        LightBuffers { z1: &mut z, z2: &mut [], ids: &mut ids, tiles: &mut tiles, bins: &mut bins, setups: &mut store };
+    let CameraFrame { z, ids, tiles: states, bins, store, .. } = frame;
+    z.resize(texels, D24::FAR);
+    ids.resize(texels, NO_TRIANGLE);
+    states.resize(tiles, TileState::cleared(D24::FAR, 0));
+    bins.resize(tiles, Bin::new());
+    store.resize(triangles.clamp(1, DEFAULT_SETUPS), Setup::EMPTY);
+    let buffers = LightBuffers { z1: z, z2: &mut [], ids, tiles: states, bins, setups: store };
     let mut pass = LightPass::<D24, &mut P, DEFAULT_BIN_CAPACITY>::new(config, buffers, &mut *probe)?;
     for (draw, d) in scene.draws(camera, CullMode::None).iter().enumerate() {
         pass.draw_mesh(d.positions, d.triangles, &d.transform, d.cull)
             .map_err(|source| LightError::Submit { draw, source })?;
     }
     pass.finish();
-    Ok(Visibility { camera, raster, ids, depth: z })
+    Ok((camera, raster))
 }
 
 /// Render `scene` from its camera at `width × height` and shade it against
@@ -103,8 +135,29 @@ pub fn render_camera<F: DepthFormat, P: Probe>(
     height: u32,
     probe: &mut P,
 ) -> Result<CameraImage, LightError> {
+    let mut frame = CameraFrame::default();
+    render_camera_in::<F, _>(scene, maps, front_culled, shadow, virtual_samples, (width, height), probe, &mut frame)?;
+    Ok(CameraImage { width, height, pixels: frame.pixels })
+}
+
+/// [`render_camera`] into `frame` (its pixels are the image): frames of
+/// one size drawn over and over reuse their memory.
+///
+/// # Errors
+/// [`LightError`] for an unusable size or a malformed mesh.
+#[allow(clippy::too_many_arguments, reason = "the pass's inputs, each a separate choice")]
+pub fn render_camera_in<F: DepthFormat, P: Probe>(
+    scene: &Scene,
+    maps: &LightMaps<F::Texel>,
+    front_culled: bool,
+    shadow: ShadowConfig,
+    virtual_samples: bool,
+    (width, height): (u32, u32),
+    probe: &mut P,
+    frame: &mut CameraFrame,
+) -> Result<(), LightError> {
     let view = map_view::<F>(maps, front_culled)?;
-    render_camera_with(scene, &view, shadow, virtual_samples, width, height, &MapUnit, probe)
+    shade_frame(scene, &view, shadow, virtual_samples, (width, height), &MapUnit, probe, frame)
 }
 
 /// The shadow unit's view of a light pass's maps.
@@ -136,7 +189,24 @@ pub fn render_camera_with<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
     unit: &U,
     probe: &mut P,
 ) -> Result<CameraImage, LightError> {
-    let (camera, ids) = visibility(scene, width, height, probe)?;
+    let mut frame = CameraFrame::default();
+    shade_frame(scene, view, shadow, virtual_samples, (width, height), unit, probe, &mut frame)?;
+    Ok(CameraImage { width, height, pixels: frame.pixels })
+}
+
+/// Both units of the camera pass into `frame`.
+#[allow(clippy::too_many_arguments, reason = "the pass's inputs, each a separate choice")]
+fn shade_frame<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
+    scene: &Scene,
+    view: &MapView<'_, F>,
+    shadow: ShadowConfig,
+    virtual_samples: bool,
+    (width, height): (u32, u32),
+    unit: &U,
+    probe: &mut P,
+    frame: &mut CameraFrame,
+) -> Result<(), LightError> {
+    let (camera, _) = visibility_in(scene, width, height, probe, frame)?;
     let cfg = CameraConfig {
         camera,
         light: scene.light().view_projection(),
@@ -149,9 +219,10 @@ pub fn render_camera_with<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
     };
     let triangles = scene.triangles();
     let source = |id: u32| triangles.get(id as usize).copied();
-    let mut pixels = vec![Shaded::BACKGROUND; ids.len()];
-    shade_with(&cfg, &ids, view, &source, &mut pixels, unit, probe)?;
-    Ok(CameraImage { width, height, pixels })
+    // Every pixel is written: the fill only sizes a new frame.
+    frame.pixels.resize(frame.ids.len(), Shaded::BACKGROUND);
+    shade_with(&cfg, &frame.ids, view, &source, &mut frame.pixels, unit, probe)?;
+    Ok(())
 }
 
 /// The camera image of depth-fail shadow volumes: the visibility unit,

@@ -174,3 +174,31 @@ fn an_unwatched_pass_draws_the_maps_of_a_counted_one() {
         assert!(tile_bounds(&unwatched) == tile_bounds(&counted), "{unit:?}: the tile bounds differ");
     }
 }
+
+/// A camera frame kept between passes draws what a new one does: the same
+/// pixels and the same counted events, after passes of other scenes at
+/// other sizes have left their buffers in it.
+#[test]
+fn a_reused_camera_frame_draws_what_a_new_one_does() {
+    use umbra::core::shadow::{Bias, DepthTest, ShadowConfig};
+    use umbra::core::{D24, NoProbe};
+    use umbra::sim::camera::{CameraFrame, render_camera, render_camera_in};
+    use umbra::sim::light::render;
+    let shadow = ShadowConfig::new(DepthTest::Second, Bias::ZERO, Filter::Box { size: 3 }, true).expect("valid");
+    let mut frame = CameraFrame::default();
+    for (name, (w, h)) in [("table", (96, 64)), ("double-torus", (40, 30)), ("table", (96, 64)), ("table", (33, 71))] {
+        let scene = Scene::bundled(name).expect("bundled");
+        let raster = RasterConfig::new(128, 128, 32, 8).expect("valid");
+        let config = LightPassConfig { raster, unit: DepthUnit::Dual, max_z_cull: true };
+        let draws = scene.draws(scene.light().view_projection(), CullMode::None);
+        let (maps, _) = render::<D24, _>(config, &draws, NoProbe).expect("renders");
+        let target = RasterConfig::new(w, h, 32, 8).expect("valid");
+        let (mut new, mut reused) = (Counters::new(&target), Counters::new(&target));
+        let image = render_camera::<D24, _>(&scene, &maps, false, shadow, true, w, h, &mut new).expect("renders");
+        render_camera_in::<D24, _>(&scene, &maps, false, shadow, true, (w, h), &mut reused, &mut frame)
+            .expect("renders");
+        assert_eq!(frame.pixels, image.pixels, "{name} at {w}×{h}");
+        assert_eq!(reused.totals, new.totals, "{name} at {w}×{h}");
+        assert!(image.pixels.iter().any(|p| p.light.is_some()), "{name}: something is shaded");
+    }
+}
