@@ -305,10 +305,7 @@ impl Interp {
             return None;
         }
         let divider = Reciprocal::new(w);
-        let coord = |n: i128| {
-            let q = divider.div_shifted(n)?;
-            Some(MapCoord::from_bits(i32::try_from(q.clamp(i128::from(i32::MIN), i128::from(i32::MAX))).ok()?))
-        };
+        let coord = |n: i128| divider.coord(n);
         let z = if with_depth {
             let z = eval(&f[2]).checked_mul(i128::from(F::SCALE) << PLANE_FRACTION_BITS)? / w;
             PlaneZ::from_bits(i64::try_from(z.clamp(i128::from(i64::MIN), i128::from(i64::MAX))).ok()?)
@@ -354,8 +351,8 @@ impl Interp {
 }
 
 /// A divider by `w > 0` with a reciprocal estimate, as hardware divides:
-/// `n·2¹⁶ / w` (truncated toward zero as `i128` division is; `None` if
-/// `n·2¹⁶` overflows) is the f64 product `n · (2¹⁶/w)` (off by at most a unit or
+/// `n·2¹⁶ / w` (truncated toward zero as `i128` division is, saturated to
+/// `i64`; `None` if `n·2¹⁶` overflows) is the f64 product `n · (2¹⁶/w)` (off by at most a unit or
 /// two below 2⁵⁰), then corrected until the remainder `n·2¹⁶ − q·w` has the
 /// sign of `n` and lies within `w` — the exact truncated quotient, bit for
 /// bit. One reciprocal serves every numerator over the same `w` (the two
@@ -379,8 +376,27 @@ impl Reciprocal {
         Self { w, w64, inverse }
     }
 
+    /// `n·2¹⁶ / w` saturated to `i64`.
     #[inline]
-    fn div_shifted(&self, n: i128) -> Option<i128> {
+    fn div_shifted(&self, n: i128) -> Option<i64> {
+        match self.div_shifted_narrow(n) {
+            Some(q) => Some(q),
+            None => Some(saturate(n.checked_mul(1 << 16)? / self.w)),
+        }
+    }
+
+    /// `n·2¹⁶ / w` clamped to a map coordinate; `None` if `n·2¹⁶` overflows.
+    #[inline]
+    fn coord(&self, n: i128) -> Option<MapCoord> {
+        let q = self.div_shifted(n)?;
+        #[allow(clippy::cast_possible_truncation, reason = "clamped to i32")]
+        Some(MapCoord::from_bits(q.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32))
+    }
+
+    /// The estimate-and-correct path of [`Reciprocal::div_shifted`]; `None`
+    /// where it does not apply.
+    #[inline]
+    fn div_shifted_narrow(&self, n: i128) -> Option<i64> {
         if let (Some(w), Ok(n)) = (self.w64, i64::try_from(n)) {
             #[allow(clippy::cast_precision_loss, reason = "an estimate, corrected below")]
             let estimate = n as f64 * self.inverse;
@@ -406,10 +422,10 @@ impl Reciprocal {
                         (q, r) = (q - 1, r + w);
                     }
                 }
-                return Some(i128::from(q));
+                return Some(q);
             }
         }
-        Some(n.checked_mul(1 << 16)? / self.w)
+        None
     }
 }
 
@@ -603,16 +619,17 @@ fn shade_pixel<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
 mod tests {
     use super::Reciprocal;
 
-    fn div_shifted(n: i128, w: i128) -> Option<i128> {
+    fn div_shifted(n: i128, w: i128) -> Option<i64> {
         Reciprocal::new(w).div_shifted(n)
     }
 
-    /// The two-division path gives the `i128` quotient for numerators of
-    /// either sign, small and large denominators, and exact multiples.
+    /// The two-division path gives the `i128` quotient (saturated to `i64`)
+    /// for numerators of either sign, small and large denominators, and
+    /// exact multiples.
     #[test]
     fn shifted_division_equals_the_wide_one() {
         let mut rng = oorandom::Rand64::new(0x5eed);
-        let wide = |n: i128, w: i128| (n * 65_536) / w;
+        let wide = |n: i128, w: i128| super::saturate((n * 65_536) / w);
         let check = |n: i128, w: i128| assert_eq!(div_shifted(n, w), Some(wide(n, w)), "{n} / {w}");
         for (n, w) in [
             (0, 1),
