@@ -1,6 +1,8 @@
 //! The camera pass's shading unit, repeated, for profilers: the bundled
 //! default scene at 1920×1080 against its 1024² dual 24-bit map, second
 //! depth with virtual samples and a 3×3 box, as the `camera` bench runs it.
+//! A preset filter's name (`point`, `bilinear`, `box3`, `jitter4`,
+//! `jitter16`) as the second argument shades with that filter instead.
 //! With `all`, it shades every bundled scene with every filter, flat and
 //! smooth normals, with and without virtual samples, once each, and prints
 //! one digest of all their bits and of every event and texel read the
@@ -101,7 +103,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             shade_scene(&Scene::bundled(name)?, &configs, passes, (320, 200), true, &mut digest)?;
         }
     } else {
-        let shadow = ShadowConfig::new(DepthTest::Second, Bias::ZERO, Filter::Box { size: 3 }, true)?;
+        // A preset's name picks its filter instead of the 3×3 box.
+        let named = std::env::args().nth(2).and_then(|n| FILTERS.iter().find(|(name, _)| *name == n).map(|f| f.1));
+        let filter = named.unwrap_or(Filter::Box { size: 3 });
+        let shadow = ShadowConfig::new(DepthTest::Second, Bias::ZERO, filter, true)?;
         shade_scene(
             &Scene::default_scene(),
             &[(shadow, true, Normals::Flat)],
