@@ -41,6 +41,7 @@ use crate::config::{ConfigError, CullMode};
 use crate::depth::{DepthFormat, PLANE_FRACTION_BITS, PlaneZ};
 use crate::light_pass::NO_TRIANGLE;
 use crate::probe::Probe;
+use crate::round::saturate;
 use crate::setup::{DepthPlane, Setup};
 use crate::shadow::{
     Lookup, MapCoord, MapView, Shadow, ShadowConfig, Slope, TangentPlane, shadow, shadow_with_virtual_samples,
@@ -157,12 +158,6 @@ impl MapPlane {
         let slope = Slope { du: saturate(plane.a), dv: saturate(plane.b) };
         Self { plane, narrow, slope }
     }
-}
-
-/// `v` clamped to `i64`.
-#[inline]
-fn saturate(v: i128) -> i64 {
-    i64::try_from(v.clamp(i128::from(i64::MIN), i128::from(i64::MAX))).unwrap_or(0)
 }
 
 /// A triangle's setup for the interpolator.
@@ -305,14 +300,13 @@ impl Interp {
             return None;
         }
         let divider = Reciprocal::new(w);
-        let coord = |n: i128| divider.coord(n);
         let z = if with_depth {
             let z = eval(&f[2]).checked_mul(i128::from(F::SCALE) << PLANE_FRACTION_BITS)? / w;
-            PlaneZ::from_bits(i64::try_from(z.clamp(i128::from(i64::MIN), i128::from(i64::MAX))).ok()?)
+            PlaneZ::from_bits(saturate(z))
         } else {
             PlaneZ::ZERO
         };
-        Some(LightPoint { x: coord(eval(&f[0]))?, y: coord(eval(&f[1]))?, z })
+        Some(LightPoint { x: divider.coord(eval(&f[0]))?, y: divider.coord(eval(&f[1]))?, z })
     }
 
     /// Reeves' footprint of pixel `(px, py)`: half the extent on the map of
@@ -379,10 +373,10 @@ impl Reciprocal {
     /// `n·2¹⁶ / w` saturated to `i64`.
     #[inline]
     fn div_shifted(&self, n: i128) -> Option<i64> {
-        match self.div_shifted_narrow(n) {
-            Some(q) => Some(q),
-            None => Some(saturate(n.checked_mul(1 << 16)? / self.w)),
+        if let Some(q) = self.div_shifted_narrow(n) {
+            return Some(q);
         }
+        Some(saturate(n.checked_mul(1 << 16)? / self.w))
     }
 
     /// `n·2¹⁶ / w` clamped to a map coordinate; `None` if `n·2¹⁶` overflows.
@@ -629,7 +623,7 @@ mod tests {
     #[test]
     fn shifted_division_equals_the_wide_one() {
         let mut rng = oorandom::Rand64::new(0x5eed);
-        let wide = |n: i128, w: i128| super::saturate((n * 65_536) / w);
+        let wide = |n: i128, w: i128| crate::round::saturate((n * 65_536) / w);
         let check = |n: i128, w: i128| assert_eq!(div_shifted(n, w), Some(wide(n, w)), "{n} / {w}");
         for (n, w) in [
             (0, 1),

@@ -1,4 +1,5 @@
-//! Rounding between the vertex unit's f64 values and integers.
+//! Rounding between the vertex unit's f64 values and integers, and wide
+//! integers saturated to 64 bits.
 
 const TWO_52: f64 = 4_503_599_627_370_496.0;
 
@@ -17,6 +18,21 @@ pub fn round_ties_even(v: f64) -> i64 {
     #[allow(clippy::cast_possible_truncation, reason = "an `as` cast saturates, which is the documented behaviour")]
     let i = r as i64;
     i
+}
+
+/// `v` saturated to the `i64` range.
+#[inline]
+#[must_use]
+pub const fn saturate(v: i128) -> i64 {
+    #[allow(clippy::cast_possible_truncation, reason = "clamped to the i64 range first")]
+    let s = if v < i64::MIN as i128 {
+        i64::MIN
+    } else if v > i64::MAX as i128 {
+        i64::MAX
+    } else {
+        v as i64
+    };
+    s
 }
 
 /// `n` as the nearest f64 (ties to even), the same value as `n as f64`.

@@ -167,8 +167,7 @@ impl DepthPlane {
         let y = |py: i64| self.b.saturating_mul(i128::from(py));
         let (xa, xb) = (x(x0), x(x1));
         let (ya, yb) = (y(y0), y(y1));
-        #[allow(clippy::cast_possible_truncation, reason = "clamped to the i64 range first")]
-        let sat = |v: i128| PlaneZ::from_bits(v.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64);
+        let sat = |v: i128| PlaneZ::from_bits(crate::round::saturate(v));
         let lo = self.c.saturating_add(xa.min(xb)).saturating_add(ya.min(yb));
         (sat(lo), sat(self.c.saturating_add(xa.max(xb)).saturating_add(ya.max(yb))))
     }

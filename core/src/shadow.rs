@@ -397,6 +397,19 @@ impl<'a, F: DepthFormat> MapView<'a, F> {
         [(z1, Buffer::Z1), (z2, Buffer::Z2)].into_iter().filter_map(|(read, b)| read.then_some(b))
     }
 
+    /// A tile's stored bounds of the second depth: `z2`'s, the single
+    /// buffer's in a front-face-culled map, the far value when there is none.
+    #[inline]
+    fn second_bounds(&self, t: &TileState<F::Texel>) -> (F::Texel, F::Texel) {
+        if self.second_in_z1 {
+            (t.z1_min, t.z1_max)
+        } else if self.z2.is_empty() {
+            (F::FAR, F::FAR)
+        } else {
+            (t.z2_min, t.z2_max)
+        }
+    }
+
     fn reference(&self, test: DepthTest, x: u32, y: u32) -> i64 {
         let z1 = if test.needs_z1() { self.texel(self.z1, x, y) } else { 0 };
         let second = if self.second_in_z1 { self.z1 } else { self.z2 };
@@ -437,9 +450,8 @@ pub struct Slope {
 
 /// `a · b / 2¹⁶`, floored, saturated to `i64`.
 #[inline]
-fn mul_shift(a: i64, b: i64) -> i64 {
-    let v = (i128::from(a) * i128::from(b)) >> 16;
-    i64::try_from(v).unwrap_or(if v < 0 { i64::MIN } else { i64::MAX })
+pub(crate) fn mul_shift(a: i64, b: i64) -> i64 {
+    crate::round::saturate((i128::from(a) * i128::from(b)) >> 16)
 }
 
 impl Lookup {
@@ -765,19 +777,14 @@ fn lerp_bits(lo: i64, hi: i64, r: u32) -> i64 {
 fn reference_bounds<F: DepthFormat>(map: &MapView<'_, F>, test: DepthTest, r: &TileRect) -> (i64, i64) {
     let (mut lo, mut hi) = (i64::MAX, i64::MIN);
     let mut include = |a: F::Texel, b: F::Texel| (lo, hi) = (lo.min(F::widen(a)), hi.max(F::widen(b)));
-    let far = F::FAR;
-    match (test, map.second_in_z1, map.z2.is_empty()) {
-        (DepthTest::First, ..) | (DepthTest::Second, true, _) => over_tiles(map, r, |t| include(t.z1_min, t.z1_max)),
-        (DepthTest::Second, false, true) => over_tiles(map, r, |_| include(far, far)),
-        (DepthTest::Second, false, false) => over_tiles(map, r, |t| include(t.z2_min, t.z2_max)),
+    match test {
+        DepthTest::First => over_tiles(map, r, |t| include(t.z1_min, t.z1_max)),
+        DepthTest::Second => over_tiles(map, r, |t| {
+            let (z2_min, z2_max) = map.second_bounds(t);
+            include(z2_min, z2_max);
+        }),
         _ => over_tiles(map, r, |t| {
-            let (z2_min, z2_max) = if map.second_in_z1 {
-                (t.z1_min, t.z1_max)
-            } else if map.z2.is_empty() {
-                (far, far)
-            } else {
-                (t.z2_min, t.z2_max)
-            };
+            let (z2_min, z2_max) = map.second_bounds(t);
             lo = lo.min(test.reference(F::widen(t.z1_min), F::widen(z2_min)));
             hi = hi.max(test.reference(F::widen(t.z1_max), F::widen(z2_max)));
         }),

@@ -366,7 +366,10 @@ impl<'m, S: SilStore, F: DepthFormat> SilhouettePass<'m, S, F> {
             for i in (x_lo >> 16).max(0)..=(x_hi >> 16).min(w - 1) {
                 fragments = fragments.saturating_add(1);
                 let Some((p, t)) = select_point(seg, i, j) else { continue };
-                let z = seg.za.to_bits().saturating_add(mul16(seg.zb.to_bits().saturating_sub(seg.za.to_bits()), t));
+                let z = seg
+                    .za
+                    .to_bits()
+                    .saturating_add(crate::shadow::mul_shift(seg.zb.to_bits().saturating_sub(seg.za.to_bits()), t));
                 if self.hidden(i, j, z) {
                     continue;
                 }
@@ -387,12 +390,6 @@ impl<'m, S: SilStore, F: DepthFormat> SilhouettePass<'m, S, F> {
         let test = self.cfg.test();
         corners(i, j).into_iter().all(|c| self.map.sample(test, c, z, bias, &mut NoProbe) == Some(true))
     }
-}
-
-/// `a · t / 2¹⁶` in i128, saturated.
-fn mul16(a: i64, t: i64) -> i64 {
-    let v = (i128::from(a) * i128::from(t)) >> 16;
-    i64::try_from(v).unwrap_or(if v < 0 { i64::MIN } else { i64::MAX })
 }
 
 /// The depth texels at the corners of silhouette texel `(i, j)`: top-left,

@@ -139,10 +139,11 @@ const FRONT_END_RUN: usize = 2048;
 /// The light pass on every core of the current rayon pool, as parallel
 /// hardware would run it: the front end ([`umbra_core::front_end`]) sets up
 /// runs of triangles in parallel, in submission order, and sorts each setup
-/// into the bands of tile rows it reaches; each band stores its own moved
-/// into its window ([`LightPass::draw_setup_from`]); then the bands are rasterized in parallel, each a
-/// window of the target ([`umbra_core::RasterConfig::window`]) with its own
-/// bins, setup store and tiles. The maps are exactly those of [`render`], on
+/// into the bands of tile rows it reaches; then the bands are rasterized in
+/// parallel, each a window of the target
+/// ([`umbra_core::RasterConfig::window`]) with its own bins, setup store and
+/// tiles, storing its setups moved into its window
+/// ([`LightPass::draw_setup_from`]). The maps are exactly those of [`render`], on
 /// any number of threads.
 ///
 /// # Errors
