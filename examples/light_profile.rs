@@ -9,8 +9,11 @@
 //! RAYON_NUM_THREADS=1 target/release/examples/light_profile 4 bands 2048
 //! ```
 //!
-//! Instruction counts under callgrind are the same from run to run, so they
+//! It prints a digest of the last map's bits: a change to the hot path
+//! must keep it. Instruction counts under callgrind are the same from run to run, so they
 //! compare changes to the hot path on a noisy machine where times do not.
+
+use std::hash::{DefaultHasher, Hash, Hasher};
 
 use umbra::core::glam::Vec3;
 use umbra::core::{CullMode, D24, DepthFormat, DepthUnit, LightPassConfig, NoProbe, RasterConfig};
@@ -36,8 +39,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             Some(if bands { render_bands::<D24>(cfg, &[draw])? } else { render::<D24, _>(cfg, &[draw], NoProbe)?.0 });
     }
     let took = start.elapsed();
-    let lit = maps.map_or(0, |m| m.z1.iter().filter(|&&z| z < D24::FAR).count());
+    let lit = maps.as_ref().map_or(0, |m| m.z1.iter().filter(|&&z| z < D24::FAR).count());
+    // A digest of the map's bits: a change to the hot path must keep it.
+    let mut digest = DefaultHasher::new();
+    maps.as_ref().map(|m| &m.z1).hash(&mut digest);
     let each = took.as_secs_f64() * 1e3 / f64::from(passes.max(1));
-    println!("{passes} passes, {lit} texels covered, {each:.1} ms a pass");
+    println!("{passes} passes, {lit} texels covered, map digest {:016x}, {each:.1} ms a pass", digest.finish());
     Ok(())
 }

@@ -9,6 +9,7 @@ pub mod config;
 pub mod depth;
 pub mod front_end;
 pub mod light_pass;
+pub mod mask;
 pub mod probe;
 pub mod raster;
 pub mod round;

@@ -27,6 +27,7 @@
 //! row-major order over the rectangle, whichever way it was walked.
 
 use crate::depth::{DepthFormat, ROUND_HALF};
+use crate::mask::{LANE_GROUP, Lanes, RowMask, Serial, WIDEST};
 use crate::probe::{Buffer, CullLevel, Event, Fragment, Probe};
 use crate::setup::{Coverage, Setup};
 use crate::tile::{TileId, TileRect};
@@ -42,9 +43,7 @@ const _: () = assert!(BLOCK <= *crate::config::TILE_SIZES.start(), "blocks must 
 
 /// Sides of the largest partial rectangle drawn by row masks
 /// ([`small`]) rather than split into blocks.
-const SMALL: u32 = 16;
-
-const _: () = assert!(SMALL <= u64::BITS, "a row's coverage is one u64");
+const SMALL: u32 = WIDEST;
 
 /// One tile of the map, as the rasterizer sees it.
 pub(crate) struct TileView<'m, T> {
@@ -184,10 +183,10 @@ fn traverse<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const C
 }
 
 /// A partial rectangle no bigger than [`SMALL`] — most of a small
-/// triangle's tiles — by coverage masks: per row, the covered pixels as
-/// bits of the three edge functions, then the depth unit on the set bits only. The
-/// same fragments in the same order as masked rows, without stepping the
-/// depth unit over the pixels the triangle misses.
+/// triangle's tiles — by coverage masks ([`crate::mask`]): per row, the
+/// covered pixels as bits of the three edge functions, then the depth unit
+/// on the set bits only. The same fragments in the same order as masked
+/// rows, without stepping the depth unit over the pixels the triangle misses.
 fn small<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUNT: bool>(
     s: &Setup,
     view: &mut TileView<'_, F::Texel>,
@@ -195,24 +194,31 @@ fn small<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUN
     out: &mut SpanOut<F::Texel>,
     probe: &mut P,
 ) {
+    let drawn = if rect.width() <= LANE_GROUP {
+        Lanes::<1>::new(s, rect).map(|m| masked::<F, P, DUAL, IDS, COUNT>(s, view, rect, m, out, probe))
+    } else {
+        Lanes::<2>::new(s, rect).map(|m| masked::<F, P, DUAL, IDS, COUNT>(s, view, rect, m, out, probe))
+    };
+    if drawn.is_none() {
+        masked::<F, P, DUAL, IDS, COUNT>(s, view, rect, Serial::new(s, rect), out, probe);
+    }
+}
+
+/// The depth unit on the pixels of `rect` that `masks` set, row by row.
+#[inline(always)]
+fn masked<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUNT: bool>(
+    s: &Setup,
+    view: &mut TileView<'_, F::Texel>,
+    rect: &TileRect,
+    mut masks: impl RowMask,
+    out: &mut SpanOut<F::Texel>,
+    probe: &mut P,
+) {
     let (dzx, dzy) = (s.plane.step_x().to_bits(), s.plane.step_y().to_bits());
     let cull_max = view.state.cull_max;
-    let (x0, y0) = (i64::from(rect.x0), i64::from(rect.y0));
-    let mut z_row = s.plane.at(x0, y0).to_bits().wrapping_add(ROUND_HALF);
-    // The edges at the row's last pixel, stepped leftwards: the mask is
-    // built by shifting in one bit a pixel, a serial chain that costs no
-    // set-up for the few pixels of a row.
-    let last = x0 + i64::from(rect.width()) - 1;
-    let mut e_row = s.edges.map(|e| e.at(last, y0));
+    let mut z_row = s.plane.at(i64::from(rect.x0), i64::from(rect.y0)).to_bits().wrapping_add(ROUND_HALF);
     for y in rect.y0..rect.y1 {
-        let [mut e0, mut e1, mut e2] = e_row;
-        let mut mask = 0u64;
-        for _ in 0..rect.width() {
-            mask = mask << 1 | u64::from((e0 | e1 | e2) >= 0);
-            e0 = e0.wrapping_sub(s.edges[0].dx);
-            e1 = e1.wrapping_sub(s.edges[1].dx);
-            e2 = e2.wrapping_sub(s.edges[2].dx);
-        }
+        let mut mask = masks.next_row();
         if mask != 0 {
             let Some((z1, z2, ids)) = view.rows(y, rect.x0, rect.x1) else { return };
             while mask != 0 {
@@ -239,9 +245,6 @@ fn small<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUN
             }
         }
         z_row = z_row.wrapping_add(dzy);
-        for (e, edge) in e_row.iter_mut().zip(&s.edges) {
-            *e = e.wrapping_add(edge.dy);
-        }
     }
 }
 

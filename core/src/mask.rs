@@ -1,0 +1,147 @@
+//! The coverage-mask unit: a small rectangle of one triangle, a row at a
+//! time, as a mask with one bit a pixel (bit `k` for column `x0 + k`), set
+//! where the pixel centre passes all three edge functions (`e ≥ 0`, the
+//! fill-rule bias already in `e`).
+//!
+//! An edge that does not cross the rectangle passes or fails all of its
+//! pixels alike, and one that crosses it takes small values there. So the
+//! unit first tests each edge over the whole rectangle (the corner tests of
+//! [`Edge::range_over`]): an edge that fails every pixel empties it, one that
+//! passes every pixel drops out, and one that crosses it is evaluated in
+//! lanes of 32 bits — [`LANE_GROUP`] pixels of a row at once, the width of
+//! a SIMD unit — stepped from row to row by adds. The bits are those of the
+//! 64-bit edge functions. An edge whose values over the rectangle do not fit
+//! in 32 bits (a huge triangle at a steep angle) sends the rectangle to the
+//! serial unit: 64 bits, one pixel at a time.
+
+use wide::i32x8;
+
+use crate::setup::{Edge, Setup};
+use crate::tile::TileRect;
+
+/// Pixels of a row one group of lanes evaluates at once.
+pub const LANE_GROUP: u32 = 8;
+
+/// The widest rectangle the unit takes: two groups of lanes.
+pub const WIDEST: u32 = 2 * LANE_GROUP;
+
+/// A row's coverage, a bit a pixel.
+pub(crate) trait RowMask {
+    /// The current row's mask; then step to the next row.
+    fn next_row(&mut self) -> u64;
+}
+
+/// The crossing edges in `G` groups of 32-bit lanes (an edge that passes
+/// every pixel as zeros, which pass).
+pub(crate) struct Lanes<const G: usize> {
+    /// Each edge's values at the current row's pixels.
+    values: [[i32x8; G]; 3],
+    /// Each edge's step to the next row.
+    down: [i32; 3],
+    /// The bits of the rectangle's columns (none when an edge fails every
+    /// pixel).
+    columns: u64,
+}
+
+impl<const G: usize> Lanes<G> {
+    /// The lanes of `rect` (at most `G` groups wide) for the triangle `s`;
+    /// `None` when some crossing edge does not fit in them.
+    #[inline(always)]
+    pub(crate) fn new(s: &Setup, rect: &TileRect) -> Option<Self> {
+        let (x0, y0) = (i64::from(rect.x0), i64::from(rect.y0));
+        let columns = u64::MAX >> (u64::BITS - rect.width().clamp(1, WIDEST));
+        let mut lanes = Self { values: [[i32x8::ZERO; G]; 3], down: [0; 3], columns };
+        for ((e, values), down) in s.edges.iter().zip(&mut lanes.values).zip(&mut lanes.down) {
+            let (lo, hi) = e.range_over(rect);
+            if hi < 0 {
+                lanes.columns = 0;
+                return Some(lanes);
+            }
+            if lo >= 0 {
+                continue;
+            }
+            // Crossing: every value over the rectangle lies in [lo, hi], so
+            // all of them fit once lo and hi do; the lanes past its width
+            // may wrap, and are masked off.
+            let (Ok(_), Ok(_), Ok(first), Ok(dx), Ok(dy)) = (
+                i32::try_from(lo),
+                i32::try_from(hi),
+                i32::try_from(e.at(x0, y0)),
+                i32::try_from(e.dx),
+                i32::try_from(e.dy),
+            ) else {
+                return None;
+            };
+            let mut column = 0i32;
+            for group in values.iter_mut() {
+                let lanes: [i32; LANE_GROUP as usize] = core::array::from_fn(|k| {
+                    #[allow(clippy::cast_possible_wrap, clippy::cast_possible_truncation, reason = "k < 8")]
+                    let k = column + k as i32;
+                    first.wrapping_add(dx.wrapping_mul(k))
+                });
+                *group = i32x8::new(lanes);
+                column += LANE_GROUP.cast_signed();
+            }
+            *down = dy;
+        }
+        Some(lanes)
+    }
+}
+
+impl<const G: usize> RowMask for Lanes<G> {
+    #[inline(always)]
+    fn next_row(&mut self) -> u64 {
+        let mut outside = 0u64;
+        for (g, shift) in (0..G).zip((0..).step_by(LANE_GROUP as usize)) {
+            let [a, b, c] = [self.values[0][g], self.values[1][g], self.values[2][g]];
+            // The sign bits: some edge below zero.
+            outside |= u64::from((a | b | c).to_bitmask()) << shift;
+        }
+        for (values, &down) in self.values.iter_mut().zip(&self.down) {
+            let down = i32x8::splat(down);
+            for group in values {
+                *group += down;
+            }
+        }
+        !outside & self.columns
+    }
+}
+
+/// Every edge in 64 bits, pixel by pixel.
+pub(crate) struct Serial {
+    /// Each edge's value at the current row's last pixel.
+    last: [i64; 3],
+    /// The edges' steps.
+    edges: [Edge; 3],
+    /// The rectangle's width.
+    width: u32,
+}
+
+impl Serial {
+    /// The serial unit on `rect` for the triangle `s`.
+    pub(crate) fn new(s: &Setup, rect: &TileRect) -> Self {
+        let last = i64::from(rect.x0) + i64::from(rect.width()) - 1;
+        let last = s.edges.map(|e| e.at(last, i64::from(rect.y0)));
+        Self { last, edges: s.edges, width: rect.width() }
+    }
+}
+
+impl RowMask for Serial {
+    #[inline(always)]
+    fn next_row(&mut self) -> u64 {
+        // Stepped leftwards from the last pixel: each bit is shifted in
+        // from the right.
+        let [mut e0, mut e1, mut e2] = self.last;
+        let mut mask = 0u64;
+        for _ in 0..self.width {
+            mask = mask << 1 | u64::from((e0 | e1 | e2) >= 0);
+            e0 = e0.wrapping_sub(self.edges[0].dx);
+            e1 = e1.wrapping_sub(self.edges[1].dx);
+            e2 = e2.wrapping_sub(self.edges[2].dx);
+        }
+        for (e, edge) in self.last.iter_mut().zip(&self.edges) {
+            *e = e.wrapping_add(edge.dy);
+        }
+        mask
+    }
+}
