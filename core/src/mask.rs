@@ -5,14 +5,14 @@
 //!
 //! An edge that does not cross the rectangle passes or fails all of its
 //! pixels alike, and one that crosses it takes small values there. So the
-//! unit first tests each edge over the whole rectangle (the corner tests of
-//! [`Edge::range_over`]): an edge that fails every pixel empties it, one that
-//! passes every pixel drops out, and one that crosses it is evaluated in
-//! lanes of 32 bits — [`LANE_GROUP`] pixels of a row at once, the width of
-//! a SIMD unit — stepped from row to row by adds. The bits are those of the
-//! 64-bit edge functions. An edge whose values over the rectangle do not fit
-//! in 32 bits (a huge triangle at a steep angle) sends the rectangle to the
-//! serial unit: 64 bits, one pixel at a time.
+//! unit first tests each edge at the rectangle's corners: an edge that fails
+//! every pixel empties it, one that passes every pixel drops out, and one
+//! that crosses it is evaluated in lanes of 32 bits — [`LANE_GROUP`] pixels
+//! of a row at once, the width of a SIMD unit — stepped from row to row by
+//! adds. The bits are those of the 64-bit edge functions. An edge whose
+//! values over the rectangle do not fit in 32 bits (a huge triangle at a
+//! steep angle) sends the rectangle to the serial unit: 64 bits, one pixel
+//! at a time.
 
 use wide::i32x8;
 
@@ -24,6 +24,12 @@ pub const LANE_GROUP: u32 = 8;
 
 /// The widest rectangle the unit takes: two groups of lanes.
 pub const WIDEST: u32 = 2 * LANE_GROUP;
+
+/// Lanes whose index has bit 0, bit 1, bit 2 set (all ones there).
+const ODD: i32x8 = i32x8::new([0, -1, 0, -1, 0, -1, 0, -1]);
+const PAIRS: i32x8 = i32x8::new([0, 0, -1, -1, 0, 0, -1, -1]);
+const QUADS: i32x8 = i32x8::new([0, 0, 0, 0, -1, -1, -1, -1]);
+const _: () = assert!(LANE_GROUP == 8, "the lane masks are for groups of eight");
 
 /// A row's coverage, a bit a pixel.
 pub(crate) trait RowMask {
@@ -49,38 +55,41 @@ impl<const G: usize> Lanes<G> {
     #[inline(always)]
     pub(crate) fn new(s: &Setup, rect: &TileRect) -> Option<Self> {
         let (x0, y0) = (i64::from(rect.x0), i64::from(rect.y0));
+        let (w, h) = (i64::from(rect.width()), i64::from(rect.height()));
         let columns = u64::MAX >> (u64::BITS - rect.width().clamp(1, WIDEST));
         let mut lanes = Self { values: [[i32x8::ZERO; G]; 3], down: [0; 3], columns };
         for ((e, values), down) in s.edges.iter().zip(&mut lanes.values).zip(&mut lanes.down) {
-            let (lo, hi) = e.range_over(rect);
+            // The corner tests: the value at the first pixel, and the
+            // extremes over the rectangle from there.
+            let first = e.at(x0, y0);
+            let (across, along) = (e.dx.wrapping_mul(w - 1), e.dy.wrapping_mul(h - 1));
+            let hi = first.wrapping_add(across.max(0)).wrapping_add(along.max(0));
             if hi < 0 {
                 lanes.columns = 0;
                 return Some(lanes);
             }
+            let lo = first.wrapping_add(across.min(0)).wrapping_add(along.min(0));
             if lo >= 0 {
                 continue;
             }
-            // Crossing: every value over the rectangle lies in [lo, hi], so
-            // all of them fit once lo and hi do; the lanes past its width
-            // may wrap, and are masked off.
-            let (Ok(_), Ok(_), Ok(first), Ok(dx), Ok(dy)) = (
-                i32::try_from(lo),
-                i32::try_from(hi),
-                i32::try_from(e.at(x0, y0)),
-                i32::try_from(e.dx),
-                i32::try_from(e.dy),
-            ) else {
+            // Crossing. Every value over the rectangle lies in [lo, hi]; once
+            // both fit in 32 bits, so does each value, and 32-bit wrapping
+            // arithmetic on the truncated steps gives it exactly. The lanes
+            // past the rectangle's width may wrap: they are masked off.
+            let (Ok(_), Ok(_)) = (i32::try_from(lo), i32::try_from(hi)) else {
                 return None;
             };
-            let mut column = 0i32;
-            for group in values.iter_mut() {
-                let lanes: [i32; LANE_GROUP as usize] = core::array::from_fn(|k| {
-                    #[allow(clippy::cast_possible_wrap, clippy::cast_possible_truncation, reason = "k < 8")]
-                    let k = column + k as i32;
-                    first.wrapping_add(dx.wrapping_mul(k))
-                });
-                *group = i32x8::new(lanes);
-                column += LANE_GROUP.cast_signed();
+            #[allow(clippy::cast_possible_truncation, reason = "exact modulo 2^32, see above")]
+            let [first, dx, dy] = [first, e.dx, e.dy].map(|v| v as i32);
+            // `first + k·dx` in lane k, from the bits of k: adds and masks.
+            let mut group = i32x8::splat(first)
+                + (ODD & i32x8::splat(dx))
+                + (PAIRS & i32x8::splat(dx.wrapping_mul(2)))
+                + (QUADS & i32x8::splat(dx.wrapping_mul(4)));
+            let across = i32x8::splat(dx.wrapping_mul(LANE_GROUP.cast_signed()));
+            for lanes in values.iter_mut() {
+                *lanes = group;
+                group += across;
             }
             *down = dy;
         }

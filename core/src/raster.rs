@@ -57,15 +57,20 @@ pub(crate) struct TileView<'m, T> {
 }
 
 impl<T: Copy> TileView<'_, T> {
-    /// The slices of row `y`, columns `x0..x1`, of every buffer (`z2` and
-    /// `ids` empty when the unit has none).
+    /// The slices of row `y`, columns `x0..x1`, of the buffers the unit
+    /// keeps (`z2` with `DUAL`, `ids` with `IDS`; empty otherwise).
     #[inline(always)]
-    fn rows(&mut self, y: u32, x0: u32, x1: u32) -> Option<(&mut [T], &mut [T], &mut [u32])> {
+    fn rows<const DUAL: bool, const IDS: bool>(
+        &mut self,
+        y: u32,
+        x0: u32,
+        x1: u32,
+    ) -> Option<(&mut [T], &mut [T], &mut [u32])> {
         let base = y as usize * self.width;
         let range = base + x0 as usize..base + x1 as usize;
         let z1 = self.z1.get_mut(range.clone())?;
-        let z2 = if self.z2.is_empty() { &mut [][..] } else { self.z2.get_mut(range.clone())? };
-        let ids = if self.ids.is_empty() { &mut [][..] } else { self.ids.get_mut(range)? };
+        let z2 = if DUAL { self.z2.get_mut(range.clone())? } else { &mut [][..] };
+        let ids = if IDS { self.ids.get_mut(range)? } else { &mut [][..] };
         Some((z1, z2, ids))
     }
 }
@@ -220,7 +225,7 @@ fn masked<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COU
     for y in rect.y0..rect.y1 {
         let mut mask = masks.next_row();
         if mask != 0 {
-            let Some((z1, z2, ids)) = view.rows(y, rect.x0, rect.x1) else { return };
+            let Some((z1, z2, ids)) = view.rows::<DUAL, IDS>(y, rect.x0, rect.x1) else { return };
             while mask != 0 {
                 out.fragments += 1;
                 let k = mask.trailing_zeros();
@@ -322,7 +327,7 @@ fn rows<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUNT
             let z = z_row.wrapping_add(dzx.wrapping_mul(x));
             let at = |k: usize| e_row[k].wrapping_add(de[k].wrapping_mul(x));
             let edges = SpanEdges { e: [at(0), at(1), at(2)], de };
-            let Some((z1, z2, ids)) = view.rows(y, run.x0, run.x1) else { return };
+            let Some((z1, z2, ids)) = view.rows::<DUAL, IDS>(y, run.x0, run.x1) else { return };
             let o = if run.masked {
                 span::<F, DUAL, IDS, true, COUNT>(z1, z2, ids, s.triangle, z, dzx, edges, cull_max)
             } else {
