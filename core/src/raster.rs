@@ -216,16 +216,18 @@ fn masked<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COU
     view: &mut TileView<'_, F::Texel>,
     rect: &TileRect,
     mut masks: impl RowMask,
-    out: &mut SpanOut<F::Texel>,
+    total: &mut SpanOut<F::Texel>,
     probe: &mut P,
 ) {
+    // Counted here and added once, so that the counts stay in registers.
+    let mut out = SpanOut::new(F::FAR);
     let (dzx, dzy) = (s.plane.step_x().to_bits(), s.plane.step_y().to_bits());
     let cull_max = view.state.cull_max;
     let mut z_row = s.plane.at(i64::from(rect.x0), i64::from(rect.y0)).to_bits().wrapping_add(ROUND_HALF);
     for y in rect.y0..rect.y1 {
         let mut mask = masks.next_row();
         if mask != 0 {
-            let Some((z1, z2, ids)) = view.rows::<DUAL, IDS>(y, rect.x0, rect.x1) else { return };
+            let Some((z1, z2, ids)) = view.rows::<DUAL, IDS>(y, rect.x0, rect.x1) else { break };
             while mask != 0 {
                 out.fragments += 1;
                 let k = mask.trailing_zeros();
@@ -251,6 +253,7 @@ fn masked<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COU
         }
         z_row = z_row.wrapping_add(dzy);
     }
+    total.add(&out);
 }
 
 /// Make the tile's max exact again: a reduction over the culled buffer.
