@@ -27,7 +27,7 @@
 //! row-major order over the rectangle, whichever way it was walked.
 
 use crate::depth::{DepthFormat, ROUND_HALF};
-use crate::mask::{LANE_GROUP, Lanes, RowMask, Serial, WIDEST};
+use crate::mask::{LANE_GROUP, LANES, Lanes, RowMask, Serial, WIDEST};
 use crate::probe::{Buffer, CullLevel, Event, Fragment, Probe};
 use crate::setup::{Coverage, Setup};
 use crate::tile::{TileId, TileRect};
@@ -199,7 +199,9 @@ fn small<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUN
     out: &mut SpanOut<F::Texel>,
     probe: &mut P,
 ) {
-    let drawn = if rect.width() <= LANE_GROUP {
+    let drawn = if !LANES {
+        None
+    } else if rect.width() <= LANE_GROUP {
         Lanes::<1>::new(s, rect).map(|m| masked::<F, P, DUAL, IDS, COUNT>(s, view, rect, m, out, probe))
     } else {
         Lanes::<2>::new(s, rect).map(|m| masked::<F, P, DUAL, IDS, COUNT>(s, view, rect, m, out, probe))
