@@ -6,7 +6,9 @@
 //!   culling off and on) and by the `euc` software rasterizer (f32 depth,
 //!   less-or-equal test with writes, no culling of either facing). The
 //!   fragments each covers are counted once, outside the timing, and
-//!   printed, so that fragments per second follow from the times.
+//!   printed, so that fragments per second follow from the times. Each
+//!   draws into new buffers every frame, and again into buffers kept from
+//!   frame to frame (Umbra's `LightFrame`; euc's cleared depth buffer).
 //! * `scaling/triangles`: 1k … 1M triangles of the same torus at 1024².
 //! * `scaling/map`: the 100k torus at 64² … 4096².
 //!
@@ -17,13 +19,13 @@ use std::cell::Cell;
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use euc::buffer::Buffer2d;
 use euc::rasterizer::{BackfaceCullingDisabled, Triangles};
-use euc::{DepthStrategy, Pipeline};
+use euc::{DepthStrategy, Pipeline, Target};
 use std::hint::black_box;
 use umbra::core::front_end;
 use umbra::core::glam::{Mat4, Vec3};
 use umbra::core::{CullMode, D24, DepthUnit, LightPassConfig, NoProbe, Probe, RasterConfig};
 use umbra::sim::counters::Counters;
-use umbra::sim::light::{Draw, render, render_bands};
+use umbra::sim::light::{Draw, LightFrame, render, render_bands, render_bands_in, render_in};
 use umbra::sim::mesh::Mesh;
 use umbra::sim::scene::Perspective;
 
@@ -37,16 +39,21 @@ fn light() -> Mat4 {
         .view_projection()
 }
 
-fn umbra_pass<P: Probe>(mesh: &Mesh, size: u32, cull: bool, probe: P) -> P {
-    let cfg = LightPassConfig {
+fn umbra_config(size: u32, cull: bool) -> LightPassConfig {
+    LightPassConfig {
         raster: RasterConfig::new(size, size, RasterConfig::DEFAULT_TILE_SIZE, RasterConfig::DEFAULT_SUBPIXEL_BITS)
             .expect("valid"),
         unit: DepthUnit::Single,
         max_z_cull: cull,
-    };
-    let draw =
-        Draw { positions: &mesh.positions, triangles: &mesh.triangles, transform: light(), cull: CullMode::None };
-    render::<D24, P>(cfg, &[draw], probe).expect("renders").1
+    }
+}
+
+fn umbra_draw(mesh: &Mesh) -> Draw<'_> {
+    Draw { positions: &mesh.positions, triangles: &mesh.triangles, transform: light(), cull: CullMode::None }
+}
+
+fn umbra_pass<P: Probe>(mesh: &Mesh, size: u32, cull: bool, probe: P) -> P {
+    render::<D24, P>(umbra_config(size, cull), &[umbra_draw(mesh)], probe).expect("renders").1
 }
 
 /// `euc`'s pipeline: positions through the light's matrix, no colour.
@@ -87,12 +94,18 @@ fn soup(mesh: &Mesh) -> Vec<Vec3> {
 fn euc_pass(vertices: &[Vec3], size: usize, count: Option<&Cell<u64>>) -> Buffer2d<f32> {
     let mut colour = Buffer2d::new([size, size], ());
     let mut depth = Buffer2d::new([size, size], 1.0f32);
+    euc_draw(vertices, &mut colour, &mut depth, count);
+    depth
+}
+
+/// `euc` into kept buffers: the depth buffer cleared, then drawn.
+fn euc_draw(vertices: &[Vec3], colour: &mut Buffer2d<()>, depth: &mut Buffer2d<f32>, count: Option<&Cell<u64>>) {
+    depth.clear(1.0);
     Depth { matrix: light(), count }.draw::<Triangles<'_, Buffer2d<f32>, BackfaceCullingDisabled>, _>(
         vertices,
-        &mut colour,
-        Some(&mut depth),
+        colour,
+        Some(depth),
     );
-    depth
 }
 
 fn peer(c: &mut Criterion) {
@@ -117,6 +130,17 @@ fn peer(c: &mut Criterion) {
     g.bench_function("umbra d24, culling off", |b| b.iter(|| umbra_pass(black_box(&mesh), 1024, false, NoProbe)));
     g.bench_function("umbra d24, culling on", |b| b.iter(|| umbra_pass(black_box(&mesh), 1024, true, NoProbe)));
     g.bench_function("euc f32", |b| b.iter(|| euc_pass(black_box(&vertices), 1024, None)));
+    // Both into buffers kept from frame to frame, as hardware keeps its
+    // memory: no fresh pages in the timing.
+    let mut frame = LightFrame::new();
+    let (cfg, draw) = (umbra_config(1024, false), umbra_draw(&mesh));
+    g.bench_function("umbra d24, culling off, kept frame", |b| {
+        b.iter(|| render_in::<D24, _>(&mut frame, cfg, black_box(&[draw]), NoProbe).map(|_| ()).expect("renders"));
+    });
+    let (mut colour, mut depth) = (Buffer2d::new([1024, 1024], ()), Buffer2d::new([1024, 1024], 1.0f32));
+    g.bench_function("euc f32, kept buffers", |b| {
+        b.iter(|| euc_draw(black_box(&vertices), &mut colour, &mut depth, None));
+    });
     // The front end alone (vertex unit, clipping, snap, setup): the share of
     // the light pass that comes before binning and rasterization.
     let raster = RasterConfig::new(1024, 1024, 32, 8).expect("valid");
@@ -165,7 +189,8 @@ fn scaling(c: &mut Criterion) {
 /// The light pass on every core (`render_bands`: the front end on runs of
 /// triangles in parallel, then bands of tile rows in parallel; bit-identical
 /// to the single pass) on 1, 2 and every core, beside the whole pass on one,
-/// at 2048² where each band has enough tiles to keep a core busy.
+/// at 2048² where each band has enough tiles to keep a core busy; each with
+/// new buffers every frame and into a kept `LightFrame`.
 fn cores(c: &mut Criterion) {
     let mesh = torus(250, 200);
     let cfg = LightPassConfig {
@@ -174,12 +199,15 @@ fn cores(c: &mut Criterion) {
         unit: DepthUnit::Single,
         max_z_cull: true,
     };
-    let draw =
-        Draw { positions: &mesh.positions, triangles: &mesh.triangles, transform: light(), cull: CullMode::None };
+    let draw = umbra_draw(&mesh);
     let mut g = c.benchmark_group("cores");
     g.sample_size(10);
     g.bench_function("whole pass", |b| {
         b.iter(|| render::<D24, _>(cfg, black_box(&[draw]), NoProbe).expect("renders"));
+    });
+    let mut frame = LightFrame::new();
+    g.bench_function("whole pass, kept frame", |b| {
+        b.iter(|| render_in::<D24, _>(&mut frame, cfg, black_box(&[draw]), NoProbe).map(|_| ()).expect("renders"));
     });
     let all = std::thread::available_parallelism().map_or(1, usize::from);
     let mut counts = vec![1, 2, all];
@@ -188,6 +216,13 @@ fn cores(c: &mut Criterion) {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool");
         g.bench_function(BenchmarkId::from_parameter(threads), |b| {
             b.iter(|| pool.install(|| render_bands::<D24>(cfg, black_box(&[draw])).expect("renders")));
+        });
+        g.bench_function(BenchmarkId::new("kept frame", threads), |b| {
+            b.iter(|| {
+                pool.install(|| {
+                    render_bands_in::<D24>(&mut frame, cfg, black_box(&[draw])).map(|_| ()).expect("renders")
+                });
+            });
         });
     }
     g.finish();

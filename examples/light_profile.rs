@@ -1,5 +1,6 @@
 //! One light pass, repeated, for profilers: the `peer` bench's torus of
-//! 100 000 triangles, by default at 1024² (24-bit, single, max-z culling off).
+//! 100 000 triangles, by default at 1024² (24-bit, single, max-z culling
+//! off), into one `LightFrame` kept from pass to pass.
 //!
 //! ```sh
 //! cargo build --release --example light_profile
@@ -19,7 +20,7 @@ use std::hash::{DefaultHasher, Hash, Hasher};
 
 use umbra::core::glam::Vec3;
 use umbra::core::{CullMode, D24, DepthFormat, DepthUnit, LightPassConfig, NoProbe, RasterConfig};
-use umbra::sim::light::{Draw, render, render_bands};
+use umbra::sim::light::{Draw, LightFrame, render_bands_in, render_in};
 use umbra::sim::mesh::Mesh;
 use umbra::sim::scene::Perspective;
 
@@ -35,20 +36,26 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let raster = RasterConfig::new(side, side, 32, 8)?;
     let cfg = LightPassConfig { raster, unit: DepthUnit::Single, max_z_cull: false };
     let draw = Draw { positions: &mesh.positions, triangles: &mesh.triangles, transform: light, cull: CullMode::None };
-    let mut maps = None;
+    // One frame for every pass, as hardware keeps its memory: after the
+    // first, a pass touches no fresh pages.
+    let mut frame = LightFrame::new();
     let start = std::time::Instant::now();
     for _ in 0..passes {
-        maps =
-            Some(if bands { render_bands::<D24>(cfg, &[draw])? } else { render::<D24, _>(cfg, &[draw], NoProbe)?.0 });
+        if bands {
+            render_bands_in::<D24>(&mut frame, cfg, &[draw])?;
+        } else {
+            render_in::<D24, _>(&mut frame, cfg, &[draw], NoProbe)?;
+        }
     }
     let took = start.elapsed();
-    let lit = maps.as_ref().map_or(0, |m| m.z1.iter().filter(|&&z| z < D24::FAR).count());
+    let maps = frame.maps();
+    let lit = maps.map_or(0, |m| m.z1.iter().filter(|&&z| z < D24::FAR).count());
     let each = took.as_secs_f64() * 1e3 / f64::from(passes.max(1));
     println!("{passes} passes, {lit} texels covered, {each:.1} ms a pass");
     if digest {
         // A digest of the map's bits: a change to the hot path must keep it.
         let mut hasher = DefaultHasher::new();
-        maps.as_ref().map(|m| &m.z1).hash(&mut hasher);
+        maps.map(|m| &m.z1).hash(&mut hasher);
         println!("map digest {:016x}", hasher.finish());
     }
     Ok(())

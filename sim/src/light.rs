@@ -79,51 +79,146 @@ pub fn render_with<F: DepthFormat, P: Probe, const B: usize>(
     setups: usize,
     probe: P,
 ) -> Result<(LightMaps<F::Texel>, P), LightError> {
-    let mut maps = LightMaps::cleared(config);
-    let LightMaps { z1, z2, tiles, .. } = &mut maps;
-    let probe = run::<F, P, B>(config, z1, z2, tiles, setups, probe, |pass| {
+    let mut maps = LightMaps::empty(config);
+    let probe = render_into::<F, P, B>(&mut maps, &mut PassScratch::default(), config, draws, setups, probe)?;
+    Ok((maps, probe))
+}
+
+/// [`render_with`] into `frame`: its maps, bins and setup store, kept from
+/// one pass to the next. The maps are the frame's until its next pass.
+///
+/// # Errors
+/// See [`LightError`].
+pub fn render_with_in<'f, F: DepthFormat, P: Probe, const B: usize>(
+    frame: &'f mut LightFrame<F::Texel, B>,
+    config: LightPassConfig,
+    draws: &[Draw<'_>],
+    setups: usize,
+    probe: P,
+) -> Result<(&'f LightMaps<F::Texel>, P), LightError> {
+    let maps = frame.maps.get_or_insert_with(|| LightMaps::empty(config));
+    let probe = render_into::<F, P, B>(maps, &mut frame.pass, config, draws, setups, probe)?;
+    Ok((maps, probe))
+}
+
+/// The pass of [`render_with`] into given maps and scratch.
+fn render_into<F: DepthFormat, P: Probe, const B: usize>(
+    maps: &mut LightMaps<F::Texel>,
+    scratch: &mut PassScratch<B>,
+    config: LightPassConfig,
+    draws: &[Draw<'_>],
+    setups: usize,
+    probe: P,
+) -> Result<P, LightError> {
+    maps.resize(config);
+    let LightMaps { z1, z2, tiles, .. } = maps;
+    run::<F, P, B>(config, z1, z2, tiles, scratch, setups, probe, |pass| {
         for (draw, d) in draws.iter().enumerate() {
             pass.draw_mesh(d.positions, d.triangles, &d.transform, d.cull)
                 .map_err(|source| LightError::Submit { draw, source })?;
         }
         Ok(())
-    })?;
-    Ok((maps, probe))
+    })
 }
 
 impl<T: Copy> LightMaps<T> {
-    /// Maps of the right sizes for `config`, before the pass clears them.
-    fn cleared(config: LightPassConfig) -> Self
+    /// Maps of no size, for [`LightMaps::resize`] to fit.
+    const fn empty(config: LightPassConfig) -> Self {
+        Self { config, z1: Vec::new(), z2: Vec::new(), tiles: Vec::new() }
+    }
+
+    /// Fit the maps to `config` (the pass clears them): nothing to do at
+    /// the sizes they have, new zeroed pages (not written twice) otherwise.
+    fn resize(&mut self, config: LightPassConfig)
     where
         T: Default,
     {
-        let texels = config.raster.texel_count();
-        let z2 = if config.unit == DepthUnit::Dual { texels } else { 0 };
-        let tiles = config.raster.tile_count();
-        Self {
-            config,
-            z1: vec![T::default(); texels],
-            z2: vec![T::default(); z2],
-            tiles: vec![TileState::cleared(T::default(), 0); tiles],
+        fn fit<V: Clone>(v: &mut Vec<V>, len: usize, value: V) {
+            if v.len() != len {
+                *v = vec![value; len];
+            }
         }
+        let texels = config.raster.texel_count();
+        self.config = config;
+        fit(&mut self.z1, texels, T::default());
+        fit(&mut self.z2, if config.unit == DepthUnit::Dual { texels } else { 0 }, T::default());
+        fit(&mut self.tiles, config.raster.tile_count(), TileState::cleared(T::default(), 0));
     }
 }
 
-/// Run one light pass over the given maps (the pass clears them), with bins
-/// and a setup store of its own: `feed` draws, then the pass is finished.
+/// The bins and setup store of one pass (or one band).
+#[derive(Debug, Default)]
+struct PassScratch<const B: usize> {
+    bins: Vec<Bin<B>>,
+    store: Vec<Setup>,
+}
+
+impl<const B: usize> PassScratch<B> {
+    const fn new() -> Self {
+        Self { bins: Vec::new(), store: Vec::new() }
+    }
+}
+
+/// One front-end job of the banded pass: its setups, in order, and for
+/// each band the indices of those that reach it.
+#[derive(Debug, Default)]
+struct JobScratch {
+    setups: Vec<Setup>,
+    by_band: Vec<Vec<u32>>,
+}
+
+/// What the light pass keeps from one pass to the next, as hardware keeps
+/// its memory: the maps, the bins and the setup store, and for
+/// [`render_bands_in`] each front-end job's setups and each band's bins and
+/// store. A pass at sizes the frame has drawn before allocates nothing, so
+/// it touches no fresh pages.
+#[derive(Debug)]
+pub struct LightFrame<T, const B: usize = DEFAULT_BIN_CAPACITY> {
+    maps: Option<LightMaps<T>>,
+    pass: PassScratch<B>,
+    jobs: Vec<JobScratch>,
+    bands: Vec<PassScratch<B>>,
+}
+
+impl<T, const B: usize> LightFrame<T, B> {
+    /// An empty frame: its first pass allocates.
+    #[must_use]
+    pub const fn new() -> Self {
+        Self { maps: None, pass: PassScratch::new(), jobs: Vec::new(), bands: Vec::new() }
+    }
+
+    /// The maps of the last pass (none before the first).
+    #[must_use]
+    pub const fn maps(&self) -> Option<&LightMaps<T>> {
+        self.maps.as_ref()
+    }
+}
+
+impl<T, const B: usize> Default for LightFrame<T, B> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// Run one light pass over the given maps (the pass clears them), with the
+/// bins and a setup store of `setups` entries from `scratch`: `feed` draws,
+/// then the pass is finished.
 #[allow(clippy::too_many_arguments, reason = "the buffers of one pass")]
 fn run<F: DepthFormat, P: Probe, const B: usize>(
     config: LightPassConfig,
     z1: &mut [F::Texel],
     z2: &mut [F::Texel],
     tiles: &mut [TileState<F::Texel>],
+    scratch: &mut PassScratch<B>,
     setups: usize,
     probe: P,
     feed: impl FnOnce(&mut LightPass<'_, F, P, B>) -> Result<(), LightError>,
 ) -> Result<P, LightError> {
-    let mut bins = vec![Bin::<B>::new(); config.raster.tile_count()];
-    let mut store = vec![Setup::EMPTY; setups];
-    let buffers = LightBuffers { z1, z2, ids: &mut [], tiles, bins: &mut bins, setups: &mut store };
+    // The pass clears both.
+    scratch.bins.resize(config.raster.tile_count(), Bin::new());
+    scratch.store.resize(setups, Setup::EMPTY);
+    let PassScratch { bins, store } = scratch;
+    let buffers = LightBuffers { z1, z2, ids: &mut [], tiles, bins, setups: store };
     let mut pass = LightPass::<F, P, B>::new(config, buffers, probe)?;
     feed(&mut pass)?;
     Ok(pass.finish())
@@ -152,6 +247,35 @@ pub fn render_bands<F: DepthFormat>(
     config: LightPassConfig,
     draws: &[Draw<'_>],
 ) -> Result<LightMaps<F::Texel>, LightError> {
+    let mut maps = LightMaps::empty(config);
+    bands_into::<F>(&mut maps, &mut Vec::new(), &mut Vec::new(), config, draws)?;
+    Ok(maps)
+}
+
+/// [`render_bands`] into `frame`: its maps, each front-end job's setups and
+/// each band's bins and store, kept from one pass to the next. The maps
+/// are the frame's until its next pass.
+///
+/// # Errors
+/// See [`LightError`].
+pub fn render_bands_in<'f, F: DepthFormat>(
+    frame: &'f mut LightFrame<F::Texel>,
+    config: LightPassConfig,
+    draws: &[Draw<'_>],
+) -> Result<&'f LightMaps<F::Texel>, LightError> {
+    let maps = frame.maps.get_or_insert_with(|| LightMaps::empty(config));
+    bands_into::<F>(maps, &mut frame.jobs, &mut frame.bands, config, draws)?;
+    Ok(maps)
+}
+
+/// The banded pass into given maps and scratch.
+fn bands_into<F: DepthFormat>(
+    maps: &mut LightMaps<F::Texel>,
+    job_scratch: &mut Vec<JobScratch>,
+    band_scratch: &mut Vec<PassScratch<DEFAULT_BIN_CAPACITY>>,
+    config: LightPassConfig,
+    draws: &[Draw<'_>],
+) -> Result<(), LightError> {
     use rayon::prelude::*;
     let r = config.raster;
     let mut jobs = Vec::new();
@@ -185,30 +309,30 @@ pub fn render_bands<F: DepthFormat>(
     // The front end, in parallel: each job's setups, in order, and for each
     // band the indices of those that reach it (each band moves its own into
     // its window when it draws them).
-    let pieces: Vec<(Vec<Setup>, Vec<Vec<u32>>)> = jobs
-        .par_iter()
-        .map(|&(d, run, id)| {
-            let mut setups = Vec::with_capacity(run.len());
-            let mut by_band = vec![Vec::new(); rows.len()];
-            front_end::mesh::<F>(&r, d.positions, run, &d.transform, d.cull, id, &mut |o| {
-                if let Output::Setup(s) = o {
-                    // A job holds at most FRONT_END_RUN setups.
-                    let k = u32::try_from(setups.len()).unwrap_or(u32::MAX);
-                    for bucket in by_band.iter_mut().take(band_of(s.bbox.y1 - 1) + 1).skip(band_of(s.bbox.y0)) {
-                        bucket.push(k);
-                    }
-                    setups.push(*s);
+    job_scratch.resize_with(jobs.len(), JobScratch::default);
+    job_scratch.par_iter_mut().zip(&jobs).for_each(|(JobScratch { setups, by_band }, &(d, run, id))| {
+        setups.clear();
+        by_band.resize_with(rows.len(), Vec::new);
+        by_band.iter_mut().for_each(Vec::clear);
+        front_end::mesh::<F>(&r, d.positions, run, &d.transform, d.cull, id, &mut |o| {
+            if let Output::Setup(s) = o {
+                // A job holds at most FRONT_END_RUN setups.
+                let k = u32::try_from(setups.len()).unwrap_or(u32::MAX);
+                for bucket in by_band.iter_mut().take(band_of(s.bbox.y1 - 1) + 1).skip(band_of(s.bbox.y0)) {
+                    bucket.push(k);
                 }
-            });
-            (setups, by_band)
-        })
-        .collect();
+                setups.push(*s);
+            }
+        });
+    });
+    let pieces = &job_scratch[..];
     // Each band draws into its own rows of the maps and its own tiles.
-    let mut maps = LightMaps::cleared(config);
+    maps.resize(config);
+    band_scratch.resize_with(rows.len(), PassScratch::new);
     let mut jobs = Vec::with_capacity(rows.len());
     let (mut z1, mut z2, mut tiles) = (&mut maps.z1[..], &mut maps.z2[..], &mut maps.tiles[..]);
     let (width, dual) = (r.width() as usize, !z2.is_empty());
-    for (band, &(y0, y1)) in rows.iter().enumerate() {
+    for ((band, &(y0, y1)), scratch) in rows.iter().enumerate().zip(band_scratch.iter_mut()) {
         let texels = (y1 - y0) as usize * width;
         let (a, rest) = core::mem::take(&mut z1).split_at_mut(texels);
         z1 = rest;
@@ -217,19 +341,19 @@ pub fn render_bands<F: DepthFormat>(
         let (c, rest) = core::mem::take(&mut tiles)
             .split_at_mut(((y1 - y0) / t + u32::from((y1 - y0) % t > 0)) as usize * across as usize);
         tiles = rest;
-        jobs.push((band, a, b, c));
+        jobs.push((band, a, b, c, scratch));
     }
     jobs.into_par_iter()
-        .map(|(band, z1, z2, tiles)| {
+        .map(|(band, z1, z2, tiles, scratch)| {
             let own = || {
-                pieces.iter().flat_map(move |(setups, by_band)| {
+                pieces.iter().flat_map(move |JobScratch { setups, by_band }| {
                     by_band.get(band).into_iter().flatten().filter_map(|&k| setups.get(k as usize))
                 })
             };
             let store = own().count().clamp(1, BAND_SETUPS);
             let (window, y0) = (windows[band], rows[band].0);
             let band = LightPassConfig { raster: window, ..config };
-            run::<F, _, DEFAULT_BIN_CAPACITY>(band, z1, z2, tiles, store, umbra_core::NoProbe, |pass| {
+            run::<F, _, DEFAULT_BIN_CAPACITY>(band, z1, z2, tiles, scratch, store, umbra_core::NoProbe, |pass| {
                 own().for_each(|s| pass.draw_setup_from(s, [0, y0]));
                 Ok(())
             })
@@ -237,7 +361,7 @@ pub fn render_bands<F: DepthFormat>(
         })
         .collect::<Result<(), LightError>>()?;
     debug_assert_eq!(maps.tiles.len(), across as usize * down as usize);
-    Ok(maps)
+    Ok(())
 }
 
 /// Render with the default bin capacity and setup store.
@@ -249,11 +373,30 @@ pub fn render<F: DepthFormat, P: Probe>(
     draws: &[Draw<'_>],
     probe: P,
 ) -> Result<(LightMaps<F::Texel>, P), LightError> {
-    // A setup store as large as the scene (at most the bins' reach); a pass
-    // whose events no one counts keeps its store in cache instead.
+    render_with::<F, P, DEFAULT_BIN_CAPACITY>(config, draws, store_size::<P>(&config, draws), probe)
+}
+
+/// [`render`] into `frame`, kept from one pass to the next (see
+/// [`LightFrame`]). The maps are the frame's until its next pass.
+///
+/// # Errors
+/// See [`LightError`].
+pub fn render_in<'f, F: DepthFormat, P: Probe>(
+    frame: &'f mut LightFrame<F::Texel>,
+    config: LightPassConfig,
+    draws: &[Draw<'_>],
+    probe: P,
+) -> Result<(&'f LightMaps<F::Texel>, P), LightError> {
+    render_with_in::<F, P, DEFAULT_BIN_CAPACITY>(frame, config, draws, store_size::<P>(&config, draws), probe)
+}
+
+/// The setup store of [`render`]: as large as the scene (at most the bins'
+/// reach); a pass whose events no one counts keeps its store in cache
+/// instead.
+fn store_size<P: Probe>(config: &LightPassConfig, draws: &[Draw<'_>]) -> usize {
     let triangles: usize = draws.iter().map(|d| d.triangles.len()).sum();
     let most = if P::EVENTS { DEFAULT_SETUPS } else { unwatched_setups(&config.raster) };
-    render_with::<F, P, DEFAULT_BIN_CAPACITY>(config, draws, triangles.clamp(1, most), probe)
+    triangles.clamp(1, most)
 }
 
 /// Maps of a format chosen at run time, texels widened to their raw `u32` bits.

@@ -202,3 +202,28 @@ fn a_reused_camera_frame_draws_what_a_new_one_does() {
         assert!(image.pixels.iter().any(|p| p.light.is_some()), "{name}: something is shaded");
     }
 }
+
+/// A light frame kept between passes draws what new buffers do, whole and
+/// banded: the same maps and tile states, after passes of other scenes,
+/// sizes, units and formats have left their buffers in it.
+#[test]
+fn a_reused_light_frame_draws_what_new_buffers_do() {
+    use umbra::core::{D16, D24, DepthFormat, NoProbe};
+    use umbra::sim::light::{LightFrame, render, render_bands, render_bands_in, render_in};
+    let mut frame16 = LightFrame::new();
+    let mut frame24 = LightFrame::new();
+    let passes = [("table", 128, DepthUnit::Dual, true), ("double-torus", 96, DepthUnit::Single, false)];
+    for (name, side, unit, cull) in passes.into_iter().cycle().take(5) {
+        let scene = Scene::bundled(name).expect("bundled");
+        let raster = RasterConfig::new(side, side + 32, 32, 8).expect("valid");
+        let config = LightPassConfig { raster, unit, max_z_cull: cull };
+        let draws = scene.draws(scene.light().view_projection(), CullMode::None);
+        let (new, _) = render::<D24, _>(config, &draws, NoProbe).expect("renders");
+        assert_eq!(render_in::<D24, _>(&mut frame24, config, &draws, NoProbe).expect("renders").0, &new, "{name}");
+        assert!(new.z1.iter().any(|&z| z < D24::FAR), "{name}: something is drawn");
+        let banded = on(2, || render_bands::<D16>(config, &draws)).expect("renders");
+        let reused = on(2, || render_bands_in::<D16>(&mut frame16, config, &draws).cloned()).expect("renders");
+        assert_eq!(reused, banded, "{name}, banded");
+        assert_eq!(render::<D16, _>(config, &draws, NoProbe).expect("renders").0, banded, "{name}, banded and whole");
+    }
+}
