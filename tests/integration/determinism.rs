@@ -204,8 +204,8 @@ fn a_reused_camera_frame_draws_what_a_new_one_does() {
 }
 
 /// A light frame kept between passes draws what new buffers do, whole and
-/// banded: the same maps and tile states, after passes of other scenes,
-/// sizes, units and formats have left their buffers in it.
+/// banded in turn: the same maps and tile states, after passes of other
+/// scenes, sizes, units and the other pass have left their buffers in it.
 #[test]
 fn a_reused_light_frame_draws_what_new_buffers_do() {
     use umbra::core::{D16, D24, DepthFormat, NoProbe};
@@ -219,11 +219,14 @@ fn a_reused_light_frame_draws_what_new_buffers_do() {
         let config = LightPassConfig { raster, unit, max_z_cull: cull };
         let draws = scene.draws(scene.light().view_projection(), CullMode::None);
         let (new, _) = render::<D24, _>(config, &draws, NoProbe).expect("renders");
-        assert_eq!(render_in::<D24, _>(&mut frame24, config, &draws, NoProbe).expect("renders").0, &new, "{name}");
         assert!(new.z1.iter().any(|&z| z < D24::FAR), "{name}: something is drawn");
-        let banded = on(2, || render_bands::<D16>(config, &draws)).expect("renders");
-        let reused = on(2, || render_bands_in::<D16>(&mut frame16, config, &draws).cloned()).expect("renders");
-        assert_eq!(reused, banded, "{name}, banded");
-        assert_eq!(render::<D16, _>(config, &draws, NoProbe).expect("renders").0, banded, "{name}, banded and whole");
+        assert_eq!(render_in::<D24, _>(&mut frame24, config, &draws, NoProbe).expect("renders").0, &new, "{name}");
+        let banded = on(2, || render_bands_in::<D24>(&mut frame24, config, &draws).cloned()).expect("renders");
+        assert_eq!(banded, new, "{name}, banded into the whole pass's frame");
+        let new = on(2, || render_bands::<D16>(config, &draws)).expect("renders");
+        let banded = on(2, || render_bands_in::<D16>(&mut frame16, config, &draws).cloned()).expect("renders");
+        assert_eq!(banded, new, "{name}, banded");
+        let whole = render_in::<D16, _>(&mut frame16, config, &draws, NoProbe).expect("renders").0;
+        assert_eq!(whole, &new, "{name}, whole into the banded pass's frame");
     }
 }
