@@ -187,7 +187,8 @@ impl<T, const B: usize> LightFrame<T, B> {
         Self { maps: None, pass: PassScratch::new(), jobs: Vec::new(), bands: Vec::new() }
     }
 
-    /// The maps of the last pass (none before the first).
+    /// The maps of the last pass: none before the first, and whatever it
+    /// left after a pass that failed.
     #[must_use]
     pub const fn maps(&self) -> Option<&LightMaps<T>> {
         self.maps.as_ref()
