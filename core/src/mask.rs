@@ -49,8 +49,8 @@ pub(crate) trait RowMask {
 pub(crate) struct Lanes<const G: usize> {
     /// Each edge's values at the current row's pixels.
     values: [[i32x8; G]; 3],
-    /// Each edge's step to the next row.
-    down: [i32; 3],
+    /// Each edge's step to the next row, in every lane.
+    down: [i32x8; 3],
     /// The bits of the rectangle's columns (none when an edge fails every
     /// pixel).
     columns: u64,
@@ -62,20 +62,16 @@ impl<const G: usize> Lanes<G> {
     #[inline(always)]
     pub(crate) fn new(s: &Setup, rect: &TileRect) -> Option<Self> {
         let (x0, y0) = (i64::from(rect.x0), i64::from(rect.y0));
-        let (w, h) = (i64::from(rect.width()), i64::from(rect.height()));
         let columns = u64::MAX >> (u64::BITS - rect.width().clamp(1, WIDEST));
-        let mut lanes = Self { values: [[i32x8::ZERO; G]; 3], down: [0; 3], columns };
+        let mut lanes = Self { values: [[i32x8::ZERO; G]; 3], down: [i32x8::ZERO; 3], columns };
         for ((e, values), down) in s.edges.iter().zip(&mut lanes.values).zip(&mut lanes.down) {
-            // The corner tests: the value at the first pixel, and the
-            // extremes over the rectangle from there.
+            // The corner tests, from the value at the first pixel.
             let first = e.at(x0, y0);
-            let (across, along) = (e.dx.wrapping_mul(w - 1), e.dy.wrapping_mul(h - 1));
-            let hi = first.wrapping_add(across.max(0)).wrapping_add(along.max(0));
+            let (lo, hi) = e.range_from(first, rect);
             if hi < 0 {
                 lanes.columns = 0;
                 return Some(lanes);
             }
-            let lo = first.wrapping_add(across.min(0)).wrapping_add(along.min(0));
             if lo >= 0 {
                 continue;
             }
@@ -98,7 +94,7 @@ impl<const G: usize> Lanes<G> {
                 *lanes = group;
                 group += across;
             }
-            *down = dy;
+            *down = i32x8::splat(dy);
         }
         Some(lanes)
     }
@@ -114,7 +110,6 @@ impl<const G: usize> RowMask for Lanes<G> {
             outside |= u64::from((a | b | c).to_bitmask()) << shift;
         }
         for (values, &down) in self.values.iter_mut().zip(&self.down) {
-            let down = i32x8::splat(down);
             for group in values {
                 *group += down;
             }

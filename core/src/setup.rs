@@ -78,12 +78,19 @@ impl Edge {
     #[inline]
     #[must_use]
     pub fn range_over(&self, r: &TileRect) -> (i64, i64) {
-        let x = |px: u32| i64::from(px).wrapping_mul(self.dx);
-        let y = |py: u32| i64::from(py).wrapping_mul(self.dy);
-        let (x0, x1) = (x(r.x0), x(r.x1.saturating_sub(1)));
-        let (y0, y1) = (y(r.y0), y(r.y1.saturating_sub(1)));
-        let lo = self.c.wrapping_add(x0.min(x1)).wrapping_add(y0.min(y1));
-        (lo, self.c.wrapping_add(x0.max(x1)).wrapping_add(y0.max(y1)))
+        self.range_from(self.at(i64::from(r.x0), i64::from(r.y0)), r)
+    }
+
+    /// [`Edge::range_over`] from `first`, the value at `r`'s first pixel:
+    /// the extremes lie that value plus the steps across and down the
+    /// rectangle, where they are negative (lowest) or positive (highest).
+    #[inline(always)]
+    #[must_use]
+    pub fn range_from(&self, first: i64, r: &TileRect) -> (i64, i64) {
+        let across = self.dx.wrapping_mul(i64::from(r.x1.saturating_sub(1)) - i64::from(r.x0));
+        let down = self.dy.wrapping_mul(i64::from(r.y1.saturating_sub(1)) - i64::from(r.y0));
+        let lo = first.wrapping_add(across.min(0)).wrapping_add(down.min(0));
+        (lo, first.wrapping_add(across.max(0)).wrapping_add(down.max(0)))
     }
 }
 
