@@ -775,35 +775,42 @@ fn lerp_bits(lo: i64, hi: i64, r: u32) -> i64 {
 /// bounds; the others combine both per tile.
 #[inline]
 fn reference_bounds<F: DepthFormat>(map: &MapView<'_, F>, test: DepthTest, r: &TileRect) -> (i64, i64) {
-    let (mut lo, mut hi) = (i64::MAX, i64::MIN);
-    let mut include = |a: F::Texel, b: F::Texel| (lo, hi) = (lo.min(F::widen(a)), hi.max(F::widen(b)));
     match test {
-        DepthTest::First => over_tiles(map, r, |t| include(t.z1_min, t.z1_max)),
+        DepthTest::First => over_tiles(map, r, |t| (F::widen(t.z1_min), F::widen(t.z1_max))),
         DepthTest::Second => over_tiles(map, r, |t| {
             let (z2_min, z2_max) = map.second_bounds(t);
-            include(z2_min, z2_max);
+            (F::widen(z2_min), F::widen(z2_max))
         }),
         _ => over_tiles(map, r, |t| {
             let (z2_min, z2_max) = map.second_bounds(t);
-            lo = lo.min(test.reference(F::widen(t.z1_min), F::widen(z2_min)));
-            hi = hi.max(test.reference(F::widen(t.z1_max), F::widen(z2_max)));
+            (test.reference(F::widen(t.z1_min), F::widen(z2_min)), test.reference(F::widen(t.z1_max), F::widen(z2_max)))
         }),
     }
-    (lo, hi)
 }
 
-/// Visit the stored state of every tile under `r`.
+/// The smallest and largest of `bounds` over the stored state of every
+/// tile under `r` (most footprints lie in one tile: it is read alone).
 #[inline]
-fn over_tiles<F: DepthFormat>(map: &MapView<'_, F>, r: &TileRect, mut visit: impl FnMut(&TileState<F::Texel>)) {
+fn over_tiles<F: DepthFormat>(
+    map: &MapView<'_, F>,
+    r: &TileRect,
+    bounds: impl Fn(&TileState<F::Texel>) -> (i64, i64),
+) -> (i64, i64) {
     let shift = map.raster.tile_shift();
-    for ty in (r.y0 >> shift)..((r.y1 - 1) >> shift) + 1 {
-        let row = ty as usize * map.across;
-        for tx in (r.x0 >> shift)..((r.x1 - 1) >> shift) + 1 {
-            if let Some(t) = map.tiles.get(row + tx as usize) {
-                visit(t);
-            }
+    let (tx0, tx1) = ((r.x0 >> shift) as usize, ((r.x1 - 1) >> shift) as usize);
+    let (ty0, ty1) = ((r.y0 >> shift) as usize, ((r.y1 - 1) >> shift) as usize);
+    if tx0 == tx1 && ty0 == ty1 {
+        return map.tiles.get(ty0 * map.across + tx0).map_or((i64::MAX, i64::MIN), bounds);
+    }
+    let (mut lo, mut hi) = (i64::MAX, i64::MIN);
+    for ty in ty0..=ty1 {
+        let row = ty * map.across;
+        for t in map.tiles.get(row + tx0..=row + tx1).unwrap_or_default() {
+            let (a, b) = bounds(t);
+            (lo, hi) = (lo.min(a), hi.max(b));
         }
     }
+    (lo, hi)
 }
 
 const _: () = assert!(PLANE_FRACTION_BITS == 32, "texels widen by a 32-bit shift");
@@ -868,9 +875,9 @@ pub fn shadow_with_virtual_samples<F: DepthFormat, P: Probe>(
     let ordinary = lookup(map, cfg, l, None, probe);
     // Bilinear and boxes of 2 or more already read those texels.
     let covers_2x2 = matches!(cfg.filter, Filter::Bilinear) || matches!(cfg.filter, Filter::Box { size } if size >= 2);
-    let around = ShadowConfig { filter: Filter::Box { size: 2 }, ..*cfg };
+    let around = || ShadowConfig { filter: Filter::Box { size: 2 }, ..*cfg };
     let agree = |s: Shadow| s == Shadow::ZERO || s == Shadow::ONE;
-    if agree(ordinary) && (covers_2x2 || lookup(map, &around, l, None, probe) == ordinary) {
+    if agree(ordinary) && (covers_2x2 || lookup(map, &around(), l, None, probe) == ordinary) {
         probe.event(Event::TrivialPixel { lit: ordinary == Shadow::ZERO });
         return ordinary;
     }
