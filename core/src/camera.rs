@@ -289,6 +289,7 @@ impl Interp {
 
     /// The light point of pixel `(px, py)`; `None` behind the light. The
     /// depth division is skipped (`z` left 0) unless `with_depth`.
+    #[inline(always)]
     fn light_point<F: DepthFormat>(&self, px: u32, py: u32, with_depth: bool) -> Option<LightPoint> {
         let f = self.light?;
         // 64 × 64 → 128-bit products (one multiply each).

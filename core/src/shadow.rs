@@ -576,7 +576,7 @@ pub fn shadow<F: DepthFormat, P: Probe>(map: &MapView<'_, F>, cfg: &ShadowConfig
 /// pixel's ordinary and virtual-sample lookups share the rest). The front
 /// of the unit (footprint, clip, the tile-bounds cull) decides most lookups
 /// on its own; the filter runs for the rest.
-#[inline]
+#[inline(always)]
 fn lookup<F: DepthFormat, P: Probe>(
     map: &MapView<'_, F>,
     cfg: &ShadowConfig,
@@ -790,7 +790,7 @@ fn reference_bounds<F: DepthFormat>(map: &MapView<'_, F>, test: DepthTest, r: &T
 
 /// The smallest and largest of `bounds` over the stored state of every
 /// tile under `r` (most footprints lie in one tile: it is read alone).
-#[inline]
+#[inline(always)]
 fn over_tiles<F: DepthFormat>(
     map: &MapView<'_, F>,
     r: &TileRect,
