@@ -624,18 +624,67 @@ fn lookup<F: DepthFormat, P: Probe>(
             return Shadow::ONE;
         }
     }
-    filter(map, cfg, &Lookup { slope, ..*l }, (footprint, inside_map, whole), grid, probe)
+    if let (Filter::Box { .. }, true, None, Bias::Constant(b)) = (cfg.filter, whole, slope, cfg.bias) {
+        return uniform_box(
+            map,
+            cfg.test,
+            &inside_map,
+            at_format::<F>(l.z.to_bits().saturating_sub(b.to_bits())),
+            probe,
+        );
+    }
+    filter(map, cfg, &Lookup { slope, ..*l }, footprint, grid, probe)
+}
+
+/// The commonest filter, inline: a box all on the map against one receiver
+/// depth, already biased and rounded, so that each texel is a compare.
+#[inline]
+fn uniform_box<F: DepthFormat, P: Probe>(
+    map: &MapView<'_, F>,
+    test: DepthTest,
+    r: &TileRect,
+    receiver: i64,
+    probe: &mut P,
+) -> Shadow {
+    let mut count = 0u64;
+    for y in r.y0..r.y1 {
+        for x in r.x0..r.x1 {
+            count += u64::from(map.compare(test, x, y, receiver, probe));
+        }
+    }
+    let reads = (r.x1 - r.x0) * (r.y1 - r.y0);
+    report_reads(map, test, reads, false, probe);
+    fraction(count, u64::from(reads))
+}
+
+/// Report a lookup's `reads` texels read from each buffer its test reads,
+/// and whether they were virtual samples.
+#[inline]
+fn report_reads<F: DepthFormat, P: Probe>(
+    map: &MapView<'_, F>,
+    test: DepthTest,
+    reads: u32,
+    virtual_samples: bool,
+    probe: &mut P,
+) {
+    if reads > 0 && virtual_samples {
+        probe.event(Event::VirtualSamples { count: reads });
+    }
+    if reads > 0 {
+        for buffer in map.buffers_read(test) {
+            probe.event(Event::MapRead { buffer, texels: reads, bytes: reads * F::KIND.bytes() });
+        }
+    }
 }
 
 /// The filter: the samples of a lookup the front did not decide, over its
-/// footprint (inclusive), the part of it on the map, and whether that is
-/// all of it.
+/// footprint (inclusive; samples off the map are lit).
 #[inline(never)]
 fn filter<F: DepthFormat, P: Probe>(
     map: &MapView<'_, F>,
     cfg: &ShadowConfig,
     l: &Lookup,
-    (footprint, inside_map, whole): (Texels, TileRect, bool),
+    footprint: Texels,
     grid: Option<([MapCoord; 2], [u32; 2])>,
     probe: &mut P,
 ) -> Shadow {
@@ -680,28 +729,14 @@ fn filter<F: DepthFormat, P: Probe>(
         }
         (Filter::Box { .. }, _) => {
             let mut count = 0u64;
-            match (whole, l.slope, cfg.bias) {
-                // All on the map and one receiver depth: it is biased and
-                // rounded once, and each texel is a compare.
-                (true, None, Bias::Constant(b)) => {
-                    let receiver = at_format::<F>(l.z.to_bits().saturating_sub(b.to_bits()));
-                    for y in inside_map.y0..inside_map.y1 {
-                        for x in inside_map.x0..inside_map.x1 {
-                            count += u64::from(map.compare(cfg.test, x, y, receiver, probe));
-                        }
-                    }
-                    reads = footprint.count();
-                }
-                // One evaluation per row, then forward differences along it.
-                _ => {
-                    let du = l.slope.map_or(0, |s| s.du);
-                    for y in footprint.y0..=footprint.y1 {
-                        let mut z = l.depth_at(footprint.x0, y);
-                        for x in footprint.x0..=footprint.x1 {
-                            count += u64::from(sample(x, y, z, &mut rng));
-                            z = z.saturating_add(du);
-                        }
-                    }
+            // One evaluation per row, then forward differences along it
+            // (the box all on the map against one depth is `uniform_box`).
+            let du = l.slope.map_or(0, |s| s.du);
+            for y in footprint.y0..=footprint.y1 {
+                let mut z = l.depth_at(footprint.x0, y);
+                for x in footprint.x0..=footprint.x1 {
+                    count += u64::from(sample(x, y, z, &mut rng));
+                    z = z.saturating_add(du);
                 }
             }
             fraction(count, u64::from(footprint.count()))
@@ -730,14 +765,7 @@ fn filter<F: DepthFormat, P: Probe>(
         }
         (Filter::Jittered(_), None) => Shadow::ZERO,
     };
-    if reads > 0 && l.slope.is_some() {
-        probe.event(Event::VirtualSamples { count: reads });
-    }
-    if reads > 0 {
-        for buffer in map.buffers_read(cfg.test) {
-            probe.event(Event::MapRead { buffer, texels: reads, bytes: reads * F::KIND.bytes() });
-        }
-    }
+    report_reads(map, cfg.test, reads, l.slope.is_some(), probe);
     result
 }
 
