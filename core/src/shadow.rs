@@ -652,7 +652,7 @@ fn uniform_box<F: DepthFormat, P: Probe>(
             count += u64::from(map.compare(test, x, y, receiver, probe));
         }
     }
-    let reads = (r.x1 - r.x0) * (r.y1 - r.y0);
+    let reads = r.area();
     report_reads(map, test, reads, false, probe);
     fraction(count, u64::from(reads))
 }
@@ -667,13 +667,14 @@ fn report_reads<F: DepthFormat, P: Probe>(
     virtual_samples: bool,
     probe: &mut P,
 ) {
-    if reads > 0 && virtual_samples {
+    if reads == 0 {
+        return;
+    }
+    if virtual_samples {
         probe.event(Event::VirtualSamples { count: reads });
     }
-    if reads > 0 {
-        for buffer in map.buffers_read(test) {
-            probe.event(Event::MapRead { buffer, texels: reads, bytes: reads * F::KIND.bytes() });
-        }
+    for buffer in map.buffers_read(test) {
+        probe.event(Event::MapRead { buffer, texels: reads, bytes: reads * F::KIND.bytes() });
     }
 }
 
