@@ -361,3 +361,120 @@ fn virtual_samples_remove_self_shadowing_on_a_planar_receiver() {
     assert_eq!(events.setups + events.trivial, u64::from(total));
     assert!(events.virtual_samples > 0);
 }
+
+/// Percentage-closer filtering written out by hand (Reeves et al. 1987 §2):
+/// the `n × n` texel centres nearest the point, the receiver on its tangent
+/// plane at each centre, less the bias, rounded half up to the format's
+/// LSBs; a texel off the map is lit; the fraction rounded to 2⁻¹⁶.
+#[allow(clippy::too_many_arguments, reason = "the lookup, spelled out")]
+fn box_by_hand(
+    w: u32,
+    h: u32,
+    scale: i64,
+    z1: &[i64],
+    z2: &[i64],
+    test: DepthTest,
+    bias: i64,
+    n: i64,
+    l: &Lookup,
+) -> Shadow {
+    if l.z.to_bits() < 0 {
+        return Shadow::ZERO;
+    }
+    let first = |c: MapCoord| (i64::from(c.to_bits()) - (n - 1) * (1 << 15)).div_euclid(1 << 16);
+    let (x0, y0) = (first(l.x), first(l.y));
+    let (du, dv) = l.slope.map_or((0, 0), |s| (i128::from(s.du), i128::from(s.dv)));
+    let mut shadowed = 0i64;
+    for ty in y0..y0 + n {
+        for tx in x0..x0 + n {
+            if tx < 0 || ty < 0 || tx >= i64::from(w) || ty >= i64::from(h) {
+                continue;
+            }
+            let centre = |t: i64, p: MapCoord| i128::from((t << 16) + (1 << 15) - i64::from(p.to_bits()));
+            let receiver = i128::from(l.z.to_bits()) + ((du * centre(tx, l.x)) >> 16) + ((dv * centre(ty, l.y)) >> 16)
+                - i128::from(bias);
+            let lsb = ((receiver + (1 << 31)) >> 32).clamp(0, i128::from(scale));
+            let i = usize::try_from(ty * i64::from(w) + tx).expect("on the map");
+            let (a, b) = (i128::from(z1[i]) << 32, i128::from(z2[i]) << 32);
+            let reference = match test {
+                DepthTest::First => a,
+                DepthTest::Second => b,
+                DepthTest::Midpoint => (a + b) / 2,
+                DepthTest::Dual { offset } => a + ((b - a) / 2).min(i128::from(offset.to_bits().max(0))),
+            };
+            shadowed += i64::from((lsb << 32) > reference);
+        }
+    }
+    let all = n * n;
+    Shadow::from_bits(u32::try_from((2 * shadowed * 65_536 + all) / (2 * all)).expect("at most one"))
+}
+
+/// Depths on a few levels, so that receivers meet stored surfaces exactly.
+fn levels(texels: usize) -> impl Strategy<Value = (Vec<f32>, Vec<f32>)> {
+    let level = prop::sample::select(vec![0.2f32, 0.35, 0.5, 0.65, 0.8, 1.0]);
+    prop::collection::vec((level.clone(), level), texels)
+        .prop_map(|p| p.into_iter().map(|(a, b)| (a.min(b), a.max(b))).unzip())
+}
+
+fn box_against_hand<F: DepthFormat>(
+    (z1, z2): &(Vec<f32>, Vec<f32>),
+    test: DepthTest,
+    bias: f64,
+    n: u8,
+    lookups: &[Lookup],
+) -> Result<(), TestCaseError>
+where
+    F::Texel: Into<i64>,
+{
+    let (w, h) = (20, 12);
+    let map = Map::<F>::new(w, h, z1, z2);
+    let texels = |b: &[F::Texel]| b.iter().map(|&t| t.into()).collect::<Vec<i64>>();
+    let (t1, t2) = (texels(&map.z1), texels(&map.z2));
+    let b = F::plane_z(bias);
+    for l in lookups {
+        let expected = box_by_hand(w, h, F::SCALE, &t1, &t2, test, b.to_bits(), i64::from(n), l);
+        for culling in [false, true] {
+            let c = ShadowConfig::new(test, Bias::Constant(b), Filter::Box { size: n }, culling).expect("valid");
+            prop_assert_eq!(shadow(&map.view(), &c, l, &mut NoProbe), expected, "{:?}, culling {}", l, culling);
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Every box size, depth test and format, on and off the map (tiles
+    /// cut by its edge), with and without a tangent plane and with culling
+    /// on and off: the box filter counts what the hand-written filter counts.
+    #[test]
+    fn box_filters_count_what_a_hand_count_does(
+        depths in levels(240),
+        test in prop_oneof![
+            Just(DepthTest::First),
+            Just(DepthTest::Second),
+            Just(DepthTest::Midpoint),
+            (0.0f64..0.3).prop_map(|o| DepthTest::Dual { offset: D24::plane_z(o) }),
+        ],
+        bias in prop_oneof![Just(0.0f64), 0.0f64..0.05],
+        n in 1u8..=16,
+        points in prop::collection::vec(
+            (
+                -6.0f32..26.0,
+                -6.0f32..18.0,
+                prop_oneof![prop::sample::select(vec![0.2f32, 0.35, 0.5, 0.65, 0.8, 1.0]), -0.05f32..1.05],
+                prop::option::of((-(1i64 << 36)..(1i64 << 36), -(1i64 << 36)..(1i64 << 36))),
+            ),
+            16,
+        ),
+    ) {
+        let lookups = |f: fn(f32, f32, f32) -> Lookup| -> Vec<Lookup> {
+            points
+                .iter()
+                .map(|&(x, y, z, s)| Lookup { slope: s.map(|(du, dv)| Slope { du, dv }), ..f(x, y, z) })
+                .collect()
+        };
+        box_against_hand::<D16>(&depths, test, bias, n, &lookups(at::<D16>))?;
+        box_against_hand::<D24>(&depths, test, bias, n, &lookups(at::<D24>))?;
+    }
+}
