@@ -160,13 +160,36 @@ impl MapPlane {
     }
 }
 
+/// `U, V, Z, Λw` as integer linear forms in `(px + ½, py + ½, 1)`,
+/// evaluated at twice that (`2px + 1`, `2py + 1`, `2`) to stay in integers.
+#[derive(Clone, Copy, Debug)]
+struct LightForms {
+    rows: [[i64; 3]; 4],
+    /// Every form stays below [`NARROW_FORM`] in magnitude at every pixel
+    /// of the target and one past its right and lower edges (where the
+    /// jittered footprint looks): evaluated in `i64`, exactly.
+    narrow: bool,
+}
+
+/// The bound below which a light form is evaluated in `i64`: it leaves the
+/// reciprocal divider's fast path (denominators below 2⁶¹) open too.
+const NARROW_FORM: i128 = 1 << 60;
+
+impl LightForms {
+    fn new(rows: [[i64; 3]; 4], width: u32, height: u32) -> Self {
+        let (sx, sy) = (2 * i128::from(width) + 1, 2 * i128::from(height) + 1);
+        let reach =
+            |r: &[i64; 3]| i128::from(r[0]).abs() * sx + i128::from(r[1]).abs() * sy + 2 * i128::from(r[2]).abs();
+        Self { rows, narrow: rows.iter().all(|r| reach(r) < NARROW_FORM) }
+    }
+}
+
 /// A triangle's setup for the interpolator.
 #[derive(Clone, Copy, Debug)]
 struct Interp {
     id: u32,
-    /// `U, V, Z, Λw` as integer linear forms in `(px + ½, py + ½, 1)`,
-    /// evaluated at twice that (`2px + 1`, `2py + 1`, `2`) to stay in integers.
-    light: Option<[[i64; 3]; 4]>,
+    /// `U, V, Z, Λw` as integer linear forms.
+    light: Option<LightForms>,
     /// Normal rows (x, y, z) over `s`, f64.
     normal: [[f64; 3]; 3],
     /// Homogeneous world point rows over `s`, f64.
@@ -257,7 +280,7 @@ impl Interp {
                 }
             }
             if ok {
-                out.light = Some(ints);
+                out.light = Some(LightForms::new(ints, cfg.width, cfg.height));
             }
             // Reeves' footprint: the pixel's half-extent on the map at the centroid.
             let cs = [c[0], c[1], c[2]].map(|v| {
@@ -288,26 +311,23 @@ impl Interp {
     }
 
     /// The light point of pixel `(px, py)`; `None` behind the light. The
-    /// depth division is skipped (`z` left 0) unless `with_depth`.
+    /// depth division is skipped (`z` left 0) unless `with_depth`. Pixels
+    /// lie on the target or one past its right or lower edge.
     #[inline(always)]
     fn light_point<F: DepthFormat>(&self, px: u32, py: u32, with_depth: bool) -> Option<LightPoint> {
-        let f = self.light?;
-        // 64 × 64 → 128-bit products (one multiply each).
+        let f = self.light.as_ref()?;
         let (sx, sy) = (i64::from(px) * 2 + 1, i64::from(py) * 2 + 1);
+        if f.narrow {
+            // Below 2⁶⁰ by construction: the wrapping never happens.
+            let eval = |r: &[i64; 3]| {
+                i128::from(r[0].wrapping_mul(sx).wrapping_add(r[1].wrapping_mul(sy)).wrapping_add(r[2].wrapping_mul(2)))
+            };
+            return project::<F>(&f.rows, eval, with_depth);
+        }
+        // 64 × 64 → 128-bit products (one multiply each).
         let eval =
             |r: &[i64; 3]| i128::from(r[0]) * i128::from(sx) + i128::from(r[1]) * i128::from(sy) + 2 * i128::from(r[2]);
-        let w = eval(&f[3]);
-        if w <= 0 {
-            return None;
-        }
-        let divider = Reciprocal::new(w);
-        let z = if with_depth {
-            let z = eval(&f[2]).checked_mul(i128::from(F::SCALE) << PLANE_FRACTION_BITS)? / w;
-            PlaneZ::from_bits(saturate(z))
-        } else {
-            PlaneZ::ZERO
-        };
-        Some(LightPoint { x: divider.coord(eval(&f[0]))?, y: divider.coord(eval(&f[1]))?, z })
+        project::<F>(&f.rows, eval, with_depth)
     }
 
     /// Reeves' footprint of pixel `(px, py)`: half the extent on the map of
@@ -343,6 +363,28 @@ impl Interp {
         let s = [f64::from(px) + 0.5, f64::from(py) + 0.5, 1.0];
         rows.iter().map(move |r| dot3(r, &s))
     }
+}
+
+/// The light point from the forms' values at a pixel (`eval`): `u = U/Λw`,
+/// `v = V/Λw` and, `with_depth`, `z = Z/Λw`; `None` behind the light.
+#[inline(always)]
+fn project<F: DepthFormat>(
+    rows: &[[i64; 3]; 4],
+    eval: impl Fn(&[i64; 3]) -> i128,
+    with_depth: bool,
+) -> Option<LightPoint> {
+    let w = eval(&rows[3]);
+    if w <= 0 {
+        return None;
+    }
+    let divider = Reciprocal::new(w);
+    let z = if with_depth {
+        let z = eval(&rows[2]).checked_mul(i128::from(F::SCALE) << PLANE_FRACTION_BITS)? / w;
+        PlaneZ::from_bits(saturate(z))
+    } else {
+        PlaneZ::ZERO
+    };
+    Some(LightPoint { x: divider.coord(eval(&rows[0]))?, y: divider.coord(eval(&rows[1]))?, z })
 }
 
 /// A divider by `w > 0` with a reciprocal estimate, as hardware divides:
