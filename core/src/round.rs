@@ -61,7 +61,7 @@ pub fn i128_to_f64(n: i128) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::{i128_to_f64, round_ties_even};
+    use super::{i128_to_f64, round_ties_even, saturate};
 
     #[test]
     #[allow(
@@ -103,5 +103,24 @@ mod tests {
         assert_eq!(round_ties_even(3.0e17), 300_000_000_000_000_000);
         assert_eq!(round_ties_even(f64::INFINITY), i64::MAX);
         assert_eq!(round_ties_even(f64::NAN), 0);
+    }
+
+    #[test]
+    fn wide_integers_saturate_to_the_i64_range() {
+        #[allow(clippy::cast_possible_truncation, reason = "clamped first")]
+        let clamp = |v: i128| v.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64;
+        let mut rng = oorandom::Rand64::new(0x5a7);
+        let (lo, hi) = (i128::from(i64::MIN), i128::from(i64::MAX));
+        for edge in [i128::MIN, i128::MAX, lo, hi, 0, 1 << 64, -(1 << 64), (1 << 64) - 1, 1 << 63, -(1 << 63)] {
+            for d in -3..=3 {
+                let v = edge.saturating_add(d);
+                assert_eq!(saturate(v), clamp(v), "{v}");
+            }
+        }
+        for _ in 0..100_000 {
+            let raw = (u128::from(rng.rand_u64()) << 64 | u128::from(rng.rand_u64())).cast_signed();
+            let v = raw >> rng.rand_range(0..128);
+            assert_eq!(saturate(v), clamp(v), "{v}");
+        }
     }
 }
