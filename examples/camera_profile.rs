@@ -17,12 +17,12 @@
 
 use std::hash::{DefaultHasher, Hash, Hasher};
 
-use umbra::core::camera::{CameraConfig, Normals, Shaded, shade};
+use umbra::core::camera::{CameraConfig, MapUnit, Normals, ShadeSetup, Shaded, shade_with};
 use umbra::core::depth::PlaneZ;
 use umbra::core::probe::TexelRead;
 use umbra::core::shadow::{Bias, DepthTest, Filter, ShadowConfig};
 use umbra::core::{CullMode, D24, DepthUnit, Event, LightPassConfig, NoProbe, Probe, RasterConfig};
-use umbra::sim::camera::{map_view, visibility};
+use umbra::sim::camera::{SHADE_SETUPS, map_view, visibility};
 use umbra::sim::light::render;
 use umbra::sim::presets::FILTERS;
 use umbra::sim::scene::Scene;
@@ -61,14 +61,33 @@ fn shade_scene(
     let triangles = scene.triangles();
     let source = |id: u32| triangles.get(id as usize).copied();
     let mut pixels = vec![Shaded::BACKGROUND; ids.len()];
+    let mut setups = vec![ShadeSetup::EMPTY; SHADE_SETUPS];
     for &(shadow, virtual_samples, normals) in configs {
         let light = scene.light().view_projection();
         let cfg = CameraConfig { camera, light, width, height, shadow, virtual_samples, normals, seed: 0x5eed };
         for _ in 0..passes {
             if trace {
-                shade::<D24, _, _>(&cfg, &ids, &view, &source, &mut pixels, &mut Trace(digest))?;
+                shade_with::<D24, _, _, _>(
+                    &cfg,
+                    &ids,
+                    &view,
+                    &source,
+                    &mut pixels,
+                    &MapUnit,
+                    &mut setups,
+                    &mut Trace(digest),
+                )?;
             } else {
-                shade::<D24, _, _>(&cfg, &ids, &view, &source, &mut pixels, &mut NoProbe)?;
+                shade_with::<D24, _, _, _>(
+                    &cfg,
+                    &ids,
+                    &view,
+                    &source,
+                    &mut pixels,
+                    &MapUnit,
+                    &mut setups,
+                    &mut NoProbe,
+                )?;
             }
         }
         for p in &pixels {

@@ -131,8 +131,9 @@ impl Shaded {
     pub const BACKGROUND: Self = Self { triangle: NO_TRIANGLE, light: None, normal: Vec3::ZERO, shadow: Shadow::ZERO };
 }
 
-/// Entries of the per-triangle setup cache.
-const SETUP_CACHE: usize = 16;
+/// Entries of [`shade`]'s setup store (on the stack: small enough for a
+/// microcontroller's).
+pub const SETUP_STORE: usize = 16;
 
 /// `2⁴⁴`: the scale of the denominator `Λw` over the target, so that the
 /// numerators (up to `W/2` times larger) and their products with pixel
@@ -487,7 +488,8 @@ pub fn shade<F: DepthFormat, S: TriangleSource, P: Probe>(
     out: &mut [Shaded],
     probe: &mut P,
 ) -> Result<(), ConfigError> {
-    shade_with(cfg, ids, map, scene, out, &MapUnit, probe)
+    let mut setups = [ShadeSetup::EMPTY; SETUP_STORE];
+    shade_with(cfg, ids, map, scene, out, &MapUnit, &mut setups, probe)
 }
 
 /// The unit that turns a pixel's lookup into its shadow fraction.
@@ -544,10 +546,25 @@ impl<F: DepthFormat, S: SilStore> ShadowUnit<F> for SilhouetteUnit<'_, '_, S> {
     }
 }
 
-/// [`shade`] with any [`ShadowUnit`].
+/// One entry of the shading unit's setup store: a triangle's interpolator
+/// setup, kept while the pass meets the triangle again. Rows of pixels
+/// cross the same triangles row after row, so a store as long as the
+/// triangles one row crosses sets each up about once a pass.
+#[derive(Clone, Copy, Debug)]
+pub struct ShadeSetup(Option<Interp>);
+
+impl ShadeSetup {
+    /// An entry that holds nothing, to fill a store.
+    pub const EMPTY: Self = Self(None);
+}
+
+/// [`shade`] with any [`ShadowUnit`], keeping triangle setups in `setups`
+/// (direct-mapped by triangle id; emptied first, as setups depend on the
+/// configuration; an empty store sets up every run of pixels anew).
 ///
 /// # Errors
 /// [`ConfigError::BufferLength`] when `ids` or `out` is not `width × height`.
+#[allow(clippy::too_many_arguments, reason = "the unit's inputs, its store and its probe")]
 pub fn shade_with<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, P: Probe>(
     cfg: &CameraConfig,
     ids: &[u32],
@@ -555,6 +572,7 @@ pub fn shade_with<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, P: Probe>
     scene: &S,
     out: &mut [Shaded],
     unit: &U,
+    setups: &mut [ShadeSetup],
     probe: &mut P,
 ) -> Result<(), ConfigError> {
     // Saturating: on a 32-bit target the product of two `u32` sides can overflow.
@@ -564,31 +582,36 @@ pub fn shade_with<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, P: Probe>
             return Err(ConfigError::BufferLength { buffer, expected: texels, found });
         }
     }
+    let mut one = [ShadeSetup::EMPTY];
+    let setups = if setups.is_empty() { &mut one[..] } else { setups };
+    setups.fill(ShadeSetup::EMPTY);
     let light_inverse_transpose = cfg.light.inverse().transpose();
-    let mut cache: [Option<Interp>; SETUP_CACHE] = [None; SETUP_CACHE];
     let width = cfg.width as usize;
     if width == 0 {
         return Ok(());
     }
+    // The store is consulted when the id changes along a row; the source
+    // is asked only when the store misses.
+    let (mut run, mut interp): (u32, Option<&Interp>) = (NO_TRIANGLE, None);
     for (py, (ids, out)) in (0u32..).zip(ids.chunks_exact(width).zip(out.chunks_exact_mut(width))) {
         for (px, (&id, o)) in (0u32..).zip(ids.iter().zip(out.iter_mut())) {
-            if id == NO_TRIANGLE {
-                *o = Shaded::BACKGROUND;
-                continue;
-            }
-            // The source is asked only when the cache misses.
-            let slot = &mut cache[id as usize % SETUP_CACHE];
-            let interp = match slot {
-                Some(c) if c.id == id => &*c,
-                _ => match scene.triangle(id) {
-                    Some(tri) => &*slot.insert(Interp::new::<F>(cfg, map, id, &tri)),
-                    None => {
-                        *o = Shaded::BACKGROUND;
-                        continue;
+            if id != run {
+                run = id;
+                interp = None;
+                if id != NO_TRIANGLE {
+                    let slot = id as usize % setups.len();
+                    if let Some(entry) = setups.get_mut(slot) {
+                        interp = match entry {
+                            ShadeSetup(Some(c)) if c.id == id => Some(&*c),
+                            _ => scene.triangle(id).map(|tri| &*entry.0.insert(Interp::new::<F>(cfg, map, id, &tri))),
+                        };
                     }
-                },
+                }
+            }
+            *o = match interp {
+                Some(i) => shade_pixel(cfg, map, unit, probe, &light_inverse_transpose, (px, py), i),
+                None => Shaded::BACKGROUND,
             };
-            *o = shade_pixel(cfg, map, unit, probe, &light_inverse_transpose, (px, py), interp);
         }
     }
     Ok(())

@@ -3,7 +3,7 @@
 
 use glam::Mat4;
 use umbra_core::bin::Bin;
-use umbra_core::camera::{CameraConfig, MapUnit, Normals, Shaded, ShadowUnit, shade_with};
+use umbra_core::camera::{CameraConfig, MapUnit, Normals, ShadeSetup, Shaded, ShadowUnit, shade_with};
 use umbra_core::setup::Setup;
 use umbra_core::shadow::{MapView, Shadow, ShadowConfig};
 use umbra_core::{
@@ -70,9 +70,14 @@ pub fn visibility_depth<P: Probe>(
     Ok(Visibility { camera, raster, ids: frame.ids, depth: frame.z })
 }
 
+/// Entries of the shading unit's setup store: more than the triangles a
+/// row of a 1920-pixel image of the bundled scenes crosses, so that each
+/// visible triangle is set up about once a pass.
+pub const SHADE_SETUPS: usize = 256;
+
 /// The camera pass's memory, kept from frame to frame as hardware keeps its
 /// framebuffer: the visibility unit's depth, ids, tile states, bins and
-/// setup store, and the shaded pixels. A pass into a frame it has drawn
+/// setup store, the shading unit's setup store, and the shaded pixels. A pass into a frame it has drawn
 /// at the same size before allocates nothing (the passes clear what they
 /// use).
 #[derive(Clone, Debug, Default)]
@@ -82,6 +87,7 @@ pub struct CameraFrame {
     tiles: Vec<TileState<u32>>,
     bins: Vec<Bin<DEFAULT_BIN_CAPACITY>>,
     store: Vec<Setup>,
+    shade_setups: Vec<ShadeSetup>,
     /// The shaded pixels of the last pass, row-major.
     pub pixels: Vec<Shaded>,
 }
@@ -221,7 +227,8 @@ fn shade_frame<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
     let source = |id: u32| triangles.get(id as usize).copied();
     // Every pixel is written: the fill only sizes a new frame.
     frame.pixels.resize(frame.ids.len(), Shaded::BACKGROUND);
-    shade_with(&cfg, &frame.ids, view, &source, &mut frame.pixels, unit, probe)?;
+    frame.shade_setups.resize(SHADE_SETUPS, ShadeSetup::EMPTY);
+    shade_with(&cfg, &frame.ids, view, &source, &mut frame.pixels, unit, &mut frame.shade_setups, probe)?;
     Ok(())
 }
 

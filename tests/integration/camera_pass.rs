@@ -2,7 +2,7 @@
 //! light space, and the shadow unit with virtual samples.
 
 use proptest::prelude::*;
-use umbra::core::camera::{CameraConfig, Normals, SceneTriangle, Shaded, shade};
+use umbra::core::camera::{CameraConfig, MapUnit, Normals, SceneTriangle, ShadeSetup, Shaded, shade, shade_with};
 use umbra::core::glam::{Mat4, Vec3, Vec4};
 use umbra::core::probe::Probe;
 use umbra::core::shadow::{Bias, DepthTest, Filter, Jitter, MapView, Shadow, ShadowConfig};
@@ -187,6 +187,46 @@ fn culled_camera_pass_equals_unculled() {
             }
         }
     }
+}
+
+/// The shading unit's setup store only saves work: with no store (every
+/// run of pixels set up anew), one entry, a few, many, or a store left
+/// full by a pass under another light, the pixels are the same.
+#[test]
+fn setup_stores_of_any_size_shade_alike() {
+    let mut scene = Scene { tris: Vec::new() };
+    scene.add(Vec3::new(-4.0, 0.0, 3.0), Vec3::new(4.0, 0.0, 3.0), Vec3::new(0.0, 0.0, -5.0));
+    for i in 0..6u8 {
+        let x = f32::from(i) * 0.35 - 1.0;
+        scene.cuboid(Vec3::new(x, 0.0, -0.6), Vec3::new(x + 0.2, 0.4 + f32::from(i) * 0.1, 0.6));
+    }
+    let light = perspective(Vec3::new(1.5, 4.0, 2.0), Vec3::ZERO, 1.4, 1.0, 20.0);
+    let other = perspective(Vec3::new(-2.0, 3.0, 1.0), Vec3::ZERO, 1.2, 1.0, 20.0);
+    let cfg = config(128, 16, DepthUnit::Dual, true);
+    let (maps, _) = run::<D24, _, 64>(cfg, &scene.clip(&light, true), CullMode::None, 4096, NoProbe);
+    let view = MapView::<D24>::new(cfg.raster, &maps.z1, &maps.z2, &maps.tiles).expect("sized");
+    let (ids, _, _) = run_visibility::<D24>(CAMERA, 16, &scene.clip(&camera(), false), true);
+    let source = |id: u32| scene.tris.get(id as usize).copied();
+    let with = |light: Mat4, setups: &mut [ShadeSetup]| {
+        let cam = camera_config(light, second(Filter::Box { size: 3 }), true, Normals::Flat);
+        let mut out = vec![Shaded::BACKGROUND; (CAMERA * CAMERA) as usize];
+        shade_with(&cam, &ids, &view, &source, &mut out, &MapUnit, setups, &mut NoProbe).expect("sized");
+        out
+    };
+    let reference = with(light, &mut []);
+    let visible = reference.iter().filter(|p| p.triangle != NO_TRIANGLE).map(|p| p.triangle);
+    assert!(visible.collect::<std::collections::BTreeSet<_>>().len() > 20, "rows cross many triangles");
+    assert!(reference.iter().any(|p| p.shadow == Shadow::ONE), "the boxes cast shadows");
+    for len in [1, 3, 16, 256] {
+        assert_eq!(with(light, &mut vec![ShadeSetup::EMPTY; len]), reference, "a store of {len}");
+    }
+    let mut stale = vec![ShadeSetup::EMPTY; 256];
+    assert_ne!(with(other, &mut stale), reference, "another light shades otherwise");
+    assert_eq!(with(light, &mut stale), reference, "a store left by another light");
+    let mut out = vec![Shaded::BACKGROUND; (CAMERA * CAMERA) as usize];
+    let cam = camera_config(light, second(Filter::Box { size: 3 }), true, Normals::Flat);
+    shade(&cam, &ids, &view, &source, &mut out, &mut NoProbe).expect("sized");
+    assert_eq!(out, reference, "shade's own store");
 }
 
 /// Second depth from front-face culling: for a scene of closed solids the
