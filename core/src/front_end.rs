@@ -22,7 +22,7 @@ use crate::light_pass::SubmitError;
 use crate::probe::RejectReason;
 use crate::setup::Setup;
 use crate::snap::SnappedVertex;
-use crate::vertex::VertexCache;
+use crate::vertex::{VertexCache, process};
 
 /// What the front end reports, in submission order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -67,16 +67,15 @@ pub fn mesh<F: DepthFormat>(
     let mut cache = VertexCache::new();
     let mut id = first_id;
     for t in triangles {
-        let mut fetch = |i| cache.fetch::<F>(raster, transform, positions, i);
         out(Output::Submitted);
         // Most triangles lie inside every clip plane: their snapped vertices
         // are all they need from the cache.
-        if let [Some(a), Some(b), Some(c)] = t.map(|i| fetch(i).snapped) {
+        if let [Some(a), Some(b), Some(c)] = t.map(|i| cache.snapped::<F>(raster, transform, positions, i)) {
             set_up(raster, [a, b, c], cull, id, out);
         } else {
-            // Fetched again (the same values: the unit is a function of the
-            // position), whole, for the clipper.
-            let [a, b, c] = t.map(fetch);
+            // Through the vertex unit again (the same values: the unit is a
+            // function of the position), whole, for the clipper.
+            let [a, b, c] = t.map(|i| process::<F>(raster, transform, positions, i));
             if a.finite && b.finite && c.finite {
                 clip::<F>(raster, &[a.clip, b.clip, c.clip], cull, id, out);
             } else {

@@ -10,8 +10,10 @@ use crate::config::RasterConfig;
 use crate::depth::DepthFormat;
 use crate::snap::SnappedVertex;
 
-/// Entries of the post-transform cache (direct-mapped by index).
-pub const CACHE_ENTRIES: usize = 32;
+/// Entries of the post-transform cache (direct-mapped by index): a ring of
+/// a few hundred vertices, so that a strip of a mesh finds the vertices the
+/// strip before it shared.
+pub const CACHE_ENTRIES: usize = 256;
 
 /// A vertex after the vertex unit.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -37,34 +39,45 @@ impl Processed {
     }
 }
 
-/// The post-transform cache of one draw call.
+/// The vertex unit on vertex `index` of `positions` (a missing vertex is
+/// NaN, and so rejected).
+#[must_use]
+pub fn process<F: DepthFormat>(raster: &RasterConfig, transform: &Mat4, positions: &[Vec3], index: u32) -> Processed {
+    let p = positions.get(index as usize).copied().unwrap_or(Vec3::NAN);
+    Processed::new::<F>(raster, transform, p)
+}
+
+/// The post-transform cache of one draw call. It keeps what most triangles
+/// need, the snapped vertex of a vertex inside every clip plane; the
+/// clipper's few triangles run their vertices through the unit again.
 pub(crate) struct VertexCache {
     tags: [u32; CACHE_ENTRIES],
-    entries: [Processed; CACHE_ENTRIES],
+    snapped: [Option<SnappedVertex>; CACHE_ENTRIES],
 }
 
 impl VertexCache {
     pub(crate) const fn new() -> Self {
-        const EMPTY: Processed = Processed { clip: [0.0; 4], finite: false, snapped: None };
-        Self { tags: [u32::MAX; CACHE_ENTRIES], entries: [EMPTY; CACHE_ENTRIES] }
+        Self { tags: [u32::MAX; CACHE_ENTRIES], snapped: [None; CACHE_ENTRIES] }
     }
 
-    /// The processed vertex `index`, from the cache or computed (a copy:
-    /// the next fetch may evict it).
+    /// The snapped vertex `index`, from the cache or computed; `None` when
+    /// it lies outside a clip plane or is not finite.
     #[inline]
-    pub(crate) fn fetch<F: DepthFormat>(
+    pub(crate) fn snapped<F: DepthFormat>(
         &mut self,
         raster: &RasterConfig,
         transform: &Mat4,
         positions: &[Vec3],
         index: u32,
-    ) -> Processed {
+    ) -> Option<SnappedVertex> {
         let slot = index as usize % CACHE_ENTRIES;
-        if self.tags[slot] != index {
-            let p = positions.get(index as usize).copied().unwrap_or(Vec3::NAN);
-            self.entries[slot] = Processed::new::<F>(raster, transform, p);
-            self.tags[slot] = index;
+        if let (Some(tag), Some(entry)) = (self.tags.get_mut(slot), self.snapped.get_mut(slot)) {
+            if *tag != index {
+                *entry = process::<F>(raster, transform, positions, index).snapped;
+                *tag = index;
+            }
+            return *entry;
         }
-        self.entries[slot]
+        process::<F>(raster, transform, positions, index).snapped
     }
 }
