@@ -325,15 +325,13 @@ impl Interp {
             };
             return project::<F>(&f.rows, eval, with_depth);
         }
-        // 64 × 64 → 128-bit products (one multiply each).
-        let eval =
-            |r: &[i64; 3]| i128::from(r[0]) * i128::from(sx) + i128::from(r[1]) * i128::from(sy) + 2 * i128::from(r[2]);
-        project::<F>(&f.rows, eval, with_depth)
+        wide_point::<F>(&f.rows, sx, sy, with_depth)
     }
 
     /// Reeves' footprint of pixel `(px, py)`: half the extent on the map of
     /// the steps to its right and lower neighbours (the per-triangle
     /// centroid estimate where a neighbour is behind the light).
+    #[inline(never)]
     fn footprint_at<F: DepthFormat>(&self, p: &LightPoint, px: u32, py: u32) -> [MapCoord; 2] {
         let (Some(r), Some(d)) = (
             self.light_point::<F>(px.saturating_add(1), py, false),
@@ -386,6 +384,16 @@ fn project<F: DepthFormat>(
         PlaneZ::ZERO
     };
     Some(LightPoint { x: divider.coord(eval(&rows[0]))?, y: divider.coord(eval(&rows[1]))?, z })
+}
+
+/// [`project`] of forms that may reach beyond `i64`, out of line (rare, and
+/// kept out of the shading loop's code).
+#[inline(never)]
+fn wide_point<F: DepthFormat>(rows: &[[i64; 3]; 4], sx: i64, sy: i64, with_depth: bool) -> Option<LightPoint> {
+    // 64 × 64 → 128-bit products (one multiply each).
+    let eval =
+        |r: &[i64; 3]| i128::from(r[0]) * i128::from(sx) + i128::from(r[1]) * i128::from(sy) + 2 * i128::from(r[2]);
+    project::<F>(rows, eval, with_depth)
 }
 
 /// A divider by `w > 0` with a reciprocal estimate, as hardware divides:
