@@ -228,6 +228,19 @@ fn inverse3(m: &[[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
 }
 
 impl Interp {
+    /// A setup with nothing to interpolate: no light forms, no normal, no
+    /// map plane (what a triangle whose vertices are singular keeps).
+    const EMPTY: Self = Self {
+        id: NO_TRIANGLE,
+        light: None,
+        normal: [[0.0; 3]; 3],
+        world: [[0.0; 3]; 4],
+        plane: None,
+        face: Vec3::ZERO,
+        corner: Vec3::ZERO,
+        footprint: [MapCoord::ZERO; 2],
+    };
+
     fn new<F: DepthFormat>(cfg: &CameraConfig, map: &MapView<'_, F>, id: u32, t: &SceneTriangle) -> Self {
         let to_clip = |m: &Mat4, p: Vec3| (*m * p.extend(1.0)).to_array().map(f64::from);
         let c = t.positions.map(|p| to_clip(&cfg.camera, p));
@@ -238,16 +251,7 @@ impl Interp {
         let a = [[2.0 / wc, 0.0, -1.0], [0.0, -2.0 / hc, 1.0], [0.0, 0.0, 1.0]];
         let raster = *map.raster();
         let face = (t.positions[1] - t.positions[0]).cross(t.positions[2] - t.positions[0]);
-        let mut out = Self {
-            id,
-            light: None,
-            normal: [[0.0; 3]; 3],
-            world: [[0.0; 3]; 4],
-            plane: None,
-            face,
-            corner: t.positions[0],
-            footprint: [MapCoord::ZERO; 2],
-        };
+        let mut out = Self { id, face, corner: t.positions[0], ..Self::EMPTY };
         let Some(minv) = inverse3(&m) else { return out };
         let k: [[f64; 3]; 3] = [0, 1, 2].map(|i| [0, 1, 2].map(|j| (0..3).map(|x| minv[i][x] * a[x][j]).sum()));
         let light_rows: [[f64; 3]; 4] = [0, 1, 2, 3].map(|r| [l[0][r], l[1][r], l[2][r]]);
@@ -685,7 +689,8 @@ fn shade_pixel<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
 
 #[cfg(test)]
 mod tests {
-    use super::Reciprocal;
+    use super::{Interp, LightForms, NARROW_FORM, Reciprocal};
+    use crate::depth::{D24, DepthFormat, PLANE_FRACTION_BITS};
 
     fn div_shifted(n: i128, w: i128) -> Option<i64> {
         Reciprocal::new(w).div_shifted(n)
@@ -722,5 +727,61 @@ mod tests {
         }
         // Outside i64: the wide path.
         assert_eq!(div_shifted(i128::from(i64::MAX) * 4, 3), Some(wide(i128::from(i64::MAX) * 4, 3)));
+    }
+
+    /// The light point, worked out by hand in `i128`: each form at
+    /// `(2px + 1, 2py + 1, 2)`, then `u = ⌊U·2¹⁶ / Λw⌋` toward zero clamped to
+    /// a map coordinate, `z = Z·SCALE·2³² / Λw` toward zero; `None` behind
+    /// the light.
+    fn by_hand(rows: &[[i64; 3]; 4], px: u32, py: u32) -> Option<(i32, i32, i64)> {
+        let s = [2 * i128::from(px) + 1, 2 * i128::from(py) + 1, 2];
+        let [u, v, z, w] = rows.map(|r| (0..3).map(|k| i128::from(r[k]) * s[k]).sum::<i128>());
+        if w <= 0 {
+            return None;
+        }
+        let coord = |n: i128| i32::try_from((n * 65_536 / w).clamp(i32::MIN.into(), i32::MAX.into())).ok();
+        let depth = i64::try_from(z * (i128::from(D24::SCALE) << PLANE_FRACTION_BITS) / w).ok()?;
+        Some((coord(u)?, coord(v)?, depth))
+    }
+
+    /// Forms below the narrow bound over the target take the `i64` path;
+    /// the rest the `i128` one; both give the light point worked out by
+    /// hand, for points on and far off the map and for any depth.
+    #[test]
+    fn light_points_equal_the_wide_division_on_both_paths() {
+        let mut rng = oorandom::Rand64::new(0x11_9e);
+        let (width, height) = (1920, 1080);
+        let (mut narrow, mut wide) = (0, 0);
+        for _ in 0..20_000 {
+            let reach = rng.rand_range(44..62);
+            #[allow(clippy::cast_possible_wrap, reason = "any 64-bit pattern")]
+            let mut any = |bits: u64| (rng.rand_u64() as i64) >> (64 - bits);
+            // Λw near 2⁴⁴ over the target, as setup scales it; numerators
+            // within the map's reach or far beyond it.
+            let w = [any(30), any(30), (1 << 43) + any(40)];
+            let rows = [
+                [any(reach - 11), any(reach - 11), any(reach)],
+                [any(reach - 11), any(reach - 11), any(reach)],
+                [any(34), any(34), any(45)],
+                w,
+            ];
+            let interp = Interp { light: Some(LightForms::new(rows, width, height)), ..Interp::EMPTY };
+            let form = interp.light.as_ref().map(|f| f.narrow);
+            if form == Some(true) {
+                narrow += 1
+            } else {
+                wide += 1
+            }
+            for _ in 0..8 {
+                #[allow(clippy::cast_possible_truncation, reason = "below the target's sides")]
+                let (px, py) =
+                    (rng.rand_range(0..u64::from(width) + 1) as u32, rng.rand_range(0..u64::from(height) + 1) as u32);
+                let got =
+                    interp.light_point::<D24>(px, py, true).map(|p| (p.x.to_bits(), p.y.to_bits(), p.z.to_bits()));
+                assert_eq!(got, by_hand(&rows, px, py), "rows {rows:?} at ({px}, {py})");
+            }
+        }
+        assert!(narrow > 1_000 && wide > 1_000, "both paths taken: {narrow} narrow, {wide} wide");
+        assert!(NARROW_FORM > 1 << 59);
     }
 }
