@@ -362,9 +362,11 @@ impl Interp {
         Some((PlaneZ::from_bits(saturate(plane.c + (steps >> 16))), slope))
     }
 
-    fn at_pixel(rows: &[[f64; 3]], px: u32, py: u32) -> impl Iterator<Item = f64> + '_ {
-        let s = [f64::from(px) + 0.5, f64::from(py) + 0.5, 1.0];
-        rows.iter().map(move |r| dot3(r, &s))
+    /// Rows over `s = (px + ½, py + ½, 1)` at a pixel centre.
+    #[inline]
+    fn at_pixel<const R: usize>(rows: &[[f64; 3]; R], px: u32, py: u32) -> [f64; R] {
+        let (x, y) = (f64::from(px) + 0.5, f64::from(py) + 0.5);
+        rows.map(|r| r[0] * x + r[1] * y + r[2])
     }
 }
 
@@ -641,15 +643,8 @@ fn shade_pixel<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
     interp: &Interp,
 ) -> Shaded {
     let id = interp.id;
-    let normal = {
-        let mut n = Interp::at_pixel(&interp.normal, px, py);
-        let mut next = || {
-            #[allow(clippy::cast_possible_truncation, reason = "a direction, normalised next")]
-            let c = n.next().unwrap_or(0.0) as f32;
-            c
-        };
-        Vec3::new(next(), next(), next())
-    };
+    #[allow(clippy::cast_possible_truncation, reason = "a direction, normalised next")]
+    let normal = Vec3::from_array(Interp::at_pixel(&interp.normal, px, py).map(|c| c as f32));
     // Flat receivers take their depth from the light pass's own plane.
     let flat_plane = cfg.normals == Normals::Flat && interp.plane.is_some();
     let Some(point) = interp.light_point::<F>(px, py, !flat_plane) else {
@@ -676,8 +671,7 @@ fn shade_pixel<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
             TangentPlane::new(interp.corner, interp.face, light_inverse_transpose).slope::<F>(&raster)
         }
         (Normals::Smooth, _) => {
-            let mut w = Interp::at_pixel(&interp.world, px, py);
-            let (x, y, zz, ww) = (w.next()?, w.next()?, w.next()?, w.next()?);
+            let [x, y, zz, ww] = Interp::at_pixel(&interp.world, px, py);
             #[allow(clippy::cast_possible_truncation, reason = "a world point, as the scene gives it")]
             let p = Vec3::new((x / ww) as f32, (y / ww) as f32, (zz / ww) as f32);
             TangentPlane::new(p, normal, light_inverse_transpose).slope::<F>(&raster)
