@@ -725,8 +725,8 @@ mod tests {
 
     /// The light point, worked out by hand in `i128`: each form at
     /// `(2px + 1, 2py + 1, 2)`, then `u = ⌊U·2¹⁶ / Λw⌋` toward zero clamped to
-    /// a map coordinate, `z = Z·SCALE·2³² / Λw` toward zero; `None` behind
-    /// the light.
+    /// a map coordinate, `z = Z·SCALE·2³² / Λw` toward zero saturated to
+    /// `i64`; `None` behind the light.
     fn by_hand(rows: &[[i64; 3]; 4], px: u32, py: u32) -> Option<(i32, i32, i64)> {
         let s = [2 * i128::from(px) + 1, 2 * i128::from(py) + 1, 2];
         let [u, v, z, w] = rows.map(|r| (0..3).map(|k| i128::from(r[k]) * s[k]).sum::<i128>());
@@ -734,8 +734,8 @@ mod tests {
             return None;
         }
         let coord = |n: i128| i32::try_from((n * 65_536 / w).clamp(i32::MIN.into(), i32::MAX.into())).ok();
-        let depth = i64::try_from(z * (i128::from(D24::SCALE) << PLANE_FRACTION_BITS) / w).ok()?;
-        Some((coord(u)?, coord(v)?, depth))
+        let depth = (z * (i128::from(D24::SCALE) << PLANE_FRACTION_BITS) / w).clamp(i64::MIN.into(), i64::MAX.into());
+        Some((coord(u)?, coord(v)?, i64::try_from(depth).ok()?))
     }
 
     /// Forms below the narrow bound over the target take the `i64` path;
