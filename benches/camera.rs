@@ -2,7 +2,7 @@
 //! the camera's matrix, then shading against a 1024² dual 24-bit map of the
 //! bundled default scene (second depth, virtual samples), into a frame kept
 //! from one pass to the next as a framebuffer is; for the 3×3 box also into
-//! a new frame each time (100 MB of results to allocate). Also prints the
+//! a new frame each time (83 MB of results to allocate). Also prints the
 //! fraction of covered pixels that needed virtual samples.
 #![allow(missing_docs, clippy::cast_precision_loss, reason = "bench harness")]
 

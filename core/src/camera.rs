@@ -100,8 +100,11 @@ pub struct CameraConfig {
     pub seed: u64,
 }
 
-/// A surface point on the map.
+/// A surface point on the map. Packed to 4-byte alignment, as a result
+/// buffer of 32-bit words holds it: a pixel's [`Shaded`] is then 40 bytes,
+/// not 48 (the depth's 8-byte alignment would pad both).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(C, packed(4))]
 pub struct LightPoint {
     /// Column, texels.
     pub x: MapCoord,
@@ -130,6 +133,8 @@ impl Shaded {
     /// A pixel no triangle covers.
     pub const BACKGROUND: Self = Self { triangle: NO_TRIANGLE, light: None, normal: Vec3::ZERO, shadow: Shadow::ZERO };
 }
+
+const _: () = assert!(size_of::<Shaded>() == 40, "a pixel's result is ten 32-bit words");
 
 /// Entries of [`shade`]'s setup store (on the stack: small enough for a
 /// microcontroller's).
