@@ -17,11 +17,11 @@
 
 use std::hash::{DefaultHasher, Hash, Hasher};
 
-use umbra::core::camera::{CameraConfig, MapUnit, Normals, ShadeSetup, Shaded, shade_with};
+use umbra::core::camera::{CameraConfig, MapUnit, Normals, ShadeSetup, Shaded, TriangleSource, shade_with};
 use umbra::core::depth::PlaneZ;
 use umbra::core::probe::TexelRead;
-use umbra::core::shadow::{Bias, DepthTest, Filter, ShadowConfig};
-use umbra::core::{CullMode, D24, DepthUnit, Event, LightPassConfig, NoProbe, Probe, RasterConfig};
+use umbra::core::shadow::{Bias, DepthTest, Filter, MapView, ShadowConfig};
+use umbra::core::{ConfigError, CullMode, D24, DepthUnit, Event, LightPassConfig, NoProbe, Probe, RasterConfig};
 use umbra::sim::camera::{SHADE_SETUPS, map_view, visibility};
 use umbra::sim::light::render;
 use umbra::sim::presets::FILTERS;
@@ -41,6 +41,20 @@ impl Probe for Trace<'_> {
     fn texel_read(&mut self, read: TexelRead) {
         read.hash(self.0);
     }
+}
+
+/// One shading pass, as the `camera` bench's frame runs it (the map unit,
+/// the simulator's setup store).
+fn shade_once<P: Probe>(
+    cfg: &CameraConfig,
+    ids: &[u32],
+    view: &MapView<'_, D24>,
+    source: &impl TriangleSource,
+    pixels: &mut [Shaded],
+    setups: &mut [ShadeSetup],
+    probe: &mut P,
+) -> Result<(), ConfigError> {
+    shade_with(cfg, ids, view, source, pixels, &MapUnit, setups, probe)
 }
 
 /// Shade `scene` once per configuration and fold every pixel's bits into
@@ -67,27 +81,9 @@ fn shade_scene(
         let cfg = CameraConfig { camera, light, width, height, shadow, virtual_samples, normals, seed: 0x5eed };
         for _ in 0..passes {
             if trace {
-                shade_with::<D24, _, _, _>(
-                    &cfg,
-                    &ids,
-                    &view,
-                    &source,
-                    &mut pixels,
-                    &MapUnit,
-                    &mut setups,
-                    &mut Trace(digest),
-                )?;
+                shade_once(&cfg, &ids, &view, &source, &mut pixels, &mut setups, &mut Trace(digest))?;
             } else {
-                shade_with::<D24, _, _, _>(
-                    &cfg,
-                    &ids,
-                    &view,
-                    &source,
-                    &mut pixels,
-                    &MapUnit,
-                    &mut setups,
-                    &mut NoProbe,
-                )?;
+                shade_once(&cfg, &ids, &view, &source, &mut pixels, &mut setups, &mut NoProbe)?;
             }
         }
         for p in &pixels {

@@ -42,7 +42,12 @@ impl Processed {
 /// The vertex unit on vertex `index` of `positions` (a missing vertex is
 /// NaN, and so rejected).
 #[must_use]
-pub fn process<F: DepthFormat>(raster: &RasterConfig, transform: &Mat4, positions: &[Vec3], index: u32) -> Processed {
+pub(crate) fn process<F: DepthFormat>(
+    raster: &RasterConfig,
+    transform: &Mat4,
+    positions: &[Vec3],
+    index: u32,
+) -> Processed {
     let p = positions.get(index as usize).copied().unwrap_or(Vec3::NAN);
     Processed::new::<F>(raster, transform, p)
 }

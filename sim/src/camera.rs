@@ -77,9 +77,9 @@ pub const SHADE_SETUPS: usize = 256;
 
 /// The camera pass's memory, kept from frame to frame as hardware keeps its
 /// framebuffer: the visibility unit's depth, ids, tile states, bins and
-/// setup store, the shading unit's setup store, and the shaded pixels. A pass into a frame it has drawn
-/// at the same size before allocates nothing (the passes clear what they
-/// use).
+/// setup store, the shading unit's setup store, and the shaded pixels. A
+/// pass into a frame it has drawn at the same size before allocates nothing
+/// (the passes clear what they use).
 #[derive(Clone, Debug, Default)]
 pub struct CameraFrame {
     z: Vec<u32>,
