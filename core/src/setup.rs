@@ -218,6 +218,12 @@ fn slopes(a_num: i128, b_num: i128, s: u32, d: i64, extent: f64) -> (i128, i128)
     (round_div(a_num << s, d), round_div(b_num << s, d))
 }
 
+/// The exact product of two `i64`: one widening multiply.
+#[inline(always)]
+fn wide_mul(a: i64, b: i64) -> i128 {
+    i128::from(a) * i128::from(b)
+}
+
 /// `round(n / d)` (half up) for `d > 0`.
 #[inline]
 fn round_div(n: i128, d: i128) -> i128 {
@@ -304,18 +310,27 @@ impl Setup {
         };
         let edges = [edge(&v0, &v1), edge(&v1, &v2), edge(&v2, &v0)];
 
-        let (x0, y0, z0) = (i128::from(v0.x.0), i128::from(v0.y.0), i128::from(v0.z.to_bits()));
-        let (dx1, dy1, dz1) = (i128::from(v1.x.0) - x0, i128::from(v1.y.0) - y0, i128::from(v1.z.to_bits()) - z0);
-        let (dx2, dy2, dz2) = (i128::from(v2.x.0) - x0, i128::from(v2.y.0) - y0, i128::from(v2.z.to_bits()) - z0);
-        let a_num = dz1 * dy2 - dz2 * dy1;
-        let b_num = dx1 * dz2 - dx2 * dz1;
+        let z0 = i128::from(v0.z.to_bits());
+        // Within the budget, so the differences of x and y are i64.
+        let (dx1, dy1) = (v1.x.0 - v0.x.0, v1.y.0 - v0.y.0);
+        let (dx2, dy2) = (v2.x.0 - v0.x.0, v2.y.0 - v0.y.0);
+        let (dz1, dz2) = (i128::from(v1.z.to_bits()) - z0, i128::from(v2.z.to_bits()) - z0);
+        let (a_num, b_num) = match (i64::try_from(dz1), i64::try_from(dz2)) {
+            // Depths of the front end (in [0, 2^56]): 64 × 64 → 128-bit products.
+            (Ok(z1), Ok(z2)) => (wide_mul(z1, dy2) - wide_mul(z2, dy1), wide_mul(dx1, z2) - wide_mul(dx2, z1)),
+            _ => (dz1 * i128::from(dy2) - dz2 * i128::from(dy1), i128::from(dx1) * dz2 - i128::from(dx2) * dz1),
+        };
         // Pixel distance, bounding |p − v0| for every pixel p of the triangle.
         #[allow(clippy::cast_precision_loss, reason = "an estimate; below 2^26")]
         let extent = ((x_max - x_min + y_max - y_min) >> s) as f64 + 2.0;
         let (a, b) = slopes(a_num, b_num, s, d, extent);
         // The value at pixel (0, 0) from vertex 0 and the rounded per-pixel
         // steps: a multiply and a shift, no third division.
-        let offset = a * (i128::from(half) - x0) + b * (i128::from(half) - y0);
+        let (ox, oy) = (half - v0.x.0, half - v0.y.0);
+        let offset = match (i64::try_from(a), i64::try_from(b)) {
+            (Ok(a), Ok(b)) => wide_mul(a, ox) + wide_mul(b, oy),
+            _ => a * i128::from(ox) + b * i128::from(oy),
+        };
         let plane = DepthPlane { a, b, c: z0 + ((offset + (1 << (s - 1))) >> s) };
         let z_min = v0.z.min(v1.z).min(v2.z);
         let z_max = v0.z.max(v1.z).max(v2.z);
