@@ -1,6 +1,7 @@
 //! One light pass, repeated, for profilers: the `peer` bench's torus of
 //! 100 000 triangles, by default at 1024² (24-bit, single, max-z culling
-//! off), into one `LightFrame` kept from pass to pass.
+//! off), into one `LightFrame` kept from pass to pass (or, with `-new`, a
+//! new one each pass).
 //!
 //! ```sh
 //! cargo build --release --example light_profile
@@ -9,6 +10,7 @@
 //! target/release/examples/light_profile 50 bands 2048   # render_bands, 2048²
 //! RAYON_NUM_THREADS=1 target/release/examples/light_profile 4 bands 2048
 //! target/release/examples/light_profile 1 whole 1024 digest
+//! target/release/examples/light_profile 20 bands-new 2048   # a new frame each pass
 //! ```
 //!
 //! With `digest` it prints a digest of the last map's bits too: a change
@@ -26,7 +28,10 @@ use umbra::sim::scene::Perspective;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let passes: u32 = std::env::args().nth(1).map_or(Ok(1), |s| s.parse())?;
-    let bands = std::env::args().nth(2).is_some_and(|a| a == "bands");
+    let mode = std::env::args().nth(2).unwrap_or_default();
+    let bands = mode.starts_with("bands");
+    // `whole-new`, `bands-new`: new maps and scratch every pass.
+    let new = mode.ends_with("-new");
     let side: u32 = std::env::args().nth(3).map_or(Ok(1024), |s| s.parse())?;
     let digest = std::env::args().nth(4).is_some_and(|a| a == "digest");
     let mesh = Mesh::torus(Vec3::ZERO, 1.0, 0.4, 250, 200);
@@ -41,6 +46,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut frame = LightFrame::new();
     let start = std::time::Instant::now();
     for _ in 0..passes {
+        if new {
+            frame = LightFrame::new();
+        }
         if bands {
             render_bands_in::<D24>(&mut frame, cfg, &[draw])?;
         } else {

@@ -112,12 +112,14 @@ impl Default for Limits {
     }
 }
 
-/// A request beyond a [`Limits`] value.
+/// A request beyond a [`Limits`] value. Its message names the field of
+/// [`Limits`] to raise (the `umbra` command's option of the same name:
+/// `max_map_side` is `--max-map-side`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
 #[non_exhaustive]
 pub enum LimitError {
     /// A light map wider or taller than allowed.
-    #[error("map side {side} is above the limit of {max}")]
+    #[error("map side {side} is above the limit of {max} (`max_map_side`)")]
     MapSide {
         /// The side asked for.
         side: u32,
@@ -125,7 +127,7 @@ pub enum LimitError {
         max: u32,
     },
     /// A camera image wider or taller than allowed.
-    #[error("image side {side} is above the limit of {max}")]
+    #[error("image side {side} is above the limit of {max} (`max_image_side`)")]
     ImageSide {
         /// The larger side asked for.
         side: u32,
@@ -133,7 +135,7 @@ pub enum LimitError {
         max: u32,
     },
     /// A camera image of too many pixels.
-    #[error("image {width}x{height} has more pixels than the limit of {max}")]
+    #[error("image {width}x{height} has more pixels than the limit of {max} (`max_image_pixels`)")]
     ImagePixels {
         /// Width asked for.
         width: u32,
@@ -143,7 +145,7 @@ pub enum LimitError {
         max: u64,
     },
     /// A scene of too many triangles.
-    #[error("{triangles} triangles is above the limit of {max}")]
+    #[error("{triangles} triangles is above the limit of {max} (`max_triangles`)")]
     Triangles {
         /// Triangles asked for (so far, when counted object by object).
         triangles: u64,
@@ -151,7 +153,7 @@ pub enum LimitError {
         max: u64,
     },
     /// A file larger than allowed.
-    #[error("file of {bytes} bytes is above the limit of {max}")]
+    #[error("file of {bytes} bytes is above the limit of {max} (`max_file_bytes`)")]
     FileBytes {
         /// Its size (at least; reading stops past the limit).
         bytes: u64,

@@ -25,9 +25,10 @@ use umbra_core::{CullMode, DepthFormat, DepthFormatKind, DepthUnit, F32, LightPa
 
 use crate::arch::{ArchParams, CostReport};
 use crate::light::render as light_render;
+use crate::limits::Limits;
 use crate::presets::FILTERS;
 use crate::reference::PixelTruth;
-use crate::render::{Algorithm, Render, RenderConfig, RenderError, cost, render_against, truth};
+use crate::render::{Algorithm, Render, RenderConfig, RenderError, cost_within, render_against, truth};
 use crate::scene::Scene;
 use crate::storage::StorageBytes;
 
@@ -53,6 +54,8 @@ pub struct PlanSpec {
     pub arch: ArchParams,
     /// Camera image for the measurement (the prediction uses a quarter).
     pub image: [u32; 2],
+    /// What each render may ask for.
+    pub limits: Limits,
 }
 
 impl PlanSpec {
@@ -66,6 +69,7 @@ impl PlanSpec {
             filters: vec!["point", "bilinear", "box3"],
             arch: ArchParams::TALISMAN,
             image: scene.image,
+            limits: Limits::DEFAULT,
         }
     }
 }
@@ -161,15 +165,16 @@ fn figures(r_err: f64, c: &CostReport) -> Figures {
 }
 
 /// Error (against `truth`, the scene's reference at the configuration's
-/// image and rays) and cost of `cfg` on `scene` under `arch`, and the render.
+/// image and rays) and cost of `cfg` on `scene` under the spec's
+/// architecture and within its limits, and the render.
 fn evaluate(
     scene: &Scene,
     cfg: &RenderConfig,
-    arch: ArchParams,
+    spec: &PlanSpec,
     truth: &[Option<PixelTruth>],
 ) -> Result<(Figures, Render), PlanError> {
-    let r = render_against(scene, cfg, truth.to_vec())?;
-    let (c, _) = cost(scene, cfg, arch)?;
+    let r = render_against(scene, cfg, truth.to_vec(), &spec.limits)?;
+    let (c, _) = cost_within(scene, cfg, spec.arch, &spec.limits)?;
     Ok((figures(r.metrics.misclassified_percent, &c), r))
 }
 
@@ -237,7 +242,7 @@ pub fn plan(scene: &Scene, spec: &PlanSpec) -> Result<Plan, PlanError> {
     let mut most_accurate: Option<(Figures, u32, (&'static str, Filter))> = None;
     for &map in &spec.map_sizes {
         for &(name, filter) in &filters {
-            let (f, _) = evaluate(scene, &at(quarter, map, filter, algorithm, format, 1), spec.arch, &quarter_truth)?;
+            let (f, _) = evaluate(scene, &at(quarter, map, filter, algorithm, format, 1), spec, &quarter_truth)?;
             if most_accurate.is_none_or(|(b, ..)| f.misclassified_percent < b.misclassified_percent) {
                 most_accurate = Some((f, map, (name, filter)));
             }
@@ -267,13 +272,13 @@ pub fn plan(scene: &Scene, spec: &PlanSpec) -> Result<Plan, PlanError> {
         ));
     }
     let config = at(spec.image, map, filter, algorithm, format, 4);
-    let (measured, r) = evaluate(scene, &config, spec.arch, &image_truth)?;
+    let (measured, r) = evaluate(scene, &config, spec, &image_truth)?;
     let storage = crate::storage::of_maps(&r.maps.maps, r.maps.format, STORAGE_TILE)
         .map_err(|e| PlanError::Spec(format!("map storage: {e}")))?;
     // The same test with everything: the dual unit's own z2 and 24 bits.
     let full_algorithm = if algorithm == Algorithm::SecondFrontCulled { Algorithm::Second } else { algorithm };
     let full_config = at(spec.image, map, filter, full_algorithm, DepthFormatKind::D24, 4);
-    let (full, _) = evaluate(scene, &full_config, spec.arch, &image_truth)?;
+    let (full, _) = evaluate(scene, &full_config, spec, &image_truth)?;
     Ok(Plan {
         config,
         filter: filter_name,

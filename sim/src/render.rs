@@ -174,8 +174,8 @@ pub fn truth(
     Ok(reference.image(&ids, &camera, width, height, &light, samples, progress))
 }
 
-/// [`render`] against a reference [`truth`] built before, for the same
-/// scene, image size and rays (checked against the default [`Limits`]).
+/// [`render_within`] against a reference [`truth`] built before, for the
+/// same scene, image size and rays.
 ///
 /// # Errors
 /// See [`RenderError`].
@@ -183,8 +183,9 @@ pub fn render_against(
     scene: &Scene,
     cfg: &RenderConfig,
     truth: Vec<Option<PixelTruth>>,
+    limits: &Limits,
 ) -> Result<Render, RenderError> {
-    check_limits(scene, cfg, &Limits::DEFAULT)?;
+    check_limits(scene, cfg, limits)?;
     render_checked(scene, cfg, truth)
 }
 
@@ -328,7 +329,20 @@ fn render_in<F: DepthFormat>(
 /// # Errors
 /// See [`RenderError`].
 pub fn cost(scene: &Scene, cfg: &RenderConfig, arch: ArchParams) -> Result<(CostReport, ArchProbe), RenderError> {
-    check_limits(scene, cfg, &Limits::DEFAULT)?;
+    cost_within(scene, cfg, arch, &Limits::DEFAULT)
+}
+
+/// [`cost`] within `limits`, checked as [`render_within`] checks them.
+///
+/// # Errors
+/// See [`RenderError`].
+pub fn cost_within(
+    scene: &Scene,
+    cfg: &RenderConfig,
+    arch: ArchParams,
+    limits: &Limits,
+) -> Result<(CostReport, ArchProbe), RenderError> {
+    check_limits(scene, cfg, limits)?;
     match cfg.format {
         DepthFormatKind::D16 => cost_in::<D16>(scene, cfg, arch),
         DepthFormatKind::D24 => cost_in::<D24>(scene, cfg, arch),

@@ -282,6 +282,25 @@ impl Scene {
         Self::parse_within(text, file, limits)
     }
 
+    /// The scene file `name` when it is one (or names one: a path with a
+    /// folder or a `.toml` extension, which then must exist), or else the
+    /// bundled scene of that name; within `limits` either way.
+    ///
+    /// # Errors
+    /// [`SceneError`] naming the file, the key and the problem.
+    pub fn open(name: &str, limits: &Limits) -> Result<Self, SceneError> {
+        let path = Path::new(name);
+        let names_a_file = path.extension().is_some_and(|e| e == "toml") || path.components().count() > 1;
+        if path.is_file() || names_a_file {
+            return Self::load_within(path, limits);
+        }
+        let file = PathBuf::from(format!("scenes/{name}.toml"));
+        match BUNDLED.iter().find(|(n, _)| *n == name) {
+            Some((_, text)) => Self::parse_within(text, &file, limits),
+            None => Self::bundled(name),
+        }
+    }
+
     /// One of the bundled scenes by name (see [`BUNDLED`]).
     ///
     /// # Errors
@@ -319,12 +338,13 @@ impl Scene {
             );
             c.err(key, Problem::Syntax(e.message().trim().to_owned()))
         })?;
-        let max_side = f64::from(limits.max_image_side);
+        // Whole pixels a `u32` holds; then the limits, which name themselves.
+        let max_side = f64::from(u32::MAX);
         let image = [
             c.range("image[0]", parsed.image[0], 1.0, max_side)?,
             c.range("image[1]", parsed.image[1], 1.0, max_side)?,
         ];
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "checked in 1..=max_image_side")]
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "checked in 1..=u32::MAX")]
         let image = image.map(|v| v.round() as u32);
         limits.check_image(image[0], image[1]).map_err(|l| c.err("image", Problem::Limit(l)))?;
         let camera = c.view("camera", &parsed.camera)?;

@@ -28,10 +28,11 @@ use umbra_core::DepthFormatKind;
 use umbra_core::shadow::{Filter, Jitter};
 
 use crate::arch::{ArchParams, CostReport};
+use crate::limits::Limits;
 use crate::metrics::Metrics;
 use crate::output::{OutputError, write_text};
 use crate::reference::PixelTruth;
-use crate::render::{Algorithm, RenderConfig, cost, render_against, truth};
+use crate::render::{Algorithm, RenderConfig, cost_within, render_against, truth};
 use crate::scene::Scene;
 use crate::scene_file::SceneError;
 
@@ -176,6 +177,9 @@ pub struct Spec {
     pub height: u32,
     /// Reference rays per pixel side.
     pub reference_samples: u32,
+    /// What each render may ask for: a configuration beyond them is a
+    /// skipped row that says which limit.
+    pub limits: Limits,
 }
 
 /// The scenes of `--quick`: Wang & Molnar's table, Weiskopf & Ertl's L and
@@ -198,6 +202,7 @@ impl Spec {
             width: 320,
             height: 180,
             reference_samples: 4,
+            limits: Limits::DEFAULT,
         }
     }
 
@@ -635,7 +640,7 @@ pub fn run_config(spec: &Spec, c: &Config, open: &[Scene], truths: &[Truth]) -> 
     };
     let cfg = render_config(spec, c);
     let metrics = match &truths[c.scene] {
-        Ok(t) => render_against(scene, &cfg, t.clone()).map_err(|e| e.to_string()),
+        Ok(t) => render_against(scene, &cfg, t.clone(), &spec.limits).map_err(|e| e.to_string()),
         Err(e) => Err(format!("reference: {e}")),
     };
     let metrics = metrics.map(|r| {
@@ -661,7 +666,7 @@ pub fn run_config(spec: &Spec, c: &Config, open: &[Scene], truths: &[Truth]) -> 
             match &metrics {
                 Ok((m, _)) => {
                     row.set_metrics(m);
-                    match cost(scene, &cfg, *arch) {
+                    match cost_within(scene, &cfg, *arch, &spec.limits) {
                         Ok((report, _)) => row.set_cost(&report),
                         Err(e) => row.skip(format!("cost on {}: {e}", arch.name)),
                     }
@@ -722,18 +727,12 @@ fn sort_rows(rows: &mut [Row]) {
     rows.sort_by_key(|r| (r.index, r.arch_index));
 }
 
-/// Load scenes by bundled name or scene file.
+/// Load scenes by scene file or bundled name ([`Scene::open`]) within `limits`.
 ///
 /// # Errors
 /// [`StudyError::Scene`] naming the scene.
-pub fn load_scenes<S: AsRef<str>>(names: &[S]) -> Result<Vec<Scene>, StudyError> {
-    names
-        .iter()
-        .map(|n| {
-            let p = Path::new(n.as_ref());
-            Ok(if p.is_file() { Scene::load(p)? } else { Scene::bundled(n.as_ref())? })
-        })
-        .collect()
+pub fn load_scenes<S: AsRef<str>>(names: &[S], limits: &Limits) -> Result<Vec<Scene>, StudyError> {
+    names.iter().map(|n| Ok(Scene::open(n.as_ref(), limits)?)).collect()
 }
 
 /// The rows as JSON lines.

@@ -5,6 +5,7 @@
 
 use umbra::core::DepthFormatKind;
 use umbra::core::shadow::{Filter, Jitter, MapCoord};
+use umbra::sim::limits::Limits;
 use umbra::sim::render::Algorithm;
 use umbra::sim::scene::Scene;
 use umbra::sim::study::{self, FIRST_BIASES, Row, Shard, Spec, UNLIMITED_OFFSET, Variant};
@@ -27,6 +28,7 @@ fn sweep(
         width: size.0,
         height: size.1,
         reference_samples: size.2,
+        limits: Limits::DEFAULT,
     };
     let rows = study::run(&spec, Shard::ALL, &indicatif::ProgressBar::hidden());
     for r in &rows {

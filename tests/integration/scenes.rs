@@ -4,6 +4,7 @@
 use std::path::Path;
 
 use umbra::core::glam::Vec3;
+use umbra::sim::limits::Limits;
 use umbra::sim::mesh::{Mesh, MeshError};
 use umbra::sim::scene::{Light, Scene};
 use umbra::sim::scene_file::{BUNDLED, Problem, SceneError};
@@ -100,7 +101,9 @@ fn each_bad_input_has_its_own_error() {
     assert!(matches!(p, Problem::NearFar { .. }), "{p}");
     let p = problem(with("image = [64, 48]", "image = [0, 48]"), "image[0]");
     assert!(matches!(p, Problem::Size { .. }), "{p}");
-    let p = problem(with("image = [64, 48]", "image = [64, 100000]"), "image[1]");
+    let p = problem(with("image = [64, 48]", "image = [64, 100000]"), "image");
+    assert!(matches!(p, Problem::Limit(_)), "{p}");
+    let p = problem(with("image = [64, 48]", "image = [64, 1e10]"), "image[1]");
     assert!(matches!(p, Problem::Size { .. }), "{p}");
     let p = problem(with("radius = 0.5", "radius = 0.0"), "objects[0].mesh.radius");
     assert!(matches!(p, Problem::Size { .. }), "{p}");
@@ -121,6 +124,18 @@ fn each_bad_input_has_its_own_error() {
     assert!(matches!(p, Problem::Missing("light")), "{p}");
     let missing = Scene::load(Path::new("no/such/scene.toml")).expect_err("missing file");
     assert!(matches!(missing.problem, Problem::Read(_)), "{missing}");
+    // By name or path: a path that names a file must be one; any other
+    // name must be a bundled scene.
+    for name in ["no/such/scene.toml", "nosuch.toml"] {
+        let e = Scene::open(name, &Limits::DEFAULT).expect_err("missing file");
+        assert!(matches!(e.problem, Problem::Read(_)), "{name}: {e}");
+    }
+    let e = Scene::open("nosuch", &Limits::DEFAULT).expect_err("no such scene");
+    assert!(e.to_string().contains("no bundled scene `nosuch`"), "{e}");
+    assert_eq!(
+        Scene::open("table", &Limits::DEFAULT).expect("bundled").name,
+        Scene::bundled("table").expect("bundled").name
+    );
 }
 
 /// A shared mesh placed by name: `../shared/meshes/` of the working

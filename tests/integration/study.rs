@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 
 use umbra::core::DepthFormatKind;
 use umbra::sim::arch::ArchParams;
+use umbra::sim::limits::Limits;
 use umbra::sim::render::Algorithm;
 use umbra::sim::scene::Scene;
 use umbra::sim::study::extremes::{self, RATIOS};
@@ -25,7 +26,7 @@ fn dir(name: &str) -> PathBuf {
 /// A small sweep with every preset: two scenes, two algorithms, two
 /// formats, two filters, 64×36 images.
 fn small() -> Spec {
-    let scenes = study::load_scenes(&["table", "weiskopf-l"]).expect("bundled");
+    let scenes = study::load_scenes(&["table", "weiskopf-l"], &Limits::DEFAULT).expect("bundled");
     let mut spec = Spec::quick(scenes);
     spec.variants = vec![
         Variant::new("first", Algorithm::First, 0.002),
@@ -36,6 +37,38 @@ fn small() -> Spec {
     spec.height = 36;
     spec.reference_samples = 1;
     spec
+}
+
+/// A sweep's limits hold for every configuration: a map above
+/// `max_map_side` is a skipped row that names the limit, on every preset,
+/// and the maps within it render as they do under the default limits.
+#[test]
+fn configurations_beyond_the_sweeps_limits_are_skipped_rows_naming_them() {
+    let mut spec = small();
+    spec.scenes.truncate(1);
+    spec.variants.truncate(1);
+    spec.formats.truncate(1);
+    spec.map_sizes = vec![64, 128];
+    let default = run_on(1, &spec, Shard::ALL);
+    spec.limits = Limits { max_map_side: 64, ..Limits::DEFAULT };
+    let limited = run_on(1, &spec, Shard::ALL);
+    assert_eq!(limited.len(), default.len());
+    assert!(limited.iter().any(|r| r.map == 64) && limited.iter().any(|r| r.map == 128));
+    for (l, d) in limited.iter().zip(&default) {
+        if l.map == 64 {
+            assert_eq!(l.status, "ok");
+            assert_eq!(l, d);
+        } else {
+            assert_eq!(l.status, "skipped");
+            assert!(l.reason.contains("max_map_side") && l.reason.contains("128"), "{}", l.reason);
+            assert_eq!(d.status, "ok");
+        }
+    }
+    // The scenes are loaded within limits too: the table has 2280 triangles.
+    let few = Limits { max_triangles: 2279, ..Limits::DEFAULT };
+    let err = study::load_scenes(&["table"], &few).expect_err("above the limit").to_string();
+    assert!(err.contains("2280 triangles") && err.contains("max_triangles"), "{err}");
+    assert!(study::load_scenes(&["table"], &Limits { max_triangles: 2280, ..few }).is_ok());
 }
 
 fn run_on(threads: usize, spec: &Spec, shard: Shard) -> Vec<Row> {

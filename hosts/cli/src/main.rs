@@ -11,6 +11,7 @@ use umbra_sim::arch::ArchParams;
 use umbra_sim::counters::Counters;
 use umbra_sim::glam::{Mat4, Vec3};
 use umbra_sim::light::{RawMaps, render_raw};
+use umbra_sim::limits::Limits;
 use umbra_sim::mesh::Mesh;
 use umbra_sim::output::{
     RawMap, write_error_image, write_npy, write_preview, write_shadow_image, write_shadow_term, write_text,
@@ -27,6 +28,42 @@ use umbra_sim::scene::{Light, Object, Perspective, Scene, parse_matrix};
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
+    #[command(flatten)]
+    limits: LimitArgs,
+}
+
+/// What the simulator accepts, each checked before anything of that size is
+/// allocated (`umbra_sim::limits`). Options, not scene-file keys: a file
+/// cannot raise the limits it is read under.
+#[derive(clap::Args, Debug, Clone, Copy)]
+struct LimitArgs {
+    /// Largest light-map side, texels (a dual 24-bit map of side s takes 8·s² bytes).
+    #[arg(long, global = true, default_value_t = Limits::DEFAULT.max_map_side)]
+    max_map_side: u32,
+    /// Largest camera image side, pixels.
+    #[arg(long, global = true, default_value_t = Limits::DEFAULT.max_image_side)]
+    max_image_side: u32,
+    /// Most camera image pixels (a render keeps about 100 bytes a pixel).
+    #[arg(long, global = true, default_value_t = Limits::DEFAULT.max_image_pixels)]
+    max_image_pixels: u64,
+    /// Most triangles of a scene, every object together (the reference keeps about 200 bytes a triangle).
+    #[arg(long, global = true, default_value_t = Limits::DEFAULT.max_triangles)]
+    max_triangles: u64,
+    /// Largest scene or OBJ file, bytes.
+    #[arg(long, global = true, default_value_t = Limits::DEFAULT.max_file_bytes)]
+    max_file_bytes: u64,
+}
+
+impl LimitArgs {
+    const fn limits(self) -> Limits {
+        Limits {
+            max_map_side: self.max_map_side,
+            max_image_side: self.max_image_side,
+            max_image_pixels: self.max_image_pixels,
+            max_triangles: self.max_triangles,
+            max_file_bytes: self.max_file_bytes,
+        }
+    }
 }
 
 #[derive(Subcommand, Debug)]
@@ -296,35 +333,39 @@ impl Default for DepthArgs {
 
 fn main() -> Result<()> {
     let cli = Cli::parse();
+    let limits = &cli.limits.limits();
     match cli.command {
-        Some(Command::Depth(args)) => depth(&args),
-        Some(Command::Render(args)) => render(&args),
-        Some(Command::Cost(args)) => cost(&args, false),
-        Some(Command::Trace(args)) => cost(&args, true),
-        Some(Command::Study(args)) => study(&args),
-        Some(Command::Plan(args)) => plan(&args),
+        Some(Command::Depth(args)) => depth(&args, limits),
+        Some(Command::Render(args)) => render(&args, limits),
+        Some(Command::Cost(args)) => cost(&args, false, limits),
+        Some(Command::Trace(args)) => cost(&args, true, limits),
+        Some(Command::Study(args)) => study(&args, limits),
+        Some(Command::Plan(args)) => plan(&args, limits),
         Some(Command::Merge(args)) => {
             let n = umbra_sim::study::merge(&args.inputs, &args.out)?;
             println!("merged {n} rows into {}", args.out.display());
             Ok(())
         }
         None => {
-            depth(&DepthArgs::default())?;
-            render(&RenderArgs::default())?;
-            study(&StudyArgs {
-                scenes: Vec::new(),
-                quick: true,
-                shard: None,
-                extremes: false,
-                maps: Vec::new(),
-                out: PathBuf::from("out/study"),
-            })
+            depth(&DepthArgs::default(), limits)?;
+            render(&RenderArgs::default(), limits)?;
+            study(
+                &StudyArgs {
+                    scenes: Vec::new(),
+                    quick: true,
+                    shard: None,
+                    extremes: false,
+                    maps: Vec::new(),
+                    out: PathBuf::from("out/study"),
+                },
+                limits,
+            )
         }
     }
 }
 
 /// `umbra plan`.
-fn plan(args: &PlanArgs) -> Result<()> {
+fn plan(args: &PlanArgs, limits: &Limits) -> Result<()> {
     use umbra_sim::plan::{PlanSpec, plan};
     let text = args.error_budget.trim().trim_end_matches('%');
     let budget: f64 =
@@ -332,9 +373,9 @@ fn plan(args: &PlanArgs) -> Result<()> {
     if !budget.is_finite() || !(0.0..=100.0).contains(&budget) {
         bail!("--error-budget {budget}% is outside 0…100%");
     }
-    let path = Path::new(&args.scene);
-    let scene = if path.is_file() { Scene::load(path)? } else { Scene::bundled(&args.scene)? };
+    let scene = Scene::open(&args.scene, limits)?;
     let mut spec = PlanSpec::new(&scene, budget);
+    spec.limits = *limits;
     spec.arch = match args.arch {
         ArchArg::Pixelflow => ArchParams::PIXELFLOW,
         ArchArg::Immediate => ArchParams::IMMEDIATE,
@@ -353,7 +394,7 @@ fn plan(args: &PlanArgs) -> Result<()> {
 }
 
 /// `umbra study`.
-fn study(args: &StudyArgs) -> Result<()> {
+fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
     use umbra_sim::study::{self, QUICK_SCENES, Shard, Spec};
     let names: Vec<String> = if !args.scenes.is_empty() {
         args.scenes.clone()
@@ -362,10 +403,10 @@ fn study(args: &StudyArgs) -> Result<()> {
     } else {
         umbra_sim::scene_file::BUNDLED.iter().map(|(n, _)| (*n).to_owned()).collect()
     };
-    let scenes = study::load_scenes(&names)?;
+    let scenes = study::load_scenes(&names, limits)?;
     let mut spec = if args.quick { Spec::quick(scenes) } else { Spec::full(scenes) };
+    spec.limits = *limits;
     if !args.maps.is_empty() {
-        let limits = umbra_sim::limits::Limits::DEFAULT;
         for &side in &args.maps {
             limits.check_map(side).with_context(|| format!("--maps {side}"))?;
         }
@@ -402,8 +443,8 @@ fn study(args: &StudyArgs) -> Result<()> {
 }
 
 /// `umbra cost` and `umbra trace`.
-fn cost(args: &CostArgs, trace: bool) -> Result<()> {
-    let (scene, cfg, _) = render_config(&args.render)?;
+fn cost(args: &CostArgs, trace: bool, limits: &Limits) -> Result<()> {
+    let (scene, cfg, _) = render_config(&args.render, limits)?;
     let presets: Vec<ArchParams> = match args.arch {
         ArchArg::Pixelflow => vec![ArchParams::PIXELFLOW],
         ArchArg::Talisman => vec![ArchParams::TALISMAN],
@@ -413,7 +454,7 @@ fn cost(args: &CostArgs, trace: bool) -> Result<()> {
     let out = &args.render.out;
     let mut reports = Vec::new();
     for arch in presets {
-        let (report, light) = umbra_sim::render::cost(&scene, &cfg, arch)?;
+        let (report, light) = umbra_sim::render::cost_within(&scene, &cfg, arch, limits)?;
         if trace {
             let path = out.join(format!("trace-{}.json", arch.name));
             write_text(&path, &serde_json::to_string(&umbra_sim::arch::CostReport::trace(&light))?)?;
@@ -432,9 +473,8 @@ fn cost(args: &CostArgs, trace: bool) -> Result<()> {
 }
 
 /// The scene and render configuration the arguments ask for.
-fn render_config(args: &RenderArgs) -> Result<(Scene, RenderConfig, &'static str)> {
-    let path = Path::new(&args.scene);
-    let scene = if path.is_file() { Scene::load(path)? } else { Scene::bundled(&args.scene)? };
+fn render_config(args: &RenderArgs, limits: &Limits) -> Result<(Scene, RenderConfig, &'static str)> {
+    let scene = Scene::open(&args.scene, limits)?;
     let [width, height] = scene.image;
     let (width, height) = (args.width.unwrap_or(width), args.height.unwrap_or(height));
     for (name, v) in [("--bias", args.bias), ("--bias1", args.bias1), ("--offset", args.offset)] {
@@ -479,10 +519,10 @@ fn render_config(args: &RenderArgs) -> Result<(Scene, RenderConfig, &'static str
 }
 
 /// `umbra render`: the pictures, the metrics and the events of one render.
-fn render(args: &RenderArgs) -> Result<()> {
-    let (scene, cfg, filter_name) = render_config(args)?;
+fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
+    let (scene, cfg, filter_name) = render_config(args, limits)?;
     let progress = ProgressBar::new(u64::from(cfg.height)).with_message("reference rays");
-    let r = umbra_sim::render::render(&scene, &cfg, &progress)?;
+    let r = umbra_sim::render::render_within(&scene, &cfg, limits, &progress)?;
     progress.finish_and_clear();
     let out = &args.out;
     let (w, h) = (r.maps.maps.config.raster.width(), r.maps.maps.config.raster.height());
@@ -563,10 +603,11 @@ fn framing_light(mesh: &Mesh) -> Result<Perspective> {
     })
 }
 
-fn depth(args: &DepthArgs) -> Result<()> {
+fn depth(args: &DepthArgs, limits: &Limits) -> Result<()> {
+    limits.check_map(args.size).with_context(|| format!("--size {}", args.size))?;
     let scene = match &args.mesh {
         Some(path) => {
-            let mesh = Mesh::load_obj(path)?;
+            let mesh = Mesh::load_obj_within(path, limits)?;
             let light = framing_light(&mesh)?;
             let name = path.file_stem().map_or_else(|| "mesh".into(), |s| s.to_string_lossy().into_owned());
             let lights = vec![Light::Spot(light)];

@@ -169,6 +169,7 @@ pub fn spec(scenes: Vec<Scene>, width: u32, height: u32) -> Spec {
         width,
         height,
         reference_samples: 1,
+        limits: crate::limits::Limits::DEFAULT,
     }
 }
 

@@ -1,0 +1,83 @@
+//! The `umbra` command's limit options: a request beyond a limit ends in
+//! an error that names it and the option that moves it, before anything is
+//! written, and the option moves it.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// Run `umbra` with `args`.
+fn umbra(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_umbra"))
+        .args(args)
+        .env("RUST_BACKTRACE", "0")
+        .env("RUST_LIB_BACKTRACE", "0")
+        .output()
+        .expect("the command runs")
+}
+
+/// A folder of this test process for `name`, absent.
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("umbra-cli-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+fn text(p: &Path) -> &str {
+    p.to_str().expect("a UTF-8 temp path")
+}
+
+/// `umbra` failed, and its message holds each of `needles`.
+fn fails_saying(o: &Output, needles: &[&str]) {
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "succeeded: {}", String::from_utf8_lossy(&o.stdout));
+    for n in needles {
+        assert!(err.contains(n), "`{n}` missing from: {err}");
+    }
+}
+
+#[test]
+fn a_map_side_beyond_the_limit_is_refused_and_the_option_moves_the_limit() {
+    let out = dir("map");
+    let o = umbra(&["--max-map-side", "64", "depth", "--size", "96", "--out", text(&out)]);
+    fails_saying(&o, &["--size 96", "map side 96", "limit of 64", "max_map_side"]);
+    assert!(!out.exists(), "nothing is written");
+    // After the subcommand too (the options are global), and at the limit.
+    let o = umbra(&["depth", "--size", "96", "--max-map-side", "96", "--out", text(&out)]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let z1 = std::fs::read(out.join("z1.npy")).expect("z1 written");
+    assert!(z1.len() > 96 * 96 * 4, "a 96² map of 32-bit texels: {} bytes", z1.len());
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+#[test]
+fn a_mesh_beyond_the_triangle_or_file_limit_is_refused_before_it_is_built() {
+    let out = dir("mesh");
+    std::fs::create_dir_all(&out).expect("temp dir");
+    let obj = out.join("fan.obj");
+    // Three triangles around a centre.
+    std::fs::write(&obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv -1 0 0\nv 0 -1 0\nf 1 2 3\nf 1 3 4\nf 1 4 5\n").expect("write");
+    let maps = out.join("maps");
+    let mesh = ["depth", "--mesh", text(&obj), "--size", "32", "--out", text(&maps)];
+    fails_saying(&umbra(&[&["--max-triangles", "2"][..], &mesh].concat()), &["3 triangles", "max_triangles"]);
+    fails_saying(&umbra(&[&["--max-file-bytes", "16"][..], &mesh].concat()), &["fan.obj", "max_file_bytes"]);
+    assert!(!maps.exists(), "nothing is written");
+    let o = umbra(&[&["--max-triangles", "3"][..], &mesh].concat());
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("triangles 3 submitted"));
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+#[test]
+fn a_scene_beyond_the_image_or_triangle_limit_is_refused_when_it_is_read() {
+    let out = dir("scene");
+    // The bundled table: a 960×540 image of 2280 triangles.
+    let o = umbra(&["render", "table", "--max-image-pixels", "518399", "--out", text(&out)]);
+    fails_saying(&o, &["image", "960x540", "max_image_pixels"]);
+    let o = umbra(&["cost", "table", "--max-image-side", "959", "--out", text(&out)]);
+    fails_saying(&o, &["image side 960", "max_image_side"]);
+    let o = umbra(&["plan", "table", "--max-triangles", "2279", "--out", text(&out)]);
+    fails_saying(&o, &["2280 triangles", "max_triangles"]);
+    let o = umbra(&["study", "--quick", "--maps", "64", "--max-map-side", "32", "--out", text(&out)]);
+    fails_saying(&o, &["--maps 64", "max_map_side"]);
+    assert!(!out.exists(), "nothing is written");
+}
