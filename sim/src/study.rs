@@ -28,7 +28,7 @@ use umbra_core::DepthFormatKind;
 use umbra_core::shadow::{Filter, Jitter};
 
 use crate::arch::{ArchParams, CostReport};
-use crate::limits::Limits;
+use crate::limits::{FileError, Limits};
 use crate::metrics::Metrics;
 use crate::output::{OutputError, write_text};
 use crate::reference::PixelTruth;
@@ -312,13 +312,14 @@ pub enum StudyError {
     /// A file could not be written.
     #[error(transparent)]
     Output(#[from] OutputError),
-    /// A results file could not be read.
+    /// A results file could not be read, is not a regular file, or is
+    /// larger than [`Limits::max_file_bytes`].
     #[error("{path}: {source}")]
     Read {
         /// The file.
         path: PathBuf,
-        /// The OS error.
-        source: std::io::Error,
+        /// Why.
+        source: FileError,
     },
     /// A line of a results file is not a study row.
     #[error("{path}:{line}: not a study row: {source}")]
@@ -755,13 +756,16 @@ pub fn write_partial(dir: &Path, rows: &[Row]) -> Result<(), StudyError> {
     Ok(())
 }
 
-/// Read the rows of a `results.jsonl` (or of the one in a folder).
+/// Read the rows of a `results.jsonl` (or of the one in a folder), a file
+/// of at most [`Limits::max_file_bytes`].
 ///
 /// # Errors
-/// [`StudyError::Read`] or [`StudyError::Parse`] naming the file and line.
-pub fn read_rows(path: &Path) -> Result<Vec<Row>, StudyError> {
+/// [`StudyError::Read`] or [`StudyError::Parse`] naming the file and line
+/// (a line that is not UTF-8 is not a row).
+pub fn read_rows(path: &Path, limits: &Limits) -> Result<Vec<Row>, StudyError> {
     let file = if path.is_dir() { path.join("results.jsonl") } else { path.to_owned() };
-    let text = std::fs::read_to_string(&file).map_err(|source| StudyError::Read { path: file.clone(), source })?;
+    let bytes = limits.read_file(&file).map_err(|source| StudyError::Read { path: file.clone(), source })?;
+    let text = String::from_utf8_lossy(&bytes);
     text.lines()
         .enumerate()
         .filter(|(_, l)| !l.trim().is_empty())
@@ -776,10 +780,10 @@ pub fn read_rows(path: &Path) -> Result<Vec<Row>, StudyError> {
 ///
 /// # Errors
 /// See [`StudyError`].
-pub fn merge(inputs: &[PathBuf], out: &Path) -> Result<usize, StudyError> {
+pub fn merge(inputs: &[PathBuf], out: &Path, limits: &Limits) -> Result<usize, StudyError> {
     let mut rows = Vec::new();
     for p in inputs {
-        rows.extend(read_rows(p)?);
+        rows.extend(read_rows(p, limits)?);
     }
     sort_rows(&mut rows);
     if let Some(w) = rows.windows(2).find(|w| (w[0].index, w[0].arch_index) == (w[1].index, w[1].arch_index)) {

@@ -137,11 +137,11 @@ fn shards_merge_into_the_whole_run() {
         .collect();
     let merged = dir("merged");
     let inputs = vec![shards[2].join("results.jsonl"), shards[0].clone(), shards[1].join("results.jsonl")];
-    let n = study::merge(&inputs, &merged).expect("merge");
+    let n = study::merge(&inputs, &merged, &Limits::DEFAULT).expect("merge");
     assert_eq!(n, spec.configs().len() * ArchParams::PRESETS.len());
     assert_eq!(files(&whole), files(&merged));
     let twice = vec![shards[0].clone(), shards[1].clone(), shards[0].clone()];
-    assert!(matches!(study::merge(&twice, &dir("twice")), Err(study::StudyError::Duplicate { .. })));
+    assert!(matches!(study::merge(&twice, &dir("twice"), &Limits::DEFAULT), Err(study::StudyError::Duplicate { .. })));
     for bad in ["3/3", "1", "a/2", "0/0"] {
         assert!(Shard::parse(bad).is_err(), "{bad}");
     }

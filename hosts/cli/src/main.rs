@@ -342,7 +342,7 @@ fn main() -> Result<()> {
         Some(Command::Study(args)) => study(&args, limits),
         Some(Command::Plan(args)) => plan(&args, limits),
         Some(Command::Merge(args)) => {
-            let n = umbra_sim::study::merge(&args.inputs, &args.out)?;
+            let n = umbra_sim::study::merge(&args.inputs, &args.out, limits)?;
             println!("merged {n} rows into {}", args.out.display());
             Ok(())
         }
@@ -578,12 +578,14 @@ fn format_kind(f: Format) -> DepthFormatKind {
     }
 }
 
-/// Read the `--matrix` argument: inline JSON or a file holding it.
-fn read_matrix(arg: &str) -> Result<Mat4> {
+/// Read the `--matrix` argument: inline JSON or a file holding it (a
+/// regular file within `limits`).
+fn read_matrix(arg: &str, limits: &Limits) -> Result<Mat4> {
     let text = if arg.trim_start().starts_with('[') {
         arg.to_owned()
     } else {
-        std::fs::read_to_string(arg).with_context(|| format!("--matrix: cannot read file `{arg}`"))?
+        let bytes = limits.read_file(Path::new(arg)).with_context(|| format!("--matrix: cannot read file `{arg}`"))?;
+        String::from_utf8(bytes).with_context(|| format!("--matrix: file `{arg}` is not UTF-8 text"))?
     };
     parse_matrix(&text).with_context(|| format!("--matrix `{arg}`"))
 }
@@ -622,7 +624,7 @@ fn depth(args: &DepthArgs, limits: &Limits) -> Result<()> {
         None => Scene::default_scene(),
     };
     let matrix = match &args.matrix {
-        Some(m) => read_matrix(m)?,
+        Some(m) => read_matrix(m, limits)?,
         None => scene.light().view_projection(),
     };
     let raster = RasterConfig::new(args.size, args.size, args.tile, args.subpixel_bits)?;

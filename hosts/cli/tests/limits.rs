@@ -81,3 +81,29 @@ fn a_scene_beyond_the_image_or_triangle_limit_is_refused_when_it_is_read() {
     fails_saying(&o, &["--maps 64", "max_map_side"]);
     assert!(!out.exists(), "nothing is written");
 }
+
+#[test]
+fn every_file_the_command_reads_is_a_regular_file_within_the_file_limit() {
+    let out = dir("files");
+    std::fs::create_dir_all(&out).expect("temp dir");
+    // A light matrix in a file: the identity, 41 bytes of JSON.
+    let matrix = out.join("matrix.json");
+    std::fs::write(&matrix, "[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]").expect("write");
+    let maps = out.join("maps");
+    let depth = ["depth", "--size", "32", "--out", text(&maps), "--matrix"];
+    fails_saying(&umbra(&[&depth[..], &["/dev/zero"]].concat()), &["--matrix", "not a regular file"]);
+    let small = [&["--max-file-bytes", "20"][..], &depth, &[text(&matrix)]].concat();
+    fails_saying(&umbra(&small), &["--matrix", "max_file_bytes"]);
+    let o = umbra(&[&depth[..], &[text(&matrix)]].concat());
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // A study's results to merge.
+    let merged = out.join("merged");
+    fails_saying(&umbra(&["merge", "/dev/zero", "--out", text(&merged)]), &["/dev/zero", "not a regular file"]);
+    let rows = out.join("results.jsonl");
+    std::fs::write(&rows, "x".repeat(100)).expect("write");
+    let o = umbra(&["merge", text(&rows), "--out", text(&merged), "--max-file-bytes", "99"]);
+    fails_saying(&o, &["results.jsonl", "100 bytes", "max_file_bytes"]);
+    fails_saying(&umbra(&["merge", text(&rows), "--out", text(&merged)]), &["results.jsonl:1", "not a study row"]);
+    assert!(!merged.exists(), "nothing is written");
+    let _ = std::fs::remove_dir_all(&out);
+}
