@@ -402,3 +402,56 @@ pub enum Coverage {
     /// Neither: test per pixel.
     Partial,
 }
+
+#[cfg(test)]
+mod tests {
+    use super::Setup;
+    use crate::config::{CullMode, RasterConfig};
+    use crate::depth::PlaneZ;
+    use crate::snap::{SnappedVertex, SubPx};
+
+    /// `round(n / d)`, half up, for `d ≠ 0`, worked from the definition.
+    fn nearest(n: i128, d: i128) -> i128 {
+        let (n, d) = if d < 0 { (-n, -d) } else { (n, d) };
+        (2 * n + d).div_euclid(2 * d)
+    }
+
+    /// The depth plane's steps against the exact slopes worked by hand,
+    /// `(Δz₁Δy₂ − Δz₂Δy₁)·2ˢ / area` across and `(Δx₁Δz₂ − Δx₂Δz₁)·2ˢ / area`
+    /// down, rounded to the nearest: within one unit, plus the f64 path's
+    /// relative error of 2⁻⁵¹, for depths in the front end's `[0, 2⁵⁶]`
+    /// and for hand-made depths anywhere in `i64`, whose differences
+    /// overflow 64 bits.
+    #[test]
+    fn depth_steps_equal_the_exact_slopes_for_depths_of_any_size() {
+        let cfg = RasterConfig::new(64, 64, 16, 8).expect("valid");
+        let s = cfg.subpixel_bits();
+        let mut rng = oorandom::Rand64::new(0x51_0be);
+        let (mut set_up, mut wide) = (0, 0);
+        for i in 0..40_000u32 {
+            let vertex = |rng: &mut oorandom::Rand64| {
+                #[allow(clippy::cast_possible_wrap, reason = "any bits of an i64")]
+                let z = if i % 2 == 0 { rng.rand_u64() as i64 } else { rng.rand_i64().rem_euclid(1 << 56) };
+                let mut c = || rng.rand_i64().rem_euclid(64 << s);
+                SnappedVertex { x: SubPx(c()), y: SubPx(c()), z: PlaneZ::from_bits(z) }
+            };
+            let v = [vertex(&mut rng), vertex(&mut rng), vertex(&mut rng)];
+            let Ok(setup) = Setup::new(&cfg, v, CullMode::None, 0) else { continue };
+            let d = |f: fn(&SnappedVertex) -> i128, k: usize| f(&v[k]) - f(&v[0]);
+            let (x, y, z) = (
+                |p: &SnappedVertex| i128::from(p.x.0),
+                |p: &SnappedVertex| i128::from(p.y.0),
+                |p: &SnappedVertex| i128::from(p.z.to_bits()),
+            );
+            let area = d(x, 1) * d(y, 2) - d(y, 1) * d(x, 2);
+            let across = nearest((d(z, 1) * d(y, 2) - d(z, 2) * d(y, 1)) << s, area);
+            let down = nearest((d(x, 1) * d(z, 2) - d(x, 2) * d(z, 1)) << s, area);
+            for (found, exact) in [(setup.plane.a, across), (setup.plane.b, down)] {
+                assert!((found - exact).abs() <= 1 + (exact.abs() >> 50), "{found} against {exact} for {v:?}");
+            }
+            set_up += 1;
+            wide += u32::from(i64::try_from(d(z, 1)).is_err() || i64::try_from(d(z, 2)).is_err());
+        }
+        assert!(set_up > 30_000 && wide > 1_000, "{set_up} set up, {wide} with wide depth differences");
+    }
+}
