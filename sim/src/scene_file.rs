@@ -294,11 +294,7 @@ impl Scene {
         if path.is_file() || names_a_file {
             return Self::load_within(path, limits);
         }
-        let file = PathBuf::from(format!("scenes/{name}.toml"));
-        match BUNDLED.iter().find(|(n, _)| *n == name) {
-            Some((_, text)) => Self::parse_within(text, &file, limits),
-            None => Self::bundled(name),
-        }
+        Self::bundled_within(name, limits)
     }
 
     /// One of the bundled scenes by name (see [`BUNDLED`]).
@@ -306,9 +302,18 @@ impl Scene {
     /// # Errors
     /// [`SceneError`] with key `(name)` for an unknown name.
     pub fn bundled(name: &str) -> Result<Self, SceneError> {
+        Self::bundled_within(name, &Limits::DEFAULT)
+    }
+
+    /// [`Scene::bundled`] within `limits`.
+    ///
+    /// # Errors
+    /// [`SceneError`] with key `(name)` for an unknown name, or naming the
+    /// limit the scene is beyond.
+    pub fn bundled_within(name: &str, limits: &Limits) -> Result<Self, SceneError> {
         let file = PathBuf::from(format!("scenes/{name}.toml"));
         match BUNDLED.iter().find(|(n, _)| *n == name) {
-            Some((_, text)) => Self::parse(text, &file),
+            Some((_, text)) => Self::parse_within(text, &file, limits),
             None => Err(Check { file: &file }.err(
                 "(name)",
                 Problem::Syntax(format!("no bundled scene `{name}`; there are {}", BUNDLED.map(|(n, _)| n).join(", "))),

@@ -36,6 +36,7 @@ struct Cli {
 /// allocated (`umbra_sim::limits`). Options, not scene-file keys: a file
 /// cannot raise the limits it is read under.
 #[derive(clap::Args, Debug, Clone, Copy)]
+#[command(next_help_heading = "Limits")]
 struct LimitArgs {
     /// Largest light-map side, texels (a dual 24-bit map of side s takes 8·s² bytes).
     #[arg(long, global = true, default_value_t = Limits::DEFAULT.max_map_side)]
@@ -49,7 +50,7 @@ struct LimitArgs {
     /// Most triangles of a scene, every object together (the reference keeps about 200 bytes a triangle).
     #[arg(long, global = true, default_value_t = Limits::DEFAULT.max_triangles)]
     max_triangles: u64,
-    /// Largest scene or OBJ file, bytes.
+    /// Largest file read (a scene, an OBJ mesh, a `--matrix` file, study results to merge), bytes.
     #[arg(long, global = true, default_value_t = Limits::DEFAULT.max_file_bytes)]
     max_file_bytes: u64,
 }
