@@ -410,6 +410,8 @@ fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
     if !args.maps.is_empty() {
         for &side in &args.maps {
             limits.check_map(side).with_context(|| format!("--maps {side}"))?;
+            RasterConfig::new(side, side, RasterConfig::DEFAULT_TILE_SIZE, RasterConfig::DEFAULT_SUBPIXEL_BITS)
+                .with_context(|| format!("--maps {side}"))?;
         }
         spec.map_sizes.clone_from(&args.maps);
     }

@@ -79,6 +79,8 @@ fn a_scene_beyond_the_image_or_triangle_limit_is_refused_when_it_is_read() {
     fails_saying(&o, &["2280 triangles", "max_triangles"]);
     let o = umbra(&["study", "--quick", "--maps", "64", "--max-map-side", "32", "--out", text(&out)]);
     fails_saying(&o, &["--maps 64", "max_map_side"]);
+    let o = umbra(&["study", "--quick", "--maps", "0", "--out", text(&out)]);
+    fails_saying(&o, &["--maps 0", "outside 1..="]);
     assert!(!out.exists(), "nothing is written");
 }
 
