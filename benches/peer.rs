@@ -8,7 +8,8 @@
 //!   fragments each covers are counted once, outside the timing, and
 //!   printed, so that fragments per second follow from the times. Each
 //!   draws into new buffers every frame, and again into buffers kept from
-//!   frame to frame (Umbra's `LightFrame`; euc's cleared depth buffer).
+//!   frame to frame (Umbra's `LightFrame`; euc's cleared depth buffer),
+//!   and Umbra's banded pass on every core into a kept frame.
 //! * `scaling/triangles`: 1k … 1M triangles of the same torus at 1024².
 //! * `scaling/map`: the 100k torus at 64² … 4096².
 //!
@@ -136,6 +137,12 @@ fn peer(c: &mut Criterion) {
     let (cfg, draw) = (umbra_config(1024, false), umbra_draw(&mesh));
     g.bench_function("umbra d24, culling off, kept frame", |b| {
         b.iter(|| render_in::<D24, _>(&mut frame, cfg, black_box(&[draw]), NoProbe).map(|_| ()).expect("renders"));
+    });
+    // Beside them, the banded pass on every core into a kept frame: the
+    // same maps, bit for bit; euc draws on one core.
+    let mut banded = LightFrame::new();
+    g.bench_function("umbra d24, culling off, kept frame, every core", |b| {
+        b.iter(|| render_bands_in::<D24>(&mut banded, cfg, black_box(&[draw])).map(|_| ()).expect("renders"));
     });
     let (mut colour, mut depth) = (Buffer2d::new([1024, 1024], ()), Buffer2d::new([1024, 1024], 1.0f32));
     g.bench_function("euc f32, kept buffers", |b| {
