@@ -218,10 +218,15 @@ fn slopes(a_num: i128, b_num: i128, s: u32, d: i64, extent: f64) -> (i128, i128)
     (round_div(a_num << s, d), round_div(b_num << s, d))
 }
 
-/// The exact product of two `i64`: one widening multiply.
+/// The exact product `a·b`: one 64 × 64 → 128-bit multiply when `a` fits
+/// 64 bits (every depth difference and step of the front end's vertices),
+/// the full `i128` product otherwise (hand-made depths).
 #[inline(always)]
-fn wide_mul(a: i64, b: i64) -> i128 {
-    i128::from(a) * i128::from(b)
+fn mul(a: i128, b: i64) -> i128 {
+    match i64::try_from(a) {
+        Ok(a) => i128::from(a) * i128::from(b),
+        Err(_) => a * i128::from(b),
+    }
 }
 
 /// `round(n / d)` (half up) for `d > 0`.
@@ -315,22 +320,15 @@ impl Setup {
         let (dx1, dy1) = (v1.x.0 - v0.x.0, v1.y.0 - v0.y.0);
         let (dx2, dy2) = (v2.x.0 - v0.x.0, v2.y.0 - v0.y.0);
         let (dz1, dz2) = (i128::from(v1.z.to_bits()) - z0, i128::from(v2.z.to_bits()) - z0);
-        let (a_num, b_num) = match (i64::try_from(dz1), i64::try_from(dz2)) {
-            // Depths of the front end (in [0, 2^56]): 64 × 64 → 128-bit products.
-            (Ok(z1), Ok(z2)) => (wide_mul(z1, dy2) - wide_mul(z2, dy1), wide_mul(dx1, z2) - wide_mul(dx2, z1)),
-            _ => (dz1 * i128::from(dy2) - dz2 * i128::from(dy1), i128::from(dx1) * dz2 - i128::from(dx2) * dz1),
-        };
+        let a_num = mul(dz1, dy2) - mul(dz2, dy1);
+        let b_num = mul(dz2, dx1) - mul(dz1, dx2);
         // Pixel distance, bounding |p − v0| for every pixel p of the triangle.
         #[allow(clippy::cast_precision_loss, reason = "an estimate; below 2^26")]
         let extent = ((x_max - x_min + y_max - y_min) >> s) as f64 + 2.0;
         let (a, b) = slopes(a_num, b_num, s, d, extent);
         // The value at pixel (0, 0) from vertex 0 and the rounded per-pixel
         // steps: a multiply and a shift, no third division.
-        let (ox, oy) = (half - v0.x.0, half - v0.y.0);
-        let offset = match (i64::try_from(a), i64::try_from(b)) {
-            (Ok(a), Ok(b)) => wide_mul(a, ox) + wide_mul(b, oy),
-            _ => a * i128::from(ox) + b * i128::from(oy),
-        };
+        let offset = mul(a, half - v0.x.0) + mul(b, half - v0.y.0);
         let plane = DepthPlane { a, b, c: z0 + ((offset + (1 << (s - 1))) >> s) };
         let z_min = v0.z.min(v1.z).min(v2.z);
         let z_max = v0.z.max(v1.z).max(v2.z);

@@ -22,8 +22,23 @@ fn dir(name: &str) -> PathBuf {
     d
 }
 
+/// `dir(name)`, made, holding `file` with `contents`; the file's path.
+fn input(name: &str, file: &str, contents: &str) -> (PathBuf, PathBuf) {
+    let d = dir(name);
+    std::fs::create_dir_all(&d).expect("temp dir");
+    let path = d.join(file);
+    std::fs::write(&path, contents).expect("write");
+    (d, path)
+}
+
 fn text(p: &Path) -> &str {
     p.to_str().expect("a UTF-8 temp path")
+}
+
+/// `umbra` succeeded; its output.
+fn succeeds(o: &Output) -> String {
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    String::from_utf8_lossy(&o.stdout).into_owned()
 }
 
 /// `umbra` failed, and its message holds each of `needles`.
@@ -42,8 +57,7 @@ fn a_map_side_beyond_the_limit_is_refused_and_the_option_moves_the_limit() {
     fails_saying(&o, &["--size 96", "map side 96", "limit of 64", "max_map_side"]);
     assert!(!out.exists(), "nothing is written");
     // After the subcommand too (the options are global), and at the limit.
-    let o = umbra(&["depth", "--size", "96", "--max-map-side", "96", "--out", text(&out)]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    succeeds(&umbra(&["depth", "--size", "96", "--max-map-side", "96", "--out", text(&out)]));
     let z1 = std::fs::read(out.join("z1.npy")).expect("z1 written");
     assert!(z1.len() > 96 * 96 * 4, "a 96² map of 32-bit texels: {} bytes", z1.len());
     let _ = std::fs::remove_dir_all(&out);
@@ -51,19 +65,15 @@ fn a_map_side_beyond_the_limit_is_refused_and_the_option_moves_the_limit() {
 
 #[test]
 fn a_mesh_beyond_the_triangle_or_file_limit_is_refused_before_it_is_built() {
-    let out = dir("mesh");
-    std::fs::create_dir_all(&out).expect("temp dir");
-    let obj = out.join("fan.obj");
     // Three triangles around a centre.
-    std::fs::write(&obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv -1 0 0\nv 0 -1 0\nf 1 2 3\nf 1 3 4\nf 1 4 5\n").expect("write");
+    let (out, obj) =
+        input("mesh", "fan.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv -1 0 0\nv 0 -1 0\nf 1 2 3\nf 1 3 4\nf 1 4 5\n");
     let maps = out.join("maps");
     let mesh = ["depth", "--mesh", text(&obj), "--size", "32", "--out", text(&maps)];
     fails_saying(&umbra(&[&["--max-triangles", "2"][..], &mesh].concat()), &["3 triangles", "max_triangles"]);
     fails_saying(&umbra(&[&["--max-file-bytes", "16"][..], &mesh].concat()), &["fan.obj", "max_file_bytes"]);
     assert!(!maps.exists(), "nothing is written");
-    let o = umbra(&[&["--max-triangles", "3"][..], &mesh].concat());
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    assert!(String::from_utf8_lossy(&o.stdout).contains("triangles 3 submitted"));
+    assert!(succeeds(&umbra(&[&["--max-triangles", "3"][..], &mesh].concat())).contains("triangles 3 submitted"));
     let _ = std::fs::remove_dir_all(&out);
 }
 
@@ -86,18 +96,14 @@ fn a_scene_beyond_the_image_or_triangle_limit_is_refused_when_it_is_read() {
 
 #[test]
 fn every_file_the_command_reads_is_a_regular_file_within_the_file_limit() {
-    let out = dir("files");
-    std::fs::create_dir_all(&out).expect("temp dir");
     // A light matrix in a file: the identity, 41 bytes of JSON.
-    let matrix = out.join("matrix.json");
-    std::fs::write(&matrix, "[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]").expect("write");
+    let (out, matrix) = input("files", "matrix.json", "[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]");
     let maps = out.join("maps");
     let depth = ["depth", "--size", "32", "--out", text(&maps), "--matrix"];
     fails_saying(&umbra(&[&depth[..], &["/dev/zero"]].concat()), &["--matrix", "not a regular file"]);
     let small = [&["--max-file-bytes", "20"][..], &depth, &[text(&matrix)]].concat();
     fails_saying(&umbra(&small), &["--matrix", "max_file_bytes"]);
-    let o = umbra(&[&depth[..], &[text(&matrix)]].concat());
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    succeeds(&umbra(&[&depth[..], &[text(&matrix)]].concat()));
     // A study's results to merge.
     let merged = out.join("merged");
     fails_saying(&umbra(&["merge", "/dev/zero", "--out", text(&merged)]), &["/dev/zero", "not a regular file"]);
