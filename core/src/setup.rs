@@ -417,9 +417,10 @@ mod tests {
     /// The depth plane's steps against the exact slopes worked by hand,
     /// `(Δz₁Δy₂ − Δz₂Δy₁)·2ˢ / area` across and `(Δx₁Δz₂ − Δx₂Δz₁)·2ˢ / area`
     /// down, rounded to the nearest: within one unit, plus the f64 path's
-    /// relative error of 2⁻⁵¹, for depths in the front end's `[0, 2⁵⁶]`
-    /// and for hand-made depths anywhere in `i64`, whose differences
-    /// overflow 64 bits.
+    /// relative error of 2⁻⁵¹; and its value at pixel `(0, 0)` against the
+    /// exact plane there. For depths in the front end's `[0, 2⁵⁶]` and for
+    /// hand-made depths anywhere in `i64`, whose differences overflow 64
+    /// bits.
     #[test]
     fn depth_steps_equal_the_exact_slopes_for_depths_of_any_size() {
         let cfg = RasterConfig::new(64, 64, 16, 8).expect("valid");
@@ -447,6 +448,16 @@ mod tests {
             for (found, exact) in [(setup.plane.a, across), (setup.plane.b, down)] {
                 assert!((found - exact).abs() <= 1 + (exact.abs() >> 50), "{found} against {exact} for {v:?}");
             }
+            // The value at pixel (0, 0)'s centre, `s` bits of subpixel from
+            // vertex 0, exactly; setup reaches it with the rounded steps, so
+            // each step's error counts once per pixel of that distance.
+            let half = 1i128 << (s - 1);
+            let (ox, oy) = (half - x(&v[0]), half - y(&v[0]));
+            let num = (d(z, 1) * d(y, 2) - d(z, 2) * d(y, 1)) * ox + (d(x, 1) * d(z, 2) - d(x, 2) * d(z, 1)) * oy;
+            let at_origin = z(&v[0]) + nearest(num, area);
+            let drift = ((1 + (across.abs() >> 50)) * ox.abs() + (1 + (down.abs() >> 50)) * oy.abs()) >> s;
+            let found = setup.plane.c;
+            assert!((found - at_origin).abs() <= 2 + drift, "{found} against {at_origin} for {v:?}");
             set_up += 1;
             wide += u32::from(i64::try_from(d(z, 1)).is_err() || i64::try_from(d(z, 2)).is_err());
         }
