@@ -235,5 +235,29 @@ fn cores(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, peer, scaling, cores);
+/// Both rasterizers into kept buffers over the same torus cut into fewer,
+/// larger triangles: where per-triangle work gives way to fill.
+fn peer_sizes(c: &mut Criterion) {
+    let mut g = c.benchmark_group("peer/triangles");
+    g.sample_size(10);
+    let (mut colour, mut depth) = (Buffer2d::new([1024, 1024], ()), Buffer2d::new([1024, 1024], 1.0f32));
+    let mut frame = LightFrame::new();
+    let cfg = umbra_config(1024, false);
+    for (rings, sides) in [(25, 20), (50, 40), (100, 50), (250, 200)] {
+        let mesh = torus(rings, sides);
+        let n = mesh.triangles.len() as u64;
+        let vertices = soup(&mesh);
+        g.throughput(Throughput::Elements(n));
+        let draw = umbra_draw(&mesh);
+        g.bench_function(BenchmarkId::new("umbra d24, kept frame", n), |b| {
+            b.iter(|| render_in::<D24, _>(&mut frame, cfg, black_box(&[draw]), NoProbe).map(|_| ()).expect("renders"));
+        });
+        g.bench_function(BenchmarkId::new("euc f32, kept buffers", n), |b| {
+            b.iter(|| euc_draw(black_box(&vertices), &mut colour, &mut depth, None));
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, peer, peer_sizes, scaling, cores);
 criterion_main!(benches);

@@ -13,8 +13,14 @@
 //! target/release/examples/light_profile 20 bands-new 2048   # a new frame each pass
 //! ```
 //!
-//! With `digest` it prints a digest of the last map's bits too: a change
-//! to the hot path must keep it. Instruction counts under callgrind are
+//! With `digest` it prints a digest of the last maps' bits too: a change
+//! to the hot path must keep it. The environment varies the pass:
+//! `TORUS=50x40` (rings × sides: 4 000 larger triangles), `UNIT=dual`,
+//! `CULL=1` (max-z culling on).
+//!
+//! ```sh
+//! TORUS=25x20 UNIT=dual CULL=1 target/release/examples/light_profile 1 whole 2048 digest
+//! ``` Instruction counts under callgrind are
 //! the same from run to run, so they compare changes to the hot path on a
 //! noisy machine where times do not.
 
@@ -34,12 +40,24 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let new = mode.ends_with("-new");
     let side: u32 = std::env::args().nth(3).map_or(Ok(1024), |s| s.parse())?;
     let digest = std::env::args().nth(4).is_some_and(|a| a == "digest");
-    let mesh = Mesh::torus(Vec3::ZERO, 1.0, 0.4, 250, 200);
+    let (rings, sides): (u32, u32) = match std::env::var("TORUS") {
+        Ok(t) => {
+            let (r, s) = t.split_once('x').ok_or("TORUS is rings x sides, as 50x40")?;
+            (r.parse()?, s.parse()?)
+        }
+        Err(_) => (250, 200),
+    };
+    let mesh = Mesh::torus(Vec3::ZERO, 1.0, 0.4, rings, sides);
     let light =
         Perspective { position: Vec3::new(0.0, 2.2, 2.6), target: Vec3::ZERO, fov_degrees: 55.0, near: 1.0, far: 8.0 }
             .view_projection();
     let raster = RasterConfig::new(side, side, 32, 8)?;
-    let cfg = LightPassConfig { raster, unit: DepthUnit::Single, max_z_cull: false };
+    let unit = match std::env::var("UNIT").as_deref() {
+        Ok("dual") => DepthUnit::Dual,
+        Ok("single") | Err(_) => DepthUnit::Single,
+        Ok(other) => return Err(format!("UNIT is single or dual, not {other}").into()),
+    };
+    let cfg = LightPassConfig { raster, unit, max_z_cull: std::env::var("CULL").is_ok_and(|c| !c.is_empty()) };
     let draw = Draw { positions: &mesh.positions, triangles: &mesh.triangles, transform: light, cull: CullMode::None };
     // One frame for every pass, as hardware keeps its memory: after the
     // first, a pass touches no fresh pages.
@@ -63,7 +81,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if digest {
         // A digest of the map's bits: a change to the hot path must keep it.
         let mut hasher = DefaultHasher::new();
-        maps.map(|m| &m.z1).hash(&mut hasher);
+        maps.map(|m| (&m.z1, &m.z2)).hash(&mut hasher);
         println!("map digest {:016x}", hasher.finish());
     }
     Ok(())

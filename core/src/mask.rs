@@ -29,8 +29,8 @@ pub const LANES: bool = cfg!(any(target_feature = "sse2", target_feature = "neon
 /// Pixels of a row one group of lanes evaluates at once.
 pub const LANE_GROUP: u32 = 8;
 
-/// The widest rectangle the unit takes: two groups of lanes.
-pub const WIDEST: u32 = 2 * LANE_GROUP;
+/// The widest rectangle the unit takes: eight groups of lanes, a 64-bit mask.
+pub const WIDEST: u32 = 8 * LANE_GROUP;
 
 /// Lanes whose index has bit 0, bit 1, bit 2 set (all ones there).
 const ODD: i32x8 = i32x8::new([0, -1, 0, -1, 0, -1, 0, -1]);
@@ -40,6 +40,9 @@ const _: () = assert!(LANE_GROUP == 8, "the lane masks are for groups of eight")
 
 /// A row's coverage, a bit a pixel.
 pub(crate) trait RowMask {
+    /// The widest row the unit draws.
+    const WIDTH: u32;
+
     /// The current row's mask; then step to the next row.
     fn next_row(&mut self) -> u64;
 }
@@ -101,6 +104,9 @@ impl<const G: usize> Lanes<G> {
 }
 
 impl<const G: usize> RowMask for Lanes<G> {
+    #[allow(clippy::cast_possible_truncation, reason = "at most eight groups")]
+    const WIDTH: u32 = G as u32 * LANE_GROUP;
+
     #[inline(always)]
     fn next_row(&mut self) -> u64 {
         let mut outside = 0u64;
@@ -138,6 +144,8 @@ impl Serial {
 }
 
 impl RowMask for Serial {
+    const WIDTH: u32 = WIDEST;
+
     #[inline(always)]
     fn next_row(&mut self) -> u64 {
         // Stepped leftwards from the last pixel: each bit is shifted in

@@ -16,11 +16,14 @@
 //!    of the edge functions ([`Setup::classify`]), unless it is no bigger
 //!    than a block: then per-row coverage masks find its pixels directly;
 //! 4. a full rectangle runs whole rows without edge tests; a partial one no
-//!    bigger than a block (or than [`SMALL`], when no block could be culled)
-//!    runs per-row coverage masks over the pixels it covers; a larger
-//!    partial one is split into [`BLOCK`]×[`BLOCK`] blocks, each classified
-//!    and culled the same way, and neighbouring blocks of a kind are merged
-//!    into runs of full rows (no edge tests) or masked rows.
+//!    bigger than a block (or, when no block could be culled, no wider than
+//!    [`SMALL`]) runs per-row coverage masks, and the depth unit takes each
+//!    row's covered pixels — one run, as a triangle meets a row in an
+//!    interval — as a span without edge tests, or pixel by pixel when the
+//!    run is short; any other partial one is split into
+//!    [`BLOCK`]×[`BLOCK`] blocks, each classified and culled the same way,
+//!    and neighbouring blocks of a kind are merged into runs of full rows
+//!    (no edge tests) or masked rows.
 //!
 //! Fragments come out per tile, per triangle in bin order, in row-major
 //! order within each row of blocks, rows of blocks top to bottom — which is
@@ -41,8 +44,8 @@ pub const BLOCK: u32 = 8;
 
 const _: () = assert!(BLOCK <= *crate::config::TILE_SIZES.start(), "blocks must fit in the smallest tile");
 
-/// Sides of the largest partial rectangle drawn by row masks
-/// ([`small`]) rather than split into blocks.
+/// Width of the widest partial rectangle drawn by row masks ([`small`])
+/// rather than split into blocks, when no block could be culled.
 const SMALL: u32 = WIDEST;
 
 /// One tile of the map, as the rasterizer sees it.
@@ -95,6 +98,10 @@ struct Run {
     x1: u32,
     masked: bool,
 }
+
+/// The longest run of a row mask that the depth unit takes pixel by pixel
+/// rather than as a span (whose loop costs more to start).
+const SPAN: u32 = 8;
 
 /// Most blocks in one row of the largest tile.
 const MAX_RUNS: usize = (*crate::config::TILE_SIZES.end() / BLOCK) as usize;
@@ -170,10 +177,10 @@ fn traverse<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const C
         // Whole rows without edge tests.
         let run = Run { x0: rect.x0, x1: rect.x1, masked: false };
         rows::<F, P, DUAL, IDS, COUNT>(s, view, rect.y0, rect.y1, &[run], &mut out, probe);
-    } else if within(rect, BLOCK) || (within(rect, SMALL) && !cull_blocks) {
+    } else if within(rect, BLOCK) || (rect.width() <= SMALL && !cull_blocks) {
         // A partial rectangle no bigger than a block, or (when no block can
-        // be culled, so that the blocks would only split the work) than
-        // [`SMALL`].
+        // be culled, so that the blocks would only split the work) no wider
+        // than [`SMALL`].
         small::<F, P, DUAL, IDS, COUNT>(s, view, rect, &mut out, probe);
     } else {
         let mut by = rect.y0 & !(BLOCK - 1);
@@ -187,11 +194,12 @@ fn traverse<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const C
     finish_triangle::<F, P, DUAL, IDS, COUNT>(view, &out, probe);
 }
 
-/// A partial rectangle no bigger than [`SMALL`] — most of a small
-/// triangle's tiles — by coverage masks ([`crate::mask`]): per row, the
-/// covered pixels as bits of the three edge functions, then the depth unit
-/// on the set bits only. The same fragments in the same order as masked
-/// rows, without stepping the depth unit over the pixels the triangle misses.
+/// A partial rectangle no wider than [`SMALL`] by coverage masks
+/// ([`crate::mask`]), in as few groups of lanes as its width needs: per
+/// row, the covered pixels as bits of the three edge functions, then the
+/// depth unit on the set bits only. The same fragments in the same order as
+/// masked rows, without stepping the depth unit over the pixels the
+/// triangle misses.
 fn small<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUNT: bool>(
     s: &Setup,
     view: &mut TileView<'_, F::Texel>,
@@ -199,25 +207,36 @@ fn small<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUN
     out: &mut SpanOut<F::Texel>,
     probe: &mut P,
 ) {
+    let width = rect.width();
     let drawn = if !LANES {
         None
-    } else if rect.width() <= LANE_GROUP {
-        Lanes::<1>::new(s, rect).map(|m| masked::<F, P, DUAL, IDS, COUNT>(s, view, rect, m, out, probe))
+    } else if width <= LANE_GROUP {
+        Lanes::<1>::new(s, rect).map(|m| masked::<F, P, _, DUAL, IDS, COUNT>(s, view, rect, m, out, probe))
+    } else if width <= 2 * LANE_GROUP {
+        Lanes::<2>::new(s, rect).map(|m| masked::<F, P, _, DUAL, IDS, COUNT>(s, view, rect, m, out, probe))
+    } else if width <= 4 * LANE_GROUP {
+        Lanes::<4>::new(s, rect).map(|m| masked::<F, P, _, DUAL, IDS, COUNT>(s, view, rect, m, out, probe))
     } else {
-        Lanes::<2>::new(s, rect).map(|m| masked::<F, P, DUAL, IDS, COUNT>(s, view, rect, m, out, probe))
+        Lanes::<8>::new(s, rect).map(|m| masked::<F, P, _, DUAL, IDS, COUNT>(s, view, rect, m, out, probe))
     };
     if drawn.is_none() {
-        masked::<F, P, DUAL, IDS, COUNT>(s, view, rect, Serial::new(s, rect), out, probe);
+        masked::<F, P, _, DUAL, IDS, COUNT>(s, view, rect, Serial::new(s, rect), out, probe);
     }
 }
 
 /// The depth unit on the pixels of `rect` that `masks` set, row by row.
+///
+/// A triangle meets a row of pixel centres in one interval, so a row's mask
+/// is one run of set bits: the depth unit takes it as a span without edge
+/// tests, as a scanline rasterizer draws between its edges. A mask with a
+/// gap (only an edge function out of the setup's budget can wrap into one)
+/// takes the set bits one at a time.
 #[inline(always)]
-fn masked<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUNT: bool>(
+fn masked<F: DepthFormat, P: Probe, M: RowMask, const DUAL: bool, const IDS: bool, const COUNT: bool>(
     s: &Setup,
     view: &mut TileView<'_, F::Texel>,
     rect: &TileRect,
-    mut masks: impl RowMask,
+    mut masks: M,
     total: &mut SpanOut<F::Texel>,
     probe: &mut P,
 ) {
@@ -227,27 +246,25 @@ fn masked<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COU
     let cull_max = view.state.cull_max;
     let mut z_row = s.plane.at(i64::from(rect.x0), i64::from(rect.y0)).to_bits().wrapping_add(ROUND_HALF);
     for y in rect.y0..rect.y1 {
-        let mut mask = masks.next_row();
+        let mask = masks.next_row();
         if mask != 0 {
-            let Some((z1, z2, ids)) = view.rows::<DUAL, IDS>(y, rect.x0, rect.x1) else { break };
-            while mask != 0 {
-                out.fragments += 1;
-                let k = mask.trailing_zeros();
-                mask &= mask - 1;
-                let q = F::texel_inside(z_row.wrapping_add(dzx.wrapping_mul(i64::from(k))));
-                let i = k as usize;
-                if DUAL {
-                    if let (Some(a), Some(b)) = (z1.get_mut(i), z2.get_mut(i)) {
-                        out.dual::<COUNT>(a, b, q, cull_max);
-                    }
-                } else if IDS {
-                    if let (Some(a), Some(t)) = (z1.get_mut(i), ids.get_mut(i)) {
-                        out.visible::<COUNT>(a, t, s.triangle, q, cull_max);
-                    }
-                } else if let Some(a) = z1.get_mut(i) {
-                    out.single::<COUNT>(a, q, cull_max);
-                }
-                if P::FRAGMENTS {
+            let (k0, k1) = (mask.trailing_zeros(), u64::BITS - mask.leading_zeros());
+            let run = mask >> k0;
+            if M::WIDTH > SPAN && k1 - k0 > SPAN && run & run.wrapping_add(1) == 0 {
+                let Some((z1, z2, ids)) = view.rows::<DUAL, IDS>(y, rect.x0 + k0, rect.x0 + k1) else { break };
+                let z = z_row.wrapping_add(dzx.wrapping_mul(i64::from(k0)));
+                let edges = SpanEdges { e: [0; 3], de: [0; 3] };
+                out.add(&span::<F, DUAL, IDS, false, COUNT>(z1, z2, ids, s.triangle, z, dzx, edges, cull_max));
+            } else {
+                let Some((z1, z2, ids)) = view.rows::<DUAL, IDS>(y, rect.x0, rect.x1) else { break };
+                bits::<F, DUAL, IDS, COUNT>(mask, z1, z2, ids, s.triangle, z_row, dzx, &mut out, cull_max);
+            }
+            if P::FRAGMENTS {
+                let mut mask = mask;
+                while mask != 0 {
+                    let k = mask.trailing_zeros();
+                    mask &= mask - 1;
+                    let q = F::texel_inside(z_row.wrapping_add(dzx.wrapping_mul(i64::from(k))));
                     let depth = crate::depth::Texel::to_raw(q);
                     probe.fragment(Fragment { x: rect.x0 + k, y, depth, triangle: s.triangle });
                 }
@@ -256,6 +273,41 @@ fn masked<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COU
         z_row = z_row.wrapping_add(dzy);
     }
     total.add(&out);
+}
+
+/// The depth unit on the pixels of a row whose bits `mask` sets (bit `k`
+/// for the `k`-th texel of the slices), one at a time.
+#[inline(always)]
+#[allow(clippy::too_many_arguments, reason = "the hot path's state, passed flat")]
+fn bits<F: DepthFormat, const DUAL: bool, const IDS: bool, const COUNT: bool>(
+    mut mask: u64,
+    z1: &mut [F::Texel],
+    z2: &mut [F::Texel],
+    ids: &mut [u32],
+    id: u32,
+    z: i64,
+    dzx: i64,
+    out: &mut SpanOut<F::Texel>,
+    cull_max: F::Texel,
+) {
+    while mask != 0 {
+        out.fragments += 1;
+        let k = mask.trailing_zeros();
+        mask &= mask - 1;
+        let q = F::texel_inside(z.wrapping_add(dzx.wrapping_mul(i64::from(k))));
+        let i = k as usize;
+        if DUAL {
+            if let (Some(a), Some(b)) = (z1.get_mut(i), z2.get_mut(i)) {
+                out.dual::<COUNT>(a, b, q, cull_max);
+            }
+        } else if IDS {
+            if let (Some(a), Some(t)) = (z1.get_mut(i), ids.get_mut(i)) {
+                out.visible::<COUNT>(a, t, id, q, cull_max);
+            }
+        } else if let Some(a) = z1.get_mut(i) {
+            out.single::<COUNT>(a, q, cull_max);
+        }
+    }
 }
 
 /// Make the tile's max exact again: a reduction over the culled buffer.
