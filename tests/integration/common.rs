@@ -267,6 +267,18 @@ pub fn depths_per_texel(frags: &[Fragment], size: u32) -> Vec<Vec<u32>> {
     per
 }
 
+/// Per texel, the two smallest depths of `frags` (the far value where fewer
+/// landed): what a dual unit must hold after drawing them, in any order.
+pub fn two_smallest(frags: &[Fragment], size: u32, far: u32) -> (Vec<u32>, Vec<u32>) {
+    depths_per_texel(frags, size)
+        .into_iter()
+        .map(|mut ds| {
+            ds.sort_unstable();
+            (ds.first().copied().unwrap_or(far), ds.get(1).copied().unwrap_or(far))
+        })
+        .unzip()
+}
+
 /// A vertex in clip space with `w` in `[0.5, 2]`, NDC `x, y` in `[-1.3, 1.3]`
 /// and depth in `[0, 1]`: inside near, far and the guard band.
 pub fn clip_vertex() -> impl Strategy<Value = Vec4> {

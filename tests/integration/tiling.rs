@@ -1,13 +1,15 @@
 //! The tiled rasterizer emits exactly the fragments of the plain
 //! whole-target reference, for every tile size, bin capacity and setup
-//! store size — including ones small enough to force early flushes.
+//! store size — including ones small enough to force early flushes — and
+//! an unwatched pass (whose depth unit takes runs of covered pixels as
+//! spans) draws the maps those fragments make.
 
 use proptest::prelude::*;
 use umbra::core::glam::Vec4;
 use umbra::core::probe::Fragment;
-use umbra::core::{CullMode, D16, D24, DepthFormat, DepthUnit, F32};
+use umbra::core::{CullMode, D16, D24, DepthFormat, DepthUnit, F32, NoProbe};
 
-use crate::common::{Recorder, assert_matches_reference, config, reference, run, triangles};
+use crate::common::{Recorder, assert_matches_reference, config, raw, reference, run, triangles, two_smallest};
 
 const SIZE: u32 = 64;
 
@@ -22,14 +24,28 @@ fn fragments<F: DepthFormat, const B: usize>(
     (rec.sorted(), counts)
 }
 
+/// The dual maps of a pass that reports nothing.
+fn unwatched<F: DepthFormat, const B: usize>(
+    tris: &[[Vec4; 3]],
+    tile: u32,
+    setups: usize,
+    cull: CullMode,
+) -> (Vec<u32>, Vec<u32>) {
+    let (maps, _) = run::<F, _, B>(config(SIZE, tile, DepthUnit::Dual, false), tris, cull, setups, NoProbe);
+    (raw(&maps.z1), raw(&maps.z2))
+}
+
 fn every_tiling_agrees<F: DepthFormat>(tris: &[[Vec4; 3]], cull: CullMode) -> Result<Vec<Fragment>, TestCaseError> {
     let (base, _) = fragments::<F, 64>(tris, 128, 4096, cull);
-    for tile in [8, 16, 32, 64] {
+    let maps = two_smallest(&base, SIZE, umbra::core::depth::Texel::to_raw(F::FAR));
+    for tile in [8, 16, 32, 64, 128] {
         prop_assert_eq!(&fragments::<F, 64>(tris, tile, 4096, cull).0, &base, "tile {}", tile);
+        prop_assert!(unwatched::<F, 64>(tris, tile, 4096, cull) == maps, "maps with tile {}", tile);
     }
     prop_assert_eq!(&fragments::<F, 1>(tris, 8, 4096, cull).0, &base, "bin capacity 1");
     prop_assert_eq!(&fragments::<F, 2>(tris, 16, 3, cull).0, &base, "bin capacity 2, 3 setups");
     prop_assert_eq!(&fragments::<F, 3>(tris, 32, 1, cull).0, &base, "bin capacity 3, 1 setup");
+    prop_assert!(unwatched::<F, 3>(tris, 32, 1, cull) == maps, "maps with bin capacity 3, 1 setup");
     Ok(base)
 }
 
