@@ -275,7 +275,9 @@ fn peer_sizes(c: &mut Criterion) {
         let draw = umbra_draw(&mesh);
         let (umbra, euc) = interleaved(
             ROUNDS,
-            || drop(black_box(render_in::<D24, _>(&mut frame, cfg, &[draw], NoProbe).expect("renders"))),
+            || {
+                black_box(render_in::<D24, _>(&mut frame, cfg, &[draw], NoProbe).expect("renders"));
+            },
             || euc_draw(black_box(&vertices), &mut colour, &mut depth, None),
         );
         let ms = |d: Duration| d.as_secs_f64() * 1e3;
