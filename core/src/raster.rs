@@ -227,10 +227,10 @@ fn small<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUN
 /// The depth unit on the pixels of `rect` that `masks` set, row by row.
 ///
 /// A triangle meets a row of pixel centres in one interval, so a row's mask
-/// is one run of set bits: the depth unit takes it as a span without edge
-/// tests, as a scanline rasterizer draws between its edges. A mask with a
-/// gap (only an edge function out of the setup's budget can wrap into one)
-/// takes the set bits one at a time.
+/// is one run of set bits: a run longer than [`SPAN`] goes to the depth unit
+/// as a span without edge tests, as a scanline rasterizer draws between its
+/// edges. A shorter run, or a mask with a gap (only an edge function out of
+/// the setup's budget can wrap into one), takes the set bits one at a time.
 #[inline(always)]
 fn masked<F: DepthFormat, P: Probe, M: RowMask, const DUAL: bool, const IDS: bool, const COUNT: bool>(
     s: &Setup,
