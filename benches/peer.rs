@@ -56,6 +56,11 @@ fn umbra_draw(mesh: &Mesh) -> Draw<'_> {
     Draw { positions: &mesh.positions, triangles: &mesh.triangles, transform: light(), cull: CullMode::None }
 }
 
+/// Umbra's light pass into a frame kept from pass to pass.
+fn umbra_kept(frame: &mut LightFrame<u32>, cfg: LightPassConfig, draw: Draw<'_>) {
+    render_in::<D24, _>(frame, cfg, black_box(&[draw]), NoProbe).map(|_| ()).expect("renders");
+}
+
 fn umbra_pass<P: Probe>(mesh: &Mesh, size: u32, cull: bool, probe: P) -> P {
     render::<D24, P>(umbra_config(size, cull), &[umbra_draw(mesh)], probe).expect("renders").1
 }
@@ -139,7 +144,7 @@ fn peer(c: &mut Criterion) {
     let mut frame = LightFrame::new();
     let (cfg, draw) = (umbra_config(1024, false), umbra_draw(&mesh));
     g.bench_function("umbra d24, culling off, kept frame", |b| {
-        b.iter(|| render_in::<D24, _>(&mut frame, cfg, black_box(&[draw]), NoProbe).map(|_| ()).expect("renders"));
+        b.iter(|| umbra_kept(&mut frame, cfg, draw));
     });
     // Beside them, the banded pass on every core into a kept frame: the
     // same maps, bit for bit; euc draws on one core.
@@ -217,7 +222,7 @@ fn cores(c: &mut Criterion) {
     });
     let mut frame = LightFrame::new();
     g.bench_function("whole pass, kept frame", |b| {
-        b.iter(|| render_in::<D24, _>(&mut frame, cfg, black_box(&[draw]), NoProbe).map(|_| ()).expect("renders"));
+        b.iter(|| umbra_kept(&mut frame, cfg, draw));
     });
     let all = std::thread::available_parallelism().map_or(1, usize::from);
     let mut counts = vec![1, 2, all];
@@ -275,9 +280,7 @@ fn peer_sizes(c: &mut Criterion) {
         let draw = umbra_draw(&mesh);
         let (umbra, euc) = interleaved(
             ROUNDS,
-            || {
-                black_box(render_in::<D24, _>(&mut frame, cfg, &[draw], NoProbe).expect("renders"));
-            },
+            || umbra_kept(&mut frame, cfg, draw),
             || euc_draw(black_box(&vertices), &mut colour, &mut depth, None),
         );
         let ms = |d: Duration| d.as_secs_f64() * 1e3;
@@ -288,7 +291,7 @@ fn peer_sizes(c: &mut Criterion) {
             euc.as_secs_f64() / umbra.as_secs_f64()
         );
         g.bench_function(BenchmarkId::new("umbra d24, kept frame", n), |b| {
-            b.iter(|| render_in::<D24, _>(&mut frame, cfg, black_box(&[draw]), NoProbe).map(|_| ()).expect("renders"));
+            b.iter(|| umbra_kept(&mut frame, cfg, draw));
         });
         g.bench_function(BenchmarkId::new("euc f32, kept buffers", n), |b| {
             b.iter(|| euc_draw(black_box(&vertices), &mut colour, &mut depth, None));

@@ -14,15 +14,16 @@
 //! ```
 //!
 //! With `digest` it prints a digest of the last maps' bits too: a change
-//! to the hot path must keep it. The environment varies the pass:
-//! `TORUS=50x40` (rings × sides: 4 000 larger triangles), `UNIT=dual`,
-//! `CULL=1` (max-z culling on).
+//! to the hot path must keep it. Instruction counts under callgrind are
+//! the same from run to run, so they compare changes to the hot path on a
+//! noisy machine where times do not.
+//!
+//! The environment varies the pass: `TORUS=50x40` (rings × sides: 4 000
+//! larger triangles), `UNIT=single|dual`, `CULL=0|1` (max-z culling):
 //!
 //! ```sh
 //! TORUS=25x20 UNIT=dual CULL=1 target/release/examples/light_profile 1 whole 2048 digest
-//! ``` Instruction counts under callgrind are
-//! the same from run to run, so they compare changes to the hot path on a
-//! noisy machine where times do not.
+//! ```
 
 use std::hash::{DefaultHasher, Hash, Hasher};
 
@@ -57,7 +58,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Ok("single") | Err(_) => DepthUnit::Single,
         Ok(other) => return Err(format!("UNIT is single or dual, not {other}").into()),
     };
-    let cfg = LightPassConfig { raster, unit, max_z_cull: std::env::var("CULL").is_ok_and(|c| !c.is_empty()) };
+    let max_z_cull = match std::env::var("CULL").as_deref() {
+        Ok("1") => true,
+        Ok("0") | Err(_) => false,
+        Ok(other) => return Err(format!("CULL is 0 or 1, not {other}").into()),
+    };
+    let cfg = LightPassConfig { raster, unit, max_z_cull };
     let draw = Draw { positions: &mesh.positions, triangles: &mesh.triangles, transform: light, cull: CullMode::None };
     // One frame for every pass, as hardware keeps its memory: after the
     // first, a pass touches no fresh pages.

@@ -38,8 +38,10 @@ fn unwatched<F: DepthFormat, const B: usize>(
 fn every_tiling_agrees<F: DepthFormat>(tris: &[[Vec4; 3]], cull: CullMode) -> Result<Vec<Fragment>, TestCaseError> {
     let (base, _) = fragments::<F, 64>(tris, 128, 4096, cull);
     let maps = two_smallest(&base, SIZE, umbra::core::depth::Texel::to_raw(F::FAR));
-    for tile in [8, 16, 32, 64, 128] {
+    for tile in [8, 16, 32, 64] {
         prop_assert_eq!(&fragments::<F, 64>(tris, tile, 4096, cull).0, &base, "tile {}", tile);
+    }
+    for tile in [8, 16, 32, 64, 128] {
         prop_assert!(unwatched::<F, 64>(tris, tile, 4096, cull) == maps, "maps with tile {}", tile);
     }
     prop_assert_eq!(&fragments::<F, 1>(tris, 8, 4096, cull).0, &base, "bin capacity 1");
