@@ -271,3 +271,22 @@ fn extremes_give_finite_metrics() {
     let md = extremes::markdown(&rows);
     assert!(md.contains("| guard-band | dual |") && !md.contains("NaN"), "{md}");
 }
+
+/// The extremes' sweep keeps to the limits it runs under: with maps capped
+/// below its 512² every row is skipped and names the limit, the table says
+/// no curve was measured (not that none broke down), and the files are
+/// still written.
+#[test]
+fn extremes_keep_to_their_limits() {
+    let out = dir("extremes-limits");
+    let limits = Limits { max_map_side: 256, ..Limits::DEFAULT };
+    let md = extremes::run_all(&out, &limits).expect("runs");
+    let rows = study::read_rows(&out.join("extremes.jsonl"), &Limits::DEFAULT).expect("written");
+    assert_eq!(rows.len(), extremes::scenes().len() * extremes::variants().len() * 3);
+    for r in &rows {
+        assert!(r.misclassified_percent.is_none() && r.status != "ok", "{r:?}");
+        assert!(r.reason.contains("max_map_side"), "{}", r.reason);
+    }
+    assert!(md.contains("not measured") && !md.contains("never"), "{md}");
+    assert!(out.join("extremes.md").is_file() && out.join("precision.png").is_file());
+}

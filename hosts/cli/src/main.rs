@@ -438,7 +438,7 @@ fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
         args.out.display()
     );
     if args.extremes {
-        let report = study::extremes::run_all(&args.out)?;
+        let report = study::extremes::run_all(&args.out, limits)?;
         println!("{report}");
         println!("wrote {}", args.out.join("extremes.md").display());
     }

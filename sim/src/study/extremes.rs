@@ -23,6 +23,7 @@ use umbra_core::DepthFormatKind;
 use super::plot::{self, Series};
 use super::{Row, Shard, Spec, StudyError, Variant};
 use crate::arch::ArchParams;
+use crate::limits::Limits;
 use crate::mesh::Mesh;
 use crate::output::write_text;
 use crate::render::Algorithm;
@@ -169,7 +170,7 @@ pub fn spec(scenes: Vec<Scene>, width: u32, height: u32) -> Spec {
         width,
         height,
         reference_samples: 1,
-        limits: crate::limits::Limits::DEFAULT,
+        limits: Limits::DEFAULT,
     }
 }
 
@@ -233,7 +234,12 @@ pub fn markdown(rows: &[Row]) -> String {
             for r in curve(rows, v.name, f).filter(|r| ratio_of(&r.scene).is_some()) {
                 let _ = write!(s, " {} |", cell(r));
             }
-            let b = breakdown(rows, v.name, f).map_or_else(|| "never (≤ 10⁶)".to_owned(), |r| format!("{r:.0e}"));
+            let measured = curve(rows, v.name, f).any(|r| r.misclassified_percent.is_some());
+            let b = match breakdown(rows, v.name, f) {
+                Some(r) => format!("{r:.0e}"),
+                None if measured => "never (≤ 10⁶)".to_owned(),
+                None => "not measured".to_owned(),
+            };
             let _ = writeln!(s, " {b} |");
         }
     }
@@ -284,14 +290,16 @@ pub fn precision_series(rows: &[Row]) -> Vec<Series> {
     out
 }
 
-/// Run every extreme at 160×90 on the current rayon pool and write
-/// `extremes.jsonl`, `extremes.md` and `precision.{svg,png}` into `dir`.
-/// Returns the Markdown.
+/// Run every extreme at 160×90 on the current rayon pool, within
+/// `limits` (a configuration beyond them is a skipped row that names the
+/// limit), and write `extremes.jsonl`, `extremes.md` and
+/// `precision.{svg,png}` into `dir`. Returns the Markdown.
 ///
 /// # Errors
 /// See [`StudyError`].
-pub fn run_all(dir: &Path) -> Result<String, StudyError> {
-    let rows = super::run(&spec(scenes(), 160, 90), Shard::ALL, &ProgressBar::hidden());
+pub fn run_all(dir: &Path, limits: &Limits) -> Result<String, StudyError> {
+    let spec = Spec { limits: *limits, ..spec(scenes(), 160, 90) };
+    let rows = super::run(&spec, Shard::ALL, &ProgressBar::hidden());
     write_text(&dir.join("extremes.jsonl"), &super::jsonl(&rows))?;
     let md = markdown(&rows);
     write_text(&dir.join("extremes.md"), &md)?;
