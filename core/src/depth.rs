@@ -32,21 +32,49 @@ pub const PLANE_FRACTION_BITS: u32 = 32;
 
 /// A stored depth value: compared as an unsigned integer, whatever the format.
 pub trait Texel: Copy + Ord + Default + core::fmt::Debug + Send + Sync + 'static {
+    /// The texel as a value the hardware's comparators order as texels are
+    /// ordered (the tile reductions compare these).
+    type Key: Copy + Ord;
     /// The raw bits widened to `u32` (for checksums, images and `.npy` output).
     fn to_raw(self) -> u32;
+    /// The comparators' value.
+    fn key(self) -> Self::Key;
+    /// The texel of a comparators' value.
+    fn from_key(key: Self::Key) -> Self;
 }
 
 impl Texel for u16 {
+    type Key = Self;
     #[inline]
     fn to_raw(self) -> u32 {
         u32::from(self)
     }
+    #[inline(always)]
+    fn key(self) -> Self {
+        self
+    }
+    #[inline(always)]
+    fn from_key(key: Self) -> Self {
+        key
+    }
 }
 
+/// Every 32-bit format's texels lie below 2³¹ (24-bit depth; the bits of
+/// an f32 in `[0, 1]`), so signed comparators order them: a SIMD unit
+/// without unsigned 32-bit compares (SSE2) needs no sign flips.
 impl Texel for u32 {
+    type Key = i32;
     #[inline]
     fn to_raw(self) -> u32 {
         self
+    }
+    #[inline(always)]
+    fn key(self) -> i32 {
+        self.cast_signed()
+    }
+    #[inline(always)]
+    fn from_key(key: i32) -> Self {
+        key.cast_unsigned()
     }
 }
 
@@ -150,14 +178,17 @@ macro_rules! unorm_format {
                 t
             }
 
+            /// The interpolator's integer part on the format's `n` wires:
+            /// inside the triangle it lies in `[0, SCALE]` already, and any
+            /// other input still gives a texel of `n` bits.
             #[inline(always)]
             fn texel_inside(biased_bits: i64) -> $texel {
                 #[allow(
                     clippy::cast_possible_truncation,
                     clippy::cast_sign_loss,
-                    reason = "in [0, SCALE] inside the triangle"
+                    reason = "masked to the format's bits"
                 )]
-                let t = (biased_bits >> PLANE_FRACTION_BITS) as $texel;
+                let t = ((biased_bits >> PLANE_FRACTION_BITS) & Self::SCALE) as $texel;
                 t
             }
 

@@ -34,7 +34,7 @@
 //! layer and then culls, drawing back to front never pays for it.
 //! When the tile is stored, all four bounds are resolved exactly.
 
-use crate::depth::DepthFormat;
+use crate::depth::{DepthFormat, Texel};
 
 /// What the map keeps about one tile.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -183,18 +183,34 @@ pub(crate) fn span<F: DepthFormat, const DUAL: bool, const IDS: bool, const MASK
     out
 }
 
-impl<T: Copy + Ord> SpanOut<T> {
+/// The depth comparators: texels compared by their [`Texel::key`].
+#[inline(always)]
+fn nearer<T: Texel>(a: T, b: T) -> bool {
+    a.key() < b.key()
+}
+
+#[inline(always)]
+fn nearest_of<T: Texel>(a: T, b: T) -> T {
+    T::from_key(a.key().min(b.key()))
+}
+
+#[inline(always)]
+fn farthest_of<T: Texel>(a: T, b: T) -> T {
+    T::from_key(a.key().max(b.key()))
+}
+
+impl<T: Texel> SpanOut<T> {
     /// The single unit at one texel: `z1 ← min(z1, q)`. `CULL` tracks
     /// texels that held the tile's max `cull_max` and were lowered.
     #[inline(always)]
     pub(crate) fn single<const CULL: bool>(&mut self, a: &mut T, q: T, cull_max: T) {
         let old = *a;
-        *a = old.min(q);
-        self.written1 += u32::from(q < old);
+        *a = nearest_of(old, q);
+        self.written1 += u32::from(nearer(q, old));
         if CULL {
-            self.lost_max += u32::from(old == cull_max && q < old);
+            self.lost_max += u32::from(old == cull_max && nearer(q, old));
         }
-        self.min1 = self.min1.min(q);
+        self.min1 = nearest_of(self.min1, q);
     }
 
     /// The visibility unit at one texel: the nearest depth and the
@@ -202,14 +218,14 @@ impl<T: Copy + Ord> SpanOut<T> {
     #[inline(always)]
     pub(crate) fn visible<const CULL: bool>(&mut self, a: &mut T, t: &mut u32, id: u32, q: T, cull_max: T) {
         let old = *a;
-        let pass = q < old;
+        let pass = nearer(q, old);
         *a = if pass { q } else { old };
         *t = if pass { id } else { *t };
         self.written1 += u32::from(pass);
         if CULL {
             self.lost_max += u32::from(old == cull_max && pass);
         }
-        self.min1 = self.min1.min(q);
+        self.min1 = nearest_of(self.min1, q);
     }
 
     /// The dual unit at one texel: `z2 ← min(z2, max(z1, q))`, then
@@ -217,16 +233,16 @@ impl<T: Copy + Ord> SpanOut<T> {
     #[inline(always)]
     pub(crate) fn dual<const CULL: bool>(&mut self, a: &mut T, b: &mut T, q: T, cull_max: T) {
         let (old1, old2) = (*a, *b);
-        let new2 = old2.min(old1.max(q));
-        *a = old1.min(q);
+        let new2 = nearest_of(old2, farthest_of(old1, q));
+        *a = nearest_of(old1, q);
         *b = new2;
-        self.written1 += u32::from(q < old1);
-        self.written2 += u32::from(new2 < old2);
+        self.written1 += u32::from(nearer(q, old1));
+        self.written2 += u32::from(nearer(new2, old2));
         if CULL {
-            self.lost_max += u32::from(old2 == cull_max && new2 < old2);
+            self.lost_max += u32::from(old2 == cull_max && nearer(new2, old2));
         }
-        self.min1 = self.min1.min(q);
-        self.min2 = self.min2.min(new2);
+        self.min1 = nearest_of(self.min1, q);
+        self.min2 = nearest_of(self.min2, new2);
     }
 }
 
@@ -244,6 +260,9 @@ pub(crate) fn count_of<'r, T: Copy + Eq + 'r>(rows: impl Iterator<Item = &'r [T]
 }
 
 /// The min and max of a set of rows of texels (`far` and `0` when empty).
-pub(crate) fn min_max<'r, T: Copy + Ord + Default + 'r>(rows: impl Iterator<Item = &'r [T]>, far: T) -> (T, T) {
-    rows.fold((far, T::default()), |(lo, hi), row| row.iter().fold((lo, hi), |(lo, hi), &t| (lo.min(t), hi.max(t))))
+pub(crate) fn min_max<'r, T: Texel + 'r>(rows: impl Iterator<Item = &'r [T]>, far: T) -> (T, T) {
+    let (lo, hi) = rows.fold((far.key(), T::default().key()), |(lo, hi), row| {
+        row.iter().fold((lo, hi), |(lo, hi), &t| (lo.min(t.key()), hi.max(t.key())))
+    });
+    (T::from_key(lo), T::from_key(hi))
 }

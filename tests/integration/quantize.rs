@@ -2,7 +2,7 @@
 //! the D3D rule `round(z · (2ⁿ − 1))` computed independently in f64.
 
 use proptest::prelude::*;
-use umbra::core::depth::PlaneZ;
+use umbra::core::depth::{PlaneZ, Texel};
 use umbra::core::{D16, D24, DepthFormat, F32};
 
 fn any_depth() -> impl Strategy<Value = f32> {
@@ -18,6 +18,20 @@ fn any_depth() -> impl Strategy<Value = f32> {
 fn monotonic<F: DepthFormat>(a: f32, b: f32) -> Result<(), TestCaseError> {
     let (lo, hi) = if a <= b { (a, b) } else { (b, a) };
     prop_assert!(F::quantize(lo) <= F::quantize(hi), "{:?}: q({}) > q({})", F::KIND, lo, hi);
+    Ok(())
+}
+
+/// The texels `F` makes of `a` and `b` (rounded and from the interpolator)
+/// are at most `FAR` (the clear value) and keyed in their own order.
+fn order<F: DepthFormat>(a: i64, b: i64) -> Result<(), TestCaseError> {
+    let texels =
+        [F::texel(PlaneZ::from_bits(a)), F::texel(PlaneZ::from_bits(b)), F::texel_inside(a), F::texel_inside(b)];
+    for &t in &texels {
+        prop_assert!(t.to_raw() <= F::FAR.to_raw(), "{:?}: {t:?}", F::KIND);
+        for &u in &texels {
+            prop_assert_eq!(t.key().cmp(&u.key()), t.cmp(&u), "{:?}: {:?} against {:?}", F::KIND, t, u);
+        }
+    }
     Ok(())
 }
 
@@ -51,6 +65,16 @@ proptest! {
     #[test]
     fn f32_format_stores_the_depth_itself(z in 2.0f32.powi(-32)..=1.0) {
         prop_assert_eq!(F32::quantize(z), z.to_bits());
+    }
+
+    /// Whatever the interpolator hands the depth unit (any bits, inside a
+    /// triangle or not), a texel stays on the format's wires and the
+    /// comparators' keys order texels as the texels are ordered.
+    #[test]
+    fn comparators_order_every_texel_a_format_stores(a in any::<i64>(), b in any::<i64>()) {
+        order::<D16>(a, b)?;
+        order::<D24>(a, b)?;
+        order::<F32>(a, b)?;
     }
 
     #[test]
