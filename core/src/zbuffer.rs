@@ -183,17 +183,20 @@ pub(crate) fn span<F: DepthFormat, const DUAL: bool, const IDS: bool, const MASK
     out
 }
 
-/// The depth comparators: texels compared by their [`Texel::key`].
+/// The depth comparators: texels compared by their [`Texel::key`]. Whether
+/// `a` lies strictly nearer than `b`.
 #[inline(always)]
 fn nearer<T: Texel>(a: T, b: T) -> bool {
     a.key() < b.key()
 }
 
+/// The nearer of two texels.
 #[inline(always)]
 fn nearest_of<T: Texel>(a: T, b: T) -> T {
     T::from_key(a.key().min(b.key()))
 }
 
+/// The farther of two texels.
 #[inline(always)]
 fn farthest_of<T: Texel>(a: T, b: T) -> T {
     T::from_key(a.key().max(b.key()))
