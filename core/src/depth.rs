@@ -33,7 +33,7 @@ pub const PLANE_FRACTION_BITS: u32 = 32;
 /// A stored depth value: compared as an unsigned integer, whatever the format.
 pub trait Texel: Copy + Ord + Default + core::fmt::Debug + Send + Sync + 'static {
     /// The texel as a value the hardware's comparators order as texels are
-    /// ordered (the tile reductions compare these).
+    /// ordered (the depth unit and the tile reductions compare these).
     type Key: Copy + Ord;
     /// The raw bits widened to `u32` (for checksums, images and `.npy` output).
     fn to_raw(self) -> u32;

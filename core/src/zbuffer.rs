@@ -101,21 +101,6 @@ pub(crate) struct SpanOut<T> {
     pub min2: T,
 }
 
-impl<T: Copy + Ord> SpanOut<T> {
-    pub(crate) const fn new(far: T) -> Self {
-        Self { fragments: 0, written1: 0, written2: 0, lost_max: 0, min1: far, min2: far }
-    }
-
-    pub(crate) fn add(&mut self, o: &Self) {
-        self.fragments += o.fragments;
-        self.written1 += o.written1;
-        self.written2 += o.written2;
-        self.lost_max += o.lost_max;
-        self.min1 = self.min1.min(o.min1);
-        self.min2 = self.min2.min(o.min2);
-    }
-}
-
 /// The edge functions of a span: their values at the first pixel and their
 /// steps per pixel.
 #[derive(Clone, Copy, Debug)]
@@ -203,6 +188,19 @@ fn farthest_of<T: Texel>(a: T, b: T) -> T {
 }
 
 impl<T: Texel> SpanOut<T> {
+    pub(crate) const fn new(far: T) -> Self {
+        Self { fragments: 0, written1: 0, written2: 0, lost_max: 0, min1: far, min2: far }
+    }
+
+    pub(crate) fn add(&mut self, o: &Self) {
+        self.fragments += o.fragments;
+        self.written1 += o.written1;
+        self.written2 += o.written2;
+        self.lost_max += o.lost_max;
+        self.min1 = nearest_of(self.min1, o.min1);
+        self.min2 = nearest_of(self.min2, o.min2);
+    }
+
     /// The single unit at one texel: `z1 ← min(z1, q)`. `CULL` tracks
     /// texels that held the tile's max `cull_max` and were lowered.
     #[inline(always)]
