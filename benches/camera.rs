@@ -10,10 +10,10 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 use std::hint::black_box;
 use umbra::core::shadow::{Bias, DepthTest, ShadowConfig};
 use umbra::core::{CullMode, D24, DepthUnit, LightPassConfig, NO_TRIANGLE, NoProbe, RasterConfig};
-use umbra::sim::camera::{CameraFrame, render_camera, render_camera_in};
-use umbra::sim::counters::Counters;
-use umbra::sim::light::render;
-use umbra::sim::scene::Scene;
+use umbra::sim::cost::counters::Counters;
+use umbra::sim::pass::camera::{CameraFrame, render_camera, render_camera_in};
+use umbra::sim::pass::light::render;
+use umbra::sim::world::scene::Scene;
 
 const W: u32 = 1920;
 const H: u32 = 1080;
@@ -24,7 +24,7 @@ fn bench_camera(c: &mut Criterion) {
     let config = LightPassConfig { raster, unit: DepthUnit::Dual, max_z_cull: true };
     let (maps, _) = render::<D24, _>(config, &scene.draws(scene.light().view_projection(), CullMode::None), NoProbe)
         .expect("renders");
-    let filters = umbra::sim::presets::FILTERS;
+    let filters = umbra::sim::experiment::presets::FILTERS;
     let mut g = c.benchmark_group("camera_pass_1080p");
     g.sample_size(10);
     g.throughput(Throughput::Elements(u64::from(W * H)));

@@ -9,8 +9,8 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 use std::hint::black_box;
 use umbra::core::glam::{Mat4, Vec3};
 use umbra::core::{CullMode, D16, D24, DepthFormat, DepthUnit, LightPassConfig, NoProbe, RasterConfig};
-use umbra::sim::counters::Counters;
-use umbra::sim::light::{Draw, render};
+use umbra::sim::cost::counters::Counters;
+use umbra::sim::pass::light::{Draw, render};
 
 const SIZE: u32 = 1024;
 
@@ -201,7 +201,7 @@ fn bench_light_pass(c: &mut Criterion) {
 /// functional path (no probe) on the same render, in one run.
 fn bench_probe_overhead(c: &mut Criterion) {
     use umbra::core::DepthFormatKind;
-    use umbra::sim::arch::{ArchParams, ArchProbe};
+    use umbra::sim::cost::arch::{ArchParams, ArchProbe};
     let small = small_triangles();
     let mut g = c.benchmark_group("probe_overhead");
     g.sample_size(10);

@@ -25,13 +25,13 @@ use euc::buffer::Buffer2d;
 use euc::rasterizer::{BackfaceCullingDisabled, Triangles};
 use euc::{DepthStrategy, Pipeline, Target};
 use std::hint::black_box;
-use umbra::core::front_end;
+use umbra::core::front;
 use umbra::core::glam::{Mat4, Vec3};
 use umbra::core::{CullMode, D24, DepthUnit, LightPassConfig, NoProbe, Probe, RasterConfig};
-use umbra::sim::counters::Counters;
-use umbra::sim::light::{Draw, LightFrame, render, render_bands, render_bands_in, render_in};
-use umbra::sim::mesh::Mesh;
-use umbra::sim::scene::Perspective;
+use umbra::sim::cost::counters::Counters;
+use umbra::sim::pass::light::{Draw, LightFrame, render, render_bands, render_bands_in, render_in};
+use umbra::sim::world::mesh::Mesh;
+use umbra::sim::world::scene::Perspective;
 
 /// A torus of `2 · rings · sides` triangles, filling most of a spot light's view.
 fn torus(rings: u32, sides: u32) -> Mesh {
@@ -162,7 +162,7 @@ fn peer(c: &mut Criterion) {
     g.bench_function("umbra d24, front end only", |b| {
         b.iter(|| {
             let mut set_up = 0u32;
-            front_end::mesh::<D24>(
+            front::mesh::<D24>(
                 &raster,
                 &mesh.positions,
                 black_box(&mesh.triangles),
@@ -170,7 +170,7 @@ fn peer(c: &mut Criterion) {
                 CullMode::None,
                 0,
                 &mut |o| {
-                    set_up += u32::from(matches!(o, front_end::Output::Setup(_)));
+                    set_up += u32::from(matches!(o, front::Output::Setup(_)));
                 },
             );
             set_up

@@ -15,7 +15,7 @@ use umbra::core::depth::PlaneZ;
 use umbra::core::glam::{Mat4, Vec3};
 use umbra::core::shadow::{Bias, DepthTest, Lookup, MapCoord, MapView, ShadowConfig, shadow};
 use umbra::core::{CullMode, D24, DepthFormat, DepthUnit, LightPassConfig, NoProbe, RasterConfig};
-use umbra::sim::light::{Draw, LightMaps, render};
+use umbra::sim::pass::light::{Draw, LightMaps, render};
 
 const MAP: u32 = 1024;
 const W: u32 = 1920;
@@ -69,7 +69,7 @@ fn bench_lookups(c: &mut Criterion) {
     let mut g = c.benchmark_group("shadow_lookups_1080p");
     g.sample_size(10);
     g.throughput(Throughput::Elements(u64::from(W * H)));
-    let filters = umbra::sim::presets::FILTERS;
+    let filters = umbra::sim::experiment::presets::FILTERS;
     for (name, filter) in filters {
         for cull in [false, true] {
             let cfg = ShadowConfig::new(DepthTest::Second, Bias::ZERO, filter, cull).expect("valid");

@@ -17,16 +17,16 @@
 
 use std::hash::{DefaultHasher, Hash, Hasher};
 
-use umbra::core::camera::{CameraConfig, MapUnit, Normals, ShadeSetup, Shaded, TriangleSource, shade_with};
 use umbra::core::depth::PlaneZ;
 use umbra::core::probe::TexelRead;
+use umbra::core::shade::{CameraConfig, MapUnit, Normals, ShadeSetup, Shaded, TriangleSource, shade_with};
 use umbra::core::shadow::{Bias, DepthTest, Filter, MapView, ShadowConfig};
 use umbra::core::{ConfigError, CullMode, D24, DepthUnit, Event, LightPassConfig, NoProbe, Probe, RasterConfig};
-use umbra::sim::camera::{SHADE_SETUPS, map_view, visibility};
-use umbra::sim::light::render;
-use umbra::sim::presets::FILTERS;
-use umbra::sim::scene::Scene;
-use umbra::sim::scene_file::BUNDLED;
+use umbra::sim::experiment::presets::FILTERS;
+use umbra::sim::pass::camera::{SHADE_SETUPS, map_view, visibility};
+use umbra::sim::pass::light::render;
+use umbra::sim::world::scene::Scene;
+use umbra::sim::world::scene_file::BUNDLED;
 
 /// A probe that folds every event and texel read, in order, into a digest.
 struct Trace<'a>(&'a mut DefaultHasher);

@@ -29,9 +29,9 @@ use std::hash::{DefaultHasher, Hash, Hasher};
 
 use umbra::core::glam::Vec3;
 use umbra::core::{CullMode, D24, DepthFormat, DepthUnit, LightPassConfig, NoProbe, RasterConfig};
-use umbra::sim::light::{Draw, LightFrame, render_bands_in, render_in};
-use umbra::sim::mesh::Mesh;
-use umbra::sim::scene::Perspective;
+use umbra::sim::pass::light::{Draw, LightFrame, render_bands_in, render_in};
+use umbra::sim::world::mesh::Mesh;
+use umbra::sim::world::scene::Perspective;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let passes: u32 = std::env::args().nth(1).map_or(Ok(1), |s| s.parse())?;

@@ -2,8 +2,8 @@
 //!
 //! Everything a designer chooses — target size, tile size, subpixel bits,
 //! depth unit, max-z culling — is a parameter here. [`RasterConfig::new`]
-//! checks it against the fixed-point budget in [`crate::snap`] and
-//! [`crate::setup`]; afterwards the hot path trusts it.
+//! checks it against the fixed-point budget in [`crate::front::snap`] and
+//! [`crate::raster::setup`]; afterwards the hot path trusts it.
 
 use core::fmt;
 

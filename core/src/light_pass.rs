@@ -7,22 +7,22 @@
 //! ```
 //!
 //! The map is row-major, `width × height` texels, row 0 at the top (see
-//! [`crate::snap`] for the orientation). [`LightPass::new`] clears it to the
+//! [`crate::front::snap`] for the orientation). [`LightPass::new`] clears it to the
 //! far value; [`LightPass::finish`] drains every bin. Results do not depend on
 //! the bin capacity, the setup-store size or the tile size: only the events
 //! reported on the way do.
 
 use glam::{Mat4, Vec3, Vec4};
 
-use crate::bin::{Bin, MAX_SETUPS, SetupIndex, touches};
 use crate::config::{ConfigError, CullMode, DepthUnit, LightPassConfig};
 use crate::depth::DepthFormat;
-use crate::front_end::{self, Output};
+use crate::depth::{TileState, count_of, min_max, tile_rows};
+use crate::front::{self, Output};
 use crate::probe::{Event, FlushReason, NoProbe, Probe, RejectReason};
+use crate::raster::bin::{Bin, MAX_SETUPS, SetupIndex, touches};
+use crate::raster::setup::Setup;
+use crate::raster::tile::TileId;
 use crate::raster::{TileView, rasterize};
-use crate::setup::Setup;
-use crate::tile::TileId;
-use crate::zbuffer::{TileState, count_of, min_max, tile_rows};
 
 /// The caller-owned memory of a light pass.
 pub struct LightBuffers<'a, F: DepthFormat, const B: usize> {
@@ -129,7 +129,7 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
     /// light clip space (`clip = transform · (p, 1)`, glam's column-vector
     /// convention). The transform is f32 (the vertex unit); a triangle with
     /// a vertex outside a clip plane is clipped in f64; everything after the
-    /// snap is fixed point ([`crate::front_end`]).
+    /// snap is fixed point ([`crate::front`]).
     ///
     /// # Errors
     /// [`SubmitError::IndexOutOfRange`] before anything is drawn.
@@ -140,9 +140,9 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
         transform: &Mat4,
         cull: CullMode,
     ) -> Result<(), SubmitError> {
-        front_end::check_indices(positions.len(), triangles)?;
+        front::check_indices(positions.len(), triangles)?;
         let raster = self.cfg.raster;
-        front_end::mesh::<F>(&raster, positions, triangles, transform, cull, self.triangles, &mut |o| self.take(o));
+        front::mesh::<F>(&raster, positions, triangles, transform, cull, self.triangles, &mut |o| self.take(o));
         Ok(())
     }
 
@@ -156,7 +156,7 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
             return;
         }
         let raster = self.cfg.raster;
-        front_end::clip::<F>(&raster, &tri.map(|v| v.to_array().map(f64::from)), cull, id, &mut |o| self.take(o));
+        front::clip::<F>(&raster, &tri.map(|v| v.to_array().map(f64::from)), cull, id, &mut |o| self.take(o));
     }
 
     /// Take what the front end made of a triangle: count and report it,

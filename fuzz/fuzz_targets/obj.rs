@@ -3,8 +3,8 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use umbra_sim::limits::Limits;
-use umbra_sim::mesh::Mesh;
+use umbra_sim::io::limits::Limits;
+use umbra_sim::world::mesh::Mesh;
 
 const LIMITS: Limits = Limits { max_triangles: 50_000, max_file_bytes: 1 << 20, ..Limits::DEFAULT };
 

@@ -6,8 +6,8 @@
 use std::path::Path;
 
 use libfuzzer_sys::fuzz_target;
-use umbra_sim::limits::Limits;
-use umbra_sim::scene::Scene;
+use umbra_sim::io::limits::Limits;
+use umbra_sim::world::scene::Scene;
 
 /// Small limits keep each run fast; the checks are the same at any size.
 const LIMITS: Limits = Limits { max_triangles: 20_000, max_file_bytes: 1 << 20, ..Limits::DEFAULT };

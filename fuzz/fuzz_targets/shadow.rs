@@ -10,11 +10,11 @@
 
 use arbitrary::Arbitrary;
 use libfuzzer_sys::fuzz_target;
-use umbra_core::bin::Bin;
-use umbra_core::camera::{CameraConfig, Normals, SceneTriangle, Shaded, shade};
 use umbra_core::depth::PlaneZ;
 use umbra_core::glam::{Mat4, Vec3, Vec4};
-use umbra_core::setup::Setup;
+use umbra_core::raster::bin::Bin;
+use umbra_core::raster::setup::Setup;
+use umbra_core::shade::{CameraConfig, Normals, SceneTriangle, Shaded, shade};
 use umbra_core::shadow::{
     Bias, DepthTest, Filter, Jitter, Lookup, MapCoord, MapView, Shadow, ShadowConfig, Slope, TangentPlane, shadow,
     shadow_with_virtual_samples,

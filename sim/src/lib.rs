@@ -1,24 +1,16 @@
 #![forbid(unsafe_code)]
 #![doc = include_str!("../README.md")]
 
-pub mod arch;
-pub mod cache;
-pub mod camera;
-pub mod counters;
-pub mod light;
-pub mod limits;
-pub mod mesh;
-pub mod metrics;
-pub mod occluders;
-pub mod output;
-pub mod plan;
-pub mod presets;
-pub mod reference;
-pub mod render;
-pub mod scene;
-pub mod scene_file;
-pub mod storage;
-pub mod study;
+pub mod world;
+
+pub mod pass;
+
+pub mod cost;
+pub mod truth;
+
+pub mod experiment;
+
+pub mod io;
 
 pub use glam;
 pub use umbra_core as core;

@@ -3,11 +3,11 @@
 //! proptest strategies.
 
 use proptest::prelude::*;
-use umbra::core::bin::Bin;
 use umbra::core::depth::Texel;
 use umbra::core::glam::Vec4;
 use umbra::core::probe::{Event, FlushReason, Fragment, Probe};
-use umbra::core::setup::Setup;
+use umbra::core::raster::bin::Bin;
+use umbra::core::raster::setup::Setup;
 use umbra::core::{
     CullMode, DepthFormat, DepthUnit, LightBuffers, LightPass, LightPassConfig, RasterConfig, TileState,
 };

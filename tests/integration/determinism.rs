@@ -3,13 +3,13 @@
 //! run after run and on 1, 2 and all cores. (`reference.rs` checks the
 //! reference alone across thread counts.)
 
-use umbra::core::camera::Shaded;
+use umbra::core::shade::Shaded;
 use umbra::core::shadow::Filter;
 use umbra::core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, RasterConfig};
-use umbra::sim::counters::{Counters, Totals};
-use umbra::sim::light::{RawMaps, render_raw};
-use umbra::sim::render::{Algorithm, Render, RenderConfig, render};
-use umbra::sim::scene::Scene;
+use umbra::sim::cost::counters::{Counters, Totals};
+use umbra::sim::pass::light::{RawMaps, render_raw};
+use umbra::sim::pass::render::{Algorithm, Render, RenderConfig, render};
+use umbra::sim::world::scene::Scene;
 
 /// 1, 2 and every core of the machine (at least 3, so the pools differ).
 fn thread_counts() -> [usize; 3] {
@@ -67,7 +67,7 @@ fn light_maps_are_the_same_on_any_thread_count() {
             for threads in thread_counts() {
                 assert_eq!(first, on(threads, pass), "{format:?} {unit:?} on {threads} threads");
             }
-            let far = umbra::sim::light::raw_far(format);
+            let far = umbra::sim::pass::light::raw_far(format);
             assert!(first.maps.z1.iter().any(|&t| t != far), "the scene is in view of the light");
         }
     }
@@ -101,7 +101,7 @@ fn a_render_is_the_same_on_any_thread_count() {
 
 /// Every tile's stored bounds of `z1` and `z2` (not how often it was
 /// stored, which depends on the flush schedule).
-fn tile_bounds<T: Copy>(m: &umbra::sim::light::LightMaps<T>) -> Vec<(T, T, T, T)> {
+fn tile_bounds<T: Copy>(m: &umbra::sim::pass::light::LightMaps<T>) -> Vec<(T, T, T, T)> {
     m.tiles.iter().map(|t| (t.z1_min, t.z1_max, t.z2_min, t.z2_max)).collect()
 }
 
@@ -113,7 +113,7 @@ fn tile_bounds<T: Copy>(m: &umbra::sim::light::LightMaps<T>) -> Vec<(T, T, T, T)
 #[test]
 fn banded_light_passes_equal_the_whole_pass() {
     use umbra::core::{D16, D24, DepthFormat};
-    use umbra::sim::light::{render, render_bands};
+    use umbra::sim::pass::light::{render, render_bands};
     fn check<F: DepthFormat>(scene: &Scene, side: u32, tile: u32, unit: DepthUnit) {
         let raster = RasterConfig::new(side, side - 8, tile, 8).expect("valid");
         assert!(raster.window(0, tile / 2, side, tile).is_err(), "a window starts on a tile boundary");
@@ -150,10 +150,10 @@ fn banded_light_passes_equal_the_whole_pass() {
 fn an_unwatched_pass_draws_the_maps_of_a_counted_one() {
     use umbra::core::D24;
     use umbra::core::glam::Vec3;
-    use umbra::sim::counters::Counters;
-    use umbra::sim::light::{Draw, render};
-    use umbra::sim::mesh::Mesh;
-    use umbra::sim::scene::Perspective;
+    use umbra::sim::cost::counters::Counters;
+    use umbra::sim::pass::light::{Draw, render};
+    use umbra::sim::world::mesh::Mesh;
+    use umbra::sim::world::scene::Perspective;
     let mesh = Mesh::torus(Vec3::ZERO, 1.0, 0.4, 100, 50);
     assert_eq!(mesh.triangles.len(), 10_000);
     let light =
@@ -182,8 +182,8 @@ fn an_unwatched_pass_draws_the_maps_of_a_counted_one() {
 fn a_reused_camera_frame_draws_what_a_new_one_does() {
     use umbra::core::shadow::{Bias, DepthTest, ShadowConfig};
     use umbra::core::{D24, NoProbe};
-    use umbra::sim::camera::{CameraFrame, render_camera, render_camera_in};
-    use umbra::sim::light::render;
+    use umbra::sim::pass::camera::{CameraFrame, render_camera, render_camera_in};
+    use umbra::sim::pass::light::render;
     let shadow = ShadowConfig::new(DepthTest::Second, Bias::ZERO, Filter::Box { size: 3 }, true).expect("valid");
     let mut frame = CameraFrame::default();
     for (name, (w, h)) in [("table", (96, 64)), ("double-torus", (40, 30)), ("table", (96, 64)), ("table", (33, 71))] {
@@ -209,7 +209,7 @@ fn a_reused_camera_frame_draws_what_a_new_one_does() {
 #[test]
 fn a_reused_light_frame_draws_what_new_buffers_do() {
     use umbra::core::{D16, D24, DepthFormat, NoProbe};
-    use umbra::sim::light::{LightFrame, render, render_bands, render_bands_in, render_in};
+    use umbra::sim::pass::light::{LightFrame, render, render_bands, render_bands_in, render_in};
     let mut frame16 = LightFrame::new();
     let mut frame24 = LightFrame::new();
     let passes = [("table", 128, DepthUnit::Dual, true), ("double-torus", 96, DepthUnit::Single, false)];

@@ -13,8 +13,8 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 use umbra::core::D16;
-use umbra::sim::counters::Counters;
-use umbra::sim::light::{Draw, render_with};
+use umbra::sim::cost::counters::Counters;
+use umbra::sim::pass::light::{Draw, render_with};
 use umbra_demo::footprint::{self, FootprintConfig};
 use umbra_demo::{BIN_CAPACITY, Memory, SETUPS, Summary, scene};
 

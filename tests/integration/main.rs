@@ -9,26 +9,19 @@
 
 mod common;
 
-mod arch;
-mod cache;
-mod camera_pass;
-mod claims;
-mod culling;
-mod determinism;
-mod dual_depth;
-mod fill_rule;
 mod firmware;
-mod hostile;
-mod hostile_scenes;
-mod maps_io;
-mod plan;
-mod quantize;
-mod reference;
-mod regressions;
-mod scenes;
-mod shadow_unit;
+
+mod depth;
+mod raster;
+mod shade;
+mod shadow;
 mod silhouette;
-mod storage;
-mod study;
-mod tiling;
-mod watertight;
+
+mod cost;
+mod experiment;
+mod io;
+mod truth;
+mod world;
+
+mod determinism;
+mod regressions;

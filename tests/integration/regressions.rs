@@ -1,8 +1,8 @@
 //! Inputs the fuzz targets (`fuzz/`) found, each inline, each with what it
 //! broke and what must hold now.
 
-use umbra::core::camera::{CameraConfig, Normals, SceneTriangle, Shaded, shade};
 use umbra::core::glam::{Mat4, Vec3};
+use umbra::core::shade::{CameraConfig, Normals, SceneTriangle, Shaded, shade};
 use umbra::core::shadow::{Bias, DepthTest, Filter, Jitter, MapCoord, MapView, ShadowConfig, jitter_grid};
 use umbra::core::{D16, DepthFormat, RasterConfig, TileState};
 
@@ -66,7 +66,7 @@ fn a_long_thin_jitter_footprint_clamps_its_sample_counts() {
 /// shape, before the loader sees them: each is a syntax error on its line.
 #[test]
 fn face_corners_naming_missing_texture_coordinates_or_normals_are_syntax_errors() {
-    use umbra::sim::mesh::{Mesh, MeshError};
+    use umbra::sim::world::mesh::{Mesh, MeshError};
     let dir = crate::common::scratch("obj-corners");
     let header = "o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\n";
     for (face, names) in [

@@ -10,11 +10,11 @@ pub mod totals;
 use core::fmt;
 use core::mem::size_of;
 
-use umbra_core::bin::Bin;
-use umbra_core::camera::{CameraConfig, Normals, Shaded, shade};
 use umbra_core::depth::PlaneZ;
 use umbra_core::glam::Vec3;
-use umbra_core::setup::{DepthPlane, Edge, Setup};
+use umbra_core::raster::bin::Bin;
+use umbra_core::raster::setup::{DepthPlane, Edge, Setup};
+use umbra_core::shade::{CameraConfig, Normals, Shaded, shade};
 use umbra_core::shadow::{Bias, DepthTest, Filter, MapView, Shadow, ShadowConfig, ShadowConfigError};
 use umbra_core::{
     ConfigError, CullMode, D16, D24, DepthFormat, DepthUnit, LightBuffers, LightPass, LightPassConfig, RasterConfig,

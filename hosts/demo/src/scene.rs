@@ -2,8 +2,8 @@
 //! four legs, each a box), one mesh in world space, and the light's and
 //! camera's matrices.
 
-use umbra_core::camera::SceneTriangle;
 use umbra_core::glam::{Mat4, Vec3};
+use umbra_core::shade::SceneTriangle;
 
 /// Boxes in the scene: the table top and four legs.
 const BOXES: usize = 5;

@@ -1,0 +1,109 @@
+//! Viewport transform and vertex snap to the subpixel grid.
+//!
+//! Raster orientation: x to the right, y **down**, row 0 at the top. A
+//! vertex at NDC `(x, y)` lands at pixel coordinates
+//! `((x + 1)·W/2, (1 − y)·H/2)`; pixel `(px, py)` samples its centre
+//! `(px + ½, py + ½)`. Coordinates are snapped to `1/2^s` pixel, `s` the
+//! subpixel bits: in f64, `x·(1/w)`, then `(· + 1)·(W/2)·2^s` rounded to
+//! nearest with ties to even — the same on every target.
+//!
+//! # Integer budget
+//! The guard band keeps every snapped coordinate inside `±2^GUARD_BITS`
+//! pixels, so with at most 8 subpixel bits it fits in [`COORD_BITS`] bits
+//! plus sign. Edge functions in [`crate::raster::setup`] build on that bound.
+
+use crate::config::{MAX_SUBPIXEL_BITS, MAX_TARGET_BITS, RasterConfig};
+use crate::depth::{DepthFormat, PLANE_FRACTION_BITS, PlaneZ};
+use crate::front::clip::ClipVertex;
+
+/// Snapped coordinates lie within `±2^GUARD_BITS` pixels.
+pub const GUARD_BITS: u32 = 16;
+/// Snapped coordinates lie within `±2^COORD_BITS` subpixels.
+pub const COORD_BITS: u32 = GUARD_BITS + MAX_SUBPIXEL_BITS;
+/// Relative to a window's origin (at most `2^MAX_TARGET_BITS` pixels in),
+/// within `±2^WINDOW_COORD_BITS` subpixels: the setup's range.
+pub const WINDOW_COORD_BITS: u32 = COORD_BITS + 1;
+
+const _: () = assert!(MAX_TARGET_BITS < GUARD_BITS, "a window's shift must stay below the guard band's reach");
+
+const _: () = assert!(GUARD_BITS > MAX_TARGET_BITS, "the guard band must contain the target");
+
+/// How far beyond the far plane [`RasterConfig::snap_beyond_far`] keeps
+/// depths, in multiples of it: a perspective camera's depth never exceeds
+/// `f/(f − n)`, and `16 · 2²⁴ · 2³²` stays inside the plane's `i64`.
+pub const BEYOND_FAR: i64 = 16;
+
+/// A coordinate on the subpixel grid: `value / 2^subpixel_bits` pixels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct SubPx(pub i64);
+
+/// A vertex after the viewport transform and snap.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SnappedVertex {
+    /// Column, in subpixels.
+    pub x: SubPx,
+    /// Row (down), in subpixels.
+    pub y: SubPx,
+    /// Depth in the interpolator's fixed point.
+    pub z: PlaneZ,
+}
+
+impl RasterConfig {
+    /// The guard-band factors `[g_x, g_y]` for [`crate::front::clip`]: NDC `|x| ≤ g_x`
+    /// keeps the pixel coordinate inside `±2^GUARD_BITS`.
+    #[must_use]
+    pub fn guard(&self) -> [f64; 2] {
+        let reach = f64::from(1u32 << (GUARD_BITS + 1));
+        let [w, h] = self.view();
+        [reach / f64::from(w) - 1.0, reach / f64::from(h) - 1.0]
+    }
+
+    /// Project a clipped vertex and snap it to the subpixel grid. `None` when
+    /// `w ≤ 0` (the one point of the guard-band cone with `w = 0`) or the
+    /// result is not finite.
+    #[must_use]
+    pub fn snap<F: DepthFormat>(&self, v: &ClipVertex) -> Option<SnappedVertex> {
+        self.snap_to(v, F::plane_z)
+    }
+
+    /// [`RasterConfig::snap`] keeping depths beyond the far plane (up to
+    /// [`BEYOND_FAR`] times it) in the vertex, so that the plane through a
+    /// triangle that reaches past the far plane interpolates its nearer
+    /// fragments exactly; the depth clamp then happens per fragment, when a
+    /// fragment's depth is rounded to the format. The stencil unit's volumes
+    /// need this; everything else clips at the far plane.
+    #[must_use]
+    pub fn snap_beyond_far<F: DepthFormat>(&self, v: &ClipVertex) -> Option<SnappedVertex> {
+        self.snap_to(v, |z| {
+            let reach = (F::SCALE << PLANE_FRACTION_BITS) * BEYOND_FAR;
+            if z.is_nan() || z <= 0.0 {
+                return PlaneZ::ZERO;
+            }
+            #[allow(clippy::cast_precision_loss, reason = "a power of two")]
+            let bits = (z * (F::SCALE as f64) * 4_294_967_296.0).min(reach as f64);
+            PlaneZ::from_bits(crate::round::round_ties_even(bits).clamp(0, reach))
+        })
+    }
+
+    fn snap_to(&self, v: &ClipVertex, depth: impl Fn(f64) -> PlaneZ) -> Option<SnappedVertex> {
+        let [x, y, z, w] = *v;
+        if w.is_nan() || w <= 0.0 {
+            return None;
+        }
+        let unit = f64::from(1u32 << self.subpixel_bits());
+        let limit = f64::from(1u32 << COORD_BITS);
+        let inv_w = 1.0 / w;
+        let [vw, vh] = self.view();
+        let sx = (x * inv_w + 1.0) * 0.5 * f64::from(vw) * unit;
+        let sy = (1.0 - y * inv_w) * 0.5 * f64::from(vh) * unit;
+        if !sx.is_finite() || !sy.is_finite() {
+            return None;
+        }
+        // Rounding overshoot at the guard band is clamped; the band lies
+        // far outside the target, so no sample moves.
+        let snap = |s: f64| SubPx(crate::round::round_ties_even(s.clamp(-limit, limit)));
+        // A window's coordinates: the whole target's, shifted exactly.
+        let [ox, oy] = self.origin().map(|o| i64::from(o) << self.subpixel_bits());
+        Some(SnappedVertex { x: SubPx(snap(sx).0 - ox), y: SubPx(snap(sy).0 - oy), z: depth(z * inv_w) })
+    }
+}

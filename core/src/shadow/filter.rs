@@ -1,0 +1,241 @@
+//! The filters: compare each sample, then weigh the results.
+
+use super::{
+    Bias, DepthTest, Filter, HALF, Lookup, MapCoord, MapView, Shadow, ShadowConfig, Slope, Texels, floor, jitter_grid,
+    reference_bounds,
+};
+use crate::depth::{DepthFormat, PlaneZ};
+use crate::probe::{Event, Probe};
+use crate::raster::tile::TileRect;
+
+/// Shadow a lookup: the fraction of its samples in shadow.
+pub fn shadow<F: DepthFormat, P: Probe>(map: &MapView<'_, F>, cfg: &ShadowConfig, l: &Lookup, probe: &mut P) -> Shadow {
+    lookup(map, cfg, l, l.slope, probe)
+}
+
+/// [`shadow`] with the receiver's slope given apart from the lookup (a
+/// pixel's ordinary and virtual-sample lookups share the rest). The front
+/// of the unit (footprint, clip, the tile-bounds cull) decides most lookups
+/// on its own; the filter runs for the rest.
+#[inline(always)]
+pub(super) fn lookup<F: DepthFormat, P: Probe>(
+    map: &MapView<'_, F>,
+    cfg: &ShadowConfig,
+    l: &Lookup,
+    slope: Option<Slope>,
+    probe: &mut P,
+) -> Shadow {
+    if l.z < 0 {
+        return Shadow::ZERO;
+    }
+    let grid = match cfg.filter {
+        Filter::Jittered(j) => Some(jitter_grid(&j, l.footprint)),
+        _ => None,
+    };
+    let Some(footprint) = Texels::under(cfg.filter, l, grid) else { return Shadow::ZERO };
+    let (inside_map, whole) = footprint.clip(map.raster.width(), map.raster.height());
+    let Some(inside_map) = inside_map else {
+        // Entirely outside the map: lit, and nothing to read.
+        probe.event(Event::LookupCulled { texels: footprint.count() });
+        return Shadow::ZERO;
+    };
+    if cfg.cull_lookups {
+        let (bias_lo, bias_hi) = cfg.bias.bounds();
+        // The receiver's depth range over the footprint: a plane takes its
+        // extremes at the corners (a receiver without a slope is one depth).
+        let (z_lo, z_hi) = if slope.is_some() {
+            let corners = [
+                (footprint.x0, footprint.y0),
+                (footprint.x1, footprint.y0),
+                (footprint.x0, footprint.y1),
+                (footprint.x1, footprint.y1),
+            ]
+            .map(|(x, y)| l.depth_on(slope, x, y));
+            (corners.iter().copied().min().unwrap_or(0), corners.iter().copied().max().unwrap_or(0))
+        } else {
+            (l.z.to_bits(), l.z.to_bits())
+        };
+        let (r_lo, r_hi) = reference_bounds(map, cfg.test, &inside_map);
+        if at_format::<F>(z_hi.saturating_sub(bias_lo)) <= r_lo {
+            probe.event(Event::LookupCulled { texels: footprint.count() });
+            return Shadow::ZERO;
+        }
+        if whole && at_format::<F>(z_lo.saturating_sub(bias_hi)) > r_hi {
+            probe.event(Event::LookupCulled { texels: footprint.count() });
+            return Shadow::ONE;
+        }
+    }
+    if let (Filter::Box { .. }, true, None, Bias::Constant(b)) = (cfg.filter, whole, slope, cfg.bias) {
+        return uniform_box(
+            map,
+            cfg.test,
+            &inside_map,
+            at_format::<F>(l.z.to_bits().saturating_sub(b.to_bits())),
+            probe,
+        );
+    }
+    filter(map, cfg, &Lookup { slope, ..*l }, footprint, grid, probe)
+}
+
+/// The commonest filter, inline: a box all on the map against one receiver
+/// depth, already biased and rounded, so that each texel is a compare.
+#[inline]
+fn uniform_box<F: DepthFormat, P: Probe>(
+    map: &MapView<'_, F>,
+    test: DepthTest,
+    r: &TileRect,
+    receiver: i64,
+    probe: &mut P,
+) -> Shadow {
+    let mut count = 0u64;
+    for y in r.y0..r.y1 {
+        for x in r.x0..r.x1 {
+            count += u64::from(map.compare(test, x, y, receiver, probe));
+        }
+    }
+    let reads = r.area();
+    report_reads(map, test, reads, false, probe);
+    fraction(count, u64::from(reads))
+}
+
+/// Report a lookup's `reads` texels read from each buffer its test reads,
+/// and whether they were virtual samples.
+#[inline]
+fn report_reads<F: DepthFormat, P: Probe>(
+    map: &MapView<'_, F>,
+    test: DepthTest,
+    reads: u32,
+    virtual_samples: bool,
+    probe: &mut P,
+) {
+    if reads == 0 {
+        return;
+    }
+    if virtual_samples {
+        probe.event(Event::VirtualSamples { count: reads });
+    }
+    for buffer in map.buffers_read(test) {
+        probe.event(Event::MapRead { buffer, texels: reads, bytes: reads * F::KIND.bytes() });
+    }
+}
+
+/// The filter: the samples of a lookup the front did not decide, over its
+/// footprint (inclusive; samples off the map are lit).
+#[inline(never)]
+fn filter<F: DepthFormat, P: Probe>(
+    map: &MapView<'_, F>,
+    cfg: &ShadowConfig,
+    l: &Lookup,
+    footprint: Texels,
+    grid: Option<([MapCoord; 2], [u32; 2])>,
+    probe: &mut P,
+) -> Shadow {
+    let mut rng = oorandom::Rand32::new(l.seed);
+    let mut reads = 0u32;
+    let mut sample = |x: i32, y: i32, z: i64, rng: &mut oorandom::Rand32| -> bool {
+        let bias = match cfg.bias {
+            Bias::Constant(b) => b.to_bits(),
+            Bias::Range { lo, hi } => lerp_bits(lo.to_bits(), hi.to_bits(), rng.rand_u32()),
+        };
+        let shadowed = map.sample(cfg.test, (x.into(), y.into()), z, bias, probe);
+        reads += u32::from(shadowed.is_some());
+        shadowed.unwrap_or(false)
+    };
+    let result = match (cfg.filter, grid) {
+        (Filter::Point, _) => {
+            let (x, y) = (footprint.x0, footprint.y0);
+            Shadow::from_num(u8::from(sample(x, y, l.depth_at(x, y), &mut rng)))
+        }
+        (Filter::Bilinear, _) => {
+            // Weights from the fractional position, 16 bits each: they sum to 2³² exactly.
+            let fx = u64::from(l.x.saturating_sub(HALF).frac().to_bits().unsigned_abs());
+            let fy = u64::from(l.y.saturating_sub(HALF).frac().to_bits().unsigned_abs());
+            let one = 1u64 << 16;
+            let weights = [(one - fx) * (one - fy), fx * (one - fy), (one - fx) * fy, fx * fy];
+            // The receiver at the four centres by forward differences.
+            let z00 = l.depth_at(footprint.x0, footprint.y0);
+            let (du, dv) = l.slope.map_or((0, 0), |s| (s.du, s.dv));
+            let z = [z00, z00.saturating_add(du), z00.saturating_add(dv), z00.saturating_add(du).saturating_add(dv)];
+            let corners = [(0, 0), (1, 0), (0, 1), (1, 1)];
+            let shadowed: u64 = corners
+                .iter()
+                .zip(weights)
+                .zip(z)
+                .map(
+                    |((&(dx, dy), wgt), z)| {
+                        if sample(footprint.x0 + dx, footprint.y0 + dy, z, &mut rng) { wgt } else { 0 }
+                    },
+                )
+                .sum();
+            fraction(shadowed, 1 << 32)
+        }
+        (Filter::Box { .. }, _) => {
+            let mut count = 0u64;
+            // One evaluation per row, then forward differences along it
+            // (the box all on the map against one depth is `uniform_box`).
+            let du = l.slope.map_or(0, |s| s.du);
+            for y in footprint.y0..=footprint.y1 {
+                let mut z = l.depth_at(footprint.x0, y);
+                for x in footprint.x0..=footprint.x1 {
+                    count += u64::from(sample(x, y, z, &mut rng));
+                    z = z.saturating_add(du);
+                }
+            }
+            fraction(count, u64::from(footprint.count()))
+        }
+        (Filter::Jittered(_), Some((half, [ns, nt]))) => {
+            // Subregions of 2·half/n texels; each sample jittered within its own.
+            let step = |h: MapCoord, n: u32| {
+                MapCoord::from_bits(h.to_bits().saturating_mul(2) / i32::try_from(n.max(1)).unwrap_or(i32::MAX))
+            };
+            let (ds, dt) = (step(half[0], ns), step(half[1], nt));
+            let s0 = l.x.saturating_sub(half[0]).saturating_add(ds / 2);
+            let t0 = l.y.saturating_sub(half[1]).saturating_add(dt / 2);
+            let mut count = 0u64;
+            for i in 0..ns {
+                for j in 0..nt {
+                    let s = s0.saturating_add(ds.saturating_mul_int(i32::try_from(i).unwrap_or(i32::MAX)));
+                    let t = t0.saturating_add(dt.saturating_mul_int(i32::try_from(j).unwrap_or(i32::MAX)));
+                    let ju = jitter(ds / 2, rng.rand_u32());
+                    let jv = jitter(dt / 2, rng.rand_u32());
+                    // Jittered texels are irregular: the plane is evaluated directly.
+                    let (u, v) = (floor(s.saturating_add(ju)), floor(t.saturating_add(jv)));
+                    count += u64::from(sample(u, v, l.depth_at(u, v), &mut rng));
+                }
+            }
+            fraction(count, u64::from(ns * nt))
+        }
+        (Filter::Jittered(_), None) => Shadow::ZERO,
+    };
+    report_reads(map, cfg.test, reads, l.slope.is_some(), probe);
+    result
+}
+
+/// A receiver depth rounded to the map's format (as the light pass rounds
+/// fragments), widened back: comparisons are at the stored precision, so a
+/// receiver exactly on a stored surface compares equal.
+#[inline]
+pub(super) fn at_format<F: DepthFormat>(z: i64) -> i64 {
+    F::widen(F::texel(PlaneZ::from_bits(z)))
+}
+
+/// `k / n` as a [`Shadow`], rounded to nearest.
+fn fraction(k: u64, n: u64) -> Shadow {
+    let n = n.max(1);
+    let bits = ((k << 16) + n / 2) / n;
+    Shadow::from_bits(u32::try_from(bits.min(1 << 16)).unwrap_or(1 << 16))
+}
+
+/// A uniform offset in `[−half, half)` from 32 random bits.
+fn jitter(half: MapCoord, r: u32) -> MapCoord {
+    let signed = i64::from(r) - (1 << 31); // [−2³¹, 2³¹)
+    let v = (i64::from(half.to_bits()) * signed) >> 31;
+    MapCoord::from_bits(i32::try_from(v).unwrap_or(0))
+}
+
+/// `lo + (hi − lo)·r/2³²` in [`PlaneZ`] bits.
+fn lerp_bits(lo: i64, hi: i64, r: u32) -> i64 {
+    let span = i128::from(hi) - i128::from(lo);
+    let v = i128::from(lo) + ((span * i128::from(r)) >> 32);
+    i64::try_from(v).unwrap_or(lo)
+}

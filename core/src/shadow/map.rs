@@ -1,0 +1,135 @@
+//! The map as the shadow unit sees it: texels, tiles and their stored bounds.
+
+use super::{DepthTest, at_format};
+use crate::config::RasterConfig;
+use crate::depth::DepthFormat;
+use crate::depth::TileState;
+use crate::probe::{Buffer, Probe, TexelRead};
+
+/// A light pass's maps, as the shadow unit reads them.
+#[derive(Clone, Copy, Debug)]
+pub struct MapView<'a, F: DepthFormat> {
+    pub(super) raster: RasterConfig,
+    z1: &'a [F::Texel],
+    z2: &'a [F::Texel],
+    pub(super) tiles: &'a [TileState<F::Texel>],
+    /// Tiles in a row of the map.
+    pub(super) across: usize,
+    /// The second depth is the single buffer of a front-face-culled pass.
+    second_in_z1: bool,
+}
+
+impl<'a, F: DepthFormat> MapView<'a, F> {
+    /// The map's raster configuration.
+    #[must_use]
+    pub const fn raster(&self) -> &RasterConfig {
+        &self.raster
+    }
+
+    /// View finished maps. `z2` may be empty when no test reads it.
+    ///
+    /// # Errors
+    /// [`crate::ConfigError::BufferLength`] naming a buffer of the wrong length.
+    pub fn new(
+        raster: RasterConfig,
+        z1: &'a [F::Texel],
+        z2: &'a [F::Texel],
+        tiles: &'a [TileState<F::Texel>],
+    ) -> Result<Self, crate::ConfigError> {
+        let texels = raster.texel_count();
+        let wrong = |buffer, expected, found| crate::ConfigError::BufferLength { buffer, expected, found };
+        if z1.len() != texels {
+            return Err(wrong("z1", texels, z1.len()));
+        }
+        if !z2.is_empty() && z2.len() != texels {
+            return Err(wrong("z2", texels, z2.len()));
+        }
+        if tiles.len() != raster.tile_count() {
+            return Err(wrong("tiles", raster.tile_count(), tiles.len()));
+        }
+        Ok(Self { raster, z1, z2, tiles, across: raster.tiles().0 as usize, second_in_z1: false })
+    }
+
+    /// View the map of a single-depth pass with front-face culling: its one
+    /// buffer holds the second depth (Wang & Molnar 1994 §3.4), which
+    /// [`DepthTest::Second`] then reads (so do the tests that need `z1`:
+    /// there is no first depth in such a map).
+    ///
+    /// # Errors
+    /// [`crate::ConfigError::BufferLength`] naming a buffer of the wrong length.
+    pub fn front_culled(
+        raster: RasterConfig,
+        z: &'a [F::Texel],
+        tiles: &'a [TileState<F::Texel>],
+    ) -> Result<Self, crate::ConfigError> {
+        Ok(Self { second_in_z1: true, ..Self::new(raster, z, &[], tiles)? })
+    }
+
+    /// Texel `(x, y)` of `buf` widened to [`PlaneZ`] bits; the far value
+    /// when `buf` is empty (no second depth: nothing behind).
+    #[inline]
+    fn texel(&self, buf: &[F::Texel], x: u32, y: u32) -> i64 {
+        let i = y as usize * self.raster.width() as usize + x as usize;
+        F::widen(buf.get(i).copied().unwrap_or(F::FAR))
+    }
+
+    /// One sample: whether a receiver at depth `z` less `bias` ([`PlaneZ`]
+    /// bits), rounded to the map's format, lies behind the test's reference
+    /// at texel `(x, y)`, the texels read reported to probes that ask;
+    /// `None` outside the map (lit, nothing read).
+    #[inline]
+    pub(crate) fn sample<P: Probe>(
+        &self,
+        test: DepthTest,
+        (x, y): (i64, i64),
+        z: i64,
+        bias: i64,
+        probe: &mut P,
+    ) -> Option<bool> {
+        let (x, y) = (u32::try_from(x).ok()?, u32::try_from(y).ok()?);
+        if x >= self.raster.width() || y >= self.raster.height() {
+            return None;
+        }
+        Some(self.compare(test, x, y, at_format::<F>(z.saturating_sub(bias)), probe))
+    }
+
+    /// The sample of texel `(x, y)`, inside the map, for a receiver already
+    /// biased and rounded to the map's format: whether it lies behind the
+    /// test's reference, the texels read reported to probes that ask.
+    #[inline]
+    pub(super) fn compare<P: Probe>(&self, test: DepthTest, x: u32, y: u32, receiver: i64, probe: &mut P) -> bool {
+        if P::TEXELS {
+            for buffer in self.buffers_read(test) {
+                probe.texel_read(TexelRead { buffer, x, y });
+            }
+        }
+        receiver > self.reference(test, x, y)
+    }
+
+    /// The buffers a test reads from this map (one, or both).
+    pub(crate) fn buffers_read(&self, test: DepthTest) -> impl Iterator<Item = Buffer> {
+        let z1 = test.needs_z1() || (test.needs_z2() && self.second_in_z1);
+        let z2 = test.needs_z2() && !self.second_in_z1;
+        [(z1, Buffer::Z1), (z2, Buffer::Z2)].into_iter().filter_map(|(read, b)| read.then_some(b))
+    }
+
+    /// A tile's stored bounds of the second depth: `z2`'s, the single
+    /// buffer's in a front-face-culled map, the far value when there is none.
+    #[inline]
+    pub(super) fn second_bounds(&self, t: &TileState<F::Texel>) -> (F::Texel, F::Texel) {
+        if self.second_in_z1 {
+            (t.z1_min, t.z1_max)
+        } else if self.z2.is_empty() {
+            (F::FAR, F::FAR)
+        } else {
+            (t.z2_min, t.z2_max)
+        }
+    }
+
+    pub(super) fn reference(&self, test: DepthTest, x: u32, y: u32) -> i64 {
+        let z1 = if test.needs_z1() { self.texel(self.z1, x, y) } else { 0 };
+        let second = if self.second_in_z1 { self.z1 } else { self.z2 };
+        let z2 = if test.needs_z2() { self.texel(second, x, y) } else { 0 };
+        test.reference(z1, z2)
+    }
+}

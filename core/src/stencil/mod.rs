@@ -1,0 +1,133 @@
+//! The stencil unit: depth-fail ("Carmack's reverse") shadow volumes on the
+//! camera's raster, the exact hard-shadow reference inside the pipeline
+//! that Sen, Cammarano & Hanrahan 2003 (§4) compare silhouette maps with.
+//!
+//! # Volumes
+//! An occluder triangle faces the light (solids keep their light-facing
+//! triangles; open surfaces turn every triangle to face it). Its volume is
+//! closed by a near cap (the triangle), a far cap (the triangle extruded
+//! away from the light, reversed) and, for each edge not shared with
+//! another occluder triangle — a silhouette edge — a side quad. Extrusion
+//! is linear in homogeneous camera clip space: a vertex `v` moves to
+//! `v + t·(w_λ·v − λ)` with `λ` the light's clip-space position (`w_λ = 1`)
+//! or direction towards it (`w_λ = 0`), so every side quad lies in the plane
+//! through the light and its edge. [`Volume`] emits the triangles, wound
+//! outwards.
+//!
+//! # Counting
+//! Each volume triangle is clipped (near plane and guard band; depth
+//! beyond the far plane is clamped per fragment, not clipped, so far caps
+//! survive and side quads reaching past the far plane keep their true
+//! planes), snapped and set up exactly like scene triangles, and every fragment
+//! compares its depth with the scene depth the visibility unit stored.
+//! Where the volume lies at or behind the scene (the depth test fails),
+//! a face turned away from the camera increments the stencil and a face
+//! turned towards it decrements it, wrapping modulo 2⁸. A pixel with a
+//! non-zero stencil is in shadow. Near caps coincide with the occluders'
+//! own visible surfaces bit for bit (same vertex unit, same setup), and
+//! count as failing there, so a lit face does not shadow itself.
+
+mod volume;
+
+pub use volume::{Volume, VolumeLight};
+
+use crate::config::{ConfigError, CullMode, RasterConfig};
+use crate::depth::DepthFormat;
+use crate::front::clip::{ClipVertex, Clipped, DepthClip, Polygon, clip_triangle_with};
+use crate::front::snap::SnappedVertex;
+use crate::probe::{Event, Probe};
+use crate::raster::setup::Setup;
+
+/// Bytes of one stencil texel.
+pub const STENCIL_BYTES: u32 = 1;
+
+/// Whether the snapped triangle faces the camera: counter-clockwise in NDC
+/// (y up), as [`Setup::new`] decides facing.
+fn front_facing(v: &[SnappedVertex; 3]) -> bool {
+    let d = (v[1].x.0 - v[0].x.0) * (v[2].y.0 - v[0].y.0) - (v[1].y.0 - v[0].y.0) * (v[2].x.0 - v[0].x.0);
+    d < 0
+}
+
+/// The stencil unit over caller-owned buffers: the scene depth the
+/// visibility unit stored and one stencil byte per pixel.
+pub struct StencilPass<'a, F: DepthFormat> {
+    raster: RasterConfig,
+    depth: &'a [F::Texel],
+    stencil: &'a mut [u8],
+}
+
+impl<'a, F: DepthFormat> StencilPass<'a, F> {
+    /// A pass over the camera target `raster`; the stencil is cleared.
+    ///
+    /// # Errors
+    /// [`ConfigError::BufferLength`] naming a buffer of the wrong length.
+    pub fn new(raster: RasterConfig, depth: &'a [F::Texel], stencil: &'a mut [u8]) -> Result<Self, ConfigError> {
+        let texels = raster.texel_count();
+        for (buffer, found) in [("depth", depth.len()), ("stencil", stencil.len())] {
+            if found != texels {
+                return Err(ConfigError::BufferLength { buffer, expected: texels, found });
+            }
+        }
+        stencil.fill(0);
+        Ok(Self { raster, depth, stencil })
+    }
+
+    /// Count one volume triangle (camera clip space). Any input is
+    /// accepted; what cannot be drawn draws nothing.
+    pub fn draw<P: Probe>(&mut self, tri: &[ClipVertex; 3], probe: &mut P) {
+        if tri.iter().flatten().any(|c| !c.is_finite()) {
+            return;
+        }
+        let mut poly = Polygon::new();
+        match clip_triangle_with(tri, self.raster.guard(), DepthClip::Near, &mut poly) {
+            Clipped::Inside => self.draw_snapped(tri, probe),
+            Clipped::Polygon => {
+                for i in 1..poly.len().saturating_sub(1) {
+                    self.draw_snapped(&[poly[0], poly[i], poly[i + 1]], probe);
+                }
+            }
+            Clipped::Outside => {}
+        }
+    }
+
+    fn draw_snapped<P: Probe>(&mut self, tri: &[ClipVertex; 3], probe: &mut P) {
+        let r = self.raster;
+        let snap = |v: &ClipVertex| r.snap_beyond_far::<F>(v);
+        let (Some(a), Some(b), Some(c)) = (snap(&tri[0]), snap(&tri[1]), snap(&tri[2])) else {
+            return;
+        };
+        let v = [a, b, c];
+        let Ok(setup) = Setup::new(&r, v, CullMode::None, 0) else { return };
+        let step: u8 = if front_facing(&v) { u8::MAX } else { 1 };
+        let (mut fragments, mut writes) = (0u32, 0u32);
+        let width = r.width() as usize;
+        for py in setup.bbox.y0..setup.bbox.y1 {
+            for px in setup.bbox.x0..setup.bbox.x1 {
+                let (x, y) = (i64::from(px), i64::from(py));
+                if !setup.covers(x, y) {
+                    continue;
+                }
+                fragments += 1;
+                let k = py as usize * width + px as usize;
+                let (Some(&scene), Some(s)) = (self.depth.get(k), self.stencil.get_mut(k)) else { continue };
+                if F::texel(setup.plane.at(x, y)) >= scene {
+                    *s = s.wrapping_add(step);
+                    writes += 1;
+                }
+            }
+        }
+        if fragments > 0 {
+            probe.event(Event::VolumeFragments { fragments, depth_bytes: fragments * F::KIND.bytes() });
+            probe.event(Event::StencilRead { texels: fragments, bytes: fragments * STENCIL_BYTES });
+        }
+        if writes > 0 {
+            probe.event(Event::StencilWrite { texels: writes, bytes: writes * STENCIL_BYTES });
+        }
+    }
+
+    /// The stencil: non-zero where the pixel is in shadow.
+    #[must_use]
+    pub fn stencil(&self) -> &[u8] {
+        self.stencil
+    }
+}

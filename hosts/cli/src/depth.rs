@@ -1,0 +1,267 @@
+//! `umbra depth`: one light pass over a mesh or a scene, its maps as arrays and previews, and its tiles.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result};
+use clap::ValueEnum;
+use umbra_core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, RasterConfig};
+use umbra_sim::cost::counters::Counters;
+use umbra_sim::glam::{Mat4, Vec3};
+use umbra_sim::io::limits::Limits;
+use umbra_sim::io::output::{RawMap, write_npy, write_preview, write_text};
+use umbra_sim::pass::light::{RawMaps, render_raw};
+use umbra_sim::world::mesh::Mesh;
+use umbra_sim::world::scene::{Light, Object, Perspective, Scene, parse_matrix};
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub(super) enum Format {
+    D16,
+    D24,
+    F32,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub(super) enum Cull {
+    None,
+    Back,
+    Front,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub(super) enum Unit {
+    Single,
+    Dual,
+}
+
+#[derive(clap::Args, Debug)]
+pub(super) struct DepthArgs {
+    /// An OBJ mesh to render (instead of the default scene).
+    #[arg(long)]
+    pub(super) mesh: Option<PathBuf>,
+    /// The view-projection matrix: a row-major 4×4 JSON array, inline or in a
+    /// file. Clip = M · (x, y, z, 1)ᵀ; depth z/w in [0, 1] (near 0, far 1);
+    /// NDC y up, map row 0 at NDC y = +1. Default: the scene's light, or for
+    /// a mesh a spot light that frames it.
+    #[arg(long)]
+    pub(super) matrix: Option<String>,
+    /// Map width and height in texels.
+    #[arg(long, default_value_t = 512)]
+    pub(super) size: u32,
+    /// Depth format.
+    #[arg(long, value_enum, default_value_t = Format::D24)]
+    pub(super) format: Format,
+    /// Facing to discard.
+    #[arg(long, value_enum, default_value_t = Cull::None)]
+    pub(super) cull: Cull,
+    /// Depth unit: nearest only, or nearest and second nearest.
+    #[arg(long, value_enum, default_value_t = Unit::Dual)]
+    pub(super) unit: Unit,
+    /// Tile side in texels (power of two, 8..=128).
+    #[arg(long, default_value_t = RasterConfig::DEFAULT_TILE_SIZE)]
+    pub(super) tile: u32,
+    /// Subpixel bits of the vertex snap (1..=8).
+    #[arg(long, default_value_t = RasterConfig::DEFAULT_SUBPIXEL_BITS)]
+    pub(super) subpixel_bits: u32,
+    /// Turn per-tile max-z culling off.
+    #[arg(long)]
+    pub(super) no_max_z_cull: bool,
+    /// Output folder.
+    #[arg(long, default_value = "out/depth")]
+    pub(super) out: PathBuf,
+}
+
+impl Default for DepthArgs {
+    fn default() -> Self {
+        Self {
+            mesh: None,
+            matrix: None,
+            size: 512,
+            format: Format::D24,
+            cull: Cull::None,
+            unit: Unit::Dual,
+            tile: RasterConfig::DEFAULT_TILE_SIZE,
+            subpixel_bits: RasterConfig::DEFAULT_SUBPIXEL_BITS,
+            no_max_z_cull: false,
+            out: PathBuf::from("out/depth"),
+        }
+    }
+}
+
+pub(super) fn format_kind(f: Format) -> DepthFormatKind {
+    match f {
+        Format::D16 => DepthFormatKind::D16,
+        Format::D24 => DepthFormatKind::D24,
+        Format::F32 => DepthFormatKind::F32,
+    }
+}
+
+/// Read the `--matrix` argument: inline JSON or a file holding it (a
+/// regular file within `limits`).
+fn read_matrix(arg: &str, limits: &Limits) -> Result<Mat4> {
+    let text = if arg.trim_start().starts_with('[') {
+        arg.to_owned()
+    } else {
+        let bytes = limits.read_file(Path::new(arg)).with_context(|| format!("--matrix: cannot read file `{arg}`"))?;
+        String::from_utf8(bytes).with_context(|| format!("--matrix: file `{arg}` is not UTF-8 text"))?
+    };
+    parse_matrix(&text).with_context(|| format!("--matrix `{arg}`"))
+}
+
+/// A spot light that frames a mesh, looking down from above and to the side.
+fn framing_light(mesh: &Mesh) -> Result<Perspective> {
+    let (lo, hi) = mesh.bounds().context("the mesh has no vertices")?;
+    let center = (lo + hi) / 2.0;
+    let radius = ((hi - lo).length() / 2.0).max(f32::MIN_POSITIVE);
+    let distance = 3.0 * radius;
+    Ok(Perspective {
+        position: center + Vec3::new(1.0, 2.0, 1.5).normalize() * distance,
+        target: center,
+        fov_degrees: 2.0 * (radius / distance).asin().to_degrees() * 1.1,
+        near: distance - 1.2 * radius,
+        far: distance + 1.2 * radius,
+    })
+}
+
+pub(super) fn depth(args: &DepthArgs, limits: &Limits) -> Result<()> {
+    limits.check_map(args.size).with_context(|| format!("--size {}", args.size))?;
+    let scene = match &args.mesh {
+        Some(path) => {
+            let mesh = Mesh::load_obj_within(path, limits)?;
+            let light = framing_light(&mesh)?;
+            let name = path.file_stem().map_or_else(|| "mesh".into(), |s| s.to_string_lossy().into_owned());
+            let lights = vec![Light::Spot(light)];
+            Scene {
+                name: name.clone(),
+                objects: vec![Object { name, mesh, solid: false }],
+                lights,
+                camera: light,
+                image: [512, 512],
+            }
+        }
+        None => Scene::default_scene(),
+    };
+    let matrix = match &args.matrix {
+        Some(m) => read_matrix(m, limits)?,
+        None => scene.light().view_projection(),
+    };
+    let raster = RasterConfig::new(args.size, args.size, args.tile, args.subpixel_bits)?;
+    let unit = match args.unit {
+        Unit::Single => DepthUnit::Single,
+        Unit::Dual => DepthUnit::Dual,
+    };
+    let format = format_kind(args.format);
+    let cull = match args.cull {
+        Cull::None => CullMode::None,
+        Cull::Back => CullMode::Back,
+        Cull::Front => CullMode::Front,
+    };
+    let config = LightPassConfig { raster, unit, max_z_cull: !args.no_max_z_cull };
+    let draws = scene.draws(matrix, cull);
+    let (maps, counters) = render_raw(config, format, &draws, Counters::new(&raster))?;
+
+    std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
+    let written = write_maps(&args.out, &maps)?;
+    let report = tile_report(&scene, &maps, &counters, args);
+    write_text(&args.out.join("tiles.md"), &report)?;
+    write_text(&args.out.join("counters.json"), &serde_json::to_string_pretty(&counters.totals)?)?;
+    println!("{}", summary(&maps, &counters));
+    for f in written.iter().chain([&args.out.join("tiles.md"), &args.out.join("counters.json")]) {
+        println!("wrote {}", f.display());
+    }
+    Ok(())
+}
+
+fn write_maps(dir: &Path, maps: &RawMaps) -> Result<Vec<PathBuf>> {
+    let (w, h) = (maps.maps.config.raster.width(), maps.maps.config.raster.height());
+    let mut files = Vec::new();
+    for (name, data) in [("z1", &maps.maps.z1), ("z2", &maps.maps.z2)] {
+        if data.is_empty() {
+            continue;
+        }
+        let npy = dir.join(format!("{name}.npy"));
+        let png = dir.join(format!("{name}.png"));
+        let map = RawMap { format: maps.format, width: w, height: h, raw: data };
+        write_npy(&npy, &map)?;
+        write_preview(&png, &map)?;
+        files.extend([npy, png]);
+    }
+    Ok(files)
+}
+
+/// The configuration of a pass in one line.
+fn describe(maps: &RawMaps) -> String {
+    let cfg = maps.maps.config;
+    let r = cfg.raster;
+    let (across, down) = r.tiles();
+    format!(
+        "{}×{} texels, {} depth, {:?} unit, {}×{} tiles of {} px, {} subpixel bits, max-z culling {}",
+        r.width(),
+        r.height(),
+        maps.format.name(),
+        cfg.unit,
+        across,
+        down,
+        r.tile_size(),
+        r.subpixel_bits(),
+        if cfg.max_z_cull { "on" } else { "off" }
+    )
+}
+
+/// Totals and a grid of fragments per tile, for the terminal.
+fn summary(maps: &RawMaps, c: &Counters) -> String {
+    let t = &c.totals;
+    let raster = maps.maps.config.raster;
+    let across = raster.tiles().0;
+    let mut s = String::new();
+    let _ = writeln!(s, "light pass {}", describe(maps));
+    let _ = writeln!(
+        s,
+        "triangles {} submitted, {} set up, {} rejected (facing {}, clipped {}, degenerate {}, no coverage {}, non-finite {})",
+        t.submitted,
+        t.setups,
+        t.rejected_facing + t.rejected_clipped + t.rejected_degenerate + t.rejected_no_coverage + t.rejected_non_finite,
+        t.rejected_facing,
+        t.rejected_clipped,
+        t.rejected_degenerate,
+        t.rejected_no_coverage,
+        t.rejected_non_finite
+    );
+    let _ = writeln!(
+        s,
+        "fragments {}, max-z culled {} triangles + {} blocks ({} texels), bin flushes {} full / {} setup / {} end",
+        t.fragments,
+        t.culled_triangles,
+        t.culled_blocks,
+        t.culled_texels,
+        t.flushes_bin_full,
+        t.flushes_setup_full,
+        t.flushes_finish
+    );
+    let touched = c.tiles.iter().filter(|k| k.fragments > 0).count();
+    let _ = writeln!(s, "tiles with fragments {touched} of {}; fragments per tile (hundreds):", c.tiles.len());
+    for row in c.tiles.chunks(across as usize) {
+        let line: Vec<String> = row.iter().map(|k| format!("{:>4}", k.fragments.div_ceil(100))).collect();
+        let _ = writeln!(s, "{}", line.join(""));
+    }
+    s
+}
+
+/// One Markdown row per tile: fragments, culls, flushes and depth bounds.
+fn tile_report(scene: &Scene, maps: &RawMaps, c: &Counters, args: &DepthArgs) -> String {
+    let raster = maps.maps.config.raster;
+    let mut s = String::new();
+    let _ = writeln!(s, "# Light-pass tiles: {}\n", scene.name);
+    let _ = writeln!(s, "{}, cull {:?}.\n", describe(maps), args.cull);
+    let _ = writeln!(s, "| tile | triangles | fragments | culled | flushes | z1 min | z1 max | z2 min | z2 max |");
+    let _ = writeln!(s, "|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for (i, (k, st)) in c.tiles.iter().zip(&maps.maps.tiles).enumerate() {
+        let id = raster.tile_id(i);
+        let _ = writeln!(
+            s,
+            "| ({}, {}) | {} | {} | {} | {} | {} | {} | {} | {} |",
+            id.x, id.y, k.triangles, k.fragments, k.culled, k.flushes, st.z1_min, st.z1_max, st.z2_min, st.z2_max
+        );
+    }
+    s
+}

@@ -1,0 +1,7 @@
+//! What a pass costs: the architecture and its timing model, the map
+//! cache, the map's storage schemes, and the event counters.
+
+pub mod arch;
+pub mod cache;
+pub mod counters;
+pub mod storage;

@@ -1,0 +1,98 @@
+//! The speed/accuracy trade study: a sweep over scene × shadow algorithm ×
+//! depth format × map size × filter × architecture preset, each
+//! configuration rendered once against the exact reference and costed on
+//! every preset.
+//!
+//! What each algorithm buys is the papers' question: Williams' first depth
+//! over a bias sweep (Reeves et al. §4), Wang & Molnar's second depth with and
+//! without virtual samples and by front-face culling (§3), Woo's midpoint,
+//! and Weiskopf & Ertl's dual depth over an offset sweep (§3), with and
+//! without their per-object back-face culling, Sen et al.'s silhouette maps
+//! and stencil shadow volumes (§2, §5). What it costs is counted by
+//! the architecture presets of [`crate::cost::arch`] (Sen et al.'s §5 bandwidth
+//! question, per buffer).
+//!
+//! Rows are sorted by configuration index and preset, whatever the thread
+//! count or timing, so the output bytes are a function of the sweep alone.
+//! `--shard i/n` runs the configurations whose index is `i` modulo `n`;
+//! [`merge`] reads shard outputs back and writes exactly the files of the
+//! whole run.
+
+use std::path::PathBuf;
+
+use crate::io::limits::FileError;
+use crate::io::output::OutputError;
+use crate::world::scene_file::SceneError;
+
+pub mod extremes;
+pub mod plot;
+
+mod row;
+mod run;
+mod shards;
+mod summary;
+mod sweep;
+
+pub use row::Row;
+use run::sort_rows;
+pub use run::{Truth, load_scenes, render_config, run, run_config, truths, uncullable};
+use shards::jsonl;
+pub use shards::{merge, read_rows, write_partial};
+pub use summary::{BUDGETS, summary, write_outputs};
+pub use sweep::{
+    BIAS_RANGES, Config, Culling, DUAL_OFFSETS, FIRST_BIASES, QUICK_SCENES, SILHOUETTE_BIAS, Shard, Spec,
+    UNLIMITED_OFFSET, Variant, algorithms, jittered,
+};
+
+/// Why the study could not run or write its files.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum StudyError {
+    /// A scene could not be loaded.
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    /// A `--shard` argument is not `i/n` with `i < n`.
+    #[error("--shard `{0}`: expected i/n with 0 ≤ i < n")]
+    Shard(String),
+    /// A file could not be written.
+    #[error(transparent)]
+    Output(#[from] OutputError),
+    /// A results file could not be read, is not a regular file, or is
+    /// larger than [`Limits::max_file_bytes`].
+    #[error("{path}: {source}")]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: FileError,
+    },
+    /// A line of a results file is not a study row.
+    #[error("{path}:{line}: not a study row: {source}")]
+    Parse {
+        /// The file.
+        path: PathBuf,
+        /// The line (from 1).
+        line: usize,
+        /// The parser's error.
+        source: serde_json::Error,
+    },
+    /// Two shards hold the same row.
+    #[error("row {index} ({arch}) appears twice among the merged files (overlapping shards?)")]
+    Duplicate {
+        /// The configuration index.
+        index: usize,
+        /// The preset.
+        arch: String,
+    },
+    /// CSV encoding failed.
+    #[error("results.csv: {0}")]
+    Csv(#[from] csv::Error),
+    /// A plot could not be drawn.
+    #[error("plot {path}: {problem}")]
+    Plot {
+        /// The file.
+        path: PathBuf,
+        /// What went wrong.
+        problem: String,
+    },
+}

@@ -1,0 +1,152 @@
+//! Running a sweep: each configuration rendered once against the reference and costed on every architecture.
+
+use indicatif::ProgressBar;
+use rayon::prelude::*;
+
+use super::{Config, Culling, Row, Shard, Spec, StudyError};
+use crate::io::limits::Limits;
+use crate::pass::render::{RenderConfig, cost_within, render_against, truth};
+use crate::truth::reference::PixelTruth;
+use crate::world::scene::Scene;
+
+/// The render configuration of `c`.
+#[must_use]
+pub fn render_config(spec: &Spec, c: &Config) -> RenderConfig {
+    let v = &spec.variants[c.variant];
+    RenderConfig {
+        algorithm: v.algorithm,
+        format: c.format,
+        map_size: c.map_size,
+        filter: spec.filters[c.filter].1,
+        bias: v.bias,
+        virtual_samples: v.virtual_samples,
+        width: spec.width,
+        height: spec.height,
+        reference_samples: spec.reference_samples,
+    }
+}
+
+/// `scene` with every object open, so that no light pass culls it.
+#[must_use]
+pub fn uncullable(scene: &Scene) -> Scene {
+    let mut s = scene.clone();
+    for o in &mut s.objects {
+        o.solid = false;
+    }
+    s
+}
+
+/// Render one configuration once and cost it on every preset: one row per
+/// preset (one row when the sweep has none). A render or costing that fails
+/// gives skipped rows that say why.
+///
+/// The render (light pass, camera pass, metrics against the scene's
+/// reference from [`truths`]) runs once; each
+/// preset re-runs the two passes through its own probe, because a preset's
+/// tile size changes the light pass's events (`PixelFlow`'s 128² regions
+/// bin and flush differently from 32² chunks), so one recorded event stream
+/// cannot stand for all three. The exact reference, the expensive part, is
+/// not recomputed.
+#[must_use]
+pub fn run_config(spec: &Spec, c: &Config, open: &[Scene], truths: &[Truth]) -> Vec<Row> {
+    let v = &spec.variants[c.variant];
+    let scene = match v.culling {
+        Culling::Scene => &spec.scenes[c.scene],
+        Culling::Off => &open[c.scene],
+    };
+    let cfg = render_config(spec, c);
+    let metrics = match &truths[c.scene] {
+        Ok(t) => render_against(scene, &cfg, t.clone(), &spec.limits).map_err(|e| e.to_string()),
+        Err(e) => Err(format!("reference: {e}")),
+    };
+    let metrics = metrics.map(|r| {
+        let t = &r.camera_events.totals;
+        (r.metrics, ratio(t.tangent_setups, t.tangent_setups + t.trivial_pixels))
+    });
+    if spec.archs.is_empty() {
+        let mut row = Row::new(spec, c, None);
+        match &metrics {
+            Ok((m, vs)) => {
+                row.set_metrics(m);
+                row.virtual_sample_fraction = Some(*vs);
+            }
+            Err(e) => row.skip(format!("render: {e}")),
+        }
+        return vec![row];
+    }
+    spec.archs
+        .iter()
+        .enumerate()
+        .map(|(i, arch)| {
+            let mut row = Row::new(spec, c, Some((i, arch)));
+            match &metrics {
+                Ok((m, _)) => {
+                    row.set_metrics(m);
+                    match cost_within(scene, &cfg, *arch, &spec.limits) {
+                        Ok((report, _)) => row.set_cost(&report),
+                        Err(e) => row.skip(format!("cost on {}: {e}", arch.name)),
+                    }
+                }
+                Err(e) => row.skip(format!("render: {e}")),
+            }
+            row
+        })
+        .collect()
+}
+
+/// A scene's exact reference at the study's image size, or why there is none.
+pub type Truth = Result<Vec<Option<PixelTruth>>, String>;
+
+/// The exact reference of every scene of `spec`, built once (in parallel):
+/// it depends only on the scene, the image size and the rays per pixel,
+/// not on the configuration. Culling changes no geometry, so the scenes
+/// with their culling turned off share it.
+#[must_use]
+pub fn truths(spec: &Spec) -> Vec<Truth> {
+    spec.scenes
+        .par_iter()
+        .map(|scene| {
+            truth(scene, spec.width, spec.height, spec.reference_samples, &ProgressBar::hidden())
+                .map_err(|e| e.to_string())
+        })
+        .collect()
+}
+
+/// Run the configurations of `shard` in parallel (on the current rayon pool),
+/// ticking `progress` once per configuration. Rows come back sorted by
+/// configuration and preset.
+#[must_use]
+pub fn run(spec: &Spec, shard: Shard, progress: &ProgressBar) -> Vec<Row> {
+    let open: Vec<Scene> = spec.scenes.iter().map(uncullable).collect();
+    let truths = truths(spec);
+    let configs: Vec<Config> = spec.configs().into_iter().filter(|c| shard.contains(c.index)).collect();
+    progress.set_length(configs.len() as u64);
+    let rows: Vec<Vec<Row>> = configs
+        .par_iter()
+        .map(|c| {
+            let rows = run_config(spec, c, &open, &truths);
+            progress.inc(1);
+            rows
+        })
+        .collect();
+    let mut rows: Vec<Row> = rows.into_iter().flatten().collect();
+    sort_rows(&mut rows);
+    rows
+}
+
+#[allow(clippy::cast_precision_loss, reason = "a ratio of pixel counts")]
+fn ratio(a: u64, b: u64) -> f64 {
+    if b == 0 { 0.0 } else { a as f64 / b as f64 }
+}
+
+pub(super) fn sort_rows(rows: &mut [Row]) {
+    rows.sort_by_key(|r| (r.index, r.arch_index));
+}
+
+/// Load scenes by scene file or bundled name ([`Scene::open`]) within `limits`.
+///
+/// # Errors
+/// [`StudyError::Scene`] naming the scene.
+pub fn load_scenes<S: AsRef<str>>(names: &[S], limits: &Limits) -> Result<Vec<Scene>, StudyError> {
+    names.iter().map(|n| Ok(Scene::open(n.as_ref(), limits)?)).collect()
+}

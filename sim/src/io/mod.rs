@@ -1,0 +1,5 @@
+//! Files in and out: the limits every input is read within, and the
+//! writers of maps, images and text.
+
+pub mod limits;
+pub mod output;

@@ -1,0 +1,458 @@
+//! Run the core's light pass over buffers owned here.
+
+use glam::{Mat4, Vec3};
+use umbra_core::front::{self, Output};
+use umbra_core::raster::bin::Bin;
+use umbra_core::raster::setup::Setup;
+use umbra_core::{
+    ConfigError, CullMode, D16, D24, DepthFormat, DepthFormatKind, DepthUnit, F32, LightBuffers, LightPass,
+    LightPassConfig, Probe, SubmitError, TileState,
+};
+
+/// Bin capacity the simulator uses unless told otherwise: bins live in
+/// memory, so they are deep (a bin of 2-byte entries is 512 bytes).
+pub const DEFAULT_BIN_CAPACITY: usize = 256;
+/// Setup-store size the simulator uses unless told otherwise: the most the
+/// bins can address, so a scene of up to 64k triangles is captured whole
+/// before any tile is rasterized.
+pub const DEFAULT_SETUPS: usize = umbra_core::raster::bin::MAX_SETUPS;
+
+/// Setup-store size of a pass whose probe ignores events: four setups a
+/// tile, between 4096 (640 KB, within a core's cache) and
+/// [`DEFAULT_SETUPS`] (ten MB, written and read back through memory). Each
+/// time the store fills, every tile with work is resolved, so the store
+/// grows with the tiles.
+fn unwatched_setups(raster: &umbra_core::RasterConfig) -> usize {
+    raster.tile_count().saturating_mul(4).clamp(4096, DEFAULT_SETUPS)
+}
+
+/// One draw call: a mesh, its transform to light clip space and its cull mode.
+#[derive(Clone, Copy, Debug)]
+pub struct Draw<'a> {
+    /// Object-space positions.
+    pub positions: &'a [Vec3],
+    /// Vertex indices, three per triangle.
+    pub triangles: &'a [[u32; 3]],
+    /// Object space to light clip space.
+    pub transform: Mat4,
+    /// Which facing to discard.
+    pub cull: CullMode,
+}
+
+/// The maps of one light pass.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct LightMaps<T> {
+    /// The configuration they were rendered with.
+    pub config: LightPassConfig,
+    /// Nearest depth, row-major.
+    pub z1: Vec<T>,
+    /// Second-nearest depth (empty unless the unit is dual).
+    pub z2: Vec<T>,
+    /// Per-tile summaries, row-major.
+    pub tiles: Vec<TileState<T>>,
+}
+
+/// Why a light pass could not run.
+#[derive(Debug, thiserror::Error)]
+pub enum LightError {
+    /// The configuration or a buffer is unusable.
+    #[error("light pass configuration: {0}")]
+    Config(#[from] ConfigError),
+    /// A draw call is malformed.
+    #[error("draw call {draw}: {source}")]
+    Submit {
+        /// Which draw call.
+        draw: usize,
+        /// What is wrong with it.
+        source: SubmitError,
+    },
+}
+
+/// Render the light pass of `draws` in format `F` with bin capacity `B` and a
+/// setup store of `setups` entries.
+///
+/// # Errors
+/// See [`LightError`].
+pub fn render_with<F: DepthFormat, P: Probe, const B: usize>(
+    config: LightPassConfig,
+    draws: &[Draw<'_>],
+    setups: usize,
+    probe: P,
+) -> Result<(LightMaps<F::Texel>, P), LightError> {
+    let mut maps = LightMaps::empty(config);
+    let probe = render_into::<F, P, B>(&mut maps, &mut PassScratch::default(), config, draws, setups, probe)?;
+    Ok((maps, probe))
+}
+
+/// [`render_with`] into `frame`: its maps, bins and setup store, kept from
+/// one pass to the next. The maps are the frame's until its next pass.
+///
+/// # Errors
+/// See [`LightError`].
+pub fn render_with_in<'f, F: DepthFormat, P: Probe, const B: usize>(
+    frame: &'f mut LightFrame<F::Texel, B>,
+    config: LightPassConfig,
+    draws: &[Draw<'_>],
+    setups: usize,
+    probe: P,
+) -> Result<(&'f LightMaps<F::Texel>, P), LightError> {
+    let maps = frame.maps.get_or_insert_with(|| LightMaps::empty(config));
+    let probe = render_into::<F, P, B>(maps, &mut frame.pass, config, draws, setups, probe)?;
+    Ok((maps, probe))
+}
+
+/// The pass of [`render_with`] into given maps and scratch.
+fn render_into<F: DepthFormat, P: Probe, const B: usize>(
+    maps: &mut LightMaps<F::Texel>,
+    scratch: &mut PassScratch<B>,
+    config: LightPassConfig,
+    draws: &[Draw<'_>],
+    setups: usize,
+    probe: P,
+) -> Result<P, LightError> {
+    maps.resize(config);
+    let LightMaps { z1, z2, tiles, .. } = maps;
+    run::<F, P, B>(config, z1, z2, tiles, scratch, setups, probe, |pass| {
+        for (draw, d) in draws.iter().enumerate() {
+            pass.draw_mesh(d.positions, d.triangles, &d.transform, d.cull)
+                .map_err(|source| LightError::Submit { draw, source })?;
+        }
+        Ok(())
+    })
+}
+
+impl<T: Copy> LightMaps<T> {
+    /// Maps of no size, for [`LightMaps::resize`] to fit.
+    const fn empty(config: LightPassConfig) -> Self {
+        Self { config, z1: Vec::new(), z2: Vec::new(), tiles: Vec::new() }
+    }
+
+    /// Fit the maps to `config` (the pass clears them): nothing to do at
+    /// the sizes they have, new zeroed pages (not written twice) otherwise.
+    fn resize(&mut self, config: LightPassConfig)
+    where
+        T: Default,
+    {
+        fn fit<V: Clone>(v: &mut Vec<V>, len: usize, value: V) {
+            if v.len() != len {
+                *v = vec![value; len];
+            }
+        }
+        let texels = config.raster.texel_count();
+        self.config = config;
+        fit(&mut self.z1, texels, T::default());
+        fit(&mut self.z2, if config.unit == DepthUnit::Dual { texels } else { 0 }, T::default());
+        fit(&mut self.tiles, config.raster.tile_count(), TileState::cleared(T::default(), 0));
+    }
+}
+
+/// The bins and setup store of one pass (or one band).
+#[derive(Debug, Default)]
+struct PassScratch<const B: usize> {
+    bins: Vec<Bin<B>>,
+    store: Vec<Setup>,
+}
+
+impl<const B: usize> PassScratch<B> {
+    const fn new() -> Self {
+        Self { bins: Vec::new(), store: Vec::new() }
+    }
+}
+
+/// One front-end job of the banded pass: its setups, in order, and for
+/// each band the indices of those that reach it.
+#[derive(Debug, Default)]
+struct JobScratch {
+    setups: Vec<Setup>,
+    by_band: Vec<Vec<u32>>,
+}
+
+/// What the light pass keeps from one pass to the next, as hardware keeps
+/// its memory: the maps, the bins and the setup store, and for
+/// [`render_bands_in`] each front-end job's setups and each band's bins and
+/// store. A pass at sizes the frame has drawn before allocates nothing, so
+/// it touches no fresh pages.
+#[derive(Debug)]
+pub struct LightFrame<T, const B: usize = DEFAULT_BIN_CAPACITY> {
+    maps: Option<LightMaps<T>>,
+    pass: PassScratch<B>,
+    jobs: Vec<JobScratch>,
+    bands: Vec<PassScratch<B>>,
+}
+
+impl<T, const B: usize> LightFrame<T, B> {
+    /// An empty frame: its first pass allocates.
+    #[must_use]
+    pub const fn new() -> Self {
+        Self { maps: None, pass: PassScratch::new(), jobs: Vec::new(), bands: Vec::new() }
+    }
+
+    /// The maps of the last pass: none before the first, and whatever it
+    /// left after a pass that failed.
+    #[must_use]
+    pub const fn maps(&self) -> Option<&LightMaps<T>> {
+        self.maps.as_ref()
+    }
+}
+
+impl<T, const B: usize> Default for LightFrame<T, B> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// Run one light pass over the given maps (the pass clears them), with the
+/// bins and a setup store of `setups` entries from `scratch`: `feed` draws,
+/// then the pass is finished.
+#[allow(clippy::too_many_arguments, reason = "the buffers of one pass")]
+fn run<F: DepthFormat, P: Probe, const B: usize>(
+    config: LightPassConfig,
+    z1: &mut [F::Texel],
+    z2: &mut [F::Texel],
+    tiles: &mut [TileState<F::Texel>],
+    scratch: &mut PassScratch<B>,
+    setups: usize,
+    probe: P,
+    feed: impl FnOnce(&mut LightPass<'_, F, P, B>) -> Result<(), LightError>,
+) -> Result<P, LightError> {
+    // The pass clears both.
+    scratch.bins.resize(config.raster.tile_count(), Bin::new());
+    scratch.store.resize(setups, Setup::EMPTY);
+    let PassScratch { bins, store } = scratch;
+    let buffers = LightBuffers { z1, z2, ids: &mut [], tiles, bins, setups: store };
+    let mut pass = LightPass::<F, P, B>::new(config, buffers, probe)?;
+    feed(&mut pass)?;
+    Ok(pass.finish())
+}
+
+/// The setup store of one band: small enough to stay in cache (a band's
+/// bins drain whenever it fills; the maps do not depend on its size).
+const BAND_SETUPS: usize = 8192;
+
+/// Triangles the front end sets up in one parallel job.
+const FRONT_END_RUN: usize = 2048;
+
+/// The light pass on every core of the current rayon pool, as parallel
+/// hardware would run it: the front end ([`umbra_core::front`]) sets up
+/// runs of triangles in parallel, in submission order, and sorts each setup
+/// into the bands of tile rows it reaches; then the bands are rasterized in
+/// parallel, each a window of the target
+/// ([`umbra_core::RasterConfig::window`]) with its own bins, setup store and
+/// tiles, storing its setups moved into its window
+/// ([`LightPass::draw_setup_from`]). The maps are exactly those of [`render`], on
+/// any number of threads.
+///
+/// # Errors
+/// See [`LightError`].
+pub fn render_bands<F: DepthFormat>(
+    config: LightPassConfig,
+    draws: &[Draw<'_>],
+) -> Result<LightMaps<F::Texel>, LightError> {
+    let mut maps = LightMaps::empty(config);
+    bands_into::<F>(&mut maps, &mut Vec::new(), &mut Vec::new(), config, draws)?;
+    Ok(maps)
+}
+
+/// [`render_bands`] into `frame`: its maps, each front-end job's setups and
+/// each band's bins and store, kept from one pass to the next. The maps
+/// are the frame's until its next pass.
+///
+/// # Errors
+/// See [`LightError`].
+pub fn render_bands_in<'f, F: DepthFormat>(
+    frame: &'f mut LightFrame<F::Texel>,
+    config: LightPassConfig,
+    draws: &[Draw<'_>],
+) -> Result<&'f LightMaps<F::Texel>, LightError> {
+    let maps = frame.maps.get_or_insert_with(|| LightMaps::empty(config));
+    bands_into::<F>(maps, &mut frame.jobs, &mut frame.bands, config, draws)?;
+    Ok(maps)
+}
+
+/// The banded pass into given maps and scratch.
+fn bands_into<F: DepthFormat>(
+    maps: &mut LightMaps<F::Texel>,
+    job_scratch: &mut Vec<JobScratch>,
+    band_scratch: &mut Vec<PassScratch<DEFAULT_BIN_CAPACITY>>,
+    config: LightPassConfig,
+    draws: &[Draw<'_>],
+) -> Result<(), LightError> {
+    use rayon::prelude::*;
+    let r = config.raster;
+    let mut jobs = Vec::new();
+    let mut first_id = 0u32;
+    for (draw, d) in draws.iter().enumerate() {
+        front::check_indices(d.positions.len(), d.triangles).map_err(|source| LightError::Submit { draw, source })?;
+        for (k, run) in d.triangles.chunks(FRONT_END_RUN).enumerate() {
+            #[allow(clippy::cast_possible_truncation, reason = "ids wrap, as the light pass numbers them")]
+            jobs.push((d, run, first_id.wrapping_add((k * FRONT_END_RUN) as u32)));
+        }
+        #[allow(clippy::cast_possible_truncation, reason = "ids wrap, as the light pass numbers them")]
+        let n = d.triangles.len() as u32;
+        first_id = first_id.wrapping_add(n);
+    }
+    // Narrow bands (up to 32 a thread, one tile row at least), so that a
+    // thread done with light bands takes over heavy ones: a band costs only
+    // its bins, and reads only the setups that reach it.
+    let (across, down) = r.tiles();
+    let threads = u32::try_from(rayon::current_num_threads()).unwrap_or(1);
+    let bands = threads.saturating_mul(32).clamp(1, down);
+    let t = r.tile_size();
+    let rows: Vec<(u32, u32)> = (0..bands)
+        .map(|b| (b * down / bands * t, ((b + 1) * down / bands * t).min(r.height())))
+        .filter(|(y0, y1)| y1 > y0)
+        .collect();
+    let windows = rows.iter().map(|&(y0, y1)| r.window(0, y0, r.width(), y1 - y0)).collect::<Result<Vec<_>, _>>()?;
+    // The band of each tile row (bands are whole tile rows).
+    let band_of_row: Vec<usize> = (0..down).map(|ty| rows.partition_point(|&(_, y1)| y1 <= ty * t)).collect();
+    let band_of = |y: u32| band_of_row.get((y >> r.tile_shift()) as usize).copied().unwrap_or(rows.len());
+    // The front end, in parallel: each job's setups, in order, and for each
+    // band the indices of those that reach it (each band moves its own into
+    // its window when it draws them).
+    job_scratch.resize_with(jobs.len(), JobScratch::default);
+    job_scratch.par_iter_mut().zip(&jobs).for_each(|(JobScratch { setups, by_band }, &(d, run, id))| {
+        setups.clear();
+        by_band.resize_with(rows.len(), Vec::new);
+        by_band.iter_mut().for_each(Vec::clear);
+        front::mesh::<F>(&r, d.positions, run, &d.transform, d.cull, id, &mut |o| {
+            if let Output::Setup(s) = o {
+                // A job holds at most FRONT_END_RUN setups.
+                let k = u32::try_from(setups.len()).unwrap_or(u32::MAX);
+                for bucket in by_band.iter_mut().take(band_of(s.bbox.y1 - 1) + 1).skip(band_of(s.bbox.y0)) {
+                    bucket.push(k);
+                }
+                setups.push(*s);
+            }
+        });
+    });
+    let pieces = &job_scratch[..];
+    // Each band draws into its own rows of the maps and its own tiles.
+    maps.resize(config);
+    band_scratch.resize_with(rows.len(), PassScratch::new);
+    let mut jobs = Vec::with_capacity(rows.len());
+    let (mut z1, mut z2, mut tiles) = (&mut maps.z1[..], &mut maps.z2[..], &mut maps.tiles[..]);
+    let (width, dual) = (r.width() as usize, !z2.is_empty());
+    for ((band, &(y0, y1)), scratch) in rows.iter().enumerate().zip(band_scratch.iter_mut()) {
+        let texels = (y1 - y0) as usize * width;
+        let (a, rest) = core::mem::take(&mut z1).split_at_mut(texels);
+        z1 = rest;
+        let (b, rest) = core::mem::take(&mut z2).split_at_mut(if dual { texels } else { 0 });
+        z2 = rest;
+        let (c, rest) = core::mem::take(&mut tiles)
+            .split_at_mut(((y1 - y0) / t + u32::from((y1 - y0) % t > 0)) as usize * across as usize);
+        tiles = rest;
+        jobs.push((band, a, b, c, scratch));
+    }
+    jobs.into_par_iter()
+        .map(|(band, z1, z2, tiles, scratch)| {
+            let own = || {
+                pieces.iter().flat_map(move |JobScratch { setups, by_band }| {
+                    by_band.get(band).into_iter().flatten().filter_map(|&k| setups.get(k as usize))
+                })
+            };
+            let store = own().count().clamp(1, BAND_SETUPS);
+            let (window, y0) = (windows[band], rows[band].0);
+            let band = LightPassConfig { raster: window, ..config };
+            run::<F, _, DEFAULT_BIN_CAPACITY>(band, z1, z2, tiles, scratch, store, umbra_core::NoProbe, |pass| {
+                own().for_each(|s| pass.draw_setup_from(s, [0, y0]));
+                Ok(())
+            })
+            .map(|_| ())
+        })
+        .collect::<Result<(), LightError>>()?;
+    debug_assert_eq!(maps.tiles.len(), across as usize * down as usize);
+    Ok(())
+}
+
+/// Render with the default bin capacity and setup store.
+///
+/// # Errors
+/// See [`LightError`].
+pub fn render<F: DepthFormat, P: Probe>(
+    config: LightPassConfig,
+    draws: &[Draw<'_>],
+    probe: P,
+) -> Result<(LightMaps<F::Texel>, P), LightError> {
+    render_with::<F, P, DEFAULT_BIN_CAPACITY>(config, draws, store_size::<P>(&config, draws), probe)
+}
+
+/// [`render`] into `frame`, kept from one pass to the next (see
+/// [`LightFrame`]). The maps are the frame's until its next pass.
+///
+/// # Errors
+/// See [`LightError`].
+pub fn render_in<'f, F: DepthFormat, P: Probe>(
+    frame: &'f mut LightFrame<F::Texel>,
+    config: LightPassConfig,
+    draws: &[Draw<'_>],
+    probe: P,
+) -> Result<(&'f LightMaps<F::Texel>, P), LightError> {
+    render_with_in::<F, P, DEFAULT_BIN_CAPACITY>(frame, config, draws, store_size::<P>(&config, draws), probe)
+}
+
+/// The setup store of [`render`]: as large as the scene (at most the bins'
+/// reach); a pass whose events no one counts keeps its store in cache
+/// instead.
+fn store_size<P: Probe>(config: &LightPassConfig, draws: &[Draw<'_>]) -> usize {
+    let triangles: usize = draws.iter().map(|d| d.triangles.len()).sum();
+    let most = if P::EVENTS { DEFAULT_SETUPS } else { unwatched_setups(&config.raster) };
+    triangles.clamp(1, most)
+}
+
+/// Maps of a format chosen at run time, texels widened to their raw `u32` bits.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RawMaps {
+    /// The depth format.
+    pub format: DepthFormatKind,
+    /// The maps.
+    pub maps: LightMaps<u32>,
+}
+
+/// The same maps with every texel widened to its raw `u32` bits.
+pub(crate) fn widen<T: umbra_core::depth::Texel>(m: LightMaps<T>) -> LightMaps<u32> {
+    let raw = |v: Vec<T>| v.into_iter().map(T::to_raw).collect();
+    LightMaps {
+        config: m.config,
+        z1: raw(m.z1),
+        z2: raw(m.z2),
+        tiles: m.tiles.into_iter().map(|t| t.map(T::to_raw)).collect(),
+    }
+}
+
+/// Render in a format chosen at run time.
+///
+/// # Errors
+/// See [`LightError`].
+pub fn render_raw<P: Probe>(
+    config: LightPassConfig,
+    format: DepthFormatKind,
+    draws: &[Draw<'_>],
+    probe: P,
+) -> Result<(RawMaps, P), LightError> {
+    let (maps, probe) = match format {
+        DepthFormatKind::D16 => render::<D16, P>(config, draws, probe).map(|(m, p)| (widen(m), p))?,
+        DepthFormatKind::D24 => render::<D24, P>(config, draws, probe).map(|(m, p)| (widen(m), p))?,
+        DepthFormatKind::F32 => render::<F32, P>(config, draws, probe).map(|(m, p)| (widen(m), p))?,
+    };
+    Ok((RawMaps { format, maps }, probe))
+}
+
+/// The depth a raw texel of `format` stands for, in `[0, 1]`.
+#[must_use]
+pub fn raw_depth(format: DepthFormatKind, raw: u32) -> f64 {
+    match format {
+        DepthFormatKind::D16 => D16::unquantize(u16::try_from(raw).unwrap_or(u16::MAX)),
+        DepthFormatKind::D24 => D24::unquantize(raw),
+        DepthFormatKind::F32 => F32::unquantize(raw),
+    }
+}
+
+/// The clear (far) value of `format`, as raw bits.
+#[must_use]
+pub fn raw_far(format: DepthFormatKind) -> u32 {
+    match format {
+        DepthFormatKind::D16 => u32::from(D16::FAR),
+        DepthFormatKind::D24 => D24::FAR,
+        DepthFormatKind::F32 => F32::FAR,
+    }
+}

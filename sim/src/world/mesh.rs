@@ -1,0 +1,397 @@
+//! Triangle meshes: OBJ files through `tobj`, and procedural generators.
+//!
+//! Every generator winds triangles counter-clockwise seen from outside, so
+//! `(b − a) × (c − a)` is the outward normal.
+
+use std::f32::consts::TAU;
+use std::path::{Path, PathBuf};
+
+use glam::{Mat4, Vec3};
+
+use crate::io::limits::{FileError, LimitError, Limits};
+
+/// An indexed triangle mesh.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Mesh {
+    /// Vertex positions.
+    pub positions: Vec<Vec3>,
+    /// Three vertex indices per triangle.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+/// Why a mesh could not be loaded.
+#[derive(Debug, thiserror::Error)]
+pub enum MeshError {
+    /// The OBJ loader failed (missing file, unreadable, malformed).
+    #[error("{path}: cannot load OBJ: {source}")]
+    Load {
+        /// The file.
+        path: PathBuf,
+        /// The loader's error.
+        source: tobj::LoadError,
+    },
+    /// The file holds no triangles.
+    #[error("{path}: no triangles")]
+    Empty {
+        /// The file.
+        path: PathBuf,
+    },
+    /// A vertex coordinate is NaN or infinite.
+    #[error("{path}: vertex {vertex} has a non-finite coordinate")]
+    NonFinite {
+        /// The file.
+        path: PathBuf,
+        /// Index of the vertex.
+        vertex: usize,
+    },
+    /// The file cannot be read (missing, unreadable).
+    #[error("{path}: cannot read: {source}")]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// The OS error.
+        source: std::io::Error,
+    },
+    /// A line of the file is not OBJ (a truncated record, a bad number, bytes
+    /// that are not text).
+    #[error("{path}:{line}: {problem}")]
+    Syntax {
+        /// The file.
+        path: PathBuf,
+        /// The line, from 1.
+        line: usize,
+        /// What is wrong with it.
+        problem: String,
+    },
+    /// The path is a directory, a device or a pipe.
+    #[error("{path}: not a regular file")]
+    NotAFile {
+        /// The path.
+        path: PathBuf,
+    },
+    /// The file or its triangle count is beyond the [`Limits`].
+    #[error("{path}: {source}")]
+    Limit {
+        /// The file.
+        path: PathBuf,
+        /// Which limit.
+        source: LimitError,
+    },
+    /// A face names a vertex that does not exist.
+    #[error("{path}: triangle {triangle} names a vertex that does not exist")]
+    BadIndex {
+        /// The file.
+        path: PathBuf,
+        /// Index of the triangle.
+        triangle: usize,
+    },
+}
+
+/// Check every vertex and face record of an OBJ file, so that a truncated
+/// or foreign file is reported with its line (the loader reports none), and
+/// count the triangles its faces make (a face of `n` corners makes `n − 2`).
+fn check_obj(path: &Path, bytes: &[u8]) -> Result<u64, MeshError> {
+    let fail = |line: usize, problem: String| MeshError::Syntax { path: path.to_owned(), line, problem };
+    // Vertices, texture coordinates and normals defined so far.
+    let (mut vertices, mut texcoords, mut normals) = (0usize, 0usize, 0usize);
+    let mut triangles = 0u64;
+    for (i, raw) in bytes.split(|&b| b == b'\n').enumerate() {
+        let line = i + 1;
+        let text = std::str::from_utf8(raw).map_err(|_| fail(line, "not text".into()))?;
+        let mut words = text.split_whitespace();
+        match words.next() {
+            Some("v") => {
+                let n = words.by_ref().take(3).map(str::parse::<f32>).filter(Result::is_ok).count();
+                if n < 3 {
+                    return Err(fail(line, format!("a vertex needs three numbers: `{}`", text.trim())));
+                }
+                vertices += 1;
+            }
+            Some("vt") => texcoords += 1,
+            Some("vn") => normals += 1,
+            Some("f") => {
+                let corners: Vec<&str> = words.collect();
+                if corners.len() < 3 {
+                    return Err(fail(line, format!("a face needs three corners: `{}`", text.trim())));
+                }
+                // An index (1-based, or negative: back from the last one)
+                // must name an element defined above it.
+                let names = |index: &str, defined: usize| {
+                    index
+                        .parse::<i64>()
+                        .is_ok_and(|v| v != 0 && usize::try_from(v.unsigned_abs()).is_ok_and(|v| v <= defined))
+                };
+                for c in &corners {
+                    let parts: Vec<&str> = c.split('/').collect();
+                    if parts.len() > 3 {
+                        return Err(fail(line, format!("face corner `{c}` is not v, v/vt, v//vn or v/vt/vn")));
+                    }
+                    if !names(parts[0], vertices) {
+                        return Err(fail(line, format!("face corner `{c}` names no vertex defined above it")));
+                    }
+                    for (part, defined, what) in [(1, texcoords, "texture coordinate"), (2, normals, "normal")] {
+                        if parts.get(part).is_some_and(|i| !i.is_empty() && !names(i, defined)) {
+                            return Err(fail(line, format!("face corner `{c}` names no {what} defined above it")));
+                        }
+                    }
+                }
+                triangles += u64::try_from(corners.len() - 2).unwrap_or(u64::MAX);
+            }
+            _ => {}
+        }
+    }
+    Ok(triangles)
+}
+
+impl Mesh {
+    /// Load every model of an OBJ file as one mesh (faces triangulated as
+    /// fans), within the default [`Limits`].
+    ///
+    /// # Errors
+    /// See [`MeshError`].
+    pub fn load_obj(path: &Path) -> Result<Self, MeshError> {
+        Self::load_obj_within(path, &Limits::DEFAULT)
+    }
+
+    /// Load an OBJ file within `limits`: a file larger than
+    /// [`Limits::max_file_bytes`] is rejected before it is read, and one whose
+    /// faces make more than [`Limits::max_triangles`] before any triangle is
+    /// stored. Material libraries (`mtllib`) are not read.
+    ///
+    /// # Errors
+    /// See [`MeshError`].
+    pub fn load_obj_within(path: &Path, limits: &Limits) -> Result<Self, MeshError> {
+        let bytes = limits.read_file(path).map_err(|e| match e {
+            FileError::Io(source) => MeshError::Read { path: path.to_owned(), source },
+            FileError::NotAFile => MeshError::NotAFile { path: path.to_owned() },
+            FileError::Limit(source) => MeshError::Limit { path: path.to_owned(), source },
+        })?;
+        let triangles = check_obj(path, &bytes)?;
+        limits.check_triangles(triangles).map_err(|source| MeshError::Limit { path: path.to_owned(), source })?;
+        let opts = tobj::LoadOptions { triangulate: true, single_index: true, ..tobj::LoadOptions::default() };
+        let (models, _) = tobj::load_obj_buf(&mut bytes.as_slice(), &opts, |_| Err(tobj::LoadError::OpenFileFailed))
+            .map_err(|source| MeshError::Load { path: path.to_owned(), source })?;
+        let mut mesh = Self::default();
+        for m in models {
+            let base = u32::try_from(mesh.positions.len()).unwrap_or(u32::MAX);
+            for p in m.mesh.positions.chunks_exact(3) {
+                if !p.iter().all(|c| c.is_finite()) {
+                    return Err(MeshError::NonFinite { path: path.to_owned(), vertex: mesh.positions.len() });
+                }
+                mesh.positions.push(Vec3::new(p[0], p[1], p[2]));
+            }
+            for t in m.mesh.indices.chunks_exact(3) {
+                mesh.triangles.push([base + t[0], base + t[1], base + t[2]]);
+            }
+        }
+        if mesh.triangles.is_empty() {
+            return Err(MeshError::Empty { path: path.to_owned() });
+        }
+        let n = mesh.positions.len();
+        if let Some(triangle) = mesh.triangles.iter().position(|t| t.iter().any(|&i| i as usize >= n)) {
+            return Err(MeshError::BadIndex { path: path.to_owned(), triangle });
+        }
+        Ok(mesh)
+    }
+
+    /// Append another mesh.
+    pub fn append(&mut self, other: &Self) {
+        let base = u32::try_from(self.positions.len()).unwrap_or(u32::MAX);
+        self.positions.extend_from_slice(&other.positions);
+        self.triangles.extend(other.triangles.iter().map(|t| t.map(|i| base + i)));
+    }
+
+    /// The mesh with every position transformed.
+    #[must_use]
+    pub fn transformed(mut self, m: &Mat4) -> Self {
+        for p in &mut self.positions {
+            *p = m.transform_point3(*p);
+        }
+        self
+    }
+
+    /// Axis-aligned bounds `(min, max)`; `None` for an empty mesh.
+    #[must_use]
+    pub fn bounds(&self) -> Option<(Vec3, Vec3)> {
+        let first = *self.positions.first()?;
+        Some(self.positions.iter().fold((first, first), |(lo, hi), p| (lo.min(*p), hi.max(*p))))
+    }
+
+    fn push_quad(&mut self, a: Vec3, b: Vec3, c: Vec3, d: Vec3) {
+        let base = u32::try_from(self.positions.len()).unwrap_or(u32::MAX);
+        self.positions.extend_from_slice(&[a, b, c, d]);
+        self.triangles.push([base, base + 1, base + 2]);
+        self.triangles.push([base, base + 2, base + 3]);
+    }
+
+    /// A one-sided rectangle from `corner` spanning `u` and `v`; it faces `u × v`.
+    #[must_use]
+    pub fn quad(corner: Vec3, u: Vec3, v: Vec3) -> Self {
+        let mut m = Self::default();
+        m.push_quad(corner, corner + u, corner + u + v, corner + v);
+        m
+    }
+
+    /// A closed axis-aligned box.
+    #[must_use]
+    pub fn cuboid(min: Vec3, max: Vec3) -> Self {
+        let mut m = Self::default();
+        let s = max - min;
+        let (x, y, z) = (Vec3::X * s.x, Vec3::Y * s.y, Vec3::Z * s.z);
+        m.append(&Self::quad(min, y, x)); // −z
+        m.append(&Self::quad(min + z, x, y)); // +z
+        m.append(&Self::quad(min, z, y)); // −x
+        m.append(&Self::quad(min + x, y, z)); // +x
+        m.append(&Self::quad(min, x, z)); // −y
+        m.append(&Self::quad(min + y, z, x)); // +y
+        m
+    }
+
+    /// A closed UV sphere: one vertex at each pole, `stacks − 1` rings of
+    /// `slices` vertices between them.
+    #[must_use]
+    pub fn sphere(center: Vec3, radius: f32, stacks: u32, slices: u32) -> Self {
+        let (stacks, slices) = (stacks.max(2), slices.max(3));
+        let mut m = Self::default();
+        m.positions.push(center + Vec3::Y * radius);
+        for i in 1..stacks {
+            #[allow(clippy::cast_precision_loss, reason = "small counts")]
+            let theta = std::f32::consts::PI * i as f32 / stacks as f32;
+            for j in 0..slices {
+                #[allow(clippy::cast_precision_loss, reason = "small counts")]
+                let phi = TAU * j as f32 / slices as f32;
+                m.positions
+                    .push(center + radius * Vec3::new(theta.sin() * phi.cos(), theta.cos(), -theta.sin() * phi.sin()));
+            }
+        }
+        let bottom = 1 + (stacks - 1) * slices;
+        m.positions.push(center - Vec3::Y * radius);
+        let ring = |i: u32, j: u32| 1 + (i - 1) * slices + j % slices;
+        for j in 0..slices {
+            m.triangles.push([0, ring(1, j), ring(1, j + 1)]);
+            m.triangles.push([ring(stacks - 1, j), bottom, ring(stacks - 1, j + 1)]);
+        }
+        for i in 1..stacks - 1 {
+            for j in 0..slices {
+                let (a, b, c, d) = (ring(i, j), ring(i + 1, j), ring(i + 1, j + 1), ring(i, j + 1));
+                m.triangles.push([a, b, d]);
+                m.triangles.push([b, c, d]);
+            }
+        }
+        m
+    }
+
+    /// A closed torus around the y axis: ring radius `major`, tube radius `minor`.
+    #[must_use]
+    pub fn torus(center: Vec3, major: f32, minor: f32, rings: u32, sides: u32) -> Self {
+        let (rings, sides) = (rings.max(3), sides.max(3));
+        let mut m = Self::default();
+        for i in 0..rings {
+            #[allow(clippy::cast_precision_loss, reason = "small counts")]
+            let u = TAU * i as f32 / rings as f32;
+            for j in 0..sides {
+                #[allow(clippy::cast_precision_loss, reason = "small counts")]
+                let v = TAU * j as f32 / sides as f32;
+                let r = major + minor * v.cos();
+                m.positions.push(center + Vec3::new(r * u.cos(), minor * v.sin(), -r * u.sin()));
+            }
+        }
+        let idx = |i: u32, j: u32| (i % rings) * sides + j % sides;
+        for i in 0..rings {
+            for j in 0..sides {
+                let (a, b, c, d) = (idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1));
+                m.triangles.push([a, b, c]);
+                m.triangles.push([a, c, d]);
+            }
+        }
+        m
+    }
+
+    /// Whether the surface is closed and consistently wound: with vertices
+    /// welded by position, every directed edge appears once and its reverse
+    /// once (so back- and front-face culling are meaningful).
+    #[must_use]
+    pub fn is_closed(&self) -> bool {
+        use std::collections::HashMap;
+        // `+ 0.0` turns −0 into +0, so the two weld.
+        let key = |p: Vec3| p.to_array().map(|c| (c + 0.0).to_bits());
+        let mut weld: HashMap<[u32; 3], usize> = HashMap::new();
+        let ids: Vec<usize> = self
+            .positions
+            .iter()
+            .map(|&p| {
+                let n = weld.len();
+                *weld.entry(key(p)).or_insert(n)
+            })
+            .collect();
+        let mut edges: HashMap<(usize, usize), u32> = HashMap::new();
+        for t in &self.triangles {
+            let v = t.map(|i| ids.get(i as usize).copied().unwrap_or(usize::MAX));
+            for k in 0..3 {
+                *edges.entry((v[k], v[(k + 1) % 3])).or_insert(0) += 1;
+            }
+        }
+        !edges.is_empty() && edges.iter().all(|(&(a, b), &n)| n == 1 && edges.get(&(b, a)) == Some(&1))
+    }
+
+    /// An open, curved, two-sided sheet: an arc of `bend` radians of a
+    /// cylinder about the y axis, `width` long and `height` tall, centred at
+    /// `center` (a flat rectangle when `bend` is 0).
+    #[must_use]
+    pub fn sheet(center: Vec3, width: f32, height: f32, bend: f32, nx: u32, ny: u32) -> Self {
+        let (nx, ny) = (nx.max(1), ny.max(1));
+        let mut m = Self::default();
+        for j in 0..=ny {
+            for i in 0..=nx {
+                #[allow(clippy::cast_precision_loss, reason = "small counts")]
+                let (u, v) = (i as f32 / nx as f32 - 0.5, j as f32 / ny as f32 - 0.5);
+                let p = if bend.abs() < 1e-6 {
+                    Vec3::new(u * width, v * height, 0.0)
+                } else {
+                    let r = width / bend;
+                    let a = u * bend;
+                    Vec3::new(r * a.sin(), v * height, r * (1.0 - a.cos()))
+                };
+                m.positions.push(center + p);
+            }
+        }
+        let at = |i: u32, j: u32| j * (nx + 1) + i;
+        for j in 0..ny {
+            for i in 0..nx {
+                m.triangles.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                m.triangles.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+        m
+    }
+
+    /// A simple character standing on `y = 0` at `feet`, `height` tall: two
+    /// legs, a body and arms as boxes, a head as a sphere — each part closed.
+    #[must_use]
+    pub fn figure(feet: Vec3, height: f32) -> Self {
+        let u = height / 8.0;
+        let part = |lo: Vec3, hi: Vec3| Self::cuboid(feet + lo * u, feet + hi * u);
+        let mut m = part(Vec3::new(-0.9, 0.0, -0.4), Vec3::new(-0.1, 3.6, 0.4));
+        m.append(&part(Vec3::new(0.1, 0.0, -0.4), Vec3::new(0.9, 3.6, 0.4)));
+        m.append(&part(Vec3::new(-1.1, 3.7, -0.6), Vec3::new(1.1, 6.3, 0.6)));
+        m.append(&part(Vec3::new(-1.7, 3.9, -0.3), Vec3::new(-1.2, 6.2, 0.3)));
+        m.append(&part(Vec3::new(1.2, 3.9, -0.3), Vec3::new(1.7, 6.2, 0.3)));
+        m.append(&Self::sphere(feet + Vec3::new(0.0, 7.1, 0.0) * u, 0.8 * u, 10, 16));
+        m
+    }
+
+    /// Wang & Molnar's table: a top on four legs standing on `y = 0`.
+    #[must_use]
+    pub fn table(width: f32, depth: f32, height: f32, top: f32, leg: f32) -> Self {
+        let (hw, hd) = (width / 2.0, depth / 2.0);
+        let mut m = Self::cuboid(Vec3::new(-hw, height - top, -hd), Vec3::new(hw, height, hd));
+        for (sx, sz) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+            let c = Vec3::new(sx * (hw - leg), 0.0, sz * (hd - leg));
+            m.append(&Self::cuboid(
+                c - Vec3::new(leg / 2.0, 0.0, leg / 2.0),
+                c + Vec3::new(leg / 2.0, height - top, leg / 2.0),
+            ));
+        }
+        m
+    }
+}

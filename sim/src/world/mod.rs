@@ -1,0 +1,8 @@
+//! The world around the chip: scenes (TOML files and the bundled ones),
+//! meshes (OBJ files and generated shapes), and the occluders a scene
+//! casts shadows with (Sen et al.'s silhouette edges and volumes).
+
+pub mod mesh;
+pub mod occluders;
+pub mod scene;
+pub mod scene_file;

@@ -1,0 +1,251 @@
+//! Scenes: objects in world space, lights and a camera.
+
+use glam::{Mat4, Vec3};
+use umbra_core::CullMode;
+
+use crate::pass::light::Draw;
+use crate::world::mesh::Mesh;
+
+/// A mesh placed in the world.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Object {
+    /// A name for reports.
+    pub name: String,
+    /// World-space mesh.
+    pub mesh: Mesh,
+    /// A closed, consistently wound surface (may be back- or front-face culled).
+    pub solid: bool,
+}
+
+/// A perspective view: a spot light, or the camera.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Perspective {
+    /// Where the eye is.
+    pub position: Vec3,
+    /// The point it looks at.
+    pub target: Vec3,
+    /// Vertical (and horizontal) field of view, degrees.
+    pub fov_degrees: f32,
+    /// Near plane distance.
+    pub near: f32,
+    /// Far plane distance.
+    pub far: f32,
+}
+
+impl Perspective {
+    /// World space to clip space (depth `[0, 1]`, y up, right-handed).
+    #[must_use]
+    pub fn view_projection(&self) -> Mat4 {
+        self.view_projection_aspect(1.0)
+    }
+
+    /// The same for a target `aspect = width / height` (the field of view
+    /// is vertical).
+    #[must_use]
+    pub fn view_projection_aspect(&self, aspect: f32) -> Mat4 {
+        let view = look_at(self.position, self.target);
+        let proj =
+            glam::camera::rh::proj::directx::perspective(self.fov_degrees.to_radians(), aspect, self.near, self.far);
+        proj * view
+    }
+}
+
+/// An orthographic view: a directional light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Orthographic {
+    /// A point on the light's side of the scene.
+    pub position: Vec3,
+    /// The point it looks at (the light shines from `position` to `target`).
+    pub target: Vec3,
+    /// Half the side of the square the map covers.
+    pub extent: f32,
+    /// Near plane distance.
+    pub near: f32,
+    /// Far plane distance.
+    pub far: f32,
+}
+
+/// A light of the scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Light {
+    /// A perspective spot light.
+    Spot(Perspective),
+    /// An orthographic directional light.
+    Directional(Orthographic),
+}
+
+/// A view matrix looking from `eye` at `target` with a usable up vector.
+fn look_at(eye: Vec3, target: Vec3) -> Mat4 {
+    let dir = (target - eye).normalize_or(Vec3::NEG_Y);
+    let up = if dir.cross(Vec3::Y).length_squared() < 1e-6 { Vec3::Z } else { Vec3::Y };
+    glam::camera::rh::view::look_at_mat4(eye, target, up)
+}
+
+impl Light {
+    /// World space to light clip space.
+    #[must_use]
+    pub fn view_projection(&self) -> Mat4 {
+        match self {
+            Self::Spot(p) => p.view_projection(),
+            Self::Directional(o) => {
+                let e = o.extent;
+                glam::camera::rh::proj::directx::orthographic(-e, e, -e, e, o.near, o.far)
+                    * look_at(o.position, o.target)
+            }
+        }
+    }
+
+    /// Where the light is (for a directional light, a point on its side).
+    #[must_use]
+    pub fn position(&self) -> Vec3 {
+        match self {
+            Self::Spot(p) => p.position,
+            Self::Directional(o) => o.position,
+        }
+    }
+
+    /// The direction the light shines in (from the light into the scene).
+    #[must_use]
+    pub fn direction(&self) -> Vec3 {
+        match self {
+            Self::Spot(p) => p.target - p.position,
+            Self::Directional(o) => o.target - o.position,
+        }
+    }
+
+    /// The light as the exact reference sees it.
+    #[must_use]
+    pub fn source(&self) -> crate::truth::reference::LightSource {
+        match self {
+            Self::Spot(p) => crate::truth::reference::LightSource::Point(p.position.as_dvec3()),
+            Self::Directional(_) => crate::truth::reference::LightSource::Directional(self.direction().as_dvec3()),
+        }
+    }
+}
+
+/// Objects, lights, a camera and an image size.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    /// A name for reports.
+    pub name: String,
+    /// The objects.
+    pub objects: Vec<Object>,
+    /// The lights; the first casts the shadows the pipeline renders.
+    pub lights: Vec<Light>,
+    /// The camera.
+    pub camera: Perspective,
+    /// Image width and height in pixels.
+    pub image: [u32; 2],
+}
+
+impl Scene {
+    /// The bundled default: Wang & Molnar's table on a floor (legs touching
+    /// the floor, the case no bias fixes), with a sphere beside it, lit by a
+    /// spot light from above (`scenes/table.toml`).
+    ///
+    /// # Panics
+    /// Never: the bundled scenes are validated by the tests.
+    #[must_use]
+    pub fn default_scene() -> Self {
+        Self::bundled("table").expect("the bundled table scene is valid")
+    }
+
+    /// The light whose shadows the pipeline renders: the first.
+    ///
+    /// # Panics
+    /// Never for a scene from [`Scene::default_scene`] or a scene file, which
+    /// validate that there is a light.
+    #[must_use]
+    pub fn light(&self) -> Light {
+        self.lights.first().copied().unwrap_or(Light::Spot(self.camera))
+    }
+
+    /// Every triangle of every object in draw order, with flat normals: the
+    /// ids the visibility unit records index this list.
+    #[must_use]
+    pub fn triangles(&self) -> Vec<umbra_core::shade::SceneTriangle> {
+        self.objects
+            .iter()
+            .flat_map(|o| {
+                o.mesh.triangles.iter().map(|t| {
+                    let p = t.map(|i| o.mesh.positions.get(i as usize).copied().unwrap_or(Vec3::ZERO));
+                    let n = (p[1] - p[0]).cross(p[2] - p[0]).normalize_or_zero();
+                    umbra_core::shade::SceneTriangle { positions: p, normals: [n; 3] }
+                })
+            })
+            .collect()
+    }
+
+    /// One draw call per object under `transform`, all with cull mode `cull`.
+    #[must_use]
+    pub fn draws(&self, transform: Mat4, cull: CullMode) -> Vec<Draw<'_>> {
+        self.draws_culled(transform, |_| cull)
+    }
+
+    /// One draw call per object, culled by whether the object is solid
+    /// (Weiskopf & Ertl cull solids and leave open surfaces two-sided).
+    #[must_use]
+    pub fn draws_culled(&self, transform: Mat4, cull: impl Fn(bool) -> CullMode) -> Vec<Draw<'_>> {
+        self.objects
+            .iter()
+            .map(|o| Draw {
+                positions: &o.mesh.positions,
+                triangles: &o.mesh.triangles,
+                transform,
+                cull: cull(o.solid),
+            })
+            .collect()
+    }
+}
+
+/// Why a view-projection matrix could not be read.
+#[derive(Debug, thiserror::Error)]
+pub enum MatrixError {
+    /// Not JSON, or not an array of arrays of numbers.
+    #[error("expected a row-major 4×4 JSON array of numbers: {0}")]
+    Json(#[from] serde_json::Error),
+    /// The wrong number of rows or columns.
+    #[error("expected 4 rows of 4 numbers, found {rows} rows (row lengths {lengths:?})")]
+    Shape {
+        /// Rows found.
+        rows: usize,
+        /// Length of each row.
+        lengths: Vec<usize>,
+    },
+    /// An entry is not a finite f32.
+    #[error("entry [{row}][{col}] = {value} is not a finite f32")]
+    NonFinite {
+        /// Row of the entry.
+        row: usize,
+        /// Column of the entry.
+        col: usize,
+        /// Its value.
+        value: f64,
+    },
+}
+
+/// Read a view-projection matrix written as a **row-major** 4×4 JSON array:
+/// `clip = M · (x, y, z, 1)ᵀ`, so `M[r]` gives clip component `r` and a
+/// translation sits in the last column. (glam stores columns, so this is
+/// the transpose of its layout.)
+///
+/// # Errors
+/// See [`MatrixError`].
+pub fn parse_matrix(json: &str) -> Result<Mat4, MatrixError> {
+    let rows: Vec<Vec<f64>> = serde_json::from_str(json)?;
+    if rows.len() != 4 || rows.iter().any(|r| r.len() != 4) {
+        return Err(MatrixError::Shape { rows: rows.len(), lengths: rows.iter().map(Vec::len).collect() });
+    }
+    let mut m = [[0f32; 4]; 4];
+    for (row, values) in rows.iter().enumerate() {
+        for (col, &value) in values.iter().enumerate() {
+            #[allow(clippy::cast_possible_truncation, reason = "range checked against f32 next")]
+            let f = value as f32;
+            if !f.is_finite() {
+                return Err(MatrixError::NonFinite { row, col, value });
+            }
+            m[row][col] = f;
+        }
+    }
+    Ok(Mat4::from_cols_array_2d(&m).transpose())
+}

@@ -1,0 +1,94 @@
+//! The meshes a scene file names: generated shapes and OBJ files, counted against the limits before they are built.
+
+use std::path::Path;
+
+use super::{Check, MeshFile, Problem, SceneError, shared_meshes};
+use crate::io::limits::Limits;
+use crate::world::mesh::Mesh;
+
+/// The triangles a generator makes, from its validated counts (0 for mesh
+/// files, which are counted as they load).
+pub(super) fn generated_triangles(c: &Check<'_>, key: &str, m: &MeshFile) -> Result<u64, SceneError> {
+    let field = |f: &str| format!("{key}.{f}");
+    let count = |f: &str, v: u32| c.count(&field(f), v).map(u64::from);
+    Ok(match m {
+        MeshFile::Obj(_) | MeshFile::Shared(_) => 0,
+        MeshFile::Quad { .. } => 2,
+        MeshFile::Box { .. } => 12,
+        MeshFile::Table { .. } => 5 * 12,
+        // Five boxes and a 10 × 16 sphere.
+        MeshFile::Figure { .. } => 5 * 12 + 2 * 16 * 9,
+        MeshFile::Sphere { stacks, slices, .. } => {
+            2 * count("slices", *slices)?.max(3) * (count("stacks", *stacks)?.max(2) - 1)
+        }
+        MeshFile::Torus { rings, sides, .. } => 2 * count("rings", *rings)?.max(3) * count("sides", *sides)?.max(3),
+        MeshFile::Sheet { nx, ny, .. } => 2 * count("nx", *nx)? * count("ny", *ny)?,
+    })
+}
+
+pub(super) fn build_mesh(
+    c: &Check<'_>,
+    key: &str,
+    m: &MeshFile,
+    dir: &Path,
+    limits: &Limits,
+) -> Result<Mesh, SceneError> {
+    let field = |f: &str| format!("{key}.{f}");
+    Ok(match m {
+        MeshFile::Obj(path) => {
+            Mesh::load_obj_within(&dir.join(path), limits).map_err(|e| c.err(key, Problem::Mesh(e)))?
+        }
+        MeshFile::Shared(name) => {
+            let folder = shared_meshes();
+            let path = folder.join(format!("{name}.obj"));
+            if !path.is_file() {
+                return Err(c.err(key, Problem::UnknownShared { name: name.clone(), folder }));
+            }
+            Mesh::load_obj_within(&path, limits).map_err(|e| c.err(key, Problem::Mesh(e)))?
+        }
+        MeshFile::Box { min, max } => {
+            let (lo, hi) = (c.vec3(&field("min"), *min)?, c.vec3(&field("max"), *max)?);
+            if !(lo.cmplt(hi).all()) {
+                return Err(c.err(
+                    field("max"),
+                    Problem::Size { value: f64::from((hi - lo).min_element()), min: 1e-9, max: 1e9 },
+                ));
+            }
+            Mesh::cuboid(lo, hi)
+        }
+        MeshFile::Quad { corner, u, v } => {
+            Mesh::quad(c.vec3(&field("corner"), *corner)?, c.vec3(&field("u"), *u)?, c.vec3(&field("v"), *v)?)
+        }
+        MeshFile::Sphere { center, radius, stacks, slices } => Mesh::sphere(
+            c.vec3(&field("center"), *center)?,
+            c.range(&field("radius"), *radius, 1e-6, 1e6)?,
+            c.count(&field("stacks"), *stacks)?,
+            c.count(&field("slices"), *slices)?,
+        ),
+        MeshFile::Torus { center, major, minor, rings, sides } => Mesh::torus(
+            c.vec3(&field("center"), *center)?,
+            c.range(&field("major"), *major, 1e-6, 1e6)?,
+            c.range(&field("minor"), *minor, 1e-6, 1e6)?,
+            c.count(&field("rings"), *rings)?,
+            c.count(&field("sides"), *sides)?,
+        ),
+        MeshFile::Table { width, depth, height, top, leg } => Mesh::table(
+            c.range(&field("width"), *width, 1e-6, 1e6)?,
+            c.range(&field("depth"), *depth, 1e-6, 1e6)?,
+            c.range(&field("height"), *height, 1e-6, 1e6)?,
+            c.range(&field("top"), *top, 1e-6, 1e6)?,
+            c.range(&field("leg"), *leg, 1e-6, 1e6)?,
+        ),
+        MeshFile::Sheet { center, width, height, bend, nx, ny } => Mesh::sheet(
+            c.vec3(&field("center"), *center)?,
+            c.range(&field("width"), *width, 1e-6, 1e6)?,
+            c.range(&field("height"), *height, 1e-6, 1e6)?,
+            c.range(&field("bend"), *bend, -6.3, 6.3)?,
+            c.count(&field("nx"), *nx)?,
+            c.count(&field("ny"), *ny)?,
+        ),
+        MeshFile::Figure { feet, height } => {
+            Mesh::figure(c.vec3(&field("feet"), *feet)?, c.range(&field("height"), *height, 1e-6, 1e6)?)
+        }
+    })
+}

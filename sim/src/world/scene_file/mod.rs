@@ -1,0 +1,345 @@
+//! Scene files: TOML naming meshes (OBJ files, the shared meshes by name,
+//! procedural generators), per-object transforms, solid/open flags, lights,
+//! the camera and the image size — validated, every error naming the file,
+//! the key and the problem.
+//!
+//! ```toml
+//! name = "sphere over a wall"
+//! image = [960, 540]
+//!
+//! [camera]
+//! position = [0.0, 2.0, 6.0]
+//! target = [0.0, 1.0, 0.0]
+//! fov = 50.0
+//! near = 0.5
+//! far = 30.0
+//!
+//! [[lights]]
+//! kind = "spot"          # or "directional" with `extent` instead of `fov`
+//! position = [-5.0, 3.0, 2.0]
+//! target = [0.0, 1.0, 0.0]
+//! fov = 60.0
+//! near = 1.0
+//! far = 20.0
+//!
+//! [[objects]]
+//! name = "ball"
+//! mesh = { sphere = { center = [0.0, 1.0, 0.0], radius = 0.6, stacks = 24, slices = 48 } }
+//! translate = [0.0, 0.0, 0.0]  # optional, as are `rotate` (degrees about x, y, z) and `scale`
+//! solid = true                 # optional: detected from the mesh's closedness
+//! ```
+//!
+//! Meshes: `obj = "path"` (relative to the scene file), `shared = "bunny"`
+//! (from `../shared/meshes/` of the working directory, or `$UMBRA_MESHES`),
+//! `box`, `quad`, `sphere`, `torus`, `table`, `sheet`, `figure`.
+
+use std::path::{Path, PathBuf};
+
+use glam::{EulerRot, Mat4, Quat, Vec3};
+
+use crate::io::limits::{FileError, LimitError, Limits};
+use crate::world::mesh::MeshError;
+use crate::world::scene::{Light, Object, Orthographic, Scene};
+use meshes::{build_mesh, generated_triangles};
+use schema::{Check, LightFile, MeshFile, SceneFile, ViewFile};
+
+mod meshes;
+mod schema;
+
+/// The bundled scenes, by name: the papers' set-ups, built procedurally.
+pub const BUNDLED: [(&str, &str); 8] = [
+    ("table", include_str!("../../../../scenes/table.toml")),
+    ("reeves-sphere", include_str!("../../../../scenes/reeves-sphere.toml")),
+    ("weiskopf-l", include_str!("../../../../scenes/weiskopf-l.toml")),
+    ("double-torus", include_str!("../../../../scenes/double-torus.toml")),
+    ("thin", include_str!("../../../../scenes/thin.toml")),
+    ("open-sheet", include_str!("../../../../scenes/open-sheet.toml")),
+    ("crowd", include_str!("../../../../scenes/crowd.toml")),
+    ("grazing", include_str!("../../../../scenes/grazing.toml")),
+];
+
+/// Largest procedural subdivision count.
+pub const MAX_SUBDIVISION: u32 = 1024;
+
+/// What is wrong with a scene file.
+#[derive(Debug, thiserror::Error)]
+#[error("{file}: {key}: {problem}")]
+pub struct SceneError {
+    /// The scene file.
+    pub file: PathBuf,
+    /// The key, as a dotted path (`objects[2].mesh`).
+    pub key: String,
+    /// What is wrong.
+    pub problem: Problem,
+}
+
+/// The kinds of problem a scene file can have.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum Problem {
+    /// The file cannot be read.
+    #[error("cannot read: {0}")]
+    Read(std::io::Error),
+    /// Not valid TOML, an unknown key, or a value of the wrong type.
+    #[error("{0}")]
+    Syntax(String),
+    /// A number is NaN, infinite, or of magnitude 10³⁰ or more (beyond what
+    /// the f32 vertex unit can transform without overflow).
+    #[error("{value} is not a finite number below 1e30 in magnitude")]
+    NonFinite {
+        /// The value.
+        value: f64,
+    },
+    /// `near` is not below `far`, or not positive.
+    #[error("near {near} must be positive and below far {far}")]
+    NearFar {
+        /// Near.
+        near: f64,
+        /// Far.
+        far: f64,
+    },
+    /// A size is zero, negative or absurd.
+    #[error("{value} is outside {min}..={max}")]
+    Size {
+        /// The value.
+        value: f64,
+        /// Smallest allowed.
+        min: f64,
+        /// Largest allowed.
+        max: f64,
+    },
+    /// The mesh file is missing or malformed.
+    #[error(transparent)]
+    Mesh(MeshError),
+    /// No shared mesh by that name.
+    #[error("no shared mesh `{name}` in {folder}")]
+    UnknownShared {
+        /// The name asked for.
+        name: String,
+        /// Where it was looked for.
+        folder: PathBuf,
+    },
+    /// An open mesh was marked solid.
+    #[error("the mesh is open (not closed and consistently wound), so it cannot be solid")]
+    OpenMarkedSolid,
+    /// The path is a directory, a device or a pipe.
+    #[error("not a regular file")]
+    NotAFile,
+    /// The file, the image or the scene's triangles are beyond the [`Limits`].
+    #[error(transparent)]
+    Limit(LimitError),
+    /// A scene needs at least one light and one object.
+    #[error("a scene needs at least one {0}")]
+    Missing(&'static str),
+}
+
+/// Where shared meshes are looked for.
+#[must_use]
+pub fn shared_meshes() -> PathBuf {
+    std::env::var_os("UMBRA_MESHES").map_or_else(|| PathBuf::from("../shared/meshes"), PathBuf::from)
+}
+
+impl Scene {
+    /// Load and validate a scene file.
+    ///
+    /// # Errors
+    /// [`SceneError`] naming the file, the key and the problem.
+    pub fn load(file: &Path) -> Result<Self, SceneError> {
+        Self::load_within(file, &Limits::DEFAULT)
+    }
+
+    /// Load and validate a scene file within `limits` (the file's size, the
+    /// image and the triangles of every mesh, counted before any is built).
+    ///
+    /// # Errors
+    /// [`SceneError`] naming the file, the key and the problem.
+    pub fn load_within(file: &Path, limits: &Limits) -> Result<Self, SceneError> {
+        let c = Check { file };
+        let bytes = limits.read_file(file).map_err(|e| {
+            c.err(
+                "(file)",
+                match e {
+                    FileError::Io(e) => Problem::Read(e),
+                    FileError::NotAFile => Problem::NotAFile,
+                    FileError::Limit(l) => Problem::Limit(l),
+                },
+            )
+        })?;
+        Self::parse_bytes(&bytes, file, limits)
+    }
+
+    /// Parse and validate the bytes of a scene file within `limits`; bytes
+    /// that are not UTF-8 are an error naming the line.
+    ///
+    /// # Errors
+    /// [`SceneError`] naming the file, the key and the problem.
+    pub fn parse_bytes(bytes: &[u8], file: &Path, limits: &Limits) -> Result<Self, SceneError> {
+        let text = std::str::from_utf8(bytes).map_err(|e| {
+            let before = bytes.get(..e.valid_up_to()).unwrap_or_default();
+            let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
+            Check { file }
+                .err(format!("line {line}"), Problem::Syntax(format!("not UTF-8 text at byte {}", e.valid_up_to())))
+        })?;
+        Self::parse_within(text, file, limits)
+    }
+
+    /// The scene file `name` when it is one (or names one: a path with a
+    /// folder or a `.toml` extension, which then must exist), or else the
+    /// bundled scene of that name; within `limits` either way.
+    ///
+    /// # Errors
+    /// [`SceneError`] naming the file, the key and the problem.
+    pub fn open(name: &str, limits: &Limits) -> Result<Self, SceneError> {
+        let path = Path::new(name);
+        let names_a_file = path.extension().is_some_and(|e| e == "toml") || path.components().count() > 1;
+        if path.is_file() || names_a_file {
+            return Self::load_within(path, limits);
+        }
+        Self::bundled_within(name, limits)
+    }
+
+    /// One of the bundled scenes by name (see [`BUNDLED`]).
+    ///
+    /// # Errors
+    /// [`SceneError`] with key `(name)` for an unknown name.
+    pub fn bundled(name: &str) -> Result<Self, SceneError> {
+        Self::bundled_within(name, &Limits::DEFAULT)
+    }
+
+    /// [`Scene::bundled`] within `limits`.
+    ///
+    /// # Errors
+    /// [`SceneError`] with key `(name)` for an unknown name, or naming the
+    /// limit the scene is beyond.
+    pub fn bundled_within(name: &str, limits: &Limits) -> Result<Self, SceneError> {
+        let file = PathBuf::from(format!("scenes/{name}.toml"));
+        match BUNDLED.iter().find(|(n, _)| *n == name) {
+            Some((_, text)) => Self::parse_within(text, &file, limits),
+            None => Err(Check { file: &file }.err(
+                "(name)",
+                Problem::Syntax(format!("no bundled scene `{name}`; there are {}", BUNDLED.map(|(n, _)| n).join(", "))),
+            )),
+        }
+    }
+
+    /// Parse and validate scene text; `file` names it in errors and anchors
+    /// relative mesh paths.
+    ///
+    /// # Errors
+    /// [`SceneError`] naming the file, the key and the problem.
+    pub fn parse(text: &str, file: &Path) -> Result<Self, SceneError> {
+        Self::parse_within(text, file, &Limits::DEFAULT)
+    }
+
+    /// [`Scene::parse`] within `limits`.
+    ///
+    /// # Errors
+    /// [`SceneError`] naming the file, the key and the problem.
+    pub fn parse_within(text: &str, file: &Path, limits: &Limits) -> Result<Self, SceneError> {
+        let c = Check { file };
+        let parsed: SceneFile = toml::from_str(text).map_err(|e| {
+            let key = e.span().map_or_else(
+                || "(file)".to_owned(),
+                |s| format!("line {}", text.get(..s.start).map_or(0, |t| t.matches('\n').count()) + 1),
+            );
+            c.err(key, Problem::Syntax(e.message().trim().to_owned()))
+        })?;
+        // Whole pixels a `u32` holds; then the limits, which name themselves.
+        let max_side = f64::from(u32::MAX);
+        let image = [
+            c.range("image[0]", parsed.image[0], 1.0, max_side)?,
+            c.range("image[1]", parsed.image[1], 1.0, max_side)?,
+        ];
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "checked in 1..=u32::MAX")]
+        let image = image.map(|v| v.round() as u32);
+        limits.check_image(image[0], image[1]).map_err(|l| c.err("image", Problem::Limit(l)))?;
+        let camera = c.view("camera", &parsed.camera)?;
+        if parsed.lights.is_empty() {
+            return Err(c.err("lights", Problem::Missing("light")));
+        }
+        let mut lights = Vec::new();
+        for (i, l) in parsed.lights.iter().enumerate() {
+            let key = format!("lights[{i}]");
+            lights.push(match l {
+                LightFile::Spot { position, target, fov, near, far } => Light::Spot(c.view(
+                    &key,
+                    &ViewFile { position: *position, target: *target, fov: *fov, near: *near, far: *far },
+                )?),
+                LightFile::Directional { position, target, extent, near, far } => {
+                    let (near, far) = c.near_far(&key, *near, *far)?;
+                    Light::Directional(Orthographic {
+                        position: c.vec3(&format!("{key}.position"), *position)?,
+                        target: c.vec3(&format!("{key}.target"), *target)?,
+                        extent: c.range(&format!("{key}.extent"), *extent, 1e-6, 1e6)?,
+                        near,
+                        far,
+                    })
+                }
+            });
+        }
+        if parsed.objects.is_empty() {
+            return Err(c.err("objects", Problem::Missing("object")));
+        }
+        // Every generator's triangles, counted before any mesh is built.
+        let mut generated = 0u64;
+        for (i, o) in parsed.objects.iter().enumerate() {
+            generated = generated.saturating_add(generated_triangles(&c, &format!("objects[{i}].mesh"), &o.mesh)?);
+        }
+        limits.check_triangles(generated).map_err(|l| c.err("objects", Problem::Limit(l)))?;
+        let dir = file.parent().unwrap_or_else(|| Path::new("."));
+        let mut objects = Vec::new();
+        let mut loaded = 0u64;
+        for (i, o) in parsed.objects.iter().enumerate() {
+            let key = format!("objects[{i}]");
+            // Files get what the generators and the files before them leave.
+            let left = Limits {
+                max_triangles: limits.max_triangles.saturating_sub(generated.saturating_add(loaded)),
+                ..*limits
+            };
+            let mesh = build_mesh(&c, &format!("{key}.mesh"), &o.mesh, dir, &left)?;
+            if matches!(o.mesh, MeshFile::Obj(_) | MeshFile::Shared(_)) {
+                loaded += u64::try_from(mesh.triangles.len()).unwrap_or(u64::MAX);
+            }
+            let t = c.vec3(&format!("{key}.translate"), o.translate.unwrap_or([0.0; 3]))?;
+            let r = c.vec3(&format!("{key}.rotate"), o.rotate.unwrap_or([0.0; 3]))?;
+            let s = c.range(&format!("{key}.scale"), o.scale.unwrap_or(1.0), 1e-6, 1e6)?;
+            let rotation = Quat::from_euler(EulerRot::XYZ, r.x.to_radians(), r.y.to_radians(), r.z.to_radians());
+            let mesh = mesh.transformed(&Mat4::from_scale_rotation_translation(Vec3::splat(s), rotation, t));
+            let closed = mesh.is_closed();
+            let solid = match o.solid {
+                Some(true) if !closed => return Err(c.err(format!("{key}.solid"), Problem::OpenMarkedSolid)),
+                Some(s) => s,
+                None => closed,
+            };
+            objects.push(Object { name: o.name.clone().unwrap_or_else(|| format!("object {i}")), mesh, solid });
+        }
+        let name = parsed
+            .name
+            .unwrap_or_else(|| file.file_stem().map_or_else(String::new, |s| s.to_string_lossy().into_owned()));
+        Ok(Self { name, objects, lights, camera, image })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The counts taken before building agree with what each generator builds.
+    #[test]
+    fn generated_triangle_counts_match_the_generators() {
+        let text = BUNDLED.iter().map(|(_, t)| *t).collect::<Vec<_>>();
+        let file = Path::new("probe.toml");
+        let c = Check { file };
+        let mut kinds = std::collections::HashSet::new();
+        for t in text {
+            let parsed: SceneFile = toml::from_str(t).expect("bundled scenes parse");
+            for o in &parsed.objects {
+                let mesh = build_mesh(&c, "m", &o.mesh, Path::new("."), &Limits::DEFAULT).expect("builds");
+                let n = generated_triangles(&c, "m", &o.mesh).expect("counts");
+                assert_eq!(n, mesh.triangles.len() as u64);
+                kinds.insert(std::mem::discriminant(&o.mesh));
+            }
+        }
+        assert_eq!(kinds.len(), 7, "the bundled scenes use every generator");
+    }
+}

@@ -1,0 +1,3 @@
+//! The shadow unit: filters, tests, bias and lookup culling against direct evaluation.
+
+mod shadow_unit;

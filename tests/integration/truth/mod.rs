@@ -1,0 +1,4 @@
+//! The exact reference and the papers' claims measured against it.
+
+mod claims;
+mod reference;

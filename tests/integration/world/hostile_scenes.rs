@@ -1,0 +1,228 @@
+//! Hostile scene files, OBJ files and render requests: each ends in a typed
+//! error naming the problem, before anything large is allocated — never a
+//! panic, a hang or running out of memory. (`hostile.rs` does the same for
+//! the core's own inputs; `scenes.rs` covers the ordinary mistakes.)
+
+use std::path::Path;
+
+use umbra::core::DepthFormatKind;
+use umbra::core::shadow::Filter;
+use umbra::sim::io::limits::{LimitError, Limits};
+use umbra::sim::pass::render::{Algorithm, RenderConfig, RenderError, render, render_within};
+use umbra::sim::world::mesh::{Mesh, MeshError};
+use umbra::sim::world::scene::Scene;
+use umbra::sim::world::scene_file::{Problem, SceneError};
+
+use crate::common::scratch;
+use crate::world::scenes::{GOOD, with};
+
+/// The problem of a rejected scene, after checking the key it names.
+fn problem(r: Result<Scene, SceneError>, key: &str) -> Problem {
+    let e = r.expect_err("must be rejected");
+    assert_eq!(e.key, key, "{e}");
+    e.problem
+}
+
+#[test]
+fn infinities_and_huge_numbers_are_named() {
+    for (from, to, key) in [
+        ("position = [0.0, 2.0, 5.0]", "position = [inf, 2.0, 5.0]", "camera.position"),
+        ("target = [0.0, 0.0, 0.0]\nfov", "target = [0.0, -inf, 0.0]\nfov", "camera.target"),
+        ("fov = 50.0", "fov = nan", "camera.fov"),
+        ("extent = 3.0", "extent = inf", "lights[0].extent"),
+        ("mesh = { sphere", "translate = [1e38, 0.0, 0.0]\nmesh = { sphere", "objects[0].translate"),
+        ("mesh = { sphere", "rotate = [0.0, -1e300, 0.0]\nmesh = { sphere", "objects[0].rotate"),
+    ] {
+        let p = problem(with(from, to), key);
+        assert!(matches!(p, Problem::NonFinite { .. }), "{to}: {p}");
+    }
+    // 1e38 is a finite f32, but the vertex unit would overflow on it: the
+    // message says which numbers are accepted.
+    let p = problem(with("position = [0.0, 2.0, 5.0]", "position = [0.0, 1e38, 5.0]"), "camera.position");
+    assert_eq!(p.to_string(), "100000000000000000000000000000000000000 is not a finite number below 1e30 in magnitude");
+}
+
+#[test]
+fn negative_and_zero_sizes_are_named() {
+    let sphere = "mesh = { sphere = { center = [0.0, 1.0, 0.0], radius = 0.5, stacks = 8, slices = 16 } }";
+    for (to, key) in [
+        (format!("{sphere}\nscale = -2.0"), "objects[0].scale"),
+        (format!("{sphere}\nscale = 0.0"), "objects[0].scale"),
+        (sphere.replace("stacks = 8", "stacks = 0"), "objects[0].mesh.stacks"),
+        (sphere.replace("slices = 16", "slices = 100000"), "objects[0].mesh.slices"),
+        ("mesh = { box = { min = [0.0, 0.0, 0.0], max = [1.0, -1.0, 1.0] } }".into(), "objects[0].mesh.max"),
+        (
+            "mesh = { torus = { center = [0.0, 0.0, 0.0], major = 1.0, minor = -0.2, rings = 8, sides = 8 } }".into(),
+            "objects[0].mesh.minor",
+        ),
+    ] {
+        let p = problem(with(sphere, &to), key);
+        assert!(matches!(p, Problem::Size { .. }), "{to}: {p}");
+    }
+    let p = problem(with("image = [64, 48]", "image = [-64, 48]"), "image[0]");
+    assert!(matches!(p, Problem::Size { value, min, .. } if value == -64.0 && min == 1.0), "{p}");
+}
+
+/// Five spheres of 1024 × 1024 make 5 · 2 · 1024 · 1023 = 10 475 520
+/// triangles: refused before the first is built.
+#[test]
+fn ten_million_triangles_are_refused_before_building() {
+    let big = "mesh = { sphere = { center = [0.0, 1.0, 0.0], radius = 0.5, stacks = 1024, slices = 1024 } }";
+    let object = format!("\n[[objects]]\n{big}\n");
+    let text = GOOD.replacen(
+        "mesh = { sphere = { center = [0.0, 1.0, 0.0], radius = 0.5, stacks = 8, slices = 16 } }",
+        big,
+        1,
+    ) + &object.repeat(4);
+    let p = problem(Scene::parse(&text, Path::new("probe.toml")), "objects");
+    assert!(
+        matches!(p, Problem::Limit(LimitError::Triangles { triangles: 10_475_520, max }) if max == Limits::DEFAULT.max_triangles),
+        "{p}"
+    );
+    assert!(p.to_string().contains("10475520 triangles"), "{p}");
+}
+
+/// A file larger than the limit is refused from its size alone: a sparse
+/// 300 MiB file is never read.
+#[test]
+fn an_oversized_obj_is_refused_unread() {
+    let dir = scratch("hostile-big");
+    let big = dir.join("big.obj");
+    std::fs::File::create(&big).and_then(|f| f.set_len(300 << 20)).expect("sparse file");
+    let err = Mesh::load_obj(&big).expect_err("too large");
+    assert!(
+        matches!(err, MeshError::Limit { source: LimitError::FileBytes { bytes: 314_572_800, max: 268_435_456 }, .. }),
+        "{err}"
+    );
+    assert!(err.to_string().contains("big.obj"), "{err}");
+    // The same through a scene file.
+    let scene = dir.join("scene.toml");
+    let text = GOOD.replacen("mesh = { sphere", "mesh = { obj = \"big.obj\" }\n#", 1);
+    std::fs::write(&scene, text).expect("write");
+    let p = problem(Scene::load(&scene), "objects[0].mesh");
+    assert!(matches!(p, Problem::Mesh(MeshError::Limit { .. })), "{p}");
+    std::fs::remove_file(&big).expect("remove");
+}
+
+/// A mesh file gets the triangles the generators leave: with a limit of 120,
+/// an 8 × 16 sphere (2 · 16 · 7 = 224) is refused outright, and after a
+/// 4 × 8 sphere (2 · 8 · 3 = 48) a file of 100 triangles is refused, counted
+/// from its faces before any is stored.
+#[test]
+fn the_triangle_limit_spans_generators_and_files() {
+    let limits = Limits { max_triangles: 120, ..Limits::DEFAULT };
+    let p = problem(Scene::parse_within(GOOD, Path::new("probe.toml"), &limits), "objects");
+    assert!(matches!(p, Problem::Limit(LimitError::Triangles { triangles: 224, max: 120 })), "{p}");
+    let dir = scratch("hostile-faces");
+    let mut obj = String::from("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n");
+    for _ in 0..50 {
+        obj.push_str("f 1 2 3 4\n"); // two triangles each
+    }
+    std::fs::write(dir.join("fan.obj"), &obj).expect("write");
+    let small = GOOD.replacen("stacks = 8, slices = 16", "stacks = 4, slices = 8", 1)
+        + "\n[[objects]]\nmesh = { obj = \"fan.obj\" }\n";
+    let file = dir.join("scene.toml");
+    let p = problem(Scene::parse_within(&small, &file, &limits), "objects[1].mesh");
+    assert!(
+        matches!(p, Problem::Mesh(MeshError::Limit { source: LimitError::Triangles { triangles: 100, max: 72 }, .. })),
+        "{p}"
+    );
+    let roomy = Limits { max_triangles: 148, ..Limits::DEFAULT };
+    let s = Scene::parse_within(&small, &file, &roomy).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(s.objects[1].mesh.triangles.len(), 100);
+}
+
+#[test]
+fn limits_on_files_and_images_are_configurable() {
+    let dir = scratch("hostile-limits");
+    let file = dir.join("scene.toml");
+    std::fs::write(&file, GOOD).expect("write");
+    let tiny = Limits { max_file_bytes: 100, ..Limits::DEFAULT };
+    let bytes = GOOD.len() as u64;
+    let p = problem(Scene::load_within(&file, &tiny), "(file)");
+    assert!(matches!(p, Problem::Limit(LimitError::FileBytes { bytes: b, max: 100 }) if b == bytes), "{p}");
+    // 8192 × 8192 is within the side limit but has 2²⁶ pixels.
+    let p = problem(with("image = [64, 48]", "image = [8192, 8192]"), "image");
+    assert!(matches!(p, Problem::Limit(LimitError::ImagePixels { width: 8192, height: 8192, .. })), "{p}");
+    let narrow = Limits { max_image_side: 32, ..Limits::DEFAULT };
+    let p = problem(Scene::parse_within(GOOD, Path::new("probe.toml"), &narrow), "image");
+    assert!(matches!(p, Problem::Limit(LimitError::ImageSide { side: 64, max: 32 })), "{p}");
+    assert!(p.to_string().contains("max_image_side"), "{p}");
+}
+
+fn render_config(map_size: u32, width: u32, height: u32) -> RenderConfig {
+    RenderConfig {
+        algorithm: Algorithm::Second,
+        format: DepthFormatKind::D24,
+        map_size,
+        filter: Filter::Bilinear,
+        bias: 0.0,
+        virtual_samples: true,
+        width,
+        height,
+        reference_samples: 1,
+    }
+}
+
+/// A 65536² map is four times the core's largest target and a 16384² one
+/// a 2 GiB dual map: both refused before any buffer exists, as is an image
+/// past the limits.
+#[test]
+fn huge_maps_and_images_are_refused_before_allocating() {
+    let scene = Scene::bundled("table").expect("bundled");
+    let hidden = indicatif::ProgressBar::hidden();
+    for side in [65_536u32, 16_384] {
+        let err = render(&scene, &render_config(side, 64, 48), &hidden).err().expect("refused");
+        assert!(matches!(err, RenderError::Limit(LimitError::MapSide { side: s, max: 8192 }) if s == side), "{err}");
+        assert!(err.to_string().contains(&format!("map side {side}")), "{err}");
+    }
+    let err = render(&scene, &render_config(64, 100_000, 1), &hidden).err().expect("refused");
+    assert!(matches!(err, RenderError::Limit(LimitError::ImageSide { side: 100_000, .. })), "{err}");
+    let err = render(&scene, &render_config(64, 8192, 8192), &hidden).err().expect("refused");
+    assert!(matches!(err, RenderError::Limit(LimitError::ImagePixels { .. })), "{err}");
+    let few = Limits { max_triangles: 100, ..Limits::DEFAULT };
+    let err = render_within(&scene, &render_config(64, 64, 48), &few, &hidden).err().expect("refused");
+    assert!(matches!(err, RenderError::Limit(LimitError::Triangles { max: 100, .. })), "{err}");
+    // Zero is the core's to refuse, and named as the map's.
+    let err = render(&scene, &render_config(0, 64, 48), &hidden).err().expect("refused");
+    assert!(matches!(err, RenderError::MapSize(_)), "{err}");
+}
+
+#[test]
+fn bytes_that_are_not_text_name_their_line() {
+    let mut bytes = GOOD.as_bytes().to_vec();
+    let at = GOOD.find("[camera]").expect("has a camera");
+    bytes.splice(at..at, [0xff, 0xfe, b'\n']);
+    let line = GOOD[..at].matches('\n').count() + 1;
+    let p = problem(Scene::parse_bytes(&bytes, Path::new("probe.toml"), &Limits::DEFAULT), &format!("line {line}"));
+    assert!(matches!(&p, Problem::Syntax(m) if m == &format!("not UTF-8 text at byte {at}")), "{p}");
+    let dir = scratch("hostile-bytes");
+    let file = dir.join("latin1.toml");
+    std::fs::write(&file, &bytes).expect("write");
+    let p = problem(Scene::load(&file), &format!("line {line}"));
+    assert!(matches!(p, Problem::Syntax(_)), "{p}");
+}
+
+/// A directory, a device: refused by kind, never read (a device such as
+/// `/dev/zero` would never end). A material library is never opened, so an
+/// OBJ naming `/dev/zero` as one loads.
+#[test]
+fn directories_and_devices_are_not_files() {
+    let dir = scratch("hostile-kinds");
+    let p = problem(Scene::load(&dir), "(file)");
+    assert!(matches!(p, Problem::NotAFile), "{p}");
+    assert!(matches!(Mesh::load_obj(&dir), Err(MeshError::NotAFile { .. })));
+    let zero = Path::new("/dev/zero");
+    if zero.exists() {
+        assert!(matches!(Mesh::load_obj(zero), Err(MeshError::NotAFile { .. })));
+        let p = problem(Scene::load(zero), "(file)");
+        assert!(matches!(p, Problem::NotAFile), "{p}");
+        let obj = dir.join("mtl.obj");
+        std::fs::write(&obj, "mtllib /dev/zero\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n").expect("write");
+        let mesh = Mesh::load_obj(&obj).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(mesh.triangles.len(), 1);
+    }
+    let missing = dir.join("no-such.toml");
+    let p = problem(Scene::load(&missing), "(file)");
+    assert!(matches!(&p, Problem::Read(e) if e.kind() == std::io::ErrorKind::NotFound), "{p}");
+}

@@ -1,0 +1,152 @@
+//! Scene files: the bundled scenes load, and every bad input is rejected
+//! with its own error naming the file and the key.
+
+use std::path::Path;
+
+use umbra::core::glam::Vec3;
+use umbra::sim::io::limits::Limits;
+use umbra::sim::world::mesh::{Mesh, MeshError};
+use umbra::sim::world::scene::{Light, Scene};
+use umbra::sim::world::scene_file::{BUNDLED, Problem, SceneError};
+
+/// A small valid scene, for tests that change one line of it.
+pub const GOOD: &str = r#"
+name = "probe"
+image = [64, 48]
+
+[camera]
+position = [0.0, 2.0, 5.0]
+target = [0.0, 0.0, 0.0]
+fov = 50.0
+near = 0.5
+far = 20.0
+
+[[lights]]
+kind = "directional"
+position = [0.0, 5.0, 0.0]
+target = [0.0, 0.0, 0.0]
+extent = 3.0
+near = 1.0
+far = 10.0
+
+[[objects]]
+name = "ball"
+mesh = { sphere = { center = [0.0, 1.0, 0.0], radius = 0.5, stacks = 8, slices = 16 } }
+"#;
+
+fn parse(text: &str) -> Result<Scene, SceneError> {
+    Scene::parse(text, Path::new("probe.toml"))
+}
+
+/// `GOOD` with one line replaced.
+pub fn with(from: &str, to: &str) -> Result<Scene, SceneError> {
+    assert!(GOOD.contains(from), "{from}");
+    parse(&GOOD.replacen(from, to, 1))
+}
+
+#[test]
+fn every_bundled_scene_loads() {
+    assert_eq!(BUNDLED.len(), 8);
+    for (name, _) in BUNDLED {
+        let s = Scene::bundled(name).unwrap_or_else(|e| panic!("{e}"));
+        assert!(!s.objects.is_empty() && !s.lights.is_empty(), "{name}");
+        assert!(s.objects.iter().all(|o| !o.mesh.triangles.is_empty()), "{name}");
+    }
+    let crowd = Scene::bundled("crowd").expect("valid");
+    assert_eq!(crowd.objects.iter().filter(|o| o.name.starts_with("figure")).count(), 24);
+    // Solid or open, detected from the meshes.
+    let sheet = Scene::bundled("open-sheet").expect("valid");
+    let solid = |s: &Scene, name: &str| s.objects.iter().find(|o| o.name == name).map(|o| o.solid);
+    assert_eq!(solid(&sheet, "sheet"), Some(false));
+    assert_eq!(solid(&sheet, "ball"), Some(true));
+    assert_eq!(solid(&Scene::bundled("thin").expect("valid"), "thin sheet"), Some(false));
+    assert!(matches!(Scene::bundled("weiskopf-l").expect("valid").light(), Light::Directional(_)));
+    let good = parse(GOOD).expect("valid");
+    assert_eq!(good.image, [64, 48]);
+}
+
+#[test]
+fn closedness_is_detected() {
+    let o = Vec3::ZERO;
+    assert!(Mesh::cuboid(o, Vec3::ONE).is_closed());
+    assert!(Mesh::sphere(o, 1.0, 8, 16).is_closed());
+    assert!(Mesh::torus(o, 1.0, 0.3, 12, 8).is_closed());
+    assert!(Mesh::table(2.0, 1.0, 1.0, 0.1, 0.1).is_closed());
+    assert!(Mesh::figure(o, 1.8).is_closed());
+    assert!(!Mesh::quad(o, Vec3::X, Vec3::Z).is_closed());
+    assert!(!Mesh::sheet(o, 2.0, 1.0, 1.0, 8, 4).is_closed());
+    let mut flipped = Mesh::cuboid(o, Vec3::ONE);
+    flipped.triangles[0].swap(1, 2);
+    assert!(!flipped.is_closed(), "one reversed triangle breaks consistent winding");
+}
+
+fn problem(r: Result<Scene, SceneError>, key: &str) -> Problem {
+    let e = r.expect_err("must be rejected");
+    assert_eq!(e.key, key, "{e}");
+    assert!(e.to_string().starts_with("probe.toml: "), "{e}");
+    e.problem
+}
+
+#[test]
+fn each_bad_input_has_its_own_error() {
+    let p = problem(with("mesh = { sphere", "mesh = { obj = \"no/such.obj\" }\n#"), "objects[0].mesh");
+    assert!(matches!(p, Problem::Mesh(MeshError::Read { .. })), "{p}");
+    let p = problem(with("position = [0.0, 2.0, 5.0]", "position = [nan, 2.0, 5.0]"), "camera.position");
+    assert!(matches!(p, Problem::NonFinite { .. }), "{p}");
+    let p = problem(with("position = [0.0, 2.0, 5.0]", "position = [1e39, 2.0, 5.0]"), "camera.position");
+    assert!(matches!(p, Problem::NonFinite { .. }), "{p}");
+    let p = problem(with("near = 0.5", "near = 30.0"), "camera.near");
+    assert!(matches!(p, Problem::NearFar { .. }), "{p}");
+    let p = problem(with("near = 1.0\nfar = 10.0", "near = 1.0\nfar = 1.0"), "lights[0].near");
+    assert!(matches!(p, Problem::NearFar { .. }), "{p}");
+    let p = problem(with("image = [64, 48]", "image = [0, 48]"), "image[0]");
+    assert!(matches!(p, Problem::Size { .. }), "{p}");
+    let p = problem(with("image = [64, 48]", "image = [64, 100000]"), "image");
+    assert!(matches!(p, Problem::Limit(_)), "{p}");
+    let p = problem(with("image = [64, 48]", "image = [64, 1e10]"), "image[1]");
+    assert!(matches!(p, Problem::Size { .. }), "{p}");
+    let p = problem(with("radius = 0.5", "radius = 0.0"), "objects[0].mesh.radius");
+    assert!(matches!(p, Problem::Size { .. }), "{p}");
+    let p = problem(with("extent = 3.0", "extent = -1.0"), "lights[0].extent");
+    assert!(matches!(p, Problem::Size { .. }), "{p}");
+    let open =
+        "mesh = { quad = { corner = [0.0, 0.0, 0.0], u = [1.0, 0.0, 0.0], v = [0.0, 0.0, 1.0] } }\nsolid = true\n#";
+    let p = problem(with("mesh = { sphere", open), "objects[0].solid");
+    assert!(matches!(p, Problem::OpenMarkedSolid), "{p}");
+    let p = problem(with("mesh = { sphere", "mesh = { shared = \"no-such-mesh\" }\n#"), "objects[0].mesh");
+    assert!(matches!(p, Problem::UnknownShared { .. }), "{p}");
+    let p = problem(with("fov = 50.0", "fov = 50.0\nzoom = 2.0"), "line 9");
+    assert!(matches!(&p, Problem::Syntax(m) if m.contains("zoom")), "{p}");
+    let (head, rest) = GOOD.split_once("[[lights]]").expect("has lights");
+    let objects = rest.split_once("[[objects]]").expect("has objects").1;
+    let no_lights = head.replacen("image = [64, 48]", "image = [64, 48]\nlights = []", 1) + "[[objects]]" + objects;
+    let p = problem(parse(&no_lights), "lights");
+    assert!(matches!(p, Problem::Missing("light")), "{p}");
+    let missing = Scene::load(Path::new("no/such/scene.toml")).expect_err("missing file");
+    assert!(matches!(missing.problem, Problem::Read(_)), "{missing}");
+    // By name or path: a path that names a file must be one; any other
+    // name must be a bundled scene.
+    for name in ["no/such/scene.toml", "nosuch.toml"] {
+        let e = Scene::open(name, &Limits::DEFAULT).expect_err("missing file");
+        assert!(matches!(e.problem, Problem::Read(_)), "{name}: {e}");
+    }
+    let e = Scene::open("nosuch", &Limits::DEFAULT).expect_err("no such scene");
+    assert!(e.to_string().contains("no bundled scene `nosuch`"), "{e}");
+    assert_eq!(
+        Scene::open("table", &Limits::DEFAULT).expect("bundled").name,
+        Scene::bundled("table").expect("bundled").name
+    );
+}
+
+/// A shared mesh placed by name: `../shared/meshes/` of the working
+/// directory (the package root under `cargo test`), only where it exists.
+#[test]
+fn shared_meshes_by_name() {
+    if !Path::new("../shared/meshes").is_dir() {
+        eprintln!("skipping: ../shared/meshes not present");
+        return;
+    }
+    let s = with("mesh = { sphere", "mesh = { shared = \"bunny\" }\n#").unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(s.objects[0].mesh.triangles.len(), 3674);
+    assert!(s.objects[0].solid, "the bunny is closed");
+}
