@@ -2,17 +2,12 @@
 //!
 //! Everything a designer chooses — target size, tile size, subpixel bits,
 //! depth unit, max-z culling — is a parameter here. [`RasterConfig::new`]
-//! checks it against the fixed-point budget in [`crate::front::snap`] and
-//! [`crate::raster::setup`]; afterwards the hot path trusts it.
+//! checks it against the fixed-point budget in [`crate::budget`];
+//! afterwards the hot path trusts it.
 
 use core::fmt;
 
-/// Largest target side: `2^MAX_TARGET_BITS` pixels.
-pub const MAX_TARGET_BITS: u32 = 14;
-/// Smallest and largest tile side (tiles are square, sides a power of two).
-pub const TILE_SIZES: core::ops::RangeInclusive<u32> = 8..=128;
-/// Largest number of subpixel bits the coordinate budget allows.
-pub const MAX_SUBPIXEL_BITS: u32 = 8;
+use crate::budget::{MAX_SUBPIXEL_BITS, MAX_TARGET_BITS, TILE_SIZES};
 
 /// The rasterizer's geometry: target, tiles and subpixel grid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -2,6 +2,7 @@
 #![forbid(unsafe_code)]
 #![doc = include_str!("../README.md")]
 
+pub mod budget;
 pub mod config;
 pub mod depth;
 pub mod front;

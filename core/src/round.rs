@@ -1,7 +1,7 @@
 //! Rounding between the vertex unit's f64 values and integers, and wide
 //! integers saturated to 64 bits.
 
-const TWO_52: f64 = 4_503_599_627_370_496.0;
+use crate::budget::F64_ROUNDING;
 
 /// Round to the nearest integer, ties to even (the IEEE default), saturating
 /// at the `i64` range; NaN gives 0. Adding and removing 2⁵² makes the FPU
@@ -10,8 +10,8 @@ const TWO_52: f64 = 4_503_599_627_370_496.0;
 #[inline]
 #[must_use]
 pub fn round_ties_even(v: f64) -> i64 {
-    let r = if v.abs() < TWO_52 {
-        if v >= 0.0 { (v + TWO_52) - TWO_52 } else { (v - TWO_52) + TWO_52 }
+    let r = if v.abs() < F64_ROUNDING {
+        if v >= 0.0 { (v + F64_ROUNDING) - F64_ROUNDING } else { (v - F64_ROUNDING) + F64_ROUNDING }
     } else {
         v // already an integer (or not finite)
     };

@@ -24,11 +24,10 @@
 
 use fixed::types::I32F32;
 
+use crate::budget::{DEPTH_ONE, PLANE_FRACTION_BITS, PLANE_ONE, ROUND_HALF};
+
 /// Depth in the interpolator: format LSBs with 32 fraction bits.
 pub type PlaneZ = I32F32;
-
-/// Fraction bits of [`PlaneZ`] below one stored LSB.
-pub const PLANE_FRACTION_BITS: u32 = 32;
 
 /// A stored depth value: compared as an unsigned integer, whatever the format.
 pub trait Texel: Copy + Ord + Default + core::fmt::Debug + Send + Sync + 'static {
@@ -119,7 +118,7 @@ pub trait DepthFormat: Copy + Default + core::fmt::Debug + Send + Sync + 'static
             return PlaneZ::ZERO;
         }
         // z · SCALE · 2³² < 2⁵⁷: exact in i64 after rounding.
-        let bits = crate::round::round_ties_even(z * (Self::SCALE as f64) * 4_294_967_296.0);
+        let bits = crate::round::round_ties_even(z * (Self::SCALE as f64) * PLANE_ONE);
         PlaneZ::from_bits(bits.clamp(0, top))
     }
 
@@ -136,9 +135,6 @@ pub trait DepthFormat: Copy + Default + core::fmt::Debug + Send + Sync + 'static
     /// The depth a texel stands for, in `[0, 1]` (for previews and reports).
     fn unquantize(t: Self::Texel) -> f64;
 }
-
-/// Half an LSB in [`PlaneZ`] bits: added once so that rounding is a shift.
-pub const ROUND_HALF: i64 = 1 << (PLANE_FRACTION_BITS - 1);
 
 /// Round half up to whole LSBs, clamped to `[0, max]`, without overflow for
 /// any input.
@@ -207,8 +203,9 @@ macro_rules! unorm_format {
 unorm_format!(D16, u16, 16);
 unorm_format!(D24, u32, 24);
 
-/// `2⁻⁵⁶`: one [`PlaneZ`] bit of the f32 reference format, as a depth.
-const F32_UNIT: f32 = 1.0 / 72_057_594_037_927_936.0;
+/// One [`PlaneZ`] bit of the f32 reference format, as a depth (exact).
+#[allow(clippy::cast_possible_truncation, reason = "a power of two, exact in f32")]
+const F32_UNIT: f32 = (1.0 / DEPTH_ONE) as f32;
 
 impl DepthFormat for F32 {
     type Texel = u32;
@@ -227,8 +224,8 @@ impl DepthFormat for F32 {
 
     #[inline]
     fn widen(t: u32) -> i64 {
-        // The float times 2⁵⁶ (exact in f64), rounded: the inverse of `texel`.
-        crate::round::round_ties_even(f64::from(f32::from_bits(t)) * 72_057_594_037_927_936.0)
+        // The float times 2^DEPTH_BITS (exact in f64), rounded: the inverse of `texel`.
+        crate::round::round_ties_even(f64::from(f32::from_bits(t)) * DEPTH_ONE)
     }
 
     fn unquantize(t: u32) -> f64 {

@@ -6,7 +6,7 @@ pub mod format;
 mod tile;
 mod unit;
 
-pub use format::{D16, D24, DepthFormat, DepthFormatKind, F32, PLANE_FRACTION_BITS, PlaneZ, ROUND_HALF, Texel};
+pub use format::{D16, D24, DepthFormat, DepthFormatKind, F32, PlaneZ, Texel};
 pub use tile::TileState;
 pub(crate) use tile::{count_of, min_max, tile_rows};
 pub(crate) use unit::{SpanEdges, SpanOut, span};

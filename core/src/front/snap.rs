@@ -9,29 +9,13 @@
 //!
 //! # Integer budget
 //! The guard band keeps every snapped coordinate inside `±2^GUARD_BITS`
-//! pixels, so with at most 8 subpixel bits it fits in [`COORD_BITS`] bits
+//! pixels, so with at most 8 subpixel bits it fits in [`crate::budget::COORD_BITS`] bits
 //! plus sign. Edge functions in [`crate::raster::setup`] build on that bound.
 
-use crate::config::{MAX_SUBPIXEL_BITS, MAX_TARGET_BITS, RasterConfig};
-use crate::depth::{DepthFormat, PLANE_FRACTION_BITS, PlaneZ};
+use crate::budget::{BEYOND_FAR, COORD_BITS, GUARD_BITS, PLANE_FRACTION_BITS, PLANE_ONE};
+use crate::config::RasterConfig;
+use crate::depth::{DepthFormat, PlaneZ};
 use crate::front::clip::ClipVertex;
-
-/// Snapped coordinates lie within `±2^GUARD_BITS` pixels.
-pub const GUARD_BITS: u32 = 16;
-/// Snapped coordinates lie within `±2^COORD_BITS` subpixels.
-pub const COORD_BITS: u32 = GUARD_BITS + MAX_SUBPIXEL_BITS;
-/// Relative to a window's origin (at most `2^MAX_TARGET_BITS` pixels in),
-/// within `±2^WINDOW_COORD_BITS` subpixels: the setup's range.
-pub const WINDOW_COORD_BITS: u32 = COORD_BITS + 1;
-
-const _: () = assert!(MAX_TARGET_BITS < GUARD_BITS, "a window's shift must stay below the guard band's reach");
-
-const _: () = assert!(GUARD_BITS > MAX_TARGET_BITS, "the guard band must contain the target");
-
-/// How far beyond the far plane [`RasterConfig::snap_beyond_far`] keeps
-/// depths, in multiples of it: a perspective camera's depth never exceeds
-/// `f/(f − n)`, and `16 · 2²⁴ · 2³²` stays inside the plane's `i64`.
-pub const BEYOND_FAR: i64 = 16;
 
 /// A coordinate on the subpixel grid: `value / 2^subpixel_bits` pixels.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -67,7 +51,7 @@ impl RasterConfig {
     }
 
     /// [`RasterConfig::snap`] keeping depths beyond the far plane (up to
-    /// [`BEYOND_FAR`] times it) in the vertex, so that the plane through a
+    /// [`crate::budget::BEYOND_FAR`] times it) in the vertex, so that the plane through a
     /// triangle that reaches past the far plane interpolates its nearer
     /// fragments exactly; the depth clamp then happens per fragment, when a
     /// fragment's depth is rounded to the format. The stencil unit's volumes
@@ -80,7 +64,7 @@ impl RasterConfig {
                 return PlaneZ::ZERO;
             }
             #[allow(clippy::cast_precision_loss, reason = "a power of two")]
-            let bits = (z * (F::SCALE as f64) * 4_294_967_296.0).min(reach as f64);
+            let bits = (z * (F::SCALE as f64) * PLANE_ONE).min(reach as f64);
             PlaneZ::from_bits(crate::round::round_ties_even(bits).clamp(0, reach))
         })
     }

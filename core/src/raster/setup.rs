@@ -11,8 +11,8 @@
 //! An [`Edge`] holds `E` at pixel `(0, 0)` and its steps per pixel.
 //!
 //! **Budget.** Snapped coordinates satisfy `|X|, |Y| ≤ 2^25` (the guard
-//! band's `2^24` of [`crate::front::snap::COORD_BITS`], plus a window's shift:
-//! [`crate::front::snap::WINDOW_COORD_BITS`]), so `|Xb − Xa| ≤ 2^26` and every value
+//! band's `2^24` of [`crate::budget::COORD_BITS`], plus a window's shift:
+//! [`crate::budget::WINDOW_COORD_BITS`]), so `|Xb − Xa| ≤ 2^26` and every value
 //! of `E` at a pixel centre of the target is below `2·2^26·2^26 = 2^53`: an
 //! `i64` accumulator cannot overflow (checked at compile time below).
 //!
@@ -37,20 +37,13 @@
 //! texel is an add of half an LSB and a shift: no clamp
 //! ([`crate::depth::DepthFormat::texel_inside`]).
 
+use crate::budget::{SLOPE_F64_LIMIT, WINDOW_COORD_BITS};
 use crate::config::{CullMode, RasterConfig};
 use crate::depth::PlaneZ;
-use crate::front::snap::{SnappedVertex, WINDOW_COORD_BITS};
+use crate::front::snap::SnappedVertex;
 use crate::probe::RejectReason;
 use crate::raster::tile::TileRect;
 use crate::round::i128_to_f64;
-
-const _: () = assert!(2 * (WINDOW_COORD_BITS + 1) + 1 < 63, "edge functions must fit in i64");
-// Depth numerators: |dZ| ≤ 2^57, |dY| ≤ 2^25 → |a_num| ≤ 2^83; a per-pixel
-// step (≤ 2^83 · 2^8) times a coordinate difference (≤ 2^25) stays below 2^127.
-const _: () = assert!(
-    57 + (WINDOW_COORD_BITS + 1) + 1 + crate::config::MAX_SUBPIXEL_BITS + (WINDOW_COORD_BITS + 1) < 127,
-    "depth plane must fit in i128"
-);
 
 /// One edge function, evaluated at pixel centres: `E(px, py) = c + dx·px + dy·py`.
 /// A pixel centre is inside the edge iff `E ≥ 0` (fill-rule bias included).
@@ -210,7 +203,7 @@ fn slopes(a_num: i128, b_num: i128, s: u32, d: i64, extent: f64) -> (i128, i128)
     let (na, nb, df) = (i128_to_f64(a_num), i128_to_f64(b_num), d as f64);
     let scale = f64::from(1u32 << s);
     let (qa, qb) = (na * scale / df, nb * scale / df);
-    if (qa.abs() + qb.abs()) * extent < 72_057_594_037_927_936.0 {
+    if (qa.abs() + qb.abs()) * extent < SLOPE_F64_LIMIT {
         let r = |q: f64| i128::from(crate::round::round_ties_even(q));
         return (r(qa), r(qb));
     }

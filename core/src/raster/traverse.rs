@@ -29,7 +29,8 @@
 //! order within each row of blocks, rows of blocks top to bottom — which is
 //! row-major order over the rectangle, whichever way it was walked.
 
-use crate::depth::{DepthFormat, ROUND_HALF};
+use crate::budget::{ROUND_HALF, TILE_SIZES};
+use crate::depth::DepthFormat;
 use crate::depth::{SpanEdges, SpanOut, TileState, count_of, min_max, span, tile_rows};
 use crate::probe::{Buffer, CullLevel, Event, Fragment, Probe};
 use crate::raster::mask::{LANE_GROUP, LANES, Lanes, RowMask, Serial, WIDEST};
@@ -42,7 +43,7 @@ const ID_BYTES: u32 = 4;
 /// Side of the fragment blocks a partial tile is split into.
 pub const BLOCK: u32 = 8;
 
-const _: () = assert!(BLOCK <= *crate::config::TILE_SIZES.start(), "blocks must fit in the smallest tile");
+const _: () = assert!(BLOCK <= *TILE_SIZES.start(), "blocks must fit in the smallest tile");
 
 /// Width of the widest partial rectangle drawn by row masks ([`small`])
 /// rather than split into blocks, when no block could be culled.
@@ -104,7 +105,7 @@ struct Run {
 const SPAN: u32 = 8;
 
 /// Most blocks in one row of the largest tile.
-const MAX_RUNS: usize = (*crate::config::TILE_SIZES.end() / BLOCK) as usize;
+const MAX_RUNS: usize = (*TILE_SIZES.end() / BLOCK) as usize;
 
 /// Rasterize one set-up triangle into one tile.
 pub(crate) fn rasterize<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const CULL: bool>(

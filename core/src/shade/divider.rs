@@ -1,5 +1,6 @@
 //! The shading unit's divider: one reciprocal per pixel, exact truncated quotients.
 
+use crate::budget::{DIVIDER_BITS, MAP_FRACTION_BITS, MAP_ONE, MAP_SCALE};
 use crate::round::saturate;
 use crate::shadow::MapCoord;
 
@@ -23,9 +24,9 @@ pub(super) struct Reciprocal {
 impl Reciprocal {
     #[inline]
     pub(super) fn new(w: i128) -> Self {
-        let w64 = i64::try_from(w).ok().filter(|&w| w > 0 && w < 1 << 61);
+        let w64 = i64::try_from(w).ok().filter(|&w| w > 0 && w < 1 << DIVIDER_BITS);
         #[allow(clippy::cast_precision_loss, reason = "an estimate, corrected after")]
-        let inverse = w64.map_or(0.0, |w| 65_536.0 / w as f64);
+        let inverse = w64.map_or(0.0, |w| MAP_SCALE / w as f64);
         Self { w, w64, inverse }
     }
 
@@ -35,7 +36,7 @@ impl Reciprocal {
         if let Some(q) = self.div_shifted_narrow(n) {
             return Some(q);
         }
-        Some(saturate(n.checked_mul(1 << 16)? / self.w))
+        Some(saturate(n.checked_mul(i128::from(MAP_ONE))? / self.w))
     }
 
     /// `n·2¹⁶ / w` clamped to a map coordinate; `None` if `n·2¹⁶` overflows.
@@ -59,7 +60,7 @@ impl Reciprocal {
                 let mut q = estimate as i64;
                 // The true remainder is within a few `w` of zero, so the
                 // wrapping 64-bit arithmetic gives it exactly.
-                let mut r = (n << 16).wrapping_sub(q.wrapping_mul(w));
+                let mut r = (n << MAP_FRACTION_BITS).wrapping_sub(q.wrapping_mul(w));
                 if n >= 0 {
                     while r < 0 {
                         (q, r) = (q - 1, r + w);

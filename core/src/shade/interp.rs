@@ -3,19 +3,14 @@
 use glam::{Mat4, Vec3};
 
 use super::{CameraConfig, LightPoint, Reciprocal, SceneTriangle};
+use crate::budget::{DENOMINATOR_SCALE, MAP_FRACTION_BITS, MAP_HALF, NARROW_FORM_BITS, PLANE_FRACTION_BITS};
 use crate::config::CullMode;
-use crate::depth::{DepthFormat, PLANE_FRACTION_BITS, PlaneZ};
+use crate::depth::{DepthFormat, PlaneZ};
 use crate::front::clip::inside_all;
 use crate::light_pass::NO_TRIANGLE;
 use crate::raster::setup::{DepthPlane, Setup};
 use crate::round::saturate;
 use crate::shadow::{MapCoord, MapView, Slope};
-
-/// `2⁴⁴`: the scale of the denominator `Λw` over the target, so that the
-/// numerators (up to `W/2` times larger) and their products with pixel
-/// coordinates stay well inside `i128`, and the rounding of each coefficient
-/// moves `u` by under 2⁻²⁰ texel.
-const DENOMINATOR_SCALE: f64 = 17_592_186_044_416.0;
 
 /// The light pass's depth plane of a triangle, with what the shading unit
 /// needs of it at every pixel worked out once.
@@ -50,7 +45,7 @@ pub(super) struct LightForms {
 
 /// The bound below which a light form is evaluated in `i64`: it leaves the
 /// reciprocal divider's fast path (denominators below 2⁶¹) open too.
-const NARROW_FORM: i128 = 1 << 60;
+const NARROW_FORM: i128 = 1 << NARROW_FORM_BITS;
 
 impl LightForms {
     pub(super) fn new(rows: [[i64; 3]; 4], width: u32, height: u32) -> Self {
@@ -229,13 +224,13 @@ impl Interp {
     #[inline]
     pub(super) fn plane_at(&self, p: &LightPoint) -> Option<(PlaneZ, Slope)> {
         let MapPlane { plane, narrow, slope } = self.plane?;
-        let off = |c: MapCoord| i64::from(c.to_bits()) - (1 << 15);
+        let off = |c: MapCoord| i64::from(c.to_bits()) - MAP_HALF;
         let (dx, dy) = (off(p.x), off(p.y));
         let steps = match narrow {
             Some((a, b)) => i128::from(a) * i128::from(dx) + i128::from(b) * i128::from(dy),
             None => plane.a * i128::from(dx) + plane.b * i128::from(dy),
         };
-        Some((PlaneZ::from_bits(saturate(plane.c + (steps >> 16))), slope))
+        Some((PlaneZ::from_bits(saturate(plane.c + (steps >> MAP_FRACTION_BITS))), slope))
     }
 
     /// Rows over `s = (px + ½, py + ½, 1)` at a pixel centre.

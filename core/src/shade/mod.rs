@@ -346,7 +346,8 @@ fn shade_pixel<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
 mod tests {
     use super::divider::Reciprocal;
     use super::interp::{Interp, LightForms};
-    use crate::depth::{D24, DepthFormat, PLANE_FRACTION_BITS};
+    use crate::budget::{MAP_ONE, PLANE_FRACTION_BITS};
+    use crate::depth::{D24, DepthFormat};
 
     fn div_shifted(n: i128, w: i128) -> Option<i64> {
         Reciprocal::new(w).div_shifted(n)
@@ -358,7 +359,7 @@ mod tests {
     #[test]
     fn shifted_division_equals_the_wide_one() {
         let mut rng = oorandom::Rand64::new(0x5eed);
-        let wide = |n: i128, w: i128| crate::round::saturate((n * 65_536) / w);
+        let wide = |n: i128, w: i128| crate::round::saturate((n * i128::from(MAP_ONE)) / w);
         let check = |n: i128, w: i128| assert_eq!(div_shifted(n, w), Some(wide(n, w)), "{n} / {w}");
         for (n, w) in [
             (0, 1),
@@ -395,7 +396,7 @@ mod tests {
         if w <= 0 {
             return None;
         }
-        let coord = |n: i128| i32::try_from((n * 65_536 / w).clamp(i32::MIN.into(), i32::MAX.into())).ok();
+        let coord = |n: i128| i32::try_from((n * i128::from(MAP_ONE) / w).clamp(i32::MIN.into(), i32::MAX.into())).ok();
         let depth = (z * (i128::from(D24::SCALE) << PLANE_FRACTION_BITS) / w).clamp(i64::MIN.into(), i64::MAX.into());
         Some((coord(u)?, coord(v)?, i64::try_from(depth).ok()?))
     }

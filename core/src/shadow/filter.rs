@@ -4,6 +4,7 @@ use super::{
     Bias, DepthTest, Filter, HALF, Lookup, MapCoord, MapView, Shadow, ShadowConfig, Slope, Texels, floor, jitter_grid,
     reference_bounds,
 };
+use crate::budget::MAP_FRACTION_BITS;
 use crate::depth::{DepthFormat, PlaneZ};
 use crate::probe::{Event, Probe};
 use crate::raster::tile::TileRect;
@@ -150,7 +151,7 @@ fn filter<F: DepthFormat, P: Probe>(
             // Weights from the fractional position, 16 bits each: they sum to 2³² exactly.
             let fx = u64::from(l.x.saturating_sub(HALF).frac().to_bits().unsigned_abs());
             let fy = u64::from(l.y.saturating_sub(HALF).frac().to_bits().unsigned_abs());
-            let one = 1u64 << 16;
+            let one = 1u64 << MAP_FRACTION_BITS;
             let weights = [(one - fx) * (one - fy), fx * (one - fy), (one - fx) * fy, fx * fy];
             // The receiver at the four centres by forward differences.
             let z00 = l.depth_at(footprint.x0, footprint.y0);
@@ -167,7 +168,7 @@ fn filter<F: DepthFormat, P: Probe>(
                     },
                 )
                 .sum();
-            fraction(shadowed, 1 << 32)
+            fraction(shadowed, 1 << (2 * MAP_FRACTION_BITS))
         }
         (Filter::Box { .. }, _) => {
             let mut count = 0u64;
@@ -222,8 +223,8 @@ pub(super) fn at_format<F: DepthFormat>(z: i64) -> i64 {
 /// `k / n` as a [`Shadow`], rounded to nearest.
 fn fraction(k: u64, n: u64) -> Shadow {
     let n = n.max(1);
-    let bits = ((k << 16) + n / 2) / n;
-    Shadow::from_bits(u32::try_from(bits.min(1 << 16)).unwrap_or(1 << 16))
+    let bits = ((k << MAP_FRACTION_BITS) + n / 2) / n;
+    Shadow::from_bits(u32::try_from(bits.min(1 << MAP_FRACTION_BITS)).unwrap_or(1 << MAP_FRACTION_BITS))
 }
 
 /// A uniform offset in `[−half, half)` from 32 random bits.

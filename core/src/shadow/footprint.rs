@@ -3,6 +3,7 @@
 use fixed::types::U16F16;
 
 use super::{Filter, HALF, Jitter, MapCoord};
+use crate::budget::{MAP_FRACTION_BITS, MAP_HALF};
 use crate::depth::PlaneZ;
 use crate::raster::tile::TileRect;
 
@@ -39,7 +40,7 @@ pub struct Slope {
 /// `a · b / 2¹⁶`, floored, saturated to `i64`.
 #[inline]
 pub(crate) fn mul_shift(a: i64, b: i64) -> i64 {
-    crate::round::saturate((i128::from(a) * i128::from(b)) >> 16)
+    crate::round::saturate((i128::from(a) * i128::from(b)) >> MAP_FRACTION_BITS)
 }
 
 impl Lookup {
@@ -57,7 +58,7 @@ impl Lookup {
     pub(super) fn depth_on(&self, slope: Option<Slope>, x: i32, y: i32) -> i64 {
         let z = self.z.to_bits();
         let Some(s) = slope else { return z };
-        let centre = |t: i32, p: MapCoord| (i64::from(t) << 16) + (1 << 15) - i64::from(p.to_bits());
+        let centre = |t: i32, p: MapCoord| (i64::from(t) << MAP_FRACTION_BITS) + MAP_HALF - i64::from(p.to_bits());
         z.saturating_add(mul_shift(s.du, centre(x, self.x))).saturating_add(mul_shift(s.dv, centre(y, self.y)))
     }
 }
@@ -74,7 +75,7 @@ pub(super) struct Texels {
 /// Whole texels of a map coordinate (floor).
 #[inline]
 pub(super) fn floor(c: MapCoord) -> i32 {
-    c.to_bits() >> 16
+    c.to_bits() >> MAP_FRACTION_BITS
 }
 
 impl Texels {
@@ -137,7 +138,7 @@ pub fn jitter_grid(j: &Jitter, footprint: [MapCoord; 2]) -> ([MapCoord; 2], [u32
     let half = footprint.map(|f| f.saturating_abs().saturating_mul(j.res_factor).max(j.min_size));
     let n = u32::from(j.num_samples);
     let (lo, hi) = (u32::from(j.min_samples), n);
-    let round = |v: U16F16| v.saturating_add(U16F16::from_bits(1 << 15)).to_num::<u32>();
+    let round = |v: U16F16| v.saturating_add(U16F16::from_bits(1 << (MAP_FRACTION_BITS - 1))).to_num::<u32>();
     let unsigned = |v: MapCoord| U16F16::from_bits(v.to_bits().unsigned_abs());
     let (s, t) = (unsigned(half[0]), unsigned(half[1]));
     let area4 = s.saturating_mul(t).saturating_mul_int(4);
@@ -147,7 +148,8 @@ pub fn jitter_grid(j: &Jitter, footprint: [MapCoord; 2]) -> ([MapCoord; 2], [u32
         // nt = sqrt(tres · N / sres) + ½, then ns = N / nt + ½ (both clamped).
         // A long, thin footprint saturates the ratio: `nt` is then clamped.
         let ratio = t.saturating_mul_int(n).saturating_div(s.max(U16F16::DELTA));
-        let nt = ((u64::from(ratio.to_bits()) << 16).isqrt() + (1 << 15)) >> 16;
+        let nt = ((u64::from(ratio.to_bits()) << MAP_FRACTION_BITS).isqrt() + (1 << (MAP_FRACTION_BITS - 1)))
+            >> MAP_FRACTION_BITS;
         let nt = u32::try_from(nt).unwrap_or(hi).clamp(lo, hi);
         let ns = ((2 * n + nt) / (2 * nt)).clamp(lo, hi);
         [ns, nt]

@@ -64,6 +64,8 @@ pub use tangent::{TangentPlane, shadow_with_virtual_samples};
 
 use fixed::types::{I16F16, U16F16};
 
+use crate::budget::MAP_HALF;
+
 /// A position on the map in texels, 16 fraction bits.
 pub type MapCoord = I16F16;
 
@@ -71,4 +73,5 @@ pub type MapCoord = I16F16;
 pub type Shadow = U16F16;
 
 /// Half a texel.
-const HALF: MapCoord = MapCoord::from_bits(1 << 15);
+#[allow(clippy::cast_possible_truncation, reason = "half a texel fits a map coordinate")]
+const HALF: MapCoord = MapCoord::from_bits(MAP_HALF as i32);

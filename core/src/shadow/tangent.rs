@@ -1,11 +1,10 @@
 //! Tangent planes: the receiver's plane in light space, and the pass of virtual samples.
 
 use super::{Filter, Lookup, MapView, Shadow, ShadowConfig, Slope, lookup};
+use crate::budget::PLANE_ONE;
 use crate::config::RasterConfig;
-use crate::depth::{DepthFormat, PLANE_FRACTION_BITS};
+use crate::depth::DepthFormat;
 use crate::probe::{Event, Probe};
-
-const _: () = assert!(PLANE_FRACTION_BITS == 32, "texels widen by a 32-bit shift");
 
 /// A receiver's tangent plane in light clip space, `π′ = M⁻ᵀ·(n, −n·p)`:
 /// points on it satisfy `π′·(x, y, z, w) = 0` (Wang & Molnar 1994 §3.2:
@@ -37,7 +36,7 @@ impl TangentPlane {
     #[must_use]
     pub fn slope<F: DepthFormat>(&self, raster: &RasterConfig) -> Option<Slope> {
         let [a, b, c, _] = self.0;
-        let range = (F::SCALE as f64) * 4_294_967_296.0;
+        let range = (F::SCALE as f64) * PLANE_ONE;
         let du = -a / c * 2.0 / f64::from(raster.width()) * range;
         let dv = b / c * 2.0 / f64::from(raster.height()) * range;
         let ok = |v: f64| v.is_finite() && v.abs() <= range;

@@ -1,6 +1,7 @@
 //! The camera pass's silhouette test (Sen et al. 2003 §3.2): corners, then quadrants.
 
-use super::{ONE, SilStore, SilhouetteMap};
+use super::{SilStore, SilhouetteMap};
+use crate::budget::{MAP_FRACTION_BITS, MAP_HALF, MAP_ONE};
 use crate::depth::{DepthFormat, PlaneZ};
 use crate::probe::{Buffer, Event, Probe, TexelRead};
 use crate::shadow::{MapCoord, MapView, Shadow, ShadowConfig};
@@ -26,8 +27,8 @@ pub fn shadow<S: SilStore, F: DepthFormat, P: Probe>(
     if z < 0 {
         return Shadow::ZERO;
     }
-    let (sx, sy) = (i64::from(x.to_bits()) + (ONE >> 1), i64::from(y.to_bits()) + (ONE >> 1));
-    let (i, j) = (sx >> 16, sy >> 16);
+    let (sx, sy) = (i64::from(x.to_bits()) + MAP_HALF, i64::from(y.to_bits()) + MAP_HALF);
+    let (i, j) = (sx >> MAP_FRACTION_BITS, sy >> MAP_FRACTION_BITS);
     if i < 0 || j < 0 || i >= i64::from(sil.width) || j >= i64::from(sil.height) {
         return Shadow::ZERO;
     }
@@ -63,9 +64,9 @@ pub fn shadow<S: SilStore, F: DepthFormat, P: Probe>(
     }
     let at = |di: i64, dj: i64| {
         let p = sil.point(i + di, j + dj);
-        [i64::from(p.x) + di * ONE, i64::from(p.y) + dj * ONE]
+        [i64::from(p.x) + di * MAP_ONE, i64::from(p.y) + dj * MAP_ONE]
     };
-    let p = [sx & (ONE - 1), sy & (ONE - 1)];
+    let p = [sx & (MAP_ONE - 1), sy & (MAP_ONE - 1)];
     lit(verdicts[quadrant(at(0, 0), [at(0, -1), at(1, 0), at(0, 1), at(-1, 0)], p)])
 }
 
@@ -77,7 +78,7 @@ pub fn shadow<S: SilStore, F: DepthFormat, P: Probe>(
 /// none (a degenerate fan), the quadrant of `p` relative to `c`.
 #[must_use]
 pub fn quadrant(c: [i64; 2], n: [[i64; 2]; 4], p: [i64; 2]) -> usize {
-    let corner = [[ONE, 0], [ONE, ONE], [0, ONE], [0, 0]];
+    let corner = [[MAP_ONE, 0], [MAP_ONE, MAP_ONE], [0, MAP_ONE], [0, 0]];
     // Clockwise (y down): up, top-right, right, bottom-right, down, bottom-left, left, top-left.
     let rays = [n[0], corner[0], n[1], corner[1], n[2], corner[2], n[3], corner[3]];
     let region = [1, 1, 3, 3, 2, 2, 0, 0];

@@ -1,14 +1,12 @@
 //! The silhouette map: one point per texel of the depth map's dual grid.
 
+use crate::budget::{CORNER_SLACK_BITS, MAP_FRACTION_BITS};
 use crate::config::ConfigError;
-
-/// One texel unit in the silhouette unit's fixed point (16 fraction bits).
-pub(super) const ONE: i64 = 1 << 16;
 
 /// How far outside its texel a diagonal intersection still counts (Sen's
 /// enlarged clip square): 2⁻⁸ texel, in 2⁻¹⁶ texels. A segment through a
 /// corner then stores a point in all four texels around it.
-pub const CORNER_SLACK: i64 = 1 << 8;
+pub const CORNER_SLACK: i64 = 1 << (MAP_FRACTION_BITS - CORNER_SLACK_BITS);
 
 /// A silhouette point: its offset from the texel's top-left corner, in
 /// 2⁻¹⁶ texels per axis (`0x8000` is the centre).

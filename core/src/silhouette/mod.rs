@@ -40,16 +40,17 @@ mod pass;
 use lookup::corners;
 pub use lookup::{quadrant, shadow};
 pub use map::{CORNER_SLACK, Packed, SilPoint, SilStore, SilhouetteMap};
-use map::{ONE, dual, index};
+use map::{dual, index};
 pub use pass::{Segment, SilhouettePass, project, select_point};
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::budget::MAP_ONE;
     use crate::depth::PlaneZ;
 
     fn seg(a: [f64; 2], b: [f64; 2]) -> Segment {
-        let f = |v: f64| crate::round::round_ties_even(v * 65_536.0);
+        let f = |v: f64| crate::round::round_ties_even(v * crate::budget::MAP_SCALE);
         Segment { a: [f(a[0]), f(a[1])], b: [f(b[0]), f(b[1])], za: PlaneZ::ZERO, zb: PlaneZ::ZERO }
     }
 
@@ -87,11 +88,16 @@ mod tests {
 
     #[test]
     fn quadrants_of_a_centred_fan() {
-        let c = [ONE / 2, ONE / 2];
-        let n = [[ONE / 2, -ONE / 2], [3 * ONE / 2, ONE / 2], [ONE / 2, 3 * ONE / 2], [-ONE / 2, ONE / 2]];
-        assert_eq!(quadrant(c, n, [ONE / 4, ONE / 4]), 0);
-        assert_eq!(quadrant(c, n, [3 * ONE / 4, ONE / 4]), 1);
-        assert_eq!(quadrant(c, n, [ONE / 4, 3 * ONE / 4]), 2);
-        assert_eq!(quadrant(c, n, [3 * ONE / 4, 3 * ONE / 4]), 3);
+        let c = [MAP_ONE / 2, MAP_ONE / 2];
+        let n = [
+            [MAP_ONE / 2, -MAP_ONE / 2],
+            [3 * MAP_ONE / 2, MAP_ONE / 2],
+            [MAP_ONE / 2, 3 * MAP_ONE / 2],
+            [-MAP_ONE / 2, MAP_ONE / 2],
+        ];
+        assert_eq!(quadrant(c, n, [MAP_ONE / 4, MAP_ONE / 4]), 0);
+        assert_eq!(quadrant(c, n, [3 * MAP_ONE / 4, MAP_ONE / 4]), 1);
+        assert_eq!(quadrant(c, n, [MAP_ONE / 4, 3 * MAP_ONE / 4]), 2);
+        assert_eq!(quadrant(c, n, [3 * MAP_ONE / 4, 3 * MAP_ONE / 4]), 3);
     }
 }

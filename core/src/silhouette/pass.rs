@@ -2,7 +2,8 @@
 
 use glam::Mat4;
 
-use super::{CORNER_SLACK, ONE, SilPoint, SilStore, corners, dual, index};
+use super::{CORNER_SLACK, SilPoint, SilStore, corners, dual, index};
+use crate::budget::{MAP_FRACTION_BITS, MAP_ONE, MAP_SCALE};
 use crate::config::ConfigError;
 use crate::depth::{DepthFormat, PlaneZ};
 use crate::front::clip::ClipVertex;
@@ -83,7 +84,7 @@ pub fn project<F: DepthFormat>(a: &ClipVertex, b: &ClipVertex, width: u32, heigh
     }
     let lerp = |u: &[f64; 3], v: &[f64; 3], s: f64| [0, 1, 2].map(|k| u[k] + s * (v[k] - u[k]));
     (p, q) = (lerp(&p, &q, s0), lerp(&p, &q, s1));
-    let fixed = |c: f64| crate::round::round_ties_even(c * 65_536.0);
+    let fixed = |c: f64| crate::round::round_ties_even(c * MAP_SCALE);
     Some(Segment {
         a: [fixed(p[0]), fixed(p[1])],
         b: [fixed(q[0]), fixed(q[1])],
@@ -98,23 +99,28 @@ pub fn project<F: DepthFormat>(a: &ClipVertex, b: &ClipVertex, width: u32, heigh
 /// (2⁻¹⁶ units) for the depth.
 #[must_use]
 pub fn select_point(seg: &Segment, i: i64, j: i64) -> Option<(SilPoint, i64)> {
-    let o = [i * ONE, j * ONE];
+    let o = [i * MAP_ONE, j * MAP_ONE];
     let a = [seg.a[0] - o[0], seg.a[1] - o[1]];
     let b = [seg.b[0] - o[0], seg.b[1] - o[1]];
     let d = [b[0] - a[0], b[1] - a[1]];
-    let inside = |p: &[i64; 2], slack: i64| p.iter().all(|&c| (-slack..ONE + slack).contains(&c));
-    let clamp = |c: i64| u16::try_from(c.clamp(0, ONE - 1)).unwrap_or(u16::MAX);
+    let inside = |p: &[i64; 2], slack: i64| p.iter().all(|&c| (-slack..MAP_ONE + slack).contains(&c));
+    let clamp = |c: i64| u16::try_from(c.clamp(0, MAP_ONE - 1)).unwrap_or(u16::MAX);
     let point = |p: [i64; 2]| SilPoint { x: clamp(p[0]), y: clamp(p[1]) };
     // The parameter of a point on the segment, along its longer axis.
     let along = |p: &[i64; 2]| {
         let k = usize::from(d[1].abs() > d[0].abs());
-        if d[k] == 0 { 0 } else { ((i128::from(p[k] - a[k]) << 16) / i128::from(d[k])).clamp(0, 1 << 16) as i64 }
+        #[allow(clippy::cast_possible_truncation, reason = "clamped to [0, MAP_ONE]")]
+        if d[k] == 0 {
+            0
+        } else {
+            ((i128::from(p[k] - a[k]) << MAP_FRACTION_BITS) / i128::from(d[k])).clamp(0, MAP_ONE.into()) as i64
+        }
     };
     if inside(&a, 0) {
         return Some((point(a), 0));
     }
     if inside(&b, 0) {
-        return Some((point(b), ONE));
+        return Some((point(b), MAP_ONE));
     }
     // Diagonal 1: y = x; diagonal 2: x + y = 1. Intersection a + t·d.
     let hit = |num: i64, den: i64| -> Option<[i64; 2]> {
@@ -131,7 +137,7 @@ pub fn select_point(seg: &Segment, i: i64, j: i64) -> Option<(SilPoint, i64)> {
         inside(&p, CORNER_SLACK).then_some(p)
     };
     let h1 = hit(a[0] - a[1], d[1] - d[0]);
-    let h2 = hit(ONE - a[0] - a[1], d[0] + d[1]);
+    let h2 = hit(MAP_ONE - a[0] - a[1], d[0] + d[1]);
     let p = match (h1, h2) {
         (Some(p), None) | (None, Some(p)) => p,
         (Some(p), Some(q)) => [(p[0] + q[0]) >> 1, (p[1] + q[1]) >> 1],
@@ -185,7 +191,7 @@ impl<'m, S: SilStore, F: DepthFormat> SilhouettePass<'m, S, F> {
     pub fn draw<P: Probe>(&mut self, seg: &Segment, probe: &mut P) {
         let (w, h) = (i64::from(self.width), i64::from(self.height));
         let (y_lo, y_hi) = (seg.a[1].min(seg.b[1]) - CORNER_SLACK, seg.a[1].max(seg.b[1]) + CORNER_SLACK);
-        let (j0, j1) = ((y_lo >> 16).max(0), (y_hi >> 16).min(h - 1));
+        let (j0, j1) = ((y_lo >> MAP_FRACTION_BITS).max(0), (y_hi >> MAP_FRACTION_BITS).min(h - 1));
         let (mut fragments, mut stored) = (0u32, 0u32);
         let d = [seg.b[0] - seg.a[0], seg.b[1] - seg.a[1]];
         let x_at = |y: i64| -> i64 {
@@ -198,10 +204,10 @@ impl<'m, S: SilStore, F: DepthFormat> SilhouettePass<'m, S, F> {
         };
         for j in j0..=j1 {
             // The segment's x-range over the row's slab, widened by the slack.
-            let (ya, yb) = ((j << 16) - CORNER_SLACK, ((j + 1) << 16) + CORNER_SLACK);
+            let (ya, yb) = ((j << MAP_FRACTION_BITS) - CORNER_SLACK, ((j + 1) << MAP_FRACTION_BITS) + CORNER_SLACK);
             let (xa, xb) = if d[1] == 0 { (seg.a[0], seg.b[0]) } else { (x_at(ya), x_at(yb)) };
             let (x_lo, x_hi) = (xa.min(xb) - CORNER_SLACK, xa.max(xb) + CORNER_SLACK);
-            for i in (x_lo >> 16).max(0)..=(x_hi >> 16).min(w - 1) {
+            for i in (x_lo >> MAP_FRACTION_BITS).max(0)..=(x_hi >> MAP_FRACTION_BITS).min(w - 1) {
                 fragments = fragments.saturating_add(1);
                 let Some((p, t)) = select_point(seg, i, j) else { continue };
                 let z = seg

@@ -39,7 +39,7 @@ pub const TILE_ENTRY_BYTES: u64 = 4;
 pub const REEVES_TILE: u32 = 32;
 
 /// Largest map side (the core's limit).
-const MAX_SIDE: u32 = 1 << umbra_core::config::MAX_TARGET_BITS;
+const MAX_SIDE: u32 = 1 << umbra_core::budget::MAX_TARGET_BITS;
 
 /// A map's shape as far as storage goes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
