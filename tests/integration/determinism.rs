@@ -3,10 +3,11 @@
 //! run after run and on 1, 2 and all cores. (`reference.rs` checks the
 //! reference alone across thread counts.)
 
+use umbra::core::probe::Totals;
 use umbra::core::shade::Shaded;
 use umbra::core::shadow::Filter;
 use umbra::core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, RasterConfig};
-use umbra::sim::cost::counters::{Counters, Totals};
+use umbra::sim::cost::counters::Counters;
 use umbra::sim::pass::light::{RawMaps, render_raw};
 use umbra::sim::pass::render::{Algorithm, Render, RenderConfig, render};
 use umbra::sim::world::scene::Scene;

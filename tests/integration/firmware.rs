@@ -151,16 +151,9 @@ fn host_demo_matches_the_simulator() {
     let (z1, z2) = mem.maps();
     assert_eq!(maps.z1, z1);
     assert_eq!(maps.z2, z2);
-    let t = counters.totals;
-    let d = s.light;
-    assert_eq!(
-        [d.submitted, d.setups, d.bin_entries, d.fragments, d.tile_loads, d.tile_stores, d.tile_clears],
-        [t.submitted, t.setups, t.bin_entries, t.fragments, t.tile_loads, t.tile_stores, t.tile_clears]
-    );
-    assert_eq!(d.flushes, t.flushes_bin_full + t.flushes_setup_full + t.flushes_finish);
-    assert!(t.flushes_setup_full > 0, "the small setup store fills at least once");
-    assert_eq!(d.depth_reads, t.depth_reads.iter().sum::<u64>());
-    assert_eq!(d.depth_writes, t.depth_writes.iter().sum::<u64>());
+    // Every total of the demo's pass through the core is the simulator's.
+    assert_eq!(s.light, counters.totals);
+    assert!(counters.totals.flushes_setup_full > 0, "the small setup store fills at least once");
     // The demo's map checksum is FNV-1a 64 over z1 then z2 as little-endian u16.
     let mut bytes = Vec::new();
     maps.z1.iter().chain(&maps.z2).for_each(|t| bytes.extend_from_slice(&t.to_le_bytes()));

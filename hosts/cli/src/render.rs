@@ -198,7 +198,11 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
     );
     println!(
         "virtual samples for {} pixels, {} trivially decided, {} tangent fallbacks, {} lookups culled, {} map bytes read",
-        t.tangent_setups, t.trivial_pixels, t.tangent_fallbacks, t.lookups_culled, t.map_read_bytes
+        t.tangent_setups,
+        t.trivial_pixels(),
+        t.tangent_fallbacks,
+        t.lookups_culled,
+        t.map_read_bytes
     );
     for f in ["shaded.png", "shadow.png", "error.png", "z1.png", "metrics.json"] {
         println!("wrote {}", out.join(f).display());

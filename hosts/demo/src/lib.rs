@@ -5,7 +5,6 @@
 pub mod checksum;
 pub mod footprint;
 pub mod scene;
-pub mod totals;
 
 use core::fmt;
 use core::mem::size_of;
@@ -22,7 +21,7 @@ use umbra_core::{
 };
 
 pub use checksum::Fnv1a;
-pub use totals::EventTotals;
+pub use umbra_core::probe::Totals;
 
 /// Map side, texels.
 pub const MAP: u32 = 64;
@@ -150,9 +149,9 @@ pub struct Summary {
     /// Covered pixels wholly in shadow.
     pub shadowed: u32,
     /// Event totals of the light pass.
-    pub light: EventTotals,
+    pub light: Totals,
     /// Event totals of the camera pass (visibility and shading).
-    pub camera: EventTotals,
+    pub camera: Totals,
 }
 
 /// Why the demo could not render (none of these happens with the bundled
@@ -237,7 +236,7 @@ pub fn render(mem: &mut Memory) -> Result<Summary, DemoError> {
         bins: &mut mem.bins[..MAP_TILES],
         setups: &mut mem.setups,
     };
-    let mut pass = LightPass::<D16, EventTotals, BIN_CAPACITY>::new(light_cfg, buffers, EventTotals::default())?;
+    let mut pass = LightPass::<D16, Totals, BIN_CAPACITY>::new(light_cfg, buffers, Totals::default())?;
     pass.draw_mesh(&scene::POSITIONS, &scene::INDICES, &light, CullMode::None)?;
     let light_totals = pass.finish();
 
@@ -252,7 +251,7 @@ pub fn render(mem: &mut Memory) -> Result<Summary, DemoError> {
         bins: &mut mem.bins[..IMAGE_TILES],
         setups: &mut mem.setups,
     };
-    let mut pass = LightPass::<D24, EventTotals, BIN_CAPACITY>::new(vis_cfg, buffers, EventTotals::default())?;
+    let mut pass = LightPass::<D24, Totals, BIN_CAPACITY>::new(vis_cfg, buffers, Totals::default())?;
     pass.draw_mesh(&scene::POSITIONS, &scene::INDICES, &camera, CullMode::None)?;
     let mut camera_totals = pass.finish();
 
@@ -329,10 +328,10 @@ mod tests {
         assert_eq!(s.camera.submitted, scene::TRIANGLES as u64);
         // Every flush stores its tile; the small setup store makes some
         // tiles flush twice, so they are loaded back.
-        assert_eq!(s.light.flushes, s.light.tile_stores);
+        assert_eq!(s.light.flushes(), s.light.tile_stores);
         assert!(s.light.tile_loads > 0);
         // The dual unit reads z1 and z2 for every fragment.
-        assert_eq!(s.light.depth_reads, 2 * s.light.fragments);
+        assert_eq!(s.light.depth_reads(), 2 * s.light.fragments);
         assert!(s.camera.virtual_samples > 0 && s.camera.lookups_culled > 0);
     }
 

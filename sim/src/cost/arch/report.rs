@@ -56,6 +56,11 @@ pub struct CostReport {
 }
 
 #[allow(clippy::cast_precision_loss, reason = "ratios of counts")]
+/// Triangle-tile pairs and blocks skipped by max-z culling.
+const fn culled(p: &ArchProbe) -> u64 {
+    p.events.culled_triangles + p.events.culled_blocks
+}
+
 fn ratio(a: u64, b: u64) -> f64 {
     if b == 0 { 0.0 } else { a as f64 / b as f64 }
 }
@@ -70,7 +75,7 @@ impl CostReport {
         pixels: u64,
         samples_per_pixel: u64,
     ) -> Self {
-        let lookups = camera.trivial + camera.tangent_setups;
+        let lookups = camera.events.trivial_pixels() + camera.events.tangent_setups;
         // Map texels and silhouette points go through the cache, when there is one.
         let requested = camera.dram.cached();
         let fetched = fetched.unwrap_or(requested);
@@ -85,21 +90,22 @@ impl CostReport {
             map_bytes_fetched: fetched,
             on_chip_bytes: light.on_chip_bytes(),
             max_z_cull_rate: [
-                ratio(light.culled, light.culled + light.pairs),
-                ratio(camera.culled, camera.culled + camera.pairs),
+                ratio(culled(light), culled(light) + light.events.rasterized),
+                ratio(culled(camera), culled(camera) + camera.events.rasterized),
             ],
-            lookups_culled_per_pixel: ratio(camera.lookups_culled, pixels),
-            virtual_sample_fraction: ratio(camera.tangent_setups, lookups),
+            lookups_culled_per_pixel: ratio(camera.events.lookups_culled, pixels),
+            virtual_sample_fraction: ratio(camera.events.tangent_setups, lookups),
             pixels,
             map_bytes_per_pixel: ratio(fetched, pixels),
             #[allow(clippy::cast_precision_loss, reason = "a small count")]
             sen_shadow_map_bytes_per_pixel: 4.0 * samples_per_pixel as f64,
             shadow_bytes_per_pixel: ratio(camera.dram.camera_shadow_bytes() - requested + fetched, pixels),
-            scene_fill: camera.fragments,
-            silhouette_fill: ratio(light.silhouette_fragments, camera.fragments),
-            overdraw: ratio(camera.volume_fragments, camera.fragments),
-            sen_silhouette_bytes_per_pixel: 4.0 + 24.0 * ratio(light.silhouette_fragments, camera.fragments),
-            sen_volume_bytes_per_pixel: 5.5 * ratio(camera.volume_fragments, camera.fragments),
+            scene_fill: camera.events.fragments,
+            silhouette_fill: ratio(light.events.silhouette_fragments, camera.events.fragments),
+            overdraw: ratio(camera.events.volume_fragments, camera.events.fragments),
+            sen_silhouette_bytes_per_pixel: 4.0
+                + 24.0 * ratio(light.events.silhouette_fragments, camera.events.fragments),
+            sen_volume_bytes_per_pixel: 5.5 * ratio(camera.events.volume_fragments, camera.events.fragments),
         }
     }
 

@@ -1,7 +1,7 @@
 //! The timing model: a probe that charges each event to the stage that does the work, and the bytes it moves to the memory that holds them.
 
 use super::{ArchParams, Dram, Stage};
-use umbra_core::probe::{Buffer, CullLevel, Event};
+use umbra_core::probe::{Buffer, Event, Totals};
 use umbra_core::{DepthFormatKind, DepthUnit, Probe};
 
 /// A probe charging an architecture's costs.
@@ -15,24 +15,8 @@ pub struct ArchProbe {
     pub cycles: [u64; 5],
     /// DRAM bytes.
     pub dram: Dram,
-    /// Triangle-tile pairs rasterised.
-    pub pairs: u64,
-    /// Triangle-tile pairs and blocks skipped by max-z culling.
-    pub culled: u64,
-    /// Shadow lookups decided by the tiles' bounds.
-    pub lookups_culled: u64,
-    /// Map samples compared.
-    pub samples: u64,
-    /// Pixels that needed virtual samples.
-    pub tangent_setups: u64,
-    /// Pixels decided by the ordinary comparison.
-    pub trivial: u64,
-    /// Fragments generated (the scene fill of a camera pass).
-    pub fragments: u64,
-    /// Silhouette-pass fragments.
-    pub silhouette_fragments: u64,
-    /// Shadow-volume fragments.
-    pub volume_fragments: u64,
+    /// Every event of the pass, totalled.
+    pub events: Totals,
     /// Per triangle-tile pair in processing order: the tile and the cycles it
     /// took (the slower of raster and depth), for the timeline.
     pub tile_cycles: Vec<(u16, u16, u64)>,
@@ -49,15 +33,7 @@ impl ArchProbe {
             buffers: u64::from(unit.buffers()),
             cycles: [0; 5],
             dram: Dram::default(),
-            pairs: 0,
-            culled: 0,
-            lookups_culled: 0,
-            samples: 0,
-            tangent_setups: 0,
-            trivial: 0,
-            fragments: 0,
-            silhouette_fragments: 0,
-            volume_fragments: 0,
+            events: Totals::default(),
             tile_cycles: Vec::new(),
             timeline: false,
         }
@@ -101,6 +77,7 @@ impl Probe for ArchProbe {
     fn event(&mut self, e: Event) {
         let p = self.params;
         let bytes = u64::from(self.format.bytes());
+        self.events.add(e);
         match e {
             Event::TriangleSetup => self.charge(Stage::Setup, p.setup_cycles),
             Event::TriangleBinned { tiles } => {
@@ -109,8 +86,6 @@ impl Probe for ArchProbe {
             }
             Event::Fragments { tile, count } => {
                 let count = u64::from(count);
-                self.pairs += 1;
-                self.fragments += count;
                 let raster = p.raster_cycles_per_tile
                     + count.div_ceil(p.fragments_per_clock.max(1)) * u64::from(p.fragments_per_clock > 0);
                 let depth = if p.depth_fragments_per_clock > 0 {
@@ -127,32 +102,33 @@ impl Probe for ArchProbe {
                     self.dram.map_rmw_reads += count * bytes * self.buffers;
                 }
             }
-            Event::DepthWrite { buffer, texels, .. } if p.off_chip_depth && buffer != Buffer::Id => {
-                self.dram.map_writes += u64::from(texels) * bytes;
+            Event::DepthWrite { buffer, texels, .. } => {
+                if p.off_chip_depth && buffer != Buffer::Id {
+                    self.dram.map_writes += u64::from(texels) * bytes;
+                }
             }
-            Event::Culled { level: CullLevel::Triangle | CullLevel::Block, .. } => self.culled += 1,
-            Event::TileLoad { bytes: b, .. } if !p.off_chip_depth => self.dram.map_rmw_reads += u64::from(b),
-            Event::TileStore { bytes: b, cleared, .. } if !p.off_chip_depth => {
-                let written = if p.resolve_test_value_only { u64::from(b) / self.buffers.max(1) } else { u64::from(b) };
-                let written = if cleared { 0 } else { written };
-                self.dram.map_writes += written;
-                self.charge(Stage::Resolve, written.div_ceil(p.dram_bytes_per_cycle.max(1)));
+            Event::TileLoad { bytes: b, .. } => {
+                if !p.off_chip_depth {
+                    self.dram.map_rmw_reads += u64::from(b);
+                }
+            }
+            Event::TileStore { bytes: b, cleared, .. } => {
+                if !p.off_chip_depth {
+                    let written =
+                        if p.resolve_test_value_only { u64::from(b) / self.buffers.max(1) } else { u64::from(b) };
+                    let written = if cleared { 0 } else { written };
+                    self.dram.map_writes += written;
+                    self.charge(Stage::Resolve, written.div_ceil(p.dram_bytes_per_cycle.max(1)));
+                }
             }
             Event::MapRead { texels, bytes: b, .. } => {
-                self.samples += u64::from(texels);
                 self.dram.map_reads += u64::from(b);
                 self.charge(Stage::Shadow, u64::from(texels).div_ceil(p.samples_per_clock.max(1)));
             }
-            Event::LookupCulled { .. } => self.lookups_culled += 1,
-            Event::TangentSetup => {
-                self.tangent_setups += 1;
-                self.charge(Stage::Shadow, p.tangent_setup_cycles);
-            }
-            Event::TrivialPixel { .. } => self.trivial += 1,
+            Event::TangentSetup => self.charge(Stage::Shadow, p.tangent_setup_cycles),
             Event::SilhouetteFragments { fragments, bytes: b, .. } => {
                 // Conservative line rasterization at the scan converter's rate;
                 // the points go to memory like map texels.
-                self.silhouette_fragments += u64::from(fragments);
                 self.charge(Stage::Raster, u64::from(fragments).div_ceil(p.fragments_per_clock.max(1)));
                 self.dram.silhouette_writes += u64::from(b);
             }
@@ -164,7 +140,6 @@ impl Probe for ArchProbe {
                 // Volume fragments are scan converted and depth tested like
                 // scene fragments; the scene depth and stencil live off chip.
                 let n = u64::from(fragments);
-                self.volume_fragments += n;
                 self.charge(Stage::Raster, n.div_ceil(p.fragments_per_clock.max(1)));
                 self.charge(Stage::Depth, n.div_ceil(p.depth_fragments_per_clock.max(1)));
                 self.dram.volume_depth_reads += u64::from(depth_bytes);
@@ -172,7 +147,17 @@ impl Probe for ArchProbe {
             Event::StencilRead { bytes: b, .. } | Event::StencilWrite { bytes: b, .. } => {
                 self.dram.stencil += u64::from(b);
             }
-            _ => {}
+            // Work this model does not charge: counted in `events` only.
+            Event::TriangleSubmitted
+            | Event::TriangleRejected { .. }
+            | Event::BinFlush { .. }
+            | Event::Culled { .. }
+            | Event::DepthRead { .. }
+            | Event::TileMaxUpdate { .. }
+            | Event::LookupCulled { .. }
+            | Event::VirtualSamples { .. }
+            | Event::TangentFallback
+            | Event::TrivialPixel { .. } => {}
         }
     }
 }

@@ -61,7 +61,7 @@ pub fn run_config(spec: &Spec, c: &Config, open: &[Scene], truths: &[Truth]) -> 
     };
     let metrics = metrics.map(|r| {
         let t = &r.camera_events.totals;
-        (r.metrics, ratio(t.tangent_setups, t.tangent_setups + t.trivial_pixels))
+        (r.metrics, ratio(t.tangent_setups, t.tangent_setups + t.trivial_pixels()))
     });
     if spec.archs.is_empty() {
         let mut row = Row::new(spec, c, None);

@@ -1,0 +1,241 @@
+//! What the units report: one event per batch of work, and the per-fragment
+//! and per-texel detail probes may ask for.
+
+use crate::raster::tile::TileId;
+
+/// A buffer the units read or write.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Buffer {
+    /// Nearest depth.
+    Z1,
+    /// Second-nearest depth.
+    Z2,
+    /// Visible-triangle ids (the camera pass's visibility).
+    Id,
+    /// Silhouette points (Sen et al. 2003).
+    Silhouette,
+}
+
+/// Why a submitted triangle produced no fragments before binning.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum RejectReason {
+    /// A vertex (or the clipper's arithmetic on it) is not finite.
+    NonFinite,
+    /// The triangle has zero area on the subpixel grid.
+    Degenerate,
+    /// Discarded by the cull mode.
+    Facing,
+    /// Entirely outside the near/far planes or the guard band.
+    Clipped,
+    /// Covers no pixel centre of the target.
+    NoCoverage,
+    /// A snapped coordinate outside the integer budget (a hand-made vertex).
+    OutOfRange,
+}
+
+/// Why a tile's bin was rasterized.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum FlushReason {
+    /// The bin was full; the tile is rasterized early and binning retries.
+    BinFull,
+    /// The shared triangle-setup store was full; every bin is drained.
+    SetupFull,
+    /// End of the pass.
+    Finish,
+}
+
+/// The unit of work a max-z cull skipped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum CullLevel {
+    /// A whole triangle in a tile.
+    Triangle,
+    /// A block of fragments of a triangle in a tile.
+    Block,
+}
+
+/// One unit event. Counts are batched: one event may stand for many texels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Event {
+    /// A triangle entered the pipeline (before clipping).
+    TriangleSubmitted,
+    /// A submitted triangle was dropped before setup.
+    TriangleRejected {
+        /// Why.
+        reason: RejectReason,
+    },
+    /// A (clipped) triangle was set up: edge functions and depth plane.
+    TriangleSetup,
+    /// A set-up triangle was written to this many tile bins.
+    TriangleBinned {
+        /// Bins written.
+        tiles: u32,
+    },
+    /// A tile's bin was rasterized.
+    BinFlush {
+        /// The tile.
+        tile: TileId,
+        /// Triangles in the bin.
+        triangles: u32,
+        /// Why now.
+        reason: FlushReason,
+    },
+    /// A tile's depth was brought on chip from the map (a later flush of a
+    /// tile that was stored before).
+    TileLoad {
+        /// The tile.
+        tile: TileId,
+        /// Bytes read from the map.
+        bytes: u32,
+    },
+    /// A tile's depth was written back to the map. A tile that received no
+    /// geometry is stored as a clear (`cleared`), which a fast-clear
+    /// memory may not need to write.
+    TileStore {
+        /// The tile.
+        tile: TileId,
+        /// Bytes written to the map.
+        bytes: u32,
+        /// The tile holds only the clear value.
+        cleared: bool,
+    },
+    /// Pixel centres covered by a triangle in a tile: fragments generated.
+    Fragments {
+        /// The tile.
+        tile: TileId,
+        /// How many.
+        count: u32,
+    },
+    /// Work skipped by max-z culling: the triangle's nearest depth in the
+    /// region lies at or beyond the tile's max stored depth.
+    Culled {
+        /// The tile.
+        tile: TileId,
+        /// A whole triangle in the tile, or one block of it.
+        level: CullLevel,
+        /// Texels of the skipped region (an upper bound on its fragments).
+        texels: u32,
+    },
+    /// Depth values read by the depth unit (on chip).
+    DepthRead {
+        /// Which buffer.
+        buffer: Buffer,
+        /// Texels read.
+        texels: u32,
+        /// Bytes read at the format's width.
+        bytes: u32,
+    },
+    /// Depth values written by the depth unit (on chip): texels whose value changed.
+    DepthWrite {
+        /// Which buffer.
+        buffer: Buffer,
+        /// Texels written.
+        texels: u32,
+        /// Bytes written at the format's width.
+        bytes: u32,
+    },
+    /// The tile's max stored depth was recomputed because every texel that
+    /// held it has been lowered (a reduction over the tile).
+    TileMaxUpdate {
+        /// The tile.
+        tile: TileId,
+    },
+    /// Texels of the map read by the shadow unit (memory traffic).
+    MapRead {
+        /// Which buffer.
+        buffer: Buffer,
+        /// Texels read.
+        texels: u32,
+        /// Bytes read at the format's width.
+        bytes: u32,
+    },
+    /// A lookup decided by the tiles' stored bounds (or lying wholly outside
+    /// the map): no texel read.
+    LookupCulled {
+        /// Texels of the footprint not read.
+        texels: u32,
+    },
+    /// Receiver depths evaluated on a tangent plane (virtual samples).
+    VirtualSamples {
+        /// How many.
+        count: u32,
+    },
+    /// A receiver's tangent plane was moved to light space and solved for
+    /// its slopes (one division).
+    TangentSetup,
+    /// The tangent plane was nearly parallel to the light ray: the lookup
+    /// fell back to the ordinary comparison.
+    TangentFallback,
+    /// Every sample of the ordinary comparison agreed: the pixel was decided
+    /// without virtual samples.
+    TrivialPixel {
+        /// Decided lit (else shadowed).
+        lit: bool,
+    },
+    /// One silhouette edge through the silhouette pass (Sen et al. 2003
+    /// §3.1): fragments of its conservative rasterization, and the points
+    /// they stored (the rest were killed: outside the texel or hidden).
+    SilhouetteFragments {
+        /// Fragments generated.
+        fragments: u32,
+        /// Points written.
+        stored: u32,
+        /// Bytes written.
+        bytes: u32,
+    },
+    /// Silhouette points read by the camera pass (the texel's and its four
+    /// neighbours').
+    SilhouetteRead {
+        /// Points read.
+        points: u32,
+        /// Bytes read.
+        bytes: u32,
+    },
+    /// Fragments of one shadow-volume triangle on the camera's raster, each
+    /// reading the scene depth.
+    VolumeFragments {
+        /// Fragments generated.
+        fragments: u32,
+        /// Scene depth bytes read.
+        depth_bytes: u32,
+    },
+    /// Stencil texels read by the volume fragments of one triangle.
+    StencilRead {
+        /// Texels read.
+        texels: u32,
+        /// Bytes read.
+        bytes: u32,
+    },
+    /// Stencil texels written (incremented or decremented) by the volume
+    /// fragments of one triangle that failed the depth test.
+    StencilWrite {
+        /// Texels written.
+        texels: u32,
+        /// Bytes written.
+        bytes: u32,
+    },
+}
+
+/// One fragment in detail, for probes that ask for it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Fragment {
+    /// Column of the pixel.
+    pub x: u32,
+    /// Row of the pixel (row 0 at the top).
+    pub y: u32,
+    /// The quantised depth, as the format's raw bits.
+    pub depth: u32,
+    /// Index of the submitted triangle (clipped pieces share it).
+    pub triangle: u32,
+}
+
+/// One texel of the map read by the shadow unit, for probes that model
+/// memory (caches, address streams).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct TexelRead {
+    /// Which buffer.
+    pub buffer: Buffer,
+    /// Column of the texel.
+    pub x: u32,
+    /// Row of the texel.
+    pub y: u32,
+}

@@ -1,0 +1,305 @@
+//! The one exhaustive account of events: [`Totals`] sums every field of
+//! every [`Event`] into fixed integer fields, with no allocation, so the
+//! simulator's counters, its architecture models and the firmware all
+//! report the same numbers. Its `match` has no wildcard arm: a new event
+//! does not compile until it is accounted for here.
+
+use super::{Buffer, CullLevel, Event, FlushReason, Probe, RejectReason};
+
+/// Declares [`Totals`] and its list of named fields from one list, so the
+/// names the firmware prints and the fields cannot drift apart.
+macro_rules! totals {
+    ($($(#[doc = $doc:expr])+ $name:ident,)+) => {
+        /// Event totals of one pass: every field of every [`Event`], summed.
+        #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+        #[cfg_attr(feature = "serde", derive(serde::Serialize))]
+        pub struct Totals {
+            $($(#[doc = $doc])+ pub $name: u64,)+
+        }
+
+        /// The names of [`Totals`]' fields, in declaration order.
+        pub const NAMES: &[&str] = &[$(stringify!($name)),+];
+
+        impl Totals {
+            /// Every field with its name, in declaration order (the names
+            /// the firmware prints).
+            #[must_use]
+            pub const fn fields(&self) -> [(&'static str, u64); NAMES.len()] {
+                [$((stringify!($name), self.$name)),+]
+            }
+        }
+    };
+}
+
+totals! {
+    /// Triangles submitted ([`Event::TriangleSubmitted`]).
+    submitted,
+    /// Rejected before setup: a vertex not finite.
+    rejected_non_finite,
+    /// Rejected: zero area on the subpixel grid.
+    rejected_degenerate,
+    /// Rejected: facing (culling).
+    rejected_facing,
+    /// Rejected: outside near, far or the guard band.
+    rejected_clipped,
+    /// Rejected: no pixel centre in the bounding box.
+    rejected_no_coverage,
+    /// Rejected: a snapped coordinate outside the integer budget.
+    rejected_out_of_range,
+    /// Triangles set up, clipped pieces and shadow-volume triangles included
+    /// ([`Event::TriangleSetup`]).
+    setups,
+    /// Bin entries written, summed over [`Event::TriangleBinned`].
+    bin_entries,
+    /// Bins drained because they were full.
+    flushes_bin_full,
+    /// Bins drained because the setup store was full.
+    flushes_setup_full,
+    /// Bins drained at the end of the pass.
+    flushes_finish,
+    /// Triangles drained from bins, summed over [`Event::BinFlush`].
+    flushed_triangles,
+    /// Tiles loaded back from the map ([`Event::TileLoad`]).
+    tile_loads,
+    /// Bytes of those loads.
+    tile_load_bytes,
+    /// Tiles stored with geometry ([`Event::TileStore`]).
+    tile_stores,
+    /// Tiles stored as a clear only.
+    tile_clears,
+    /// Bytes of all stores, clears included.
+    tile_store_bytes,
+    /// Fragments generated, summed over [`Event::Fragments`].
+    fragments,
+    /// Triangle-in-tile pairs that generated fragments ([`Event::Fragments`]).
+    rasterized,
+    /// Triangle-in-tile pairs skipped by max-z culling ([`Event::Culled`]).
+    culled_triangles,
+    /// Fragment blocks skipped by max-z culling.
+    culled_blocks,
+    /// Texels of the skipped regions.
+    culled_texels,
+    /// `z1` texels read by the depth unit ([`Event::DepthRead`]).
+    depth_reads_z1,
+    /// `z2` texels read by the depth unit.
+    depth_reads_z2,
+    /// Id texels read by the depth unit.
+    depth_reads_id,
+    /// Silhouette texels read by the depth unit.
+    depth_reads_silhouette,
+    /// Bytes of the depth unit's reads.
+    depth_read_bytes,
+    /// `z1` texels written by the depth unit ([`Event::DepthWrite`]).
+    depth_writes_z1,
+    /// `z2` texels written by the depth unit.
+    depth_writes_z2,
+    /// Id texels written by the depth unit.
+    depth_writes_id,
+    /// Silhouette texels written by the depth unit.
+    depth_writes_silhouette,
+    /// Bytes of the depth unit's writes.
+    depth_write_bytes,
+    /// Reductions recomputing a tile's max ([`Event::TileMaxUpdate`]).
+    tile_max_updates,
+    /// `z1` texels read by the shadow unit ([`Event::MapRead`]).
+    map_reads_z1,
+    /// `z2` texels read by the shadow unit.
+    map_reads_z2,
+    /// Id texels read by the shadow unit.
+    map_reads_id,
+    /// Silhouette texels read by the shadow unit.
+    map_reads_silhouette,
+    /// Bytes of the shadow unit's reads.
+    map_read_bytes,
+    /// Lookups decided without reading a texel ([`Event::LookupCulled`]).
+    lookups_culled,
+    /// Texels those lookups did not read.
+    lookup_culled_texels,
+    /// Receiver depths evaluated on tangent planes ([`Event::VirtualSamples`]).
+    virtual_samples,
+    /// Tangent planes set up ([`Event::TangentSetup`]).
+    tangent_setups,
+    /// Tangent planes too close to the light ray ([`Event::TangentFallback`]).
+    tangent_fallbacks,
+    /// Pixels decided lit by the ordinary comparison ([`Event::TrivialPixel`]).
+    trivial_lit,
+    /// Pixels decided shadowed by the ordinary comparison.
+    trivial_shadowed,
+    /// Silhouette-pass fragments ([`Event::SilhouetteFragments`]).
+    silhouette_fragments,
+    /// Silhouette points written.
+    silhouette_stored,
+    /// Bytes of those writes.
+    silhouette_write_bytes,
+    /// Silhouette points read by the camera pass ([`Event::SilhouetteRead`]).
+    silhouette_reads,
+    /// Bytes of those reads.
+    silhouette_read_bytes,
+    /// Shadow-volume fragments ([`Event::VolumeFragments`]).
+    volume_fragments,
+    /// Scene depth bytes those fragments read.
+    volume_depth_bytes,
+    /// Stencil texels read ([`Event::StencilRead`]).
+    stencil_reads,
+    /// Bytes of those reads.
+    stencil_read_bytes,
+    /// Stencil texels written ([`Event::StencilWrite`]).
+    stencil_writes,
+    /// Bytes of those writes.
+    stencil_write_bytes,
+}
+
+impl Totals {
+    /// Pixels decided by the ordinary comparison, lit or shadowed.
+    #[must_use]
+    pub const fn trivial_pixels(&self) -> u64 {
+        self.trivial_lit + self.trivial_shadowed
+    }
+
+    /// Triangles rejected before setup, every reason.
+    #[must_use]
+    pub const fn rejected(&self) -> u64 {
+        self.rejected_non_finite
+            + self.rejected_degenerate
+            + self.rejected_facing
+            + self.rejected_clipped
+            + self.rejected_no_coverage
+            + self.rejected_out_of_range
+    }
+
+    /// Bins drained, every reason.
+    #[must_use]
+    pub const fn flushes(&self) -> u64 {
+        self.flushes_bin_full + self.flushes_setup_full + self.flushes_finish
+    }
+
+    /// Texels the shadow unit read, every buffer.
+    #[must_use]
+    pub const fn map_reads(&self) -> u64 {
+        self.map_reads_z1 + self.map_reads_z2 + self.map_reads_id + self.map_reads_silhouette
+    }
+
+    /// Texels the depth unit read, every buffer.
+    #[must_use]
+    pub const fn depth_reads(&self) -> u64 {
+        self.depth_reads_z1 + self.depth_reads_z2 + self.depth_reads_id + self.depth_reads_silhouette
+    }
+
+    /// Texels the depth unit wrote, every buffer.
+    #[must_use]
+    pub const fn depth_writes(&self) -> u64 {
+        self.depth_writes_z1 + self.depth_writes_z2 + self.depth_writes_id + self.depth_writes_silhouette
+    }
+
+    /// Add one event to the totals.
+    #[inline]
+    pub fn add(&mut self, event: Event) {
+        let n = u64::from;
+        match event {
+            Event::TriangleSubmitted => self.submitted += 1,
+            Event::TriangleRejected { reason } => {
+                *match reason {
+                    RejectReason::NonFinite => &mut self.rejected_non_finite,
+                    RejectReason::Degenerate => &mut self.rejected_degenerate,
+                    RejectReason::Facing => &mut self.rejected_facing,
+                    RejectReason::Clipped => &mut self.rejected_clipped,
+                    RejectReason::NoCoverage => &mut self.rejected_no_coverage,
+                    RejectReason::OutOfRange => &mut self.rejected_out_of_range,
+                } += 1;
+            }
+            Event::TriangleSetup => self.setups += 1,
+            Event::TriangleBinned { tiles } => self.bin_entries += n(tiles),
+            Event::BinFlush { tile: _, triangles, reason } => {
+                *match reason {
+                    FlushReason::BinFull => &mut self.flushes_bin_full,
+                    FlushReason::SetupFull => &mut self.flushes_setup_full,
+                    FlushReason::Finish => &mut self.flushes_finish,
+                } += 1;
+                self.flushed_triangles += n(triangles);
+            }
+            Event::TileLoad { tile: _, bytes } => {
+                self.tile_loads += 1;
+                self.tile_load_bytes += n(bytes);
+            }
+            Event::TileStore { tile: _, bytes, cleared } => {
+                *if cleared { &mut self.tile_clears } else { &mut self.tile_stores } += 1;
+                self.tile_store_bytes += n(bytes);
+            }
+            Event::Fragments { tile: _, count } => {
+                self.fragments += n(count);
+                self.rasterized += 1;
+            }
+            Event::Culled { tile: _, level, texels } => {
+                *match level {
+                    CullLevel::Triangle => &mut self.culled_triangles,
+                    CullLevel::Block => &mut self.culled_blocks,
+                } += 1;
+                self.culled_texels += n(texels);
+            }
+            Event::DepthRead { buffer, texels, bytes } => {
+                *match buffer {
+                    Buffer::Z1 => &mut self.depth_reads_z1,
+                    Buffer::Z2 => &mut self.depth_reads_z2,
+                    Buffer::Id => &mut self.depth_reads_id,
+                    Buffer::Silhouette => &mut self.depth_reads_silhouette,
+                } += n(texels);
+                self.depth_read_bytes += n(bytes);
+            }
+            Event::DepthWrite { buffer, texels, bytes } => {
+                *match buffer {
+                    Buffer::Z1 => &mut self.depth_writes_z1,
+                    Buffer::Z2 => &mut self.depth_writes_z2,
+                    Buffer::Id => &mut self.depth_writes_id,
+                    Buffer::Silhouette => &mut self.depth_writes_silhouette,
+                } += n(texels);
+                self.depth_write_bytes += n(bytes);
+            }
+            Event::TileMaxUpdate { tile: _ } => self.tile_max_updates += 1,
+            Event::MapRead { buffer, texels, bytes } => {
+                *match buffer {
+                    Buffer::Z1 => &mut self.map_reads_z1,
+                    Buffer::Z2 => &mut self.map_reads_z2,
+                    Buffer::Id => &mut self.map_reads_id,
+                    Buffer::Silhouette => &mut self.map_reads_silhouette,
+                } += n(texels);
+                self.map_read_bytes += n(bytes);
+            }
+            Event::LookupCulled { texels } => {
+                self.lookups_culled += 1;
+                self.lookup_culled_texels += n(texels);
+            }
+            Event::VirtualSamples { count } => self.virtual_samples += n(count),
+            Event::TangentSetup => self.tangent_setups += 1,
+            Event::TangentFallback => self.tangent_fallbacks += 1,
+            Event::TrivialPixel { lit } => *if lit { &mut self.trivial_lit } else { &mut self.trivial_shadowed } += 1,
+            Event::SilhouetteFragments { fragments, stored, bytes } => {
+                self.silhouette_fragments += n(fragments);
+                self.silhouette_stored += n(stored);
+                self.silhouette_write_bytes += n(bytes);
+            }
+            Event::SilhouetteRead { points, bytes } => {
+                self.silhouette_reads += n(points);
+                self.silhouette_read_bytes += n(bytes);
+            }
+            Event::VolumeFragments { fragments, depth_bytes } => {
+                self.volume_fragments += n(fragments);
+                self.volume_depth_bytes += n(depth_bytes);
+            }
+            Event::StencilRead { texels, bytes } => {
+                self.stencil_reads += n(texels);
+                self.stencil_read_bytes += n(bytes);
+            }
+            Event::StencilWrite { texels, bytes } => {
+                self.stencil_writes += n(texels);
+                self.stencil_write_bytes += n(bytes);
+            }
+        }
+    }
+}
+
+impl Probe for Totals {
+    #[inline]
+    fn event(&mut self, event: Event) {
+        self.add(event);
+    }
+}
