@@ -50,31 +50,6 @@ impl Recorder {
     }
 }
 
-/// Counts the shadow and camera units' events.
-#[derive(Default, Debug, Clone)]
-pub struct ShadowEvents {
-    pub setups: u64,
-    pub trivial: u64,
-    pub fallbacks: u64,
-    pub culled: u64,
-    pub virtual_samples: u64,
-    pub read: u64,
-}
-
-impl Probe for ShadowEvents {
-    fn event(&mut self, e: Event) {
-        match e {
-            Event::TangentSetup => self.setups += 1,
-            Event::TrivialPixel { .. } => self.trivial += 1,
-            Event::TangentFallback => self.fallbacks += 1,
-            Event::LookupCulled { .. } => self.culled += 1,
-            Event::VirtualSamples { count } => self.virtual_samples += u64::from(count),
-            Event::MapRead { texels, .. } => self.read += u64::from(texels),
-            _ => {}
-        }
-    }
-}
-
 /// The buffers a pass left behind.
 pub struct Maps<T> {
     pub z1: Vec<T>,

@@ -20,7 +20,9 @@ mod silhouette;
 mod cost;
 mod experiment;
 mod io;
+mod probe;
 mod truth;
+
 mod world;
 
 mod determinism;

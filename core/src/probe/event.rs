@@ -56,14 +56,16 @@ pub enum CullLevel {
 /// One unit event. Counts are batched: one event may stand for many texels.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Event {
-    /// A triangle entered the pipeline (before clipping).
+    /// A triangle entered the pipeline (before clipping): a scene triangle
+    /// at the front end, or a shadow-volume triangle at the stencil unit.
     TriangleSubmitted,
     /// A submitted triangle was dropped before setup.
     TriangleRejected {
         /// Why.
         reason: RejectReason,
     },
-    /// A (clipped) triangle was set up: edge functions and depth plane.
+    /// A (clipped) triangle was set up: edge functions and depth plane, by
+    /// the front end or by the stencil unit.
     TriangleSetup,
     /// A set-up triangle was written to this many tile bins.
     TriangleBinned {

@@ -35,7 +35,7 @@ use crate::config::{ConfigError, CullMode, RasterConfig};
 use crate::depth::DepthFormat;
 use crate::front::clip::{ClipVertex, Clipped, DepthClip, Polygon, clip_triangle_with};
 use crate::front::snap::SnappedVertex;
-use crate::probe::{Event, Probe};
+use crate::probe::{Event, Probe, RejectReason};
 use crate::raster::setup::Setup;
 
 /// Bytes of one stencil texel.
@@ -73,9 +73,12 @@ impl<'a, F: DepthFormat> StencilPass<'a, F> {
     }
 
     /// Count one volume triangle (camera clip space). Any input is
-    /// accepted; what cannot be drawn draws nothing.
+    /// accepted; what cannot be drawn draws nothing and is reported as a
+    /// rejection, as the front end reports the scene's triangles.
     pub fn draw<P: Probe>(&mut self, tri: &[ClipVertex; 3], probe: &mut P) {
+        probe.event(Event::TriangleSubmitted);
         if tri.iter().flatten().any(|c| !c.is_finite()) {
+            probe.event(Event::TriangleRejected { reason: RejectReason::NonFinite });
             return;
         }
         let mut poly = Polygon::new();
@@ -86,7 +89,7 @@ impl<'a, F: DepthFormat> StencilPass<'a, F> {
                     self.draw_snapped(&[poly[0], poly[i], poly[i + 1]], probe);
                 }
             }
-            Clipped::Outside => {}
+            Clipped::Outside => probe.event(Event::TriangleRejected { reason: RejectReason::Clipped }),
         }
     }
 
@@ -94,10 +97,18 @@ impl<'a, F: DepthFormat> StencilPass<'a, F> {
         let r = self.raster;
         let snap = |v: &ClipVertex| r.snap_beyond_far::<F>(v);
         let (Some(a), Some(b), Some(c)) = (snap(&tri[0]), snap(&tri[1]), snap(&tri[2])) else {
+            probe.event(Event::TriangleRejected { reason: RejectReason::NonFinite });
             return;
         };
         let v = [a, b, c];
-        let Ok(setup) = Setup::new(&r, v, CullMode::None, 0) else { return };
+        let setup = match Setup::new(&r, v, CullMode::None, 0) {
+            Ok(setup) => setup,
+            Err(reason) => {
+                probe.event(Event::TriangleRejected { reason });
+                return;
+            }
+        };
+        probe.event(Event::TriangleSetup);
         let step: u8 = if front_facing(&v) { u8::MAX } else { 1 };
         let (mut fragments, mut writes) = (0u32, 0u32);
         let width = r.width() as usize;

@@ -4,11 +4,12 @@
 use proptest::prelude::*;
 use umbra::core::glam::{Mat4, Vec3, Vec4};
 use umbra::core::probe::Probe;
+use umbra::core::probe::Totals;
 use umbra::core::shade::{CameraConfig, MapUnit, Normals, SceneTriangle, ShadeSetup, Shaded, shade, shade_with};
 use umbra::core::shadow::{Bias, DepthTest, Filter, Jitter, MapView, Shadow, ShadowConfig};
 use umbra::core::{CullMode, D16, D24, DepthFormat, DepthUnit, F32, NO_TRIANGLE, NoProbe};
 
-use crate::common::{ShadowEvents, config, run, run_visibility};
+use crate::common::{config, run, run_visibility};
 
 const CAMERA: u32 = 64;
 
@@ -105,7 +106,7 @@ proptest! {
         scene.add(Vec3::new(-4.0, 0.0, 3.0), Vec3::new(4.0, 0.0, 3.0), Vec3::new(0.0, 0.0, -5.0));
         let d = direction(theta, phi) * if below { -1.0 } else { 1.0 };
         let light = perspective(d * 6.0, Vec3::ZERO, 1.6, 1.0, 20.0);
-        let mut counts = ShadowEvents::default();
+        let mut counts = Totals::default();
         for size in [64, 128, 256] {
             for filter in filters() {
                 for (name, out) in [
@@ -119,7 +120,7 @@ proptest! {
                 }
             }
         }
-        prop_assert!(counts.setups > 0, "some pixels needed virtual samples");
+        prop_assert!(counts.tangent_setups > 0, "some pixels needed virtual samples");
     }
 }
 
@@ -150,7 +151,7 @@ fn acne_without_virtual_samples_and_a_plane_behind_a_box() {
     scene.cuboid(Vec3::new(-2.5, -0.5, -3.0), Vec3::new(-2.0, 3.0, 3.0));
     let light = perspective(Vec3::new(-6.0, 3.0, 0.0), Vec3::ZERO, 1.2, 1.0, 20.0);
     for filter in filters() {
-        let mut counts = ShadowEvents::default();
+        let mut counts = Totals::default();
         let out = render::<D24, _>(&scene, light, 128, second(filter), Normals::Flat, &mut counts);
         let plane: Vec<&Shaded> = out.iter().filter(|s| s.triangle == 0).collect();
         assert!(!plane.is_empty());
@@ -177,11 +178,11 @@ fn culled_camera_pass_equals_unculled() {
             ] {
                 let on = ShadowConfig::new(test, Bias::Constant(D24::plane_z(0.0005)), filter, true).expect("valid");
                 let off = on.with_cull_lookups(false);
-                let mut counts = ShadowEvents::default();
+                let mut counts = Totals::default();
                 let culled = render::<D24, _>(&scene, light, 128, on, normals, &mut counts);
                 let plain = render::<D24, _>(&scene, light, 128, off, normals, &mut NoProbe);
                 assert_eq!(culled, plain, "{normals:?} {filter:?} {test:?}");
-                assert!(counts.culled > 0, "{normals:?} {filter:?} {test:?}: nothing culled");
+                assert!(counts.lookups_culled > 0, "{normals:?} {filter:?} {test:?}: nothing culled");
                 assert!(culled.iter().any(|s| s.shadow == Shadow::ONE), "the boxes cast shadows");
                 assert!(culled.iter().all(|s| s.shadow <= Shadow::ONE));
             }

@@ -3,13 +3,14 @@
 
 use proptest::prelude::*;
 use umbra::core::depth::PlaneZ;
+use umbra::core::probe::Totals;
 use umbra::core::shadow::{
     Bias, DepthTest, Filter, Jitter, Lookup, MapCoord, MapView, Shadow, ShadowConfig, Slope, TangentPlane, jitter_grid,
     shadow, shadow_with_virtual_samples,
 };
 use umbra::core::{CullMode, D16, D24, DepthFormat, DepthUnit, NoProbe, RasterConfig, TileState};
 
-use crate::common::{ShadowEvents, config, run, triangles};
+use crate::common::{config, run, triangles};
 
 /// A map from rows of depths in `[0, 1]`, with exact tile bounds.
 struct Map<F: DepthFormat> {
@@ -200,7 +201,7 @@ proptest! {
         let (maps, _) = run::<D16, _, 16>(config(48, 8, DepthUnit::Dual, true), &tris, CullMode::None, 64, NoProbe);
         let raster = config(48, 8, DepthUnit::Dual, true).raster;
         let view = MapView::<D16>::new(raster, &maps.z1, &maps.z2, &maps.tiles).expect("sized");
-        let (mut culled, mut plain) = (ShadowEvents::default(), ShadowEvents::default());
+        let (mut culled, mut plain) = (Totals::default(), Totals::default());
         for c in &configs {
             let (with_culling, without) = (c.with_cull_lookups(true), c.with_cull_lookups(false));
             for l in &lookups {
@@ -210,8 +211,8 @@ proptest! {
                 prop_assert_eq!(shadow(&view, &with_culling, l, &mut culled), shadow(&view, &without, l, &mut plain));
             }
         }
-        prop_assert!(culled.read <= plain.read);
-        prop_assert!(plain.culled <= culled.culled, "culling off skips only lookups wholly outside the map");
+        prop_assert!(culled.map_reads() <= plain.map_reads());
+        prop_assert!(plain.lookups_culled <= culled.lookups_culled, "culling off skips only lookups wholly outside the map");
     }
 }
 
@@ -221,10 +222,10 @@ fn lookups_in_front_of_every_tile_read_nothing() {
     let map = Map::<D16>::new(16, 16, &[0.9; 256], &[0.95; 256]);
     let view = map.view();
     let c = ShadowConfig::new(DepthTest::Second, Bias::ZERO, Filter::Box { size: 3 }, true).expect("valid");
-    let mut p = ShadowEvents::default();
+    let mut p = Totals::default();
     assert_eq!(shadow(&view, &c, &at::<D16>(8.0, 8.0, 0.5), &mut p), Shadow::ZERO);
     assert_eq!(shadow(&view, &c, &at::<D16>(8.0, 8.0, 0.99), &mut p), Shadow::ONE);
-    assert_eq!((p.culled, p.read), (2, 0));
+    assert_eq!((p.lookups_culled, p.map_reads()), (2, 0));
 }
 
 proptest! {
@@ -293,11 +294,14 @@ fn grazing_tangent_planes_fall_back() {
     // A pixel whose ordinary samples disagree, with a grazing tangent plane.
     let map = Map::<D16>::new(16, 16, &(0..256).map(|i| if i % 2 == 0 { 0.2 } else { 0.8 }).collect::<Vec<_>>(), &[]);
     let c = cfg(DepthTest::First, Filter::Box { size: 3 });
-    let mut events = ShadowEvents::default();
+    let mut events = Totals::default();
     let l = at::<D16>(8.0, 8.0, 0.5);
     let s = shadow_with_virtual_samples(&map.view(), &c, &l, || grazing.slope::<D16>(&raster), &mut events);
     assert_eq!(s, shadow(&map.view(), &c, &l, &mut NoProbe));
-    assert_eq!((events.setups, events.fallbacks, events.trivial, events.virtual_samples), (1, 1, 0, 0));
+    assert_eq!(
+        (events.tangent_setups, events.tangent_fallbacks, events.trivial_pixels(), events.virtual_samples),
+        (1, 1, 0, 0)
+    );
 }
 
 /// A tilted plane drawn twice (both windings) by the light pass: `z1` and
@@ -328,7 +332,7 @@ fn virtual_samples_remove_self_shadowing_on_a_planar_receiver() {
     let view = MapView::<D16>::new(raster, &maps.z1, &maps.z2, &maps.tiles).expect("sized");
     let c = cfg(DepthTest::Second, Filter::Box { size: 3 });
     let inv_t = light.inverse().transpose();
-    let (mut acne_plain, mut acne_virtual, mut events) = (0, 0, ShadowEvents::default());
+    let (mut acne_plain, mut acne_virtual, mut events) = (0, 0, Totals::default());
     let n = 40;
     for k in 0..n * n {
         // World points spread over the middle of the plane, off texel centres.
@@ -358,7 +362,7 @@ fn virtual_samples_remove_self_shadowing_on_a_planar_receiver() {
     // A rounding tie could flip a sample in principle; on this fixed grid none
     // does (measured: 0 of 1600, with 728 pixels needing a tangent plane).
     assert_eq!(acne_virtual, 0, "virtual samples: {acne_virtual} of {total} pixels shadowed");
-    assert_eq!(events.setups + events.trivial, u64::from(total));
+    assert_eq!(events.tangent_setups + events.trivial_pixels(), u64::from(total));
     assert!(events.virtual_samples > 0);
 }
 

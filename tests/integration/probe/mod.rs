@@ -1,0 +1,3 @@
+//! The account of events: every unit reports the work it does.
+
+mod accounting;
