@@ -8,11 +8,12 @@
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use std::hint::black_box;
+use umbra::core::shade::MapUnit;
 use umbra::core::shadow::{Bias, DepthTest, ShadowConfig};
 use umbra::core::{CullMode, D24, DepthUnit, LightPassConfig, NO_TRIANGLE, NoProbe, RasterConfig};
 use umbra::sim::cost::counters::Counters;
-use umbra::sim::pass::camera::{CameraFrame, render_camera, render_camera_in};
-use umbra::sim::pass::light::render;
+use umbra::sim::pass::camera::{CameraFrame, CameraOptions, map_view, render};
+use umbra::sim::pass::light::{LightMaps, LightOptions};
 use umbra::sim::world::scene::Scene;
 
 const W: u32 = 1920;
@@ -22,33 +23,43 @@ fn bench_camera(c: &mut Criterion) {
     let scene = Scene::default_scene();
     let raster = RasterConfig::new(1024, 1024, 32, 8).expect("valid");
     let config = LightPassConfig { raster, unit: DepthUnit::Dual, max_z_cull: true };
-    let (maps, _) = render::<D24, _>(config, &scene.draws(scene.light().view_projection(), CullMode::None), NoProbe)
-        .expect("renders");
+    let (maps, _) = LightMaps::draw::<D24, _>(
+        config,
+        &scene.draws(scene.light().view_projection(), CullMode::None),
+        LightOptions::default(),
+        NoProbe,
+    )
+    .expect("renders");
+    let view = map_view::<D24>(&maps, false).expect("sized");
     let filters = umbra::sim::experiment::presets::FILTERS;
     let mut g = c.benchmark_group("camera_pass_1080p");
     g.sample_size(10);
     g.throughput(Throughput::Elements(u64::from(W * H)));
     for (name, filter) in filters {
         let shadow = ShadowConfig::new(DepthTest::Second, Bias::ZERO, filter, true).expect("valid");
+        let options = CameraOptions { width: W, height: H, shadow, virtual_samples: true };
         let mut counters = Counters::new(&RasterConfig::new(W, H, 32, 8).expect("valid"));
-        let image = render_camera::<D24, _>(&scene, &maps, false, shadow, true, W, H, &mut counters).expect("renders");
-        let covered = image.pixels.iter().filter(|p| p.triangle != NO_TRIANGLE).count() as f64;
+        let mut frame = CameraFrame::default();
+        render(&mut frame, &scene, &view, &MapUnit, &options, &mut counters).expect("renders");
+        let covered = frame.pixels.iter().filter(|p| p.triangle != NO_TRIANGLE).count() as f64;
         eprintln!(
             "{name}: virtual samples for {:.2} % of {covered} covered pixels, {} lookups culled",
             100.0 * counters.totals.tangent_setups as f64 / covered,
             counters.totals.lookups_culled
         );
-        let mut frame = CameraFrame::default();
         g.bench_function(BenchmarkId::new(name, "virtual_samples"), |b| {
             b.iter(|| {
-                render_camera_in::<D24, _>(&scene, &maps, false, shadow, true, (W, H), &mut NoProbe, &mut frame)
-                    .expect("renders");
+                render(&mut frame, &scene, &view, &MapUnit, &options, &mut NoProbe).expect("renders");
                 black_box(&frame.pixels);
             })
         });
         if name == "box3" {
             g.bench_function(BenchmarkId::new(name, "new_frame"), |b| {
-                b.iter(|| black_box(render_camera::<D24, _>(&scene, &maps, false, shadow, true, W, H, &mut NoProbe)))
+                b.iter(|| {
+                    let mut frame = CameraFrame::default();
+                    render(&mut frame, &scene, &view, &MapUnit, &options, &mut NoProbe).expect("renders");
+                    black_box(frame.take_image())
+                })
             });
         }
     }

@@ -10,7 +10,7 @@ use std::hint::black_box;
 use umbra::core::glam::{Mat4, Vec3};
 use umbra::core::{CullMode, D16, D24, DepthFormat, DepthUnit, LightPassConfig, NoProbe, RasterConfig};
 use umbra::sim::cost::counters::Counters;
-use umbra::sim::pass::light::{Draw, render};
+use umbra::sim::pass::light::{Draw, LightMaps, LightOptions};
 
 const SIZE: u32 = 1024;
 
@@ -122,12 +122,14 @@ fn config_tiled(unit: DepthUnit, max_z_cull: bool, tile: u32) -> LightPassConfig
 
 fn fragments(soup: &Soup, unit: DepthUnit, cull: bool) -> u64 {
     let cfg = config(unit, cull);
-    let (_, c) = render::<D24, _>(cfg, &[soup.draw()], Counters::new(&cfg.raster)).expect("renders");
+    let (_, c) = LightMaps::draw::<D24, _>(cfg, &[soup.draw()], LightOptions::default(), Counters::new(&cfg.raster))
+        .expect("renders");
     c.totals.fragments
 }
 
 fn run<F: DepthFormat>(soup: &Soup, unit: DepthUnit, cull: bool) {
-    let (maps, _) = render::<F, _>(config(unit, cull), &[soup.draw()], NoProbe).expect("renders");
+    let (maps, _) =
+        LightMaps::draw::<F, _>(config(unit, cull), &[soup.draw()], LightOptions::default(), NoProbe).expect("renders");
     black_box(maps);
 }
 
@@ -163,7 +165,12 @@ fn bench_light_pass(c: &mut Criterion) {
     for tile in [16, 32, 64, 128] {
         g.bench_function(BenchmarkId::new("d16/single/nocull", tile), |b| {
             b.iter(|| {
-                black_box(render::<D16, _>(config_tiled(DepthUnit::Single, false, tile), &[large.draw()], NoProbe))
+                black_box(LightMaps::draw::<D16, _>(
+                    config_tiled(DepthUnit::Single, false, tile),
+                    &[large.draw()],
+                    LightOptions::default(),
+                    NoProbe,
+                ))
             })
         });
     }
@@ -207,11 +214,13 @@ fn bench_probe_overhead(c: &mut Criterion) {
     g.sample_size(10);
     g.throughput(Throughput::Elements(small.triangles.len() as u64));
     let cfg = config(DepthUnit::Dual, true);
-    g.bench_function("functional", |b| b.iter(|| black_box(render::<D24, _>(cfg, &[small.draw()], NoProbe))));
+    g.bench_function("functional", |b| {
+        b.iter(|| black_box(LightMaps::draw::<D24, _>(cfg, &[small.draw()], LightOptions::default(), NoProbe)))
+    });
     g.bench_function("talisman_model", |b| {
         b.iter(|| {
             let probe = ArchProbe::new(ArchParams::TALISMAN, DepthFormatKind::D24, DepthUnit::Dual);
-            black_box(render::<D24, _>(cfg, &[small.draw()], probe))
+            black_box(LightMaps::draw::<D24, _>(cfg, &[small.draw()], LightOptions::default(), probe))
         })
     });
     g.finish();

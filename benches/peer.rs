@@ -29,7 +29,7 @@ use umbra::core::front;
 use umbra::core::glam::{Mat4, Vec3};
 use umbra::core::{CullMode, D24, DepthUnit, LightPassConfig, NoProbe, Probe, RasterConfig};
 use umbra::sim::cost::counters::Counters;
-use umbra::sim::pass::light::{Draw, LightFrame, render, render_bands, render_bands_in, render_in};
+use umbra::sim::pass::light::{Draw, LightFrame, LightMaps, LightOptions, render};
 use umbra::sim::world::mesh::Mesh;
 use umbra::sim::world::scene::Perspective;
 
@@ -58,11 +58,13 @@ fn umbra_draw(mesh: &Mesh) -> Draw<'_> {
 
 /// Umbra's light pass into a frame kept from pass to pass.
 fn umbra_kept(frame: &mut LightFrame<u32>, cfg: LightPassConfig, draw: Draw<'_>) {
-    render_in::<D24, _>(frame, cfg, black_box(&[draw]), NoProbe).map(|_| ()).expect("renders");
+    render::<D24, _, _>(frame, cfg, black_box(&[draw]), LightOptions::default(), NoProbe).map(|_| ()).expect("renders");
 }
 
 fn umbra_pass<P: Probe>(mesh: &Mesh, size: u32, cull: bool, probe: P) -> P {
-    render::<D24, P>(umbra_config(size, cull), &[umbra_draw(mesh)], probe).expect("renders").1
+    LightMaps::draw::<D24, P>(umbra_config(size, cull), &[umbra_draw(mesh)], LightOptions::default(), probe)
+        .expect("renders")
+        .1
 }
 
 /// `euc`'s pipeline: positions through the light's matrix, no colour.
@@ -141,16 +143,20 @@ fn peer(c: &mut Criterion) {
     g.bench_function("euc f32", |b| b.iter(|| euc_pass(black_box(&vertices), 1024, None)));
     // Both into buffers kept from frame to frame, as hardware keeps its
     // memory: no fresh pages in the timing.
-    let mut frame = LightFrame::new();
+    let mut frame: LightFrame<u32> = LightFrame::new();
     let (cfg, draw) = (umbra_config(1024, false), umbra_draw(&mesh));
     g.bench_function("umbra d24, culling off, kept frame", |b| {
         b.iter(|| umbra_kept(&mut frame, cfg, draw));
     });
     // Beside them, the banded pass on every core into a kept frame: the
     // same maps, bit for bit; euc draws on one core.
-    let mut banded = LightFrame::new();
+    let mut banded: LightFrame<u32> = LightFrame::new();
     g.bench_function("umbra d24, culling off, kept frame, every core", |b| {
-        b.iter(|| render_bands_in::<D24>(&mut banded, cfg, black_box(&[draw])).map(|_| ()).expect("renders"));
+        b.iter(|| {
+            render::<D24, _, _>(&mut banded, cfg, black_box(&[draw]), LightOptions::BANDS, NoProbe)
+                .map(|_| ())
+                .expect("renders")
+        });
     });
     let (mut colour, mut depth) = (Buffer2d::new([1024, 1024], ()), Buffer2d::new([1024, 1024], 1.0f32));
     g.bench_function("euc f32, kept buffers", |b| {
@@ -201,7 +207,7 @@ fn scaling(c: &mut Criterion) {
     g.finish();
 }
 
-/// The light pass on every core (`render_bands`: the front end on runs of
+/// The light pass on every core (`LightOptions::BANDS`: the front end on runs of
 /// triangles in parallel, then bands of tile rows in parallel; bit-identical
 /// to the single pass) on 1, 2 and every core, beside the whole pass on one,
 /// at 2048² where each band has enough tiles to keep a core busy; each with
@@ -218,9 +224,11 @@ fn cores(c: &mut Criterion) {
     let mut g = c.benchmark_group("cores");
     g.sample_size(10);
     g.bench_function("whole pass", |b| {
-        b.iter(|| render::<D24, _>(cfg, black_box(&[draw]), NoProbe).expect("renders"));
+        b.iter(|| {
+            LightMaps::draw::<D24, _>(cfg, black_box(&[draw]), LightOptions::default(), NoProbe).expect("renders")
+        });
     });
-    let mut frame = LightFrame::new();
+    let mut frame: LightFrame<u32> = LightFrame::new();
     g.bench_function("whole pass, kept frame", |b| {
         b.iter(|| umbra_kept(&mut frame, cfg, draw));
     });
@@ -230,12 +238,20 @@ fn cores(c: &mut Criterion) {
     for threads in counts {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool");
         g.bench_function(BenchmarkId::from_parameter(threads), |b| {
-            b.iter(|| pool.install(|| render_bands::<D24>(cfg, black_box(&[draw])).expect("renders")));
+            b.iter(|| {
+                pool.install(|| {
+                    LightMaps::draw::<D24, _>(cfg, black_box(&[draw]), LightOptions::BANDS, NoProbe)
+                        .map(|(m, _)| m)
+                        .expect("renders")
+                })
+            });
         });
         g.bench_function(BenchmarkId::new("kept frame", threads), |b| {
             b.iter(|| {
                 pool.install(|| {
-                    render_bands_in::<D24>(&mut frame, cfg, black_box(&[draw])).map(|_| ()).expect("renders")
+                    render::<D24, _, _>(&mut frame, cfg, black_box(&[draw]), LightOptions::BANDS, NoProbe)
+                        .map(|_| ())
+                        .expect("renders")
                 });
             });
         });
@@ -270,7 +286,7 @@ fn peer_sizes(c: &mut Criterion) {
     let mut g = c.benchmark_group("peer/triangles");
     g.sample_size(10);
     let (mut colour, mut depth) = (Buffer2d::new([1024, 1024], ()), Buffer2d::new([1024, 1024], 1.0f32));
-    let mut frame = LightFrame::new();
+    let mut frame: LightFrame<u32> = LightFrame::new();
     let cfg = umbra_config(1024, false);
     for (rings, sides) in [(25, 20), (50, 40), (100, 50), (250, 200)] {
         let mesh = torus(rings, sides);

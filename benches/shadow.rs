@@ -15,7 +15,7 @@ use umbra::core::depth::PlaneZ;
 use umbra::core::glam::{Mat4, Vec3};
 use umbra::core::shadow::{Bias, DepthTest, Lookup, MapCoord, MapView, ShadowConfig, shadow};
 use umbra::core::{CullMode, D24, DepthFormat, DepthUnit, LightPassConfig, NoProbe, RasterConfig};
-use umbra::sim::pass::light::{Draw, LightMaps, render};
+use umbra::sim::pass::light::{Draw, LightMaps, LightOptions};
 
 const MAP: u32 = 1024;
 const W: u32 = 1920;
@@ -46,7 +46,7 @@ fn maps() -> LightMaps<u32> {
     let raster = RasterConfig::new(MAP, MAP, 32, 8).expect("valid");
     let cfg = LightPassConfig { raster, unit: DepthUnit::Dual, max_z_cull: true };
     let draw = Draw { positions: &positions, triangles: &triangles, transform: Mat4::IDENTITY, cull: CullMode::None };
-    render::<D24, _>(cfg, &[draw], NoProbe).expect("renders").0
+    LightMaps::draw::<D24, _>(cfg, &[draw], LightOptions::default(), NoProbe).expect("renders").0
 }
 
 fn bench_lookups(c: &mut Criterion) {

@@ -23,8 +23,8 @@ use umbra::core::shade::{CameraConfig, MapUnit, Normals, ShadeSetup, Shaded, Tri
 use umbra::core::shadow::{Bias, DepthTest, Filter, MapView, ShadowConfig};
 use umbra::core::{ConfigError, CullMode, D24, DepthUnit, Event, LightPassConfig, NoProbe, Probe, RasterConfig};
 use umbra::sim::experiment::presets::FILTERS;
-use umbra::sim::pass::camera::{SHADE_SETUPS, map_view, visibility};
-use umbra::sim::pass::light::render;
+use umbra::sim::pass::camera::{CameraFrame, SHADE_SETUPS, map_view, visibility};
+use umbra::sim::pass::light::{LightMaps, LightOptions};
 use umbra::sim::world::scene::Scene;
 use umbra::sim::world::scene_file::BUNDLED;
 
@@ -69,9 +69,16 @@ fn shade_scene(
 ) -> Result<(), Box<dyn std::error::Error>> {
     let raster = RasterConfig::new(1024, 1024, 32, 8)?;
     let config = LightPassConfig { raster, unit: DepthUnit::Dual, max_z_cull: true };
-    let (maps, _) = render::<D24, _>(config, &scene.draws(scene.light().view_projection(), CullMode::None), NoProbe)?;
+    let (maps, _) = LightMaps::draw::<D24, _>(
+        config,
+        &scene.draws(scene.light().view_projection(), CullMode::None),
+        LightOptions::default(),
+        NoProbe,
+    )?;
     let view = map_view::<D24>(&maps, false)?;
-    let (camera, ids) = visibility(scene, width, height, &mut NoProbe)?;
+    let mut frame = CameraFrame::default();
+    let camera = visibility(&mut frame, scene, (width, height), &mut NoProbe)?.camera;
+    let ids = frame.ids();
     let triangles = scene.triangles();
     let source = |id: u32| triangles.get(id as usize).copied();
     let mut pixels = vec![Shaded::BACKGROUND; ids.len()];
@@ -81,9 +88,9 @@ fn shade_scene(
         let cfg = CameraConfig { camera, light, width, height, shadow, virtual_samples, normals, seed: 0x5eed };
         for _ in 0..passes {
             if trace {
-                shade_once(&cfg, &ids, &view, &source, &mut pixels, &mut setups, &mut Trace(digest))?;
+                shade_once(&cfg, ids, &view, &source, &mut pixels, &mut setups, &mut Trace(digest))?;
             } else {
-                shade_once(&cfg, &ids, &view, &source, &mut pixels, &mut setups, &mut NoProbe)?;
+                shade_once(&cfg, ids, &view, &source, &mut pixels, &mut setups, &mut NoProbe)?;
             }
         }
         for p in &pixels {

@@ -7,7 +7,7 @@
 //! cargo build --release --example light_profile
 //! valgrind --tool=callgrind target/release/examples/light_profile 2
 //! perf record -g target/release/examples/light_profile 50
-//! target/release/examples/light_profile 50 bands 2048   # render_bands, 2048²
+//! target/release/examples/light_profile 50 bands 2048   # LightOptions::BANDS, 2048²
 //! RAYON_NUM_THREADS=1 target/release/examples/light_profile 4 bands 2048
 //! target/release/examples/light_profile 1 whole 1024 digest
 //! target/release/examples/light_profile 20 bands-new 2048   # a new frame each pass
@@ -29,7 +29,7 @@ use std::hash::{DefaultHasher, Hash, Hasher};
 
 use umbra::core::glam::Vec3;
 use umbra::core::{CullMode, D24, DepthFormat, DepthUnit, LightPassConfig, NoProbe, RasterConfig};
-use umbra::sim::pass::light::{Draw, LightFrame, render_bands_in, render_in};
+use umbra::sim::pass::light::{Draw, LightFrame, LightOptions, render};
 use umbra::sim::world::mesh::Mesh;
 use umbra::sim::world::scene::Perspective;
 
@@ -67,16 +67,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let draw = Draw { positions: &mesh.positions, triangles: &mesh.triangles, transform: light, cull: CullMode::None };
     // One frame for every pass, as hardware keeps its memory: after the
     // first, a pass touches no fresh pages.
-    let mut frame = LightFrame::new();
+    let mut frame: LightFrame<u32> = LightFrame::new();
     let start = std::time::Instant::now();
     for _ in 0..passes {
         if new {
-            frame = LightFrame::new();
+            frame = LightFrame::<u32>::new();
         }
         if bands {
-            render_bands_in::<D24>(&mut frame, cfg, &[draw])?;
+            render::<D24, _, _>(&mut frame, cfg, &[draw], LightOptions::BANDS, NoProbe)?;
         } else {
-            render_in::<D24, _>(&mut frame, cfg, &[draw], NoProbe)?;
+            render::<D24, _, _>(&mut frame, cfg, &[draw], LightOptions::default(), NoProbe)?;
         }
     }
     let took = start.elapsed();

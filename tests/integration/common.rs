@@ -299,3 +299,20 @@ pub fn ground_point(inverse: &umbra::core::glam::DMat4, w: u32, h: u32, i: usize
     let (a, b) = (unproject(0.0), unproject(1.0));
     a + (b - a) * (-a.y / (b.y - a.y))
 }
+
+/// The camera pass of `scene` at `w × h` against a dual `maps` with the
+/// map's shadow unit, into `frame`; its image.
+pub fn camera_image<F: DepthFormat, P: Probe>(
+    frame: &mut umbra::sim::pass::camera::CameraFrame,
+    scene: &umbra::sim::world::scene::Scene,
+    maps: &umbra::sim::pass::light::LightMaps<F::Texel>,
+    (shadow, virtual_samples): (umbra::core::shadow::ShadowConfig, bool),
+    (width, height): (u32, u32),
+    probe: &mut P,
+) -> umbra::sim::pass::camera::CameraImage {
+    use umbra::sim::pass::camera::{CameraOptions, map_view, render};
+    let view = map_view::<F>(maps, false).expect("maps fit their configuration");
+    let options = CameraOptions { width, height, shadow, virtual_samples };
+    render(frame, scene, &view, &umbra::core::shade::MapUnit, &options, probe).expect("renders");
+    frame.take_image()
+}

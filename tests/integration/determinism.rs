@@ -8,8 +8,8 @@ use umbra::core::shade::Shaded;
 use umbra::core::shadow::Filter;
 use umbra::core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, RasterConfig};
 use umbra::sim::cost::counters::Counters;
-use umbra::sim::pass::light::{RawMaps, render_raw};
-use umbra::sim::pass::render::{Algorithm, Render, RenderConfig, render};
+use umbra::sim::pass::light::RawMaps;
+use umbra::sim::pass::render::{Algorithm, Render, RenderConfig, TruthSource, render};
 use umbra::sim::world::scene::Scene;
 
 /// 1, 2 and every core of the machine (at least 3, so the pools differ).
@@ -62,7 +62,7 @@ fn light_maps_are_the_same_on_any_thread_count() {
         for unit in [DepthUnit::Single, DepthUnit::Dual] {
             let cfg =
                 LightPassConfig { raster: RasterConfig::new(160, 96, 16, 8).expect("valid"), unit, max_z_cull: true };
-            let pass = || render_raw(cfg, format, &draws, Counters::new(&cfg.raster)).expect("renders").0;
+            let pass = || RawMaps::render(cfg, format, &draws, Counters::new(&cfg.raster)).expect("renders").0;
             let first = pass();
             assert_eq!(first, pass(), "{format:?} {unit:?}: a second run differs");
             for threads in thread_counts() {
@@ -91,7 +91,12 @@ fn a_render_is_the_same_on_any_thread_count() {
         reference_samples: 2,
     };
     let hidden = indicatif::ProgressBar::hidden();
-    let go = || bits(&render(&scene, &cfg, &hidden).expect("renders"));
+    let go = || {
+        bits(
+            &render(&scene, &cfg, &umbra::sim::io::limits::Limits::DEFAULT, TruthSource::Build(&hidden))
+                .expect("renders"),
+        )
+    };
     let first = go();
     assert_eq!(first, go(), "a second run differs");
     for threads in thread_counts() {
@@ -114,16 +119,20 @@ fn tile_bounds<T: Copy>(m: &umbra::sim::pass::light::LightMaps<T>) -> Vec<(T, T,
 #[test]
 fn banded_light_passes_equal_the_whole_pass() {
     use umbra::core::{D16, D24, DepthFormat};
-    use umbra::sim::pass::light::{render, render_bands};
+    use umbra::sim::pass::light::{LightMaps, LightOptions};
     fn check<F: DepthFormat>(scene: &Scene, side: u32, tile: u32, unit: DepthUnit) {
         let raster = RasterConfig::new(side, side - 8, tile, 8).expect("valid");
         assert!(raster.window(0, tile / 2, side, tile).is_err(), "a window starts on a tile boundary");
         assert!(raster.window(0, tile, side, side).is_err(), "a window lies inside the target");
         let config = LightPassConfig { raster, unit, max_z_cull: true };
         let draws = scene.draws(scene.light().view_projection(), CullMode::None);
-        let (whole, _) = render::<F, _>(config, &draws, umbra::core::NoProbe).expect("renders");
+        let (whole, _) =
+            LightMaps::draw::<F, _>(config, &draws, LightOptions::default(), umbra::core::NoProbe).expect("renders");
         for threads in [1, 2, 3, 5] {
-            let banded = on(threads, || render_bands::<F>(config, &draws)).expect("renders");
+            let banded = on(threads, || {
+                LightMaps::draw::<F, _>(config, &draws, LightOptions::BANDS, umbra::core::NoProbe).map(|(m, _)| m)
+            })
+            .expect("renders");
             assert!(
                 banded.z1 == whole.z1 && banded.z2 == whole.z2,
                 "{}: texels differ on {threads} threads",
@@ -152,7 +161,7 @@ fn an_unwatched_pass_draws_the_maps_of_a_counted_one() {
     use umbra::core::D24;
     use umbra::core::glam::Vec3;
     use umbra::sim::cost::counters::Counters;
-    use umbra::sim::pass::light::{Draw, render};
+    use umbra::sim::pass::light::{Draw, LightMaps, LightOptions};
     use umbra::sim::world::mesh::Mesh;
     use umbra::sim::world::scene::Perspective;
     let mesh = Mesh::torus(Vec3::ZERO, 1.0, 0.4, 100, 50);
@@ -168,8 +177,11 @@ fn an_unwatched_pass_draws_the_maps_of_a_counted_one() {
     for unit in [DepthUnit::Single, DepthUnit::Dual] {
         let raster = RasterConfig::new(96, 64, 16, 8).expect("valid");
         let config = LightPassConfig { raster, unit, max_z_cull: true };
-        let (unwatched, _) = render::<D24, _>(config, &[draw], umbra::core::NoProbe).expect("renders");
-        let (counted, counters) = render::<D24, _>(config, &[draw], Counters::new(&raster)).expect("renders");
+        let (unwatched, _) =
+            LightMaps::draw::<D24, _>(config, &[draw], LightOptions::default(), umbra::core::NoProbe).expect("renders");
+        let (counted, counters) =
+            LightMaps::draw::<D24, _>(config, &[draw], LightOptions::default(), Counters::new(&raster))
+                .expect("renders");
         assert_eq!(counters.totals.flushes_setup_full, 0, "the counted store holds the scene");
         assert!(unwatched.z1 == counted.z1 && unwatched.z2 == counted.z2, "{unit:?}: the texels differ");
         assert!(tile_bounds(&unwatched) == tile_bounds(&counted), "{unit:?}: the tile bounds differ");
@@ -183,8 +195,10 @@ fn an_unwatched_pass_draws_the_maps_of_a_counted_one() {
 fn a_reused_camera_frame_draws_what_a_new_one_does() {
     use umbra::core::shadow::{Bias, DepthTest, ShadowConfig};
     use umbra::core::{D24, NoProbe};
-    use umbra::sim::pass::camera::{CameraFrame, render_camera, render_camera_in};
-    use umbra::sim::pass::light::render;
+    use umbra::sim::pass::camera::CameraFrame;
+    use umbra::sim::pass::light::{LightMaps, LightOptions};
+
+    use crate::common::camera_image;
     let shadow = ShadowConfig::new(DepthTest::Second, Bias::ZERO, Filter::Box { size: 3 }, true).expect("valid");
     let mut frame = CameraFrame::default();
     for (name, (w, h)) in [("table", (96, 64)), ("double-torus", (40, 30)), ("table", (96, 64)), ("table", (33, 71))] {
@@ -192,13 +206,13 @@ fn a_reused_camera_frame_draws_what_a_new_one_does() {
         let raster = RasterConfig::new(128, 128, 32, 8).expect("valid");
         let config = LightPassConfig { raster, unit: DepthUnit::Dual, max_z_cull: true };
         let draws = scene.draws(scene.light().view_projection(), CullMode::None);
-        let (maps, _) = render::<D24, _>(config, &draws, NoProbe).expect("renders");
+        let (maps, _) = LightMaps::draw::<D24, _>(config, &draws, LightOptions::default(), NoProbe).expect("renders");
         let target = RasterConfig::new(w, h, 32, 8).expect("valid");
         let (mut new, mut reused) = (Counters::new(&target), Counters::new(&target));
-        let image = render_camera::<D24, _>(&scene, &maps, false, shadow, true, w, h, &mut new).expect("renders");
-        render_camera_in::<D24, _>(&scene, &maps, false, shadow, true, (w, h), &mut reused, &mut frame)
-            .expect("renders");
-        assert_eq!(frame.pixels, image.pixels, "{name} at {w}×{h}");
+        let image =
+            camera_image::<D24, _>(&mut CameraFrame::default(), &scene, &maps, (shadow, true), (w, h), &mut new);
+        let kept = camera_image::<D24, _>(&mut frame, &scene, &maps, (shadow, true), (w, h), &mut reused);
+        assert_eq!(kept.pixels, image.pixels, "{name} at {w}×{h}");
         assert_eq!(reused.totals, new.totals, "{name} at {w}×{h}");
         assert!(image.pixels.iter().any(|p| p.light.is_some()), "{name}: something is shaded");
     }
@@ -210,24 +224,42 @@ fn a_reused_camera_frame_draws_what_a_new_one_does() {
 #[test]
 fn a_reused_light_frame_draws_what_new_buffers_do() {
     use umbra::core::{D16, D24, DepthFormat, NoProbe};
-    use umbra::sim::pass::light::{LightFrame, render, render_bands, render_bands_in, render_in};
-    let mut frame16 = LightFrame::new();
-    let mut frame24 = LightFrame::new();
+    use umbra::sim::pass::light::{LightFrame, LightMaps, LightOptions, render};
+    let mut frame16: LightFrame<u16> = LightFrame::new();
+    let mut frame24: LightFrame<u32> = LightFrame::new();
     let passes = [("table", 128, DepthUnit::Dual, true), ("double-torus", 96, DepthUnit::Single, false)];
     for (name, side, unit, cull) in passes.into_iter().cycle().take(5) {
         let scene = Scene::bundled(name).expect("bundled");
         let raster = RasterConfig::new(side, side + 32, 32, 8).expect("valid");
         let config = LightPassConfig { raster, unit, max_z_cull: cull };
         let draws = scene.draws(scene.light().view_projection(), CullMode::None);
-        let (new, _) = render::<D24, _>(config, &draws, NoProbe).expect("renders");
+        let (new, _) = LightMaps::draw::<D24, _>(config, &draws, LightOptions::default(), NoProbe).expect("renders");
         assert!(new.z1.iter().any(|&z| z < D24::FAR), "{name}: something is drawn");
-        assert_eq!(render_in::<D24, _>(&mut frame24, config, &draws, NoProbe).expect("renders").0, &new, "{name}");
-        let banded = on(2, || render_bands_in::<D24>(&mut frame24, config, &draws).cloned()).expect("renders");
+        assert_eq!(
+            render::<D24, _, _>(&mut frame24, config, &draws, LightOptions::default(), NoProbe).expect("renders").0,
+            &new,
+            "{name}"
+        );
+        let banded = on(2, || {
+            render::<D24, _, _>(&mut frame24, config, &draws, LightOptions::BANDS, umbra::core::NoProbe)
+                .map(|(m, _)| m)
+                .cloned()
+        })
+        .expect("renders");
         assert_eq!(banded, new, "{name}, banded into the whole pass's frame");
-        let new = on(2, || render_bands::<D16>(config, &draws)).expect("renders");
-        let banded = on(2, || render_bands_in::<D16>(&mut frame16, config, &draws).cloned()).expect("renders");
+        let new = on(2, || {
+            LightMaps::draw::<D16, _>(config, &draws, LightOptions::BANDS, umbra::core::NoProbe).map(|(m, _)| m)
+        })
+        .expect("renders");
+        let banded = on(2, || {
+            render::<D16, _, _>(&mut frame16, config, &draws, LightOptions::BANDS, umbra::core::NoProbe)
+                .map(|(m, _)| m)
+                .cloned()
+        })
+        .expect("renders");
         assert_eq!(banded, new, "{name}, banded");
-        let whole = render_in::<D16, _>(&mut frame16, config, &draws, NoProbe).expect("renders").0;
+        let whole =
+            render::<D16, _, _>(&mut frame16, config, &draws, LightOptions::default(), NoProbe).expect("renders").0;
         assert_eq!(whole, &new, "{name}, whole into the banded pass's frame");
     }
 }

@@ -14,7 +14,7 @@ use std::time::{Duration, Instant};
 
 use umbra::core::D16;
 use umbra::sim::cost::counters::Counters;
-use umbra::sim::pass::light::{Draw, render_with};
+use umbra::sim::pass::light::{Draw, LightFrame, LightOptions, render};
 use umbra_demo::footprint::{self, FootprintConfig};
 use umbra_demo::{BIN_CAPACITY, Memory, SETUPS, Summary, scene};
 
@@ -146,8 +146,10 @@ fn host_demo_matches_the_simulator() {
         transform: scene::light_matrix(),
         cull: umbra::core::CullMode::None,
     };
+    let mut frame = LightFrame::<u16, BIN_CAPACITY>::new();
+    let options = LightOptions::with_setups(SETUPS);
     let (maps, counters) =
-        render_with::<D16, Counters, BIN_CAPACITY>(cfg, &[draw], SETUPS, Counters::new(&cfg.raster)).unwrap();
+        render::<D16, Counters, BIN_CAPACITY>(&mut frame, cfg, &[draw], options, Counters::new(&cfg.raster)).unwrap();
     let (z1, z2) = mem.maps();
     assert_eq!(maps.z1, z1);
     assert_eq!(maps.z2, z2);

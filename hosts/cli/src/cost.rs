@@ -36,7 +36,7 @@ pub(super) fn cost(args: &CostArgs, trace: bool, limits: &Limits) -> Result<()> 
     let out = &args.render.out;
     let mut reports = Vec::new();
     for arch in presets {
-        let (report, light) = umbra_sim::pass::render::cost_within(&scene, &cfg, arch, limits)?;
+        let (report, light) = umbra_sim::pass::render::cost(&scene, &cfg, arch, limits)?;
         if trace {
             let path = out.join(format!("trace-{}.json", arch.name));
             write_text(&path, &serde_json::to_string(&umbra_sim::cost::arch::CostReport::trace(&light))?)?;

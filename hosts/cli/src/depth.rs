@@ -10,7 +10,7 @@ use umbra_sim::cost::counters::Counters;
 use umbra_sim::glam::{Mat4, Vec3};
 use umbra_sim::io::limits::Limits;
 use umbra_sim::io::output::{RawMap, write_npy, write_preview, write_text};
-use umbra_sim::pass::light::{RawMaps, render_raw};
+use umbra_sim::pass::light::RawMaps;
 use umbra_sim::world::mesh::Mesh;
 use umbra_sim::world::scene::{Light, Object, Perspective, Scene, parse_matrix};
 
@@ -158,7 +158,7 @@ pub(super) fn depth(args: &DepthArgs, limits: &Limits) -> Result<()> {
     };
     let config = LightPassConfig { raster, unit, max_z_cull: !args.no_max_z_cull };
     let draws = scene.draws(matrix, cull);
-    let (maps, counters) = render_raw(config, format, &draws, Counters::new(&raster))?;
+    let (maps, counters) = RawMaps::render(config, format, &draws, Counters::new(&raster))?;
 
     std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
     let written = write_maps(&args.out, &maps)?;

@@ -10,7 +10,7 @@ use umbra_sim::io::limits::Limits;
 use umbra_sim::io::output::{
     RawMap, write_error_image, write_preview, write_shadow_image, write_shadow_term, write_text,
 };
-use umbra_sim::pass::render::{Algorithm, RenderConfig};
+use umbra_sim::pass::render::{Algorithm, RenderConfig, TruthSource};
 use umbra_sim::world::scene::Scene;
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -158,7 +158,7 @@ pub(super) fn render_config(args: &RenderArgs, limits: &Limits) -> Result<(Scene
 pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
     let (scene, cfg, filter_name) = render_config(args, limits)?;
     let progress = ProgressBar::new(u64::from(cfg.height)).with_message("reference rays");
-    let r = umbra_sim::pass::render::render_within(&scene, &cfg, limits, &progress)?;
+    let r = umbra_sim::pass::render::render(&scene, &cfg, limits, TruthSource::Build(&progress))?;
     progress.finish_and_clear();
     let out = &args.out;
     let (w, h) = (r.maps.maps.config.raster.width(), r.maps.maps.config.raster.height());

@@ -27,8 +27,8 @@ use crate::cost::arch::{ArchParams, CostReport};
 use crate::cost::storage::StorageBytes;
 use crate::experiment::presets::FILTERS;
 use crate::io::limits::Limits;
-use crate::pass::light::render as light_render;
-use crate::pass::render::{Algorithm, Render, RenderConfig, RenderError, cost_within, render_against, truth};
+use crate::pass::light::{self, DEFAULT_BIN_CAPACITY, LightFrame, LightOptions};
+use crate::pass::render::{Algorithm, Render, RenderConfig, RenderError, TruthSource, cost, render, truth};
 use crate::truth::reference::PixelTruth;
 use crate::world::scene::Scene;
 
@@ -144,7 +144,15 @@ pub fn thinnest_gap(scene: &Scene, map: u32) -> Result<f64, PlanError> {
         .map_err(RenderError::MapSize)?;
     let config = LightPassConfig { raster, unit: DepthUnit::Dual, max_z_cull: true };
     let draws = scene.draws(scene.light().view_projection(), CullMode::None);
-    let (maps, _) = light_render::<F32, _>(config, &draws, umbra_core::NoProbe).map_err(RenderError::from)?;
+    let mut frame = LightFrame::new();
+    let (maps, _) = light::render::<F32, _, DEFAULT_BIN_CAPACITY>(
+        &mut frame,
+        config,
+        &draws,
+        LightOptions::default(),
+        umbra_core::NoProbe,
+    )
+    .map_err(RenderError::from)?;
     let far = F32::FAR;
     let mut gaps: Vec<f64> = maps
         .z1
@@ -173,8 +181,8 @@ fn evaluate(
     spec: &PlanSpec,
     truth: &[Option<PixelTruth>],
 ) -> Result<(Figures, Render), PlanError> {
-    let r = render_against(scene, cfg, truth.to_vec(), &spec.limits)?;
-    let (c, _) = cost_within(scene, cfg, spec.arch, &spec.limits)?;
+    let r = render(scene, cfg, &spec.limits, TruthSource::Given(truth.to_vec()))?;
+    let (c, _) = cost(scene, cfg, spec.arch, &spec.limits)?;
     Ok((figures(r.metrics.misclassified_percent, &c), r))
 }
 

@@ -1,13 +1,16 @@
 //! Run the core's light pass over buffers owned here.
 
 use glam::{Mat4, Vec3};
+use umbra_core::depth::Texel;
 use umbra_core::front::{self, Output};
 use umbra_core::raster::bin::Bin;
 use umbra_core::raster::setup::Setup;
 use umbra_core::{
-    ConfigError, CullMode, D16, D24, DepthFormat, DepthFormatKind, DepthUnit, F32, LightBuffers, LightPass,
-    LightPassConfig, Probe, SubmitError, TileState,
+    CullMode, D16, D24, DepthFormat, DepthFormatKind, DepthUnit, F32, LightBuffers, LightPass, LightPassConfig, Probe,
+    TileState,
 };
+
+use super::PassError;
 
 /// Bin capacity the simulator uses unless told otherwise: bins live in
 /// memory, so they are deep (a bin of 2-byte entries is 512 bytes).
@@ -52,70 +55,106 @@ pub struct LightMaps<T> {
     pub tiles: Vec<TileState<T>>,
 }
 
-/// Why a light pass could not run.
-#[derive(Debug, thiserror::Error)]
-pub enum LightError {
-    /// The configuration or a buffer is unusable.
-    #[error("light pass configuration: {0}")]
-    Config(#[from] ConfigError),
-    /// A draw call is malformed.
-    #[error("draw call {draw}: {source}")]
-    Submit {
-        /// Which draw call.
-        draw: usize,
-        /// What is wrong with it.
-        source: SubmitError,
-    },
+/// How a light pass runs: the one options type of [`render`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LightOptions {
+    /// Entries of the setup store. `None`: as large as the scene, at most
+    /// the bins' reach ([`DEFAULT_SETUPS`]); for a pass whose probe ignores
+    /// events, a store that stays in cache instead (the maps do not depend
+    /// on its size, only the events do).
+    pub setups: Option<usize>,
+    /// Run on every core of the current rayon pool, in bands of tile rows
+    /// (see [`render`]). A banded pass reports no events, so it takes only
+    /// a probe that ignores them, and its own setup stores.
+    pub bands: bool,
 }
 
-/// Render the light pass of `draws` in format `F` with bin capacity `B` and a
-/// setup store of `setups` entries.
-///
-/// # Errors
-/// See [`LightError`].
-pub fn render_with<F: DepthFormat, P: Probe, const B: usize>(
-    config: LightPassConfig,
-    draws: &[Draw<'_>],
-    setups: usize,
-    probe: P,
-) -> Result<(LightMaps<F::Texel>, P), LightError> {
-    let mut maps = LightMaps::empty(config);
-    let probe = render_into::<F, P, B>(&mut maps, &mut PassScratch::default(), config, draws, setups, probe)?;
-    Ok((maps, probe))
+impl LightOptions {
+    /// The pass in bands on every core.
+    pub const BANDS: Self = Self { setups: None, bands: true };
+
+    /// A serial pass with a setup store of `setups` entries.
+    #[must_use]
+    pub const fn with_setups(setups: usize) -> Self {
+        Self { setups: Some(setups), bands: false }
+    }
 }
 
-/// [`render_with`] into `frame`: its maps, bins and setup store, kept from
-/// one pass to the next. The maps are the frame's until its next pass.
+/// The light pass of `draws` into `frame` (its maps, bins and setup stores,
+/// kept from one pass to the next: see [`LightFrame`]), run as `options`
+/// says, reporting to `probe`. The maps are the frame's until its next pass.
+///
+/// A banded pass runs the front end ([`umbra_core::front`]) on runs of
+/// triangles in parallel, in submission order, and sorts each setup into
+/// the bands of tile rows it reaches; then the bands are rasterized in
+/// parallel, each a window of the target
+/// ([`umbra_core::RasterConfig::window`]) with its own bins, setup store
+/// and tiles, storing its setups moved into its window
+/// ([`LightPass::draw_setup_from`]). Its maps are exactly those of a serial
+/// pass, on any number of threads.
 ///
 /// # Errors
-/// See [`LightError`].
-pub fn render_with_in<'f, F: DepthFormat, P: Probe, const B: usize>(
+/// See [`PassError`]; [`PassError::BandsWatched`] for a banded pass whose
+/// probe counts events.
+pub fn render<'f, F: DepthFormat, P: Probe, const B: usize>(
     frame: &'f mut LightFrame<F::Texel, B>,
     config: LightPassConfig,
     draws: &[Draw<'_>],
-    setups: usize,
+    options: LightOptions,
     probe: P,
-) -> Result<(&'f LightMaps<F::Texel>, P), LightError> {
-    let maps = frame.maps.get_or_insert_with(|| LightMaps::empty(config));
-    let probe = render_into::<F, P, B>(maps, &mut frame.pass, config, draws, setups, probe)?;
+) -> Result<(&'f LightMaps<F::Texel>, P), PassError> {
+    let LightFrame { maps, pass, jobs, bands } = frame;
+    let maps = maps.get_or_insert_with(|| LightMaps::empty(config));
+    let probe = draw_into::<F, P, B>(maps, pass, jobs, bands, config, draws, options, probe)?;
     Ok((maps, probe))
 }
 
-/// The pass of [`render_with`] into given maps and scratch.
-fn render_into<F: DepthFormat, P: Probe, const B: usize>(
+impl<T: Texel> LightMaps<T> {
+    /// The maps of one light pass ([`render`]) into new buffers.
+    ///
+    /// # Errors
+    /// See [`render`].
+    pub fn draw<F: DepthFormat<Texel = T>, P: Probe>(
+        config: LightPassConfig,
+        draws: &[Draw<'_>],
+        options: LightOptions,
+        probe: P,
+    ) -> Result<(Self, P), PassError> {
+        let mut maps = Self::empty(config);
+        let (mut pass, mut jobs, mut bands) = (PassScratch::<DEFAULT_BIN_CAPACITY>::new(), Vec::new(), Vec::new());
+        let probe = draw_into::<F, P, DEFAULT_BIN_CAPACITY>(
+            &mut maps, &mut pass, &mut jobs, &mut bands, config, draws, options, probe,
+        )?;
+        Ok((maps, probe))
+    }
+}
+
+/// The pass of [`render`] into given maps and scratch.
+#[allow(clippy::too_many_arguments, reason = "the buffers of one pass")]
+fn draw_into<F: DepthFormat, P: Probe, const B: usize>(
     maps: &mut LightMaps<F::Texel>,
-    scratch: &mut PassScratch<B>,
+    pass: &mut PassScratch<B>,
+    jobs: &mut Vec<JobScratch>,
+    bands: &mut Vec<PassScratch<B>>,
     config: LightPassConfig,
     draws: &[Draw<'_>],
-    setups: usize,
+    options: LightOptions,
     probe: P,
-) -> Result<P, LightError> {
+) -> Result<P, PassError> {
+    if options.bands {
+        if P::EVENTS {
+            return Err(PassError::BandsWatched);
+        }
+        bands_into::<F, B>(maps, jobs, bands, config, draws)?;
+        return Ok(probe);
+    }
+    let setups = options.setups.unwrap_or_else(|| store_size::<P>(&config, draws));
     maps.resize(config);
     let LightMaps { z1, z2, tiles, .. } = maps;
-    run::<F, P, B>(config, z1, z2, tiles, scratch, setups, probe, |pass| {
+    run::<F, P, B>(config, z1, z2, tiles, pass, setups, probe, |pass| {
         for (draw, d) in draws.iter().enumerate() {
             pass.draw_mesh(d.positions, d.triangles, &d.transform, d.cull)
-                .map_err(|source| LightError::Submit { draw, source })?;
+                .map_err(|source| PassError::Submit { draw, source })?;
         }
         Ok(())
     })
@@ -168,8 +207,8 @@ struct JobScratch {
 }
 
 /// What the light pass keeps from one pass to the next, as hardware keeps
-/// its memory: the maps, the bins and the setup store, and for
-/// [`render_bands_in`] each front-end job's setups and each band's bins and
+/// its memory: the maps, the bins and the setup store, and for a banded
+/// pass ([`LightOptions::bands`]) each front-end job's setups and each band's bins and
 /// store. A pass at sizes the frame has drawn before allocates nothing, so
 /// it touches no fresh pages.
 #[derive(Debug)]
@@ -213,8 +252,8 @@ fn run<F: DepthFormat, P: Probe, const B: usize>(
     scratch: &mut PassScratch<B>,
     setups: usize,
     probe: P,
-    feed: impl FnOnce(&mut LightPass<'_, F, P, B>) -> Result<(), LightError>,
-) -> Result<P, LightError> {
+    feed: impl FnOnce(&mut LightPass<'_, F, P, B>) -> Result<(), PassError>,
+) -> Result<P, PassError> {
     // The pass clears both.
     scratch.bins.resize(config.raster.tile_count(), Bin::new());
     scratch.store.resize(setups, Setup::EMPTY);
@@ -232,57 +271,20 @@ const BAND_SETUPS: usize = 8192;
 /// Triangles the front end sets up in one parallel job.
 const FRONT_END_RUN: usize = 2048;
 
-/// The light pass on every core of the current rayon pool, as parallel
-/// hardware would run it: the front end ([`umbra_core::front`]) sets up
-/// runs of triangles in parallel, in submission order, and sorts each setup
-/// into the bands of tile rows it reaches; then the bands are rasterized in
-/// parallel, each a window of the target
-/// ([`umbra_core::RasterConfig::window`]) with its own bins, setup store and
-/// tiles, storing its setups moved into its window
-/// ([`LightPass::draw_setup_from`]). The maps are exactly those of [`render`], on
-/// any number of threads.
-///
-/// # Errors
-/// See [`LightError`].
-pub fn render_bands<F: DepthFormat>(
-    config: LightPassConfig,
-    draws: &[Draw<'_>],
-) -> Result<LightMaps<F::Texel>, LightError> {
-    let mut maps = LightMaps::empty(config);
-    bands_into::<F>(&mut maps, &mut Vec::new(), &mut Vec::new(), config, draws)?;
-    Ok(maps)
-}
-
-/// [`render_bands`] into `frame`: its maps, each front-end job's setups and
-/// each band's bins and store, kept from one pass to the next. The maps
-/// are the frame's until its next pass.
-///
-/// # Errors
-/// See [`LightError`].
-pub fn render_bands_in<'f, F: DepthFormat>(
-    frame: &'f mut LightFrame<F::Texel>,
-    config: LightPassConfig,
-    draws: &[Draw<'_>],
-) -> Result<&'f LightMaps<F::Texel>, LightError> {
-    let maps = frame.maps.get_or_insert_with(|| LightMaps::empty(config));
-    bands_into::<F>(maps, &mut frame.jobs, &mut frame.bands, config, draws)?;
-    Ok(maps)
-}
-
 /// The banded pass into given maps and scratch.
-fn bands_into<F: DepthFormat>(
+fn bands_into<F: DepthFormat, const B: usize>(
     maps: &mut LightMaps<F::Texel>,
     job_scratch: &mut Vec<JobScratch>,
-    band_scratch: &mut Vec<PassScratch<DEFAULT_BIN_CAPACITY>>,
+    band_scratch: &mut Vec<PassScratch<B>>,
     config: LightPassConfig,
     draws: &[Draw<'_>],
-) -> Result<(), LightError> {
+) -> Result<(), PassError> {
     use rayon::prelude::*;
     let r = config.raster;
     let mut jobs = Vec::new();
     let mut first_id = 0u32;
     for (draw, d) in draws.iter().enumerate() {
-        front::check_indices(d.positions.len(), d.triangles).map_err(|source| LightError::Submit { draw, source })?;
+        front::check_indices(d.positions.len(), d.triangles).map_err(|source| PassError::Submit { draw, source })?;
         for (k, run) in d.triangles.chunks(FRONT_END_RUN).enumerate() {
             #[allow(clippy::cast_possible_truncation, reason = "ids wrap, as the light pass numbers them")]
             jobs.push((d, run, first_id.wrapping_add((k * FRONT_END_RUN) as u32)));
@@ -353,41 +355,15 @@ fn bands_into<F: DepthFormat>(
             let store = own().count().clamp(1, BAND_SETUPS);
             let (window, y0) = (windows[band], rows[band].0);
             let band = LightPassConfig { raster: window, ..config };
-            run::<F, _, DEFAULT_BIN_CAPACITY>(band, z1, z2, tiles, scratch, store, umbra_core::NoProbe, |pass| {
+            run::<F, _, B>(band, z1, z2, tiles, scratch, store, umbra_core::NoProbe, |pass| {
                 own().for_each(|s| pass.draw_setup_from(s, [0, y0]));
                 Ok(())
             })
             .map(|_| ())
         })
-        .collect::<Result<(), LightError>>()?;
+        .collect::<Result<(), PassError>>()?;
     debug_assert_eq!(maps.tiles.len(), across as usize * down as usize);
     Ok(())
-}
-
-/// Render with the default bin capacity and setup store.
-///
-/// # Errors
-/// See [`LightError`].
-pub fn render<F: DepthFormat, P: Probe>(
-    config: LightPassConfig,
-    draws: &[Draw<'_>],
-    probe: P,
-) -> Result<(LightMaps<F::Texel>, P), LightError> {
-    render_with::<F, P, DEFAULT_BIN_CAPACITY>(config, draws, store_size::<P>(&config, draws), probe)
-}
-
-/// [`render`] into `frame`, kept from one pass to the next (see
-/// [`LightFrame`]). The maps are the frame's until its next pass.
-///
-/// # Errors
-/// See [`LightError`].
-pub fn render_in<'f, F: DepthFormat, P: Probe>(
-    frame: &'f mut LightFrame<F::Texel>,
-    config: LightPassConfig,
-    draws: &[Draw<'_>],
-    probe: P,
-) -> Result<(&'f LightMaps<F::Texel>, P), LightError> {
-    render_with_in::<F, P, DEFAULT_BIN_CAPACITY>(frame, config, draws, store_size::<P>(&config, draws), probe)
 }
 
 /// The setup store of [`render`]: as large as the scene (at most the bins'
@@ -409,32 +385,43 @@ pub struct RawMaps {
 }
 
 /// The same maps with every texel widened to its raw `u32` bits.
-pub(crate) fn widen<T: umbra_core::depth::Texel>(m: LightMaps<T>) -> LightMaps<u32> {
-    let raw = |v: Vec<T>| v.into_iter().map(T::to_raw).collect();
+pub(crate) fn widen<T: Texel>(m: &LightMaps<T>) -> LightMaps<u32> {
+    let raw = |v: &[T]| v.iter().map(|&t| T::to_raw(t)).collect();
     LightMaps {
         config: m.config,
-        z1: raw(m.z1),
-        z2: raw(m.z2),
-        tiles: m.tiles.into_iter().map(|t| t.map(T::to_raw)).collect(),
+        z1: raw(&m.z1),
+        z2: raw(&m.z2),
+        tiles: m.tiles.iter().map(|t| t.map(T::to_raw)).collect(),
     }
 }
 
-/// Render in a format chosen at run time.
-///
-/// # Errors
-/// See [`LightError`].
-pub fn render_raw<P: Probe>(
-    config: LightPassConfig,
-    format: DepthFormatKind,
-    draws: &[Draw<'_>],
-    probe: P,
-) -> Result<(RawMaps, P), LightError> {
-    let (maps, probe) = match format {
-        DepthFormatKind::D16 => render::<D16, P>(config, draws, probe).map(|(m, p)| (widen(m), p))?,
-        DepthFormatKind::D24 => render::<D24, P>(config, draws, probe).map(|(m, p)| (widen(m), p))?,
-        DepthFormatKind::F32 => render::<F32, P>(config, draws, probe).map(|(m, p)| (widen(m), p))?,
-    };
-    Ok((RawMaps { format, maps }, probe))
+impl RawMaps {
+    /// A light pass ([`render`], serial, into new buffers) in a format
+    /// chosen at run time.
+    ///
+    /// # Errors
+    /// See [`PassError`].
+    pub fn render<P: Probe>(
+        config: LightPassConfig,
+        format: DepthFormatKind,
+        draws: &[Draw<'_>],
+        probe: P,
+    ) -> Result<(Self, P), PassError> {
+        fn pass<F: DepthFormat, P: Probe>(
+            config: LightPassConfig,
+            draws: &[Draw<'_>],
+            probe: P,
+        ) -> Result<(LightMaps<u32>, P), PassError> {
+            let (maps, probe) = LightMaps::draw::<F, P>(config, draws, LightOptions::default(), probe)?;
+            Ok((widen(&maps), probe))
+        }
+        let (maps, probe) = match format {
+            DepthFormatKind::D16 => pass::<D16, P>(config, draws, probe)?,
+            DepthFormatKind::D24 => pass::<D24, P>(config, draws, probe)?,
+            DepthFormatKind::F32 => pass::<F32, P>(config, draws, probe)?,
+        };
+        Ok((Self { format, maps }, probe))
+    }
 }
 
 /// The depth a raw texel of `format` stands for, in `[0, 1]`.

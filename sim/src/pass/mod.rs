@@ -2,6 +2,30 @@
 //! bands on every core), the camera pass, and a render of both for one
 //! shadow algorithm.
 
+pub mod algorithm;
 pub mod camera;
 pub mod light;
 pub mod render;
+
+use umbra_core::{ConfigError, SubmitError};
+
+/// Why a pass could not run.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum PassError {
+    /// The configuration or a buffer is unusable.
+    #[error("pass configuration: {0}")]
+    Config(#[from] ConfigError),
+    /// A draw call is malformed.
+    #[error("draw call {draw}: {source}")]
+    Submit {
+        /// Which draw call.
+        draw: usize,
+        /// What is wrong with it.
+        source: SubmitError,
+    },
+    /// A banded light pass was given a probe that counts events: a banded
+    /// pass reports none (count them with a serial pass).
+    #[error("a banded light pass reports no events: count them with a serial pass")]
+    BandsWatched,
+}

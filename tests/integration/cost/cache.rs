@@ -7,8 +7,10 @@ use umbra::core::probe::{Probe, TexelRead};
 use umbra::core::shadow::{Bias, DepthTest, Filter, ShadowConfig};
 use umbra::core::{CullMode, D24, DepthUnit, LightPassConfig, RasterConfig};
 use umbra::sim::cost::cache::{Cache, CacheError, MapCache};
-use umbra::sim::pass::camera::render_camera;
-use umbra::sim::pass::light::render;
+use umbra::sim::pass::camera::CameraFrame;
+use umbra::sim::pass::light::{LightMaps, LightOptions};
+
+use crate::common::camera_image;
 use umbra::sim::world::scene::Scene;
 
 /// Two sets of two 16-byte ways; lines 0, 2 and 4 share set 0. Line 4
@@ -40,16 +42,20 @@ fn a_one_line_cache_and_a_whole_map_cache_bound_the_traffic() {
     let scene = Scene::bundled("table").expect("bundled");
     let raster = RasterConfig::new(256, 256, 32, 8).expect("valid");
     let config = LightPassConfig { raster, unit: DepthUnit::Dual, max_z_cull: true };
-    let (maps, _) =
-        render::<D24, _>(config, &scene.draws(scene.light().view_projection(), CullMode::None), umbra::core::NoProbe)
-            .expect("renders");
+    let (maps, _) = LightMaps::draw::<D24, _>(
+        config,
+        &scene.draws(scene.light().view_projection(), CullMode::None),
+        LightOptions::default(),
+        umbra::core::NoProbe,
+    )
+    .expect("renders");
     let shadow = ShadowConfig::new(DepthTest::Midpoint, Bias::ZERO, Filter::Box { size: 3 }, false).expect("valid");
     let (w, h) = (160, 90);
     let mut reads = Reads::default();
-    render_camera::<D24, _>(&scene, &maps, false, shadow, false, w, h, &mut reads).expect("renders");
+    camera_image::<D24, _>(&mut CameraFrame::default(), &scene, &maps, (shadow, false), (w, h), &mut reads);
     let run = |cache: Cache| {
         let mut probe = MapCache::new(cache, 2, 4);
-        render_camera::<D24, _>(&scene, &maps, false, shadow, false, w, h, &mut probe).expect("renders");
+        camera_image::<D24, _>(&mut CameraFrame::default(), &scene, &maps, (shadow, false), (w, h), &mut probe);
         probe
     };
     let one_line = run(Cache::new(64, 64, 1).expect("valid"));

@@ -11,7 +11,7 @@ use umbra::sim::cost::storage::{
     BOX_HEADER_BYTES, MapShape, REEVES_TILE, SparseTiles, StorageError, TILE_ENTRY_BYTES, TexelBox, finite_box,
     of_maps, storage_bytes,
 };
-use umbra::sim::pass::light::render_raw;
+use umbra::sim::pass::light::RawMaps;
 use umbra::sim::world::scene::Scene;
 
 const CLEAR16: u32 = 0xffff;
@@ -120,7 +120,7 @@ fn scene_maps(name: &str, size: u32) -> umbra::sim::pass::light::RawMaps {
     let raster = RasterConfig::new(size, size, 32, RasterConfig::DEFAULT_SUBPIXEL_BITS).unwrap();
     let cfg = LightPassConfig { raster, unit: DepthUnit::Dual, max_z_cull: true };
     let draws = scene.draws(scene.light().view_projection(), CullMode::None);
-    render_raw(cfg, DepthFormatKind::D24, &draws, NoProbe).expect("renders").0
+    RawMaps::render(cfg, DepthFormatKind::D24, &draws, NoProbe).expect("renders").0
 }
 
 #[test]

@@ -7,7 +7,7 @@ use umbra::core::glam::Vec4;
 use umbra::core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, RasterConfig};
 use umbra::sim::cost::counters::Counters;
 use umbra::sim::io::output::{RawMap, write_npy};
-use umbra::sim::pass::light::{Draw, raw_far, render_raw};
+use umbra::sim::pass::light::{Draw, RawMaps, raw_far};
 use umbra::sim::world::mesh::{Mesh, MeshError};
 use umbra::sim::world::scene::{MatrixError, Perspective, Scene, parse_matrix};
 
@@ -94,7 +94,7 @@ fn shared_meshes_all_render() {
         let raster = RasterConfig::new(128, 128, 16, 8).expect("valid");
         let cfg = LightPassConfig { raster, unit: DepthUnit::Dual, max_z_cull: true };
         for format in DepthFormatKind::ALL {
-            let (maps, c) = render_raw(cfg, format, &[draw], Counters::new(&raster)).expect("renders");
+            let (maps, c) = RawMaps::render(cfg, format, &[draw], Counters::new(&raster)).expect("renders");
             let name = path.display();
             assert!(c.totals.fragments > 100, "{name} {format:?}: only {} fragments", c.totals.fragments);
             assert_eq!(c.totals.submitted, mesh.triangles.len() as u64);
@@ -114,7 +114,7 @@ fn npy_holds_raw_texels() {
     let draws = scene.draws(scene.light().view_projection(), CullMode::None);
     let dir = scratch("npy");
     for (format, descr, bytes) in [(DepthFormatKind::D16, "<u2", 2usize), (DepthFormatKind::D24, "<u4", 4)] {
-        let (maps, _) = render_raw(cfg, format, &draws, umbra::core::NoProbe).expect("renders");
+        let (maps, _) = RawMaps::render(cfg, format, &draws, umbra::core::NoProbe).expect("renders");
         let path = dir.join(format!("{}.npy", format.name()));
         write_npy(&path, &RawMap { format, width: 48, height: 32, raw: &maps.maps.z1 }).expect("writes");
         let file = std::fs::read(&path).expect("reads");

@@ -5,7 +5,8 @@ use indicatif::ProgressBar;
 use umbra::core::DepthFormatKind;
 use umbra::core::glam::{Mat4, Vec3};
 use umbra::core::shadow::Filter;
-use umbra::sim::pass::render::{Algorithm, Render, RenderConfig, render};
+use umbra::sim::io::limits::Limits;
+use umbra::sim::pass::render::{Algorithm, Render, RenderConfig, TruthSource, render};
 use umbra::sim::world::mesh::Mesh;
 use umbra::sim::world::scene::{Light, Object, Orthographic, Perspective, Scene};
 
@@ -106,7 +107,10 @@ fn silhouette_maps_follow_the_exact_boundary_closer_than_shadow_maps() {
     let shift = 0.5 * 2.0 * f64::from(EXTENT) / f64::from(map);
     for degrees in [0.0f32, 30.0] {
         let s = scene(vec![square(degrees, shift as f32)]);
-        let run = |a| render(&s, &config(a, map, &s), &ProgressBar::hidden()).expect("renders");
+        let run = |a| {
+            render(&s, &config(a, map, &s), &Limits::DEFAULT, TruthSource::Build(&ProgressBar::hidden()))
+                .expect("renders")
+        };
         let (d, shadow_map, sil, packed) = (
             f64::from(degrees),
             run(Algorithm::First),
@@ -165,7 +169,7 @@ fn shadow_volumes_are_exact_away_from_boundaries() {
         s.lights = vec![light];
         let mut cfg = config(Algorithm::Volumes, 8, &s);
         cfg.reference_samples = 4;
-        let r = render(&s, &cfg, &ProgressBar::hidden()).expect("renders");
+        let r = render(&s, &cfg, &Limits::DEFAULT, TruthSource::Build(&ProgressBar::hidden())).expect("renders");
         let w = s.image[0] as usize;
         let (mut checked, mut shadowed, mut wrong) = (0, 0, Vec::new());
         for (i, p) in r.image.pixels.iter().enumerate() {
@@ -205,8 +209,13 @@ fn silhouette_map_artifacts_stay_local() {
     for (occluders, solid) in [(slabs, true), (vec![wedge], false)] {
         let mut s = scene(Vec::new());
         s.objects.extend(occluders.into_iter().map(|mesh| Object { name: "occluder".into(), mesh, solid }));
-        let r = render(&s, &config(Algorithm::Silhouette { packed: false }, map, &s), &ProgressBar::hidden())
-            .expect("renders");
+        let r = render(
+            &s,
+            &config(Algorithm::Silhouette { packed: false }, map, &s),
+            &Limits::DEFAULT,
+            TruthSource::Build(&ProgressBar::hidden()),
+        )
+        .expect("renders");
         assert!(r.metrics.misclassified_percent.is_finite());
         let wrong = r
             .image
@@ -251,7 +260,7 @@ fn crowd_bandwidth_follows_sens_model() {
     let run = |a| {
         let mut c = config(a, 512, &s);
         c.format = DepthFormatKind::F32;
-        cost(&s, &c, ArchParams::TALISMAN).expect("costs").0
+        cost(&s, &c, ArchParams::TALISMAN, &Limits::DEFAULT).expect("costs").0
     };
     let (map, sil, vol) = (run(Algorithm::First), run(Algorithm::Silhouette { packed: true }), run(Algorithm::Volumes));
     let per_fill =
@@ -286,7 +295,9 @@ fn crowd_bandwidth_follows_sens_model() {
 fn volumes_beyond_the_far_plane_keep_their_planes() {
     let mut s = Scene::bundled("crowd").expect("bundled");
     s.image = [480, 270];
-    let r = render(&s, &config(Algorithm::Volumes, 8, &s), &ProgressBar::hidden()).expect("renders");
+    let r =
+        render(&s, &config(Algorithm::Volumes, 8, &s), &Limits::DEFAULT, TruthSource::Build(&ProgressBar::hidden()))
+            .expect("renders");
     println!("crowd volumes: {:.4} % misclassified", r.metrics.misclassified_percent);
     assert!(r.metrics.evaluated > 50_000);
     assert!(r.metrics.misclassified_percent <= 0.05, "{:.4} %", r.metrics.misclassified_percent);

@@ -5,7 +5,7 @@ use umbra::core::NO_TRIANGLE;
 use umbra::core::glam::{DVec3, Vec3};
 use umbra::core::shade::Shaded;
 use umbra::core::shadow::Shadow;
-use umbra::sim::pass::camera::visibility;
+use umbra::sim::pass::camera::{CameraFrame, visibility};
 use umbra::sim::truth::metrics::compare;
 use umbra::sim::truth::reference::{LightSource, PixelTruth, Reference};
 use umbra::sim::world::mesh::Mesh;
@@ -32,10 +32,12 @@ fn a_sphere_casts_a_disc_under_a_directional_light() {
         image: [160, 120],
     };
     let (w, h) = (160u32, 120u32);
-    let (camera, ids) = visibility(&scene, w, h, &mut umbra::core::NoProbe).expect("renders");
+    let mut frame = CameraFrame::default();
+    let camera = visibility(&mut frame, &scene, (w, h), &mut umbra::core::NoProbe).expect("renders").camera;
+    let ids = frame.ids();
     let reference = Reference::new(&scene.triangles()).expect("builds");
     let light = LightSource::Directional(DVec3::NEG_Y);
-    let truth = reference.image(&ids, &camera, w, h, &light, 1, &indicatif::ProgressBar::hidden());
+    let truth = reference.image(ids, &camera, w, h, &light, 1, &indicatif::ProgressBar::hidden());
     let inverse = camera.as_dmat4().inverse();
     let (mut inside, mut outside, mut checked) = (0, 0, 0);
     for (i, (&id, t)) in ids.iter().zip(&truth).enumerate() {
@@ -91,12 +93,14 @@ fn metrics_count_what_they_should() {
 fn the_reference_does_not_depend_on_the_thread_count() {
     let scene = Scene::bundled("crowd").expect("bundled");
     let (w, h) = (96u32, 64u32);
-    let (camera, ids) = visibility(&scene, w, h, &mut umbra::core::NoProbe).expect("renders");
+    let mut frame = CameraFrame::default();
+    let camera = visibility(&mut frame, &scene, (w, h), &mut umbra::core::NoProbe).expect("renders").camera;
+    let ids = frame.ids();
     let reference = Reference::new(&scene.triangles()).expect("builds");
     let light = scene.light().source();
     let on = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool");
-        pool.install(|| reference.image(&ids, &camera, w, h, &light, 3, &indicatif::ProgressBar::hidden()))
+        pool.install(|| reference.image(ids, &camera, w, h, &light, 3, &indicatif::ProgressBar::hidden()))
     };
     let one = on(1);
     assert_eq!(one, on(2));

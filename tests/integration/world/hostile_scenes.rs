@@ -8,7 +8,7 @@ use std::path::Path;
 use umbra::core::DepthFormatKind;
 use umbra::core::shadow::Filter;
 use umbra::sim::io::limits::{LimitError, Limits};
-use umbra::sim::pass::render::{Algorithm, RenderConfig, RenderError, render, render_within};
+use umbra::sim::pass::render::{Algorithm, RenderConfig, RenderError, TruthSource, render};
 use umbra::sim::world::mesh::{Mesh, MeshError};
 use umbra::sim::world::scene::Scene;
 use umbra::sim::world::scene_file::{Problem, SceneError};
@@ -172,19 +172,27 @@ fn huge_maps_and_images_are_refused_before_allocating() {
     let scene = Scene::bundled("table").expect("bundled");
     let hidden = indicatif::ProgressBar::hidden();
     for side in [65_536u32, 16_384] {
-        let err = render(&scene, &render_config(side, 64, 48), &hidden).err().expect("refused");
+        let err = render(&scene, &render_config(side, 64, 48), &Limits::DEFAULT, TruthSource::Build(&hidden))
+            .err()
+            .expect("refused");
         assert!(matches!(err, RenderError::Limit(LimitError::MapSide { side: s, max: 8192 }) if s == side), "{err}");
         assert!(err.to_string().contains(&format!("map side {side}")), "{err}");
     }
-    let err = render(&scene, &render_config(64, 100_000, 1), &hidden).err().expect("refused");
+    let err = render(&scene, &render_config(64, 100_000, 1), &Limits::DEFAULT, TruthSource::Build(&hidden))
+        .err()
+        .expect("refused");
     assert!(matches!(err, RenderError::Limit(LimitError::ImageSide { side: 100_000, .. })), "{err}");
-    let err = render(&scene, &render_config(64, 8192, 8192), &hidden).err().expect("refused");
+    let err = render(&scene, &render_config(64, 8192, 8192), &Limits::DEFAULT, TruthSource::Build(&hidden))
+        .err()
+        .expect("refused");
     assert!(matches!(err, RenderError::Limit(LimitError::ImagePixels { .. })), "{err}");
     let few = Limits { max_triangles: 100, ..Limits::DEFAULT };
-    let err = render_within(&scene, &render_config(64, 64, 48), &few, &hidden).err().expect("refused");
+    let err = render(&scene, &render_config(64, 64, 48), &few, TruthSource::Build(&hidden)).err().expect("refused");
     assert!(matches!(err, RenderError::Limit(LimitError::Triangles { max: 100, .. })), "{err}");
     // Zero is the core's to refuse, and named as the map's.
-    let err = render(&scene, &render_config(0, 64, 48), &hidden).err().expect("refused");
+    let err = render(&scene, &render_config(0, 64, 48), &Limits::DEFAULT, TruthSource::Build(&hidden))
+        .err()
+        .expect("refused");
     assert!(matches!(err, RenderError::MapSize(_)), "{err}");
 }
 

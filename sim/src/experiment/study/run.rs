@@ -5,7 +5,7 @@ use rayon::prelude::*;
 
 use super::{Config, Culling, Row, Shard, Spec, StudyError};
 use crate::io::limits::Limits;
-use crate::pass::render::{RenderConfig, cost_within, render_against, truth};
+use crate::pass::render::{RenderConfig, TruthSource, cost, render, truth};
 use crate::truth::reference::PixelTruth;
 use crate::world::scene::Scene;
 
@@ -56,7 +56,7 @@ pub fn run_config(spec: &Spec, c: &Config, open: &[Scene], truths: &[Truth]) -> 
     };
     let cfg = render_config(spec, c);
     let metrics = match &truths[c.scene] {
-        Ok(t) => render_against(scene, &cfg, t.clone(), &spec.limits).map_err(|e| e.to_string()),
+        Ok(t) => render(scene, &cfg, &spec.limits, TruthSource::Given(t.clone())).map_err(|e| e.to_string()),
         Err(e) => Err(format!("reference: {e}")),
     };
     let metrics = metrics.map(|r| {
@@ -82,7 +82,7 @@ pub fn run_config(spec: &Spec, c: &Config, open: &[Scene], truths: &[Truth]) -> 
             match &metrics {
                 Ok((m, _)) => {
                     row.set_metrics(m);
-                    match cost_within(scene, &cfg, *arch, &spec.limits) {
+                    match cost(scene, &cfg, *arch, &spec.limits) {
                         Ok((report, _)) => row.set_cost(&report),
                         Err(e) => row.skip(format!("cost on {}: {e}", arch.name)),
                     }

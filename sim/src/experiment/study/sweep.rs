@@ -58,24 +58,6 @@ impl Variant {
         self.culling = Culling::Off;
         self
     }
-
-    /// Reeves' `Bias1`, if the algorithm draws its bias from a range.
-    #[must_use]
-    pub const fn bias_hi(&self) -> Option<f64> {
-        match self.algorithm {
-            Algorithm::BiasRange { hi } => Some(hi),
-            _ => None,
-        }
-    }
-
-    /// The dual offset, if the algorithm has one.
-    #[must_use]
-    pub const fn offset(&self) -> Option<f64> {
-        match self.algorithm {
-            Algorithm::Dual { offset } => Some(offset),
-            _ => None,
-        }
-    }
 }
 
 /// First-depth biases of the full sweep (depths in `[0, 1]`): from none,
