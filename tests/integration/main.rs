@@ -8,6 +8,7 @@
 )]
 
 mod common;
+mod mock_map;
 
 mod firmware;
 
@@ -16,6 +17,7 @@ mod raster;
 mod shade;
 mod shadow;
 mod silhouette;
+mod stencil;
 
 mod cost;
 mod experiment;

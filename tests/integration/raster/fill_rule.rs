@@ -4,6 +4,7 @@ use umbra::core::glam::Vec4;
 use umbra::core::{CullMode, D16, D24, DepthFormat, DepthUnit};
 
 use crate::common::{Recorder, assert_matches_reference, config, reference, run};
+use crate::mock_map::MockMap;
 
 const SIZE: u32 = 32;
 
@@ -83,28 +84,9 @@ fn huge_triangle_covers_the_target_once() {
     assert!(maps.z1.iter().all(|&z| z == D24::quantize(0.25)));
 }
 
-/// An 8×8 target drawn as ASCII, like a mock display: `#` covered once, `2`
-/// covered twice (overdraw), `.` empty.
-fn ascii(tris: &[[Vec4; 3]]) -> String {
-    let (_, rec) =
-        run::<D16, _, 64>(config(8, 8, DepthUnit::Single, false), tris, CullMode::None, 64, Recorder::default());
-    let mut count = [[0u8; 8]; 8];
-    for f in rec.fragments {
-        count[f.y as usize][f.x as usize] += 1;
-    }
-    count
-        .iter()
-        .map(|row| {
-            row.iter()
-                .map(|&c| match c {
-                    0 => '.',
-                    1 => '#',
-                    _ => '2',
-                })
-                .collect::<String>()
-                + "\n"
-        })
-        .collect()
+/// What an 8×8 target's pass draws, as a mock map.
+fn picture(tris: &[[Vec4; 3]]) -> MockMap {
+    run::<D16, _, 64>(config(8, 8, DepthUnit::Single, false), tris, CullMode::None, 64, MockMap::new(8, 8)).1
 }
 
 /// Vertices at pixel *corners* (1, 1), (7, 1), (1, 7) of an 8×8 target: a
@@ -118,9 +100,10 @@ fn ascii_triangle_and_its_mirror() {
     let v = |x: f32, y: f32| Vec4::new(x / 4.0 - 1.0, 1.0 - y / 4.0, 0.5, 1.0);
     let upper = [v(1.0, 1.0), v(7.0, 1.0), v(1.0, 7.0)];
     let lower = [v(7.0, 1.0), v(7.0, 7.0), v(1.0, 7.0)];
-    assert_eq!(ascii(&[upper]), "........\n.#####..\n.####...\n.###....\n.##.....\n.#......\n........\n........\n");
-    assert_eq!(
-        ascii(&[upper, lower]),
-        "........\n.######.\n.######.\n.######.\n.######.\n.######.\n.######.\n........\n"
-    );
+    picture(&[upper]).assert_pattern(&[
+        "........", ".#####..", ".####...", ".###....", ".##.....", ".#......", "........", "........",
+    ]);
+    picture(&[upper, lower]).assert_pattern(&[
+        "........", ".######.", ".######.", ".######.", ".######.", ".######.", ".######.", "........",
+    ]);
 }

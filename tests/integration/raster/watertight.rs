@@ -11,6 +11,7 @@ use umbra::core::glam::Vec4;
 use umbra::core::{CullMode, D16, DepthUnit};
 
 use crate::common::{Recorder, config, run};
+use crate::mock_map::MockMap;
 
 const SIZE: u32 = 64;
 const GRID: i64 = 256 * SIZE as i64;
@@ -163,4 +164,22 @@ proptest! {
         }
         assert_exactly_once(&points, &tris, &outline, &z)?;
     }
+}
+
+/// A watertight fan as a picture: a square with its corners at the centres
+/// of pixels (3, 3) and (11, 11), cut into four triangles meeting at the
+/// centre of pixel (7, 7). The centres on the four inner edges go to one
+/// triangle each (no `2`), and the outline keeps its top row and left
+/// column as the fill rule says: exactly `[3, 11) × [3, 11)`.
+#[test]
+fn a_fan_of_four_triangles_as_a_picture() {
+    let c = |p: f32| (p + 0.5) / 16.0 * 2.0 - 1.0;
+    let v = |x: f32, y: f32| Vec4::new(c(x), -c(y), 0.5, 1.0);
+    let (centre, corners) = (v(7.0, 7.0), [v(3.0, 3.0), v(11.0, 3.0), v(11.0, 11.0), v(3.0, 11.0)]);
+    let fan: Vec<[Vec4; 3]> = (0..4).map(|k| [centre, corners[k], corners[(k + 1) % 4]]).collect();
+    let (_, map) =
+        run::<D16, _, 8>(config(16, 8, DepthUnit::Single, false), &fan, CullMode::None, 8, MockMap::new(16, 16));
+    let (outside, inside) = ("................", "...########.....");
+    let rows: Vec<&str> = (0..16).map(|y| if (3..11).contains(&y) { inside } else { outside }).collect();
+    map.assert_pattern(&rows);
 }

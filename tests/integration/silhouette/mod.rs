@@ -302,3 +302,40 @@ fn volumes_beyond_the_far_plane_keep_their_planes() {
     assert!(r.metrics.evaluated > 50_000);
     assert!(r.metrics.misclassified_percent <= 0.05, "{:.4} %", r.metrics.misclassified_percent);
 }
+
+/// The silhouette pass's conservative rasterization as a picture. On the
+/// 9 × 7 silhouette grid of an 8 × 6 map (texel `(i, j)` spans
+/// `[i, i + 1) × [j, j + 1)`), a horizontal edge at `y = 3.25` from
+/// `x = 1.25` to `x = 5.75` lies in row 3 only (the slack is 2⁻⁸ texel) and
+/// in columns 1 to 5; each of those texels stores a point (an endpoint, or
+/// the midpoint of the edge's crossings of its diagonals at `i + ¼` and
+/// `i + ¾`), none at a texel's centre, and nothing hides it under a far map.
+#[test]
+fn a_horizontal_edge_fills_its_row_as_a_picture() {
+    use umbra::core::budget::MAP_SCALE;
+    use umbra::core::shadow::{Bias, DepthTest, MapView, ShadowConfig};
+    use umbra::core::silhouette::{Segment, SilPoint, SilhouettePass};
+    use umbra::core::{D24, DepthFormat, NoProbe, RasterConfig, TileState};
+
+    use crate::mock_map::MockMap;
+
+    let raster = RasterConfig::new(8, 6, 8, 8).expect("valid");
+    let (z, tiles) = (vec![D24::FAR; 48], vec![TileState::cleared(D24::FAR, 48)]);
+    let view = MapView::<D24>::front_culled(raster, &z, &tiles).expect("sized");
+    let cfg = ShadowConfig::new(DepthTest::First, Bias::ZERO, Filter::Point, false).expect("valid");
+    let mut texels = vec![SilPoint::CENTRE; 9 * 7];
+    let mut pass = SilhouettePass::<SilPoint, D24>::new(&mut texels, &view, cfg).expect("sized");
+    let q = |v: f64| (v * MAP_SCALE) as i64;
+    let depth = D24::plane_z(0.5);
+    pass.draw(&Segment { a: [q(1.25), q(3.25)], b: [q(5.75), q(3.25)], za: depth, zb: depth }, &mut NoProbe);
+    let stored = (0..63u32).filter(|&k| texels[k as usize] != SilPoint::CENTRE).map(|k| (k % 9, k / 9));
+    MockMap::of(9, 7, stored).assert_pattern(&[
+        ".........",
+        ".........",
+        ".........",
+        ".#####...",
+        ".........",
+        ".........",
+        ".........",
+    ]);
+}
