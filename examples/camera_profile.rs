@@ -19,7 +19,7 @@ use std::hash::{DefaultHasher, Hash, Hasher};
 
 use umbra::core::depth::PlaneZ;
 use umbra::core::probe::TexelRead;
-use umbra::core::shade::{CameraConfig, MapUnit, Normals, ShadeSetup, Shaded, TriangleSource, shade_with};
+use umbra::core::shade::{MapUnit, Normals, ShadeConfig, ShadeSetup, Shaded, TriangleSource, shade_with};
 use umbra::core::shadow::{Bias, DepthTest, Filter, MapView, ShadowConfig};
 use umbra::core::{ConfigError, CullMode, D24, DepthUnit, Event, LightPassConfig, NoProbe, Probe, RasterConfig};
 use umbra::sim::experiment::presets::FILTERS;
@@ -46,7 +46,7 @@ impl Probe for Trace<'_> {
 /// One shading pass, as the `camera` bench's frame runs it (the map unit,
 /// the simulator's setup store).
 fn shade_once<P: Probe>(
-    cfg: &CameraConfig,
+    cfg: &ShadeConfig,
     ids: &[u32],
     view: &MapView<'_, D24>,
     source: &impl TriangleSource,
@@ -85,7 +85,7 @@ fn shade_scene(
     let mut setups = vec![ShadeSetup::EMPTY; SHADE_SETUPS];
     for &(shadow, virtual_samples, normals) in configs {
         let light = scene.light().view_projection();
-        let cfg = CameraConfig { camera, light, width, height, shadow, virtual_samples, normals, seed: 0x5eed };
+        let cfg = ShadeConfig { camera, light, width, height, shadow, virtual_samples, normals, seed: 0x5eed };
         for _ in 0..passes {
             if trace {
                 shade_once(&cfg, ids, &view, &source, &mut pixels, &mut setups, &mut Trace(digest))?;

@@ -7,7 +7,8 @@
 
 use core::fmt;
 
-use crate::budget::{MAX_SUBPIXEL_BITS, MAX_TARGET_BITS, TILE_SIZES};
+use crate::budget::{GUARD_BITS, MAX_SUBPIXEL_BITS, MAX_TARGET_BITS, TILE_SIZES};
+use crate::raster::tile::{TileId, TileRect};
 
 /// The rasterizer's geometry: target, tiles and subpixel grid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -242,3 +243,49 @@ impl fmt::Display for ConfigError {
 }
 
 impl core::error::Error for ConfigError {}
+
+/// The target's tiles and guard band.
+impl RasterConfig {
+    /// The tile at a flat (row-major) index.
+    #[must_use]
+    pub fn tile_id(&self, index: usize) -> TileId {
+        let across = self.tiles().0 as usize;
+        #[allow(clippy::cast_possible_truncation, reason = "at most 2^14 / 8 tiles per side")]
+        TileId { x: (index % across) as u16, y: (index / across) as u16 }
+    }
+
+    /// The flat (row-major) index of a tile.
+    #[must_use]
+    pub fn tile_index(&self, tile: TileId) -> usize {
+        usize::from(tile.y) * self.tiles().0 as usize + usize::from(tile.x)
+    }
+
+    /// The pixels of a tile, clipped to the target.
+    #[must_use]
+    pub fn tile_rect(&self, tile: TileId) -> TileRect {
+        let s = self.tile_shift();
+        let x0 = u32::from(tile.x) << s;
+        let y0 = u32::from(tile.y) << s;
+        TileRect {
+            x0,
+            y0,
+            x1: (x0 + self.tile_size()).min(self.width()),
+            y1: (y0 + self.tile_size()).min(self.height()),
+        }
+    }
+
+    /// The whole target.
+    #[must_use]
+    pub const fn target_rect(&self) -> TileRect {
+        TileRect { x0: 0, y0: 0, x1: self.width(), y1: self.height() }
+    }
+
+    /// The guard-band factors `[g_x, g_y]` for [`crate::front::clip`]: NDC `|x| ≤ g_x`
+    /// keeps the pixel coordinate inside `±2^GUARD_BITS`.
+    #[must_use]
+    pub fn guard(&self) -> [f64; 2] {
+        let reach = f64::from(1u32 << (GUARD_BITS + 1));
+        let [w, h] = self.view();
+        [reach / f64::from(w) - 1.0, reach / f64::from(h) - 1.0]
+    }
+}

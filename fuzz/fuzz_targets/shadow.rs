@@ -14,7 +14,7 @@ use umbra_core::depth::PlaneZ;
 use umbra_core::glam::{Mat4, Vec3, Vec4};
 use umbra_core::raster::bin::Bin;
 use umbra_core::raster::setup::Setup;
-use umbra_core::shade::{CameraConfig, Normals, SceneTriangle, Shaded, shade};
+use umbra_core::shade::{Normals, SceneTriangle, ShadeConfig, Shaded, shade};
 use umbra_core::shadow::{
     Bias, DepthTest, Filter, Jitter, Lookup, MapCoord, MapView, Shadow, ShadowConfig, Slope, TangentPlane, shadow,
     shadow_with_virtual_samples,
@@ -218,7 +218,7 @@ fn check<F: DepthFormat>(input: &Input, raster: RasterConfig) {
             None => umbra_core::NO_TRIANGLE,
         })
         .collect();
-    let camera = CameraConfig {
+    let camera = ShadeConfig {
         camera: Mat4::from_cols_array(&input.camera.map(f)),
         light: input.light.map_or(Mat4::IDENTITY, |m| Mat4::from_cols_array(&m.map(f))),
         width: w,

@@ -2,7 +2,7 @@
 //! broke and what must hold now.
 
 use umbra::core::glam::{Mat4, Vec3};
-use umbra::core::shade::{CameraConfig, Normals, SceneTriangle, Shaded, shade};
+use umbra::core::shade::{Normals, SceneTriangle, ShadeConfig, Shaded, shade};
 use umbra::core::shadow::{Bias, DepthTest, Filter, Jitter, MapCoord, MapView, ShadowConfig, jitter_grid};
 use umbra::core::{D16, DepthFormat, RasterConfig, TileState};
 
@@ -19,7 +19,7 @@ fn a_light_matrix_with_nan_in_a_row_shades_without_panicking() {
     let tiles = vec![TileState::cleared(D16::FAR, 64); 4];
     let map = MapView::<D16>::new(raster, &z1, &z2, &tiles).expect("buffers fit");
     let shadow = ShadowConfig::new(DepthTest::Second, Bias::ZERO, Filter::Bilinear, true).expect("valid");
-    let cfg = CameraConfig {
+    let cfg = ShadeConfig {
         camera: Mat4::IDENTITY,
         light: Mat4::from_cols_array(&light),
         width: 8,

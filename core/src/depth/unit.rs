@@ -49,11 +49,11 @@ pub(crate) struct SpanEdges {
 /// `z` is the depth at the first pixel as [`PlaneZ`] bits plus
 /// [`crate::depth::ROUND_HALF`], and `dz` its step; with `MASKED`, only
 /// pixels whose three edge values are `≥ 0` are covered, otherwise all are
-/// (and all lie inside the triangle). `DUAL` selects the unit, `CULL`
-/// whether the culled buffer's max is tracked. The loop only adds.
+/// (and all lie inside the triangle). `DUAL` selects the unit, `COUNT_MAX`
+/// whether the texels holding the culled buffer's max are counted. The loop only adds.
 #[inline(always)]
 #[allow(clippy::too_many_arguments, reason = "the hot path's state, passed flat")]
-pub(crate) fn span<F: DepthFormat, const DUAL: bool, const IDS: bool, const MASKED: bool, const CULL: bool>(
+pub(crate) fn span<F: DepthFormat, const DUAL: bool, const IDS: bool, const MASKED: bool, const COUNT_MAX: bool>(
     z1: &mut [F::Texel],
     z2: &mut [F::Texel],
     ids: &mut [u32],
@@ -84,17 +84,17 @@ pub(crate) fn span<F: DepthFormat, const DUAL: bool, const IDS: bool, const MASK
     if DUAL {
         for (a, b) in z1.iter_mut().zip(z2.iter_mut()) {
             let q = next();
-            out.dual::<CULL>(a, b, q, cull_max);
+            out.dual::<COUNT_MAX>(a, b, q, cull_max);
         }
     } else if IDS {
         for (a, t) in z1.iter_mut().zip(ids.iter_mut()) {
             let q = next();
-            out.visible::<CULL>(a, t, id, q, cull_max);
+            out.visible::<COUNT_MAX>(a, t, id, q, cull_max);
         }
     } else {
         for a in z1.iter_mut() {
             let q = next();
-            out.single::<CULL>(a, q, cull_max);
+            out.single::<COUNT_MAX>(a, q, cull_max);
         }
     }
     #[allow(clippy::cast_possible_truncation, reason = "a span is at most one tile row")]
@@ -136,14 +136,14 @@ impl<T: Texel> SpanOut<T> {
         self.min2 = nearest_of(self.min2, o.min2);
     }
 
-    /// The single unit at one texel: `z1 ← min(z1, q)`. `CULL` tracks
+    /// The single unit at one texel: `z1 ← min(z1, q)`. `COUNT_MAX` tracks
     /// texels that held the tile's max `cull_max` and were lowered.
     #[inline(always)]
-    pub(crate) fn single<const CULL: bool>(&mut self, a: &mut T, q: T, cull_max: T) {
+    pub(crate) fn single<const COUNT_MAX: bool>(&mut self, a: &mut T, q: T, cull_max: T) {
         let old = *a;
         *a = nearest_of(old, q);
         self.written1 += u32::from(nearer(q, old));
-        if CULL {
+        if COUNT_MAX {
             self.lost_max += u32::from(old == cull_max && nearer(q, old));
         }
         self.min1 = nearest_of(self.min1, q);
@@ -152,13 +152,13 @@ impl<T: Texel> SpanOut<T> {
     /// The visibility unit at one texel: the nearest depth and the
     /// triangle that put it there.
     #[inline(always)]
-    pub(crate) fn visible<const CULL: bool>(&mut self, a: &mut T, t: &mut u32, id: u32, q: T, cull_max: T) {
+    pub(crate) fn visible<const COUNT_MAX: bool>(&mut self, a: &mut T, t: &mut u32, id: u32, q: T, cull_max: T) {
         let old = *a;
         let pass = nearer(q, old);
         *a = if pass { q } else { old };
         *t = if pass { id } else { *t };
         self.written1 += u32::from(pass);
-        if CULL {
+        if COUNT_MAX {
             self.lost_max += u32::from(old == cull_max && pass);
         }
         self.min1 = nearest_of(self.min1, q);
@@ -167,14 +167,14 @@ impl<T: Texel> SpanOut<T> {
     /// The dual unit at one texel: `z2 ← min(z2, max(z1, q))`, then
     /// `z1 ← min(z1, q)`.
     #[inline(always)]
-    pub(crate) fn dual<const CULL: bool>(&mut self, a: &mut T, b: &mut T, q: T, cull_max: T) {
+    pub(crate) fn dual<const COUNT_MAX: bool>(&mut self, a: &mut T, b: &mut T, q: T, cull_max: T) {
         let (old1, old2) = (*a, *b);
         let new2 = nearest_of(old2, farthest_of(old1, q));
         *a = nearest_of(old1, q);
         *b = new2;
         self.written1 += u32::from(nearer(q, old1));
         self.written2 += u32::from(nearer(new2, old2));
-        if CULL {
+        if COUNT_MAX {
             self.lost_max += u32::from(old2 == cull_max && nearer(new2, old2));
         }
         self.min1 = nearest_of(self.min1, q);

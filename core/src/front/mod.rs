@@ -117,7 +117,7 @@ fn snap<F: DepthFormat>(
     id: u32,
     out: &mut impl FnMut(Output<'_>),
 ) {
-    match (raster.snap::<F>(&v[0]), raster.snap::<F>(&v[1]), raster.snap::<F>(&v[2])) {
+    match (snap::snap::<F>(raster, &v[0]), snap::snap::<F>(raster, &v[1]), snap::snap::<F>(raster, &v[2])) {
         (Some(a), Some(b), Some(c)) => set_up(raster, [a, b, c], cull, id, out),
         _ => out(Output::Rejected(RejectReason::NonFinite)),
     }

@@ -12,7 +12,7 @@
 //! pixels, so with at most 8 subpixel bits it fits in [`crate::budget::COORD_BITS`] bits
 //! plus sign. Edge functions in [`crate::raster::setup`] build on that bound.
 
-use crate::budget::{BEYOND_FAR, COORD_BITS, GUARD_BITS, PLANE_FRACTION_BITS, PLANE_ONE};
+use crate::budget::{BEYOND_FAR, COORD_BITS, PLANE_FRACTION_BITS, PLANE_ONE};
 use crate::config::RasterConfig;
 use crate::depth::{DepthFormat, PlaneZ};
 use crate::front::clip::ClipVertex;
@@ -32,62 +32,51 @@ pub struct SnappedVertex {
     pub z: PlaneZ,
 }
 
-impl RasterConfig {
-    /// The guard-band factors `[g_x, g_y]` for [`crate::front::clip`]: NDC `|x| ≤ g_x`
-    /// keeps the pixel coordinate inside `±2^GUARD_BITS`.
-    #[must_use]
-    pub fn guard(&self) -> [f64; 2] {
-        let reach = f64::from(1u32 << (GUARD_BITS + 1));
-        let [w, h] = self.view();
-        [reach / f64::from(w) - 1.0, reach / f64::from(h) - 1.0]
-    }
+/// Project a clipped vertex and snap it to the subpixel grid. `None` when
+/// `w ≤ 0` (the one point of the guard-band cone with `w = 0`) or the
+/// result is not finite.
+#[must_use]
+pub fn snap<F: DepthFormat>(raster: &RasterConfig, v: &ClipVertex) -> Option<SnappedVertex> {
+    snap_to(raster, v, F::plane_z)
+}
 
-    /// Project a clipped vertex and snap it to the subpixel grid. `None` when
-    /// `w ≤ 0` (the one point of the guard-band cone with `w = 0`) or the
-    /// result is not finite.
-    #[must_use]
-    pub fn snap<F: DepthFormat>(&self, v: &ClipVertex) -> Option<SnappedVertex> {
-        self.snap_to(v, F::plane_z)
-    }
-
-    /// [`RasterConfig::snap`] keeping depths beyond the far plane (up to
-    /// [`crate::budget::BEYOND_FAR`] times it) in the vertex, so that the plane through a
-    /// triangle that reaches past the far plane interpolates its nearer
-    /// fragments exactly; the depth clamp then happens per fragment, when a
-    /// fragment's depth is rounded to the format. The stencil unit's volumes
-    /// need this; everything else clips at the far plane.
-    #[must_use]
-    pub fn snap_beyond_far<F: DepthFormat>(&self, v: &ClipVertex) -> Option<SnappedVertex> {
-        self.snap_to(v, |z| {
-            let reach = (F::SCALE << PLANE_FRACTION_BITS) * BEYOND_FAR;
-            if z.is_nan() || z <= 0.0 {
-                return PlaneZ::ZERO;
-            }
-            #[allow(clippy::cast_precision_loss, reason = "a power of two")]
-            let bits = (z * (F::SCALE as f64) * PLANE_ONE).min(reach as f64);
-            PlaneZ::from_bits(crate::round::round_ties_even(bits).clamp(0, reach))
-        })
-    }
-
-    fn snap_to(&self, v: &ClipVertex, depth: impl Fn(f64) -> PlaneZ) -> Option<SnappedVertex> {
-        let [x, y, z, w] = *v;
-        if w.is_nan() || w <= 0.0 {
-            return None;
+/// [`snap`] keeping depths beyond the far plane (up to
+/// [`crate::budget::BEYOND_FAR`] times it) in the vertex, so that the plane through a
+/// triangle that reaches past the far plane interpolates its nearer
+/// fragments exactly; the depth clamp then happens per fragment, when a
+/// fragment's depth is rounded to the format. The stencil unit's volumes
+/// need this; everything else clips at the far plane.
+#[must_use]
+pub fn snap_beyond_far<F: DepthFormat>(raster: &RasterConfig, v: &ClipVertex) -> Option<SnappedVertex> {
+    snap_to(raster, v, |z| {
+        let reach = (F::SCALE << PLANE_FRACTION_BITS) * BEYOND_FAR;
+        if z.is_nan() || z <= 0.0 {
+            return PlaneZ::ZERO;
         }
-        let unit = f64::from(1u32 << self.subpixel_bits());
-        let limit = f64::from(1u32 << COORD_BITS);
-        let inv_w = 1.0 / w;
-        let [vw, vh] = self.view();
-        let sx = (x * inv_w + 1.0) * 0.5 * f64::from(vw) * unit;
-        let sy = (1.0 - y * inv_w) * 0.5 * f64::from(vh) * unit;
-        if !sx.is_finite() || !sy.is_finite() {
-            return None;
-        }
-        // Rounding overshoot at the guard band is clamped; the band lies
-        // far outside the target, so no sample moves.
-        let snap = |s: f64| SubPx(crate::round::round_ties_even(s.clamp(-limit, limit)));
-        // A window's coordinates: the whole target's, shifted exactly.
-        let [ox, oy] = self.origin().map(|o| i64::from(o) << self.subpixel_bits());
-        Some(SnappedVertex { x: SubPx(snap(sx).0 - ox), y: SubPx(snap(sy).0 - oy), z: depth(z * inv_w) })
+        #[allow(clippy::cast_precision_loss, reason = "a power of two")]
+        let bits = (z * (F::SCALE as f64) * PLANE_ONE).min(reach as f64);
+        PlaneZ::from_bits(crate::round::round_ties_even(bits).clamp(0, reach))
+    })
+}
+
+fn snap_to(raster: &RasterConfig, v: &ClipVertex, depth: impl Fn(f64) -> PlaneZ) -> Option<SnappedVertex> {
+    let [x, y, z, w] = *v;
+    if w.is_nan() || w <= 0.0 {
+        return None;
     }
+    let unit = f64::from(1u32 << raster.subpixel_bits());
+    let limit = f64::from(1u32 << COORD_BITS);
+    let inv_w = 1.0 / w;
+    let [vw, vh] = raster.view();
+    let sx = (x * inv_w + 1.0) * 0.5 * f64::from(vw) * unit;
+    let sy = (1.0 - y * inv_w) * 0.5 * f64::from(vh) * unit;
+    if !sx.is_finite() || !sy.is_finite() {
+        return None;
+    }
+    // Rounding overshoot at the guard band is clamped; the band lies
+    // far outside the target, so no sample moves.
+    let snap = |s: f64| SubPx(crate::round::round_ties_even(s.clamp(-limit, limit)));
+    // A window's coordinates: the whole target's, shifted exactly.
+    let [ox, oy] = raster.origin().map(|o| i64::from(o) << raster.subpixel_bits());
+    Some(SnappedVertex { x: SubPx(snap(sx).0 - ox), y: SubPx(snap(sy).0 - oy), z: depth(z * inv_w) })
 }

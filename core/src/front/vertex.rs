@@ -8,7 +8,7 @@ use glam::{Mat4, Vec3};
 use crate::config::RasterConfig;
 use crate::depth::DepthFormat;
 use crate::front::clip::{ClipVertex, inside_all};
-use crate::front::snap::SnappedVertex;
+use crate::front::snap::{SnappedVertex, snap};
 
 /// Entries of the post-transform cache (direct-mapped by index): a ring of
 /// a few hundred vertices, so that a strip of a mesh finds the vertices the
@@ -34,7 +34,7 @@ impl Processed {
         let v = *transform * p.extend(1.0);
         let clip = v.to_array().map(f64::from);
         let finite = v.is_finite();
-        let snapped = if finite && inside_all(&clip, raster.guard()) { raster.snap::<F>(&clip) } else { None };
+        let snapped = if finite && inside_all(&clip, raster.guard()) { snap::<F>(raster, &clip) } else { None };
         Self { clip, finite, snapped }
     }
 }

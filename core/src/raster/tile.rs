@@ -1,8 +1,6 @@
 //! The tile grid: square tiles of `2^tile_shift` pixels, in row-major order,
 //! and half-open rectangles of pixels.
 
-use crate::config::RasterConfig;
-
 /// A tile's column and row in the grid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct TileId {
@@ -67,41 +65,5 @@ impl TileRect {
     #[must_use]
     pub const fn area(&self) -> u32 {
         self.width() * self.height()
-    }
-}
-
-impl RasterConfig {
-    /// The tile at a flat (row-major) index.
-    #[must_use]
-    pub fn tile_id(&self, index: usize) -> TileId {
-        let across = self.tiles().0 as usize;
-        #[allow(clippy::cast_possible_truncation, reason = "at most 2^14 / 8 tiles per side")]
-        TileId { x: (index % across) as u16, y: (index / across) as u16 }
-    }
-
-    /// The flat (row-major) index of a tile.
-    #[must_use]
-    pub fn tile_index(&self, tile: TileId) -> usize {
-        usize::from(tile.y) * self.tiles().0 as usize + usize::from(tile.x)
-    }
-
-    /// The pixels of a tile, clipped to the target.
-    #[must_use]
-    pub fn tile_rect(&self, tile: TileId) -> TileRect {
-        let s = self.tile_shift();
-        let x0 = u32::from(tile.x) << s;
-        let y0 = u32::from(tile.y) << s;
-        TileRect {
-            x0,
-            y0,
-            x1: (x0 + self.tile_size()).min(self.width()),
-            y1: (y0 + self.tile_size()).min(self.height()),
-        }
-    }
-
-    /// The whole target.
-    #[must_use]
-    pub const fn target_rect(&self) -> TileRect {
-        TileRect { x0: 0, y0: 0, x1: self.width(), y1: self.height() }
     }
 }

@@ -108,13 +108,13 @@ const SPAN: u32 = 8;
 const MAX_RUNS: usize = (*TILE_SIZES.end() / BLOCK) as usize;
 
 /// Rasterize one set-up triangle into one tile.
-pub(crate) fn rasterize<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const CULL: bool>(
+pub(crate) fn rasterize<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const MAX_Z_CULL: bool>(
     s: &Setup,
     view: &mut TileView<'_, F::Texel>,
     probe: &mut P,
 ) {
     let Some(rect) = view.rect.intersect(&s.bbox) else { return };
-    if CULL {
+    if MAX_Z_CULL {
         let (bound, farthest) = depth_range::<F>(s, &rect);
         let st = &*view.state;
         // The max is stale once every texel that held it was lowered. Making
@@ -162,10 +162,10 @@ const fn within(rect: &TileRect, side: u32) -> bool {
 }
 
 /// Walk the triangle's rectangle in the tile: whole rows when it is full,
-/// block rows of runs otherwise. `COUNT` tracks how many texels still hold
+/// block rows of runs otherwise. `COUNT_MAX` tracks how many texels still hold
 /// the tile's max. Not inlined: one copy per variant, shared by callers.
 #[inline(never)]
-fn traverse<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUNT: bool>(
+fn traverse<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUNT_MAX: bool>(
     s: &Setup,
     view: &mut TileView<'_, F::Texel>,
     rect: &TileRect,
@@ -177,22 +177,22 @@ fn traverse<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const C
     if coverage == Coverage::Full {
         // Whole rows without edge tests.
         let run = Run { x0: rect.x0, x1: rect.x1, masked: false };
-        rows::<F, P, DUAL, IDS, COUNT>(s, view, rect.y0, rect.y1, &[run], &mut out, probe);
+        rows::<F, P, DUAL, IDS, COUNT_MAX>(s, view, rect.y0, rect.y1, &[run], &mut out, probe);
     } else if within(rect, BLOCK) || (rect.width() <= SMALL && !cull_blocks) {
         // A partial rectangle no bigger than a block, or (when no block can
         // be culled, so that the blocks would only split the work) no wider
         // than [`SMALL`].
-        small::<F, P, DUAL, IDS, COUNT>(s, view, rect, &mut out, probe);
+        small::<F, P, DUAL, IDS, COUNT_MAX>(s, view, rect, &mut out, probe);
     } else {
         let mut by = rect.y0 & !(BLOCK - 1);
         while by < rect.y1 {
             let (y0, y1) = (by.max(rect.y0), (by + BLOCK).min(rect.y1));
             let runs = block_row::<F, P>(s, view, rect, y0, y1, cull_blocks, probe);
-            rows::<F, P, DUAL, IDS, COUNT>(s, view, y0, y1, &runs, &mut out, probe);
+            rows::<F, P, DUAL, IDS, COUNT_MAX>(s, view, y0, y1, &runs, &mut out, probe);
             by += BLOCK;
         }
     }
-    finish_triangle::<F, P, DUAL, IDS, COUNT>(view, &out, probe);
+    finish_triangle::<F, P, DUAL, IDS, COUNT_MAX>(view, &out, probe);
 }
 
 /// A partial rectangle no wider than [`SMALL`] by coverage masks
@@ -201,7 +201,7 @@ fn traverse<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const C
 /// depth unit on the set bits only. The same fragments in the same order as
 /// masked rows, without stepping the depth unit over the pixels the
 /// triangle misses.
-fn small<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUNT: bool>(
+fn small<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUNT_MAX: bool>(
     s: &Setup,
     view: &mut TileView<'_, F::Texel>,
     rect: &TileRect,
@@ -212,16 +212,16 @@ fn small<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUN
     let drawn = if !LANES {
         None
     } else if width <= LANE_GROUP {
-        Lanes::<1>::new(s, rect).map(|m| masked::<F, P, _, DUAL, IDS, COUNT>(s, view, rect, m, out, probe))
+        Lanes::<1>::new(s, rect).map(|m| masked::<F, P, _, DUAL, IDS, COUNT_MAX>(s, view, rect, m, out, probe))
     } else if width <= 2 * LANE_GROUP {
-        Lanes::<2>::new(s, rect).map(|m| masked::<F, P, _, DUAL, IDS, COUNT>(s, view, rect, m, out, probe))
+        Lanes::<2>::new(s, rect).map(|m| masked::<F, P, _, DUAL, IDS, COUNT_MAX>(s, view, rect, m, out, probe))
     } else if width <= 4 * LANE_GROUP {
-        Lanes::<4>::new(s, rect).map(|m| masked::<F, P, _, DUAL, IDS, COUNT>(s, view, rect, m, out, probe))
+        Lanes::<4>::new(s, rect).map(|m| masked::<F, P, _, DUAL, IDS, COUNT_MAX>(s, view, rect, m, out, probe))
     } else {
-        Lanes::<8>::new(s, rect).map(|m| masked::<F, P, _, DUAL, IDS, COUNT>(s, view, rect, m, out, probe))
+        Lanes::<8>::new(s, rect).map(|m| masked::<F, P, _, DUAL, IDS, COUNT_MAX>(s, view, rect, m, out, probe))
     };
     if drawn.is_none() {
-        masked::<F, P, _, DUAL, IDS, COUNT>(s, view, rect, Serial::new(s, rect), out, probe);
+        masked::<F, P, _, DUAL, IDS, COUNT_MAX>(s, view, rect, Serial::new(s, rect), out, probe);
     }
 }
 
@@ -233,7 +233,7 @@ fn small<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUN
 /// edges. A shorter run, or a mask with a gap (only an edge function out of
 /// the setup's budget can wrap into one), takes the set bits one at a time.
 #[inline(always)]
-fn masked<F: DepthFormat, P: Probe, M: RowMask, const DUAL: bool, const IDS: bool, const COUNT: bool>(
+fn masked<F: DepthFormat, P: Probe, M: RowMask, const DUAL: bool, const IDS: bool, const COUNT_MAX: bool>(
     s: &Setup,
     view: &mut TileView<'_, F::Texel>,
     rect: &TileRect,
@@ -255,10 +255,10 @@ fn masked<F: DepthFormat, P: Probe, M: RowMask, const DUAL: bool, const IDS: boo
                 let Some((z1, z2, ids)) = view.rows::<DUAL, IDS>(y, rect.x0 + k0, rect.x0 + k1) else { break };
                 let z = z_row.wrapping_add(dzx.wrapping_mul(i64::from(k0)));
                 let edges = SpanEdges { e: [0; 3], de: [0; 3] };
-                out.add(&span::<F, DUAL, IDS, false, COUNT>(z1, z2, ids, s.triangle, z, dzx, edges, cull_max));
+                out.add(&span::<F, DUAL, IDS, false, COUNT_MAX>(z1, z2, ids, s.triangle, z, dzx, edges, cull_max));
             } else {
                 let Some((z1, z2, ids)) = view.rows::<DUAL, IDS>(y, rect.x0, rect.x1) else { break };
-                bits::<F, DUAL, IDS, COUNT>(mask, z1, z2, ids, s.triangle, z_row, dzx, &mut out, cull_max);
+                bits::<F, DUAL, IDS, COUNT_MAX>(mask, z1, z2, ids, s.triangle, z_row, dzx, &mut out, cull_max);
             }
             if P::FRAGMENTS {
                 let mut mask = mask;
@@ -280,7 +280,7 @@ fn masked<F: DepthFormat, P: Probe, M: RowMask, const DUAL: bool, const IDS: boo
 /// for the `k`-th texel of the slices), one at a time.
 #[inline(always)]
 #[allow(clippy::too_many_arguments, reason = "the hot path's state, passed flat")]
-fn bits<F: DepthFormat, const DUAL: bool, const IDS: bool, const COUNT: bool>(
+fn bits<F: DepthFormat, const DUAL: bool, const IDS: bool, const COUNT_MAX: bool>(
     mut mask: u64,
     z1: &mut [F::Texel],
     z2: &mut [F::Texel],
@@ -299,14 +299,14 @@ fn bits<F: DepthFormat, const DUAL: bool, const IDS: bool, const COUNT: bool>(
         let i = k as usize;
         if DUAL {
             if let (Some(a), Some(b)) = (z1.get_mut(i), z2.get_mut(i)) {
-                out.dual::<COUNT>(a, b, q, cull_max);
+                out.dual::<COUNT_MAX>(a, b, q, cull_max);
             }
         } else if IDS {
             if let (Some(a), Some(t)) = (z1.get_mut(i), ids.get_mut(i)) {
-                out.visible::<COUNT>(a, t, id, q, cull_max);
+                out.visible::<COUNT_MAX>(a, t, id, q, cull_max);
             }
         } else if let Some(a) = z1.get_mut(i) {
-            out.single::<COUNT>(a, q, cull_max);
+            out.single::<COUNT_MAX>(a, q, cull_max);
         }
     }
 }
@@ -365,7 +365,7 @@ fn block_row<F: DepthFormat, P: Probe>(
 /// edge values are stepped from row to row by adds.
 #[inline(always)]
 #[allow(clippy::too_many_arguments, reason = "the hot path's state, passed flat")]
-fn rows<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUNT: bool>(
+fn rows<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUNT_MAX: bool>(
     s: &Setup,
     view: &mut TileView<'_, F::Texel>,
     y0: u32,
@@ -387,9 +387,9 @@ fn rows<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUNT
             let edges = SpanEdges { e: [at(0), at(1), at(2)], de };
             let Some((z1, z2, ids)) = view.rows::<DUAL, IDS>(y, run.x0, run.x1) else { return };
             let o = if run.masked {
-                span::<F, DUAL, IDS, true, COUNT>(z1, z2, ids, s.triangle, z, dzx, edges, cull_max)
+                span::<F, DUAL, IDS, true, COUNT_MAX>(z1, z2, ids, s.triangle, z, dzx, edges, cull_max)
             } else {
-                span::<F, DUAL, IDS, false, COUNT>(z1, z2, ids, s.triangle, z, dzx, edges, cull_max)
+                span::<F, DUAL, IDS, false, COUNT_MAX>(z1, z2, ids, s.triangle, z, dzx, edges, cull_max)
             };
             out.add(&o);
             if P::FRAGMENTS {
@@ -428,7 +428,7 @@ fn report_fragments<F: DepthFormat, P: Probe>(
 }
 
 /// Report a triangle's work in a tile and bring the tile's summary up to date.
-fn finish_triangle<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUNT: bool>(
+fn finish_triangle<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const COUNT_MAX: bool>(
     view: &mut TileView<'_, F::Texel>,
     out: &SpanOut<F::Texel>,
     probe: &mut P,
@@ -455,7 +455,7 @@ fn finish_triangle<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, 
     let st = &mut *view.state;
     st.z1_min = st.z1_min.min(out.min1);
     st.z2_min = st.z2_min.min(out.min2);
-    if COUNT {
+    if COUNT_MAX {
         st.cull_count = st.cull_count.saturating_sub(out.lost_max);
     }
 }

@@ -2,11 +2,12 @@
 
 use glam::{Mat4, Vec3};
 
-use super::{CameraConfig, LightPoint, Reciprocal, SceneTriangle};
+use super::{LightPoint, Reciprocal, SceneTriangle, ShadeConfig};
 use crate::budget::{DENOMINATOR_SCALE, MAP_FRACTION_BITS, MAP_HALF, NARROW_FORM_BITS, PLANE_FRACTION_BITS};
 use crate::config::CullMode;
 use crate::depth::{DepthFormat, PlaneZ};
 use crate::front::clip::inside_all;
+use crate::front::snap::snap;
 use crate::light_pass::NO_TRIANGLE;
 use crate::raster::setup::{DepthPlane, Setup};
 use crate::round::saturate;
@@ -112,7 +113,7 @@ impl Interp {
         footprint: [MapCoord::ZERO; 2],
     };
 
-    pub(super) fn new<F: DepthFormat>(cfg: &CameraConfig, map: &MapView<'_, F>, id: u32, t: &SceneTriangle) -> Self {
+    pub(super) fn new<F: DepthFormat>(cfg: &ShadeConfig, map: &MapView<'_, F>, id: u32, t: &SceneTriangle) -> Self {
         let to_clip = |m: &Mat4, p: Vec3| (*m * p.extend(1.0)).to_array().map(f64::from);
         let c = t.positions.map(|p| to_clip(&cfg.camera, p));
         let l = t.positions.map(|p| to_clip(&cfg.light, p));
@@ -178,7 +179,7 @@ impl Interp {
         // The light pass's own plane for this triangle, when it can be set up.
         let guard = raster.guard();
         if l.iter().all(|v| inside_all(v, guard))
-            && let [Some(a), Some(b), Some(cc)] = l.map(|v| raster.snap::<F>(&v))
+            && let [Some(a), Some(b), Some(cc)] = l.map(|v| snap::<F>(&raster, &v))
             && let Ok(setup) = Setup::new(&raster, [a, b, cc], CullMode::None, id)
         {
             out.plane = Some(MapPlane::new(setup.plane));

@@ -83,7 +83,7 @@ pub enum Normals {
 
 /// Everything the shading unit needs besides its buffers.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CameraConfig {
+pub struct ShadeConfig {
     /// World to camera clip space.
     pub camera: Mat4,
     /// World to light clip space (the map's view-projection).
@@ -156,7 +156,7 @@ fn pixel_seed(seed: u64, px: u32, py: u32) -> u64 {
 /// # Errors
 /// [`ConfigError::BufferLength`] when `ids` or `out` is not `width × height`.
 pub fn shade<F: DepthFormat, S: TriangleSource, P: Probe>(
-    cfg: &CameraConfig,
+    cfg: &ShadeConfig,
     ids: &[u32],
     map: &MapView<'_, F>,
     scene: &S,
@@ -174,7 +174,7 @@ pub trait ShadowUnit<F: DepthFormat> {
     fn decide<P: Probe, T: FnOnce() -> Option<Slope>>(
         &self,
         map: &MapView<'_, F>,
-        cfg: &CameraConfig,
+        cfg: &ShadeConfig,
         lookup: &Lookup,
         tangent: T,
         probe: &mut P,
@@ -190,7 +190,7 @@ impl<F: DepthFormat> ShadowUnit<F> for MapUnit {
     fn decide<P: Probe, T: FnOnce() -> Option<Slope>>(
         &self,
         map: &MapView<'_, F>,
-        cfg: &CameraConfig,
+        cfg: &ShadeConfig,
         lookup: &Lookup,
         tangent: T,
         probe: &mut P,
@@ -212,7 +212,7 @@ impl<F: DepthFormat, S: SilStore> ShadowUnit<F> for SilhouetteUnit<'_, '_, S> {
     fn decide<P: Probe, T: FnOnce() -> Option<Slope>>(
         &self,
         map: &MapView<'_, F>,
-        cfg: &CameraConfig,
+        cfg: &ShadeConfig,
         lookup: &Lookup,
         _tangent: T,
         probe: &mut P,
@@ -241,7 +241,7 @@ impl ShadeSetup {
 /// [`ConfigError::BufferLength`] when `ids` or `out` is not `width × height`.
 #[allow(clippy::too_many_arguments, reason = "the unit's inputs, its store and its probe")]
 pub fn shade_with<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, P: Probe>(
-    cfg: &CameraConfig,
+    cfg: &ShadeConfig,
     ids: &[u32],
     map: &MapView<'_, F>,
     scene: &S,
@@ -295,7 +295,7 @@ pub fn shade_with<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, P: Probe>
 /// One pixel of [`shade_with`].
 #[inline]
 fn shade_pixel<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
-    cfg: &CameraConfig,
+    cfg: &ShadeConfig,
     map: &MapView<'_, F>,
     unit: &U,
     probe: &mut P,

@@ -34,7 +34,7 @@ pub use volume::{Volume, VolumeLight};
 use crate::config::{ConfigError, CullMode, RasterConfig};
 use crate::depth::DepthFormat;
 use crate::front::clip::{ClipVertex, Clipped, DepthClip, Polygon, clip_triangle_with};
-use crate::front::snap::SnappedVertex;
+use crate::front::snap::{SnappedVertex, snap_beyond_far};
 use crate::probe::{Event, Probe, RejectReason};
 use crate::raster::setup::Setup;
 
@@ -95,7 +95,7 @@ impl<'a, F: DepthFormat> StencilPass<'a, F> {
 
     fn draw_snapped<P: Probe>(&mut self, tri: &[ClipVertex; 3], probe: &mut P) {
         let r = self.raster;
-        let snap = |v: &ClipVertex| r.snap_beyond_far::<F>(v);
+        let snap = |v: &ClipVertex| snap_beyond_far::<F>(&r, v);
         let (Some(a), Some(b), Some(c)) = (snap(&tri[0]), snap(&tri[1]), snap(&tri[2])) else {
             probe.event(Event::TriangleRejected { reason: RejectReason::NonFinite });
             return;

@@ -13,7 +13,7 @@ use umbra_core::depth::PlaneZ;
 use umbra_core::glam::Vec3;
 use umbra_core::raster::bin::Bin;
 use umbra_core::raster::setup::{DepthPlane, Edge, Setup};
-use umbra_core::shade::{CameraConfig, Normals, Shaded, shade};
+use umbra_core::shade::{Normals, ShadeConfig, Shaded, shade};
 use umbra_core::shadow::{Bias, DepthTest, Filter, MapView, Shadow, ShadowConfig, ShadowConfigError};
 use umbra_core::{
     ConfigError, CullMode, D16, D24, DepthFormat, DepthUnit, LightBuffers, LightPass, LightPassConfig, RasterConfig,
@@ -256,7 +256,7 @@ pub fn render(mem: &mut Memory) -> Result<Summary, DemoError> {
     let mut camera_totals = pass.finish();
 
     let view = MapView::<D16>::new(light_cfg.raster, &mem.z1, &mem.z2, &mem.map_tiles)?;
-    let cfg = CameraConfig {
+    let cfg = ShadeConfig {
         camera,
         light,
         width: IMAGE,

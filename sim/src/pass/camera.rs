@@ -4,7 +4,7 @@
 use glam::Mat4;
 use umbra_core::raster::bin::Bin;
 use umbra_core::raster::setup::Setup;
-use umbra_core::shade::{CameraConfig, Normals, ShadeSetup, Shaded, ShadowUnit, shade_with};
+use umbra_core::shade::{Normals, ShadeConfig, ShadeSetup, Shaded, ShadowUnit, shade_with};
 use umbra_core::shadow::{MapView, Shadow, ShadowConfig};
 use umbra_core::{
     CullMode, D24, DepthFormat, DepthUnit, LightBuffers, LightPass, LightPassConfig, NO_TRIANGLE, Probe, RasterConfig,
@@ -162,7 +162,7 @@ pub fn render<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
 ) -> Result<(), PassError> {
     let CameraOptions { width, height, shadow, virtual_samples } = *options;
     let Visibility { camera, .. } = visibility(frame, scene, (width, height), probe)?;
-    let cfg = CameraConfig {
+    let cfg = ShadeConfig {
         camera,
         light: scene.light().view_projection(),
         width,

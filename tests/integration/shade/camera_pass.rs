@@ -5,7 +5,7 @@ use proptest::prelude::*;
 use umbra::core::glam::{Mat4, Vec3, Vec4};
 use umbra::core::probe::Probe;
 use umbra::core::probe::Totals;
-use umbra::core::shade::{CameraConfig, MapUnit, Normals, SceneTriangle, ShadeSetup, Shaded, shade, shade_with};
+use umbra::core::shade::{MapUnit, Normals, SceneTriangle, ShadeConfig, ShadeSetup, Shaded, shade, shade_with};
 use umbra::core::shadow::{Bias, DepthTest, Filter, Jitter, MapView, Shadow, ShadowConfig};
 use umbra::core::{CullMode, D16, D24, DepthFormat, DepthUnit, F32, NO_TRIANGLE, NoProbe};
 
@@ -75,8 +75,8 @@ fn render<F: DepthFormat, P: Probe>(
 }
 
 /// The camera of these tests, looking at the origin, shading with `shadow`.
-fn camera_config(light: Mat4, shadow: ShadowConfig, virtual_samples: bool, normals: Normals) -> CameraConfig {
-    CameraConfig { camera: camera(), light, width: CAMERA, height: CAMERA, shadow, virtual_samples, normals, seed: 7 }
+fn camera_config(light: Mat4, shadow: ShadowConfig, virtual_samples: bool, normals: Normals) -> ShadeConfig {
+    ShadeConfig { camera: camera(), light, width: CAMERA, height: CAMERA, shadow, virtual_samples, normals, seed: 7 }
 }
 
 fn filters() -> [Filter; 4] {
@@ -291,7 +291,7 @@ proptest! {
         let (ids, _, _) = run_visibility::<D24>(CAMERA, 16, &clip(&cam), true);
         for filter in filters() {
             let normals = if smooth { Normals::Smooth } else { Normals::Flat };
-            let c = CameraConfig { camera: cam, ..camera_config(light, second(filter), true, normals) };
+            let c = ShadeConfig { camera: cam, ..camera_config(light, second(filter), true, normals) };
             let mut out = vec![Shaded::BACKGROUND; (CAMERA * CAMERA) as usize];
             let source = |id: u32| tris.get(id as usize).copied();
             shade(&c, &ids, &view, &source, &mut out, &mut NoProbe).expect("sized");
