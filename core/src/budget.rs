@@ -83,7 +83,7 @@ pub const DEPTH_BITS: u32 = MAX_FORMAT_BITS + PLANE_FRACTION_BITS;
 #[allow(clippy::cast_precision_loss, reason = "a power of two")]
 pub const DEPTH_ONE: f64 = (1u64 << DEPTH_BITS) as f64;
 
-/// How far beyond the far plane [`crate::config::RasterConfig::snap_beyond_far`]
+/// How far beyond the far plane [`crate::front::snap::snap_beyond_far`]
 /// keeps depths, in multiples of it: a perspective camera's depth never
 /// exceeds `f/(f − n)`.
 pub const BEYOND_FAR: i64 = 16;

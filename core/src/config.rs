@@ -244,6 +244,17 @@ impl fmt::Display for ConfigError {
 
 impl core::error::Error for ConfigError {}
 
+impl DepthUnit {
+    /// Depth buffers this unit keeps.
+    #[must_use]
+    pub const fn buffers(self) -> u32 {
+        match self {
+            Self::Single => 1,
+            Self::Dual => 2,
+        }
+    }
+}
+
 /// The target's tiles and guard band.
 impl RasterConfig {
     /// The tile at a flat (row-major) index.
@@ -280,7 +291,7 @@ impl RasterConfig {
         TileRect { x0: 0, y0: 0, x1: self.width(), y1: self.height() }
     }
 
-    /// The guard-band factors `[g_x, g_y]` for [`crate::front::clip`]: NDC `|x| ≤ g_x`
+    /// The guard-band factors `[g_x, g_y]` for [`crate::front::clip`](mod@crate::front::clip): NDC `|x| ≤ g_x`
     /// keeps the pixel coordinate inside `±2^GUARD_BITS`.
     #[must_use]
     pub fn guard(&self) -> [f64; 2] {

@@ -322,14 +322,3 @@ fn resolve<F: DepthFormat>(view: &mut TileView<'_, F::Texel>, dual: bool) {
     st.cull_max = max;
     st.cull_count = count_of(rows(culled), max);
 }
-
-impl DepthUnit {
-    /// Depth buffers this unit keeps.
-    #[must_use]
-    pub const fn buffers(self) -> u32 {
-        match self {
-            Self::Single => 1,
-            Self::Dual => 2,
-        }
-    }
-}

@@ -11,7 +11,7 @@ pub enum DepthTest {
     /// Nearest depth `z1`.
     First,
     /// Second-nearest depth `z2`: from the dual unit, or the single buffer
-    /// of a front-face-culled pass ([`MapView::front_culled`]).
+    /// of a front-face-culled pass ([`MapView::front_culled`](super::MapView::front_culled)).
     Second,
     /// Woo's midpoint `(z1 + z2) / 2`.
     Midpoint,
@@ -218,7 +218,7 @@ impl ShadowConfig {
 
     /// Whether a lookup draws random numbers (the jittered filter's
     /// positions, or a bias range's per-sample bias): only then does its
-    /// [`Lookup::seed`] matter.
+    /// [`Lookup::seed`](super::Lookup::seed) matter.
     #[must_use]
     pub const fn draws_random(&self) -> bool {
         matches!(self.filter, Filter::Jittered(_)) || matches!(self.bias, Bias::Range { .. })

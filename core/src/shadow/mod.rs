@@ -16,7 +16,7 @@
 //! The receiver's depth (less the bias) is rounded to the map's format as
 //! the light pass rounds fragments, so a receiver exactly on a stored
 //! surface compares equal; references are formed from the widened texels in
-//! [`PlaneZ`] bits (so the midpoint keeps its half LSB). The bias is
+//! [`PlaneZ`](crate::depth::PlaneZ) bits (so the midpoint keeps its half LSB). The bias is
 //! constant or, as Reeves' `[Bias0, Bias1]`, drawn per sample.
 //!
 //! # Virtual samples

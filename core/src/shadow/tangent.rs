@@ -28,7 +28,7 @@ impl TangentPlane {
         Self(out)
     }
 
-    /// The plane's depth slopes on the map, in format `F`'s [`PlaneZ`] bits
+    /// The plane's depth slopes on the map, in format `F`'s [`PlaneZ`](crate::depth::PlaneZ) bits
     /// per texel: `z = −(A·x + B·y + D)/C` in NDC, with `x = 2u/W − 1` and
     /// `y = 1 − 2v/H`. `None` when the plane is (nearly) parallel to the
     /// light ray (`C → 0`): a slope of more than the whole depth range per

@@ -58,7 +58,7 @@ pub enum StudyError {
     #[error(transparent)]
     Output(#[from] OutputError),
     /// A results file could not be read, is not a regular file, or is
-    /// larger than [`Limits::max_file_bytes`].
+    /// larger than [`Limits::max_file_bytes`](crate::io::limits::Limits::max_file_bytes).
     #[error("{path}: {source}")]
     Read {
         /// The file.

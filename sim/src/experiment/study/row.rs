@@ -19,7 +19,7 @@ pub struct Row {
     pub arch_index: usize,
     /// Scene name.
     pub scene: String,
-    /// Algorithm name ([`Variant::name`]).
+    /// Algorithm name ([`Variant::name`](super::Variant::name)).
     pub algorithm: String,
     /// Bias, depth in `[0, 1]`.
     pub bias: f64,
