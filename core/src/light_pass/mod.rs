@@ -15,62 +15,19 @@
 use glam::{Mat4, Vec3, Vec4};
 
 use crate::config::{ConfigError, CullMode, DepthUnit, LightPassConfig};
-use crate::depth::DepthFormat;
-use crate::depth::{TileState, count_of, min_max, tile_rows};
+use crate::depth::{DepthFormat, TileState};
 use crate::front::{self, Output};
 use crate::probe::{Event, FlushReason, NoProbe, Probe, RejectReason};
 use crate::raster::bin::{Bin, MAX_SETUPS, SetupIndex, touches};
 use crate::raster::setup::Setup;
 use crate::raster::tile::TileId;
 use crate::raster::{TileView, rasterize};
+use resolve::resolve;
 
-/// The caller-owned memory of a light pass.
-pub struct LightBuffers<'a, F: DepthFormat, const B: usize> {
-    /// Nearest depth, `width × height` texels.
-    pub z1: &'a mut [F::Texel],
-    /// Second-nearest depth: `width × height` texels for [`DepthUnit::Dual`], empty for single.
-    pub z2: &'a mut [F::Texel],
-    /// Visible-triangle ids, `width × height`, for a single unit that
-    /// records visibility (the camera pass); empty otherwise. A pixel no
-    /// triangle covers holds [`NO_TRIANGLE`].
-    pub ids: &'a mut [u32],
-    /// One summary per tile, row-major.
-    pub tiles: &'a mut [TileState<F::Texel>],
-    /// One bin per tile, row-major.
-    pub bins: &'a mut [Bin<B>],
-    /// The triangle-setup store: any length in `1..=65536`.
-    pub setups: &'a mut [Setup],
-}
+mod buffers;
+mod resolve;
 
-/// The id of a pixel that no triangle covers.
-pub const NO_TRIANGLE: u32 = u32::MAX;
-
-/// A triangle list that cannot be drawn.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum SubmitError {
-    /// A triangle names a vertex that does not exist.
-    IndexOutOfRange {
-        /// Position of the triangle in the index list.
-        triangle: usize,
-        /// The index it holds.
-        index: u32,
-        /// How many vertices there are.
-        vertices: usize,
-    },
-}
-
-impl core::fmt::Display for SubmitError {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        match *self {
-            Self::IndexOutOfRange { triangle, index, vertices } => {
-                write!(f, "triangle {triangle} names vertex {index}, but there are only {vertices} vertices")
-            }
-        }
-    }
-}
-
-impl core::error::Error for SubmitError {}
+pub use buffers::{LightBuffers, NO_TRIANGLE, SubmitError};
 
 /// A light pass in progress.
 pub struct LightPass<'a, F: DepthFormat, P: Probe = NoProbe, const B: usize = 64> {
@@ -303,22 +260,4 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
         self.setups_used = 0;
         self.probe
     }
-}
-
-/// Exact bounds of a tile at store time (the resolve).
-fn resolve<F: DepthFormat>(view: &mut TileView<'_, F::Texel>, dual: bool) {
-    let (r, width) = (view.rect, view.width);
-    let rows = |buf| tile_rows(buf, r, width);
-    let (z1_min, z1_max) = min_max(rows(&*view.z1), F::FAR);
-    let st = &mut *view.state;
-    (st.z1_min, st.z1_max) = (z1_min, z1_max);
-    let (culled, max): (&[F::Texel], _) = if dual {
-        let (z2_min, z2_max) = min_max(rows(&*view.z2), F::FAR);
-        (st.z2_min, st.z2_max) = (z2_min, z2_max);
-        (&*view.z2, z2_max)
-    } else {
-        (&*view.z1, z1_max)
-    };
-    st.cull_max = max;
-    st.cull_count = count_of(rows(culled), max);
 }
