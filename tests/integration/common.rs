@@ -316,3 +316,25 @@ pub fn camera_image<F: DepthFormat, P: Probe>(
     render(frame, scene, &view, &umbra::core::shade::MapUnit, &options, probe).expect("renders");
     frame.take_image()
 }
+
+/// The silhouette pass over an 8 × 6 map that is all far (nothing hides an
+/// edge) drawing one horizontal edge at `y = 3.25`, `x` from 1.25 to 5.75,
+/// in silhouette-grid texels; the 9 × 7 grid of points it leaves (untouched
+/// texels hold the centre).
+pub fn horizontal_silhouette_edge<P: Probe>(probe: &mut P) -> Vec<umbra::core::silhouette::SilPoint> {
+    use umbra::core::budget::MAP_SCALE;
+    use umbra::core::shadow::{Bias, DepthTest, Filter, MapView, ShadowConfig};
+    use umbra::core::silhouette::{Segment, SilPoint, SilhouettePass};
+    use umbra::core::{D24, RasterConfig};
+
+    let raster = RasterConfig::new(8, 6, 8, 8).expect("valid");
+    let (z, tiles) = (vec![D24::FAR; 48], vec![TileState::cleared(D24::FAR, 48)]);
+    let view = MapView::<D24>::front_culled(raster, &z, &tiles).expect("sized");
+    let cfg = ShadowConfig::new(DepthTest::First, Bias::ZERO, Filter::Point, false).expect("valid");
+    let mut texels = vec![SilPoint::CENTRE; 9 * 7];
+    let mut pass = SilhouettePass::<SilPoint, D24>::new(&mut texels, &view, cfg).expect("sized");
+    let q = |v: f64| (v * MAP_SCALE) as i64;
+    let depth = D24::plane_z(0.5);
+    pass.draw(&Segment { a: [q(1.25), q(3.25)], b: [q(5.75), q(3.25)], za: depth, zb: depth }, probe);
+    texels
+}

@@ -9,7 +9,7 @@ use umbra::core::shadow::{Bias, DepthTest, Filter, Lookup, MapCoord, MapView, Sh
 use umbra::core::stencil::StencilPass;
 use umbra::core::{CullMode, D24, DepthFormat, DepthUnit, RasterConfig};
 
-use crate::common::{config, reference, run, triangles};
+use crate::common::{config, horizontal_silhouette_edge, reference, run, triangles};
 
 const SIZE: u32 = 64;
 /// Bytes of a 24-bit texel.
@@ -100,4 +100,14 @@ proptest! {
         prop_assert_eq!(t.map_read_bytes, BYTES * t.map_reads());
         prop_assert_eq!(t.lookups_culled, 0);
     }
+}
+
+/// The silhouette unit: the horizontal edge of the silhouette picture test
+/// (row 3, columns 1 to 5 of the 9 × 7 grid, worked by hand there) is five
+/// fragments, each storing a 4-byte point.
+#[test]
+fn the_silhouette_unit_reports_its_writes() {
+    let mut t = Totals::default();
+    horizontal_silhouette_edge(&mut t);
+    assert_eq!((t.silhouette_fragments, t.silhouette_stored, t.silhouette_write_bytes), (5, 5, 20));
 }

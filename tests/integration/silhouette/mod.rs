@@ -312,22 +312,12 @@ fn volumes_beyond_the_far_plane_keep_their_planes() {
 /// `i + ¾`), none at a texel's centre, and nothing hides it under a far map.
 #[test]
 fn a_horizontal_edge_fills_its_row_as_a_picture() {
-    use umbra::core::budget::MAP_SCALE;
-    use umbra::core::shadow::{Bias, DepthTest, MapView, ShadowConfig};
-    use umbra::core::silhouette::{Segment, SilPoint, SilhouettePass};
-    use umbra::core::{D24, DepthFormat, NoProbe, RasterConfig, TileState};
+    use umbra::core::silhouette::SilPoint;
 
+    use crate::common::horizontal_silhouette_edge;
     use crate::mock_map::MockMap;
 
-    let raster = RasterConfig::new(8, 6, 8, 8).expect("valid");
-    let (z, tiles) = (vec![D24::FAR; 48], vec![TileState::cleared(D24::FAR, 48)]);
-    let view = MapView::<D24>::front_culled(raster, &z, &tiles).expect("sized");
-    let cfg = ShadowConfig::new(DepthTest::First, Bias::ZERO, Filter::Point, false).expect("valid");
-    let mut texels = vec![SilPoint::CENTRE; 9 * 7];
-    let mut pass = SilhouettePass::<SilPoint, D24>::new(&mut texels, &view, cfg).expect("sized");
-    let q = |v: f64| (v * MAP_SCALE) as i64;
-    let depth = D24::plane_z(0.5);
-    pass.draw(&Segment { a: [q(1.25), q(3.25)], b: [q(5.75), q(3.25)], za: depth, zb: depth }, &mut NoProbe);
+    let texels = horizontal_silhouette_edge(&mut umbra::core::NoProbe);
     let stored = (0..63u32).filter(|&k| texels[k as usize] != SilPoint::CENTRE).map(|k| (k % 9, k / 9));
     MockMap::of(9, 7, stored).assert_pattern(&[
         ".........",
