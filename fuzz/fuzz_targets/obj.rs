@@ -15,7 +15,7 @@ fuzz_target!(|data: &[u8]| {
     if std::fs::write(&path, data).is_err() {
         return;
     }
-    if let Ok(mesh) = Mesh::load_obj_within(&path, &LIMITS) {
+    if let Ok(mesh) = Mesh::load_obj(&path, &LIMITS) {
         let n = mesh.positions.len();
         assert!(!mesh.triangles.is_empty());
         assert!(mesh.triangles.len() as u64 <= LIMITS.max_triangles);

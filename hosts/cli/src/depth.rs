@@ -127,7 +127,7 @@ pub(super) fn depth(args: &DepthArgs, limits: &Limits) -> Result<()> {
     limits.check_map(args.size).with_context(|| format!("--size {}", args.size))?;
     let scene = match &args.mesh {
         Some(path) => {
-            let mesh = Mesh::load_obj_within(path, limits)?;
+            let mesh = Mesh::load_obj(path, limits)?;
             let light = framing_light(&mesh)?;
             let name = path.file_stem().map_or_else(|| "mesh".into(), |s| s.to_string_lossy().into_owned());
             let lights = vec![Light::Spot(light)];

@@ -145,22 +145,14 @@ fn check_obj(path: &Path, bytes: &[u8]) -> Result<u64, MeshError> {
 
 impl Mesh {
     /// Load every model of an OBJ file as one mesh (faces triangulated as
-    /// fans), within the default [`Limits`].
-    ///
-    /// # Errors
-    /// See [`MeshError`].
-    pub fn load_obj(path: &Path) -> Result<Self, MeshError> {
-        Self::load_obj_within(path, &Limits::DEFAULT)
-    }
-
-    /// Load an OBJ file within `limits`: a file larger than
+    /// fans) within `limits`: a file larger than
     /// [`Limits::max_file_bytes`] is rejected before it is read, and one whose
     /// faces make more than [`Limits::max_triangles`] before any triangle is
     /// stored. Material libraries (`mtllib`) are not read.
     ///
     /// # Errors
     /// See [`MeshError`].
-    pub fn load_obj_within(path: &Path, limits: &Limits) -> Result<Self, MeshError> {
+    pub fn load_obj(path: &Path, limits: &Limits) -> Result<Self, MeshError> {
         let bytes = limits.read_file(path).map_err(|e| match e {
             FileError::Io(source) => MeshError::Read { path: path.to_owned(), source },
             FileError::NotAFile => MeshError::NotAFile { path: path.to_owned() },

@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use umbra::core::glam::Vec4;
 use umbra::core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, RasterConfig};
 use umbra::sim::cost::counters::Counters;
+use umbra::sim::io::limits::Limits;
 use umbra::sim::io::output::{RawMap, write_npy};
 use umbra::sim::pass::light::{Draw, RawMaps, raw_far};
 use umbra::sim::world::mesh::{Mesh, MeshError};
@@ -30,31 +31,31 @@ fn matrices_are_row_major() {
 fn mesh_errors_name_the_file_and_the_problem() {
     let dir = scratch("obj");
     let missing = dir.join("missing.obj");
-    let err = Mesh::load_obj(&missing).expect_err("missing file");
+    let err = Mesh::load_obj(&missing, &Limits::DEFAULT).expect_err("missing file");
     assert!(matches!(err, MeshError::Read { .. }));
     assert!(err.to_string().contains("missing.obj"), "{err}");
     let nan = dir.join("nan.obj");
     std::fs::write(&nan, "v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n").expect("write");
-    assert!(matches!(Mesh::load_obj(&nan), Err(MeshError::NonFinite { vertex: 2, .. })));
+    assert!(matches!(Mesh::load_obj(&nan, &Limits::DEFAULT), Err(MeshError::NonFinite { vertex: 2, .. })));
     // Truncated mid-record, and not an OBJ at all: the file and the line.
     let cut = dir.join("cut.obj");
     std::fs::write(&cut, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nv 0.5 0.").expect("write");
-    let err = Mesh::load_obj(&cut).expect_err("truncated");
+    let err = Mesh::load_obj(&cut, &Limits::DEFAULT).expect_err("truncated");
     assert!(matches!(err, MeshError::Syntax { line: 5, .. }), "{err}");
     assert!(err.to_string().contains("cut.obj:5"), "{err}");
     let png = dir.join("picture.obj");
     std::fs::write(&png, b"\x89PNG\r\n\x1a\n\x00\x00\xff\xfe").expect("write");
-    let err = Mesh::load_obj(&png).expect_err("not an OBJ");
+    let err = Mesh::load_obj(&png, &Limits::DEFAULT).expect_err("not an OBJ");
     assert!(matches!(err, MeshError::Syntax { line: 1, .. }), "{err}");
     let dangling = dir.join("dangling.obj");
     std::fs::write(&dangling, "v 0 0 0\nv 1 0 0\nf 1 2 3\n").expect("write");
-    assert!(matches!(Mesh::load_obj(&dangling), Err(MeshError::Syntax { line: 3, .. })));
+    assert!(matches!(Mesh::load_obj(&dangling, &Limits::DEFAULT), Err(MeshError::Syntax { line: 3, .. })));
     let empty = dir.join("empty.obj");
     std::fs::write(&empty, "v 0 0 0\n").expect("write");
-    assert!(matches!(Mesh::load_obj(&empty), Err(MeshError::Empty { .. })));
+    assert!(matches!(Mesh::load_obj(&empty, &Limits::DEFAULT), Err(MeshError::Empty { .. })));
     let quad = dir.join("quad.obj");
     std::fs::write(&quad, "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n").expect("write");
-    assert_eq!(Mesh::load_obj(&quad).expect("valid").triangles.len(), 2);
+    assert_eq!(Mesh::load_obj(&quad, &Limits::DEFAULT).expect("valid").triangles.len(), 2);
 }
 
 /// Every real mesh renders in every format: fragments land, `z1 ≤ z2`, and
@@ -74,7 +75,7 @@ fn shared_meshes_all_render() {
     paths.sort();
     assert!(paths.len() >= 6, "expected the six shared meshes, found {}", paths.len());
     for path in paths {
-        let mesh = Mesh::load_obj(&path).unwrap_or_else(|e| panic!("{e}"));
+        let mesh = Mesh::load_obj(&path, &Limits::DEFAULT).unwrap_or_else(|e| panic!("{e}"));
         let (lo, hi) = mesh.bounds().expect("vertices");
         let c = (lo + hi) / 2.0;
         let r = (hi - lo).length() / 2.0;

@@ -74,7 +74,7 @@ fn ten_million_triangles_are_refused_before_building() {
         big,
         1,
     ) + &object.repeat(4);
-    let p = problem(Scene::parse(&text, Path::new("probe.toml")), "objects");
+    let p = problem(Scene::parse(&text, Path::new("probe.toml"), &Limits::DEFAULT), "objects");
     assert!(
         matches!(p, Problem::Limit(LimitError::Triangles { triangles: 10_475_520, max }) if max == Limits::DEFAULT.max_triangles),
         "{p}"
@@ -89,7 +89,7 @@ fn an_oversized_obj_is_refused_unread() {
     let dir = scratch("hostile-big");
     let big = dir.join("big.obj");
     std::fs::File::create(&big).and_then(|f| f.set_len(300 << 20)).expect("sparse file");
-    let err = Mesh::load_obj(&big).expect_err("too large");
+    let err = Mesh::load_obj(&big, &Limits::DEFAULT).expect_err("too large");
     assert!(
         matches!(err, MeshError::Limit { source: LimitError::FileBytes { bytes: 314_572_800, max: 268_435_456 }, .. }),
         "{err}"
@@ -99,7 +99,7 @@ fn an_oversized_obj_is_refused_unread() {
     let scene = dir.join("scene.toml");
     let text = GOOD.replacen("mesh = { sphere", "mesh = { obj = \"big.obj\" }\n#", 1);
     std::fs::write(&scene, text).expect("write");
-    let p = problem(Scene::load(&scene), "objects[0].mesh");
+    let p = problem(Scene::load(&scene, &Limits::DEFAULT), "objects[0].mesh");
     assert!(matches!(p, Problem::Mesh(MeshError::Limit { .. })), "{p}");
     std::fs::remove_file(&big).expect("remove");
 }
@@ -111,7 +111,7 @@ fn an_oversized_obj_is_refused_unread() {
 #[test]
 fn the_triangle_limit_spans_generators_and_files() {
     let limits = Limits { max_triangles: 120, ..Limits::DEFAULT };
-    let p = problem(Scene::parse_within(GOOD, Path::new("probe.toml"), &limits), "objects");
+    let p = problem(Scene::parse(GOOD, Path::new("probe.toml"), &limits), "objects");
     assert!(matches!(p, Problem::Limit(LimitError::Triangles { triangles: 224, max: 120 })), "{p}");
     let dir = scratch("hostile-faces");
     let mut obj = String::from("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n");
@@ -122,13 +122,13 @@ fn the_triangle_limit_spans_generators_and_files() {
     let small = GOOD.replacen("stacks = 8, slices = 16", "stacks = 4, slices = 8", 1)
         + "\n[[objects]]\nmesh = { obj = \"fan.obj\" }\n";
     let file = dir.join("scene.toml");
-    let p = problem(Scene::parse_within(&small, &file, &limits), "objects[1].mesh");
+    let p = problem(Scene::parse(&small, &file, &limits), "objects[1].mesh");
     assert!(
         matches!(p, Problem::Mesh(MeshError::Limit { source: LimitError::Triangles { triangles: 100, max: 72 }, .. })),
         "{p}"
     );
     let roomy = Limits { max_triangles: 148, ..Limits::DEFAULT };
-    let s = Scene::parse_within(&small, &file, &roomy).unwrap_or_else(|e| panic!("{e}"));
+    let s = Scene::parse(&small, &file, &roomy).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(s.objects[1].mesh.triangles.len(), 100);
 }
 
@@ -139,13 +139,13 @@ fn limits_on_files_and_images_are_configurable() {
     std::fs::write(&file, GOOD).expect("write");
     let tiny = Limits { max_file_bytes: 100, ..Limits::DEFAULT };
     let bytes = GOOD.len() as u64;
-    let p = problem(Scene::load_within(&file, &tiny), "(file)");
+    let p = problem(Scene::load(&file, &tiny), "(file)");
     assert!(matches!(p, Problem::Limit(LimitError::FileBytes { bytes: b, max: 100 }) if b == bytes), "{p}");
     // 8192 × 8192 is within the side limit but has 2²⁶ pixels.
     let p = problem(with("image = [64, 48]", "image = [8192, 8192]"), "image");
     assert!(matches!(p, Problem::Limit(LimitError::ImagePixels { width: 8192, height: 8192, .. })), "{p}");
     let narrow = Limits { max_image_side: 32, ..Limits::DEFAULT };
-    let p = problem(Scene::parse_within(GOOD, Path::new("probe.toml"), &narrow), "image");
+    let p = problem(Scene::parse(GOOD, Path::new("probe.toml"), &narrow), "image");
     assert!(matches!(p, Problem::Limit(LimitError::ImageSide { side: 64, max: 32 })), "{p}");
     assert!(p.to_string().contains("max_image_side"), "{p}");
 }
@@ -207,7 +207,7 @@ fn bytes_that_are_not_text_name_their_line() {
     let dir = scratch("hostile-bytes");
     let file = dir.join("latin1.toml");
     std::fs::write(&file, &bytes).expect("write");
-    let p = problem(Scene::load(&file), &format!("line {line}"));
+    let p = problem(Scene::load(&file, &Limits::DEFAULT), &format!("line {line}"));
     assert!(matches!(p, Problem::Syntax(_)), "{p}");
 }
 
@@ -217,20 +217,20 @@ fn bytes_that_are_not_text_name_their_line() {
 #[test]
 fn directories_and_devices_are_not_files() {
     let dir = scratch("hostile-kinds");
-    let p = problem(Scene::load(&dir), "(file)");
+    let p = problem(Scene::load(&dir, &Limits::DEFAULT), "(file)");
     assert!(matches!(p, Problem::NotAFile), "{p}");
-    assert!(matches!(Mesh::load_obj(&dir), Err(MeshError::NotAFile { .. })));
+    assert!(matches!(Mesh::load_obj(&dir, &Limits::DEFAULT), Err(MeshError::NotAFile { .. })));
     let zero = Path::new("/dev/zero");
     if zero.exists() {
-        assert!(matches!(Mesh::load_obj(zero), Err(MeshError::NotAFile { .. })));
-        let p = problem(Scene::load(zero), "(file)");
+        assert!(matches!(Mesh::load_obj(zero, &Limits::DEFAULT), Err(MeshError::NotAFile { .. })));
+        let p = problem(Scene::load(zero, &Limits::DEFAULT), "(file)");
         assert!(matches!(p, Problem::NotAFile), "{p}");
         let obj = dir.join("mtl.obj");
         std::fs::write(&obj, "mtllib /dev/zero\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n").expect("write");
-        let mesh = Mesh::load_obj(&obj).unwrap_or_else(|e| panic!("{e}"));
+        let mesh = Mesh::load_obj(&obj, &Limits::DEFAULT).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(mesh.triangles.len(), 1);
     }
     let missing = dir.join("no-such.toml");
-    let p = problem(Scene::load(&missing), "(file)");
+    let p = problem(Scene::load(&missing, &Limits::DEFAULT), "(file)");
     assert!(matches!(&p, Problem::Read(e) if e.kind() == std::io::ErrorKind::NotFound), "{p}");
 }

@@ -35,7 +35,7 @@ mesh = { sphere = { center = [0.0, 1.0, 0.0], radius = 0.5, stacks = 8, slices =
 "#;
 
 fn parse(text: &str) -> Result<Scene, SceneError> {
-    Scene::parse(text, Path::new("probe.toml"))
+    Scene::parse(text, Path::new("probe.toml"), &Limits::DEFAULT)
 }
 
 /// `GOOD` with one line replaced.
@@ -122,7 +122,7 @@ fn each_bad_input_has_its_own_error() {
     let no_lights = head.replacen("image = [64, 48]", "image = [64, 48]\nlights = []", 1) + "[[objects]]" + objects;
     let p = problem(parse(&no_lights), "lights");
     assert!(matches!(p, Problem::Missing("light")), "{p}");
-    let missing = Scene::load(Path::new("no/such/scene.toml")).expect_err("missing file");
+    let missing = Scene::load(Path::new("no/such/scene.toml"), &Limits::DEFAULT).expect_err("missing file");
     assert!(matches!(missing.problem, Problem::Read(_)), "{missing}");
     // By name or path: a path that names a file must be one; any other
     // name must be a bundled scene.

@@ -35,16 +35,14 @@ pub(super) fn build_mesh(
 ) -> Result<Mesh, SceneError> {
     let field = |f: &str| format!("{key}.{f}");
     Ok(match m {
-        MeshFile::Obj(path) => {
-            Mesh::load_obj_within(&dir.join(path), limits).map_err(|e| c.err(key, Problem::Mesh(e)))?
-        }
+        MeshFile::Obj(path) => Mesh::load_obj(&dir.join(path), limits).map_err(|e| c.err(key, Problem::Mesh(e)))?,
         MeshFile::Shared(name) => {
             let folder = shared_meshes();
             let path = folder.join(format!("{name}.obj"));
             if !path.is_file() {
                 return Err(c.err(key, Problem::UnknownShared { name: name.clone(), folder }));
             }
-            Mesh::load_obj_within(&path, limits).map_err(|e| c.err(key, Problem::Mesh(e)))?
+            Mesh::load_obj(&path, limits).map_err(|e| c.err(key, Problem::Mesh(e)))?
         }
         MeshFile::Box { min, max } => {
             let (lo, hi) = (c.vec3(&field("min"), *min)?, c.vec3(&field("max"), *max)?);

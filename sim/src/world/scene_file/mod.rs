@@ -140,20 +140,12 @@ pub fn shared_meshes() -> PathBuf {
 }
 
 impl Scene {
-    /// Load and validate a scene file.
-    ///
-    /// # Errors
-    /// [`SceneError`] naming the file, the key and the problem.
-    pub fn load(file: &Path) -> Result<Self, SceneError> {
-        Self::load_within(file, &Limits::DEFAULT)
-    }
-
     /// Load and validate a scene file within `limits` (the file's size, the
     /// image and the triangles of every mesh, counted before any is built).
     ///
     /// # Errors
     /// [`SceneError`] naming the file, the key and the problem.
-    pub fn load_within(file: &Path, limits: &Limits) -> Result<Self, SceneError> {
+    pub fn load(file: &Path, limits: &Limits) -> Result<Self, SceneError> {
         let c = Check { file };
         let bytes = limits.read_file(file).map_err(|e| {
             c.err(
@@ -180,7 +172,7 @@ impl Scene {
             Check { file }
                 .err(format!("line {line}"), Problem::Syntax(format!("not UTF-8 text at byte {}", e.valid_up_to())))
         })?;
-        Self::parse_within(text, file, limits)
+        Self::parse(text, file, limits)
     }
 
     /// The scene file `name` when it is one (or names one: a path with a
@@ -193,9 +185,9 @@ impl Scene {
         let path = Path::new(name);
         let names_a_file = path.extension().is_some_and(|e| e == "toml") || path.components().count() > 1;
         if path.is_file() || names_a_file {
-            return Self::load_within(path, limits);
+            return Self::load(path, limits);
         }
-        Self::bundled_within(name, limits)
+        Self::from_bundle(name, limits)
     }
 
     /// One of the bundled scenes by name (see [`BUNDLED`]).
@@ -203,18 +195,14 @@ impl Scene {
     /// # Errors
     /// [`SceneError`] with key `(name)` for an unknown name.
     pub fn bundled(name: &str) -> Result<Self, SceneError> {
-        Self::bundled_within(name, &Limits::DEFAULT)
+        Self::from_bundle(name, &Limits::DEFAULT)
     }
 
     /// [`Scene::bundled`] within `limits`.
-    ///
-    /// # Errors
-    /// [`SceneError`] with key `(name)` for an unknown name, or naming the
-    /// limit the scene is beyond.
-    pub fn bundled_within(name: &str, limits: &Limits) -> Result<Self, SceneError> {
+    fn from_bundle(name: &str, limits: &Limits) -> Result<Self, SceneError> {
         let file = PathBuf::from(format!("scenes/{name}.toml"));
         match BUNDLED.iter().find(|(n, _)| *n == name) {
-            Some((_, text)) => Self::parse_within(text, &file, limits),
+            Some((_, text)) => Self::parse(text, &file, limits),
             None => Err(Check { file: &file }.err(
                 "(name)",
                 Problem::Syntax(format!("no bundled scene `{name}`; there are {}", BUNDLED.map(|(n, _)| n).join(", "))),
@@ -222,20 +210,12 @@ impl Scene {
         }
     }
 
-    /// Parse and validate scene text; `file` names it in errors and anchors
-    /// relative mesh paths.
+    /// Parse and validate scene text within `limits`; `file` names it in
+    /// errors and anchors relative mesh paths.
     ///
     /// # Errors
     /// [`SceneError`] naming the file, the key and the problem.
-    pub fn parse(text: &str, file: &Path) -> Result<Self, SceneError> {
-        Self::parse_within(text, file, &Limits::DEFAULT)
-    }
-
-    /// [`Scene::parse`] within `limits`.
-    ///
-    /// # Errors
-    /// [`SceneError`] naming the file, the key and the problem.
-    pub fn parse_within(text: &str, file: &Path, limits: &Limits) -> Result<Self, SceneError> {
+    pub fn parse(text: &str, file: &Path, limits: &Limits) -> Result<Self, SceneError> {
         let c = Check { file };
         let parsed: SceneFile = toml::from_str(text).map_err(|e| {
             let key = e.span().map_or_else(
