@@ -22,7 +22,7 @@ use glam::{Mat4, Vec3};
 use crate::config::{CullMode, RasterConfig};
 use crate::depth::DepthFormat;
 use crate::front::clip::{ClipVertex, Clipped, Polygon, clip_triangle};
-use crate::front::snap::SnappedVertex;
+use crate::front::snap::{SnappedVertex, snap};
 use crate::front::vertex::{VertexCache, process};
 use crate::light_pass::SubmitError;
 use crate::probe::RejectReason;
@@ -100,24 +100,24 @@ pub fn clip<F: DepthFormat>(
 ) {
     let mut p = Polygon::new();
     match clip_triangle(v, raster.guard(), &mut p) {
-        Clipped::Inside => snap::<F>(raster, v, cull, id, out),
+        Clipped::Inside => snap_and_set_up::<F>(raster, v, cull, id, out),
         Clipped::Polygon => {
             for i in 1..p.len().saturating_sub(1) {
-                snap::<F>(raster, &[p[0], p[i], p[i + 1]], cull, id, out);
+                snap_and_set_up::<F>(raster, &[p[0], p[i], p[i + 1]], cull, id, out);
             }
         }
         Clipped::Outside => out(Output::Rejected(RejectReason::Clipped)),
     }
 }
 
-fn snap<F: DepthFormat>(
+fn snap_and_set_up<F: DepthFormat>(
     raster: &RasterConfig,
     v: &[ClipVertex; 3],
     cull: CullMode,
     id: u32,
     out: &mut impl FnMut(Output<'_>),
 ) {
-    match (snap::snap::<F>(raster, &v[0]), snap::snap::<F>(raster, &v[1]), snap::snap::<F>(raster, &v[2])) {
+    match (snap::<F>(raster, &v[0]), snap::<F>(raster, &v[1]), snap::<F>(raster, &v[2])) {
         (Some(a), Some(b), Some(c)) => set_up(raster, [a, b, c], cull, id, out),
         _ => out(Output::Rejected(RejectReason::NonFinite)),
     }

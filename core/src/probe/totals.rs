@@ -237,31 +237,40 @@ impl Totals {
                 self.culled_texels += n(texels);
             }
             Event::DepthRead { buffer, texels, bytes } => {
-                *match buffer {
-                    Buffer::Z1 => &mut self.depth_reads_z1,
-                    Buffer::Z2 => &mut self.depth_reads_z2,
-                    Buffer::Id => &mut self.depth_reads_id,
-                    Buffer::Silhouette => &mut self.depth_reads_silhouette,
-                } += n(texels);
+                *of(
+                    buffer,
+                    [
+                        &mut self.depth_reads_z1,
+                        &mut self.depth_reads_z2,
+                        &mut self.depth_reads_id,
+                        &mut self.depth_reads_silhouette,
+                    ],
+                ) += n(texels);
                 self.depth_read_bytes += n(bytes);
             }
             Event::DepthWrite { buffer, texels, bytes } => {
-                *match buffer {
-                    Buffer::Z1 => &mut self.depth_writes_z1,
-                    Buffer::Z2 => &mut self.depth_writes_z2,
-                    Buffer::Id => &mut self.depth_writes_id,
-                    Buffer::Silhouette => &mut self.depth_writes_silhouette,
-                } += n(texels);
+                *of(
+                    buffer,
+                    [
+                        &mut self.depth_writes_z1,
+                        &mut self.depth_writes_z2,
+                        &mut self.depth_writes_id,
+                        &mut self.depth_writes_silhouette,
+                    ],
+                ) += n(texels);
                 self.depth_write_bytes += n(bytes);
             }
             Event::TileMaxUpdate { tile: _ } => self.tile_max_updates += 1,
             Event::MapRead { buffer, texels, bytes } => {
-                *match buffer {
-                    Buffer::Z1 => &mut self.map_reads_z1,
-                    Buffer::Z2 => &mut self.map_reads_z2,
-                    Buffer::Id => &mut self.map_reads_id,
-                    Buffer::Silhouette => &mut self.map_reads_silhouette,
-                } += n(texels);
+                *of(
+                    buffer,
+                    [
+                        &mut self.map_reads_z1,
+                        &mut self.map_reads_z2,
+                        &mut self.map_reads_id,
+                        &mut self.map_reads_silhouette,
+                    ],
+                ) += n(texels);
                 self.map_read_bytes += n(bytes);
             }
             Event::LookupCulled { texels } => {
@@ -294,6 +303,17 @@ impl Totals {
                 self.stencil_write_bytes += n(bytes);
             }
         }
+    }
+}
+
+/// The field of `buffer` among one count's per-buffer fields, given in
+/// [`Buffer`] order.
+const fn of(buffer: Buffer, [z1, z2, id, silhouette]: [&mut u64; 4]) -> &mut u64 {
+    match buffer {
+        Buffer::Z1 => z1,
+        Buffer::Z2 => z2,
+        Buffer::Id => id,
+        Buffer::Silhouette => silhouette,
     }
 }
 

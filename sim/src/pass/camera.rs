@@ -81,13 +81,6 @@ impl CameraFrame {
         &self.ids
     }
 
-    /// Its 24-bit depth per pixel (the stencil unit tests shadow volumes
-    /// against it).
-    #[must_use]
-    pub fn depth(&self) -> &[u32] {
-        &self.z
-    }
-
     /// The last pass's image, taken out of the frame.
     #[must_use]
     pub fn take_image(&mut self) -> CameraImage {

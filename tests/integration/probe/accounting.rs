@@ -18,6 +18,7 @@ const BYTES: u64 = 3;
 /// Triangles the reference gives at least one fragment.
 fn covering(tris: &[[Vec4; 3]]) -> u64 {
     let mut ids: Vec<u32> = reference::<D24>(SIZE, tris, CullMode::None).iter().map(|f| f.triangle).collect();
+    ids.sort_unstable();
     ids.dedup();
     ids.len() as u64
 }
