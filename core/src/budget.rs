@@ -7,7 +7,7 @@
 //! | quantity | bound | where |
 //! |---|---|---|
 //! | target side | `2^MAX_TARGET_BITS` = 16 384 pixels | [`crate::config::RasterConfig::new`] |
-//! | snapped coordinate | `±2^COORD_BITS` subpixels (±2¹⁶ pixels of guard band, 8 subpixel bits) | [`crate::front::snap`] |
+//! | snapped coordinate | `±2^COORD_BITS` subpixels (±2¹⁶ pixels of guard band, 8 subpixel bits) | [`crate::front::snap`](mod@crate::front::snap) |
 //! | in a window | `±2^WINDOW_COORD_BITS` subpixels | [`crate::raster::setup`] |
 //! | edge function at a pixel centre | `< 2^EDGE_BITS` = 2⁵³ (`i64`) | [`crate::raster::setup::Edge`] |
 //! | depth in the interpolator | `[0, 2^DEPTH_BITS)` = `[0, 2⁵⁶)` ([`crate::depth::PlaneZ`], 32 fraction bits below an LSB) | [`crate::depth`] |

@@ -8,7 +8,7 @@
 //! * near `z ≥ 0` and far `z ≤ w` (depth `z/w` in `[0, 1]`);
 //! * the guard band `|x| ≤ g_x·w`, `|y| ≤ g_y·w`, wide enough that almost no
 //!   triangle is clipped by it, narrow enough that snapped coordinates stay
-//!   inside the integer budget of [`crate::front::snap`].
+//!   inside the integer budget of [`crate::front::snap`](mod@crate::front::snap).
 //!
 //! Sutherland–Hodgman: a triangle becomes a convex polygon of at most
 //! [`MAX_POLYGON`] vertices, which the light pass draws as a fan. A new

@@ -7,7 +7,7 @@
 //! ```
 //!
 //! The map is row-major, `width × height` texels, row 0 at the top (see
-//! [`crate::front::snap`] for the orientation). [`LightPass::new`] clears it to the
+//! [`crate::front::snap`](mod@crate::front::snap) for the orientation). [`LightPass::new`] clears it to the
 //! far value; [`LightPass::finish`] drains every bin. Results do not depend on
 //! the bin capacity, the setup-store size or the tile size: only the events
 //! reported on the way do.
