@@ -37,7 +37,8 @@ fn bench_camera(c: &mut Criterion) {
     g.throughput(Throughput::Elements(u64::from(W * H)));
     for (name, filter) in filters {
         let shadow = ShadowConfig::new(DepthTest::Second, Bias::ZERO, filter, true).expect("valid");
-        let options = CameraOptions { width: W, height: H, shadow, virtual_samples: true };
+        let options =
+            CameraOptions { width: W, height: H, shadow, virtual_samples: true, tile: RasterConfig::DEFAULT_TILE_SIZE };
         let mut counters = Counters::new(&RasterConfig::new(W, H, 32, 8).expect("valid"));
         let mut frame = CameraFrame::default();
         render(&mut frame, &scene, &view, &MapUnit, &options, &mut counters).expect("renders");

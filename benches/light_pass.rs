@@ -204,22 +204,31 @@ fn bench_light_pass(c: &mut Criterion) {
     g.finish();
 }
 
-/// The cycle-counting path (the Talisman model as the probe) against the
-/// functional path (no probe) on the same render, in one run.
+/// The cycle-counting path (the Talisman model as the probe, and the
+/// immediate-mode model with its depth cache fed fragment by fragment)
+/// against the functional path (no probe) on the same render, in one run.
 fn bench_probe_overhead(c: &mut Criterion) {
     use umbra::core::DepthFormatKind;
-    use umbra::sim::cost::arch::{ArchParams, ArchProbe};
+    use umbra::sim::cost::arch::{Arch, ArchProbe, PassKind};
     let small = small_triangles();
     let mut g = c.benchmark_group("probe_overhead");
     g.sample_size(10);
     g.throughput(Throughput::Elements(small.triangles.len() as u64));
     let cfg = config(DepthUnit::Dual, true);
+    let (talisman, immediate) = (Arch::bundled("talisman"), Arch::bundled("immediate"));
+    let (Ok(talisman), Ok(immediate)) = (talisman, immediate) else { return };
     g.bench_function("functional", |b| {
         b.iter(|| black_box(LightMaps::draw::<D24, _>(cfg, &[small.draw()], LightOptions::default(), NoProbe)))
     });
     g.bench_function("talisman_model", |b| {
         b.iter(|| {
-            let probe = ArchProbe::new(ArchParams::TALISMAN, DepthFormatKind::D24, DepthUnit::Dual);
+            let probe = ArchProbe::<false>::new(&talisman, PassKind::Light, cfg.raster, DepthFormatKind::D24, 2);
+            black_box(LightMaps::draw::<D24, _>(cfg, &[small.draw()], LightOptions::default(), probe))
+        })
+    });
+    g.bench_function("immediate_model_depth_cache", |b| {
+        b.iter(|| {
+            let probe = ArchProbe::<true>::new(&immediate, PassKind::Light, cfg.raster, DepthFormatKind::D24, 2);
             black_box(LightMaps::draw::<D24, _>(cfg, &[small.draw()], LightOptions::default(), probe))
         })
     });

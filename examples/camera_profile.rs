@@ -77,7 +77,7 @@ fn shade_scene(
     )?;
     let view = map_view::<D24>(&maps, false)?;
     let mut frame = CameraFrame::default();
-    let camera = visibility(&mut frame, scene, (width, height), &mut NoProbe)?.camera;
+    let camera = visibility(&mut frame, scene, (width, height), RasterConfig::DEFAULT_TILE_SIZE, &mut NoProbe)?.camera;
     let ids = frame.ids();
     let triangles = scene.triangles();
     let source = |id: u32| triangles.get(id as usize).copied();

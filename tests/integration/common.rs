@@ -312,7 +312,7 @@ pub fn camera_image<F: DepthFormat, P: Probe>(
 ) -> umbra::sim::pass::camera::CameraImage {
     use umbra::sim::pass::camera::{CameraOptions, map_view, render};
     let view = map_view::<F>(maps, false).expect("maps fit their configuration");
-    let options = CameraOptions { width, height, shadow, virtual_samples };
+    let options = CameraOptions { width, height, shadow, virtual_samples, tile: RasterConfig::DEFAULT_TILE_SIZE };
     render(frame, scene, &view, &umbra::core::shade::MapUnit, &options, probe).expect("renders");
     frame.take_image()
 }

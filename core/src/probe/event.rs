@@ -192,24 +192,38 @@ pub enum Event {
         /// Bytes read.
         bytes: u32,
     },
-    /// Fragments of one shadow-volume triangle on the camera's raster, each
-    /// reading the scene depth.
+    /// The shading unit began a covered pixel: the shadow events up to the
+    /// next one are this pixel's.
+    PixelShaded {
+        /// Column.
+        x: u32,
+        /// Row (row 0 at the top).
+        y: u32,
+    },
+    /// Fragments of one shadow-volume triangle in one tile of the camera's
+    /// raster, each reading the scene depth.
     VolumeFragments {
+        /// The tile.
+        tile: TileId,
         /// Fragments generated.
         fragments: u32,
         /// Scene depth bytes read.
         depth_bytes: u32,
     },
-    /// Stencil texels read by the volume fragments of one triangle.
+    /// Stencil texels read by the volume fragments of one triangle in one tile.
     StencilRead {
+        /// The tile.
+        tile: TileId,
         /// Texels read.
         texels: u32,
         /// Bytes read.
         bytes: u32,
     },
     /// Stencil texels written (incremented or decremented) by the volume
-    /// fragments of one triangle that failed the depth test.
+    /// fragments of one triangle in one tile that failed the depth test.
     StencilWrite {
+        /// The tile.
+        tile: TileId,
         /// Texels written.
         texels: u32,
         /// Bytes written.

@@ -135,6 +135,8 @@ totals! {
     silhouette_reads,
     /// Bytes of those reads.
     silhouette_read_bytes,
+    /// Covered pixels shaded ([`Event::PixelShaded`]).
+    pixels_shaded,
     /// Shadow-volume fragments ([`Event::VolumeFragments`]).
     volume_fragments,
     /// Scene depth bytes those fragments read.
@@ -290,15 +292,16 @@ impl Totals {
                 self.silhouette_reads += n(points);
                 self.silhouette_read_bytes += n(bytes);
             }
-            Event::VolumeFragments { fragments, depth_bytes } => {
+            Event::PixelShaded { x: _, y: _ } => self.pixels_shaded += 1,
+            Event::VolumeFragments { tile: _, fragments, depth_bytes } => {
                 self.volume_fragments += n(fragments);
                 self.volume_depth_bytes += n(depth_bytes);
             }
-            Event::StencilRead { texels, bytes } => {
+            Event::StencilRead { tile: _, texels, bytes } => {
                 self.stencil_reads += n(texels);
                 self.stencil_read_bytes += n(bytes);
             }
-            Event::StencilWrite { texels, bytes } => {
+            Event::StencilWrite { tile: _, texels, bytes } => {
                 self.stencil_writes += n(texels);
                 self.stencil_write_bytes += n(bytes);
             }

@@ -42,7 +42,7 @@ use glam::{Mat4, Vec3};
 use crate::config::ConfigError;
 use crate::depth::{DepthFormat, PlaneZ};
 use crate::light_pass::NO_TRIANGLE;
-use crate::probe::Probe;
+use crate::probe::{Event, Probe};
 use crate::shadow::{
     Lookup, MapCoord, MapView, Shadow, ShadowConfig, Slope, TangentPlane, shadow, shadow_with_virtual_samples,
 };
@@ -284,7 +284,10 @@ pub fn shade_with<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, P: Probe>
                 }
             }
             *o = match interp {
-                Some(i) => shade_pixel(cfg, map, unit, probe, &light_inverse_transpose, (px, py), i),
+                Some(i) => {
+                    probe.event(Event::PixelShaded { x: px, y: py });
+                    shade_pixel(cfg, map, unit, probe, &light_inverse_transpose, (px, py), i)
+                }
                 None => Shaded::BACKGROUND,
             };
         }

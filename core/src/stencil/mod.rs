@@ -37,6 +37,10 @@ use crate::front::clip::{ClipVertex, Clipped, DepthClip, Polygon, clip_triangle_
 use crate::front::snap::{SnappedVertex, snap_beyond_far};
 use crate::probe::{Event, Probe, RejectReason};
 use crate::raster::setup::Setup;
+use crate::raster::tile::TileId;
+
+/// Pixel bounds `(x0, y0, x1, y1)`, half-open.
+type Rect = (u32, u32, u32, u32);
 
 /// Bytes of one stencil texel.
 pub const STENCIL_BYTES: u32 = 1;
@@ -110,10 +114,33 @@ impl<'a, F: DepthFormat> StencilPass<'a, F> {
         };
         probe.event(Event::TriangleSetup);
         let step: u8 = if front_facing(&v) { u8::MAX } else { 1 };
+        let b = setup.bbox;
+        let s = r.tile_shift();
+        // Binned to every tile its bounding box overlaps, and counted tile
+        // by tile, as a tiler draws it (each pixel is updated once, so the
+        // order of the tiles changes no bit).
+        let (tx0, ty0) = (b.x0 >> s, b.y0 >> s);
+        let (tx1, ty1) = (b.x1.saturating_sub(1).max(b.x0) >> s, b.y1.saturating_sub(1).max(b.y0) >> s);
+        probe.event(Event::TriangleBinned { tiles: (tx1 - tx0 + 1) * (ty1 - ty0 + 1) });
+        for ty in ty0..=ty1 {
+            for tx in tx0..=tx1 {
+                #[allow(clippy::cast_possible_truncation, reason = "at most 2^14 / 8 tiles per side")]
+                let tile = TileId { x: tx as u16, y: ty as u16 };
+                let rect = r.tile_rect(tile);
+                let (x0, x1) = (rect.x0.max(b.x0), rect.x1.min(b.x1));
+                let (y0, y1) = (rect.y0.max(b.y0), rect.y1.min(b.y1));
+                self.count_in(&setup, step, (x0, y0, x1, y1), tile, probe);
+            }
+        }
+    }
+
+    /// Count one set-up volume triangle's fragments in `[x0, x1) × [y0, y1)`
+    /// of `tile`.
+    fn count_in<P: Probe>(&mut self, setup: &Setup, step: u8, (x0, y0, x1, y1): Rect, tile: TileId, probe: &mut P) {
         let (mut fragments, mut writes) = (0u32, 0u32);
-        let width = r.width() as usize;
-        for py in setup.bbox.y0..setup.bbox.y1 {
-            for px in setup.bbox.x0..setup.bbox.x1 {
+        let width = self.raster.width() as usize;
+        for py in y0..y1 {
+            for px in x0..x1 {
                 let (x, y) = (i64::from(px), i64::from(py));
                 if !setup.covers(x, y) {
                     continue;
@@ -128,11 +155,11 @@ impl<'a, F: DepthFormat> StencilPass<'a, F> {
             }
         }
         if fragments > 0 {
-            probe.event(Event::VolumeFragments { fragments, depth_bytes: fragments * F::KIND.bytes() });
-            probe.event(Event::StencilRead { texels: fragments, bytes: fragments * STENCIL_BYTES });
+            probe.event(Event::VolumeFragments { tile, fragments, depth_bytes: fragments * F::KIND.bytes() });
+            probe.event(Event::StencilRead { tile, texels: fragments, bytes: fragments * STENCIL_BYTES });
         }
         if writes > 0 {
-            probe.event(Event::StencilWrite { texels: writes, bytes: writes * STENCIL_BYTES });
+            probe.event(Event::StencilWrite { tile, texels: writes, bytes: writes * STENCIL_BYTES });
         }
     }
 

@@ -1,55 +1,139 @@
-//! `umbra cost` and `umbra trace`: a render's cost on an architecture, and its timeline.
+//! `umbra cost` and `umbra trace`: a render's cost on architectures, and its timeline.
 
 use crate::render::{RenderArgs, render_config};
-use anyhow::Result;
-use clap::ValueEnum;
-use umbra_sim::cost::arch::ArchParams;
+use anyhow::{Result, bail};
+use umbra_sim::cost::arch::Arch;
+use umbra_sim::cost::arch::file::BUNDLED;
 use umbra_sim::io::limits::Limits;
 use umbra_sim::io::output::write_text;
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub(super) enum ArchArg {
-    Pixelflow,
-    Talisman,
-    Immediate,
-    All,
+/// Which architectures, and what to change in them.
+#[derive(clap::Args, Debug, Clone, Default)]
+#[command(next_help_heading = "Architecture")]
+pub(super) struct ArchArgs {
+    /// A bundled architecture (pixelflow, talisman, immediate, mobile-tbdr,
+    /// desktop-imr, r300), an architecture file (TOML, see arch/), or `all`
+    /// (every bundled one). Repeat for several.
+    #[arg(long = "arch")]
+    pub(super) arch: Vec<String>,
+    /// Override a parameter of every chosen architecture: `key=value`, with
+    /// units where the key has one (`dram.bandwidth=25.6GB/s`,
+    /// `clock=800MHz`, `map_cache.size=16KiB`, `dram.latency=2ns`). Repeat
+    /// for several.
+    #[arg(long = "set")]
+    pub(super) set: Vec<String>,
+}
+
+impl ArchArgs {
+    /// The chosen architectures with the overrides applied; `default` names
+    /// them when `--arch` is not given.
+    pub(super) fn resolve(&self, default: &[&str]) -> Result<Vec<Arch>> {
+        let names: Vec<&str> =
+            if self.arch.is_empty() { default.to_vec() } else { self.arch.iter().map(String::as_str).collect() };
+        let mut archs = Vec::new();
+        for name in names {
+            if name == "all" {
+                archs.extend(Arch::presets()?);
+            } else {
+                archs.push(Arch::open(name)?);
+            }
+        }
+        for arch in &mut archs {
+            for s in &self.set {
+                arch.set(s)?;
+            }
+        }
+        Ok(archs)
+    }
+
+    /// The one architecture a command needs.
+    pub(super) fn one(&self, default: &str) -> Result<Arch> {
+        let mut archs = self.resolve(&[default])?;
+        if archs.len() != 1 {
+            bail!("this command costs on one architecture; --arch names {}", archs.len());
+        }
+        Ok(archs.remove(0))
+    }
 }
 
 #[derive(clap::Args, Debug)]
 pub(super) struct CostArgs {
-    /// Architecture preset.
-    #[arg(long, value_enum, default_value_t = ArchArg::All)]
-    pub(super) arch: ArchArg,
+    #[command(flatten)]
+    pub(super) archs: ArchArgs,
     #[command(flatten)]
     pub(super) render: RenderArgs,
+}
+
+/// The command line, as outputs record it.
+pub(super) fn command_line() -> String {
+    std::env::args().collect::<Vec<_>>().join(" ")
 }
 
 /// `umbra cost` and `umbra trace`.
 pub(super) fn cost(args: &CostArgs, trace: bool, limits: &Limits) -> Result<()> {
     let (scene, cfg, _) = render_config(&args.render, limits)?;
-    let presets: Vec<ArchParams> = match args.arch {
-        ArchArg::Pixelflow => vec![ArchParams::PIXELFLOW],
-        ArchArg::Talisman => vec![ArchParams::TALISMAN],
-        ArchArg::Immediate => vec![ArchParams::IMMEDIATE],
-        ArchArg::All => ArchParams::PRESETS.to_vec(),
-    };
+    let archs = args.archs.resolve(&BUNDLED.map(|b| b.0))?;
     let out = &args.render.out;
+    let command = command_line();
     let mut reports = Vec::new();
-    for arch in presets {
-        let (report, light) = umbra_sim::pass::render::cost(&scene, &cfg, arch, limits)?;
+    for arch in &archs {
+        let report = umbra_sim::pass::render::cost(&scene, &cfg, arch, limits)?;
+        let name = &arch.name;
         if trace {
-            let path = out.join(format!("trace-{}.json", arch.name));
-            write_text(&path, &serde_json::to_string(&umbra_sim::cost::arch::CostReport::trace(&light))?)?;
-            println!("wrote {} ({} slices)", path.display(), light.tile_cycles.len());
+            let path = out.join(format!("trace-{name}.json"));
+            write_text(&path, &serde_json::to_string(&report.trace())?)?;
+            println!(
+                "wrote {} ({:.3} ms of {name} in {} tiles)",
+                path.display(),
+                report.seconds * 1e3,
+                report.tiles[0].len() + report.tiles[1].len()
+            );
         } else {
             println!("{}", report.markdown());
+            write_text(&out.join(format!("stats-{name}.txt")), &report.stats(&command))?;
+            write_text(&out.join(format!("arch-{name}.toml")), &arch.to_toml())?;
         }
         reports.push(report);
     }
     if !trace {
         let path = out.join("cost.json");
-        write_text(&path, &serde_json::to_string_pretty(&reports)?)?;
-        println!("wrote {}", path.display());
+        let json = serde_json::json!({ "version": env!("CARGO_PKG_VERSION"), "command": command, "reports": reports });
+        write_text(&path, &serde_json::to_string_pretty(&json)?)?;
+        println!("wrote {} and stats-<arch>.txt, arch-<arch>.toml", path.display());
     }
+    Ok(())
+}
+
+#[derive(clap::Args, Debug)]
+pub(super) struct CorrelateArgs {
+    /// The scene (default: the bundled stand-in for their factory).
+    #[arg(default_value = "factory")]
+    pub(super) scene: String,
+    /// The architecture (default: r300).
+    #[command(flatten)]
+    pub(super) archs: ArchArgs,
+    /// Output folder for table1.md and table1.json.
+    #[arg(long, default_value = "out/correlate")]
+    pub(super) out: std::path::PathBuf,
+}
+
+/// `umbra correlate`.
+pub(super) fn correlate(args: &CorrelateArgs, limits: &Limits) -> Result<()> {
+    let scene = umbra_sim::world::scene::Scene::open(&args.scene, limits)?;
+    let arch = args.archs.one("r300")?;
+    let c = umbra_sim::experiment::correlation::run(&scene, &arch, limits)?;
+    let md = c.markdown();
+    print!("{md}");
+    write_text(&args.out.join("table1.md"), &md)?;
+    let json = serde_json::json!({
+        "version": env!("CARGO_PKG_VERSION"),
+        "command": command_line(),
+        "scene": scene.name,
+        "arch": arch,
+        "correlation": c,
+    });
+    write_text(&args.out.join("table1.json"), &serde_json::to_string_pretty(&json)?)?;
+    write_text(&args.out.join(format!("arch-{}.toml", arch.name)), &arch.to_toml())?;
+    println!("wrote {}", args.out.join("table1.md").display());
     Ok(())
 }

@@ -2,11 +2,10 @@
 
 use std::path::PathBuf;
 
-use crate::cost::ArchArg;
+use crate::cost::ArchArgs;
 use anyhow::{Context, Result, bail};
 use indicatif::ProgressBar;
 use umbra_core::RasterConfig;
-use umbra_sim::cost::arch::ArchParams;
 use umbra_sim::io::limits::Limits;
 use umbra_sim::io::output::write_text;
 use umbra_sim::world::scene::Scene;
@@ -20,9 +19,9 @@ pub(super) struct PlanArgs {
     /// facing the light).
     #[arg(long, default_value = "0.1%")]
     pub(super) error_budget: String,
-    /// Architecture preset whose cost is minimised.
-    #[arg(long, value_enum, default_value_t = ArchArg::Talisman)]
-    pub(super) arch: ArchArg,
+    /// The architecture whose cost is minimised (default: talisman).
+    #[command(flatten)]
+    pub(super) archs: ArchArgs,
     /// Output folder for plan.md and plan.json.
     #[arg(long, default_value = "out/plan")]
     pub(super) out: PathBuf,
@@ -49,6 +48,10 @@ pub(super) struct StudyArgs {
     /// `--maps 256,1024`).
     #[arg(long, value_delimiter = ',')]
     pub(super) maps: Vec<u32>,
+    /// The architectures each configuration is costed on (default:
+    /// pixelflow, talisman, immediate).
+    #[command(flatten)]
+    pub(super) archs: ArchArgs,
     /// Output folder.
     #[arg(long, default_value = "out/study")]
     pub(super) out: PathBuf,
@@ -76,11 +79,7 @@ pub(super) fn plan(args: &PlanArgs, limits: &Limits) -> Result<()> {
     let scene = Scene::open(&args.scene, limits)?;
     let mut spec = PlanSpec::new(&scene, budget);
     spec.limits = *limits;
-    spec.arch = match args.arch {
-        ArchArg::Pixelflow => ArchParams::PIXELFLOW,
-        ArchArg::Immediate => ArchParams::IMMEDIATE,
-        ArchArg::Talisman | ArchArg::All => ArchParams::TALISMAN,
-    };
+    spec.arch = args.archs.one("talisman")?;
     let p = plan(&scene, &spec)?;
     let md = p.markdown(&scene.name, budget);
     print!("{md}");
@@ -106,6 +105,7 @@ pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
     let scenes = study::load_scenes(&names, limits)?;
     let mut spec = if args.quick { Spec::quick(scenes) } else { Spec::full(scenes) };
     spec.limits = *limits;
+    spec.archs = args.archs.resolve(&["pixelflow", "talisman", "immediate"])?;
     if !args.maps.is_empty() {
         for &side in &args.maps {
             limits.check_map(side).with_context(|| format!("--maps {side}"))?;

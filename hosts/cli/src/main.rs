@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};
-use cost::{CostArgs, cost};
+use cost::{CorrelateArgs, CostArgs, correlate, cost};
 use depth::{DepthArgs, depth};
 use experiment::{MergeArgs, PlanArgs, StudyArgs, plan, study};
 use render::{RenderArgs, render};
@@ -70,12 +70,17 @@ enum Command {
     /// Render a scene with a shadow algorithm, compare it with the exact
     /// reference, and write the pictures and the metrics.
     Render(RenderArgs),
-    /// The cost of a render on the architecture presets: cycles per stage,
-    /// DRAM bytes, culling rates, Sen's bandwidth model (table and JSON).
+    /// The cost of a render on architectures (bundled or files): per-tile
+    /// timing, cycles per stage, DRAM bytes, energy, Sen's bandwidth figures
+    /// (a table, cost.json, gem5-style stats and the effective architecture).
     Cost(CostArgs),
-    /// A per-tile timeline of the light pass in Chrome trace-event JSON
-    /// (open it in Perfetto).
+    /// The frame's timeline from the timing model in Chrome trace-event
+    /// JSON (open it in Perfetto): a track per stage, DRAM bandwidth.
     Trace(CostArgs),
+    /// The timing model against published hardware: Weiskopf & Ertl's
+    /// Table 1 frame-rate ratios (Radeon 9700) beside the model's for the
+    /// bundled r300 architecture and factory scene.
+    Correlate(CorrelateArgs),
     /// The speed/accuracy trade study: scene × algorithm × depth format ×
     /// map size × filter × architecture; results.jsonl/.csv, Pareto plots
     /// and summary.md.
@@ -97,6 +102,7 @@ fn main() -> Result<()> {
         Some(Command::Render(args)) => render(&args, limits),
         Some(Command::Cost(args)) => cost(&args, false, limits),
         Some(Command::Trace(args)) => cost(&args, true, limits),
+        Some(Command::Correlate(args)) => correlate(&args, limits),
         Some(Command::Study(args)) => study(&args, limits),
         Some(Command::Plan(args)) => plan(&args, limits),
         Some(Command::Merge(args)) => {
@@ -114,6 +120,7 @@ fn main() -> Result<()> {
                     shard: None,
                     extremes: false,
                     maps: Vec::new(),
+                    archs: cost::ArchArgs::default(),
                     out: PathBuf::from("out/study"),
                 },
                 limits,

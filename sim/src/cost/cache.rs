@@ -30,6 +30,8 @@ pub struct Cache {
     sets: u64,
     /// Per set, `ways` slots of (tag, last use).
     slots: Vec<Option<(u64, u64)>>,
+    /// Per slot, whether the line was written since it was fetched.
+    dirty: Vec<bool>,
     clock: u64,
     /// Accesses that found their line.
     pub hits: u64,
@@ -55,6 +57,7 @@ impl Cache {
             ways: ways as usize,
             sets,
             slots: vec![None; slots],
+            dirty: vec![false; slots],
             clock: 0,
             hits: 0,
             misses: 0,
@@ -69,21 +72,43 @@ impl Cache {
 
     /// Touch a byte address; whether its line was present.
     pub fn access(&mut self, address: u64) -> bool {
+        self.touch(address, false).0
+    }
+
+    /// Read and write a byte address (a read-modify-write through a
+    /// write-back cache): whether its line was present, and whether a dirty
+    /// line was evicted for it (a line written back).
+    pub fn access_write(&mut self, address: u64) -> (bool, bool) {
+        self.touch(address, true)
+    }
+
+    fn touch(&mut self, address: u64, write: bool) -> (bool, bool) {
         self.clock += 1;
         let line = address >> self.line_shift;
         let set = usize::try_from(line % self.sets).unwrap_or(0);
-        let slots = &mut self.slots[set * self.ways..(set + 1) * self.ways];
-        if let Some(slot) = slots.iter_mut().flatten().find(|(tag, _)| *tag == line) {
-            slot.1 = self.clock;
+        let range = set * self.ways..(set + 1) * self.ways;
+        let slots = &mut self.slots[range.clone()];
+        let dirty = &mut self.dirty[range];
+        if let Some(k) = slots.iter().position(|s| s.is_some_and(|(tag, _)| tag == line)) {
+            slots[k] = Some((line, self.clock));
+            dirty[k] |= write;
             self.hits += 1;
-            return true;
+            return (true, false);
         }
         self.misses += 1;
         // An empty slot, else the least recently used.
-        if let Some(victim) = slots.iter_mut().min_by_key(|s| s.map_or(0, |(_, used)| used)) {
-            *victim = Some((line, self.clock));
-        }
-        false
+        let victim = (0..slots.len()).min_by_key(|&k| slots[k].map_or(0, |(_, used)| used)).unwrap_or(0);
+        let writeback = slots[victim].is_some() && dirty[victim];
+        slots[victim] = Some((line, self.clock));
+        dirty[victim] = write;
+        (false, writeback)
+    }
+
+    /// Write back every dirty line (the end of a pass); how many.
+    pub fn flush(&mut self) -> u64 {
+        let n = self.dirty.iter().filter(|&&d| d).count() as u64;
+        self.dirty.fill(false);
+        n
     }
 
     /// Bytes fetched from memory: one line per miss.

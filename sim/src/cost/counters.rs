@@ -79,6 +79,7 @@ impl Probe for Counters {
             | Event::TangentSetup
             | Event::TangentFallback
             | Event::TrivialPixel { .. }
+            | Event::PixelShaded { .. }
             | Event::SilhouetteFragments { .. }
             | Event::SilhouetteRead { .. }
             | Event::VolumeFragments { .. }

@@ -23,7 +23,7 @@ use serde::Serialize;
 use umbra_core::shadow::Filter;
 use umbra_core::{CullMode, DepthFormat, DepthFormatKind, DepthUnit, F32, LightPassConfig, RasterConfig};
 
-use crate::cost::arch::{ArchParams, CostReport};
+use crate::cost::arch::{Arch, CostReport};
 use crate::cost::storage::StorageBytes;
 use crate::experiment::presets::FILTERS;
 use crate::io::limits::Limits;
@@ -51,7 +51,7 @@ pub struct PlanSpec {
     /// Filters to try, by name from [`FILTERS`].
     pub filters: Vec<&'static str>,
     /// The architecture whose cost is minimised.
-    pub arch: ArchParams,
+    pub arch: Arch,
     /// Camera image for the measurement (the prediction uses a quarter).
     pub image: [u32; 2],
     /// What each render may ask for.
@@ -67,7 +67,7 @@ impl PlanSpec {
             budget_percent,
             map_sizes: vec![128, 256, 512, 1024, 2048],
             filters: vec!["point", "bilinear", "box3"],
-            arch: ArchParams::TALISMAN,
+            arch: Arch::bundled("talisman").unwrap_or_default(),
             image: scene.image,
             limits: Limits::DEFAULT,
         }
@@ -169,7 +169,8 @@ pub fn thinnest_gap(scene: &Scene, map: u32) -> Result<f64, PlanError> {
 }
 
 fn figures(r_err: f64, c: &CostReport) -> Figures {
-    Figures { misclassified_percent: r_err, cycles: c.total_cycles(), bytes: c.total_bytes() }
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "cycles, rounded")]
+    Figures { misclassified_percent: r_err, cycles: c.cycles.round() as u64, bytes: c.bytes }
 }
 
 /// Error (against `truth`, the scene's reference at the configuration's
@@ -182,7 +183,7 @@ fn evaluate(
     truth: &[Option<PixelTruth>],
 ) -> Result<(Figures, Render), PlanError> {
     let r = render(scene, cfg, &spec.limits, TruthSource::Given(truth.to_vec()))?;
-    let (c, _) = cost(scene, cfg, spec.arch, &spec.limits)?;
+    let c = cost(scene, cfg, &spec.arch, &spec.limits)?;
     Ok((figures(r.metrics.misclassified_percent, &c), r))
 }
 

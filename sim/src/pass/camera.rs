@@ -37,6 +37,9 @@ pub struct CameraOptions {
     pub shadow: ShadowConfig,
     /// Wang & Molnar's virtual samples (second depth only).
     pub virtual_samples: bool,
+    /// Side of the visibility unit's tiles (the bits do not depend on it;
+    /// the architecture a pass is costed on does).
+    pub tile: u32,
 }
 
 /// What the visibility unit decided besides its buffers: the camera's
@@ -90,7 +93,7 @@ impl CameraFrame {
 }
 
 /// The visibility unit over `scene` from its camera at `width × height`
-/// into `frame`'s depth and ids.
+/// in `tile`-pixel tiles into `frame`'s depth and ids.
 ///
 /// # Errors
 /// [`PassError`] for an unusable size or a malformed mesh.
@@ -98,10 +101,10 @@ pub fn visibility<P: Probe>(
     frame: &mut CameraFrame,
     scene: &Scene,
     (width, height): (u32, u32),
+    tile: u32,
     probe: &mut P,
 ) -> Result<Visibility, PassError> {
-    let raster =
-        RasterConfig::new(width, height, RasterConfig::DEFAULT_TILE_SIZE, RasterConfig::DEFAULT_SUBPIXEL_BITS)?;
+    let raster = RasterConfig::new(width, height, tile, RasterConfig::DEFAULT_SUBPIXEL_BITS)?;
     let config = LightPassConfig { raster, unit: DepthUnit::Single, max_z_cull: true };
     #[allow(clippy::cast_precision_loss, reason = "an aspect ratio")]
     let camera = scene.camera.view_projection_aspect(width as f32 / height as f32);
@@ -153,8 +156,8 @@ pub fn render<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
     options: &CameraOptions,
     probe: &mut P,
 ) -> Result<(), PassError> {
-    let CameraOptions { width, height, shadow, virtual_samples } = *options;
-    let Visibility { camera, .. } = visibility(frame, scene, (width, height), probe)?;
+    let CameraOptions { width, height, shadow, virtual_samples, tile } = *options;
+    let Visibility { camera, .. } = visibility(frame, scene, (width, height), tile, probe)?;
     let cfg = ShadeConfig {
         camera,
         light: scene.light().view_projection(),
@@ -175,7 +178,7 @@ pub fn render<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
 }
 
 /// The camera pass of depth-fail shadow volumes into `frame`: the
-/// visibility unit, then the stencil unit over every occluder's volume; a
+/// visibility unit (in `tile`-pixel tiles), then the stencil unit over every occluder's volume; a
 /// pixel is in shadow where its stencil is non-zero.
 ///
 /// # Errors
@@ -184,9 +187,10 @@ pub fn volumes<P: Probe>(
     frame: &mut CameraFrame,
     scene: &Scene,
     size: (u32, u32),
+    tile: u32,
     probe: &mut P,
 ) -> Result<(), PassError> {
-    let vis = visibility(frame, scene, size, probe)?;
+    let vis = visibility(frame, scene, size, tile, probe)?;
     let occluders = crate::world::occluders::Occluders::new(scene);
     let stencil =
         crate::world::occluders::stencil::<D24, _>(scene, &occluders, &vis.camera, vis.raster, &frame.z, probe)?;

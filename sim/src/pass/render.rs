@@ -16,7 +16,7 @@ pub use super::algorithm::Algorithm;
 use super::algorithm::MapKind;
 use super::camera::{self, CameraFrame, CameraImage, CameraOptions, map_view, visibility, volumes};
 use super::light::{self, DEFAULT_BIN_CAPACITY, LightFrame, LightMaps, LightOptions, RawMaps};
-use crate::cost::arch::{ArchParams, ArchProbe, CostReport, Tee};
+use crate::cost::arch::{Arch, ArchProbe, CostReport, PassKind};
 use crate::cost::counters::Counters;
 use crate::io::limits::{LimitError, Limits};
 use crate::truth::metrics::{Metrics, compare};
@@ -119,6 +119,23 @@ struct Checked {
 }
 
 impl RenderConfig {
+    /// The configuration in words, every field (for the records outputs carry).
+    #[must_use]
+    pub fn describe(&self) -> String {
+        format!(
+            "{:?}, {:?}, map {}², filter {:?}, bias {}, virtual samples {}, image {}x{}, {}² reference rays",
+            self.algorithm,
+            self.format,
+            self.map_size,
+            self.filter,
+            self.bias,
+            self.virtual_samples,
+            self.width,
+            self.height,
+            self.reference_samples
+        )
+    }
+
     /// Check the map side, the image size and the scene's triangles against
     /// `limits`, before any buffer is allocated, and the targets the passes
     /// will draw (the light pass's with `tile`-pixel tiles).
@@ -177,7 +194,8 @@ pub fn truth(
     progress: &ProgressBar,
 ) -> Result<Vec<Option<PixelTruth>>, RenderError> {
     let mut frame = CameraFrame::default();
-    let vis = visibility(&mut frame, scene, (width, height), &mut umbra_core::NoProbe)?;
+    let vis =
+        visibility(&mut frame, scene, (width, height), RasterConfig::DEFAULT_TILE_SIZE, &mut umbra_core::NoProbe)?;
     let reference = Reference::new(&scene.triangles())?;
     let light = scene.light().source();
     Ok(reference.image(frame.ids(), &vis.camera, width, height, &light, samples, progress))
@@ -192,13 +210,14 @@ fn passes<F: DepthFormat, L: Probe, C: Probe>(
     frame: &mut LightFrame<F::Texel>,
     light_probe: L,
     camera_probe: &mut C,
+    tile: u32,
 ) -> Result<(L, CameraImage), RenderError> {
     let units = cfg.algorithm.units::<F>(cfg.bias);
     let light_config = LightPassConfig { raster: checked.map, unit: units.unit, max_z_cull: true };
     let mut camera = CameraFrame::default();
     let size = (checked.image.width(), checked.image.height());
     if units.map == MapKind::Volumes {
-        volumes(&mut camera, scene, size, camera_probe)?;
+        volumes(&mut camera, scene, size, tile, camera_probe)?;
         return Ok((light_probe, camera.take_image()));
     }
     let draws = scene.draws_culled(scene.light().view_projection(), |solid| units.cull(solid));
@@ -209,6 +228,7 @@ fn passes<F: DepthFormat, L: Probe, C: Probe>(
         height: size.1,
         shadow: ShadowConfig::new(units.test, units.bias, cfg.filter, true)?,
         virtual_samples: units.virtual_samples(cfg.virtual_samples),
+        tile,
     };
     let view = map_view::<F>(maps, units.front_culled)?;
     match units.map {
@@ -252,8 +272,15 @@ fn render_in<F: DepthFormat>(
 ) -> Result<Render, RenderError> {
     let mut camera_events = Counters::new(&checked.image);
     let mut frame = LightFrame::new();
-    let (light_events, image) =
-        passes::<F, _, _>(scene, cfg, checked, &mut frame, Counters::new(&checked.map), &mut camera_events)?;
+    let (light_events, image) = passes::<F, _, _>(
+        scene,
+        cfg,
+        checked,
+        &mut frame,
+        Counters::new(&checked.map),
+        &mut camera_events,
+        RasterConfig::DEFAULT_TILE_SIZE,
+    )?;
     let metrics = compare(&image.pixels, &truth);
     let maps = frame.maps().map_or_else(
         // Shadow volumes draw no map: one far texel stands for it.
@@ -269,55 +296,113 @@ fn render_in<F: DepthFormat>(
     Ok(Render { image, maps, truth, metrics, light_events, camera_events })
 }
 
-/// The cost of a render on an architecture, within `limits` (checked as
-/// [`render`] checks them): both passes through its model. Returns the
-/// report and the light pass's probe (for the timeline).
+/// The cost of a render of `scene` on an architecture, within `limits`
+/// (checked as [`render`] checks them): both passes through its timing
+/// model, the light pass and the camera's visibility in the architecture's
+/// tiles.
 ///
 /// # Errors
 /// See [`RenderError`].
-pub fn cost(
+pub fn cost(scene: &Scene, cfg: &RenderConfig, arch: &Arch, limits: &Limits) -> Result<CostReport, RenderError> {
+    cost_with(scene, cfg, arch, limits, true)
+}
+
+/// The cost of drawing `scene` from its camera at `width × height` without
+/// shadows: the visibility pass and every covered pixel shaded, no light
+/// pass and no shadow unit (the baseline frame rates are measured against).
+///
+/// # Errors
+/// See [`RenderError`].
+pub fn cost_unshadowed(
+    scene: &Scene,
+    (width, height): (u32, u32),
+    arch: &Arch,
+    limits: &Limits,
+) -> Result<CostReport, RenderError> {
+    let cfg = RenderConfig {
+        algorithm: Algorithm::First,
+        format: DepthFormatKind::D24,
+        map_size: 8,
+        filter: Filter::Point,
+        bias: 0.0,
+        virtual_samples: false,
+        width,
+        height,
+        reference_samples: 1,
+    };
+    cost_with(scene, &cfg, arch, limits, false)
+}
+
+fn cost_with(
     scene: &Scene,
     cfg: &RenderConfig,
-    arch: ArchParams,
+    arch: &Arch,
     limits: &Limits,
-) -> Result<(CostReport, ArchProbe), RenderError> {
-    let checked = cfg.check(scene, limits, arch.tile)?;
+    shadowed: bool,
+) -> Result<CostReport, RenderError> {
+    let checked = cfg.check(scene, limits, arch.raster.tile)?;
+    let image = RasterConfig::new(cfg.width, cfg.height, arch.raster.tile, RasterConfig::DEFAULT_SUBPIXEL_BITS)
+        .map_err(RenderError::ImageSize)?;
+    let checked = Checked { image, ..checked };
+    // Off-chip depth through a depth cache needs each fragment's address.
+    let cached = arch.depth_cache.size > 0;
+    let light_detail = cached && !arch.on_chip.light_depth;
+    let camera_detail = cached && !arch.on_chip.camera_depth;
+    macro_rules! with_format {
+        ($f:ty) => {
+            match (light_detail, camera_detail) {
+                (false, false) => cost_in::<$f, false, false>(scene, cfg, checked, arch, shadowed),
+                (true, false) => cost_in::<$f, true, false>(scene, cfg, checked, arch, shadowed),
+                (false, true) => cost_in::<$f, false, true>(scene, cfg, checked, arch, shadowed),
+                (true, true) => cost_in::<$f, true, true>(scene, cfg, checked, arch, shadowed),
+            }
+        };
+    }
     match cfg.format {
-        DepthFormatKind::D16 => cost_in::<D16>(scene, cfg, checked, arch),
-        DepthFormatKind::D24 => cost_in::<D24>(scene, cfg, checked, arch),
-        DepthFormatKind::F32 => cost_in::<F32>(scene, cfg, checked, arch),
+        DepthFormatKind::D16 => with_format!(D16),
+        DepthFormatKind::D24 => with_format!(D24),
+        DepthFormatKind::F32 => with_format!(F32),
     }
 }
 
-fn cost_in<F: DepthFormat>(
+fn cost_in<F: DepthFormat, const L: bool, const C: bool>(
     scene: &Scene,
     cfg: &RenderConfig,
     checked: Checked,
-    arch: ArchParams,
-) -> Result<(CostReport, ArchProbe), RenderError> {
+    arch: &Arch,
+    shadowed: bool,
+) -> Result<CostReport, RenderError> {
     let units = cfg.algorithm.units::<F>(cfg.bias);
-    let light = ArchProbe::new(arch, cfg.format, units.unit).with_timeline();
-    let camera = ArchProbe::new(arch, cfg.format, DepthUnit::Single);
-    let (camera, light, image, fetched) = if let Some((size, line, ways)) = arch.map_cache {
-        let cache = crate::cost::cache::Cache::new(size, line, ways).map_err(|e| RenderError::Cache(e.to_string()))?;
-        let sil = if units.map == (MapKind::Silhouette { packed: true }) { Packed::BYTES } else { SilPoint::BYTES };
-        let map =
-            crate::cost::cache::MapCache::new(cache, units.unit.buffers(), cfg.format.bytes()).with_silhouette(sil);
-        let mut probe = Tee(camera, map);
-        let (light, image) = passes::<F, _, _>(scene, cfg, checked, &mut LightFrame::new(), light, &mut probe)?;
-        let fetched = probe.1.cache.fetched_bytes();
-        (probe.0, light, image, Some(fetched))
+    let mut light = ArchProbe::<L>::new(arch, PassKind::Light, checked.map, cfg.format, units.unit.buffers());
+    let sil = if units.map == (MapKind::Silhouette { packed: true }) { Packed::BYTES } else { SilPoint::BYTES };
+    let mut camera = ArchProbe::<C>::new(arch, PassKind::Camera, checked.image, D24::KIND, 1);
+    if shadowed && units.map != MapKind::Volumes {
+        camera = camera.reading(units.unit.buffers(), cfg.format.bytes(), sil);
+    }
+    let config = if shadowed {
+        let frame = &mut LightFrame::new();
+        light = passes::<F, _, _>(scene, cfg, checked, frame, light, &mut camera, arch.raster.tile)?.0;
+        cfg.describe()
     } else {
-        let mut camera = camera;
-        let (light, image) = passes::<F, _, _>(scene, cfg, checked, &mut LightFrame::new(), light, &mut camera)?;
-        (camera, light, image, None)
+        let mut frame = CameraFrame::default();
+        let size = (checked.image.width(), checked.image.height());
+        visibility(&mut frame, scene, size, arch.raster.tile, &mut camera)?;
+        for (k, &id) in frame.ids().iter().enumerate() {
+            if id != umbra_core::NO_TRIANGLE {
+                #[allow(clippy::cast_possible_truncation, reason = "pixel coordinates of a checked image")]
+                let (x, y) = ((k % size.0 as usize) as u32, (k / size.0 as usize) as u32);
+                camera.event(umbra_core::probe::Event::PixelShaded { x, y });
+            }
+        }
+        format!("no shadow, image {}x{}", cfg.width, cfg.height)
     };
-    let pixels = image.pixels.iter().filter(|p| p.triangle != umbra_core::NO_TRIANGLE).count() as u64;
+    light.finish();
+    camera.finish();
     let samples = match cfg.filter {
         Filter::Point => 1,
         Filter::Bilinear => 4,
         Filter::Box { size } => u64::from(size) * u64::from(size),
         Filter::Jittered(j) => u64::from(j.num_samples),
     };
-    Ok((CostReport::new(&light, &camera, fetched, pixels, samples), light))
+    Ok(CostReport::new((&scene.name, config), &light, &camera, samples))
 }

@@ -1,5 +1,7 @@
 //! The cost layer: architecture probes, the map cache and the storage schemes, against counts worked by hand.
 
 mod arch;
+mod arch_file;
 mod cache;
+mod correlation;
 mod storage;

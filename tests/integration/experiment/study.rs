@@ -7,7 +7,7 @@
 use std::path::{Path, PathBuf};
 
 use umbra::core::DepthFormatKind;
-use umbra::sim::cost::arch::ArchParams;
+use umbra::sim::cost::arch::Arch;
 use umbra::sim::experiment::study::extremes::{self, RATIOS};
 use umbra::sim::experiment::study::plot::pareto_front;
 use umbra::sim::experiment::study::{self, Row, Shard, Spec, Variant};
@@ -101,7 +101,7 @@ fn same_bytes_on_one_and_two_threads() {
     study::write_outputs(&b, &rows2).expect("write");
     let n = spec.configs().len();
     assert_eq!(n, 2 * 2 * 2 * 2);
-    assert_eq!(rows1.len(), n * ArchParams::PRESETS.len());
+    assert_eq!(rows1.len(), n * Arch::era_presets().len());
     assert!(rows1.windows(2).all(|w| (w[0].index, w[0].arch_index) < (w[1].index, w[1].arch_index)));
     let (fa, fb) = (files(&a), files(&b));
     let names: Vec<&str> = fa.iter().map(|f| f.0.as_str()).collect();
@@ -138,7 +138,7 @@ fn shards_merge_into_the_whole_run() {
     let merged = dir("merged");
     let inputs = vec![shards[2].join("results.jsonl"), shards[0].clone(), shards[1].join("results.jsonl")];
     let n = study::merge(&inputs, &merged, &Limits::DEFAULT).expect("merge");
-    assert_eq!(n, spec.configs().len() * ArchParams::PRESETS.len());
+    assert_eq!(n, spec.configs().len() * Arch::era_presets().len());
     assert_eq!(files(&whole), files(&merged));
     let twice = vec![shards[0].clone(), shards[1].clone(), shards[0].clone()];
     assert!(matches!(study::merge(&twice, &dir("twice"), &Limits::DEFAULT), Err(study::StudyError::Duplicate { .. })));
@@ -161,7 +161,7 @@ fn refused_configurations_are_skipped_rows() {
     spec.filters.truncate(1);
     spec.map_sizes = vec![128, 20_000];
     let rows = run_on(1, &spec, Shard::ALL);
-    assert_eq!(rows.len(), 2 * ArchParams::PRESETS.len());
+    assert_eq!(rows.len(), 2 * Arch::era_presets().len());
     let (ok, skipped): (Vec<&Row>, Vec<&Row>) = rows.iter().partition(|r| r.map == 128);
     assert!(ok.iter().all(|r| r.status == "ok" && r.complete()));
     for r in skipped {

@@ -253,32 +253,33 @@ fn silhouette_map_artifacts_stay_local() {
 /// locality than that when the map is minified).
 #[test]
 fn crowd_bandwidth_follows_sens_model() {
-    use umbra::sim::cost::arch::ArchParams;
+    use umbra::sim::cost::arch::Arch;
     use umbra::sim::pass::render::cost;
     let mut s = Scene::bundled("crowd").expect("bundled");
     s.image = [480, 270];
+    let talisman = Arch::bundled("talisman").expect("bundled");
     let run = |a| {
         let mut c = config(a, 512, &s);
         c.format = DepthFormatKind::F32;
-        cost(&s, &c, ArchParams::TALISMAN, &Limits::DEFAULT).expect("costs").0
+        cost(&s, &c, &talisman, &Limits::DEFAULT).expect("costs").sen
     };
     let (map, sil, vol) = (run(Algorithm::First), run(Algorithm::Silhouette { packed: true }), run(Algorithm::Volumes));
-    let per_fill =
-        |r: &umbra::sim::cost::arch::CostReport| r.shadow_bytes_per_pixel * r.pixels as f64 / r.scene_fill as f64;
     println!(
-        "bytes/pixel: shadow map {:.2}, silhouette {:.2} (P {:.3}, Sen {:.2}), volumes {:.2} per fill fragment (O {:.2}, Sen {:.2})",
-        map.shadow_bytes_per_pixel,
-        sil.shadow_bytes_per_pixel,
-        sil.silhouette_fill,
-        sil.sen_silhouette_bytes_per_pixel,
-        per_fill(&vol),
+        "per covered pixel: shadow map {:.2} B (Sen {:.1}), silhouette points {:.2} B (P {:.3} by lookups, {:.3} by fill; Sen 24·P = {:.2}); volumes {:.2} B per fill fragment (O {:.2}, Sen {:.2})",
+        map.map_bytes_per_pixel,
+        map.model_map_bytes_per_pixel,
+        sil.silhouette_bytes_per_pixel,
+        sil.p_lookup,
+        sil.p_fill,
+        sil.model_silhouette_bytes_per_pixel,
+        vol.volume_bytes_per_fill,
         vol.overdraw,
-        vol.sen_volume_bytes_per_pixel
+        vol.model_volume_bytes_per_fill
     );
-    assert!(sil.silhouette_fill > 0.0 && sil.silhouette_fill < 1.0 / 6.0, "P = {:.3}", sil.silhouette_fill);
-    assert!(sil.sen_silhouette_bytes_per_pixel < 2.0 * map.sen_shadow_map_bytes_per_pixel);
+    assert!(sil.p_lookup > 0.0 && sil.p_lookup < 1.0 / 6.0, "P = {:.3}", sil.p_lookup);
+    assert!(4.0 + sil.model_silhouette_bytes_per_pixel < 2.0 * 4.0);
     assert!(vol.overdraw > 4.0 / 5.5, "O = {:.2}", vol.overdraw);
-    let (simulated, predicted) = (per_fill(&vol), vol.sen_volume_bytes_per_pixel);
+    let (simulated, predicted) = (vol.volume_bytes_per_fill, vol.model_volume_bytes_per_fill);
     assert!(
         (simulated / predicted - 1.0).abs() < 0.25,
         "volume bytes per fill fragment: simulated {simulated:.2}, Sen's 5.5·O = {predicted:.2}"

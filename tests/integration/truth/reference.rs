@@ -33,7 +33,10 @@ fn a_sphere_casts_a_disc_under_a_directional_light() {
     };
     let (w, h) = (160u32, 120u32);
     let mut frame = CameraFrame::default();
-    let camera = visibility(&mut frame, &scene, (w, h), &mut umbra::core::NoProbe).expect("renders").camera;
+    let camera =
+        visibility(&mut frame, &scene, (w, h), umbra::core::RasterConfig::DEFAULT_TILE_SIZE, &mut umbra::core::NoProbe)
+            .expect("renders")
+            .camera;
     let ids = frame.ids();
     let reference = Reference::new(&scene.triangles()).expect("builds");
     let light = LightSource::Directional(DVec3::NEG_Y);
@@ -94,7 +97,10 @@ fn the_reference_does_not_depend_on_the_thread_count() {
     let scene = Scene::bundled("crowd").expect("bundled");
     let (w, h) = (96u32, 64u32);
     let mut frame = CameraFrame::default();
-    let camera = visibility(&mut frame, &scene, (w, h), &mut umbra::core::NoProbe).expect("renders").camera;
+    let camera =
+        visibility(&mut frame, &scene, (w, h), umbra::core::RasterConfig::DEFAULT_TILE_SIZE, &mut umbra::core::NoProbe)
+            .expect("renders")
+            .camera;
     let ids = frame.ids();
     let reference = Reference::new(&scene.triangles()).expect("builds");
     let light = scene.light().source();

@@ -22,7 +22,6 @@ use umbra_core::DepthFormatKind;
 
 use super::plot::{self, Series};
 use super::{Row, Shard, Spec, StudyError, Variant};
-use crate::cost::arch::ArchParams;
 use crate::io::limits::Limits;
 use crate::io::output::write_text;
 use crate::pass::render::Algorithm;
@@ -166,7 +165,7 @@ pub fn spec(scenes: Vec<Scene>, width: u32, height: u32) -> Spec {
         formats: vec![DepthFormatKind::D16, DepthFormatKind::D24, DepthFormatKind::F32],
         map_sizes: vec![512],
         filters: vec![("bilinear".to_owned(), umbra_core::shadow::Filter::Bilinear)],
-        archs: Vec::<ArchParams>::new(),
+        archs: Vec::new(),
         width,
         height,
         reference_samples: 1,

@@ -5,7 +5,7 @@ use std::fmt::Write as _;
 use serde::{Deserialize, Serialize};
 
 use super::{Config, Culling, Spec};
-use crate::cost::arch::{ArchParams, CostReport};
+use crate::cost::arch::{Arch, CostReport};
 use crate::truth::metrics::Metrics;
 
 /// One configuration on one architecture: every metric and every cost.
@@ -59,29 +59,22 @@ pub struct Row {
     pub false_light_rate: Option<f64>,
     /// Mean |shadow fraction − true shadowed area|.
     pub mean_abs_error: Option<f64>,
-    /// Light pass: setup cycles.
-    pub light_setup_cycles: Option<u64>,
-    /// Light pass: raster cycles.
-    pub light_raster_cycles: Option<u64>,
-    /// Light pass: depth-unit cycles.
-    pub light_depth_cycles: Option<u64>,
-    /// Light pass: resolve cycles.
-    pub light_resolve_cycles: Option<u64>,
+    /// Light pass cycles (per-tile timing; silhouette pass included).
+    pub light_cycles: Option<u64>,
     /// Light pass bottleneck stage.
     pub light_bottleneck: Option<String>,
-    /// Camera pass: setup cycles.
-    pub camera_setup_cycles: Option<u64>,
-    /// Camera pass: raster cycles.
-    pub camera_raster_cycles: Option<u64>,
-    /// Camera pass: depth-unit (visibility) cycles.
-    pub camera_depth_cycles: Option<u64>,
-    /// Camera pass: shadow-unit cycles.
+    /// Camera pass cycles (per-tile timing).
+    pub camera_cycles: Option<u64>,
+    /// Camera pass: shadow-unit cycles summed over tiles.
     pub camera_shadow_cycles: Option<u64>,
     /// Camera pass bottleneck stage.
     pub camera_bottleneck: Option<String>,
-    /// Light bottleneck plus camera bottleneck cycles (the passes run one
-    /// after the other, each as slow as its slowest stage).
+    /// The frame: light pass then camera pass, cycles.
     pub total_cycles: Option<u64>,
+    /// The frame's frames per second at the architecture's clock.
+    pub fps: Option<f64>,
+    /// The frame's energy, microjoules.
+    pub energy_uj: Option<f64>,
     /// DRAM: map texels written by the light pass.
     pub dram_map_writes: Option<u64>,
     /// DRAM: depth read back by the light pass.
@@ -119,7 +112,7 @@ pub struct Row {
 
 impl Row {
     /// A row for `config` with everything but the numbers.
-    pub(super) fn new(spec: &Spec, c: &Config, arch: Option<(usize, &ArchParams)>) -> Self {
+    pub(super) fn new(spec: &Spec, c: &Config, arch: Option<(usize, &Arch)>) -> Self {
         let v = &spec.variants[c.variant];
         Self {
             index: c.index,
@@ -134,7 +127,7 @@ impl Row {
             format: c.format.name().to_owned(),
             map: c.map_size,
             filter: spec.filters[c.filter].0.clone(),
-            arch: arch.map_or_else(|| "-".to_owned(), |a| a.1.name.to_owned()),
+            arch: arch.map_or_else(|| "-".to_owned(), |a| a.1.name.clone()),
             width: spec.width,
             height: spec.height,
             reference_samples: spec.reference_samples,
@@ -145,17 +138,14 @@ impl Row {
             false_shadow_rate: None,
             false_light_rate: None,
             mean_abs_error: None,
-            light_setup_cycles: None,
-            light_raster_cycles: None,
-            light_depth_cycles: None,
-            light_resolve_cycles: None,
+            light_cycles: None,
             light_bottleneck: None,
-            camera_setup_cycles: None,
-            camera_raster_cycles: None,
-            camera_depth_cycles: None,
+            camera_cycles: None,
             camera_shadow_cycles: None,
             camera_bottleneck: None,
             total_cycles: None,
+            fps: None,
+            energy_uj: None,
             dram_map_writes: None,
             dram_map_rmw_reads: None,
             dram_bins: None,
@@ -189,36 +179,33 @@ impl Row {
     }
 
     pub(super) fn set_cost(&mut self, r: &CostReport) {
-        let [ls, lr, ld, _, lz] = r.light_cycles;
-        let [cs, cr, cd, csh, _] = r.camera_cycles;
-        self.light_setup_cycles = Some(ls);
-        self.light_raster_cycles = Some(lr);
-        self.light_depth_cycles = Some(ld);
-        self.light_resolve_cycles = Some(lz);
-        self.light_bottleneck = Some(format!("{:?}", r.light_bottleneck.0).to_lowercase());
-        self.camera_setup_cycles = Some(cs);
-        self.camera_raster_cycles = Some(cr);
-        self.camera_depth_cycles = Some(cd);
-        self.camera_shadow_cycles = Some(csh);
-        self.camera_bottleneck = Some(format!("{:?}", r.camera_bottleneck.0).to_lowercase());
-        self.total_cycles = Some(r.total_cycles());
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "cycles, rounded")]
+        let round = |c: f64| c.round() as u64;
+        self.light_cycles = Some(round(r.light.cycles));
+        self.light_bottleneck = Some(r.light.bottleneck.name().to_owned());
+        self.camera_cycles = Some(round(r.camera.cycles));
+        self.camera_shadow_cycles = Some(round(r.camera.stages[crate::cost::arch::Stage::Shadow as usize]));
+        self.camera_bottleneck = Some(r.camera.bottleneck.name().to_owned());
+        self.total_cycles = Some(round(r.cycles));
+        self.fps = Some(r.fps);
+        self.energy_uj = Some(r.energy.total() * 1e6);
         let (l, c) = (&r.light_dram, &r.camera_dram);
         self.dram_map_writes = Some(l.map_writes);
         self.dram_map_rmw_reads = Some(l.map_rmw_reads);
         self.dram_bins = Some(l.bins + c.bins);
-        self.dram_camera_depth = Some(c.map_writes + c.map_rmw_reads);
+        self.dram_camera_depth = Some(c.map_rmw_reads + c.depth_rmw);
         self.dram_map_reads_requested = Some(c.map_reads);
-        self.dram_map_reads_fetched = Some(r.map_bytes_fetched);
+        self.dram_map_reads_fetched = Some(if r.arch.map_cache.size > 0 { c.map_fetched } else { c.map_reads });
         self.dram_silhouette = Some(l.silhouette_writes + c.silhouette_reads);
         self.dram_volume_depth = Some(c.volume_depth_reads);
         self.dram_stencil = Some(c.stencil);
-        self.total_bytes = Some(r.total_bytes());
+        self.total_bytes = Some(r.bytes);
         self.on_chip_bytes = Some(r.on_chip_bytes);
         self.light_cull_rate = Some(r.max_z_cull_rate[0]);
         self.camera_cull_rate = Some(r.max_z_cull_rate[1]);
         self.lookups_culled_per_pixel = Some(r.lookups_culled_per_pixel);
         self.virtual_sample_fraction = Some(r.virtual_sample_fraction);
-        self.map_bytes_per_pixel = Some(r.map_bytes_per_pixel);
+        self.map_bytes_per_pixel = Some(r.sen.map_bytes_per_pixel);
     }
 
     /// Whether the row has both an error and a cost.

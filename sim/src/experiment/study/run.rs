@@ -82,8 +82,8 @@ pub fn run_config(spec: &Spec, c: &Config, open: &[Scene], truths: &[Truth]) -> 
             match &metrics {
                 Ok((m, _)) => {
                     row.set_metrics(m);
-                    match cost(scene, &cfg, *arch, &spec.limits) {
-                        Ok((report, _)) => row.set_cost(&report),
+                    match cost(scene, &cfg, arch, &spec.limits) {
+                        Ok(report) => row.set_cost(&report),
                         Err(e) => row.skip(format!("cost on {}: {e}", arch.name)),
                     }
                 }

@@ -5,7 +5,7 @@ use umbra_core::DepthFormatKind;
 use umbra_core::shadow::{Filter, Jitter};
 
 use super::StudyError;
-use crate::cost::arch::ArchParams;
+use crate::cost::arch::Arch;
 use crate::io::limits::Limits;
 use crate::pass::render::Algorithm;
 use crate::world::scene::Scene;
@@ -122,8 +122,8 @@ pub struct Spec {
     pub map_sizes: Vec<u32>,
     /// Filters, with their names.
     pub filters: Vec<(String, Filter)>,
-    /// Architecture presets; none: metrics only, one row per configuration.
-    pub archs: Vec<ArchParams>,
+    /// Architectures; none: metrics only, one row per configuration.
+    pub archs: Vec<Arch>,
     /// Camera image width.
     pub width: u32,
     /// Camera image height.
@@ -142,7 +142,7 @@ pub const QUICK_SCENES: [&str; 3] = ["table", "weiskopf-l", "reeves-sphere"];
 impl Spec {
     /// The full sweep over `scenes`: every algorithm, d16/d24/f32, maps of
     /// 64 … 2048 texels, the five filters of [`crate::experiment::presets::FILTERS`],
-    /// the three presets, 320×180 images against 4×4 reference rays.
+    /// the three paper-era presets ([`Arch::era_presets`]), 320×180 images against 4×4 reference rays.
     #[must_use]
     pub fn full(scenes: Vec<Scene>) -> Self {
         Self {
@@ -151,7 +151,7 @@ impl Spec {
             formats: vec![DepthFormatKind::D16, DepthFormatKind::D24, DepthFormatKind::F32],
             map_sizes: vec![64, 128, 256, 512, 1024, 2048],
             filters: crate::experiment::presets::FILTERS.iter().map(|(n, f)| ((*n).to_owned(), *f)).collect(),
-            archs: ArchParams::PRESETS.to_vec(),
+            archs: Arch::era_presets(),
             width: 320,
             height: 180,
             reference_samples: 4,

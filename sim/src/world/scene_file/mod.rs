@@ -47,7 +47,7 @@ mod meshes;
 mod schema;
 
 /// The bundled scenes, by name: the papers' set-ups, built procedurally.
-pub const BUNDLED: [(&str, &str); 8] = [
+pub const BUNDLED: [(&str, &str); 9] = [
     ("table", include_str!("../../../../scenes/table.toml")),
     ("reeves-sphere", include_str!("../../../../scenes/reeves-sphere.toml")),
     ("weiskopf-l", include_str!("../../../../scenes/weiskopf-l.toml")),
@@ -56,6 +56,7 @@ pub const BUNDLED: [(&str, &str); 8] = [
     ("open-sheet", include_str!("../../../../scenes/open-sheet.toml")),
     ("crowd", include_str!("../../../../scenes/crowd.toml")),
     ("grazing", include_str!("../../../../scenes/grazing.toml")),
+    ("factory", include_str!("../../../../scenes/factory.toml")),
 ];
 
 /// Largest procedural subdivision count.

@@ -1,0 +1,97 @@
+//! Architecture files: every bundled file parses and round-trips through
+//! the record outputs carry; a corrupted copy names its file, key and
+//! problem; overrides read their units.
+
+use umbra::sim::cost::arch::file::{BUNDLED, PARAMS, Problem, Value};
+use umbra::sim::cost::arch::{Arch, ArchError};
+
+#[test]
+fn every_bundled_file_parses_and_round_trips() {
+    for (name, text) in BUNDLED {
+        let a = Arch::parse(text, name).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(a.name, name, "the name key matches the file");
+        let again = Arch::parse(&a.to_toml(), "record").unwrap_or_else(|e| panic!("{name}: {e}\n{}", a.to_toml()));
+        assert_eq!(again, a, "{name}");
+        // Every key of the table is in the record, with its meaning.
+        for p in PARAMS {
+            assert!(a.to_toml().contains(&format!("{} = ", p.key)), "{name}: {}", p.key);
+        }
+    }
+}
+
+/// `text` with the first line starting `key =` replaced by `line`.
+fn corrupt(text: &str, key: &str, line: &str) -> Result<Arch, ArchError> {
+    let mut found = false;
+    let edited: Vec<&str> = text
+        .lines()
+        .map(|l| {
+            if !found && l.starts_with(&format!("{key} =")) {
+                found = true;
+                line
+            } else {
+                l
+            }
+        })
+        .collect();
+    assert!(found, "{key}");
+    Arch::parse(&edited.join("\n"), "copy.toml")
+}
+
+/// A corruption: the key whose line is replaced, the new line, the key the
+/// error must name, and the problem it must report.
+type Case = (&'static str, &'static str, &'static str, fn(&Problem) -> bool);
+
+#[test]
+fn a_corrupted_copy_names_the_file_the_key_and_the_problem() {
+    let text = BUNDLED[1].1;
+    let cases: [Case; 7] = [
+        ("clock", "clock = 75", "clock", |p| matches!(p, Problem::Type(_))),
+        ("clock", "clock = \"75 parsecs\"", "clock", |p| matches!(p, Problem::Unit { .. })),
+        ("tile", "tile = 48", "raster.tile", |p| matches!(p, Problem::Range { .. })),
+        ("bandwidth", "bandwidht = \"1.2GB/s\"", "dram.bandwidht", |p| matches!(p, Problem::Unknown)),
+        ("bandwidth", "# gone", "dram.bandwidth", |p| matches!(p, Problem::Missing)),
+        ("size", "size = \"10000B\"", "map_cache.size", |p| matches!(p, Problem::Range { .. })),
+        ("samples_per_clock", "samples_per_clock = 0", "shadow.samples_per_clock", |p| {
+            matches!(p, Problem::Range { .. })
+        }),
+    ];
+    for (key, line, named, problem) in cases {
+        let e = corrupt(text, key, line).expect_err(line);
+        assert_eq!((e.file.as_str(), e.key.as_str()), ("copy.toml", named), "{line}: {e}");
+        assert!(problem(&e.problem), "{line}: {e}");
+        assert!(e.to_string().starts_with(&format!("copy.toml: {named}: ")), "{e}");
+    }
+    let e = Arch::parse("clock = [", "broken.toml").expect_err("syntax");
+    assert!(matches!(e.problem, Problem::Syntax(_)) && e.key == "line 1", "{e}");
+    let e = Arch::bundled("cray-1").expect_err("no such preset");
+    assert!(matches!(e.problem, Problem::NoSuchPreset), "{e}");
+}
+
+#[test]
+fn overrides_read_their_units() {
+    let mut a = Arch::bundled("talisman").expect("bundled");
+    for (set, key, value) in [
+        ("map_cache.size=16KiB", "map_cache.size", 16_384.0),
+        ("dram.bandwidth=25.6GB/s", "dram.bandwidth", 25.6e9),
+        ("clock=800MHz", "clock", 800e6),
+        ("dram.latency=2ns", "dram.latency", 2e-9),
+        ("energy.dram_byte=1.3nJ", "energy.dram_byte", 1.3e-9),
+        ("raster.fragments_per_clock = 0.5", "raster.fragments_per_clock", 0.5),
+    ] {
+        a.set(set).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(a.get(key), Some(Value::Number(value)), "{set}");
+    }
+    a.set("front.overlap=false").expect("a flag");
+    assert!(!a.front.overlap);
+    for (bad, key) in [
+        ("clock=fast", "clock"),
+        ("dram.bandwidth=25.6GHz", "dram.bandwidth"),
+        ("nonsense=1", "nonsense"),
+        ("raster.tile=96", "raster.tile"),
+        ("dram.burst=-4B", "dram.burst"),
+    ] {
+        let e = a.clone().set(bad).expect_err(bad);
+        assert_eq!((e.file.as_str(), e.key.as_str()), ("--set", key), "{bad}: {e}");
+    }
+    assert!(matches!(a.set("clock").expect_err("no =").problem, Problem::Override));
+}
