@@ -12,7 +12,7 @@ use umbra::core::shade::MapUnit;
 use umbra::core::shadow::{Bias, DepthTest, ShadowConfig};
 use umbra::core::{CullMode, D24, DepthUnit, LightPassConfig, NO_TRIANGLE, NoProbe, RasterConfig};
 use umbra::sim::cost::counters::Counters;
-use umbra::sim::pass::camera::{CameraFrame, CameraOptions, map_view, render};
+use umbra::sim::pass::camera::{CameraFrame, CameraOptions, Tiling, map_view, render};
 use umbra::sim::pass::light::{LightMaps, LightOptions};
 use umbra::sim::world::scene::Scene;
 
@@ -37,8 +37,7 @@ fn bench_camera(c: &mut Criterion) {
     g.throughput(Throughput::Elements(u64::from(W * H)));
     for (name, filter) in filters {
         let shadow = ShadowConfig::new(DepthTest::Second, Bias::ZERO, filter, true).expect("valid");
-        let options =
-            CameraOptions { width: W, height: H, shadow, virtual_samples: true, tile: RasterConfig::DEFAULT_TILE_SIZE };
+        let options = CameraOptions { width: W, height: H, shadow, virtual_samples: true, tiling: Tiling::DEFAULT };
         let mut counters = Counters::new(&RasterConfig::new(W, H, 32, 8).expect("valid"));
         let mut frame = CameraFrame::default();
         render(&mut frame, &scene, &view, &MapUnit, &options, &mut counters).expect("renders");

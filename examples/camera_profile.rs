@@ -23,7 +23,7 @@ use umbra::core::shade::{MapUnit, Normals, ShadeConfig, ShadeSetup, Shaded, Tria
 use umbra::core::shadow::{Bias, DepthTest, Filter, MapView, ShadowConfig};
 use umbra::core::{ConfigError, CullMode, D24, DepthUnit, Event, LightPassConfig, NoProbe, Probe, RasterConfig};
 use umbra::sim::experiment::presets::FILTERS;
-use umbra::sim::pass::camera::{CameraFrame, SHADE_SETUPS, map_view, visibility};
+use umbra::sim::pass::camera::{CameraFrame, SHADE_SETUPS, Tiling, map_view, visibility};
 use umbra::sim::pass::light::{LightMaps, LightOptions};
 use umbra::sim::world::scene::Scene;
 use umbra::sim::world::scene_file::BUNDLED;
@@ -77,7 +77,7 @@ fn shade_scene(
     )?;
     let view = map_view::<D24>(&maps, false)?;
     let mut frame = CameraFrame::default();
-    let camera = visibility(&mut frame, scene, (width, height), RasterConfig::DEFAULT_TILE_SIZE, &mut NoProbe)?.camera;
+    let camera = visibility(&mut frame, scene, (width, height), Tiling::DEFAULT, &mut NoProbe)?.camera;
     let ids = frame.ids();
     let triangles = scene.triangles();
     let source = |id: u32| triangles.get(id as usize).copied();

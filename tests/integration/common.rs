@@ -310,9 +310,9 @@ pub fn camera_image<F: DepthFormat, P: Probe>(
     (width, height): (u32, u32),
     probe: &mut P,
 ) -> umbra::sim::pass::camera::CameraImage {
-    use umbra::sim::pass::camera::{CameraOptions, map_view, render};
+    use umbra::sim::pass::camera::{CameraOptions, Tiling, map_view, render};
     let view = map_view::<F>(maps, false).expect("maps fit their configuration");
-    let options = CameraOptions { width, height, shadow, virtual_samples, tile: RasterConfig::DEFAULT_TILE_SIZE };
+    let options = CameraOptions { width, height, shadow, virtual_samples, tiling: Tiling::DEFAULT };
     render(frame, scene, &view, &umbra::core::shade::MapUnit, &options, probe).expect("renders");
     frame.take_image()
 }

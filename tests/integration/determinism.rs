@@ -117,7 +117,7 @@ fn tile_bounds<T: Copy>(m: &umbra::sim::pass::light::LightMaps<T>) -> Vec<(T, T,
 /// 24-bit, single and dual, on 1, 2 and more threads (so 1, 2 and more
 /// bands, bands of unequal height and a partial last tile row included).
 #[test]
-fn banded_light_passes_equal_the_whole_pass() {
+fn banded_and_per_draw_light_passes_equal_the_whole_pass() {
     use umbra::core::{D16, D24, DepthFormat};
     use umbra::sim::pass::light::{LightMaps, LightOptions};
     fn check<F: DepthFormat>(scene: &Scene, side: u32, tile: u32, unit: DepthUnit) {
@@ -144,6 +144,14 @@ fn banded_light_passes_equal_the_whole_pass() {
                 scene.name
             );
         }
+        // Drawn as an immediate-mode machine draws, each draw finished
+        // before the next: the same texels and bounds, more flushes.
+        let per_draw = LightOptions { per_draw: true, ..LightOptions::default() };
+        let (flushed, counted) =
+            LightMaps::draw::<F, _>(config, &draws, per_draw, umbra::core::probe::Totals::default()).expect("renders");
+        assert!(flushed.z1 == whole.z1 && flushed.z2 == whole.z2, "{}: texels differ per draw", scene.name);
+        assert!(tile_bounds(&flushed) == tile_bounds(&whole), "{}: tile bounds differ per draw", scene.name);
+        assert!(counted.flushes_draw > 0, "{}: flushed per draw", scene.name);
     }
     for name in ["table", "weiskopf-l", "crowd"] {
         let scene = Scene::bundled(name).expect("bundled");

@@ -244,6 +244,14 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
         self.probe.event(Event::TileStore { tile, bytes: tile_bytes, cleared: false });
     }
 
+    /// Drain every bin now, as an immediate-mode machine finishes a draw
+    /// before the next: each tile's triangles keep their order, so the maps
+    /// are the same bits; only the events' order and the tiles' loads and
+    /// stores change.
+    pub fn flush(&mut self) {
+        self.flush_all(FlushReason::Draw);
+    }
+
     /// Drain every bin, store every tile, and hand back the probe.
     pub fn finish(mut self) -> P {
         for t in 0..self.buf.bins.len() {

@@ -42,6 +42,9 @@ pub enum FlushReason {
     SetupFull,
     /// End of the pass.
     Finish,
+    /// The caller ended a draw: an immediate-mode machine finishes each
+    /// draw before the next ([`crate::LightPass::flush`]).
+    Draw,
 }
 
 /// The unit of work a max-z cull skipped.

@@ -57,6 +57,8 @@ totals! {
     flushes_setup_full,
     /// Bins drained at the end of the pass.
     flushes_finish,
+    /// Bins drained at the end of a draw.
+    flushes_draw,
     /// Triangles drained from bins, summed over [`Event::BinFlush`].
     flushed_triangles,
     /// Tiles loaded back from the map ([`Event::TileLoad`]).
@@ -172,7 +174,7 @@ impl Totals {
     /// Bins drained, every reason.
     #[must_use]
     pub const fn flushes(&self) -> u64 {
-        self.flushes_bin_full + self.flushes_setup_full + self.flushes_finish
+        self.flushes_bin_full + self.flushes_setup_full + self.flushes_finish + self.flushes_draw
     }
 
     /// Texels the shadow unit read, every buffer.
@@ -216,6 +218,7 @@ impl Totals {
                     FlushReason::BinFull => &mut self.flushes_bin_full,
                     FlushReason::SetupFull => &mut self.flushes_setup_full,
                     FlushReason::Finish => &mut self.flushes_finish,
+                    FlushReason::Draw => &mut self.flushes_draw,
                 } += 1;
                 self.flushed_triangles += n(triangles);
             }

@@ -89,6 +89,7 @@ pub(super) fn plan(args: &PlanArgs, limits: &Limits) -> Result<()> {
     std::fs::create_dir_all(&args.out).with_context(|| format!("creating {}", args.out.display()))?;
     write_text(&args.out.join("plan.md"), &md)?;
     write_text(&args.out.join("plan.json"), &serde_json::to_string_pretty(&p)?)?;
+    write_text(&args.out.join(format!("arch-{}.toml", spec.arch.name)), &spec.arch.to_toml())?;
     Ok(())
 }
 
@@ -100,7 +101,12 @@ pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
     } else if args.quick {
         QUICK_SCENES.iter().map(|s| (*s).to_owned()).collect()
     } else {
-        umbra_sim::world::scene_file::BUNDLED.iter().map(|(n, _)| (*n).to_owned()).collect()
+        // The papers' scenes; `factory` is the timing correlation's.
+        umbra_sim::world::scene_file::BUNDLED
+            .iter()
+            .filter(|(n, _)| *n != "factory")
+            .map(|(n, _)| (*n).to_owned())
+            .collect()
     };
     let scenes = study::load_scenes(&names, limits)?;
     let mut spec = if args.quick { Spec::quick(scenes) } else { Spec::full(scenes) };
@@ -129,6 +135,10 @@ pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
         println!("{}", study::summary(&rows));
     } else {
         study::write_partial(&args.out, &rows)?;
+    }
+    // The effective architectures, beside the rows that name them.
+    for arch in &spec.archs {
+        write_text(&args.out.join(format!("arch-{}.toml", arch.name)), &arch.to_toml())?;
     }
     println!(
         "study: {configs} configurations, {} rows ({skipped} skipped) in {:.1} s; wrote {}",

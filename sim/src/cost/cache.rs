@@ -32,6 +32,9 @@ pub struct Cache {
     slots: Vec<Option<(u64, u64)>>,
     /// Per slot, whether the line was written since it was fetched.
     dirty: Vec<bool>,
+    /// The line of the last access and its slot: a run of accesses to one
+    /// line skips the set's search (the result is the same).
+    last: Option<(u64, usize)>,
     clock: u64,
     /// Accesses that found their line.
     pub hits: u64,
@@ -58,6 +61,7 @@ impl Cache {
             sets,
             slots: vec![None; slots],
             dirty: vec![false; slots],
+            last: None,
             clock: 0,
             hits: 0,
             misses: 0,
@@ -85,6 +89,15 @@ impl Cache {
     fn touch(&mut self, address: u64, write: bool) -> (bool, bool) {
         self.clock += 1;
         let line = address >> self.line_shift;
+        if let Some((last, k)) = self.last
+            && last == line
+            && let (Some(slot), Some(dirty)) = (self.slots.get_mut(k), self.dirty.get_mut(k))
+        {
+            *slot = Some((line, self.clock));
+            *dirty |= write;
+            self.hits += 1;
+            return (true, false);
+        }
         let set = usize::try_from(line % self.sets).unwrap_or(0);
         let range = set * self.ways..(set + 1) * self.ways;
         let slots = &mut self.slots[range.clone()];
@@ -93,6 +106,7 @@ impl Cache {
             slots[k] = Some((line, self.clock));
             dirty[k] |= write;
             self.hits += 1;
+            self.last = Some((line, set * self.ways + k));
             return (true, false);
         }
         self.misses += 1;
@@ -101,12 +115,14 @@ impl Cache {
         let writeback = slots[victim].is_some() && dirty[victim];
         slots[victim] = Some((line, self.clock));
         dirty[victim] = write;
+        self.last = Some((line, set * self.ways + victim));
         (false, writeback)
     }
 
     /// Write back every dirty line (the end of a pass); how many.
     pub fn flush(&mut self) -> u64 {
         let n = self.dirty.iter().filter(|&&d| d).count() as u64;
+        self.last = None;
         self.dirty.fill(false);
         n
     }

@@ -37,9 +37,23 @@ pub struct CameraOptions {
     pub shadow: ShadowConfig,
     /// Wang & Molnar's virtual samples (second depth only).
     pub virtual_samples: bool,
-    /// Side of the visibility unit's tiles (the bits do not depend on it;
-    /// the architecture a pass is costed on does).
+    /// The visibility unit's tiles and draw order.
+    pub tiling: Tiling,
+}
+
+/// How the visibility unit walks the image: the bits depend on neither; the
+/// architecture a pass is costed on does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Tiling {
+    /// Side of the tiles.
     pub tile: u32,
+    /// Finish each draw before the next (an immediate-mode machine).
+    pub per_draw: bool,
+}
+
+impl Tiling {
+    /// The default tiles, every draw binned before any is drawn.
+    pub const DEFAULT: Self = Self { tile: RasterConfig::DEFAULT_TILE_SIZE, per_draw: false };
 }
 
 /// What the visibility unit decided besides its buffers: the camera's
@@ -93,7 +107,7 @@ impl CameraFrame {
 }
 
 /// The visibility unit over `scene` from its camera at `width × height`
-/// in `tile`-pixel tiles into `frame`'s depth and ids.
+/// walking the image as `tiling` says into `frame`'s depth and ids.
 ///
 /// # Errors
 /// [`PassError`] for an unusable size or a malformed mesh.
@@ -101,10 +115,10 @@ pub fn visibility<P: Probe>(
     frame: &mut CameraFrame,
     scene: &Scene,
     (width, height): (u32, u32),
-    tile: u32,
+    tiling: Tiling,
     probe: &mut P,
 ) -> Result<Visibility, PassError> {
-    let raster = RasterConfig::new(width, height, tile, RasterConfig::DEFAULT_SUBPIXEL_BITS)?;
+    let raster = RasterConfig::new(width, height, tiling.tile, RasterConfig::DEFAULT_SUBPIXEL_BITS)?;
     let config = LightPassConfig { raster, unit: DepthUnit::Single, max_z_cull: true };
     #[allow(clippy::cast_precision_loss, reason = "an aspect ratio")]
     let camera = scene.camera.view_projection_aspect(width as f32 / height as f32);
@@ -122,6 +136,9 @@ pub fn visibility<P: Probe>(
     for (draw, d) in scene.draws(camera, CullMode::None).iter().enumerate() {
         pass.draw_mesh(d.positions, d.triangles, &d.transform, d.cull)
             .map_err(|source| PassError::Submit { draw, source })?;
+        if tiling.per_draw {
+            pass.flush();
+        }
     }
     pass.finish();
     Ok(Visibility { camera, raster })
@@ -156,8 +173,8 @@ pub fn render<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
     options: &CameraOptions,
     probe: &mut P,
 ) -> Result<(), PassError> {
-    let CameraOptions { width, height, shadow, virtual_samples, tile } = *options;
-    let Visibility { camera, .. } = visibility(frame, scene, (width, height), tile, probe)?;
+    let CameraOptions { width, height, shadow, virtual_samples, tiling } = *options;
+    let Visibility { camera, .. } = visibility(frame, scene, (width, height), tiling, probe)?;
     let cfg = ShadeConfig {
         camera,
         light: scene.light().view_projection(),
@@ -178,7 +195,7 @@ pub fn render<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
 }
 
 /// The camera pass of depth-fail shadow volumes into `frame`: the
-/// visibility unit (in `tile`-pixel tiles), then the stencil unit over every occluder's volume; a
+/// visibility unit (walking the image as `tiling` says), then the stencil unit over every occluder's volume; a
 /// pixel is in shadow where its stencil is non-zero.
 ///
 /// # Errors
@@ -187,10 +204,10 @@ pub fn volumes<P: Probe>(
     frame: &mut CameraFrame,
     scene: &Scene,
     size: (u32, u32),
-    tile: u32,
+    tiling: Tiling,
     probe: &mut P,
 ) -> Result<(), PassError> {
-    let vis = visibility(frame, scene, size, tile, probe)?;
+    let vis = visibility(frame, scene, size, tiling, probe)?;
     let occluders = crate::world::occluders::Occluders::new(scene);
     let stencil =
         crate::world::occluders::stencil::<D24, _>(scene, &occluders, &vis.camera, vis.raster, &frame.z, probe)?;

@@ -67,16 +67,19 @@ pub struct LightOptions {
     /// (see [`render`]). A banded pass reports no events, so it takes only
     /// a probe that ignores them, and its own setup stores.
     pub bands: bool,
+    /// Finish each draw before the next, as an immediate-mode machine does
+    /// (the maps are the same bits; the events come draw by draw).
+    pub per_draw: bool,
 }
 
 impl LightOptions {
     /// The pass in bands on every core.
-    pub const BANDS: Self = Self { setups: None, bands: true };
+    pub const BANDS: Self = Self { setups: None, bands: true, per_draw: false };
 
     /// A serial pass with a setup store of `setups` entries.
     #[must_use]
     pub const fn with_setups(setups: usize) -> Self {
-        Self { setups: Some(setups), bands: false }
+        Self { setups: Some(setups), bands: false, per_draw: false }
     }
 }
 
@@ -155,6 +158,9 @@ fn draw_into<F: DepthFormat, P: Probe, const B: usize>(
         for (draw, d) in draws.iter().enumerate() {
             pass.draw_mesh(d.positions, d.triangles, &d.transform, d.cull)
                 .map_err(|source| PassError::Submit { draw, source })?;
+            if options.per_draw {
+                pass.flush();
+            }
         }
         Ok(())
     })

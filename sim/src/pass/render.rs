@@ -14,7 +14,7 @@ use umbra_core::{
 use super::PassError;
 pub use super::algorithm::Algorithm;
 use super::algorithm::MapKind;
-use super::camera::{self, CameraFrame, CameraImage, CameraOptions, map_view, visibility, volumes};
+use super::camera::{self, CameraFrame, CameraImage, CameraOptions, Tiling, map_view, visibility, volumes};
 use super::light::{self, DEFAULT_BIN_CAPACITY, LightFrame, LightMaps, LightOptions, RawMaps};
 use crate::cost::arch::{Arch, ArchProbe, CostReport, PassKind};
 use crate::cost::counters::Counters;
@@ -194,8 +194,7 @@ pub fn truth(
     progress: &ProgressBar,
 ) -> Result<Vec<Option<PixelTruth>>, RenderError> {
     let mut frame = CameraFrame::default();
-    let vis =
-        visibility(&mut frame, scene, (width, height), RasterConfig::DEFAULT_TILE_SIZE, &mut umbra_core::NoProbe)?;
+    let vis = visibility(&mut frame, scene, (width, height), Tiling::DEFAULT, &mut umbra_core::NoProbe)?;
     let reference = Reference::new(&scene.triangles())?;
     let light = scene.light().source();
     Ok(reference.image(frame.ids(), &vis.camera, width, height, &light, samples, progress))
@@ -210,25 +209,30 @@ fn passes<F: DepthFormat, L: Probe, C: Probe>(
     frame: &mut LightFrame<F::Texel>,
     light_probe: L,
     camera_probe: &mut C,
-    tile: u32,
+    tiling: Tiling,
 ) -> Result<(L, CameraImage), RenderError> {
     let units = cfg.algorithm.units::<F>(cfg.bias);
     let light_config = LightPassConfig { raster: checked.map, unit: units.unit, max_z_cull: true };
     let mut camera = CameraFrame::default();
     let size = (checked.image.width(), checked.image.height());
     if units.map == MapKind::Volumes {
-        volumes(&mut camera, scene, size, tile, camera_probe)?;
+        volumes(&mut camera, scene, size, tiling, camera_probe)?;
         return Ok((light_probe, camera.take_image()));
     }
     let draws = scene.draws_culled(scene.light().view_projection(), |solid| units.cull(solid));
-    let (maps, mut light_probe) =
-        light::render::<F, _, DEFAULT_BIN_CAPACITY>(frame, light_config, &draws, LightOptions::default(), light_probe)?;
+    let (maps, mut light_probe) = light::render::<F, _, DEFAULT_BIN_CAPACITY>(
+        frame,
+        light_config,
+        &draws,
+        LightOptions { per_draw: tiling.per_draw, ..LightOptions::default() },
+        light_probe,
+    )?;
     let options = CameraOptions {
         width: size.0,
         height: size.1,
         shadow: ShadowConfig::new(units.test, units.bias, cfg.filter, true)?,
         virtual_samples: units.virtual_samples(cfg.virtual_samples),
-        tile,
+        tiling,
     };
     let view = map_view::<F>(maps, units.front_culled)?;
     match units.map {
@@ -279,7 +283,7 @@ fn render_in<F: DepthFormat>(
         &mut frame,
         Counters::new(&checked.map),
         &mut camera_events,
-        RasterConfig::DEFAULT_TILE_SIZE,
+        Tiling::DEFAULT,
     )?;
     let metrics = compare(&image.pixels, &truth);
     let maps = frame.maps().map_or_else(
@@ -381,12 +385,12 @@ fn cost_in<F: DepthFormat, const L: bool, const C: bool>(
     }
     let config = if shadowed {
         let frame = &mut LightFrame::new();
-        light = passes::<F, _, _>(scene, cfg, checked, frame, light, &mut camera, arch.raster.tile)?.0;
+        light = passes::<F, _, _>(scene, cfg, checked, frame, light, &mut camera, arch.tiling())?.0;
         cfg.describe()
     } else {
         let mut frame = CameraFrame::default();
         let size = (checked.image.width(), checked.image.height());
-        visibility(&mut frame, scene, size, arch.raster.tile, &mut camera)?;
+        visibility(&mut frame, scene, size, arch.tiling(), &mut camera)?;
         for (k, &id) in frame.ids().iter().enumerate() {
             if id != umbra_core::NO_TRIANGLE {
                 #[allow(clippy::cast_possible_truncation, reason = "pixel coordinates of a checked image")]

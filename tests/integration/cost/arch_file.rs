@@ -61,6 +61,10 @@ fn a_corrupted_copy_names_the_file_the_key_and_the_problem() {
         assert!(problem(&e.problem), "{line}: {e}");
         assert!(e.to_string().starts_with(&format!("copy.toml: {named}: ")), "{e}");
     }
+    for bad in ["../../escaped", "a/b", "", "arch.v2"] {
+        let e = corrupt(text, "name", &format!("name = \"{bad}\"")).expect_err(bad);
+        assert!(matches!(e.problem, Problem::Name(_)) && e.key == "name", "{e}");
+    }
     let e = Arch::parse("clock = [", "broken.toml").expect_err("syntax");
     assert!(matches!(e.problem, Problem::Syntax(_)) && e.key == "line 1", "{e}");
     let e = Arch::bundled("cray-1").expect_err("no such preset");

@@ -237,9 +237,11 @@ fn silhouette_map_artifacts_stay_local() {
 /// Sen et al. §4 on the crowd scene (24 figures before a distant wall),
 /// 480×270, 512² map, depth stored in 4 bytes (f32) as in Sen's model,
 /// through the Talisman preset:
-/// * the silhouette fill `P` measured by the silhouette pass is under
-///   Sen's 1/6 (measured 0.07), so by Sen's model a silhouette map needs
-///   `4 + 24·P` < 2 × 4 bytes per pixel, under twice a shadow map;
+/// * Sen's bandwidth-model `P`, the fraction of covered pixels whose
+///   lookup needed the silhouette reconstruction, is under his 1/6
+///   (measured 0.015; the silhouette fill over scene fill of his Table 1
+///   is 0.071), so by his model a silhouette map needs `4 + 24·P` < 2 × 4
+///   bytes per pixel, under twice a shadow map;
 /// * shadow volumes cost what the overdraw predicts: their simulated bytes
 ///   per scene-fill fragment (4-byte depth and a stencil byte read per
 ///   volume fragment, a stencil byte written where it fails) are
@@ -265,9 +267,10 @@ fn crowd_bandwidth_follows_sens_model() {
     };
     let (map, sil, vol) = (run(Algorithm::First), run(Algorithm::Silhouette { packed: true }), run(Algorithm::Volumes));
     println!(
-        "per covered pixel: shadow map {:.2} B (Sen {:.1}), silhouette points {:.2} B (P {:.3} by lookups, {:.3} by fill; Sen 24·P = {:.2}); volumes {:.2} B per fill fragment (O {:.2}, Sen {:.2})",
+        "per covered pixel: shadow map {:.2} B (Sen {:.1}), silhouette map {:.2} B through the cache, its points {:.2} B requested (P {:.3} by lookups, {:.3} by fill; Sen 24·P = {:.2}); volumes {:.2} B per fill fragment (O {:.2}, Sen {:.2})",
         map.map_bytes_per_pixel,
         map.model_map_bytes_per_pixel,
+        sil.map_bytes_per_pixel,
         sil.silhouette_bytes_per_pixel,
         sil.p_lookup,
         sil.p_fill,

@@ -34,7 +34,7 @@ fn a_sphere_casts_a_disc_under_a_directional_light() {
     let (w, h) = (160u32, 120u32);
     let mut frame = CameraFrame::default();
     let camera =
-        visibility(&mut frame, &scene, (w, h), umbra::core::RasterConfig::DEFAULT_TILE_SIZE, &mut umbra::core::NoProbe)
+        visibility(&mut frame, &scene, (w, h), umbra::sim::pass::camera::Tiling::DEFAULT, &mut umbra::core::NoProbe)
             .expect("renders")
             .camera;
     let ids = frame.ids();
@@ -98,7 +98,7 @@ fn the_reference_does_not_depend_on_the_thread_count() {
     let (w, h) = (96u32, 64u32);
     let mut frame = CameraFrame::default();
     let camera =
-        visibility(&mut frame, &scene, (w, h), umbra::core::RasterConfig::DEFAULT_TILE_SIZE, &mut umbra::core::NoProbe)
+        visibility(&mut frame, &scene, (w, h), umbra::sim::pass::camera::Tiling::DEFAULT, &mut umbra::core::NoProbe)
             .expect("renders")
             .camera;
     let ids = frame.ids();

@@ -426,6 +426,9 @@ pub enum Problem {
     /// An override not of the form `key=value`.
     #[error("expected key=value")]
     Override,
+    /// A name that cannot be part of a file name.
+    #[error("`{0}` is not a name: use 1 to 64 letters, digits, `-` and `_` (it names output files)")]
+    Name(String),
     /// No bundled architecture of that name.
     #[error("no bundled architecture of that name (the bundled ones are: {})", BUNDLED.map(|b| b.0).join(", "))]
     NoSuchPreset,
@@ -665,6 +668,10 @@ impl Arch {
         let positive = |key: &'static str, v: f64| {
             if v > 0.0 { Ok(()) } else { Err((key, Problem::Range { value: v, what: "positive" })) }
         };
+        let n = &self.name;
+        if n.is_empty() || n.len() > 64 || !n.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_') {
+            return Err(("name", Problem::Name(n.clone())));
+        }
         positive("clock", self.clock)?;
         positive("dram.bandwidth", self.dram.bandwidth)?;
         positive("shadow.samples_per_clock", self.shadow.samples_per_clock)?;
@@ -725,6 +732,20 @@ impl Arch {
             let _ = writeln!(s, "{} = {value}  # {}", p.key, p.doc);
         }
         s
+    }
+
+    /// An immediate-mode machine: no bins, so each draw is finished before
+    /// the next and timed as one unit.
+    #[must_use]
+    pub const fn immediate(&self) -> bool {
+        self.bins.entry_bytes == 0 && self.bins.setup_record_bytes == 0
+    }
+
+    /// How the passes walk the target on this machine: its tiles, and draw
+    /// by draw when it is immediate-mode.
+    #[must_use]
+    pub const fn tiling(&self) -> crate::pass::camera::Tiling {
+        crate::pass::camera::Tiling { tile: self.raster.tile, per_draw: self.immediate() }
     }
 
     /// Bytes DRAM moves per clock.

@@ -195,7 +195,8 @@ impl CostReport {
         );
         let _ = writeln!(
             s,
-            "| pass | setup | raster | depth | shadow | shade | memory | pass cycles | bottleneck | tiles bound (setup/raster/depth/shadow/shade/memory) |"
+            "| pass | setup | raster | depth | shadow | shade | memory | pass cycles | bottleneck | {} bound (setup/raster/depth/shadow/shade/memory) |",
+            if a.immediate() { "draws" } else { "tiles" }
         );
         let _ = writeln!(s, "|---|---:|---:|---:|---:|---:|---:|---:|---|---|");
         for (name, t) in [("light", &self.light), ("camera", &self.camera)] {
@@ -307,7 +308,7 @@ impl CostReport {
             stat(
                 &format!("{pass}.tile_cycles"),
                 format!("{:.0}", t.tiles),
-                "each tile its slowest stage, summed",
+                "each tile (draw, on an immediate-mode machine) its slowest stage, summed",
                 "cycles",
             );
             stat(&format!("{pass}.bottleneck"), t.bottleneck.name().to_owned(), "stage bounding most cycles", "stage");
@@ -321,8 +322,8 @@ impl CostReport {
                 stat(
                     &format!("{pass}.bound.{}", stage.name()),
                     t.bound[k].to_string(),
-                    "tiles bound by the stage",
-                    "tiles",
+                    "tiles (draws) bound by the stage",
+                    "tiles or draws",
                 );
             }
             stat(&format!("{pass}.dram_bytes"), t.bytes.to_string(), "DRAM traffic of the pass", "bytes");
@@ -351,64 +352,72 @@ impl CostReport {
     }
 
     /// The frame's timeline in Chrome trace-event JSON (opens in Perfetto):
-    /// both passes one after the other, a track per stage with a slice per
-    /// tile (its cycles in that stage, with its triangles, fragments, pixels
-    /// and bytes), a track with each tile's whole time, and a DRAM-bandwidth
-    /// counter track; times in microseconds at the architecture's clock.
+    /// both passes one after the other; a front-end track (setup and bin
+    /// writes, beside the tiles when the architecture overlaps them); a
+    /// track with each tile's whole time, and one per stage with that
+    /// tile's cycles in it; slices carry the tile's triangles, fragments,
+    /// pixels and bytes; a DRAM-bandwidth counter track. Times in
+    /// microseconds at the architecture's clock.
     #[must_use]
     pub fn trace(&self) -> serde_json::Value {
         let a = &self.arch;
         let us = |cycles: f64| cycles / a.clock * 1e6;
-        let mut events = vec![];
-        let tracks = ["tiles", "setup", "raster", "depth", "shadow", "shade", "memory"];
-        for (tid, name) in tracks.iter().enumerate() {
-            events.push(serde_json::json!({
-                "name": "thread_name", "ph": "M", "pid": 1, "tid": tid, "args": { "name": name }
-            }));
+        let mut events = vec![serde_json::json!({
+            "name": "process_name", "ph": "M", "pid": 1, "args": { "name": format!("{} on {}", self.scene, a.name) }
+        })];
+        let stages = &Stage::ALL[1..];
+        let names = ["front end", "tiles"].into_iter().chain(stages.iter().map(|s| s.name()));
+        for (tid, name) in names.enumerate() {
+            events.push(
+                serde_json::json!({ "name": "thread_name", "ph": "M", "pid": 1, "tid": tid, "args": { "name": name } }),
+            );
         }
-        events.push(serde_json::json!({ "name": "process_name", "ph": "M", "pid": 1, "args": { "name": a.name } }));
-        let mut t = 0.0f64;
-        let slice = |pass: &str, label: String, w: &Work, t: &mut f64, events: &mut Vec<serde_json::Value>| {
-            let stages = w.stages(a);
-            let dur = stages.iter().copied().fold(0.0, f64::max);
+        // One slice of `w` on track `tid` at `t`, its stages on their own
+        // tracks when `staged`; the DRAM rate over it. Returns its cycles.
+        let mut slice = |pass: &str, label: String, w: &Work, t: f64, tid: usize, staged: bool| {
+            let cycles = w.stages(a);
+            let dur = cycles.iter().copied().fold(0.0, f64::max);
             if dur <= 0.0 {
-                return;
+                return 0.0;
             }
             let args = serde_json::json!({
                 "triangles": w.triangles, "fragments": w.fragments, "pixels": w.pixels, "bytes": w.bytes,
-                "cycles": dur,
+                "cycles": dur, "setup cycles": cycles[Stage::Setup as usize],
             });
             events.push(serde_json::json!({
-                "name": label, "cat": pass, "ph": "X", "ts": us(*t), "dur": us(dur), "pid": 1, "tid": 0, "args": args
+                "name": label, "cat": pass, "ph": "X", "ts": us(t), "dur": us(dur), "pid": 1, "tid": tid, "args": args
             }));
-            for (k, c) in stages.iter().enumerate() {
-                if *c > 0.0 {
-                    events.push(serde_json::json!({
-                        "name": format!("{pass} {}", Stage::ALL[k].name()), "cat": pass, "ph": "X",
-                        "ts": us(*t), "dur": us(*c), "pid": 1, "tid": k + 1,
-                    }));
+            if staged {
+                for (k, stage) in stages.iter().enumerate() {
+                    let c = cycles[*stage as usize];
+                    if c > 0.0 {
+                        events.push(serde_json::json!({
+                            "name": format!("{pass} {}", stage.name()), "cat": pass, "ph": "X",
+                            "ts": us(t), "dur": us(c), "pid": 1, "tid": k + 2,
+                        }));
+                    }
                 }
+                #[allow(clippy::cast_precision_loss, reason = "bytes far below 2^53")]
+                let rate = w.bytes as f64 / (dur / a.clock) / 1e9;
+                events.push(serde_json::json!({ "name": "DRAM GB/s", "ph": "C", "ts": us(t), "pid": 1, "args": { "GB/s": rate } }));
             }
-            #[allow(clippy::cast_precision_loss, reason = "bytes far below 2^53")]
-            let rate = w.bytes as f64 / (dur / a.clock) / 1e9;
-            events.push(serde_json::json!({
-                "name": "DRAM GB/s", "ph": "C", "ts": us(*t), "pid": 1, "args": { "GB/s": rate }
-            }));
-            *t += dur;
+            dur
         };
+        let mut t = 0.0f64;
         for (p, pass) in ["light", "camera"].iter().enumerate() {
             let timing = if p == 0 { &self.light } else { &self.camera };
             let start = t;
-            slice(pass, format!("{pass} front end"), &self.front[p], &mut t, &mut events);
-            // With the front end overlapped, the tiles start with it.
-            if a.front.overlap {
-                t = start;
+            let front = slice(pass, format!("{pass} front end"), &self.front[p], t, 0, false);
+            // Overlapped, the tiles start with the front end.
+            if !a.front.overlap {
+                t += front;
             }
+            let unit = if a.immediate() { "draw" } else { "tile" };
             for (i, w) in self.tiles[p].iter().enumerate() {
-                slice(pass, format!("{pass} tile {i}"), w, &mut t, &mut events);
+                t += slice(pass, format!("{pass} {unit} {i}"), w, t, 1, true);
             }
             if p == 0 {
-                slice(pass, "silhouette pass".to_owned(), &self.silhouette, &mut t, &mut events);
+                t += slice(pass, "silhouette pass".to_owned(), &self.silhouette, t, 1, true);
             }
             t = t.max(start + timing.cycles);
         }

@@ -186,6 +186,17 @@ impl PassTiming {
     }
 }
 
+/// Where a pass timed per draw is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Phase {
+    /// Submitting a draw's triangles.
+    Front,
+    /// Drawing its bins.
+    Back,
+    /// Shading the covered pixels.
+    Shade,
+}
+
 /// A probe charging an architecture's costs for one pass.
 ///
 /// With `FRAGMENT_DETAIL`, off-chip depth is read and written through the
@@ -208,10 +219,17 @@ pub struct ArchProbe<const FRAGMENT_DETAIL: bool = false> {
     pub silhouette: Work,
     /// The depth cache's final write-back, after the tiles.
     pub drain: Work,
-    /// Per tile of the target, row-major.
+    /// The units a pass is timed in: per tile of the target, row-major; on
+    /// an immediate-mode machine ([`Arch::immediate`]), per draw, in order
+    /// (each draw finished before the next), the shading after them one
+    /// more, the shadow volumes one more.
     pub tiles: Vec<Work>,
     current: usize,
     across: usize,
+    /// Timed per draw, not per tile.
+    per_draw: bool,
+    /// Where a per-draw pass is: in the front end, drawing, or shading.
+    phase: Phase,
     /// Each shaded pixel looks the map up (a shadowed camera pass).
     lookups: bool,
     /// DRAM bytes by purpose.
@@ -253,7 +271,9 @@ impl<const D: bool> ArchProbe<D> {
             front: Work::default(),
             silhouette: Work::default(),
             drain: Work::default(),
-            tiles: vec![Work::default(); raster.tile_count()],
+            tiles: if arch.immediate() { Vec::new() } else { vec![Work::default(); raster.tile_count()] },
+            per_draw: arch.immediate(),
+            phase: Phase::Front,
             current: 0,
             lookups: false,
             across: raster.tiles().0 as usize,
@@ -286,7 +306,22 @@ impl<const D: bool> ArchProbe<D> {
     }
 
     fn select(&mut self, tile: TileId) {
-        self.current = usize::from(tile.y) * self.across + usize::from(tile.x);
+        if !self.per_draw {
+            self.current = usize::from(tile.y) * self.across + usize::from(tile.x);
+        }
+    }
+
+    /// A pass timed per draw enters `phase`: a draw's first triangle after
+    /// the last one's bins, or the first shaded pixel, opens a unit.
+    fn enter(&mut self, phase: Phase) {
+        if !self.per_draw || phase == self.phase {
+            return;
+        }
+        if phase != Phase::Back || self.tiles.is_empty() {
+            self.tiles.push(Work::default());
+            self.current = self.tiles.len() - 1;
+        }
+        self.phase = phase;
     }
 
     fn work(&mut self) -> &mut Work {
@@ -492,7 +527,12 @@ impl<const D: bool> Probe for ArchProbe<D> {
         let cached = self.depth_cache.is_some();
         match e {
             // Counted in `events`; the work is the setup that follows, or none.
-            Event::TriangleSubmitted | Event::TriangleRejected { .. } => {}
+            Event::TriangleSubmitted => {
+                if self.phase == Phase::Back {
+                    self.enter(Phase::Front);
+                }
+            }
+            Event::TriangleRejected { .. } => {}
             Event::TriangleSetup => self.front.charge(Stage::Setup, self.arch.front.setup_cycles),
             Event::TriangleBinned { tiles } => {
                 // The entries and the setup record, written at binning.
@@ -504,6 +544,7 @@ impl<const D: bool> Probe for ArchProbe<D> {
             }
             Event::BinFlush { tile, triangles, .. } => {
                 // The entries and their setup records, read back.
+                self.enter(Phase::Back);
                 self.select(tile);
                 let b = n(triangles) * (self.arch.bins.entry_bytes + self.arch.bins.setup_record_bytes);
                 self.dram.bins += b;
@@ -598,6 +639,7 @@ impl<const D: bool> Probe for ArchProbe<D> {
             // Counted in `events`: decisions about work charged above.
             Event::TangentFallback | Event::TrivialPixel { .. } => {}
             Event::PixelShaded { x, y } => {
+                self.enter(Phase::Shade);
                 let s = self.raster.tile_shift();
                 #[allow(clippy::cast_possible_truncation, reason = "at most 2^14 / 8 tiles per side")]
                 self.select(TileId { x: (x >> s) as u16, y: (y >> s) as u16 });
