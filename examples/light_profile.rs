@@ -19,7 +19,10 @@
 //! noisy machine where times do not.
 //!
 //! The environment varies the pass: `TORUS=50x40` (rings × sides: 4 000
-//! larger triangles), `UNIT=single|dual`, `CULL=0|1` (max-z culling):
+//! larger triangles), `UNIT=single|dual`, `CULL=0|1` (max-z culling),
+//! `ARCH=talisman|immediate|…` (the counting path: that bundled
+//! architecture's timing probe on every event, the immediate-mode ones
+//! with their depth cache fed fragment by fragment):
 //!
 //! ```sh
 //! TORUS=25x20 UNIT=dual CULL=1 target/release/examples/light_profile 1 whole 2048 digest
@@ -29,6 +32,7 @@ use std::hash::{DefaultHasher, Hash, Hasher};
 
 use umbra::core::glam::Vec3;
 use umbra::core::{CullMode, D24, DepthFormat, DepthUnit, LightPassConfig, NoProbe, RasterConfig};
+use umbra::sim::cost::arch::{Arch, ArchProbe, PassKind};
 use umbra::sim::pass::light::{Draw, LightFrame, LightOptions, render};
 use umbra::sim::world::mesh::Mesh;
 use umbra::sim::world::scene::Perspective;
@@ -69,11 +73,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // first, a pass touches no fresh pages.
     let mut frame: LightFrame<u32> = LightFrame::new();
     let start = std::time::Instant::now();
+    let arch = std::env::var("ARCH").ok().map(|a| Arch::bundled(&a)).transpose()?;
     for _ in 0..passes {
         if new {
             frame = LightFrame::<u32>::new();
         }
-        if bands {
+        if let Some(arch) = &arch {
+            let buffers = unit.buffers();
+            if arch.on_chip.light_depth {
+                let probe = ArchProbe::<false>::new(arch, PassKind::Light, raster, D24::KIND, buffers);
+                std::hint::black_box(render::<D24, _, _>(&mut frame, cfg, &[draw], LightOptions::default(), probe)?.1);
+            } else {
+                let probe = ArchProbe::<true>::new(arch, PassKind::Light, raster, D24::KIND, buffers);
+                std::hint::black_box(render::<D24, _, _>(&mut frame, cfg, &[draw], LightOptions::default(), probe)?.1);
+            }
+        } else if bands {
             render::<D24, _, _>(&mut frame, cfg, &[draw], LightOptions::BANDS, NoProbe)?;
         } else {
             render::<D24, _, _>(&mut frame, cfg, &[draw], LightOptions::default(), NoProbe)?;

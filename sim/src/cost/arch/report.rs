@@ -127,9 +127,7 @@ impl CostReport {
         let fill = ce.fragments;
         let cycles = lt.cycles + ct.cycles;
         let seconds = cycles / arch.clock;
-        // Five points per silhouette lookup.
-        let silhouette_lookups = ce.silhouette_reads / 5;
-        let p_lookup = ratio(silhouette_lookups, pixels);
+        let p_lookup = ratio(camera.reconstructed_pixels, pixels);
         let overdraw = ratio(ce.volume_fragments, fill);
         let map = if cached { camera.dram.map_fetched } else { camera.dram.map_reads };
         let lookups = ce.trivial_pixels() + ce.tangent_setups;

@@ -232,6 +232,11 @@ pub struct ArchProbe<const FRAGMENT_DETAIL: bool = false> {
     phase: Phase,
     /// Each shaded pixel looks the map up (a shadowed camera pass).
     lookups: bool,
+    /// Covered pixels whose lookup read silhouette points (Sen et al.'s
+    /// bandwidth-model `P`, times the covered pixels).
+    pub reconstructed_pixels: u64,
+    /// The pixel being shaded has read silhouette points.
+    reconstructed: bool,
     /// DRAM bytes by purpose.
     pub dram: Dram,
     /// Accesses that cost energy.
@@ -276,6 +281,8 @@ impl<const D: bool> ArchProbe<D> {
             phase: Phase::Front,
             current: 0,
             lookups: false,
+            reconstructed_pixels: 0,
+            reconstructed: false,
             across: raster.tiles().0 as usize,
             dram: Dram::default(),
             accesses: Accesses::default(),
@@ -640,6 +647,7 @@ impl<const D: bool> Probe for ArchProbe<D> {
             Event::TangentFallback | Event::TrivialPixel { .. } => {}
             Event::PixelShaded { x, y } => {
                 self.enter(Phase::Shade);
+                self.reconstructed = false;
                 let s = self.raster.tile_shift();
                 #[allow(clippy::cast_possible_truncation, reason = "at most 2^14 / 8 tiles per side")]
                 self.select(TileId { x: (x >> s) as u16, y: (y >> s) as u16 });
@@ -670,6 +678,9 @@ impl<const D: bool> Probe for ArchProbe<D> {
                 w.streamed += n(b);
             }
             Event::SilhouetteRead { points, bytes: b } => {
+                // Once per pixel, however many of its samples needed it.
+                self.reconstructed_pixels += u64::from(!self.reconstructed);
+                self.reconstructed = true;
                 self.dram.silhouette_reads += n(b);
                 self.map_read(n(points), n(b));
             }
