@@ -91,8 +91,8 @@ pub(super) fn cost(args: &CostArgs, trace: bool, limits: &Limits) -> Result<()> 
         } else {
             println!("{}", report.markdown());
             write_text(&out.join(format!("stats-{name}.txt")), &report.stats(&command))?;
-            write_text(&out.join(format!("arch-{name}.toml")), &arch.to_toml())?;
         }
+        write_text(&out.join(format!("arch-{name}.toml")), &arch.to_toml())?;
         reports.push(report);
     }
     if !trace {

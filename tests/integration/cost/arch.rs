@@ -327,3 +327,38 @@ fn sens_p_both_ways() {
     let lookup = large.p_lookup / small.p_lookup;
     assert!(small.p_lookup > 0.0 && (0.9..1.1).contains(&lookup), "the model's P moves {lookup:.3}×");
 }
+
+/// The timeline comes from the same model: the light pass's tile slices
+/// add up to its tiles' cycles at the clock, the stage tracks are named,
+/// and the file records its architecture.
+#[test]
+fn the_timeline_is_the_timing_model() {
+    let scene = Scene::bundled("table").expect("bundled");
+    let cfg = RenderConfig {
+        algorithm: Algorithm::Second,
+        format: DepthFormatKind::D24,
+        map_size: 256,
+        filter: umbra::core::shadow::Filter::Bilinear,
+        bias: 0.0,
+        virtual_samples: true,
+        width: 160,
+        height: 90,
+        reference_samples: 1,
+    };
+    let arch = bundled("talisman");
+    let r = cost(&scene, &cfg, &arch, &Limits::DEFAULT).expect("costs");
+    let trace = r.trace();
+    let events = trace["traceEvents"].as_array().expect("events");
+    let names: Vec<&str> =
+        events.iter().filter(|e| e["name"] == "thread_name").filter_map(|e| e["args"]["name"].as_str()).collect();
+    assert_eq!(names, ["front end", "tiles", "raster", "depth", "shadow", "shade", "memory"]);
+    let light_tiles: f64 = events
+        .iter()
+        .filter(|e| e["ph"] == "X" && e["tid"] == 1 && e["cat"] == "light")
+        .filter_map(|e| e["dur"].as_f64())
+        .sum();
+    let expected = r.light.tiles / arch.clock * 1e6;
+    assert!((light_tiles - expected).abs() < 1e-6 * expected, "{light_tiles} µs against {expected}");
+    assert!(events.iter().any(|e| e["ph"] == "C" && e["name"] == "DRAM GB/s"));
+    assert_eq!(trace["metadata"]["arch"]["name"], "talisman");
+}

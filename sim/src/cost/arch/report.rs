@@ -422,6 +422,9 @@ impl CostReport {
         events.push(
             serde_json::json!({ "name": "DRAM GB/s", "ph": "C", "ts": us(t), "pid": 1, "args": { "GB/s": 0.0 } }),
         );
-        serde_json::json!({ "traceEvents": events, "displayTimeUnit": "ns" })
+        let metadata = serde_json::json!({
+            "umbra": self.version, "scene": self.scene, "configuration": self.config, "arch": self.arch,
+        });
+        serde_json::json!({ "traceEvents": events, "displayTimeUnit": "ns", "metadata": metadata })
     }
 }
