@@ -1,0 +1,83 @@
+//! The `umbra` command's architectures: a bad file or override ends in an
+//! error naming the file (or `--set`), the key and the problem, before
+//! anything is written; a good file and overrides are recorded beside the
+//! report.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn umbra(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_umbra"))
+        .args(args)
+        .env("RUST_BACKTRACE", "0")
+        .env("RUST_LIB_BACKTRACE", "0")
+        .output()
+        .expect("the command runs")
+}
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("umbra-cli-arch-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+#[test]
+fn a_bad_architecture_names_its_file_and_key_and_writes_nothing() {
+    let input = dir("input");
+    std::fs::create_dir_all(&input).expect("temp dir");
+    let talisman = include_str!("../../../arch/talisman.toml");
+    let bad = input.join("bad.toml");
+    std::fs::write(&bad, talisman.replacen("tile = 32", "tile = 48", 1)).expect("write");
+    let out = dir("out");
+    let o = umbra(&[
+        "cost",
+        "table",
+        "--width",
+        "64",
+        "--height",
+        "36",
+        "--arch",
+        bad.to_str().expect("UTF-8"),
+        "--out",
+        out.to_str().expect("UTF-8"),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("bad.toml: raster.tile: 48"), "{err}");
+    let o = umbra(&[
+        "cost",
+        "table",
+        "--arch",
+        "talisman",
+        "--set",
+        "dram.bandwidth=fast",
+        "--out",
+        out.to_str().expect("UTF-8"),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.contains("--set: dram.bandwidth: `fast` is not a bandwidth"), "{err}");
+    assert!(!out.exists(), "nothing is written");
+
+    let good = input.join("mine.toml");
+    std::fs::write(&good, talisman.replacen("name = \"talisman\"", "name = \"mine\"", 1)).expect("write");
+    let o = umbra(&[
+        "cost",
+        "table",
+        "--width",
+        "64",
+        "--height",
+        "36",
+        "--arch",
+        good.to_str().expect("UTF-8"),
+        "--set",
+        "clock=150MHz",
+        "--out",
+        out.to_str().expect("UTF-8"),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let record = std::fs::read_to_string(out.join("arch-mine.toml")).expect("the effective architecture");
+    assert!(record.contains("clock = \"150MHz\""), "{record}");
+    let stats = std::fs::read_to_string(out.join("stats-mine.txt")).expect("stats");
+    assert!(stats.contains("# arch.clock = \"150MHz\"") && stats.contains("frame.cycles"), "{stats}");
+    let _ = std::fs::remove_dir_all(&input);
+    let _ = std::fs::remove_dir_all(&out);
+}
