@@ -197,6 +197,21 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
         m.mean_abs_error
     );
     println!(
+        "misclassified: {} edge placement, {} acne, {} leaks ({:.3} % artifacts); {} ties at ½; RMS area error {:.4}; boundary displacement {:.2} / {:.2} / {:.2} pixels, {:.2} / {:.2} / {:.2} texels (mean / 95th percentile / max)",
+        m.edge_placement,
+        m.acne,
+        m.leaks,
+        m.artifact_percent,
+        m.ties,
+        m.rms_error,
+        m.displacement[0],
+        m.displacement[1],
+        m.displacement[2],
+        m.displacement_texels[0],
+        m.displacement_texels[1],
+        m.displacement_texels[2]
+    );
+    println!(
         "virtual samples for {} pixels, {} trivially decided, {} tangent fallbacks, {} lookups culled, {} map bytes read",
         t.tangent_setups,
         t.trivial_pixels(),

@@ -285,7 +285,7 @@ fn render_in<F: DepthFormat>(
         &mut camera_events,
         Tiling::DEFAULT,
     )?;
-    let metrics = compare(&image.pixels, &truth);
+    let metrics = compare(&image.pixels, &truth, image.width);
     let maps = frame.maps().map_or_else(
         // Shadow volumes draw no map: one far texel stands for it.
         || LightMaps {

@@ -1,4 +1,5 @@
 //! The exact reference and the papers' claims measured against it.
 
 mod claims;
+mod metrics;
 mod reference;

@@ -82,7 +82,7 @@ fn metrics_count_what_they_should() {
         truth(true, 0.5),   // ½ is not above ½: lit, lit
         truth(true, 1.0),   // lit, lit
     ];
-    let m = compare(&render, &truths);
+    let m = compare(&render, &truths, 10);
     assert_eq!(render[0].triangle, NO_TRIANGLE);
     assert_eq!((m.evaluated, m.false_shadow, m.false_light), (8, 2, 2));
     assert!((m.misclassified_percent - 50.0).abs() < 1e-12);

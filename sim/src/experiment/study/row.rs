@@ -59,6 +59,20 @@ pub struct Row {
     pub false_light_rate: Option<f64>,
     /// Mean |shadow fraction − true shadowed area|.
     pub mean_abs_error: Option<f64>,
+    /// Root mean square of the same.
+    pub rms_error: Option<f64>,
+    /// Misclassified pixels at the reference's shadow boundary.
+    pub edge_placement: Option<u64>,
+    /// False shadows away from it.
+    pub acne: Option<u64>,
+    /// False light away from it.
+    pub leaks: Option<u64>,
+    /// Acne and leaks, percent of the evaluated pixels.
+    pub artifact_percent: Option<f64>,
+    /// Mean boundary displacement, pixels.
+    pub displacement_mean: Option<f64>,
+    /// 95th-percentile boundary displacement, pixels.
+    pub displacement_p95: Option<f64>,
     /// Light pass cycles (per-tile timing; silhouette pass included).
     pub light_cycles: Option<u64>,
     /// Light pass bottleneck stage.
@@ -138,6 +152,13 @@ impl Row {
             false_shadow_rate: None,
             false_light_rate: None,
             mean_abs_error: None,
+            rms_error: None,
+            edge_placement: None,
+            acne: None,
+            leaks: None,
+            artifact_percent: None,
+            displacement_mean: None,
+            displacement_p95: None,
             light_cycles: None,
             light_bottleneck: None,
             camera_cycles: None,
@@ -176,6 +197,13 @@ impl Row {
         self.false_shadow_rate = Some(m.false_shadow_rate);
         self.false_light_rate = Some(m.false_light_rate);
         self.mean_abs_error = Some(m.mean_abs_error);
+        self.rms_error = Some(m.rms_error);
+        self.edge_placement = Some(m.edge_placement);
+        self.acne = Some(m.acne);
+        self.leaks = Some(m.leaks);
+        self.artifact_percent = Some(m.artifact_percent);
+        self.displacement_mean = Some(m.displacement[0]);
+        self.displacement_p95 = Some(m.displacement[1]);
     }
 
     pub(super) fn set_cost(&mut self, r: &CostReport) {

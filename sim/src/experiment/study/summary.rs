@@ -62,9 +62,10 @@ pub fn summary(rows: &[Row]) -> String {
     let _ = writeln!(s, "# Umbra study: the cheapest configuration per error budget\n");
     let _ = writeln!(
         s,
-        "{} rows ({configs} render configurations × architecture presets), {} skipped. Error: pixels \
-         misclassified against the exact reference, percent of those facing the light. Cycles: light-pass \
-         plus camera-pass bottleneck. Bytes: all DRAM traffic, map reads as fetched through the preset's cache.\n",
+        "{} rows ({configs} render configurations × architectures), {} skipped. Error: pixels \
+         misclassified against the exact reference, percent of those facing the light. Cycles: the frame (light \
+         pass, then camera pass) in the architecture's per-tile timing model. Bytes: all DRAM traffic, map reads \
+         as fetched through the architecture's map cache.\n",
         rows.len(),
         skipped.len()
     );
