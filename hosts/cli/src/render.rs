@@ -3,9 +3,10 @@
 use std::path::PathBuf;
 
 use crate::depth::{Format, format_kind};
-use anyhow::{Result, bail};
+use anyhow::{Context, Result, bail};
 use clap::ValueEnum;
 use indicatif::ProgressBar;
+use umbra_core::shadow::{Filter, Jitter, MapCoord};
 use umbra_sim::io::limits::Limits;
 use umbra_sim::io::output::{
     RawMap, write_error_image, write_preview, write_shadow_image, write_shadow_term, write_text,
@@ -42,6 +43,9 @@ pub(super) enum FilterArg {
     Box3,
     Jitter4,
     Jitter16,
+    /// Reeves' jittered filter with --num-samples, --res-factor,
+    /// --min-samples and --min-size.
+    Jitter,
 }
 
 #[derive(clap::Args, Debug)]
@@ -68,6 +72,19 @@ pub(super) struct RenderArgs {
     /// `Bias1` of Reeves' bias range (--algo bias-range), as a depth in [0, 1].
     #[arg(long, default_value_t = 0.005)]
     pub(super) bias1: f64,
+    /// Reeves' `NumSamples` (--filter jitter): samples per lookup.
+    #[arg(long, default_value_t = 16)]
+    pub(super) num_samples: u16,
+    /// Reeves' `ResFactor` (--filter jitter): enlarges the sampled region.
+    #[arg(long, default_value_t = 3.0)]
+    pub(super) res_factor: f64,
+    /// Reeves' `MinSamples` (--filter jitter): fewest samples per axis.
+    #[arg(long, default_value_t = 1)]
+    pub(super) min_samples: u16,
+    /// Reeves' `MinSize` (--filter jitter): smallest half-size of the
+    /// sampled region, texels.
+    #[arg(long, default_value_t = 0.0)]
+    pub(super) min_size: f64,
     /// The dual-depth offset, as a depth in [0, 1].
     #[arg(long, default_value_t = 0.01)]
     pub(super) offset: f64,
@@ -99,6 +116,10 @@ impl Default for RenderArgs {
             bias: 0.0,
             bias1: 0.005,
             offset: 0.01,
+            num_samples: 16,
+            res_factor: 3.0,
+            min_samples: 1,
+            min_size: 0.0,
             no_virtual_samples: false,
             width: None,
             height: None,
@@ -121,14 +142,15 @@ pub(super) fn render_config(args: &RenderArgs, limits: &Limits) -> Result<(Scene
     if args.reference_samples == 0 || args.reference_samples > 16 {
         bail!("--reference-samples {} is outside 1..=16", args.reference_samples);
     }
-    let filter = match args.filter {
-        FilterArg::Point => 0,
-        FilterArg::Bilinear => 1,
-        FilterArg::Box3 => 2,
-        FilterArg::Jitter4 => 3,
-        FilterArg::Jitter16 => 4,
+    let preset = |k: usize| umbra_sim::experiment::presets::FILTERS[k];
+    let (filter_name, filter) = match args.filter {
+        FilterArg::Point => preset(0),
+        FilterArg::Bilinear => preset(1),
+        FilterArg::Box3 => preset(2),
+        FilterArg::Jitter4 => preset(3),
+        FilterArg::Jitter16 => preset(4),
+        FilterArg::Jitter => ("jitter", Filter::Jittered(jitter(args)?)),
     };
-    let (filter_name, filter) = umbra_sim::experiment::presets::FILTERS[filter];
     let algorithm = match args.algo {
         Algo::First => Algorithm::First,
         Algo::BiasRange => Algorithm::BiasRange { hi: args.bias1 },
@@ -152,6 +174,25 @@ pub(super) fn render_config(args: &RenderArgs, limits: &Limits) -> Result<(Scene
         reference_samples: args.reference_samples,
     };
     Ok((scene, cfg, filter_name))
+}
+
+/// Reeves' jittered filter from the command line's values (checked again,
+/// with the rest of the shadow configuration, when the render starts).
+fn jitter(args: &RenderArgs) -> Result<Jitter> {
+    let coord = |name: &str, v: f64| {
+        MapCoord::checked_from_num(v)
+            .filter(|_| v.is_finite() && v >= 0.0)
+            .with_context(|| format!("{name} {v} is not a non-negative number of texels below 32768"))
+    };
+    if args.num_samples == 0 || args.min_samples == 0 {
+        bail!("--num-samples and --min-samples must be at least 1");
+    }
+    Ok(Jitter {
+        num_samples: args.num_samples,
+        res_factor: coord("--res-factor", args.res_factor)?,
+        min_samples: args.min_samples,
+        min_size: coord("--min-size", args.min_size)?,
+    })
 }
 
 /// `umbra render`: the pictures, the metrics and the events of one render.
