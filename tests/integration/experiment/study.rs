@@ -181,8 +181,8 @@ fn pareto_front_by_hand() {
     assert_eq!(pareto_front(&pts), vec![2, 5, 4]);
 }
 
-/// The summary names, under each budget, the cheapest row that meets it,
-/// or says that none does.
+/// The summary names, under each artifact budget, the cheapest row that
+/// meets it, or says that none does.
 #[test]
 fn summary_picks_the_cheapest_within_budget() {
     let spec = small();
@@ -193,7 +193,7 @@ fn summary_picks_the_cheapest_within_budget() {
         for budget in study::BUDGETS {
             let best = mine
                 .iter()
-                .filter(|r| r.misclassified_percent.is_some_and(|m| m <= budget))
+                .filter(|r| r.artifact_percent.is_some_and(|m| m <= budget))
                 .map(|r| r.total_cycles.expect("costed"))
                 .min();
             let line = md
