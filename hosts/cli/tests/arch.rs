@@ -3,23 +3,8 @@
 //! anything is written; a good file and overrides are recorded beside the
 //! report.
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
-
-fn umbra(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_umbra"))
-        .args(args)
-        .env("RUST_BACKTRACE", "0")
-        .env("RUST_LIB_BACKTRACE", "0")
-        .output()
-        .expect("the command runs")
-}
-
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("umbra-cli-arch-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    d
-}
+mod common;
+use common::{dir, umbra};
 
 #[test]
 fn a_bad_architecture_names_its_file_and_key_and_writes_nothing() {

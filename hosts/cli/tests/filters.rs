@@ -4,23 +4,8 @@
 //! draw something else, and values the filter cannot take are refused by
 //! name before anything is written.
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
-
-fn umbra(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_umbra"))
-        .args(args)
-        .env("RUST_BACKTRACE", "0")
-        .env("RUST_LIB_BACKTRACE", "0")
-        .output()
-        .expect("the command runs")
-}
-
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("umbra-cli-filters-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    d
-}
+mod common;
+use common::{dir, umbra};
 
 /// Render `reeves-sphere` small with `filter` flags; its metrics.json.
 fn metrics(name: &str, filter: &[&str]) -> String {

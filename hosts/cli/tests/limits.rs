@@ -3,24 +3,10 @@
 //! written, and the option moves it.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
-/// Run `umbra` with `args`.
-fn umbra(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_umbra"))
-        .args(args)
-        .env("RUST_BACKTRACE", "0")
-        .env("RUST_LIB_BACKTRACE", "0")
-        .output()
-        .expect("the command runs")
-}
-
-/// A folder of this test process for `name`, absent.
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("umbra-cli-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    d
-}
+mod common;
+use common::{dir, umbra};
 
 /// `dir(name)`, made, holding `file` with `contents`; the file's path.
 fn input(name: &str, file: &str, contents: &str) -> (PathBuf, PathBuf) {

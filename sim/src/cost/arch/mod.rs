@@ -7,8 +7,10 @@ use umbra_core::Probe;
 use umbra_core::probe::Event;
 
 pub mod file;
+mod keys;
 mod report;
 pub mod timing;
+mod work;
 
 pub use file::{Arch, ArchError};
 pub use report::{CostReport, SenFigures};

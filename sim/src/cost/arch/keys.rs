@@ -1,0 +1,304 @@
+//! The keys of an architecture file: one table, [`PARAMS`], of every key
+//! with its unit and meaning, and the units values are written in
+//! (`16KiB`, `25.6GB/s`, `800MHz`, `2ns`, `20pJ`).
+
+use super::file::{Arch, Problem};
+
+/// The unit a key's value is written in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Unit {
+    /// Free text.
+    Text,
+    /// `true` or `false`.
+    Flag,
+    /// A whole number.
+    Count,
+    /// A non-negative number (cycles, rates).
+    Number,
+    /// Bytes: `B`, `KB`, `KiB`, `MB`, `MiB`, `GB`, `GiB`.
+    Bytes,
+    /// Bytes per second: `GB/s`, `MB/s`, `GiB/s`, ...
+    Bandwidth,
+    /// Hertz: `Hz`, `kHz`, `MHz`, `GHz`.
+    Frequency,
+    /// Seconds: `s`, `ms`, `us`, `ns`, `ps`.
+    Time,
+    /// Joules: `J`, `mJ`, `uJ`, `nJ`, `pJ`, `fJ`.
+    Joules,
+}
+
+/// A key's value, read or to be written.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Value {
+    /// Text.
+    Text(String),
+    /// A flag.
+    Flag(bool),
+    /// A number in the unit's base (bytes, B/s, Hz, s, J).
+    Number(f64),
+}
+
+/// One key of an architecture file.
+pub struct Param {
+    /// The dotted key.
+    pub key: &'static str,
+    /// Its unit.
+    pub unit: Unit,
+    /// What it means.
+    pub doc: &'static str,
+    pub(super) get: fn(&Arch) -> Value,
+    pub(super) set: fn(&mut Arch, Value) -> Result<(), Problem>,
+}
+
+impl core::fmt::Debug for Param {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("Param").field("key", &self.key).field("unit", &self.unit).finish_non_exhaustive()
+    }
+}
+
+/// A field a [`Param`] reads and writes.
+trait Field {
+    fn get(&self) -> Value;
+    fn set(&mut self, v: Value) -> Result<(), Problem>;
+}
+
+impl Field for String {
+    fn get(&self) -> Value {
+        Value::Text(self.clone())
+    }
+    fn set(&mut self, v: Value) -> Result<(), Problem> {
+        match v {
+            Value::Text(t) => {
+                *self = t;
+                Ok(())
+            }
+            _ => Err(Problem::Type("text")),
+        }
+    }
+}
+
+impl Field for bool {
+    fn get(&self) -> Value {
+        Value::Flag(*self)
+    }
+    fn set(&mut self, v: Value) -> Result<(), Problem> {
+        match v {
+            Value::Flag(b) => {
+                *self = b;
+                Ok(())
+            }
+            _ => Err(Problem::Type("true or false")),
+        }
+    }
+}
+
+impl Field for f64 {
+    fn get(&self) -> Value {
+        Value::Number(*self)
+    }
+    fn set(&mut self, v: Value) -> Result<(), Problem> {
+        match v {
+            Value::Number(x) if (0.0..1e30).contains(&x) => {
+                *self = x;
+                Ok(())
+            }
+            Value::Number(x) => Err(Problem::Range { value: x, what: "a finite, non-negative number below 1e30" }),
+            _ => Err(Problem::Type("a number")),
+        }
+    }
+}
+
+impl Field for u64 {
+    #[allow(clippy::cast_precision_loss, reason = "sizes below 2^53, checked on the way in")]
+    fn get(&self) -> Value {
+        Value::Number(*self as f64)
+    }
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "checked whole and in range")]
+    fn set(&mut self, v: Value) -> Result<(), Problem> {
+        match v {
+            Value::Number(x) if x.fract() == 0.0 && (0.0..=9.0e15).contains(&x) => {
+                *self = x as Self;
+                Ok(())
+            }
+            Value::Number(x) => Err(Problem::Range { value: x, what: "a whole number from 0 to 9e15" }),
+            _ => Err(Problem::Type("a whole number")),
+        }
+    }
+}
+
+impl Field for u32 {
+    fn get(&self) -> Value {
+        Value::Number(f64::from(*self))
+    }
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "checked whole and in range")]
+    fn set(&mut self, v: Value) -> Result<(), Problem> {
+        match v {
+            Value::Number(x) if x.fract() == 0.0 && (0.0..=f64::from(u32::MAX)).contains(&x) => {
+                *self = x as Self;
+                Ok(())
+            }
+            Value::Number(x) => Err(Problem::Range { value: x, what: "a whole number below 2^32" }),
+            _ => Err(Problem::Type("a whole number")),
+        }
+    }
+}
+
+/// Declares [`PARAMS`] from one list: key, unit, field path, meaning.
+macro_rules! params {
+    ($($key:literal, $unit:ident, $($field:ident).+, $doc:literal;)+) => {
+        /// Every key of an architecture file, in file order.
+        pub const PARAMS: &[Param] = &[$(Param {
+            key: $key,
+            unit: Unit::$unit,
+            doc: $doc,
+            get: |a: &Arch| Field::get(&a.$($field).+),
+            set: |a: &mut Arch, v: Value| Field::set(&mut a.$($field).+, v),
+        }),+];
+    };
+}
+
+params! {
+    "name", Text, name, "name for reports and file names";
+    "description", Text, description, "what the file models";
+    "clock", Frequency, clock, "core clock";
+    "front.setup_cycles", Number, front.setup_cycles, "cycles per triangle set up";
+    "front.overlap", Flag, front.overlap, "setup and binning overlap the tiles";
+    "front.pass_overhead_cycles", Number, front.pass_overhead_cycles, "fixed cycles per pass waiting for the host";
+    "raster.tile", Count, raster.tile, "tile (chunk, region) side in pixels";
+    "raster.fragments_per_clock", Number, raster.fragments_per_clock, "fragments scan-converted per clock (0: evaluator)";
+    "raster.cycles_per_tile", Number, raster.cycles_per_tile, "evaluator cycles per triangle per tile touched";
+    "depth.fragments_per_clock", Number, depth.fragments_per_clock, "fragments depth-tested per clock per buffer (0: bit-serial)";
+    "depth.cycles_per_bit", Number, depth.cycles_per_bit, "bit-serial cycles per depth bit per buffer per triangle per tile";
+    "depth.second_depth_pass", Flag, depth.second_depth_pass, "second depth by a second light pass and a combining pass";
+    "on_chip.light_depth", Flag, on_chip.light_depth, "light-pass depth buffers on chip";
+    "on_chip.camera_depth", Flag, on_chip.camera_depth, "camera visibility depth and ids on chip";
+    "on_chip.stencil", Flag, on_chip.stencil, "stencil and volume-tested depth on chip";
+    "on_chip.resolve_test_value_only", Flag, on_chip.resolve_test_value_only, "the resolve writes only the value the test reads";
+    "bins.entry_bytes", Count, bins.entry_bytes, "bytes of one bin entry in DRAM";
+    "bins.setup_record_bytes", Count, bins.setup_record_bytes, "bytes of one setup record in DRAM";
+    "shadow.samples_per_clock", Number, shadow.samples_per_clock, "map samples compared per clock";
+    "shadow.divider_cycles", Number, shadow.divider_cycles, "latency of one tangent-plane division";
+    "shadow.dividers", Count, shadow.dividers, "dividers working in parallel";
+    "shadow.cycles_per_lookup", Number, shadow.cycles_per_lookup, "shadow-test cycles per pixel besides the samples";
+    "shadow.in_shader", Flag, shadow.in_shader, "the shadow test runs in the shading program";
+    "shade.cycles_per_pixel", Number, shade.cycles_per_pixel, "shading cycles per pixel besides the shadow lookup";
+    "dram.bandwidth", Bandwidth, dram.bandwidth, "DRAM bandwidth";
+    "dram.latency", Time, dram.latency, "DRAM latency, request to data";
+    "dram.burst", Bytes, dram.burst, "bytes of one DRAM access";
+    "dram.requests_in_flight", Count, dram.requests_in_flight, "DRAM requests kept in flight";
+    "map_cache.size", Bytes, map_cache.size, "map cache size (0: none)";
+    "map_cache.line", Bytes, map_cache.line, "map cache line";
+    "map_cache.ways", Count, map_cache.ways, "map cache associativity";
+    "map_cache.misses_in_flight", Count, map_cache.misses_in_flight, "map cache misses outstanding";
+    "depth_cache.size", Bytes, depth_cache.size, "off-chip depth and stencil cache size (0: none)";
+    "depth_cache.line", Bytes, depth_cache.line, "depth cache line";
+    "depth_cache.ways", Count, depth_cache.ways, "depth cache associativity";
+    "depth_cache.misses_in_flight", Count, depth_cache.misses_in_flight, "depth cache misses outstanding";
+    "energy.dram_byte", Joules, energy.dram_byte, "energy per DRAM byte";
+    "energy.buffer_access", Joules, energy.buffer_access, "energy per on-chip buffer access";
+    "energy.cache_access", Joules, energy.cache_access, "energy per cache access";
+    "energy.fragment_op", Joules, energy.fragment_op, "energy per fragment operation";
+}
+
+impl Unit {
+    /// What a value of this unit looks like, for errors.
+    pub(super) const fn expected(self) -> &'static str {
+        match self {
+            Self::Text => "text",
+            Self::Flag => "true or false",
+            Self::Count => "a whole number",
+            Self::Number => "a number",
+            Self::Bytes => "a size such as 64B, 16KiB or 2MB",
+            Self::Bandwidth => "a bandwidth such as 25.6GB/s",
+            Self::Frequency => "a frequency such as 800MHz",
+            Self::Time => "a time such as 2ns",
+            Self::Joules => "an energy such as 20pJ",
+        }
+    }
+
+    /// The suffixes of this unit and their scale, the preferred one for
+    /// writing first.
+    const fn suffixes(self) -> &'static [(&'static str, f64)] {
+        match self {
+            Self::Bytes => &[
+                ("GiB", 1_073_741_824.0),
+                ("MiB", 1_048_576.0),
+                ("KiB", 1024.0),
+                ("GB", 1e9),
+                ("MB", 1e6),
+                ("KB", 1e3),
+                ("kB", 1e3),
+                ("B", 1.0),
+            ],
+            Self::Bandwidth => &[
+                ("TB/s", 1e12),
+                ("GB/s", 1e9),
+                ("MB/s", 1e6),
+                ("KB/s", 1e3),
+                ("kB/s", 1e3),
+                ("GiB/s", 1_073_741_824.0),
+                ("MiB/s", 1_048_576.0),
+                ("B/s", 1.0),
+            ],
+            Self::Frequency => &[("GHz", 1e9), ("MHz", 1e6), ("kHz", 1e3), ("Hz", 1.0)],
+            Self::Time => &[("ns", 1e-9), ("us", 1e-6), ("µs", 1e-6), ("ms", 1e-3), ("ps", 1e-12), ("s", 1.0)],
+            Self::Joules => &[("pJ", 1e-12), ("nJ", 1e-9), ("fJ", 1e-15), ("uJ", 1e-6), ("mJ", 1e-3), ("J", 1.0)],
+            Self::Text | Self::Flag | Self::Count | Self::Number => &[],
+        }
+    }
+
+    /// Read `text` (a number and a suffix) in this unit, to its base.
+    fn parse(self, text: &str) -> Result<f64, Problem> {
+        let bad = || Problem::Unit { value: text.to_owned(), unit: self.expected() };
+        let t = text.trim();
+        let (number, scale) = self
+            .suffixes()
+            .iter()
+            .find_map(|&(s, scale)| t.strip_suffix(s).map(|n| (n.trim(), scale)))
+            .ok_or_else(bad)?;
+        let x: f64 = number.parse().map_err(|_| bad())?;
+        let v = x * scale;
+        if v.is_finite() { Ok(v) } else { Err(bad()) }
+    }
+
+    /// Write `v` (in the base) with the largest suffix that reads back to
+    /// the same bits.
+    pub(super) fn write(self, v: f64) -> String {
+        for &(s, scale) in self.suffixes() {
+            let scaled = v / scale;
+            let text = format!("{scaled}{s}");
+            if scaled.abs() >= 1.0 && self.parse(&text).is_ok_and(|back| back.to_bits() == v.to_bits()) {
+                return text;
+            }
+        }
+        let base = self.suffixes().last().map_or("", |s| s.0);
+        format!("{v}{base}")
+    }
+}
+
+/// A TOML value as a [`Value`] for a key of `unit`.
+pub(super) fn from_toml(unit: Unit, v: &toml::Value) -> Result<Value, Problem> {
+    #[allow(clippy::cast_precision_loss, reason = "integers in a file, checked by the field")]
+    match (unit, v) {
+        (Unit::Text, toml::Value::String(s)) => Ok(Value::Text(s.clone())),
+        (Unit::Flag, toml::Value::Boolean(b)) => Ok(Value::Flag(*b)),
+        (Unit::Count | Unit::Number, toml::Value::Integer(i)) => Ok(Value::Number(*i as f64)),
+        (Unit::Number, toml::Value::Float(x)) => Ok(Value::Number(*x)),
+        (Unit::Count, toml::Value::Float(x)) => Err(Problem::Range { value: *x, what: "a whole number" }),
+        (Unit::Bytes | Unit::Bandwidth | Unit::Frequency | Unit::Time | Unit::Joules, toml::Value::String(s)) => {
+            unit.parse(s).map(Value::Number)
+        }
+        _ => Err(Problem::Type(unit.expected())),
+    }
+}
+
+/// An override's text as a [`Value`] for a key of `unit`.
+pub(super) fn from_text(unit: Unit, text: &str) -> Result<Value, Problem> {
+    let t = text.trim();
+    match unit {
+        Unit::Text => Ok(Value::Text(t.to_owned())),
+        Unit::Flag => t.parse().map(Value::Flag).map_err(|_| Problem::Type(unit.expected())),
+        Unit::Count | Unit::Number => t.parse().map(Value::Number).map_err(|_| Problem::Type(unit.expected())),
+        _ => unit.parse(t).map(Value::Number),
+    }
+}

@@ -1,0 +1,368 @@
+//! The timing model: a probe that charges every event of a pass to the
+//! stage that does the work and the memory that holds its bytes, tile by
+//! tile, and the time those charges take on an architecture.
+//!
+//! A tile (chunk, region; the rasterizer's screen tile on an
+//! immediate-mode machine) takes as long as the slowest of its stages,
+//! memory among them; a pass is the sum over its tiles, with the front end
+//! (setup, binning) overlapped with them when the architecture says so.
+//! Memory takes the longer of its bytes at the bandwidth and its requests
+//! at the latency over the requests kept in flight (Little's law): the
+//! latency the architecture cannot hide.
+
+mod events;
+
+use super::file::{Arch, CacheParams};
+pub use super::work::{Accesses, EnergySplit, PassTiming, Work};
+use super::{Dram, Stage};
+use crate::cost::cache::{Cache, MapCache};
+use serde::Serialize;
+use umbra_core::probe::Totals;
+use umbra_core::{DepthFormatKind, RasterConfig, TileId};
+
+/// Which pass a probe counts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum PassKind {
+    /// The light pass (the map), with its depth buffers.
+    Light,
+    /// The camera pass: visibility, then shading with the shadow unit or
+    /// the stencil unit.
+    Camera,
+}
+
+/// Bytes of one shaded pixel's colour written to the frame buffer.
+pub const COLOUR_BYTES: u64 = 4;
+
+/// Where a pass timed per draw is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Phase {
+    /// Submitting a draw's triangles.
+    Front,
+    /// Drawing its bins.
+    Back,
+    /// Shading the covered pixels.
+    Shade,
+}
+
+/// A probe charging an architecture's costs for one pass.
+///
+/// With `FRAGMENT_DETAIL`, off-chip depth is read and written through the
+/// architecture's depth cache, fragment by fragment; without it, every
+/// off-chip access is charged as uncached (one request each).
+#[derive(Clone, Debug)]
+pub struct ArchProbe<const FRAGMENT_DETAIL: bool = false> {
+    /// The architecture.
+    pub arch: Arch,
+    kind: PassKind,
+    raster: RasterConfig,
+    format: DepthFormatKind,
+    /// Depth buffers updated per fragment in one pass.
+    buffers: u64,
+    /// Light passes the depth takes (2 for a second depth by a second pass).
+    passes: u64,
+    /// The front end: setup and bin writes.
+    pub front: Work,
+    /// The silhouette pass, when there is one.
+    pub silhouette: Work,
+    /// The depth cache's final write-back, after the tiles.
+    pub drain: Work,
+    /// The units a pass is timed in: per tile of the target, row-major; on
+    /// an immediate-mode machine ([`Arch::immediate`]), per draw, in order
+    /// (each draw finished before the next), the shading after them one
+    /// more, the shadow volumes one more.
+    pub tiles: Vec<Work>,
+    current: usize,
+    across: usize,
+    /// Timed per draw, not per tile.
+    per_draw: bool,
+    /// Where a per-draw pass is: in the front end, drawing, or shading.
+    phase: Phase,
+    /// Each shaded pixel looks the map up (a shadowed camera pass).
+    lookups: bool,
+    /// Covered pixels whose lookup read silhouette points (Sen et al.'s
+    /// bandwidth-model `P`, times the covered pixels).
+    pub reconstructed_pixels: u64,
+    /// The pixel being shaded has read silhouette points.
+    reconstructed: bool,
+    /// DRAM bytes by purpose.
+    pub dram: Dram,
+    /// Accesses that cost energy.
+    pub accesses: Accesses,
+    /// Every event of the pass, totalled.
+    pub events: Totals,
+    map_cache: Option<MapCache>,
+    depth_cache: Option<Cache>,
+}
+
+/// A cache of `c`'s geometry, or none when its size is 0.
+fn cache(c: &CacheParams) -> Option<Cache> {
+    u32::try_from(c.line)
+        .ok()
+        .zip(u32::try_from(c.ways).ok())
+        .and_then(|(line, ways)| Cache::new(c.size, line, ways).ok())
+        .filter(|_| c.size > 0)
+}
+
+impl<const D: bool> ArchProbe<D> {
+    /// A probe for a pass of `kind` over `raster` with `buffers` depth
+    /// buffers of `format` (the light pass's unit; 1 for the camera pass).
+    /// A light pass on an architecture that computes the second depth by a
+    /// second pass counts one buffer per pass and two passes.
+    #[must_use]
+    pub fn new(arch: &Arch, kind: PassKind, raster: RasterConfig, format: DepthFormatKind, buffers: u32) -> Self {
+        let buffers = u64::from(buffers.max(1));
+        let (buffers, passes) =
+            if kind == PassKind::Light && buffers == 2 && arch.depth.second_depth_pass { (1, 2) } else { (buffers, 1) };
+        Self {
+            arch: arch.clone(),
+            kind,
+            raster,
+            format,
+            buffers,
+            passes,
+            front: Work::default(),
+            silhouette: Work::default(),
+            drain: Work::default(),
+            tiles: if arch.immediate() { Vec::new() } else { vec![Work::default(); raster.tile_count()] },
+            per_draw: arch.immediate(),
+            phase: Phase::Front,
+            current: 0,
+            lookups: false,
+            reconstructed_pixels: 0,
+            reconstructed: false,
+            across: raster.tiles().0 as usize,
+            dram: Dram::default(),
+            accesses: Accesses::default(),
+            events: Totals::default(),
+            map_cache: cache(&arch.map_cache).map(|c| MapCache::new(c, 1, format.bytes())),
+            // Without each fragment's address the cache cannot be modelled:
+            // every access is then charged as uncached.
+            depth_cache: if D { cache(&arch.depth_cache) } else { None },
+        }
+    }
+
+    /// A camera pass whose every shaded pixel looks up a map of `buffers`
+    /// depth buffers (1 or 2) of `bytes`-byte texels and silhouette points
+    /// of `silhouette_bytes`, through the map cache.
+    #[must_use]
+    pub fn reading(mut self, buffers: u32, bytes: u32, silhouette_bytes: u32) -> Self {
+        self.lookups = true;
+        self.map_cache =
+            self.map_cache.map(|m| MapCache::new(m.cache, buffers, bytes).with_silhouette(silhouette_bytes));
+        self
+    }
+
+    fn on_chip_depth(&self) -> bool {
+        match self.kind {
+            PassKind::Light => self.arch.on_chip.light_depth,
+            PassKind::Camera => self.arch.on_chip.camera_depth,
+        }
+    }
+
+    fn select(&mut self, tile: TileId) {
+        if !self.per_draw {
+            self.current = usize::from(tile.y) * self.across + usize::from(tile.x);
+        }
+    }
+
+    /// A pass timed per draw enters `phase`: a draw's first triangle after
+    /// the last one's bins, or the first shaded pixel, opens a unit.
+    fn enter(&mut self, phase: Phase) {
+        if !self.per_draw || phase == self.phase {
+            return;
+        }
+        if phase != Phase::Back || self.tiles.is_empty() {
+            self.tiles.push(Work::default());
+            self.current = self.tiles.len() - 1;
+        }
+        self.phase = phase;
+    }
+
+    fn work(&mut self) -> &mut Work {
+        let i = self.current.min(self.tiles.len().saturating_sub(1));
+        if self.tiles.is_empty() {
+            self.tiles.push(Work::default());
+        }
+        &mut self.tiles[i]
+    }
+
+    /// Streamed bytes of the current tile: moved in bursts.
+    fn stream(&mut self, bytes: u64) {
+        let w = self.work();
+        w.bytes += bytes;
+        w.streamed += bytes;
+    }
+
+    #[allow(clippy::cast_precision_loss, reason = "counts far below 2^53")]
+    fn per(count: u64, rate: f64) -> f64 {
+        if rate > 0.0 { count as f64 / rate } else { 0.0 }
+    }
+
+    /// Raster and depth cycles of `count` fragments of one triangle in one
+    /// tile (`buffers` depth buffers each).
+    fn fragments(&mut self, count: u64, buffers: u64) {
+        let a = &self.arch;
+        let raster = if a.raster.fragments_per_clock > 0.0 {
+            Self::per(count, a.raster.fragments_per_clock)
+        } else {
+            a.raster.cycles_per_tile
+        };
+        #[allow(clippy::cast_precision_loss, reason = "small counts")]
+        let depth = if a.depth.fragments_per_clock > 0.0 {
+            Self::per(count * buffers, a.depth.fragments_per_clock)
+        } else {
+            a.depth.cycles_per_bit * f64::from(self.format.bits()) * buffers as f64
+        };
+        self.accesses.raster_ops += count;
+        let w = self.work();
+        w.charge(Stage::Raster, raster);
+        w.charge(Stage::Depth, depth);
+        w.fragments += count;
+    }
+
+    /// A depth-cache access at `address`; a miss fetches a line, a dirty
+    /// victim is written back.
+    fn depth_access(&mut self, address: u64) {
+        let Some(c) = self.depth_cache.as_mut() else { return };
+        self.accesses.cache += 1;
+        let (hit, writeback) = c.access_write(address);
+        let line = c.line();
+        let w = self.work();
+        if !hit {
+            w.bytes += line;
+            w.depth_misses += 1;
+        }
+        if writeback {
+            w.bytes += line;
+            w.streamed += line;
+        }
+        let rmw = if hit { 0 } else { line } + if writeback { line } else { 0 };
+        self.dram.depth_rmw += rmw;
+    }
+
+    /// Finish the pass: write back what the depth cache still holds dirty.
+    pub fn finish(&mut self) {
+        if let Some(c) = self.depth_cache.as_mut() {
+            let bytes = c.flush() * c.line();
+            self.dram.depth_rmw += bytes;
+            self.drain.bytes += bytes;
+            self.drain.streamed += bytes;
+        }
+    }
+
+    /// The pass's time, bytes and energy.
+    #[must_use]
+    pub fn timing(&self) -> PassTiming {
+        let a = &self.arch;
+        let mut t = PassTiming::default();
+        let mut per_stage_bound = [0.0f64; 6];
+        let mut tile_memory = 0.0;
+        for w in &self.tiles {
+            let mut w = *w;
+            w.scale(self.passes);
+            let s = w.stages(a);
+            let slowest = s.iter().copied().fold(0.0, f64::max);
+            if slowest > 0.0 {
+                let stage = s.iter().position(|&c| c == slowest).unwrap_or(0);
+                t.bound[stage] += 1;
+                per_stage_bound[stage] += slowest;
+            }
+            for (acc, c) in t.stages.iter_mut().zip(s) {
+                *acc += c;
+            }
+            tile_memory += s[Stage::Memory as usize];
+            t.tiles += slowest;
+            t.bytes += w.bytes;
+        }
+        let mut front = self.front;
+        front.scale(self.passes);
+        let fs = front.stages(a);
+        t.front = fs.iter().copied().fold(0.0, f64::max);
+        for (acc, c) in t.stages.iter_mut().zip(fs) {
+            *acc += c;
+        }
+        t.bytes += front.bytes;
+        // A second depth by a second pass ends with a pass combining the two
+        // maps: two reads and a write per texel, one fragment per texel.
+        let mut combine = Work::default();
+        if self.passes > 1 {
+            let texels = self.raster.texel_count() as u64;
+            combine.bytes = 3 * texels * u64::from(self.format.bytes());
+            combine.streamed = combine.bytes;
+            combine.cycles[Stage::Raster as usize] = Self::per(texels, a.raster.fragments_per_clock.max(1.0));
+        }
+        let cs = combine.stages(a);
+        let combine_cycles = cs.iter().copied().fold(0.0, f64::max);
+        for (acc, c) in t.stages.iter_mut().zip(cs) {
+            *acc += c;
+        }
+        t.bytes += combine.bytes;
+        // The silhouette pass and the depth cache's write-back follow the
+        // tiles, each with its own stages.
+        let mut after = 0.0;
+        for w in [&self.silhouette, &self.drain] {
+            let ws = w.stages(a);
+            after += ws.iter().copied().fold(0.0, f64::max);
+            for (acc, c) in t.stages.iter_mut().zip(ws) {
+                *acc += c;
+            }
+            t.bytes += w.bytes;
+        }
+        // A pass that drew nothing (no light pass for shadow volumes, none
+        // at all without shadows) waits for no host.
+        #[allow(clippy::cast_precision_loss, reason = "1 or 2")]
+        let overhead = if self.events.submitted > 0 { a.front.pass_overhead_cycles * self.passes as f64 } else { 0.0 };
+        // Overlapped, the front end and the tiles still share the DRAM.
+        let shared = fs[Stage::Memory as usize] + tile_memory;
+        let body = if a.front.overlap { t.front.max(t.tiles).max(shared) } else { t.front + t.tiles };
+        t.cycles = overhead + body + combine_cycles + after;
+        t.bottleneck = if a.front.overlap && shared > t.tiles.max(t.front) {
+            Stage::Memory
+        } else if a.front.overlap && t.front > t.tiles {
+            if fs[Stage::Memory as usize] > fs[Stage::Setup as usize] { Stage::Memory } else { Stage::Setup }
+        } else {
+            Stage::ALL
+                .iter()
+                .zip(per_stage_bound)
+                .fold((Stage::Setup, -1.0), |b, (&s, c)| if c > b.1 { (s, c) } else { b })
+                .0
+        };
+        t.energy = self.energy(t.bytes);
+        t
+    }
+
+    #[allow(clippy::cast_precision_loss, reason = "counts far below 2^53")]
+    fn energy(&self, bytes: u64) -> EnergySplit {
+        let e = &self.arch.energy;
+        let k = self.passes as f64;
+        EnergySplit {
+            dram: bytes as f64 * e.dram_byte,
+            buffers: self.accesses.buffer as f64 * e.buffer_access * k,
+            caches: self.accesses.cache as f64 * e.cache_access * k,
+            raster: self.accesses.raster_ops as f64 * e.fragment_op * k,
+            shadow: self.accesses.shadow_ops as f64 * e.fragment_op,
+        }
+    }
+
+    /// Bytes of on-chip depth storage the pass needs: the tile buffers, or
+    /// on an off-chip machine the per-tile max-z bounds.
+    #[must_use]
+    pub fn on_chip_bytes(&self) -> u64 {
+        let bytes = u64::from(self.format.bytes());
+        if self.on_chip_depth() {
+            let side = u64::from(self.arch.raster.tile);
+            side * side * bytes * self.buffers
+        } else {
+            self.raster.tile_count() as u64 * bytes
+        }
+    }
+
+    fn map_read(&mut self, texels: u64, bytes: u64) {
+        self.accesses.shadow_ops += texels;
+        let spc = self.arch.shadow.samples_per_clock;
+        self.work().charge(Stage::Shadow, Self::per(texels, spc));
+        if self.map_cache.is_none() {
+            self.stream(bytes);
+        }
+    }
+}

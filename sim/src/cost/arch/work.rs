@@ -1,0 +1,163 @@
+//! What the timing model charges: a tile's (or the front end's) work in
+//! cycles per stage and DRAM traffic, the accesses that cost energy, and a
+//! pass's time.
+
+use super::Stage;
+use super::file::{Arch, CacheParams};
+use serde::Serialize;
+
+/// What one tile (or the front end) did, in the units the timing charges.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct Work {
+    /// Compute cycles per stage, in [`Stage::ALL`] order (memory's slot is
+    /// filled by [`Work::memory_cycles`]).
+    pub cycles: [f64; 6],
+    /// DRAM bytes.
+    pub bytes: u64,
+    /// Bytes streamed: written or read in order, coalesced into bursts.
+    pub streamed: u64,
+    /// Scattered DRAM requests, one access each (uncached off-chip depth).
+    pub requests: u64,
+    /// Map-cache misses.
+    pub map_misses: u64,
+    /// Depth-cache misses.
+    pub depth_misses: u64,
+    /// Triangles drained from bins.
+    pub triangles: u64,
+    /// Fragments generated.
+    pub fragments: u64,
+    /// Pixels shaded.
+    pub pixels: u64,
+}
+
+impl Work {
+    pub(super) fn charge(&mut self, stage: Stage, cycles: f64) {
+        if let Some(c) = self.cycles.get_mut(stage as usize) {
+            *c += cycles;
+        }
+    }
+
+    /// Memory cycles: the bytes at the bandwidth, or the requests at the
+    /// latency over those in flight, whichever is longer.
+    #[must_use]
+    #[allow(clippy::cast_precision_loss, reason = "counts far below 2^53")]
+    pub fn memory_cycles(&self, arch: &Arch) -> f64 {
+        let lat = arch.latency_cycles();
+        let window = |c: &CacheParams| c.misses_in_flight.max(1) as f64;
+        let requests = self.streamed.div_ceil(arch.dram.burst.max(1)) + self.requests;
+        let latency_bound = requests as f64 * lat / arch.dram.requests_in_flight.max(1) as f64
+            + self.map_misses as f64 * lat / window(&arch.map_cache)
+            + self.depth_misses as f64 * lat / window(&arch.depth_cache);
+        (self.bytes as f64 / arch.bytes_per_cycle()).max(latency_bound)
+    }
+
+    /// Cycles per stage, memory included; a shadow test that runs in the
+    /// shading program adds to the shading.
+    #[must_use]
+    pub fn stages(&self, arch: &Arch) -> [f64; 6] {
+        let mut c = self.cycles;
+        c[Stage::Memory as usize] = self.memory_cycles(arch);
+        if arch.shadow.in_shader {
+            c[Stage::Shade as usize] += c[Stage::Shadow as usize];
+            c[Stage::Shadow as usize] = 0.0;
+        }
+        c
+    }
+
+    pub(super) fn scale(&mut self, k: u64) {
+        #[allow(clippy::cast_precision_loss, reason = "k is 1 or 2")]
+        for c in &mut self.cycles {
+            *c *= k as f64;
+        }
+        self.bytes *= k;
+        self.streamed *= k;
+        self.requests *= k;
+        self.map_misses *= k;
+        self.depth_misses *= k;
+    }
+}
+
+/// Accesses that cost energy.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct Accesses {
+    /// On-chip buffer accesses (tile buffers, stencil).
+    pub buffer: u64,
+    /// Cache accesses (map and depth caches).
+    pub cache: u64,
+    /// Fragment operations of the raster and depth units.
+    pub raster_ops: u64,
+    /// Sample comparisons of the shadow unit.
+    pub shadow_ops: u64,
+}
+
+/// Energy of a pass or a frame, joules, by unit.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct EnergySplit {
+    /// DRAM.
+    pub dram: f64,
+    /// On-chip buffers.
+    pub buffers: f64,
+    /// Caches.
+    pub caches: f64,
+    /// Scan conversion and depth testing.
+    pub raster: f64,
+    /// The shadow unit.
+    pub shadow: f64,
+}
+
+impl EnergySplit {
+    /// The sum over units.
+    #[must_use]
+    pub fn total(&self) -> f64 {
+        self.dram + self.buffers + self.caches + self.raster + self.shadow
+    }
+
+    /// Both added.
+    #[must_use]
+    pub fn plus(&self, o: &Self) -> Self {
+        Self {
+            dram: self.dram + o.dram,
+            buffers: self.buffers + o.buffers,
+            caches: self.caches + o.caches,
+            raster: self.raster + o.raster,
+            shadow: self.shadow + o.shadow,
+        }
+    }
+}
+
+/// A pass's time on an architecture.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct PassTiming {
+    /// Cycles per stage summed over the tiles (the front end's in setup and
+    /// memory), in [`Stage::ALL`] order.
+    pub stages: [f64; 6],
+    /// The front end's cycles (setup and bin writes).
+    pub front: f64,
+    /// The tiles' cycles: each tile its slowest stage, summed.
+    pub tiles: f64,
+    /// The pass: front end and tiles as the architecture overlaps them,
+    /// plus its fixed overhead.
+    pub cycles: f64,
+    /// Tiles with work bound by each stage, in [`Stage::ALL`] order.
+    pub bound: [u64; 6],
+    /// The stage that bounds the most cycles.
+    pub bottleneck: Stage,
+    /// DRAM bytes.
+    pub bytes: u64,
+    /// Energy by unit.
+    pub energy: EnergySplit,
+}
+
+impl PassTiming {
+    /// The pass-level bound: the slowest stage summed over the whole pass.
+    #[must_use]
+    pub fn pass_bound(&self) -> f64 {
+        self.stages.iter().copied().fold(0.0, f64::max)
+    }
+
+    /// Every stage's cycles added, as if nothing overlapped.
+    #[must_use]
+    pub fn serial(&self) -> f64 {
+        self.stages.iter().sum()
+    }
+}
