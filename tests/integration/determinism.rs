@@ -9,7 +9,7 @@ use umbra::core::shadow::Filter;
 use umbra::core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, RasterConfig};
 use umbra::sim::cost::counters::Counters;
 use umbra::sim::pass::light::RawMaps;
-use umbra::sim::pass::render::{Algorithm, Render, RenderConfig, TruthSource, render};
+use umbra::sim::pass::render::{Algorithm, Culling, Render, RenderConfig, TruthSource, render};
 use umbra::sim::world::scene::Scene;
 
 /// 1, 2 and every core of the machine (at least 3, so the pools differ).
@@ -89,6 +89,7 @@ fn a_render_is_the_same_on_any_thread_count() {
         width: 80,
         height: 45,
         reference_samples: 2,
+        culling: Culling::ALGORITHM,
     };
     let hidden = indicatif::ProgressBar::hidden();
     let go = || {
@@ -254,7 +255,7 @@ fn a_reused_light_frame_draws_what_new_buffers_do() {
                 .cloned()
         })
         .expect("renders");
-        assert_eq!(banded, new, "{name}, banded into the whole pass's frame");
+        assert_eq!(unstored(&banded), unstored(&new), "{name}, banded into the whole pass's frame");
         let new = on(2, || {
             LightMaps::draw::<D16, _>(config, &draws, LightOptions::BANDS, umbra::core::NoProbe).map(|(m, _)| m)
         })
@@ -268,6 +269,15 @@ fn a_reused_light_frame_draws_what_new_buffers_do() {
         assert_eq!(banded, new, "{name}, banded");
         let whole =
             render::<D16, _, _>(&mut frame16, config, &draws, LightOptions::default(), NoProbe).expect("renders").0;
-        assert_eq!(whole, &new, "{name}, whole into the banded pass's frame");
+        assert_eq!(unstored(whole), unstored(&new), "{name}, whole into the banded pass's frame");
     }
+}
+
+/// `m` with each tile's count of stores cut to whether it was stored: a
+/// band flushes its own setup store, so the count follows the band's
+/// schedule; everything else is the serial pass's.
+fn unstored<T: Clone>(m: &umbra::sim::pass::light::LightMaps<T>) -> umbra::sim::pass::light::LightMaps<T> {
+    let mut m = m.clone();
+    m.tiles.iter_mut().for_each(|t| t.stores = t.stores.min(1));
+    m
 }

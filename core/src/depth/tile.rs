@@ -29,7 +29,9 @@ pub struct TileState<T> {
     pub z2_min: T,
     /// Largest `z2` in the tile (dual only; the clear value otherwise).
     pub z2_max: T,
-    /// Times the tile was written back to the map.
+    /// Times the tile was written back to the map (a count that follows the
+    /// pass's schedule: a banded pass flushes its own setup stores at other
+    /// times than a serial one, so only whether it is 0 is the same).
     pub stores: u32,
     /// Live max of the culled buffer.
     pub(crate) cull_max: T,

@@ -137,6 +137,7 @@ pub(super) fn depth(args: &DepthArgs, limits: &Limits) -> Result<()> {
                 lights,
                 camera: light,
                 image: [512, 512],
+                source: path.display().to_string(),
             }
         }
         None => Scene::default_scene(),

@@ -15,8 +15,8 @@ pub(super) struct PlanArgs {
     /// A bundled scene by name or a scene file.
     #[arg(default_value = "table")]
     pub(super) scene: String,
-    /// Misclassified pixels allowed, e.g. `0.1%` (percent of the pixels
-    /// facing the light).
+    /// Artifacts allowed (acne and leaks away from the exact shadow
+    /// boundary), e.g. `0.1%` (percent of the pixels facing the light).
     #[arg(long, default_value = "0.1%")]
     pub(super) error_budget: String,
     /// The architecture whose cost is minimised (default: talisman).
@@ -84,7 +84,7 @@ pub(super) fn plan(args: &PlanArgs, limits: &Limits) -> Result<()> {
     let md = p.markdown(&scene.name, budget);
     print!("{md}");
     if !p.meets(budget) {
-        println!("\nThe measured error exceeds the budget: no candidate meets it at this image size.");
+        println!("\nThe measured artifacts exceed the budget: no candidate meets it at this image size.");
     }
     std::fs::create_dir_all(&args.out).with_context(|| format!("creating {}", args.out.display()))?;
     write_text(&args.out.join("plan.md"), &md)?;

@@ -11,7 +11,7 @@ use umbra_sim::io::limits::Limits;
 use umbra_sim::io::output::{
     RawMap, write_error_image, write_preview, write_shadow_image, write_shadow_term, write_text,
 };
-use umbra_sim::pass::render::{Algorithm, RenderConfig, TruthSource};
+use umbra_sim::pass::render::{Algorithm, Culling, RenderConfig, TruthSource};
 use umbra_sim::world::scene::Scene;
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -51,7 +51,8 @@ pub(super) enum FilterArg {
 #[derive(clap::Args, Debug)]
 pub(super) struct RenderArgs {
     /// A bundled scene by name (table, reeves-sphere, weiskopf-l,
-    /// double-torus, thin, open-sheet, crowd, grazing) or a scene file.
+    /// double-torus, thin, open-sheet, crowd, crowd-zoom, grazing, factory) or a
+    /// scene file.
     #[arg(default_value = "table")]
     pub(super) scene: String,
     /// Shadow algorithm.
@@ -88,6 +89,11 @@ pub(super) struct RenderArgs {
     /// The dual-depth offset, as a depth in [0, 1].
     #[arg(long, default_value_t = 0.01)]
     pub(super) offset: f64,
+    /// The light pass's culling per object class: `algorithm` (solids as
+    /// the algorithm culls them, open surfaces never), or
+    /// `solids=X,open=Y` with X, Y one of algorithm, none, front, back.
+    #[arg(long, default_value = "algorithm")]
+    pub(super) cull: Culling,
     /// Turn Wang & Molnar's virtual samples off.
     #[arg(long)]
     pub(super) no_virtual_samples: bool,
@@ -121,6 +127,7 @@ impl Default for RenderArgs {
             min_samples: 1,
             min_size: 0.0,
             no_virtual_samples: false,
+            cull: Culling::ALGORITHM,
             width: None,
             height: None,
             reference_samples: 4,
@@ -172,6 +179,7 @@ pub(super) fn render_config(args: &RenderArgs, limits: &Limits) -> Result<(Scene
         width,
         height,
         reference_samples: args.reference_samples,
+        culling: args.cull,
     };
     Ok((scene, cfg, filter_name))
 }
@@ -205,7 +213,7 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
     let (w, h) = (r.maps.maps.config.raster.width(), r.maps.maps.config.raster.height());
     write_shadow_image(&out.join("shaded.png"), &r.image, scene.light().direction())?;
     write_shadow_term(&out.join("shadow.png"), &r.image)?;
-    write_error_image(&out.join("error.png"), &r.image, &r.truth)?;
+    write_error_image(&out.join("error.png"), &r.image, &r.truth, scene.light().direction())?;
     for (name, data) in [("z1", &r.maps.maps.z1), ("z2", &r.maps.maps.z2)] {
         if !data.is_empty() {
             write_preview(
@@ -218,12 +226,13 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
     let m = &r.metrics;
     let t = &r.camera_events.totals;
     println!(
-        "render `{}`: {:?}, {} map {}², {filter_name} filter, bias {}, {}×{}",
+        "render `{}`: {:?}, {} map {}², {filter_name} filter, bias {}, culling {}, {}×{}",
         scene.name,
         cfg.algorithm,
         cfg.format.name(),
         cfg.map_size,
         cfg.bias,
+        cfg.culling.label(),
         cfg.width,
         cfg.height
     );
@@ -251,6 +260,11 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
         m.displacement_texels[0],
         m.displacement_texels[1],
         m.displacement_texels[2]
+    );
+    println!(
+        "map footprint: {:.3} texels per pixel (the map is {} on screen)",
+        m.texels_per_pixel,
+        if m.texels_per_pixel < 1.0 { "magnified" } else { "minified" }
     );
     println!(
         "virtual samples for {} pixels, {} trivially decided, {} tangent fallbacks, {} lookups culled, {} map bytes read",

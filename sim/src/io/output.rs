@@ -4,7 +4,9 @@
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
 
+use plotters::style::FontStyle;
 use umbra_core::DepthFormatKind;
 
 use crate::pass::light::{raw_depth, raw_far};
@@ -20,6 +22,14 @@ pub enum OutputError {
         /// The OS error.
         source: std::io::Error,
     },
+    /// Drawing a picture's text failed (no usable font).
+    #[error("{path}: {problem}")]
+    Font {
+        /// The file.
+        path: PathBuf,
+        /// What went wrong.
+        problem: String,
+    },
     /// Encoding the image failed.
     #[error("{path}: {source}")]
     Image {
@@ -28,6 +38,34 @@ pub enum OutputError {
         /// The encoder's error.
         source: image::ImageError,
     },
+}
+
+/// Where DejaVu Sans is looked for when `$UMBRA_FONT` is unset.
+pub const FONT_PATHS: [&str; 3] = [
+    "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
+    "/usr/share/fonts/TTF/DejaVuSans.ttf",
+    "/usr/share/fonts/dejavu/DejaVuSans.ttf",
+];
+
+/// Register the pictures' font once (text needs it for its metrics); the error names the files tried.
+pub(crate) fn font() -> Result<(), String> {
+    static FONT: OnceLock<Result<(), String>> = OnceLock::new();
+    FONT.get_or_init(|| {
+        let paths: Vec<PathBuf> = std::env::var_os("UMBRA_FONT")
+            .map(|p| vec![PathBuf::from(p)])
+            .unwrap_or_else(|| FONT_PATHS.iter().map(PathBuf::from).collect());
+        let Some(bytes) = paths.iter().find_map(|p| std::fs::read(p).ok()) else {
+            return Err(format!(
+                "no font: tried {} (install fonts-dejavu-core or set UMBRA_FONT to a .ttf file)",
+                paths.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")
+            ));
+        };
+        // Registered once for the life of the process, as plotters requires.
+        let bytes: &'static [u8] = Box::leak(bytes.into_boxed_slice());
+        plotters::style::register_font("sans-serif", FontStyle::Normal, bytes)
+            .map_err(|_| "the font file is not a TrueType font".to_owned())
+    })
+    .clone()
 }
 
 fn io(path: &Path) -> impl FnOnce(std::io::Error) -> OutputError + '_ {
@@ -173,31 +211,71 @@ pub fn write_shadow_term(path: &Path, image: &crate::pass::camera::CameraImage) 
     save(path, &pixels, image.width, image.height, image::ColorType::L8)
 }
 
-/// Write the error map: pixels the metrics evaluate in mid grey, false
-/// shadows in red, false lights in blue; surfaces facing away from the
-/// light in dark grey, the background black.
+/// The error map's colours: edge placement, acne, leaks.
+pub const ERROR_COLOURS: [[u8; 3]; 3] = [[235, 170, 0], [220, 30, 30], [30, 100, 235]];
+
+/// Write the error map: every pixel's [`Verdict`] over a faint shading of
+/// the scene (light greys, lit surfaces lighter, so the geometry stays
+/// readable), edge placement amber, acne red, leaks blue, with a legend
+/// band below the image giving each colour's meaning and count.
 ///
 /// # Errors
-/// [`OutputError::Image`].
+/// [`OutputError::Image`] for an unwritable file; [`OutputError::Font`]
+/// when no font is found for the legend.
 pub fn write_error_image(
     path: &Path,
     image: &crate::pass::camera::CameraImage,
     truth: &[Option<crate::truth::reference::PixelTruth>],
+    light_dir: umbra_core::glam::Vec3,
 ) -> Result<(), OutputError> {
-    let half = umbra_core::shadow::Shadow::from_bits(1 << 15);
-    let pixels: Vec<u8> = image
-        .pixels
-        .iter()
-        .zip(truth)
-        .flat_map(|(p, t)| match t {
-            None => [0, 0, 0],
-            Some(t) if !t.faces_light => [60, 60, 60],
-            Some(t) => match (p.shadow > half, t.lit) {
-                (true, true) => [220, 40, 40],
-                (false, false) => [40, 90, 230],
-                _ => [150, 150, 150],
-            },
-        })
-        .collect();
-    save(path, &pixels, image.width, image.height, image::ColorType::Rgb8)
+    use crate::truth::metrics::{Verdict, verdicts};
+    use plotters::prelude::*;
+    let to_light = -light_dir.normalize_or_zero();
+    let verdicts = verdicts(&image.pixels, truth, image.width);
+    let count = |v: Verdict| verdicts.iter().filter(|&&x| x == v).count();
+    let (w, h) = (image.width, image.height);
+    let band = 30;
+    let mut rgb = vec![255u8; (w as usize) * (h as usize + band as usize) * 3];
+    for (k, (p, v)) in image.pixels.iter().zip(&verdicts).enumerate() {
+        let colour = match v {
+            Verdict::EdgePlacement => ERROR_COLOURS[0],
+            Verdict::Acne => ERROR_COLOURS[1],
+            Verdict::Leak => ERROR_COLOURS[2],
+            _ if p.triangle == umbra_core::NO_TRIANGLE => [255, 255, 255],
+            _ => {
+                let lambert = f64::from(p.normal.normalize_or_zero().dot(to_light).max(0.0));
+                let lit = if *v == Verdict::Right { 1.0 - p.shadow.to_num::<f64>() } else { 0.0 };
+                #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "within 170..=240")]
+                let g = (170.0 + 70.0 * lit * lambert).round() as u8;
+                [g; 3]
+            }
+        };
+        rgb[3 * k..3 * k + 3].copy_from_slice(&colour);
+    }
+    font().map_err(|problem| OutputError::Font { path: path.to_owned(), problem })?;
+    let drawn = {
+        let root = BitMapBackend::with_buffer(&mut rgb, (w, h + band)).into_drawing_area();
+        let legend = [
+            ("edge placement", count(Verdict::EdgePlacement), ERROR_COLOURS[0]),
+            ("acne", count(Verdict::Acne), ERROR_COLOURS[1]),
+            ("leaks", count(Verdict::Leak), ERROR_COLOURS[2]),
+        ];
+        let style = ("sans-serif", 14).into_font().color(&BLACK);
+        let y = i32::try_from(h).unwrap_or(i32::MAX).saturating_add(8);
+        let mut x = 6;
+        legend
+            .iter()
+            .try_for_each(|(name, n, [r, g, b])| {
+                root.draw(&Rectangle::new([(x, y), (x + 14, y + 14)], RGBColor(*r, *g, *b).filled()))?;
+                let text = format!("{name} {n}");
+                root.draw(&Text::new(text.clone(), (x + 20, y), style.clone()))?;
+                #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap, reason = "a short label")]
+                let advance = 8 * text.len() as i32 + 34;
+                x += advance;
+                Ok::<(), DrawingAreaErrorKind<_>>(())
+            })
+            .and_then(|()| root.present())
+    };
+    drawn.map_err(|e| OutputError::Font { path: path.to_owned(), problem: e.to_string() })?;
+    save(path, &rgb, w, h + band, image::ColorType::Rgb8)
 }

@@ -2,7 +2,7 @@
 //! mapped to the units it uses: the light pass's depth unit and culling,
 //! the shadow unit's test and bias, and the map the camera pass reads.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use umbra_core::shadow::{Bias, DepthTest};
 use umbra_core::{CullMode, DepthFormat, DepthUnit};
 
@@ -38,6 +38,104 @@ pub enum Algorithm {
     /// Depth-fail stencil shadow volumes on the camera's raster: exact hard
     /// shadows, no light pass and no map.
     Volumes,
+}
+
+/// How the light pass culls one class of object.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Cull {
+    /// As the algorithm does it: solids as [`Units::solids`] says, open
+    /// surfaces never (Weiskopf & Ertl §3.2).
+    #[default]
+    Algorithm,
+    /// Nothing culled.
+    None,
+    /// Faces towards the light culled.
+    Front,
+    /// Faces away from the light culled.
+    Back,
+}
+
+impl Cull {
+    /// The names the command line and the study's rows use.
+    pub const NAMES: [&'static str; 4] = ["algorithm", "none", "front", "back"];
+
+    /// This choice's name.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        Self::NAMES[self as usize]
+    }
+}
+
+/// The light pass's culling per object class: closed solids and open
+/// surfaces (Weiskopf & Ertl §3.2 cull solids' back faces and nothing of an
+/// open surface, which has no back; Wang & Molnar §3.4 cull solids' front
+/// faces). Either class may be overridden, for the comparisons their
+/// figures make.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Culling {
+    /// Objects detected (or declared) closed.
+    pub solids: Cull,
+    /// Open surfaces.
+    pub open: Cull,
+}
+
+impl Culling {
+    /// Each class as the algorithm culls it.
+    pub const ALGORITHM: Self = Self { solids: Cull::Algorithm, open: Cull::Algorithm };
+    /// Nothing culled (Weiskopf & Ertl's Figure 5 (b)–(d) and 6).
+    pub const OFF: Self = Self { solids: Cull::None, open: Cull::None };
+
+    /// A short label, the form `umbra render --cull` takes: `algorithm`
+    /// for the algorithm's own, else `solids=…,open=…`.
+    #[must_use]
+    pub fn label(self) -> String {
+        if self == Self::ALGORITHM {
+            "algorithm".to_owned()
+        } else {
+            format!("solids={},open={}", self.solids.name(), self.open.name())
+        }
+    }
+}
+
+/// A culling choice that does not parse, with the text and what was expected.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error(
+    "culling `{text}`: {problem}; expected `algorithm` or `solids=X,open=Y` with X, Y one of algorithm, none, front, back"
+)]
+pub struct CullingError {
+    /// The text given.
+    pub text: String,
+    /// What is wrong with it.
+    pub problem: String,
+}
+
+impl std::str::FromStr for Culling {
+    type Err = CullingError;
+
+    /// `algorithm`, or `solids=X,open=Y` (either part may be left out, and
+    /// is then the algorithm's).
+    fn from_str(text: &str) -> Result<Self, Self::Err> {
+        let err = |problem: String| CullingError { text: text.to_owned(), problem };
+        let mut c = Self::ALGORITHM;
+        if text == "algorithm" {
+            return Ok(c);
+        }
+        for part in text.split(',') {
+            let (class, choice) = part.split_once('=').ok_or_else(|| err(format!("`{part}` has no `=`")))?;
+            let cull = Cull::NAMES
+                .iter()
+                .position(|n| *n == choice)
+                .map(|k| [Cull::Algorithm, Cull::None, Cull::Front, Cull::Back][k])
+                .ok_or_else(|| err(format!("`{choice}` is not a culling")))?;
+            match class {
+                "solids" => c.solids = cull,
+                "open" => c.open = cull,
+                _ => return Err(err(format!("`{class}` is not an object class (solids, open)"))),
+            }
+        }
+        Ok(c)
+    }
 }
 
 /// The map an algorithm's camera pass reads.
@@ -81,10 +179,15 @@ impl Units {
         asked && self.test == DepthTest::Second
     }
 
-    /// How the light pass culls an object, solid or open.
+    /// How the light pass culls an object, solid or open, under `culling`.
     #[must_use]
-    pub const fn cull(&self, solid: bool) -> CullMode {
-        if solid { self.solids } else { CullMode::None }
+    pub const fn cull(&self, solid: bool, culling: Culling) -> CullMode {
+        match (if solid { culling.solids } else { culling.open }, solid) {
+            (Cull::Algorithm, true) => self.solids,
+            (Cull::Algorithm, false) | (Cull::None, _) => CullMode::None,
+            (Cull::Front, _) => CullMode::Front,
+            (Cull::Back, _) => CullMode::Back,
+        }
     }
 }
 
@@ -121,6 +224,23 @@ impl Algorithm {
                 Units { map: MapKind::Silhouette { packed }, ..units(DepthUnit::Single, DepthTest::First) }
             }
             Self::Volumes => Units { map: MapKind::Volumes, ..units(DepthUnit::Single, DepthTest::First) },
+        }
+    }
+
+    /// The algorithm as `umbra render` takes it: `--algo` and its own
+    /// parameter.
+    #[must_use]
+    pub fn flags(self) -> String {
+        match self {
+            Self::First => "--algo first".to_owned(),
+            Self::BiasRange { hi } => format!("--algo bias-range --bias1 {hi}"),
+            Self::Second => "--algo second".to_owned(),
+            Self::SecondFrontCulled => "--algo second-ffc".to_owned(),
+            Self::Midpoint => "--algo midpoint".to_owned(),
+            Self::Dual { offset } => format!("--algo dual --offset {offset}"),
+            Self::Silhouette { packed: false } => "--algo silhouette".to_owned(),
+            Self::Silhouette { packed: true } => "--algo silhouette-packed".to_owned(),
+            Self::Volumes => "--algo volumes".to_owned(),
         }
     }
 

@@ -94,7 +94,8 @@ impl LightOptions {
 /// ([`umbra_core::RasterConfig::window`]) with its own bins, setup store
 /// and tiles, storing its setups moved into its window
 /// ([`LightPass::draw_setup_from`]). Its maps are exactly those of a serial
-/// pass, on any number of threads.
+/// pass, on any number of threads: the same texels and tile bounds (each
+/// tile's count of stores follows its band's own flushes).
 ///
 /// # Errors
 /// See [`PassError`]; [`PassError::BandsWatched`] for a banded pass whose

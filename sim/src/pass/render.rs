@@ -12,8 +12,8 @@ use umbra_core::{
 };
 
 use super::PassError;
-pub use super::algorithm::Algorithm;
 use super::algorithm::MapKind;
+pub use super::algorithm::{Algorithm, Cull, Culling};
 use super::camera::{self, CameraFrame, CameraImage, CameraOptions, Tiling, map_view, visibility, volumes};
 use super::light::{self, DEFAULT_BIN_CAPACITY, LightFrame, LightMaps, LightOptions, RawMaps};
 use crate::cost::arch::{Arch, ArchProbe, CostReport, PassKind};
@@ -47,6 +47,8 @@ pub struct RenderConfig {
     pub height: u32,
     /// Reference rays per pixel side for the area-averaged visibility.
     pub reference_samples: u32,
+    /// The light pass's culling per object class.
+    pub culling: Culling,
 }
 
 /// Why a render failed.
@@ -123,17 +125,55 @@ impl RenderConfig {
     #[must_use]
     pub fn describe(&self) -> String {
         format!(
-            "{:?}, {:?}, map {}², filter {:?}, bias {}, virtual samples {}, image {}x{}, {}² reference rays",
+            "{:?}, {:?}, map {}², filter {:?}, bias {}, virtual samples {}, culling {}, image {}x{}, {}² reference rays",
             self.algorithm,
             self.format,
             self.map_size,
             self.filter,
             self.bias,
             self.virtual_samples,
+            self.culling.label(),
             self.width,
             self.height,
             self.reference_samples
         )
+    }
+
+    /// The `umbra render` command line that renders this configuration of
+    /// the scene `source` (a bundled name or a file) again, bit for bit.
+    #[must_use]
+    pub fn command(&self, source: &str) -> String {
+        let filter = match self.filter {
+            Filter::Point => "point".to_owned(),
+            Filter::Bilinear => "bilinear".to_owned(),
+            Filter::Box { size } => format!("box{size}"),
+            Filter::Jittered(j) => format!(
+                "jitter --num-samples {} --res-factor {} --min-samples {} --min-size {}",
+                j.num_samples, j.res_factor, j.min_samples, j.min_size
+            ),
+        };
+        let quoted = if source.chars().all(|c| c.is_ascii_alphanumeric() || "-_./".contains(c)) {
+            source.to_owned()
+        } else {
+            format!("'{}'", source.replace('\'', r"'\''"))
+        };
+        let mut c = format!(
+            "umbra render {quoted} {} --depth {} --map {} --filter {filter} --bias {} --width {} --height {} --reference-samples {}",
+            self.algorithm.flags(),
+            self.format.name(),
+            self.map_size,
+            self.bias,
+            self.width,
+            self.height,
+            self.reference_samples
+        );
+        if !self.virtual_samples {
+            c.push_str(" --no-virtual-samples");
+        }
+        if self.culling != Culling::ALGORITHM {
+            c.push_str(&format!(" --cull {}", self.culling.label()));
+        }
+        c
     }
 
     /// Check the map side, the image size and the scene's triangles against
@@ -219,7 +259,7 @@ fn passes<F: DepthFormat, L: Probe, C: Probe>(
         volumes(&mut camera, scene, size, tiling, camera_probe)?;
         return Ok((light_probe, camera.take_image()));
     }
-    let draws = scene.draws_culled(scene.light().view_projection(), |solid| units.cull(solid));
+    let draws = scene.draws_culled(scene.light().view_projection(), |solid| units.cull(solid, cfg.culling));
     let (maps, mut light_probe) = light::render::<F, _, DEFAULT_BIN_CAPACITY>(
         frame,
         light_config,
@@ -333,6 +373,7 @@ pub fn cost_unshadowed(
         width,
         height,
         reference_samples: 1,
+        culling: Culling::ALGORITHM,
     };
     cost_with(scene, &cfg, arch, limits, false)
 }
@@ -408,5 +449,9 @@ fn cost_in<F: DepthFormat, const L: bool, const C: bool>(
         Filter::Box { size } => u64::from(size) * u64::from(size),
         Filter::Jittered(j) => u64::from(j.num_samples),
     };
-    Ok(CostReport::new((&scene.name, config), &light, &camera, samples))
+    let mut report = CostReport::new((&scene.name, config), &light, &camera, samples);
+    let triangles: usize = scene.objects.iter().map(|o| o.mesh.triangles.len()).sum();
+    report.sen.triangles = triangles as u64;
+    report.sen.silhouette_edges = Occluders::new(scene).silhouette_edges().len() as u64;
+    Ok(report)
 }

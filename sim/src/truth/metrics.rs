@@ -57,6 +57,12 @@ pub struct Metrics {
     /// The same in map texels, between the two pixels' light-space points
     /// (where both have one).
     pub displacement_texels: [f64; 3],
+    /// The map's footprint on screen: the median distance, in map texels,
+    /// between the light-space points of horizontally adjacent evaluated
+    /// pixels on the same surface. Below 1 the map is magnified (a texel
+    /// covers several pixels, the case Sen et al.'s §5 bandwidth argument
+    /// assumes), above 1 minified.
+    pub texels_per_pixel: f64,
 }
 
 /// Mean, 95th percentile and largest of `v` (zeros when empty).
@@ -129,6 +135,61 @@ fn boundary(dark: &[Option<bool>], width: usize, lit_side: bool) -> Vec<bool> {
         .collect()
 }
 
+/// One pixel's verdict against the truth.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Verdict {
+    /// Background, or a surface facing away from the light.
+    Unevaluated,
+    /// Shadowed or lit as in truth.
+    Right,
+    /// Misclassified within [`EDGE_DISTANCE`] of the exact boundary.
+    EdgePlacement,
+    /// Shadowed in error away from it.
+    Acne,
+    /// Lit in error away from it.
+    Leak,
+}
+
+/// Whether the pipeline shadows a pixel: more than half of it is ([`Shadow`]
+/// above ½; a tie at exactly ½ counts as lit).
+fn shadowed(s: &Shaded) -> bool {
+    s.shadow > Shadow::from_bits(1 << 15)
+}
+
+/// The pixels whose surface faces the light (the others are dark by
+/// shading whatever the shadow test says).
+fn evaluated(t: &Option<PixelTruth>) -> Option<PixelTruth> {
+    t.filter(|t| t.faces_light)
+}
+
+/// Each pixel's verdict, for a `width`-wide render: the counts
+/// [`compare`] reports, pixel by pixel (the error map draws them).
+#[must_use]
+pub fn verdicts(render: &[Shaded], truth: &[Option<PixelTruth>], width: u32) -> Vec<Verdict> {
+    let exact: Vec<Option<bool>> = truth.iter().map(|t| evaluated(t).map(|t| !t.lit)).collect();
+    let to_edge = distance(&boundary(&exact, width as usize, false), width as usize);
+    render
+        .iter()
+        .zip(truth)
+        .enumerate()
+        .map(|(k, (s, t))| {
+            let Some(t) = evaluated(t) else { return Verdict::Unevaluated };
+            let (false_shadow, false_light) = (shadowed(s) && t.lit, !shadowed(s) && !t.lit);
+            #[allow(
+                clippy::absurd_extreme_comparisons,
+                reason = "the stated distance is a parameter that may be raised"
+            )]
+            let near = to_edge.get(k).is_some_and(|&(d, _)| d <= EDGE_DISTANCE);
+            match (false_shadow, false_light, near) {
+                (false, false, _) => Verdict::Right,
+                (_, _, true) => Verdict::EdgePlacement,
+                (true, _, false) => Verdict::Acne,
+                (false, true, false) => Verdict::Leak,
+            }
+        })
+        .collect()
+}
+
 /// Compare a `width`-wide render with the truth. A pixel counts as shadowed
 /// by the pipeline when more than half of it is ([`Shadow`] above ½; a tie
 /// at exactly ½ counts as lit, and is counted in [`Metrics::ties`]).
@@ -140,38 +201,23 @@ fn boundary(dark: &[Option<bool>], width: usize, lit_side: bool) -> Vec<bool> {
     reason = "pixel counts and coordinates"
 )]
 pub fn compare(render: &[Shaded], truth: &[Option<PixelTruth>], width: u32) -> Metrics {
-    let half = Shadow::from_bits(1 << 15);
+    let verdicts = verdicts(render, truth, width);
     let width = width as usize;
-    let evaluated = |t: &Option<PixelTruth>| t.filter(|t| t.faces_light);
     let exact: Vec<Option<bool>> = truth.iter().map(|t| evaluated(t).map(|t| !t.lit)).collect();
     let rendered: Vec<Option<bool>> =
-        render.iter().zip(truth).map(|(s, t)| evaluated(t).map(|_| s.shadow > half)).collect();
-    let to_edge = distance(&boundary(&exact, width, false), width);
+        render.iter().zip(truth).map(|(s, t)| evaluated(t).map(|_| shadowed(s))).collect();
     let to_lit_edge = distance(&boundary(&exact, width, true), width);
     let mut m = Metrics::default();
     let (mut abs_error, mut square_error) = (0.0, 0.0);
-    for (k, (s, t)) in render.iter().zip(truth).enumerate() {
+    for ((s, t), v) in render.iter().zip(truth).zip(&verdicts) {
         let Some(t) = evaluated(t) else { continue };
         m.evaluated += 1;
-        let shadowed = s.shadow > half;
-        m.ties += u64::from(s.shadow == half);
-        let (false_shadow, false_light) = (shadowed && t.lit, !shadowed && !t.lit);
-        m.false_shadow += u64::from(false_shadow);
-        m.false_light += u64::from(false_light);
-        if false_shadow || false_light {
-            #[allow(
-                clippy::absurd_extreme_comparisons,
-                reason = "the stated distance is a parameter that may be raised"
-            )]
-            let near = to_edge.get(k).is_some_and(|&(d, _)| d <= EDGE_DISTANCE);
-            if near {
-                m.edge_placement += 1;
-            } else if false_shadow {
-                m.acne += 1;
-            } else {
-                m.leaks += 1;
-            }
-        }
+        m.ties += u64::from(s.shadow == Shadow::from_bits(1 << 15));
+        m.false_shadow += u64::from(shadowed(s) && t.lit);
+        m.false_light += u64::from(!shadowed(s) && !t.lit);
+        m.edge_placement += u64::from(*v == Verdict::EdgePlacement);
+        m.acne += u64::from(*v == Verdict::Acne);
+        m.leaks += u64::from(*v == Verdict::Leak);
         let e = s.shadow.to_num::<f64>() - (1.0 - t.visibility);
         abs_error += e.abs();
         square_error += e * e;
@@ -188,6 +234,16 @@ pub fn compare(render: &[Shaded], truth: &[Option<PixelTruth>], width: u32) -> M
             texels.push((a.0 - b.0).hypot(a.1 - b.1));
         }
     }
+    // The footprint: horizontal neighbours, both evaluated, on one surface
+    // (a jump of more than 8 texels is taken as another surface).
+    let mut steps: Vec<f64> = (1..render.len())
+        .filter(|&k| k % width != 0 && rendered[k].is_some() && rendered[k - 1].is_some())
+        .filter_map(|k| Some((texel(k)?, texel(k - 1)?)))
+        .map(|(a, b)| (a.0 - b.0).hypot(a.1 - b.1))
+        .filter(|d| *d <= 8.0)
+        .collect();
+    steps.sort_by(f64::total_cmp);
+    m.texels_per_pixel = steps.get(steps.len() / 2).copied().unwrap_or(0.0);
     m.displacement = summary(&mut pixels);
     m.displacement_texels = summary(&mut texels);
     if m.evaluated > 0 {

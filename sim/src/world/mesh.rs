@@ -358,9 +358,10 @@ impl Mesh {
     }
 
     /// A simple character standing on `y = 0` at `feet`, `height` tall: two
-    /// legs, a body and arms as boxes, a head as a sphere — each part closed.
+    /// legs, a body and arms as boxes, a head as a sphere of `head` slices
+    /// and `head / 2 + 2` stacks — each part closed.
     #[must_use]
-    pub fn figure(feet: Vec3, height: f32) -> Self {
+    pub fn figure(feet: Vec3, height: f32, head: u32) -> Self {
         let u = height / 8.0;
         let part = |lo: Vec3, hi: Vec3| Self::cuboid(feet + lo * u, feet + hi * u);
         let mut m = part(Vec3::new(-0.9, 0.0, -0.4), Vec3::new(-0.1, 3.6, 0.4));
@@ -368,7 +369,37 @@ impl Mesh {
         m.append(&part(Vec3::new(-1.1, 3.7, -0.6), Vec3::new(1.1, 6.3, 0.6)));
         m.append(&part(Vec3::new(-1.7, 3.9, -0.3), Vec3::new(-1.2, 6.2, 0.3)));
         m.append(&part(Vec3::new(1.2, 3.9, -0.3), Vec3::new(1.7, 6.2, 0.3)));
-        m.append(&Self::sphere(feet + Vec3::new(0.0, 7.1, 0.0) * u, 0.8 * u, 10, 16));
+        m.append(&Self::sphere(feet + Vec3::new(0.0, 7.1, 0.0) * u, 0.8 * u, head / 2 + 2, head));
+        m
+    }
+
+    /// Weiskopf & Ertl's L (their Figure 5) as one closed solid: a profile in
+    /// the x–y plane, a base `thickness` tall along the bottom of the box
+    /// `min`–`max` and an upright `thickness` wide at its +x end, extruded
+    /// along z. The inner crease is a concave edge of a single surface, not
+    /// two boxes touching, so the light pass sees one object with one back.
+    #[must_use]
+    pub fn ell(min: Vec3, max: Vec3, thickness: f32) -> Self {
+        let (x0, y0, x1, y1, t) = (min.x, min.y, max.x, max.y, thickness);
+        // Counter-clockwise seen from +z; vertex 4 is the reflex corner.
+        let profile = [(x0, y0), (x1, y0), (x1, y1), (x1 - t, y1), (x1 - t, y0 + t), (x0, y0 + t)];
+        let mut m = Self::default();
+        for z in [min.z, max.z] {
+            m.positions.extend(profile.iter().map(|&(x, y)| Vec3::new(x, y, z)));
+        }
+        // Each cap a fan from the reflex corner, which sees every vertex;
+        // the back cap (z = min) wound the other way.
+        for k in [5, 0, 1, 2] {
+            let next = (k + 1) % 6;
+            m.triangles.push([4, next, k]);
+            m.triangles.push([10, 6 + k, 6 + next]);
+        }
+        // The six sides, each facing out of the profile.
+        for k in 0..6 {
+            let next = (k + 1) % 6;
+            m.triangles.push([k, next, 6 + next]);
+            m.triangles.push([k, 6 + next, 6 + k]);
+        }
         m
     }
 

@@ -136,6 +136,9 @@ pub struct Scene {
     pub camera: Perspective,
     /// Image width and height in pixels.
     pub image: [u32; 2],
+    /// How `umbra` commands name it again: the bundled scene's name or the
+    /// file it was loaded from (empty for a scene built in code).
+    pub source: String,
 }
 
 impl Scene {

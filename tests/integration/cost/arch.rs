@@ -7,7 +7,7 @@ use umbra::core::{CullMode, D16, D24, DepthFormat, DepthFormatKind, DepthUnit, L
 use umbra::sim::cost::arch::file::BUNDLED;
 use umbra::sim::cost::arch::{Arch, ArchProbe, PassKind, PassTiming, Stage};
 use umbra::sim::io::limits::Limits;
-use umbra::sim::pass::render::{Algorithm, RenderConfig, cost};
+use umbra::sim::pass::render::{Algorithm, Culling, RenderConfig, cost};
 use umbra::sim::world::scene::Scene;
 
 use crate::common::{run, triangles};
@@ -181,6 +181,7 @@ fn memory_bound_halves_and_compute_bound_stays() {
         width: 240,
         height: 135,
         reference_samples: 1,
+        culling: Culling::ALGORITHM,
     };
     let frame = |arch: &Arch| cost(&scene, &cfg, arch, &Limits::DEFAULT).expect("costs");
     let mut slow = bundled("immediate");
@@ -220,6 +221,7 @@ fn energy_is_the_sum_over_units_recomputed_from_the_events() {
         width: 160,
         height: 90,
         reference_samples: 1,
+        culling: Culling::ALGORITHM,
     };
     let arch = bundled("talisman");
     let r = cost(&scene, &cfg, &arch, &Limits::DEFAULT).expect("costs");
@@ -274,6 +276,7 @@ fn shadow_volume_cost_follows_overdraw_and_stays_on_chip_on_a_tiler() {
         width: w,
         height: h,
         reference_samples: 1,
+        culling: Culling::ALGORITHM,
     };
     let talisman = bundled("talisman");
     let small = cost(&scene, &cfg(320, 180), &talisman, &Limits::DEFAULT).expect("costs");
@@ -318,6 +321,7 @@ fn sens_p_both_ways() {
             width: w,
             height: h,
             reference_samples: 1,
+            culling: Culling::ALGORITHM,
         };
         cost(&scene, &cfg, &talisman, &Limits::DEFAULT).expect("costs").sen
     };
@@ -344,6 +348,7 @@ fn the_timeline_is_the_timing_model() {
         width: 160,
         height: 90,
         reference_samples: 1,
+        culling: Culling::ALGORITHM,
     };
     let arch = bundled("talisman");
     let r = cost(&scene, &cfg, &arch, &Limits::DEFAULT).expect("costs");

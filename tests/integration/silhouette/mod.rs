@@ -6,7 +6,7 @@ use umbra::core::DepthFormatKind;
 use umbra::core::glam::{Mat4, Vec3};
 use umbra::core::shadow::Filter;
 use umbra::sim::io::limits::Limits;
-use umbra::sim::pass::render::{Algorithm, Render, RenderConfig, TruthSource, render};
+use umbra::sim::pass::render::{Algorithm, Culling, Render, RenderConfig, TruthSource, render};
 use umbra::sim::world::mesh::Mesh;
 use umbra::sim::world::scene::{Light, Object, Orthographic, Perspective, Scene};
 
@@ -23,7 +23,14 @@ fn scene(occluders: Vec<Mesh>) -> Scene {
         Orthographic { position: Vec3::new(0.0, 5.0, 0.0), target: Vec3::ZERO, extent: EXTENT, near: 1.0, far: 10.0 };
     let camera =
         Perspective { position: Vec3::new(0.0, 4.0, 0.6), target: Vec3::ZERO, fov_degrees: 34.0, near: 0.5, far: 20.0 };
-    Scene { name: "square".into(), objects, lights: vec![Light::Directional(light)], camera, image: [320, 240] }
+    Scene {
+        name: "square".into(),
+        objects,
+        lights: vec![Light::Directional(light)],
+        camera,
+        image: [320, 240],
+        source: String::new(),
+    }
 }
 
 /// A thin closed square slab of side 1 at height 1, turned `degrees` about
@@ -45,6 +52,7 @@ fn config(algorithm: Algorithm, map: u32, scene: &Scene) -> RenderConfig {
         width: scene.image[0],
         height: scene.image[1],
         reference_samples: 1,
+        culling: Culling::ALGORITHM,
     }
 }
 

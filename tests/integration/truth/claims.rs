@@ -1,16 +1,21 @@
-//! The papers' claims, measured through the study's sweep (metrics only, no
-//! presets) on small images. Each threshold was set from a measurement on
-//! these exact configurations and is stated beside the assertion with the
-//! measured figure.
+//! The papers' claims at the papers' scale: 512×512 images or larger, the
+//! papers' map sizes, each claim asserted in the metric it is argued in
+//! (artifacts for acne and leaks, false light for self-unshadowing, area
+//! error for filtering, wrong pixels and boundary displacement for
+//! silhouette maps). Each threshold was set from a measurement on these
+//! exact configurations and sits several pixels from it; the measured
+//! figure and the margin are stated beside the assertion. A claim that does
+//! not hold here is asserted as the measured failure.
 
 use umbra::core::DepthFormatKind;
 use umbra::core::shadow::{Filter, Jitter, MapCoord};
-use umbra::sim::experiment::study::{self, FIRST_BIASES, Row, Shard, Spec, UNLIMITED_OFFSET, Variant};
+use umbra::sim::experiment::study::{self, Row, Shard, Spec, UNLIMITED_OFFSET, Variant};
 use umbra::sim::io::limits::Limits;
 use umbra::sim::pass::render::Algorithm;
 use umbra::sim::world::scene::Scene;
 
-/// A metrics-only sweep of one scene.
+/// A metrics-only sweep of one bundled scene at `size` (width, height,
+/// reference rays per pixel side), 24-bit maps.
 fn sweep(
     scene: &str,
     variants: Vec<Variant>,
@@ -33,112 +38,218 @@ fn sweep(
     let rows = study::run(&spec, Shard::ALL, &indicatif::ProgressBar::hidden());
     for r in &rows {
         assert_eq!(r.status, "ok", "{}: {}", r.label(), r.reason);
+        eprintln!(
+            "{} {} map {}² {}: misclassified {:.4} % (edge {}, acne {}, leaks {}), false light {:.4} %, MAE {:.5}, displacement {:?}/{:?} px, {:?} texels/px",
+            r.scene,
+            r.label(),
+            r.map,
+            r.filter,
+            r.misclassified_percent.unwrap_or(f64::NAN),
+            r.edge_placement.unwrap_or(0),
+            r.acne.unwrap_or(0),
+            r.leaks.unwrap_or(0),
+            100.0 * r.false_light_rate.unwrap_or(f64::NAN),
+            r.mean_abs_error.unwrap_or(f64::NAN),
+            r.displacement_mean,
+            r.displacement_p95,
+            r.texels_per_pixel
+        );
     }
     rows
 }
 
-fn bilinear() -> Vec<(String, Filter)> {
-    vec![("bilinear".to_owned(), Filter::Bilinear)]
+fn filter(name: &str, f: Filter) -> Vec<(String, Filter)> {
+    vec![(name.to_owned(), f)]
 }
 
-fn err(r: &Row) -> f64 {
-    r.misclassified_percent.expect("measured")
+fn artifacts(r: &Row) -> u64 {
+    r.acne.expect("measured") + r.leaks.expect("measured")
 }
 
-/// Wang & Molnar §1–§3 on their table (legs touching the floor), 240×135,
-/// one reference ray per pixel, 24-bit bilinear.
+/// Pixels of false light.
+#[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "a rate of a pixel count")]
+fn false_light(r: &Row) -> u64 {
+    (r.false_light_rate.expect("measured") * r.evaluated.expect("measured") as f64).round() as u64
+}
+
+/// Wang & Molnar §2 and Figure 4: on their table, lit from low to the side,
+/// no first-depth bias is acceptable — a dense sweep of 31 biases from 0 to
+/// 0.03 at 512×512 with a 512² 24-bit map (bilinear) leaves every bias with
+/// acne or leaks (shadows detached from the legs), while second depth at
+/// bias 0 has almost none.
 ///
-/// * No bias of the sweep (0 … 0.01) brings first depth below 0.07 %
-///   misclassified at 512² (measured best 0.0715 % at 0.005 and 0.01; bias 0
-///   gives 45.9 % acne), while second depth with virtual samples at bias 0
-///   stays below 0.07 % (measured 0.0660 %). The margins are thin: on this
-///   scene a large bias costs only the few pixels where the legs meet the
-///   floor.
-/// * No bias is free of both errors: at every bias first depth has more
-///   false shadow or more false light than second depth.
-/// * At the same map size (256²) second depth beats first depth at its best
-///   bias (measured 0.099 % against 0.115 %). Across sizes the claim does
-///   not hold here: second depth at 256² (0.099 %) is less accurate than
-///   first depth's best at 512² (0.0715 %).
+/// * Second depth: measured 6 artifacts (5 acne, 1 leak); asserted ≤ 20.
+/// * First depth's best bias (0.010): 93 (46 acne, 47 leaks); asserted ≥ 60.
+/// * At every bias the worse of acne and leaks is at least 30 pixels
+///   (measured smallest 47, at 0.010): below 0.010 acne dominates, above it
+///   leaks — the trade Wang & Molnar describe, with no window between.
 #[test]
-fn wang_molnar_table_second_depth_needs_no_bias() {
-    let mut variants: Vec<Variant> = FIRST_BIASES.iter().map(|&b| Variant::new("first", Algorithm::First, b)).collect();
+fn wang_molnar_no_first_depth_bias_is_acceptable() {
+    let biases: Vec<f64> = (0..=30).map(|k| f64::from(k) * 0.001).collect();
+    let mut variants: Vec<Variant> = biases.iter().map(|&b| Variant::new("first", Algorithm::First, b)).collect();
     variants.push(Variant::new("second", Algorithm::Second, 0.0));
-    let rows = sweep("table", variants, &[256, 512], bilinear(), (240, 135, 1));
-    let first = |map: u32| rows.iter().filter(move |r| r.algorithm == "first" && r.map == map);
-    let best = |map: u32| first(map).map(err).fold(f64::INFINITY, f64::min);
-    let second = |map: u32| rows.iter().find(|r| r.algorithm == "second" && r.map == map).expect("second");
-    for r in &rows {
-        eprintln!("{} at {}²: {:.4} %", r.label(), r.map, err(r));
+    let rows = sweep("table", variants, &[512], filter("bilinear", Filter::Bilinear), (512, 512, 1));
+    let second = rows.iter().find(|r| r.algorithm == "second").expect("second");
+    let first: Vec<&Row> = rows.iter().filter(|r| r.algorithm == "first").collect();
+    let best = first.iter().map(|r| artifacts(r)).min().expect("biases");
+    eprintln!("second depth: {} artifacts; first depth's best bias: {best}", artifacts(second));
+    assert!(artifacts(second) <= 20, "second depth: {} artifacts", artifacts(second));
+    assert!(best >= 60, "a first-depth bias leaves only {best} artifacts");
+    for r in &first {
+        let (acne, leaks) = (r.acne.expect("measured"), r.leaks.expect("measured"));
+        assert!(acne.max(leaks) >= 30, "bias {}: {acne} acne, {leaks} leaks", r.bias);
     }
-    assert!(best(512) > 0.07, "first depth's best bias reached {} %", best(512));
-    assert!(err(second(512)) < 0.07, "second depth at bias 0: {} %", err(second(512)));
-    let s = second(512);
-    for r in first(512) {
-        assert!(
-            r.false_shadow_rate > s.false_shadow_rate || r.false_light_rate > s.false_light_rate,
-            "bias {} is no worse than second depth in either error",
-            r.bias
-        );
-    }
-    assert!(err(second(256)) < best(256), "second {} % vs first's best {} % at 256²", err(second(256)), best(256));
 }
 
-/// Weiskopf & Ertl §3 on their L-shaped object, 320×180, 512² 24-bit:
-/// dual depth with back-face culled solids has fewer self-shadowing errors
-/// (false shadow) than dual depth without culling (measured 0.148 % against
-/// 0.240 % of the pixels), and no more self-unshadowing (false light) than
-/// the midpoint with the same culling (measured 0.023 % for both: here every
-/// false-light pixel lies on the L's silhouette, where both references take
-/// the same texels; the strict difference needs a receiver between
-/// `z1 + offset` and the midpoint, which this scene does not have).
+/// Weiskopf & Ertl §3–§4 and Figure 5 on their L (one closed mesh, lit from
+/// the right above so that the upright shadows the base), 512×512, a heavily
+/// undersampled 128² 24-bit map, bilinear.
+///
+/// * Back-face culling removes dual depth's self-shadowing at the
+///   silhouettes (Figure 2 (b), 5 (c) against (f)): acne with culling
+///   against acne without.
+/// * Midpoint maps with back-face culling self-unshadow near silhouettes
+///   (Figure 4, 5 (e)), dual depth does not: its false light against
+///   midpoint-with-culling's. Self-unshadowing lies next to the shadow
+///   boundary, within the edge distance, so it is counted as false light,
+///   not as leaks.
+///
+/// Measured: acne 22 (dual) against 745 (dual without culling), asserted
+/// ≤ 60 and ≥ 400; false light 112 pixels (dual) against 142
+/// (midpoint-bfc), asserted at least 15 apart. Not reproduced: Figure 5 (b)'s
+/// self-unshadowing of the midpoint without culling — on the closed L its
+/// false light equals dual depth's (112 and 112), because without culling
+/// `z2` is the L's own back, close behind `z1`, and the midpoint never
+/// passes a receiver (asserted as measured, within 5 pixels).
 #[test]
 fn weiskopf_ertl_dual_depth_with_culling() {
     let variants = vec![
-        Variant::new("dual", Algorithm::Dual { offset: 0.005 }, 0.0),
+        Variant::new("dual", Algorithm::Dual { offset: 0.05 }, 0.0),
         Variant::new("midpoint-bfc", Algorithm::Dual { offset: UNLIMITED_OFFSET }, 0.0),
-        Variant::new("dual-nocull", Algorithm::Dual { offset: 0.005 }, 0.0).without_culling(),
+        Variant::new("midpoint", Algorithm::Midpoint, 0.0),
+        Variant::new("dual-nocull", Algorithm::Dual { offset: 0.05 }, 0.0).without_culling(),
+        Variant::new("first", Algorithm::First, 0.02),
     ];
-    let rows = sweep("weiskopf-l", variants, &[512], bilinear(), (320, 180, 1));
+    let rows = sweep("weiskopf-l", variants, &[128], filter("bilinear", Filter::Bilinear), (512, 512, 1));
     let get = |name: &str| rows.iter().find(|r| r.algorithm == name).expect("row");
-    let (dual, mid, nocull) = (get("dual"), get("midpoint-bfc"), get("dual-nocull"));
-    let rate = |x: Option<f64>| x.expect("measured");
+    let (dual, mid_bfc, nocull) = (get("dual"), get("midpoint-bfc"), get("dual-nocull"));
+    let acne = |r: &Row| r.acne.expect("measured");
+    assert!(acne(dual) <= 60, "dual depth with culling: {} acne", acne(dual));
+    assert!(acne(nocull) >= 400, "dual depth without culling: {} acne", acne(nocull));
     assert!(
-        rate(dual.false_shadow_rate) < rate(nocull.false_shadow_rate),
-        "false shadow: dual {:?} vs no culling {:?}",
-        dual.false_shadow_rate,
-        nocull.false_shadow_rate
+        false_light(mid_bfc) >= false_light(dual) + 15,
+        "false light: midpoint-bfc {} against dual {}",
+        false_light(mid_bfc),
+        false_light(dual)
     );
-    assert!(
-        rate(dual.false_light_rate) <= rate(mid.false_light_rate),
-        "false light: dual {:?} vs midpoint {:?}",
-        dual.false_light_rate,
-        mid.false_light_rate
-    );
-    // The culling is what removes the self-shadowing: without it the dual
-    // map's z2 is the L's own back face.
-    assert!(rate(nocull.false_shadow_rate) > 1.5 * rate(dual.false_shadow_rate));
+    assert!(false_light(get("midpoint")).abs_diff(false_light(dual)) <= 5, "midpoint without culling");
 }
 
-/// Reeves et al. §4: the jittered filter's error against the area-averaged
-/// reference (4×4 rays per pixel) falls as `NumSamples` goes 1 → 4 → 16, on
-/// their sphere, first depth at bias 0.01, 512² 24-bit, 240×135, with
-/// `ResFactor` 1 so that the filter's footprint is the pixel's own (Reeves'
-/// `ResFactor` 3 blurs past the pixel, and then the blur, not the sampling
-/// noise, dominates the error against the pixel's own area). Measured mean
-/// absolute error 0.00389, 0.00246, 0.00219.
+/// Reeves et al. §4 on their sphere, first depth at bias 0.01, 512² 24-bit,
+/// 512×512 (the map magnified, 0.53 texels per pixel), the area-averaged
+/// reference at 4×4 rays per pixel: the jittered filter's mean absolute
+/// area error as `NumSamples` goes 1 → 4 → 16, with Reeves' own `ResFactor`
+/// 3 and with 1.
+///
+/// Measured, ResFactor 3: 2.668, 1.995, 1.941 ×10⁻³ — more samples, less
+/// error, asserted as a fall of at least 15 % from 1 to 4 samples (measured
+/// 25 %) and no rise from 4 to 16 (measured −2.7 %). ResFactor 1: 1.656,
+/// 1.582, 1.582 ×10⁻³ — a region under a texel wide takes no more than 4
+/// samples, so 16 equals 4; and it is below ResFactor 3 at every count
+/// (asserted at least 10 % below; measured 19–38 %): the wider region blurs
+/// past the pixel's own area.
 #[test]
 fn reeves_more_samples_less_error() {
-    let filters = [1u16, 4, 16]
+    let filters = [1.0, 3.0]
         .iter()
-        .map(|&n| {
-            let j = Jitter { num_samples: n, res_factor: MapCoord::ONE, ..Jitter::REEVES };
-            (format!("jitter{n}"), Filter::Jittered(j))
+        .flat_map(|&res| {
+            [1u16, 4, 16].map(|n| {
+                let j = Jitter { num_samples: n, res_factor: MapCoord::from_num(res), ..Jitter::REEVES };
+                (format!("jitter{n}-res{res}"), Filter::Jittered(j))
+            })
         })
         .collect();
     let rows =
-        sweep("reeves-sphere", vec![Variant::new("first", Algorithm::First, 0.01)], &[512], filters, (240, 135, 4));
+        sweep("reeves-sphere", vec![Variant::new("first", Algorithm::First, 0.01)], &[512], filters, (512, 512, 4));
     let mae: Vec<f64> = rows.iter().map(|r| r.mean_abs_error.expect("measured")).collect();
-    eprintln!("mean absolute error for 1, 4, 16 samples: {mae:?}");
-    assert!(mae[1] < 0.9 * mae[0] && mae[2] < mae[1], "{mae:?}");
+    eprintln!("mean absolute error, ResFactor 1 then 3, for 1, 4, 16 samples: {mae:?}");
+    let (res1, res3) = (&mae[..3], &mae[3..]);
+    assert!(res3[1] < 0.85 * res3[0], "ResFactor 3, 1 → 4 samples: {res3:?}");
+    assert!(res3[2] <= res3[1], "ResFactor 3, 4 → 16 samples: {res3:?}");
+    for k in 0..3 {
+        assert!(res1[k] < 0.9 * res3[k], "ResFactor 1 against 3: {res1:?} {res3:?}");
+    }
+}
+
+/// Sen, Cammarano & Hanrahan §6 on CROWD, first depth at bias 0.002 under
+/// both, point sampled: the silhouette map's wrong pixels against the
+/// shadow map's with the map magnified on screen (`crowd-zoom`, 600×512,
+/// 512² map, 0.031 texels per pixel) and minified (`crowd` at 512×512 with a
+/// 2048² map, 3.2 texels per pixel).
+///
+/// * Magnified, the silhouette map's edges are where the exact ones are:
+///   measured 0.061 % misclassified against 1.452 % (24×; asserted at least
+///   10×), no artifacts against 494 (asserted ≤ 20 and ≥ 300), mean
+///   boundary displacement 0.009 against 0.405 pixels (asserted below 0.1
+///   and above 0.2).
+/// * Minified, the gain shrinks to 1.7× (0.063 % against 0.106 %; asserted
+///   below 3×): a texel is smaller than a pixel, so the shadow map's
+///   staircase is already under a pixel.
+#[test]
+fn sen_silhouette_maps_sharpen_magnified_edges() {
+    let variants = vec![
+        Variant::new("shadow-map", Algorithm::First, 0.002),
+        Variant::new("silhouette", Algorithm::Silhouette { packed: false }, 0.002),
+    ];
+    let zoom = sweep("crowd-zoom", variants.clone(), &[512], filter("point", Filter::Point), (600, 512, 1));
+    let wide = sweep("crowd", variants, &[2048], filter("point", Filter::Point), (512, 512, 1));
+    let err = |r: &Row| r.misclassified_percent.expect("measured");
+    let (map, sil) = (&zoom[0], &zoom[1]);
+    assert!(map.texels_per_pixel < Some(1.0) && wide[0].texels_per_pixel > Some(1.0), "magnified, then minified");
+    assert!(err(sil) * 10.0 < err(map), "magnified: silhouette {} % against {} %", err(sil), err(map));
+    assert!(artifacts(sil) <= 20 && artifacts(map) >= 300, "artifacts {} against {}", artifacts(sil), artifacts(map));
+    let shift = |r: &Row| r.displacement_mean.expect("measured");
+    assert!(shift(sil) < 0.1 && shift(map) > 0.2, "displacement {} against {}", shift(sil), shift(map));
+    assert!(err(&wide[1]) * 3.0 > err(&wide[0]), "minified: {} % against {} %", err(&wide[1]), err(&wide[0]));
+}
+
+/// Sen et al.'s Table 1 on CROWD zoomed in on the shadow (`crowd-zoom` at
+/// its 600×512, on `talisman`): the overdraw `O` of the shadow volumes and
+/// the silhouette fill `P`, beside theirs (O = 154.2, P = 13.3 %).
+/// Measured O = 70.6 on `crowd-zoom` against 4.96 on the wide `crowd`
+/// (asserted above 40 and at least 10× the wide view's), P = 9.2 %
+/// (asserted between 5 % and 16 %, Sen's bound for silhouette maps to cost
+/// less than twice a shadow map's bandwidth).
+#[test]
+fn sen_table_one_overdraw_and_silhouette_fill() {
+    use umbra::sim::cost::arch::Arch;
+    use umbra::sim::pass::render::{Culling, RenderConfig, cost};
+    let arch = Arch::bundled("talisman").expect("bundled");
+    let figures = |scene: &str, algorithm| {
+        let s = Scene::bundled(scene).expect("bundled");
+        let cfg = RenderConfig {
+            algorithm,
+            format: DepthFormatKind::D24,
+            map_size: 512,
+            filter: Filter::Point,
+            bias: 0.002,
+            virtual_samples: true,
+            width: s.image[0],
+            height: s.image[1],
+            reference_samples: 1,
+            culling: Culling::ALGORITHM,
+        };
+        cost(&s, &cfg, &arch, &Limits::DEFAULT).expect("costed").sen
+    };
+    let zoom = figures("crowd-zoom", Algorithm::Volumes);
+    let wide = figures("crowd", Algorithm::Volumes);
+    let sil = figures("crowd-zoom", Algorithm::Silhouette { packed: false });
+    eprintln!("O = {} (zoom), {} (wide); P = {}", zoom.overdraw, wide.overdraw, sil.p_fill);
+    assert!(
+        zoom.overdraw > 40.0 && zoom.overdraw > 10.0 * wide.overdraw,
+        "O {} against {}",
+        zoom.overdraw,
+        wide.overdraw
+    );
+    assert!((0.05..0.16).contains(&sil.p_fill), "P = {}", sil.p_fill);
 }

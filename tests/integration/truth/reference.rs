@@ -30,6 +30,7 @@ fn a_sphere_casts_a_disc_under_a_directional_light() {
         lights: vec![Light::Spot(view)],
         camera: view,
         image: [160, 120],
+        source: String::new(),
     };
     let (w, h) = (160u32, 120u32);
     let mut frame = CameraFrame::default();

@@ -46,7 +46,7 @@ pub fn with(from: &str, to: &str) -> Result<Scene, SceneError> {
 
 #[test]
 fn every_bundled_scene_loads() {
-    assert_eq!(BUNDLED.len(), 9);
+    assert_eq!(BUNDLED.len(), 10);
     for (name, _) in BUNDLED {
         let s = Scene::bundled(name).unwrap_or_else(|e| panic!("{e}"));
         assert!(!s.objects.is_empty() && !s.lights.is_empty(), "{name}");
@@ -72,12 +72,37 @@ fn closedness_is_detected() {
     assert!(Mesh::sphere(o, 1.0, 8, 16).is_closed());
     assert!(Mesh::torus(o, 1.0, 0.3, 12, 8).is_closed());
     assert!(Mesh::table(2.0, 1.0, 1.0, 0.1, 0.1).is_closed());
-    assert!(Mesh::figure(o, 1.8).is_closed());
+    assert!(Mesh::figure(o, 1.8, 16).is_closed());
+    assert!(Mesh::ell(o, Vec3::new(2.0, 1.2, 0.6), 0.3).is_closed());
     assert!(!Mesh::quad(o, Vec3::X, Vec3::Z).is_closed());
     assert!(!Mesh::sheet(o, 2.0, 1.0, 1.0, 8, 4).is_closed());
     let mut flipped = Mesh::cuboid(o, Vec3::ONE);
     flipped.triangles[0].swap(1, 2);
     assert!(!flipped.is_closed(), "one reversed triangle breaks consistent winding");
+}
+
+/// The volume a closed mesh encloses by the divergence theorem: positive
+/// when its faces point outwards.
+fn enclosed_volume(m: &Mesh) -> f32 {
+    m.triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| m.positions[i as usize]);
+            a.dot(b.cross(c)) / 6.0
+        })
+        .sum()
+}
+
+/// The L is the profile's area times its depth, faces outwards: a base
+/// 2 × 0.3 and an upright 0.3 × 0.9 above it, 0.6 deep.
+#[test]
+fn the_ell_encloses_its_profile() {
+    let m = Mesh::ell(Vec3::new(-1.0, 1.0, -0.3), Vec3::new(1.0, 2.2, 0.3), 0.3);
+    let expected = (2.0 * 0.3 + 0.3 * 0.9) * 0.6;
+    assert!((enclosed_volume(&m) - expected).abs() < 1e-4, "{} vs {expected}", enclosed_volume(&m));
+    assert_eq!(m.triangles.len(), 20);
+    let b = Mesh::cuboid(Vec3::ZERO, Vec3::ONE);
+    assert!((enclosed_volume(&b) - 1.0).abs() < 1e-5, "the measure itself: a unit box");
 }
 
 fn problem(r: Result<Scene, SceneError>, key: &str) -> Problem {

@@ -35,13 +35,13 @@ mod sweep;
 
 pub use row::Row;
 use run::sort_rows;
-pub use run::{Truth, load_scenes, render_config, run, run_config, truths, uncullable};
+pub use run::{Truth, load_scenes, render_config, run, run_config, truths};
 use shards::jsonl;
 pub use shards::{merge, read_rows, write_partial};
 pub use summary::{BUDGETS, summary, write_outputs};
 pub use sweep::{
-    BIAS_RANGES, Config, Culling, DUAL_OFFSETS, FIRST_BIASES, QUICK_SCENES, SILHOUETTE_BIAS, Shard, Spec,
-    UNLIMITED_OFFSET, Variant, algorithms, jittered,
+    BIAS_RANGES, Config, DUAL_OFFSETS, FIRST_BIASES, QUICK_SCENES, SILHOUETTE_BIAS, Shard, Spec, UNLIMITED_OFFSET,
+    Variant, algorithms, jittered,
 };
 
 /// Why the study could not run or write its files.

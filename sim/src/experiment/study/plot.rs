@@ -4,41 +4,14 @@
 //! Text needs a font for its metrics in both backends: DejaVu Sans from the
 //! system (`fonts-dejavu-core`), or the TrueType file `$UMBRA_FONT` names.
 
-use std::path::{Path, PathBuf};
-use std::sync::OnceLock;
+use std::path::Path;
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::{Row, StudyError};
-
-/// Where DejaVu Sans is looked for when `$UMBRA_FONT` is unset.
-pub const FONT_PATHS: [&str; 3] = [
-    "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
-    "/usr/share/fonts/TTF/DejaVuSans.ttf",
-    "/usr/share/fonts/dejavu/DejaVuSans.ttf",
-];
-
-/// Register the plots' font once; the error names the files tried.
-fn font() -> Result<(), String> {
-    static FONT: OnceLock<Result<(), String>> = OnceLock::new();
-    FONT.get_or_init(|| {
-        let paths: Vec<PathBuf> = std::env::var_os("UMBRA_FONT")
-            .map(|p| vec![PathBuf::from(p)])
-            .unwrap_or_else(|| FONT_PATHS.iter().map(PathBuf::from).collect());
-        let Some(bytes) = paths.iter().find_map(|p| std::fs::read(p).ok()) else {
-            return Err(format!(
-                "no font: tried {} (install fonts-dejavu-core or set UMBRA_FONT to a .ttf file)",
-                paths.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")
-            ));
-        };
-        // Registered once for the life of the process, as plotters requires.
-        let bytes: &'static [u8] = Box::leak(bytes.into_boxed_slice());
-        plotters::style::register_font("sans-serif", FontStyle::Normal, bytes)
-            .map_err(|_| "the font file is not a TrueType font".to_owned())
-    })
-    .clone()
-}
+pub use crate::io::output::FONT_PATHS;
+use crate::io::output::font;
 
 /// Plot size in pixels.
 const SIZE: (u32, u32) = (900, 600);

@@ -4,7 +4,7 @@ use std::fmt::Write as _;
 
 use serde::{Deserialize, Serialize};
 
-use super::{Config, Culling, Spec};
+use super::{Config, Spec};
 use crate::cost::arch::{Arch, CostReport};
 use crate::truth::metrics::Metrics;
 
@@ -29,8 +29,9 @@ pub struct Row {
     pub bias_hi: Option<f64>,
     /// Virtual samples on.
     pub virtual_samples: bool,
-    /// Culling.
-    pub culling: Culling,
+    /// The light pass's culling per object class (`algorithm`, or
+    /// `solids=…,open=…` as `umbra render --cull` takes it).
+    pub culling: String,
     /// Depth format.
     pub format: String,
     /// Map side.
@@ -45,6 +46,9 @@ pub struct Row {
     pub height: u32,
     /// Reference rays per pixel side.
     pub reference_samples: u32,
+    /// The `umbra render` command line that renders this row's
+    /// configuration again.
+    pub command: String,
     /// `ok` or `skipped`.
     pub status: String,
     /// Why the row was skipped (empty when ok).
@@ -73,6 +77,8 @@ pub struct Row {
     pub displacement_mean: Option<f64>,
     /// 95th-percentile boundary displacement, pixels.
     pub displacement_p95: Option<f64>,
+    /// The map's footprint on screen, texels per pixel (below 1: magnified).
+    pub texels_per_pixel: Option<f64>,
     /// Light pass cycles (per-tile timing; silhouette pass included).
     pub light_cycles: Option<u64>,
     /// Light pass bottleneck stage.
@@ -137,7 +143,7 @@ impl Row {
             offset: v.algorithm.offset(),
             bias_hi: v.algorithm.bias_hi(),
             virtual_samples: v.virtual_samples,
-            culling: v.culling,
+            culling: v.culling.label(),
             format: c.format.name().to_owned(),
             map: c.map_size,
             filter: spec.filters[c.filter].0.clone(),
@@ -145,6 +151,7 @@ impl Row {
             width: spec.width,
             height: spec.height,
             reference_samples: spec.reference_samples,
+            command: super::render_config(spec, c).command(&spec.scenes[c.scene].source),
             status: "ok".to_owned(),
             reason: String::new(),
             evaluated: None,
@@ -159,6 +166,7 @@ impl Row {
             artifact_percent: None,
             displacement_mean: None,
             displacement_p95: None,
+            texels_per_pixel: None,
             light_cycles: None,
             light_bottleneck: None,
             camera_cycles: None,
@@ -200,6 +208,7 @@ impl Row {
         self.rms_error = Some(m.rms_error);
         self.edge_placement = Some(m.edge_placement);
         self.acne = Some(m.acne);
+        self.texels_per_pixel = Some(m.texels_per_pixel);
         self.leaks = Some(m.leaks);
         self.artifact_percent = Some(m.artifact_percent);
         self.displacement_mean = Some(m.displacement[0]);

@@ -3,7 +3,7 @@
 use indicatif::ProgressBar;
 use rayon::prelude::*;
 
-use super::{Config, Culling, Row, Shard, Spec, StudyError};
+use super::{Config, Row, Shard, Spec, StudyError};
 use crate::io::limits::Limits;
 use crate::pass::render::{RenderConfig, TruthSource, cost, render, truth};
 use crate::truth::reference::PixelTruth;
@@ -23,17 +23,8 @@ pub fn render_config(spec: &Spec, c: &Config) -> RenderConfig {
         width: spec.width,
         height: spec.height,
         reference_samples: spec.reference_samples,
+        culling: v.culling,
     }
-}
-
-/// `scene` with every object open, so that no light pass culls it.
-#[must_use]
-pub fn uncullable(scene: &Scene) -> Scene {
-    let mut s = scene.clone();
-    for o in &mut s.objects {
-        o.solid = false;
-    }
-    s
 }
 
 /// Render one configuration once and cost it on every preset: one row per
@@ -48,12 +39,8 @@ pub fn uncullable(scene: &Scene) -> Scene {
 /// cannot stand for all three. The exact reference, the expensive part, is
 /// not recomputed.
 #[must_use]
-pub fn run_config(spec: &Spec, c: &Config, open: &[Scene], truths: &[Truth]) -> Vec<Row> {
-    let v = &spec.variants[c.variant];
-    let scene = match v.culling {
-        Culling::Scene => &spec.scenes[c.scene],
-        Culling::Off => &open[c.scene],
-    };
+pub fn run_config(spec: &Spec, c: &Config, truths: &[Truth]) -> Vec<Row> {
+    let scene = &spec.scenes[c.scene];
     let cfg = render_config(spec, c);
     let metrics = match &truths[c.scene] {
         Ok(t) => render(scene, &cfg, &spec.limits, TruthSource::Given(t.clone())).map_err(|e| e.to_string()),
@@ -117,14 +104,13 @@ pub fn truths(spec: &Spec) -> Vec<Truth> {
 /// configuration and preset.
 #[must_use]
 pub fn run(spec: &Spec, shard: Shard, progress: &ProgressBar) -> Vec<Row> {
-    let open: Vec<Scene> = spec.scenes.iter().map(uncullable).collect();
     let truths = truths(spec);
     let configs: Vec<Config> = spec.configs().into_iter().filter(|c| shard.contains(c.index)).collect();
     progress.set_length(configs.len() as u64);
     let rows: Vec<Vec<Row>> = configs
         .par_iter()
         .map(|c| {
-            let rows = run_config(spec, c, &open, &truths);
+            let rows = run_config(spec, c, &truths);
             progress.inc(1);
             rows
         })

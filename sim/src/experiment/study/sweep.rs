@@ -1,26 +1,13 @@
 //! The sweep: the algorithms and their parameters, the axes of a study, its configurations and shards.
 
-use serde::{Deserialize, Serialize};
 use umbra_core::DepthFormatKind;
 use umbra_core::shadow::{Filter, Jitter};
 
 use super::StudyError;
 use crate::cost::arch::Arch;
 use crate::io::limits::Limits;
-use crate::pass::render::Algorithm;
+use crate::pass::render::{Algorithm, Culling};
 use crate::world::scene::Scene;
-
-/// Which objects the light pass may cull for an algorithm that culls.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Culling {
-    /// As the algorithm does it: solids culled, open surfaces not
-    /// (Weiskopf & Ertl §3.2).
-    Scene,
-    /// Every object treated as open, so nothing is culled (the comparison
-    /// Weiskopf & Ertl's Figure 6 makes).
-    Off,
-}
 
 /// One point on the study's algorithm axis: a shadow algorithm with its
 /// bias, virtual samples and culling.
@@ -42,7 +29,7 @@ impl Variant {
     /// An algorithm at a bias, virtual samples on, the algorithm's own culling.
     #[must_use]
     pub const fn new(name: &'static str, algorithm: Algorithm, bias: f64) -> Self {
-        Self { name, algorithm, bias, virtual_samples: true, culling: Culling::Scene }
+        Self { name, algorithm, bias, virtual_samples: true, culling: Culling::ALGORITHM }
     }
 
     /// The same with virtual samples off.
@@ -52,10 +39,11 @@ impl Variant {
         self
     }
 
-    /// The same with nothing culled.
+    /// The same with nothing culled (the comparison Weiskopf & Ertl's
+    /// Figures 5 and 6 make).
     #[must_use]
     pub const fn without_culling(mut self) -> Self {
-        self.culling = Culling::Off;
+        self.culling = Culling::OFF;
         self
     }
 }

@@ -6,6 +6,9 @@ use super::{Check, MeshFile, Problem, SceneError, shared_meshes};
 use crate::io::limits::Limits;
 use crate::world::mesh::Mesh;
 
+/// The head's slices of a `figure` that does not say.
+const FIGURE_HEAD: u32 = 16;
+
 /// The triangles a generator makes, from its validated counts (0 for mesh
 /// files, which are counted as they load).
 pub(super) fn generated_triangles(c: &Check<'_>, key: &str, m: &MeshFile) -> Result<u64, SceneError> {
@@ -16,8 +19,12 @@ pub(super) fn generated_triangles(c: &Check<'_>, key: &str, m: &MeshFile) -> Res
         MeshFile::Quad { .. } => 2,
         MeshFile::Box { .. } => 12,
         MeshFile::Table { .. } => 5 * 12,
-        // Five boxes and a 10 × 16 sphere.
-        MeshFile::Figure { .. } => 5 * 12 + 2 * 16 * 9,
+        // Five boxes and a sphere of `head` slices, `head / 2 + 2` stacks.
+        MeshFile::Figure { head, .. } => {
+            let head = count("head", head.unwrap_or(FIGURE_HEAD))?.max(3);
+            5 * 12 + 2 * head * (head / 2 + 1)
+        }
+        MeshFile::Ell { .. } => 20,
         MeshFile::Sphere { stacks, slices, .. } => {
             2 * count("slices", *slices)?.max(3) * (count("stacks", *stacks)?.max(2) - 1)
         }
@@ -85,8 +92,21 @@ pub(super) fn build_mesh(
             c.count(&field("nx"), *nx)?,
             c.count(&field("ny"), *ny)?,
         ),
-        MeshFile::Figure { feet, height } => {
-            Mesh::figure(c.vec3(&field("feet"), *feet)?, c.range(&field("height"), *height, 1e-6, 1e6)?)
+        MeshFile::Figure { feet, height, head } => Mesh::figure(
+            c.vec3(&field("feet"), *feet)?,
+            c.range(&field("height"), *height, 1e-6, 1e6)?,
+            c.count(&field("head"), head.unwrap_or(FIGURE_HEAD))?.max(3),
+        ),
+        MeshFile::Ell { min, max, thickness } => {
+            let (lo, hi) = (c.vec3(&field("min"), *min)?, c.vec3(&field("max"), *max)?);
+            let room = f64::from((hi - lo).min_element());
+            if room <= 0.0 {
+                return Err(c.err(field("max"), Problem::Size { value: room, min: 1e-9, max: 1e9 }));
+            }
+            // The upright and the base must leave a concave corner.
+            let t =
+                c.range(&field("thickness"), *thickness, 1e-9, f64::from((hi.x - lo.x).min(hi.y - lo.y)) * 0.999)?;
+            Mesh::ell(lo, hi, t)
         }
     })
 }

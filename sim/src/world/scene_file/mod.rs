@@ -47,7 +47,7 @@ mod meshes;
 mod schema;
 
 /// The bundled scenes, by name: the papers' set-ups, built procedurally.
-pub const BUNDLED: [(&str, &str); 9] = [
+pub const BUNDLED: [(&str, &str); 10] = [
     ("table", include_str!("../../../../scenes/table.toml")),
     ("reeves-sphere", include_str!("../../../../scenes/reeves-sphere.toml")),
     ("weiskopf-l", include_str!("../../../../scenes/weiskopf-l.toml")),
@@ -55,6 +55,7 @@ pub const BUNDLED: [(&str, &str); 9] = [
     ("thin", include_str!("../../../../scenes/thin.toml")),
     ("open-sheet", include_str!("../../../../scenes/open-sheet.toml")),
     ("crowd", include_str!("../../../../scenes/crowd.toml")),
+    ("crowd-zoom", include_str!("../../../../scenes/crowd-zoom.toml")),
     ("grazing", include_str!("../../../../scenes/grazing.toml")),
     ("factory", include_str!("../../../../scenes/factory.toml")),
 ];
@@ -158,7 +159,9 @@ impl Scene {
                 },
             )
         })?;
-        Self::parse_bytes(&bytes, file, limits)
+        let mut scene = Self::parse_bytes(&bytes, file, limits)?;
+        scene.source = file.display().to_string();
+        Ok(scene)
     }
 
     /// Parse and validate the bytes of a scene file within `limits`; bytes
@@ -203,7 +206,11 @@ impl Scene {
     fn from_bundle(name: &str, limits: &Limits) -> Result<Self, SceneError> {
         let file = PathBuf::from(format!("scenes/{name}.toml"));
         match BUNDLED.iter().find(|(n, _)| *n == name) {
-            Some((_, text)) => Self::parse(text, &file, limits),
+            Some((_, text)) => {
+                let mut scene = Self::parse(text, &file, limits)?;
+                scene.source = name.to_owned();
+                Ok(scene)
+            }
             None => Err(Check { file: &file }.err(
                 "(name)",
                 Problem::Syntax(format!("no bundled scene `{name}`; there are {}", BUNDLED.map(|(n, _)| n).join(", "))),
@@ -297,7 +304,7 @@ impl Scene {
         let name = parsed
             .name
             .unwrap_or_else(|| file.file_stem().map_or_else(String::new, |s| s.to_string_lossy().into_owned()));
-        Ok(Self { name, objects, lights, camera, image })
+        Ok(Self { name, objects, lights, camera, image, source: String::new() })
     }
 }
 
@@ -321,6 +328,6 @@ mod tests {
                 kinds.insert(std::mem::discriminant(&o.mesh));
             }
         }
-        assert_eq!(kinds.len(), 7, "the bundled scenes use every generator");
+        assert_eq!(kinds.len(), 8, "the bundled scenes use every generator");
     }
 }

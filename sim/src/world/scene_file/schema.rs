@@ -57,7 +57,8 @@ pub(super) enum MeshFile {
     Torus { center: [f64; 3], major: f64, minor: f64, rings: u32, sides: u32 },
     Table { width: f64, depth: f64, height: f64, top: f64, leg: f64 },
     Sheet { center: [f64; 3], width: f64, height: f64, bend: f64, nx: u32, ny: u32 },
-    Figure { feet: [f64; 3], height: f64 },
+    Figure { feet: [f64; 3], height: f64, head: Option<u32> },
+    Ell { min: [f64; 3], max: [f64; 3], thickness: f64 },
 }
 
 /// Checks with the file and the key at hand.
