@@ -214,7 +214,7 @@ pub fn write_shadow_term(path: &Path, image: &crate::pass::camera::CameraImage) 
 /// The error map's colours: edge placement, acne, leaks.
 pub const ERROR_COLOURS: [[u8; 3]; 3] = [[235, 170, 0], [220, 30, 30], [30, 100, 235]];
 
-/// Write the error map: every pixel's [`Verdict`] over a faint shading of
+/// Write the error map: every pixel's [`Verdict`](crate::truth::metrics::Verdict) over a faint shading of
 /// the scene (light greys, lit surfaces lighter, so the geometry stays
 /// readable), edge placement amber, acne red, leaks blue, with a legend
 /// band below the image giving each colour's meaning and count.
