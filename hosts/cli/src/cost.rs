@@ -66,7 +66,7 @@ pub(super) struct CostArgs {
 
 /// The command line, as outputs record it.
 pub(super) fn command_line() -> String {
-    std::env::args().collect::<Vec<_>>().join(" ")
+    umbra_sim::io::provenance::command_line()
 }
 
 /// `umbra cost` and `umbra trace`.

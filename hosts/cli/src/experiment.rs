@@ -29,13 +29,27 @@ pub(super) struct PlanArgs {
 
 #[derive(clap::Args, Debug)]
 pub(super) struct StudyArgs {
-    /// Bundled scene names or scene files (default: every bundled scene, or
-    /// the quick set with --quick).
+    /// Bundled scene names or scene files, in place of the sweep's.
     pub(super) scenes: Vec<String>,
-    /// The small sweep: 3 scenes, fewer biases, formats, map sizes and
-    /// filters, 160×90 images.
+    /// The sweep: a bundled one (`quick`, `full`) or a sweep file (TOML,
+    /// see sweeps/). The flags below override single axes.
+    #[arg(long, default_value = "full")]
+    pub(super) sweep: String,
+    /// The bundled quick sweep (`--sweep quick`): 3 scenes, a few
+    /// parameters of each algorithm, 640×360.
     #[arg(long)]
     pub(super) quick: bool,
+    /// Image sizes, in place of the sweep's (`--image 640x360`; repeat for
+    /// several: an axis).
+    #[arg(long = "image")]
+    pub(super) images: Vec<String>,
+    /// Reference rays per pixel side, in place of the sweep's.
+    #[arg(long)]
+    pub(super) reference_rays: Option<u32>,
+    /// Error budgets, percent artifacts, in place of the sweep's
+    /// (`--budgets 1,0.1`).
+    #[arg(long, value_delimiter = ',')]
+    pub(super) budgets: Vec<f64>,
     /// Run only shard i of n (configurations whose index is i mod n) and
     /// write a partial results.jsonl; `umbra merge` joins the shards.
     #[arg(long)]
@@ -48,8 +62,8 @@ pub(super) struct StudyArgs {
     /// `--maps 256,1024`).
     #[arg(long, value_delimiter = ',')]
     pub(super) maps: Vec<u32>,
-    /// The architectures each configuration is costed on (default:
-    /// pixelflow, talisman, immediate).
+    /// The architectures each configuration is costed on, in place of the
+    /// sweep's (`--set` applies to the sweep's when `--arch` is not given).
     #[command(flatten)]
     pub(super) archs: ArchArgs,
     /// Output folder.
@@ -95,23 +109,45 @@ pub(super) fn plan(args: &PlanArgs, limits: &Limits) -> Result<()> {
 
 /// `umbra study`.
 pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
-    use umbra_sim::experiment::study::{self, QUICK_SCENES, Shard, Spec};
-    let names: Vec<String> = if !args.scenes.is_empty() {
-        args.scenes.clone()
-    } else if args.quick {
-        QUICK_SCENES.iter().map(|s| (*s).to_owned()).collect()
+    use umbra_sim::experiment::study::{self, Manifest, Shard, SweepFile};
+    let file = SweepFile::open(if args.quick { "quick" } else { &args.sweep }, limits)?;
+    let mut spec = file.spec(limits)?;
+    if !args.scenes.is_empty() {
+        spec.scenes = study::load_scenes(&args.scenes, limits)?;
+    }
+    if !args.archs.arch.is_empty() {
+        spec.archs = args.archs.resolve(&[])?;
+        spec.arch_params.clear();
     } else {
-        // The papers' scenes; `factory` is the timing correlation's.
-        umbra_sim::world::scene_file::BUNDLED
-            .iter()
-            .filter(|(n, _)| *n != "factory")
-            .map(|(n, _)| (*n).to_owned())
-            .collect()
-    };
-    let scenes = study::load_scenes(&names, limits)?;
-    let mut spec = if args.quick { Spec::quick(scenes) } else { Spec::full(scenes) };
+        for arch in &mut spec.archs {
+            for s in &args.archs.set {
+                arch.set(s)?;
+            }
+        }
+    }
+    if !args.images.is_empty() {
+        spec.images = args.images.iter().map(|i| image_size(i, limits)).collect::<Result<_>>()?;
+    }
+    if let Some(n) = args.reference_rays {
+        if !(1..=16).contains(&n) {
+            bail!("--reference-rays {n} is outside 1..=16");
+        }
+        spec.reference_samples = n;
+    }
+    if !args.budgets.is_empty() {
+        if let Some(b) = args.budgets.iter().find(|b| !(b.is_finite() && **b > 0.0 && **b <= 100.0)) {
+            bail!("--budgets {b} is not a percentage in (0, 100]");
+        }
+        spec.budgets.clone_from(&args.budgets);
+    }
+    // Flags change the sweep: its hash covers them, so shards run with
+    // different flags do not merge.
+    let overrides = format!(
+        "{:?}{:?}{:?}{:?}{:?}{:?}{:?}",
+        args.scenes, args.archs.arch, args.archs.set, args.images, args.reference_rays, args.budgets, args.maps
+    );
+    spec.hash = umbra_sim::io::provenance::hash(format!("{}{overrides}", file.text).as_bytes());
     spec.limits = *limits;
-    spec.archs = args.archs.resolve(&["pixelflow", "talisman", "immediate"])?;
     if !args.maps.is_empty() {
         for &side in &args.maps {
             limits.check_map(side).with_context(|| format!("--maps {side}"))?;
@@ -128,14 +164,16 @@ pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
     let start = std::time::Instant::now();
     let rows = study::run(&spec, shard, &progress);
     progress.finish_and_clear();
-    let configs = rows.iter().map(|r| r.index).collect::<std::collections::BTreeSet<_>>().len();
-    let skipped = rows.iter().filter(|r| r.status != "ok").count();
+    let configs = rows.iter().map(|r| r.config_index).collect::<std::collections::BTreeSet<_>>().len();
+    let skipped = rows.iter().filter(|r| r.metrics.is_none()).count();
+    let manifest = Manifest::new(&spec, shard, rows.len());
     if shard == Shard::ALL {
-        study::write_outputs(&args.out, &rows)?;
-        println!("{}", study::summary(&rows));
+        study::write_outputs(&args.out, &rows, &manifest)?;
+        println!("{}", study::summary(&rows, &manifest));
     } else {
-        study::write_partial(&args.out, &rows)?;
+        study::write_partial(&args.out, &rows, &manifest)?;
     }
+    write_text(&args.out.join("sweep.toml"), &file.text)?;
     // The effective architectures, beside the rows that name them.
     for arch in &spec.archs {
         write_text(&args.out.join(format!("arch-{}.toml", arch.name)), &arch.to_toml())?;
@@ -152,4 +190,16 @@ pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
         println!("wrote {}", args.out.join("extremes.md").display());
     }
     Ok(())
+}
+
+/// A `--image` size, `WIDTHxHEIGHT`, within the limits.
+fn image_size(text: &str, limits: &Limits) -> Result<[u32; 2]> {
+    let (w, h) = text
+        .split_once(['x', '×'])
+        .and_then(|(w, h)| Some((w.trim().parse::<u32>().ok()?, h.trim().parse::<u32>().ok()?)))
+        .with_context(|| format!("--image `{text}`: expected WIDTHxHEIGHT, e.g. 640x360"))?;
+    limits.check_image(w, h).with_context(|| format!("--image {text}"))?;
+    RasterConfig::new(w, h, RasterConfig::DEFAULT_TILE_SIZE, RasterConfig::DEFAULT_SUBPIXEL_BITS)
+        .with_context(|| format!("--image {text}"))?;
+    Ok([w, h])
 }

@@ -116,7 +116,11 @@ fn main() -> Result<()> {
             study(
                 &StudyArgs {
                     scenes: Vec::new(),
+                    sweep: "quick".to_owned(),
                     quick: true,
+                    images: Vec::new(),
+                    reference_rays: None,
+                    budgets: Vec::new(),
                     shard: None,
                     extremes: false,
                     maps: Vec::new(),

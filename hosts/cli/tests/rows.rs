@@ -16,9 +16,9 @@ fn each_row_renders_again_from_its_command_line() {
     let spec = Spec {
         scenes: vec![Scene::bundled("weiskopf-l").expect("bundled")],
         variants: vec![
-            Variant::new("dual", Algorithm::Dual { offset: 0.05 }, 0.0),
-            Variant::new("dual-nocull", Algorithm::Dual { offset: 0.05 }, 0.0).without_culling(),
-            Variant::new("first-range", Algorithm::BiasRange { hi: 0.004 }, 0.001),
+            Variant::new(Algorithm::Dual { offset: 0.05 }, 0.0),
+            Variant::new(Algorithm::Dual { offset: 0.05 }, 0.0).without_culling(),
+            Variant::new(Algorithm::BiasRange { hi: 0.004 }, 0.001),
         ],
         formats: vec![DepthFormatKind::D16],
         map_sizes: vec![128],
@@ -27,36 +27,44 @@ fn each_row_renders_again_from_its_command_line() {
             ("bilinear".to_owned(), umbra_core::shadow::Filter::Bilinear),
         ],
         archs: Vec::new(),
-        width: 128,
-        height: 96,
+        arch_params: Vec::new(),
+        images: vec![[128, 96]],
         reference_samples: 2,
+        budgets: vec![1.0],
+        name: "rows".to_owned(),
+        hash: String::new(),
         limits: Limits::DEFAULT,
     };
     let rows = study::run(&spec, Shard::ALL, &indicatif::ProgressBar::hidden());
     assert_eq!(rows.len(), 6);
-    let nocull = rows.iter().find(|r| r.algorithm == "dual-nocull").expect("row");
-    assert!(nocull.command.contains("--cull solids=none,open=none"), "{}", nocull.command);
+    let nocull = |r: &&umbra_sim::experiment::study::Row| r.config.culling != "algorithm";
+    let c = &rows.iter().find(nocull).expect("row").config.command;
+    assert!(c.contains("--cull solids=none,open=none"), "{c}");
     for (k, row) in rows.iter().enumerate() {
         let out = dir(&format!("row{k}"));
-        let mut args: Vec<&str> = row.command.split_whitespace().skip(1).collect();
+        let mut args: Vec<&str> = row.config.command.split_whitespace().skip(1).collect();
         let o = out.to_str().expect("UTF-8");
         args.extend(["--out", o]);
         let r = umbra(&args);
-        assert!(r.status.success(), "{}: {}", row.command, String::from_utf8_lossy(&r.stderr));
+        assert!(r.status.success(), "{}: {}", row.config.command, String::from_utf8_lossy(&r.stderr));
         let m: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(out.join("metrics.json")).expect("metrics")).expect("JSON");
         let _ = std::fs::remove_dir_all(&out);
-        let field = |name: &str| m[name].as_u64();
-        assert_eq!(field("evaluated"), row.evaluated, "{}", row.command);
-        assert_eq!(field("edge_placement"), row.edge_placement, "{}", row.command);
-        assert_eq!(field("acne"), row.acne, "{}", row.command);
-        assert_eq!(field("leaks"), row.leaks, "{}", row.command);
-        assert_eq!(m["mean_abs_error"].as_f64(), row.mean_abs_error, "{}", row.command);
+        let (field, want, c) = (|name: &str| m[name].as_u64(), row.metrics.expect("measured"), &row.config.command);
+        assert_eq!(field("evaluated"), Some(want.evaluated_px), "{c}");
+        assert_eq!(field("edge_placement"), Some(want.edge_placement_px), "{c}");
+        assert_eq!(field("acne"), Some(want.acne_px), "{c}");
+        assert_eq!(field("leaks"), Some(want.leaks_px), "{c}");
+        assert_eq!(m["mean_abs_error"].as_f64(), Some(want.mean_abs_error), "{c}");
     }
     // The culling changes the result: the rows differ.
-    let dual = rows.iter().find(|r| r.algorithm == "dual" && r.filter == "bilinear").expect("row");
-    let nocull = rows.iter().find(|r| r.algorithm == "dual-nocull" && r.filter == "bilinear").expect("row");
-    assert_ne!(dual.acne, nocull.acne);
+    let bilinear = |cull: bool| {
+        rows.iter()
+            .find(|r| r.config.algorithm == "dual" && r.config.filter_name == "bilinear" && nocull(r) == cull)
+            .and_then(|r| r.metrics)
+            .expect("row")
+    };
+    assert_ne!(bilinear(false).acne_px, bilinear(true).acne_px);
 }
 
 #[test]

@@ -3,3 +3,4 @@
 
 pub mod limits;
 pub mod output;
+pub mod provenance;

@@ -227,20 +227,43 @@ impl Algorithm {
         }
     }
 
+    /// The algorithm's one name, everywhere: `umbra render --algo`, sweep
+    /// files and the study's rows.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::First => "first",
+            Self::BiasRange { .. } => "bias-range",
+            Self::Second => "second",
+            Self::SecondFrontCulled => "second-ffc",
+            Self::Midpoint => "midpoint",
+            Self::Dual { .. } => "dual",
+            Self::Silhouette { packed: false } => "silhouette",
+            Self::Silhouette { packed: true } => "silhouette-packed",
+            Self::Volumes => "volumes",
+        }
+    }
+
+    /// The paper the algorithm comes from, as the study groups them.
+    #[must_use]
+    pub const fn family(self) -> &'static str {
+        match self {
+            Self::First | Self::BiasRange { .. } => "first depth",
+            Self::Second | Self::SecondFrontCulled => "second depth",
+            Self::Midpoint | Self::Dual { .. } => "midpoint and dual",
+            Self::Silhouette { .. } => "silhouette map",
+            Self::Volumes => "shadow volumes",
+        }
+    }
+
     /// The algorithm as `umbra render` takes it: `--algo` and its own
     /// parameter.
     #[must_use]
     pub fn flags(self) -> String {
         match self {
-            Self::First => "--algo first".to_owned(),
             Self::BiasRange { hi } => format!("--algo bias-range --bias1 {hi}"),
-            Self::Second => "--algo second".to_owned(),
-            Self::SecondFrontCulled => "--algo second-ffc".to_owned(),
-            Self::Midpoint => "--algo midpoint".to_owned(),
             Self::Dual { offset } => format!("--algo dual --offset {offset}"),
-            Self::Silhouette { packed: false } => "--algo silhouette".to_owned(),
-            Self::Silhouette { packed: true } => "--algo silhouette-packed".to_owned(),
-            Self::Volumes => "--algo volumes".to_owned(),
+            _ => format!("--algo {}", self.name()),
         }
     }
 

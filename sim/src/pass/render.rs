@@ -152,11 +152,7 @@ impl RenderConfig {
                 j.num_samples, j.res_factor, j.min_samples, j.min_size
             ),
         };
-        let quoted = if source.chars().all(|c| c.is_ascii_alphanumeric() || "-_./".contains(c)) {
-            source.to_owned()
-        } else {
-            format!("'{}'", source.replace('\'', r"'\''"))
-        };
+        let quoted = crate::io::provenance::shell_word(source);
         let mut c = format!(
             "umbra render {quoted} {} --depth {} --map {} --filter {filter} --bias {} --width {} --height {} --reference-samples {}",
             self.algorithm.flags(),

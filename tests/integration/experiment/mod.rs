@@ -1,4 +1,8 @@
-//! The planner and the study: sweeps, shards and merges.
+//! The planner and the study: sweeps, sweep files, shards, merges and the
+//! summary.
 
+mod merge;
 mod plan;
 mod study;
+mod summary;
+mod sweeps;

@@ -10,7 +10,7 @@ use umbra::core::DepthFormatKind;
 use umbra::sim::cost::arch::Arch;
 use umbra::sim::experiment::study::extremes::{self, RATIOS};
 use umbra::sim::experiment::study::plot::pareto_front;
-use umbra::sim::experiment::study::{self, Row, Shard, Spec, Variant};
+use umbra::sim::experiment::study::{self, Manifest, Row, Shard, Spec, Status, Variant};
 use umbra::sim::io::limits::Limits;
 use umbra::sim::pass::render::Algorithm;
 use umbra::sim::world::scene::Scene;
@@ -28,15 +28,16 @@ fn dir(name: &str) -> PathBuf {
 fn small() -> Spec {
     let scenes = study::load_scenes(&["table", "weiskopf-l"], &Limits::DEFAULT).expect("bundled");
     let mut spec = Spec::quick(scenes);
-    spec.variants = vec![
-        Variant::new("first", Algorithm::First, 0.002),
-        Variant::new("dual", Algorithm::Dual { offset: 0.005 }, 0.0),
-    ];
+    spec.variants = vec![Variant::new(Algorithm::First, 0.002), Variant::new(Algorithm::Dual { offset: 0.005 }, 0.0)];
     spec.map_sizes = vec![128];
-    spec.width = 64;
-    spec.height = 36;
+    spec.images = vec![[64, 36]];
     spec.reference_samples = 1;
     spec
+}
+
+/// The manifest of a whole run of `spec`.
+fn whole(spec: &Spec, rows: &[Row]) -> Manifest {
+    Manifest::new(spec, Shard::ALL, rows.len())
 }
 
 /// A sweep's limits hold for every configuration: a map above
@@ -53,15 +54,16 @@ fn configurations_beyond_the_sweeps_limits_are_skipped_rows_naming_them() {
     spec.limits = Limits { max_map_side: 64, ..Limits::DEFAULT };
     let limited = run_on(1, &spec, Shard::ALL);
     assert_eq!(limited.len(), default.len());
-    assert!(limited.iter().any(|r| r.map == 64) && limited.iter().any(|r| r.map == 128));
+    let side = |r: &Row| r.config.map_side_texels;
+    assert!(limited.iter().any(|r| side(r) == 64) && limited.iter().any(|r| side(r) == 128));
     for (l, d) in limited.iter().zip(&default) {
-        if l.map == 64 {
-            assert_eq!(l.status, "ok");
+        if side(l) == 64 {
+            assert_eq!(l.status, Status::Ok);
             assert_eq!(l, d);
         } else {
-            assert_eq!(l.status, "skipped");
+            assert_eq!(l.status, Status::Skipped);
             assert!(l.reason.contains("max_map_side") && l.reason.contains("128"), "{}", l.reason);
-            assert_eq!(d.status, "ok");
+            assert_eq!(d.status, Status::Ok);
         }
     }
     // The scenes are loaded within limits too: the table has 2280 triangles.
@@ -97,15 +99,22 @@ fn same_bytes_on_one_and_two_threads() {
     let (a, b) = (dir("threads-1"), dir("threads-2"));
     let rows1 = run_on(1, &spec, Shard::ALL);
     let rows2 = run_on(2, &spec, Shard::ALL);
-    study::write_outputs(&a, &rows1).expect("write");
-    study::write_outputs(&b, &rows2).expect("write");
+    study::write_outputs(&a, &rows1, &whole(&spec, &rows1)).expect("write");
+    study::write_outputs(&b, &rows2, &whole(&spec, &rows2)).expect("write");
     let n = spec.configs().len();
     assert_eq!(n, 2 * 2 * 2 * 2);
     assert_eq!(rows1.len(), n * Arch::era_presets().len());
-    assert!(rows1.windows(2).all(|w| (w[0].index, w[0].arch_index) < (w[1].index, w[1].arch_index)));
+    assert!(rows1.windows(2).all(|w| (w[0].config_index, w[0].arch_index) < (w[1].config_index, w[1].arch_index)));
     let (fa, fb) = (files(&a), files(&b));
     let names: Vec<&str> = fa.iter().map(|f| f.0.as_str()).collect();
-    for f in ["results.jsonl", "results.csv", "summary.md", "pareto-table-cycles.png", "pareto-weiskopf-l-bytes.svg"] {
+    for f in [
+        "results.jsonl",
+        "results.csv",
+        "summary.md",
+        "manifest.json",
+        "pareto-table-cycles.png",
+        "pareto-weiskopf-l-bytes.svg",
+    ] {
         assert!(names.contains(&f), "{f} missing from {names:?}");
     }
     assert_eq!(fa.len(), fb.len());
@@ -117,35 +126,48 @@ fn same_bytes_on_one_and_two_threads() {
     }
 }
 
+/// The files of a folder but its manifest (which records the command
+/// line that wrote it).
+fn outputs(d: &Path) -> Vec<(String, Vec<u8>)> {
+    files(d).into_iter().filter(|f| f.0 != "manifest.json").collect()
+}
+
+/// Three shards of `spec`, each in its folder with its manifest.
+pub fn shards(spec: &Spec, tag: &str) -> Vec<PathBuf> {
+    (0..3)
+        .map(|i| {
+            let d = dir(&format!("{tag}-shard-{i}"));
+            let shard = Shard::parse(&format!("{i}/3")).expect("valid");
+            let rows = run_on(2, spec, shard);
+            assert!(rows.iter().all(|r| r.config_index % 3 == i));
+            study::write_partial(&d, &rows, &Manifest::new(spec, shard, rows.len())).expect("write");
+            d
+        })
+        .collect()
+}
+
 /// Three shards, merged (one given as a folder, two as files, out of
-/// order), write exactly the bytes of the unsharded run; a shard given
-/// twice is refused.
+/// order), write exactly the bytes of the unsharded run, and a manifest
+/// that says it is whole. (The refusals are in `merge.rs`.)
 #[test]
 fn shards_merge_into_the_whole_run() {
     let spec = small();
-    let whole = dir("whole");
-    study::write_outputs(&whole, &run_on(2, &spec, Shard::ALL)).expect("write");
-    let shards: Vec<PathBuf> = (0..3)
-        .map(|i| {
-            let d = dir(&format!("shard-{i}"));
-            let shard = Shard::parse(&format!("{i}/3")).expect("valid");
-            let rows = run_on(2, &spec, shard);
-            assert!(rows.iter().all(|r| r.index % 3 == i));
-            study::write_partial(&d, &rows).expect("write");
-            d
-        })
-        .collect();
+    let full = dir("whole");
+    let rows = run_on(2, &spec, Shard::ALL);
+    study::write_outputs(&full, &rows, &whole(&spec, &rows)).expect("write");
+    let shards = shards(&spec, "merge");
     let merged = dir("merged");
     let inputs = vec![shards[2].join("results.jsonl"), shards[0].clone(), shards[1].join("results.jsonl")];
     let n = study::merge(&inputs, &merged, &Limits::DEFAULT).expect("merge");
     assert_eq!(n, spec.configs().len() * Arch::era_presets().len());
-    assert_eq!(files(&whole), files(&merged));
-    let twice = vec![shards[0].clone(), shards[1].clone(), shards[0].clone()];
-    assert!(matches!(study::merge(&twice, &dir("twice"), &Limits::DEFAULT), Err(study::StudyError::Duplicate { .. })));
+    assert_eq!(outputs(&full), outputs(&merged));
+    let m: Manifest =
+        serde_json::from_slice(&std::fs::read(merged.join("manifest.json")).expect("manifest")).expect("JSON");
+    assert_eq!((m.shard.as_str(), m.rows), ("0/1", n));
     for bad in ["3/3", "1", "a/2", "0/0"] {
         assert!(Shard::parse(bad).is_err(), "{bad}");
     }
-    for d in shards.into_iter().chain([whole, merged, dir("twice")]) {
+    for d in shards.into_iter().chain([full, merged]) {
         let _ = std::fs::remove_dir_all(d);
     }
 }
@@ -162,14 +184,14 @@ fn refused_configurations_are_skipped_rows() {
     spec.map_sizes = vec![128, 20_000];
     let rows = run_on(1, &spec, Shard::ALL);
     assert_eq!(rows.len(), 2 * Arch::era_presets().len());
-    let (ok, skipped): (Vec<&Row>, Vec<&Row>) = rows.iter().partition(|r| r.map == 128);
-    assert!(ok.iter().all(|r| r.status == "ok" && r.complete()));
+    let (ok, skipped): (Vec<&Row>, Vec<&Row>) = rows.iter().partition(|r| r.config.map_side_texels == 128);
+    assert!(ok.iter().all(|r| r.status == Status::Ok && r.complete()));
     for r in skipped {
-        assert_eq!(r.status, "skipped");
+        assert_eq!(r.status, Status::Skipped);
         assert!(r.reason.contains("map"), "{}", r.reason);
-        assert!(r.misclassified_percent.is_none() && r.total_cycles.is_none());
+        assert!(r.metrics.is_none() && r.cost.is_none());
     }
-    let md = study::summary(&rows);
+    let md = study::summary(&rows, &whole(&spec, &rows));
     assert!(md.contains("## Skipped") && md.contains("20000"), "{md}");
 }
 
@@ -181,40 +203,18 @@ fn pareto_front_by_hand() {
     assert_eq!(pareto_front(&pts), vec![2, 5, 4]);
 }
 
-/// The summary names, under each artifact budget, the cheapest row that
-/// meets it, or says that none does.
-#[test]
-fn summary_picks_the_cheapest_within_budget() {
-    let spec = small();
-    let rows = run_on(2, &spec, Shard::ALL);
-    let md = study::summary(&rows);
-    for scene in ["table", "weiskopf-l"] {
-        let mine: Vec<&Row> = rows.iter().filter(|r| r.scene == scene && r.complete()).collect();
-        for budget in study::BUDGETS {
-            let best = mine
-                .iter()
-                .filter(|r| r.artifact_percent.is_some_and(|m| m <= budget))
-                .map(|r| r.total_cycles.expect("costed"))
-                .min();
-            let line = md
-                .lines()
-                .skip_while(|l| *l != format!("## {scene}"))
-                .find(|l| l.starts_with(&format!("| {budget} % |")))
-                .expect("a budget line");
-            match best {
-                Some(c) => assert!(line.contains(&format!("| {c} |")), "{budget}: {c} not in {line}"),
-                None => assert!(line.contains("none meets it"), "{line}"),
-            }
-        }
-    }
+fn finite(r: &Row) -> bool {
+    r.status == Status::Ok
+        && r.metrics.is_some_and(|m| {
+            m.evaluated_px > 0
+                && [m.misclassified_percent, m.false_light_rate, m.false_shadow_rate, m.mean_abs_error]
+                    .iter()
+                    .all(|v| v.is_finite())
+        })
 }
 
-fn finite(r: &Row) -> bool {
-    r.status == "ok"
-        && r.evaluated.is_some_and(|e| e > 0)
-        && [r.misclassified_percent, r.false_light_rate, r.false_shadow_rate, r.mean_abs_error]
-            .iter()
-            .all(|m| m.is_some_and(f64::is_finite))
+fn misclassified(r: &Row) -> Option<f64> {
+    r.metrics.map(|m| m.misclassified_percent)
 }
 
 /// The light's near/far ratio from 10 to 10⁶ (table, 160×90, 512² map):
@@ -234,8 +234,8 @@ fn near_far_ratio_degrades_monotonically() {
         for f in ["d16", "d24"] {
             let e: Vec<f64> = rows
                 .iter()
-                .filter(|r| r.algorithm == a && r.format == f)
-                .map(|r| r.misclassified_percent.expect("finite"))
+                .filter(|r| r.config.algorithm == a && r.config.depth_format == f)
+                .map(|r| misclassified(r).expect("finite"))
                 .collect();
             assert_eq!(e.len(), RATIOS.len());
             assert!(e.windows(2).all(|w| w[1] >= w[0] - 0.05), "{a} {f}: {e:?}");
@@ -246,8 +246,12 @@ fn near_far_ratio_degrades_monotonically() {
     assert!(d24.is_none_or(|r| r > d16), "d24 breaks down at {d24:?}, d16 at {d16}");
     let at = |f: &str, ratio: f64| {
         rows.iter()
-            .find(|r| r.algorithm == "second" && r.format == f && r.scene == extremes::near_far_scene(ratio).name)
-            .and_then(|r| r.misclassified_percent)
+            .find(|r| {
+                r.config.algorithm == "second"
+                    && r.config.depth_format == f
+                    && r.config.scene == extremes::near_far_scene(ratio).name
+            })
+            .and_then(misclassified)
             .expect("row")
     };
     // 16 bits have run out at 10⁶ (every surface within a few steps of 1);
@@ -266,7 +270,7 @@ fn extremes_give_finite_metrics() {
     let rows = run_on(2, &extremes::spec(scenes, 96, 54), Shard::ALL);
     assert_eq!(rows.len(), 5 * extremes::variants().len() * 3);
     for r in &rows {
-        assert!(finite(r), "{} {}: {r:?}", r.scene, r.label());
+        assert!(finite(r), "{} {}: {r:?}", r.config.scene, r.label());
     }
     let md = extremes::markdown(&rows);
     assert!(md.contains("| guard-band | dual |") && !md.contains("NaN"), "{md}");
@@ -284,7 +288,7 @@ fn extremes_keep_to_their_limits() {
     let rows = study::read_rows(&out.join("extremes.jsonl"), &Limits::DEFAULT).expect("written");
     assert_eq!(rows.len(), extremes::scenes().len() * extremes::variants().len() * 3);
     for r in &rows {
-        assert!(r.misclassified_percent.is_none() && r.status != "ok", "{r:?}");
+        assert!(r.metrics.is_none() && r.status == Status::Skipped, "{r:?}");
         assert!(r.reason.contains("max_map_side"), "{}", r.reason);
     }
     assert!(md.contains("not measured") && !md.contains("never"), "{md}");

@@ -9,7 +9,7 @@
 
 use umbra::core::DepthFormatKind;
 use umbra::core::shadow::{Filter, Jitter, MapCoord};
-use umbra::sim::experiment::study::{self, Row, Shard, Spec, UNLIMITED_OFFSET, Variant};
+use umbra::sim::experiment::study::{self, Row, RowMetrics, Shard, Spec, Status, UNLIMITED_OFFSET, Variant};
 use umbra::sim::io::limits::Limits;
 use umbra::sim::pass::render::Algorithm;
 use umbra::sim::world::scene::Scene;
@@ -30,29 +30,33 @@ fn sweep(
         map_sizes: maps.to_vec(),
         filters,
         archs: Vec::new(),
-        width: size.0,
-        height: size.1,
+        arch_params: Vec::new(),
+        images: vec![[size.0, size.1]],
         reference_samples: size.2,
+        budgets: Vec::new(),
+        name: "claims".to_owned(),
+        hash: String::new(),
         limits: Limits::DEFAULT,
     };
     let rows = study::run(&spec, Shard::ALL, &indicatif::ProgressBar::hidden());
     for r in &rows {
-        assert_eq!(r.status, "ok", "{}: {}", r.label(), r.reason);
+        assert_eq!(r.status, Status::Ok, "{}: {}", r.label(), r.reason);
+        let m = m(r);
         eprintln!(
-            "{} {} map {}² {}: misclassified {:.4} % (edge {}, acne {}, leaks {}), false light {:.4} %, MAE {:.5}, displacement {:?}/{:?} px, {:?} texels/px",
-            r.scene,
+            "{} {} map {}² {}: misclassified {:.4} % (edge {}, acne {}, leaks {}), false light {:.4} %, MAE {:.5}, displacement {}/{} px, {} texels/px",
+            r.config.scene,
             r.label(),
-            r.map,
-            r.filter,
-            r.misclassified_percent.unwrap_or(f64::NAN),
-            r.edge_placement.unwrap_or(0),
-            r.acne.unwrap_or(0),
-            r.leaks.unwrap_or(0),
-            100.0 * r.false_light_rate.unwrap_or(f64::NAN),
-            r.mean_abs_error.unwrap_or(f64::NAN),
-            r.displacement_mean,
-            r.displacement_p95,
-            r.texels_per_pixel
+            r.config.map_side_texels,
+            r.config.filter_name,
+            m.misclassified_percent,
+            m.edge_placement_px,
+            m.acne_px,
+            m.leaks_px,
+            100.0 * m.false_light_rate,
+            m.mean_abs_error,
+            m.displacement_mean_px,
+            m.displacement_p95_px,
+            m.texels_per_px
         );
     }
     rows
@@ -62,14 +66,19 @@ fn filter(name: &str, f: Filter) -> Vec<(String, Filter)> {
     vec![(name.to_owned(), f)]
 }
 
+/// A measured row's metrics.
+fn m(r: &Row) -> RowMetrics {
+    r.metrics.expect("measured")
+}
+
 fn artifacts(r: &Row) -> u64 {
-    r.acne.expect("measured") + r.leaks.expect("measured")
+    m(r).artifacts_px()
 }
 
 /// Pixels of false light.
 #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "a rate of a pixel count")]
 fn false_light(r: &Row) -> u64 {
-    (r.false_light_rate.expect("measured") * r.evaluated.expect("measured") as f64).round() as u64
+    (m(r).false_light_rate * m(r).evaluated_px as f64).round() as u64
 }
 
 /// Wang & Molnar §2 and Figure 4: on their table, lit from low to the side,
@@ -86,18 +95,18 @@ fn false_light(r: &Row) -> u64 {
 #[test]
 fn wang_molnar_no_first_depth_bias_is_acceptable() {
     let biases: Vec<f64> = (0..=30).map(|k| f64::from(k) * 0.001).collect();
-    let mut variants: Vec<Variant> = biases.iter().map(|&b| Variant::new("first", Algorithm::First, b)).collect();
-    variants.push(Variant::new("second", Algorithm::Second, 0.0));
+    let mut variants: Vec<Variant> = biases.iter().map(|&b| Variant::new(Algorithm::First, b)).collect();
+    variants.push(Variant::new(Algorithm::Second, 0.0));
     let rows = sweep("table", variants, &[512], filter("bilinear", Filter::Bilinear), (512, 512, 1));
-    let second = rows.iter().find(|r| r.algorithm == "second").expect("second");
-    let first: Vec<&Row> = rows.iter().filter(|r| r.algorithm == "first").collect();
+    let second = rows.iter().find(|r| r.config.algorithm == "second").expect("second");
+    let first: Vec<&Row> = rows.iter().filter(|r| r.config.algorithm == "first").collect();
     let best = first.iter().map(|r| artifacts(r)).min().expect("biases");
     eprintln!("second depth: {} artifacts; first depth's best bias: {best}", artifacts(second));
     assert!(artifacts(second) <= 20, "second depth: {} artifacts", artifacts(second));
     assert!(best >= 60, "a first-depth bias leaves only {best} artifacts");
     for r in &first {
-        let (acne, leaks) = (r.acne.expect("measured"), r.leaks.expect("measured"));
-        assert!(acne.max(leaks) >= 30, "bias {}: {acne} acne, {leaks} leaks", r.bias);
+        let (acne, leaks) = (m(r).acne_px, m(r).leaks_px);
+        assert!(acne.max(leaks) >= 30, "bias {}: {acne} acne, {leaks} leaks", r.config.bias);
     }
 }
 
@@ -124,16 +133,20 @@ fn wang_molnar_no_first_depth_bias_is_acceptable() {
 #[test]
 fn weiskopf_ertl_dual_depth_with_culling() {
     let variants = vec![
-        Variant::new("dual", Algorithm::Dual { offset: 0.05 }, 0.0),
-        Variant::new("midpoint-bfc", Algorithm::Dual { offset: UNLIMITED_OFFSET }, 0.0),
-        Variant::new("midpoint", Algorithm::Midpoint, 0.0),
-        Variant::new("dual-nocull", Algorithm::Dual { offset: 0.05 }, 0.0).without_culling(),
-        Variant::new("first", Algorithm::First, 0.02),
+        Variant::new(Algorithm::Dual { offset: 0.05 }, 0.0),
+        Variant::new(Algorithm::Dual { offset: UNLIMITED_OFFSET }, 0.0),
+        Variant::new(Algorithm::Midpoint, 0.0),
+        Variant::new(Algorithm::Dual { offset: 0.05 }, 0.0).without_culling(),
+        Variant::new(Algorithm::First, 0.02),
     ];
     let rows = sweep("weiskopf-l", variants, &[128], filter("bilinear", Filter::Bilinear), (512, 512, 1));
-    let get = |name: &str| rows.iter().find(|r| r.algorithm == name).expect("row");
+    // One row per variant, in the variants' order.
+    let get = |name: &str| {
+        let k = ["dual", "midpoint-bfc", "midpoint", "dual-nocull", "first"].iter().position(|n| *n == name);
+        k.and_then(|k| rows.get(k)).expect("row")
+    };
     let (dual, mid_bfc, nocull) = (get("dual"), get("midpoint-bfc"), get("dual-nocull"));
-    let acne = |r: &Row| r.acne.expect("measured");
+    let acne = |r: &Row| m(r).acne_px;
     assert!(acne(dual) <= 60, "dual depth with culling: {} acne", acne(dual));
     assert!(acne(nocull) >= 400, "dual depth without culling: {} acne", acne(nocull));
     assert!(
@@ -169,9 +182,8 @@ fn reeves_more_samples_less_error() {
             })
         })
         .collect();
-    let rows =
-        sweep("reeves-sphere", vec![Variant::new("first", Algorithm::First, 0.01)], &[512], filters, (512, 512, 4));
-    let mae: Vec<f64> = rows.iter().map(|r| r.mean_abs_error.expect("measured")).collect();
+    let rows = sweep("reeves-sphere", vec![Variant::new(Algorithm::First, 0.01)], &[512], filters, (512, 512, 4));
+    let mae: Vec<f64> = rows.iter().map(|r| m(r).mean_abs_error).collect();
     eprintln!("mean absolute error, ResFactor 1 then 3, for 1, 4, 16 samples: {mae:?}");
     let (res1, res3) = (&mae[..3], &mae[3..]);
     assert!(res3[1] < 0.85 * res3[0], "ResFactor 3, 1 → 4 samples: {res3:?}");
@@ -197,18 +209,16 @@ fn reeves_more_samples_less_error() {
 ///   staircase is already under a pixel.
 #[test]
 fn sen_silhouette_maps_sharpen_magnified_edges() {
-    let variants = vec![
-        Variant::new("shadow-map", Algorithm::First, 0.002),
-        Variant::new("silhouette", Algorithm::Silhouette { packed: false }, 0.002),
-    ];
+    let variants =
+        vec![Variant::new(Algorithm::First, 0.002), Variant::new(Algorithm::Silhouette { packed: false }, 0.002)];
     let zoom = sweep("crowd-zoom", variants.clone(), &[512], filter("point", Filter::Point), (600, 512, 1));
     let wide = sweep("crowd", variants, &[2048], filter("point", Filter::Point), (512, 512, 1));
-    let err = |r: &Row| r.misclassified_percent.expect("measured");
+    let err = |r: &Row| m(r).misclassified_percent;
     let (map, sil) = (&zoom[0], &zoom[1]);
-    assert!(map.texels_per_pixel < Some(1.0) && wide[0].texels_per_pixel > Some(1.0), "magnified, then minified");
+    assert!(m(map).texels_per_px < 1.0 && m(&wide[0]).texels_per_px > 1.0, "magnified, then minified");
     assert!(err(sil) * 10.0 < err(map), "magnified: silhouette {} % against {} %", err(sil), err(map));
     assert!(artifacts(sil) <= 20 && artifacts(map) >= 300, "artifacts {} against {}", artifacts(sil), artifacts(map));
-    let shift = |r: &Row| r.displacement_mean.expect("measured");
+    let shift = |r: &Row| m(r).displacement_mean_px;
     assert!(shift(sil) < 0.1 && shift(map) > 0.2, "displacement {} against {}", shift(sil), shift(map));
     assert!(err(&wide[1]) * 3.0 > err(&wide[0]), "minified: {} % against {} %", err(&wide[1]), err(&wide[0]));
 }

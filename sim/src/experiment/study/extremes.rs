@@ -147,10 +147,10 @@ pub fn coincident_scene() -> Scene {
 #[must_use]
 pub fn variants() -> Vec<Variant> {
     vec![
-        Variant::new("first", Algorithm::First, 0.002),
-        Variant::new("second", Algorithm::Second, 0.0),
-        Variant::new("midpoint", Algorithm::Midpoint, 0.0),
-        Variant::new("dual", Algorithm::Dual { offset: 0.005 }, 0.0),
+        Variant::new(Algorithm::First, 0.002),
+        Variant::new(Algorithm::Second, 0.0),
+        Variant::new(Algorithm::Midpoint, 0.0),
+        Variant::new(Algorithm::Dual { offset: 0.005 }, 0.0),
     ]
 }
 
@@ -166,9 +166,12 @@ pub fn spec(scenes: Vec<Scene>, width: u32, height: u32) -> Spec {
         map_sizes: vec![512],
         filters: vec![("bilinear".to_owned(), umbra_core::shadow::Filter::Bilinear)],
         archs: Vec::new(),
-        width,
-        height,
+        arch_params: Vec::new(),
+        images: vec![[width, height]],
         reference_samples: 1,
+        budgets: Vec::new(),
+        name: "extremes".to_owned(),
+        hash: String::new(),
         limits: Limits::DEFAULT,
     }
 }
@@ -184,7 +187,7 @@ pub fn scenes() -> Vec<Scene> {
 
 /// Misclassified % of `rows` for one algorithm and format, in scene order.
 fn curve<'a>(rows: &'a [Row], algorithm: &'a str, format: &'a str) -> impl Iterator<Item = &'a Row> + 'a {
-    rows.iter().filter(move |r| r.algorithm == algorithm && r.format == format)
+    rows.iter().filter(move |r| r.config.algorithm == algorithm && r.config.depth_format == format)
 }
 
 /// A misclassified percentage beyond which the near/far sweep counts a
@@ -196,7 +199,7 @@ pub const BREAKDOWN_POINTS: f64 = 1.0;
 #[must_use]
 pub fn breakdown(rows: &[Row], algorithm: &str, format: &str) -> Option<f64> {
     let errs: Vec<(f64, f64)> =
-        curve(rows, algorithm, format).filter_map(|r| Some((ratio_of(&r.scene)?, r.misclassified_percent?))).collect();
+        curve(rows, algorithm, format).filter_map(|r| Some((ratio_of(&r.config.scene)?, misclassified(r)?))).collect();
     let base = errs.first()?.1;
     errs.iter().find(|(_, e)| *e > base + BREAKDOWN_POINTS).map(|(r, _)| *r)
 }
@@ -217,8 +220,8 @@ pub fn markdown(rows: &[Row]) -> String {
         "Misclassified pixels, % of those facing the light, against the exact reference; 512² map, bilinear \
          filter, {}×{} images. A format breaks down where it misclassifies {BREAKDOWN_POINTS} points more than \
          at ratio 10.\n",
-        rows.first().map_or(0, |r| r.width),
-        rows.first().map_or(0, |r| r.height)
+        rows.first().map_or(0, |r| r.config.image_width_px),
+        rows.first().map_or(0, |r| r.config.image_height_px)
     );
     let _ = writeln!(s, "## Light near/far ratio (table scene, spot light)\n");
     let _ = write!(s, "| algorithm | format |");
@@ -229,12 +232,13 @@ pub fn markdown(rows: &[Row]) -> String {
     let _ = writeln!(s, "|---|---|{}---|", "---:|".repeat(RATIOS.len()));
     for v in variants() {
         for f in ["d16", "d24", "f32"] {
-            let _ = write!(s, "| {} | {f} |", v.name);
-            for r in curve(rows, v.name, f).filter(|r| ratio_of(&r.scene).is_some()) {
+            let name = v.algorithm.name();
+            let _ = write!(s, "| {name} | {f} |");
+            for r in curve(rows, name, f).filter(|r| ratio_of(&r.config.scene).is_some()) {
                 let _ = write!(s, " {} |", cell(r));
             }
-            let measured = curve(rows, v.name, f).any(|r| r.misclassified_percent.is_some());
-            let b = match breakdown(rows, v.name, f) {
+            let measured = curve(rows, name, f).any(|r| r.metrics.is_some());
+            let b = match breakdown(rows, name, f) {
                 Some(r) => format!("{r:.0e}"),
                 None if measured => "never (≤ 10⁶)".to_owned(),
                 None => "not measured".to_owned(),
@@ -246,16 +250,19 @@ pub fn markdown(rows: &[Row]) -> String {
     let _ = writeln!(s, "| case | algorithm | d16 | d24 | f32 |");
     let _ = writeln!(s, "|---|---|---:|---:|---:|");
     let mut cases: Vec<&str> = Vec::new();
-    for r in rows.iter().filter(|r| ratio_of(&r.scene).is_none()) {
-        if !cases.contains(&r.scene.as_str()) {
-            cases.push(&r.scene);
+    for r in rows.iter().filter(|r| ratio_of(&r.config.scene).is_none()) {
+        if !cases.contains(&r.config.scene.as_str()) {
+            cases.push(&r.config.scene);
         }
     }
     for case in cases {
         for v in variants() {
-            let _ = write!(s, "| {case} | {} |", v.name);
+            let name = v.algorithm.name();
+            let _ = write!(s, "| {case} | {name} |");
             for f in ["d16", "d24", "f32"] {
-                let c = rows.iter().find(|r| r.scene == case && r.algorithm == v.name && r.format == f);
+                let c = rows
+                    .iter()
+                    .find(|r| r.config.scene == case && r.config.algorithm == name && r.config.depth_format == f);
                 let _ = write!(s, " {} |", c.map_or_else(|| "–".to_owned(), cell));
             }
             let _ = writeln!(s);
@@ -264,26 +271,32 @@ pub fn markdown(rows: &[Row]) -> String {
     s
 }
 
+/// A row's misclassified percentage, when measured.
+fn misclassified(r: &Row) -> Option<f64> {
+    r.metrics.map(|m| m.misclassified_percent)
+}
+
 fn cell(r: &Row) -> String {
-    match r.misclassified_percent {
+    match misclassified(r) {
         Some(m) => format!("{m:.3}"),
         None => format!("skipped: {}", r.reason),
     }
 }
 
 /// The near/far curves as plot series: misclassified % against the ratio
-/// for the bias-free algorithms (second depth, dual, midpoint) in d16 and
-/// d24. (f32 stores standard `z/w`, whose steps near 1 are 2⁻²⁴ as well: its
-/// curves lie on d24's. First depth's constant bias swamps every format
-/// alike, so it says nothing about the format.)
+/// for every algorithm of [`variants`] in d16 and d24 (f32 stores standard
+/// `z/w`, whose steps near 1 are 2⁻²⁴ as well: its curves lie on d24's),
+/// each named with its breakdown ratio.
 #[must_use]
 pub fn precision_series(rows: &[Row]) -> Vec<Series> {
     let mut out = Vec::new();
-    for a in ["second", "dual", "midpoint"] {
+    for a in variants().iter().map(|v| v.algorithm.name()) {
         for f in ["d16", "d24"] {
             let pts: Vec<(f64, f64)> =
-                curve(rows, a, f).filter_map(|r| Some((ratio_of(&r.scene)?, r.misclassified_percent?))).collect();
-            out.push((format!("{a} {f}"), pts));
+                curve(rows, a, f).filter_map(|r| Some((ratio_of(&r.config.scene)?, misclassified(r)?))).collect();
+            let at = breakdown(rows, a, f)
+                .map_or_else(|| "never breaks down".to_owned(), |r| format!("breaks down at {r:.0e}"));
+            out.push((format!("{a} {f}: {at}"), pts));
         }
     }
     out

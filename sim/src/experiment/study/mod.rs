@@ -32,17 +32,16 @@ mod run;
 mod shards;
 mod summary;
 mod sweep;
+mod sweep_file;
 
-pub use row::Row;
+pub use row::{Row, RowConfig, RowCost, RowMetrics, Status};
 use run::sort_rows;
 pub use run::{Truth, load_scenes, render_config, run, run_config, truths};
 use shards::jsonl;
-pub use shards::{merge, read_rows, write_partial};
-pub use summary::{BUDGETS, summary, write_outputs};
-pub use sweep::{
-    BIAS_RANGES, Config, DUAL_OFFSETS, FIRST_BIASES, QUICK_SCENES, SILHOUETTE_BIAS, Shard, Spec, UNLIMITED_OFFSET,
-    Variant, algorithms, jittered,
-};
+pub use shards::{Manifest, invalid, merge, read_rows, write_manifest, write_partial};
+pub use summary::{summary, write_outputs};
+pub use sweep::{Config, Shard, Spec, UNLIMITED_OFFSET, Variant, jittered};
+pub use sweep_file::{BUNDLED_SWEEPS, SweepError, SweepFile};
 
 /// Why the study could not run or write its files.
 #[derive(Debug, thiserror::Error)]
@@ -51,6 +50,9 @@ pub enum StudyError {
     /// A scene could not be loaded.
     #[error(transparent)]
     Scene(#[from] SceneError),
+    /// A sweep file is unusable.
+    #[error(transparent)]
+    Sweep(#[from] SweepError),
     /// A `--shard` argument is not `i/n` with `i < n`.
     #[error("--shard `{0}`: expected i/n with 0 ≤ i < n")]
     Shard(String),
@@ -75,6 +77,14 @@ pub enum StudyError {
         line: usize,
         /// The parser's error.
         source: serde_json::Error,
+    },
+    /// Shards that cannot be merged into a run that tells the truth.
+    #[error("{path}: {problem}")]
+    Merge {
+        /// The file at fault (the output folder for what is missing).
+        path: PathBuf,
+        /// What is wrong.
+        problem: String,
     },
     /// Two shards hold the same row.
     #[error("row {index} ({arch}) appears twice among the merged files (overlapping shards?)")]

@@ -9,7 +9,7 @@ use std::path::Path;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::{Row, StudyError};
+use super::{Row, RowCost, StudyError};
 pub use crate::io::output::FONT_PATHS;
 use crate::io::output::font;
 
@@ -116,78 +116,165 @@ fn log_log_chart<'a, DB: DrawingBackend>(
     Ok(chart)
 }
 
-/// A scatter of error against cost with its Pareto front.
+/// The algorithm families in the order their markers are listed.
+const FAMILIES: [&str; 5] = ["first depth", "second depth", "midpoint and dual", "silhouette map", "shadow volumes"];
+
+/// A hollow marker of family `f`, `size` pixels, at `p`.
+fn marker<DB: DrawingBackend>(
+    chart: &mut LogLogChart<'_, DB>,
+    f: usize,
+    p: (f64, f64),
+    size: i32,
+    style: ShapeStyle,
+) -> Result<(), String> {
+    let e = EmptyElement::at(p);
+    let r = match f {
+        0 => chart.draw_series(std::iter::once(e + Circle::new((0, 0), size, style))),
+        1 => chart.draw_series(std::iter::once(e + TriangleMarker::new((0, 0), size + 1, style))),
+        2 => chart.draw_series(std::iter::once(e + Rectangle::new([(-size, -size), (size, size)], style))),
+        3 => chart.draw_series(std::iter::once(e + Cross::new((0, 0), size, style))),
+        _ => chart.draw_series(std::iter::once(
+            e + PathElement::new(
+                vec![(0, -size - 1), (size + 1, 0), (0, size + 1), (-size - 1, 0), (0, -size - 1)],
+                style,
+            ),
+        )),
+    };
+    r.map(|_| ()).map_err(|e| e.to_string())
+}
+
+/// Draws a legend entry's swatch centred at a point of the legend's area.
+type Swatch<'a, DB> = dyn Fn(&DrawingArea<DB, Shift>, (i32, i32)) -> Result<(), String> + 'a;
+
+/// Artifacts against cost, with the Pareto front as a staircase.
 struct Pareto<'a> {
     title: String,
     axis: &'a str,
-    /// `(cost, error %)` per row, with the row's preset.
+    /// `(cost, artifacts %)` per row.
     points: Vec<(f64, f64)>,
+    /// Each row's architecture and family (indices into `archs`, [`FAMILIES`]).
     arch_of: Vec<usize>,
+    family_of: Vec<usize>,
     archs: Vec<&'a str>,
+    budgets: &'a [f64],
 }
 
 impl Figure for Pareto<'_> {
     fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        area.fill(&WHITE).map_err(|e| e.to_string())?;
+        // The legend beside the chart, never over the data.
+        let (plot, legend) = area.split_horizontally(SIZE.0 - 230);
         let xr = log_range(self.points.iter().map(|p| p.0), 1.0);
-        let yr = log_range(self.points.iter().map(|p| p.1), ERROR_FLOOR);
-        let y_desc = format!("misclassified % (0 drawn at {ERROR_FLOOR})");
-        let mut chart = log_log_chart(area, &self.title, xr, yr, self.axis, &y_desc)?;
+        let yr = log_range(self.points.iter().map(|p| p.1).chain(self.budgets.iter().copied()), ERROR_FLOOR);
+        let y_desc = format!("artifacts % (acne and leaks; 0 drawn at {ERROR_FLOOR})");
+        let (x0, x1) = (xr.start, xr.end);
+        let mut chart = log_log_chart(&plot, &self.title, xr, yr, self.axis, &y_desc)?;
+        for &b in self.budgets {
+            chart
+                .draw_series(DashedLineSeries::new([(x0, b), (x1, b)], 6, 4, BLACK.mix(0.5).stroke_width(1)))
+                .map_err(|e| e.to_string())?;
+            chart
+                .draw_series(std::iter::once(Text::new(format!("{b} %"), (x0 * 1.05, b), ("sans-serif", 12))))
+                .map_err(|e| e.to_string())?;
+        }
+        // Each architecture's markers a size larger than the one before, so
+        // none hides another.
+        for (k, _) in self.archs.iter().enumerate() {
+            let color = PALETTE[k % PALETTE.len()];
+            for ((p, a), f) in self.points.iter().zip(&self.arch_of).zip(&self.family_of) {
+                if *a == k {
+                    #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap, reason = "a few presets")]
+                    marker(&mut chart, *f, *p, 3 + 2 * k as i32, color.mix(0.7).stroke_width(1))?;
+                }
+            }
+        }
+        let front: Vec<(f64, f64)> = pareto_front(&self.points).iter().map(|&i| self.points[i]).collect();
+        let mut stairs = Vec::new();
+        for (i, &(x, y)) in front.iter().enumerate() {
+            if i > 0 {
+                stairs.push((x, front[i - 1].1));
+            }
+            stairs.push((x, y));
+        }
+        if let Some(&(_, y)) = front.last() {
+            stairs.push((x1, y));
+        }
+        chart.draw_series(LineSeries::new(stairs, BLACK.stroke_width(2))).map_err(|e| e.to_string())?;
+        // The legend: architectures by colour, families by marker.
+        let text = |s: &str| Text::new(s.to_owned(), (0, 0), ("sans-serif", 14));
+        let mut y = 40;
+        let mut line = |label: &str, draw: &Swatch<'_, DB>| {
+            draw(&legend, (14, y + 7))?;
+            legend.draw(&(EmptyElement::at((30, y)) + text(label))).map_err(|e| e.to_string())?;
+            y += 22;
+            Ok::<(), String>(())
+        };
         for (k, arch) in self.archs.iter().enumerate() {
             let color = PALETTE[k % PALETTE.len()];
-            let mine = self.points.iter().zip(&self.arch_of).filter(|(_, a)| **a == k).map(|(p, _)| *p);
-            chart
-                .draw_series(mine.map(|p| Circle::new(p, 3, color.mix(0.25).filled())))
-                .map_err(|e| e.to_string())?
-                .label(*arch)
-                .legend(move |(x, y)| Circle::new((x, y), 4, color.filled()));
+            line(arch, &|l, c| l.draw(&Circle::new(c, 5, color.filled())).map_err(|e| e.to_string()))?;
         }
-        let line: Vec<(f64, f64)> = pareto_front(&self.points).iter().map(|&i| self.points[i]).collect();
-        chart
-            .draw_series(LineSeries::new(line.iter().copied(), BLACK.stroke_width(2)))
-            .map_err(|e| e.to_string())?
-            .label("Pareto front")
-            .legend(|(x, y)| PathElement::new(vec![(x - 8, y), (x + 8, y)], BLACK.stroke_width(2)));
-        chart.draw_series(line.iter().map(|&p| Circle::new(p, 4, BLACK.filled()))).map_err(|e| e.to_string())?;
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 14))
-            .draw()
-            .map_err(|e| e.to_string())
+        line("Pareto front", &|l, (x, y)| {
+            l.draw(&PathElement::new(vec![(x - 9, y), (x + 9, y)], BLACK.stroke_width(2))).map_err(|e| e.to_string())
+        })?;
+        line("budget", &|l, (x, y)| {
+            l.draw(&PathElement::new(vec![(x - 9, y), (x + 9, y)], BLACK.mix(0.5))).map_err(|e| e.to_string())
+        })?;
+        for (f, name) in FAMILIES.iter().enumerate() {
+            line(name, &|l, c| {
+                let e = EmptyElement::at(c);
+                let s = BLACK.stroke_width(1);
+                match f {
+                    0 => l.draw(&(e + Circle::new((0, 0), 5, s))),
+                    1 => l.draw(&(e + TriangleMarker::new((0, 0), 6, s))),
+                    2 => l.draw(&(e + Rectangle::new([(-5, -5), (5, 5)], s))),
+                    3 => l.draw(&(e + Cross::new((0, 0), 5, s))),
+                    _ => l.draw(&(e + PathElement::new(vec![(0, -6), (6, 0), (0, 6), (-6, 0), (0, -6)], s))),
+                }
+                .map_err(|e| e.to_string())
+            })?;
+        }
+        Ok(())
     }
 }
 
-/// Error against cost for one scene's rows: every point faint, coloured by
-/// preset, the Pareto front drawn over them. Writes
-/// `pareto-<scene>-cycles.{svg,png}` and `pareto-<scene>-bytes.{svg,png}`.
+/// Artifacts against cost for one scene's rows: hollow markers by
+/// algorithm family, coloured by architecture, the Pareto front a
+/// staircase, the budgets dashed lines, the legend beside the chart.
+/// Writes `pareto-<scene>-cycles.{svg,png}` and
+/// `pareto-<scene>-bytes.{svg,png}`.
 ///
 /// # Errors
 /// [`StudyError::Plot`] or [`StudyError::Output`].
-pub fn pareto(dir: &Path, scene: &str, rows: &[&Row]) -> Result<(), StudyError> {
+pub fn pareto(dir: &Path, scene: &str, rows: &[&Row], budgets: &[f64]) -> Result<(), StudyError> {
     let rows: Vec<&Row> = rows.iter().copied().filter(|r| r.complete()).collect();
     let mut archs: Vec<&str> = Vec::new();
     for r in &rows {
-        if !archs.contains(&r.arch.as_str()) {
-            archs.push(&r.arch);
+        if !archs.contains(&r.config.arch.as_str()) {
+            archs.push(&r.config.arch);
         }
     }
-    let arch_of: Vec<usize> = rows.iter().map(|r| archs.iter().position(|a| *a == r.arch).unwrap_or(0)).collect();
+    let arch_of: Vec<usize> =
+        rows.iter().map(|r| archs.iter().position(|a| *a == r.config.arch).unwrap_or(0)).collect();
+    let family_of: Vec<usize> =
+        rows.iter().map(|r| FAMILIES.iter().position(|f| *f == r.config.family).unwrap_or(4)).collect();
     for (what, axis, key) in [
-        ("cycles", "cycles (light + camera bottleneck)", (|r: &Row| r.total_cycles) as fn(&Row) -> Option<u64>),
-        ("bytes", "DRAM bytes (both passes)", |r: &Row| r.total_bytes),
+        ("cycles", "cycles (light + camera passes)", (|c: &RowCost| c.total_cycles) as fn(&RowCost) -> u64),
+        ("bytes", "DRAM bytes (both passes)", |c: &RowCost| c.total_dram_bytes),
     ] {
         #[allow(clippy::cast_precision_loss, reason = "plot coordinates")]
         let points: Vec<(f64, f64)> = rows
             .iter()
-            .map(|r| ((key(r).unwrap_or(0).max(1)) as f64, r.misclassified_percent.unwrap_or(0.0).max(ERROR_FLOOR)))
+            .filter_map(|r| Some((r.cost.as_ref()?, r.metrics.as_ref()?)))
+            .map(|(c, m)| ((key(c).max(1)) as f64, m.artifact_percent.max(ERROR_FLOOR)))
             .collect();
         let fig = Pareto {
-            title: format!("{scene}: error against {what}"),
+            title: format!("{scene}: artifacts against {what}"),
             axis,
             points,
             arch_of: arch_of.clone(),
+            family_of: family_of.clone(),
             archs: archs.clone(),
+            budgets,
         };
         both(&dir.join(format!("pareto-{scene}-{what}")), &fig)?;
     }

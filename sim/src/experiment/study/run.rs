@@ -3,7 +3,7 @@
 use indicatif::ProgressBar;
 use rayon::prelude::*;
 
-use super::{Config, Row, Shard, Spec, StudyError};
+use super::{Config, Row, RowCost, RowMetrics, Shard, Spec, StudyError};
 use crate::io::limits::Limits;
 use crate::pass::render::{RenderConfig, TruthSource, cost, render, truth};
 use crate::truth::reference::PixelTruth;
@@ -20,8 +20,8 @@ pub fn render_config(spec: &Spec, c: &Config) -> RenderConfig {
         filter: spec.filters[c.filter].1,
         bias: v.bias,
         virtual_samples: v.virtual_samples,
-        width: spec.width,
-        height: spec.height,
+        width: spec.images[c.image][0],
+        height: spec.images[c.image][1],
         reference_samples: spec.reference_samples,
         culling: v.culling,
     }
@@ -42,21 +42,18 @@ pub fn render_config(spec: &Spec, c: &Config) -> RenderConfig {
 pub fn run_config(spec: &Spec, c: &Config, truths: &[Truth]) -> Vec<Row> {
     let scene = &spec.scenes[c.scene];
     let cfg = render_config(spec, c);
-    let metrics = match &truths[c.scene] {
+    let metrics = match &truths[c.scene * spec.images.len() + c.image] {
         Ok(t) => render(scene, &cfg, &spec.limits, TruthSource::Given(t.clone())).map_err(|e| e.to_string()),
         Err(e) => Err(format!("reference: {e}")),
     };
     let metrics = metrics.map(|r| {
         let t = &r.camera_events.totals;
-        (r.metrics, ratio(t.tangent_setups, t.tangent_setups + t.trivial_pixels()))
+        RowMetrics::new(&r.metrics, ratio(t.tangent_setups, t.tangent_setups + t.trivial_pixels()))
     });
     if spec.archs.is_empty() {
         let mut row = Row::new(spec, c, None);
         match &metrics {
-            Ok((m, vs)) => {
-                row.set_metrics(m);
-                row.virtual_sample_fraction = Some(*vs);
-            }
+            Ok(m) => row.metrics = Some(*m),
             Err(e) => row.skip(format!("render: {e}")),
         }
         return vec![row];
@@ -67,10 +64,10 @@ pub fn run_config(spec: &Spec, c: &Config, truths: &[Truth]) -> Vec<Row> {
         .map(|(i, arch)| {
             let mut row = Row::new(spec, c, Some((i, arch)));
             match &metrics {
-                Ok((m, _)) => {
-                    row.set_metrics(m);
+                Ok(m) => {
+                    row.metrics = Some(*m);
                     match cost(scene, &cfg, arch, &spec.limits) {
-                        Ok(report) => row.set_cost(&report),
+                        Ok(report) => row.cost = Some(RowCost::new(&report)),
                         Err(e) => row.skip(format!("cost on {}: {e}", arch.name)),
                     }
                 }
@@ -84,17 +81,17 @@ pub fn run_config(spec: &Spec, c: &Config, truths: &[Truth]) -> Vec<Row> {
 /// A scene's exact reference at the study's image size, or why there is none.
 pub type Truth = Result<Vec<Option<PixelTruth>>, String>;
 
-/// The exact reference of every scene of `spec`, built once (in parallel):
-/// it depends only on the scene, the image size and the rays per pixel,
-/// not on the configuration. Culling changes no geometry, so the scenes
-/// with their culling turned off share it.
+/// The exact reference of every scene of `spec` at every image size
+/// (scene-major), built once (in parallel): it depends only on the scene,
+/// the image size and the rays per pixel, not on the configuration.
 #[must_use]
 pub fn truths(spec: &Spec) -> Vec<Truth> {
-    spec.scenes
+    let pairs: Vec<(&Scene, [u32; 2])> =
+        spec.scenes.iter().flat_map(|s| spec.images.iter().map(move |&i| (s, i))).collect();
+    pairs
         .par_iter()
-        .map(|scene| {
-            truth(scene, spec.width, spec.height, spec.reference_samples, &ProgressBar::hidden())
-                .map_err(|e| e.to_string())
+        .map(|&(scene, [w, h])| {
+            truth(scene, w, h, spec.reference_samples, &ProgressBar::hidden()).map_err(|e| e.to_string())
         })
         .collect()
 }
@@ -126,7 +123,7 @@ fn ratio(a: u64, b: u64) -> f64 {
 }
 
 pub(super) fn sort_rows(rows: &mut [Row]) {
-    rows.sort_by_key(|r| (r.index, r.arch_index));
+    rows.sort_by_key(|r| (r.config_index, r.arch_index));
 }
 
 /// Load scenes by scene file or bundled name ([`Scene::open`]) within `limits`.

@@ -1,10 +1,56 @@
-//! Rows written as JSON lines, read back, and shards merged into one run.
+//! Rows written as JSON lines with a manifest, read back, and shards merged
+//! into one run — refusing anything that would make the merge lie.
 
 use std::path::{Path, PathBuf};
 
-use super::{Row, StudyError, sort_rows, write_outputs};
+use serde::{Deserialize, Serialize};
+
+use super::{Row, Shard, Spec, Status, StudyError, sort_rows, write_outputs};
 use crate::io::limits::Limits;
 use crate::io::output::write_text;
+
+/// What a study run (whole or one shard) wrote: enough to tell whether
+/// shards belong together and are complete.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Manifest {
+    /// The sweep's name.
+    pub sweep: String,
+    /// The sweep file's hash.
+    pub sweep_hash: String,
+    /// The version that ran it.
+    pub umbra_version: String,
+    /// This shard, `i/n` (`0/1` for a whole run).
+    pub shard: String,
+    /// Configurations in the whole sweep.
+    pub configurations: usize,
+    /// Architectures each configuration is costed on (1 when none).
+    pub architectures: usize,
+    /// Rows in this run's `results.jsonl`.
+    pub rows: usize,
+    /// The summary's error budgets, percent artifacts.
+    pub budgets: Vec<f64>,
+    /// The command line that made it.
+    pub command: String,
+}
+
+impl Manifest {
+    /// The manifest of `rows`, the run of `shard` of `spec`.
+    #[must_use]
+    pub fn new(spec: &Spec, shard: Shard, rows: usize) -> Self {
+        Self {
+            sweep: spec.name.clone(),
+            sweep_hash: spec.hash.clone(),
+            umbra_version: crate::io::provenance::version(),
+            shard: format!("{}/{}", shard.index, shard.count),
+            configurations: spec.configs().len(),
+            architectures: spec.archs.len().max(1),
+            rows,
+            budgets: spec.budgets.clone(),
+            command: crate::io::provenance::command_line(),
+        }
+    }
+}
 
 /// The rows as JSON lines.
 pub(super) fn jsonl(rows: &[Row]) -> String {
@@ -17,12 +63,23 @@ pub(super) fn jsonl(rows: &[Row]) -> String {
     s
 }
 
-/// Write a shard's partial `results.jsonl` into `dir`.
+/// Write a shard's partial `results.jsonl` and its `manifest.json` into
+/// `dir`.
 ///
 /// # Errors
 /// [`StudyError::Output`].
-pub fn write_partial(dir: &Path, rows: &[Row]) -> Result<(), StudyError> {
+pub fn write_partial(dir: &Path, rows: &[Row], manifest: &Manifest) -> Result<(), StudyError> {
     write_text(&dir.join("results.jsonl"), &jsonl(rows))?;
+    write_manifest(dir, manifest)
+}
+
+/// Write `manifest.json` into `dir`.
+///
+/// # Errors
+/// [`StudyError::Output`].
+pub fn write_manifest(dir: &Path, manifest: &Manifest) -> Result<(), StudyError> {
+    // A Manifest holds only strings and numbers: it always serialises.
+    write_text(&dir.join("manifest.json"), &serde_json::to_string_pretty(manifest).unwrap_or_default())?;
     Ok(())
 }
 
@@ -45,20 +102,148 @@ pub fn read_rows(path: &Path, limits: &Limits) -> Result<Vec<Row>, StudyError> {
         .collect()
 }
 
-/// Read shard outputs (folders or files), check that no row appears twice,
-/// and write the whole run's files into `out`. Returns the number of rows.
+/// Read the `manifest.json` beside a shard's rows.
+fn read_manifest(input: &Path, limits: &Limits) -> Result<(PathBuf, Manifest), StudyError> {
+    let dir = if input.is_dir() { input.to_owned() } else { input.parent().unwrap_or(Path::new(".")).to_owned() };
+    let file = dir.join("manifest.json");
+    let bytes = limits.read_file(&file).map_err(|source| StudyError::Read { path: file.clone(), source })?;
+    let m =
+        serde_json::from_slice(&bytes).map_err(|source| StudyError::Parse { path: file.clone(), line: 0, source })?;
+    Ok((file, m))
+}
+
+fn refuse(path: &Path, problem: impl Into<String>) -> StudyError {
+    StudyError::Merge { path: path.to_owned(), problem: problem.into() }
+}
+
+/// Why `r` is not a row a study writes, if it is not: a known status with
+/// the blocks it implies, finite numbers, values in their ranges.
+#[must_use]
+pub fn invalid(r: &Row) -> Option<String> {
+    match (r.status, &r.metrics) {
+        (Status::Ok, None) => return Some("status ok without metrics".into()),
+        (Status::Skipped, _) if r.reason.is_empty() => return Some("skipped without a reason".into()),
+        (Status::Skipped, Some(_)) => return Some("skipped with metrics".into()),
+        _ => {}
+    }
+    if let Some(m) = &r.metrics {
+        for (name, v, hi) in [
+            ("misclassified_percent", m.misclassified_percent, 100.0),
+            ("artifact_percent", m.artifact_percent, 100.0),
+            ("false_shadow_rate", m.false_shadow_rate, 1.0),
+            ("false_light_rate", m.false_light_rate, 1.0),
+            ("mean_abs_error", m.mean_abs_error, 1.0),
+            ("rms_error", m.rms_error, 1.0),
+            ("virtual_sample_fraction", m.virtual_sample_fraction, 1.0),
+        ] {
+            if !(v.is_finite() && (0.0..=hi).contains(&v)) {
+                return Some(format!("{name} {v} is outside 0…{hi}"));
+            }
+        }
+        for (name, v) in [
+            ("displacement_mean_px", m.displacement_mean_px),
+            ("displacement_p95_px", m.displacement_p95_px),
+            ("texels_per_px", m.texels_per_px),
+        ] {
+            if !(v.is_finite() && v >= 0.0) {
+                return Some(format!("{name} {v} is not a finite non-negative number"));
+            }
+        }
+        if m.edge_placement_px + m.acne_px + m.leaks_px > m.evaluated_px {
+            return Some("more misclassified pixels than evaluated".into());
+        }
+    }
+    if let Some(c) = &r.cost {
+        for (name, v) in [("fps", c.fps), ("energy_uj", c.energy_uj), ("map_bytes_per_px", c.map_bytes_per_px)] {
+            if !(v.is_finite() && v >= 0.0) {
+                return Some(format!("{name} {v} is not a finite non-negative number"));
+            }
+        }
+        if c.total_cycles == 0 {
+            return Some("a costed frame of 0 cycles".into());
+        }
+    }
+    None
+}
+
+/// Read shard outputs (folders, or their `results.jsonl`), each with the
+/// `manifest.json` its run wrote, and write the whole run's files into
+/// `out`. Returns the number of rows.
+///
+/// Refused, each with the file named: a shard without a manifest, of
+/// another sweep or version, of another shard count, twice; a missing
+/// shard; a row count that is not the manifest's; a row outside its shard,
+/// of another sweep, repeated, or failing [`invalid`].
 ///
 /// # Errors
 /// See [`StudyError`].
 pub fn merge(inputs: &[PathBuf], out: &Path, limits: &Limits) -> Result<usize, StudyError> {
     let mut rows = Vec::new();
-    for p in inputs {
-        rows.extend(read_rows(p, limits)?);
+    let mut first: Option<Manifest> = None;
+    let mut seen: Vec<usize> = Vec::new();
+    for input in inputs {
+        let mine = read_rows(input, limits)?;
+        let (file, m) = read_manifest(input, limits)?;
+        let shard = Shard::parse(&m.shard).map_err(|_| refuse(&file, format!("shard `{}` is not i/n", m.shard)))?;
+        if let Some(f) = &first {
+            if (f.sweep_hash.as_str(), f.umbra_version.as_str()) != (m.sweep_hash.as_str(), m.umbra_version.as_str()) {
+                return Err(refuse(
+                    &file,
+                    format!(
+                        "a shard of another sweep or version ({} {}, not {} {})",
+                        m.sweep_hash, m.umbra_version, f.sweep_hash, f.umbra_version
+                    ),
+                ));
+            }
+            if Shard::parse(&f.shard).map(|s| s.count).ok() != Some(shard.count) {
+                return Err(refuse(
+                    &file,
+                    format!("shard {} of a run split {}-ways, not like {}", m.shard, shard.count, f.shard),
+                ));
+            }
+        }
+        if seen.contains(&shard.index) {
+            return Err(refuse(&file, format!("shard {} is given twice", m.shard)));
+        }
+        seen.push(shard.index);
+        let rows_file = if input.is_dir() { input.join("results.jsonl") } else { input.clone() };
+        if mine.len() != m.rows {
+            return Err(refuse(&rows_file, format!("{} rows where the manifest says {}", mine.len(), m.rows)));
+        }
+        for r in &mine {
+            let at = format!("row {} ({})", r.config_index, r.config.arch);
+            if !shard.contains(r.config_index) {
+                return Err(refuse(&rows_file, format!("{at} is not in shard {}", m.shard)));
+            }
+            if r.config.sweep_hash != m.sweep_hash {
+                return Err(refuse(
+                    &rows_file,
+                    format!("{at} is of sweep {}, not {}", r.config.sweep_hash, m.sweep_hash),
+                ));
+            }
+            if let Some(problem) = invalid(r) {
+                return Err(refuse(&rows_file, format!("{at}: {problem}")));
+            }
+        }
+        rows.extend(mine);
+        first.get_or_insert(m);
+    }
+    let Some(m) = first else { return Err(refuse(out, "no shard to merge")) };
+    let count = Shard::parse(&m.shard).map_or(1, |s| s.count);
+    if let Some(missing) = (0..count).find(|i| !seen.contains(i)) {
+        return Err(refuse(out, format!("shard {missing}/{count} of sweep {} is missing", m.sweep_hash)));
     }
     sort_rows(&mut rows);
-    if let Some(w) = rows.windows(2).find(|w| (w[0].index, w[0].arch_index) == (w[1].index, w[1].arch_index)) {
-        return Err(StudyError::Duplicate { index: w[0].index, arch: w[0].arch.clone() });
+    if let Some(w) =
+        rows.windows(2).find(|w| (w[0].config_index, w[0].arch_index) == (w[1].config_index, w[1].arch_index))
+    {
+        return Err(StudyError::Duplicate { index: w[0].config_index, arch: w[0].config.arch.clone() });
     }
-    write_outputs(out, &rows)?;
+    let expected = m.configurations * m.architectures;
+    if rows.len() != expected {
+        return Err(refuse(out, format!("{} rows merged where the sweep has {expected}", rows.len())));
+    }
+    let whole = Manifest { shard: "0/1".into(), rows: rows.len(), command: crate::io::provenance::command_line(), ..m };
+    write_outputs(out, &rows, &whole)?;
     Ok(rows.len())
 }

@@ -1,122 +1,332 @@
-//! The study's outputs: the results table, the summary by error budget, and the plots.
+//! The study's outputs: the results table, the summary an architect reads,
+//! and the plots.
 
 use std::fmt::Write as _;
 use std::path::Path;
 
-use super::{Row, StudyError, jsonl, plot, sort_rows};
+use super::{Manifest, Row, RowCost, StudyError, jsonl, plot, sort_rows};
 use crate::io::output::write_text;
 
-/// The error budgets of the summary, percent misclassified.
-pub const BUDGETS: [f64; 3] = [1.0, 0.1, 0.01];
-
-/// Write `results.jsonl`, `results.csv`, the Pareto plots per scene and
-/// `summary.md` for a whole run's rows.
+/// Write `results.jsonl`, `results.csv`, the Pareto plots per scene,
+/// `summary.md` and `manifest.json` for a whole run's rows.
 ///
 /// # Errors
 /// See [`StudyError`].
-pub fn write_outputs(dir: &Path, rows: &[Row]) -> Result<(), StudyError> {
+pub fn write_outputs(dir: &Path, rows: &[Row], manifest: &Manifest) -> Result<(), StudyError> {
     let mut rows = rows.to_vec();
     sort_rows(&mut rows);
     write_text(&dir.join("results.jsonl"), &jsonl(&rows))?;
-    let mut csv = csv::Writer::from_writer(Vec::new());
-    for r in &rows {
-        csv.serialize(r)?;
-    }
-    let bytes = csv.into_inner().map_err(|e| StudyError::Csv(e.into_error().into()))?;
-    write_text(&dir.join("results.csv"), &String::from_utf8_lossy(&bytes))?;
+    write_text(&dir.join("results.csv"), &csv(&rows)?)?;
     for scene in scenes_of(&rows) {
-        let mine: Vec<&Row> = rows.iter().filter(|r| r.scene == scene).collect();
-        plot::pareto(dir, &scene, &mine)?;
+        let mine: Vec<&Row> = rows.iter().filter(|r| r.config.scene == scene).collect();
+        plot::pareto(dir, &scene, &mine, &manifest.budgets)?;
     }
-    write_text(&dir.join("summary.md"), &summary(&rows))?;
-    Ok(())
+    write_text(&dir.join("summary.md"), &summary(&rows, manifest))?;
+    super::write_manifest(dir, manifest)
+}
+
+/// A row's leaves, `(field name, value)`, in order: blocks flattened, each
+/// field name unique and carrying its unit; absent values empty.
+fn leaves(v: &serde_json::Value, key: &str, out: &mut Vec<(String, String)>) {
+    match v {
+        serde_json::Value::Object(m) => m.iter().for_each(|(k, v)| leaves(v, k, out)),
+        serde_json::Value::Null => out.push((key.to_owned(), String::new())),
+        serde_json::Value::String(s) => out.push((key.to_owned(), s.clone())),
+        other => out.push((key.to_owned(), other.to_string())),
+    }
+}
+
+/// The rows flat, one column per field of a row with every block (a
+/// skipped row's metric and cost columns empty).
+fn csv(rows: &[Row]) -> Result<String, StudyError> {
+    let flat = |r: &Row| {
+        let mut cells = Vec::new();
+        // A Row holds only strings, numbers, booleans and options: it always serialises.
+        leaves(&serde_json::to_value(r).unwrap_or_default(), "", &mut cells);
+        cells
+    };
+    let mut w = csv::Writer::from_writer(Vec::new());
+    if let Some(first) = rows.first() {
+        let template =
+            Row { metrics: Some(super::RowMetrics::default()), cost: Some(RowCost::default()), ..first.clone() };
+        let header: Vec<String> = flat(&template).into_iter().map(|c| c.0).collect();
+        w.write_record(&header)?;
+        for r in rows {
+            let cells = flat(r);
+            w.write_record(header.iter().map(|h| cells.iter().find(|c| &c.0 == h).map_or("", |c| c.1.as_str())))?;
+        }
+    }
+    let bytes = w.into_inner().map_err(|e| StudyError::Csv(e.into_error().into()))?;
+    Ok(String::from_utf8_lossy(&bytes).into_owned())
 }
 
 /// Scene names in order of first appearance.
 fn scenes_of(rows: &[Row]) -> Vec<String> {
     let mut names: Vec<String> = Vec::new();
     for r in rows {
-        if !names.contains(&r.scene) {
-            names.push(r.scene.clone());
+        if !names.contains(&r.config.scene) {
+            names.push(r.config.scene.clone());
         }
     }
     names
 }
 
-/// The cheapest complete row by `key` whose artifacts (acne and leaks, not
-/// edge placement) are within `budget` percent (ties: the earlier row).
-fn cheapest<'a>(rows: &[&'a Row], budget: f64, key: impl Fn(&Row) -> Option<u64>) -> Option<&'a Row> {
-    rows.iter()
+/// A cost of a row: cycles, DRAM bytes or energy (nJ, rounded).
+type Key = fn(&RowCost) -> u64;
+
+/// The costs the summary ranks by.
+const KEYS: [(&str, Key); 3] = [
+    ("cycles", |c| c.total_cycles),
+    ("DRAM bytes", |c| c.total_dram_bytes),
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "nanojoules, rounded")]
+    ("energy (nJ)", |c| (c.energy_uj * 1e3).round() as u64),
+];
+
+/// The complete rows whose artifacts are within `budget` percent, the
+/// cheapest by `key`, and how many tie with it (ties are broken by sweep
+/// order: the first configuration, then the first architecture).
+fn cheapest<'a>(rows: &[&'a Row], budget: f64, key: Key) -> Option<(&'a Row, usize)> {
+    let ok: Vec<(&Row, u64)> = rows
+        .iter()
         .copied()
-        .filter(|r| r.complete() && r.artifact_percent.is_some_and(|m| m <= budget))
-        .min_by_key(|r| (key(r).unwrap_or(u64::MAX), r.index, r.arch_index))
+        .filter(|r| r.complete() && r.metrics.is_some_and(|m| m.artifact_percent <= budget))
+        .filter_map(|r| Some((r, key(r.cost.as_ref()?))))
+        .collect();
+    let best = ok.iter().map(|(_, k)| *k).min()?;
+    let ties: Vec<&Row> = ok.iter().filter(|(_, k)| *k == best).map(|(r, _)| *r).collect();
+    ties.iter().min_by_key(|r| (r.config_index, r.arch_index)).map(|r| (*r, ties.len()))
 }
 
-/// `summary.md`: per scene, the cheapest configuration in cycles and in DRAM
-/// bytes under each error budget, and every skipped row's reason.
+/// `summary.md`: per scene, the cheapest configuration under each budget,
+/// overall (in cycles, bytes and energy) and per algorithm family; budgets
+/// below one pixel flagged; ties and how they were broken; where the
+/// winner changes with image size and map size; and which architecture
+/// parameter moves the bottleneck. Then every skipped row's reason.
 #[must_use]
-pub fn summary(rows: &[Row]) -> String {
+pub fn summary(rows: &[Row], manifest: &Manifest) -> String {
     let mut s = String::new();
-    let configs = rows.iter().map(|r| r.index).collect::<std::collections::BTreeSet<_>>().len();
-    let skipped: Vec<&Row> = rows.iter().filter(|r| r.status != "ok").collect();
-    let _ = writeln!(s, "# Umbra study: the cheapest configuration per error budget\n");
+    let configs = rows.iter().map(|r| r.config_index).collect::<std::collections::BTreeSet<_>>().len();
+    let skipped: Vec<&Row> = rows.iter().filter(|r| r.metrics.is_none()).collect();
+    let _ = writeln!(s, "# Umbra study `{}`: what wins where, and why\n", manifest.sweep);
     let _ = writeln!(
         s,
-        "{} rows ({configs} render configurations × architectures), {} skipped. Budgets: \
-         artifacts (acne and leaks: pixels misclassified against the exact reference away from its shadow \
-         boundaries), percent of the pixels facing the light; misclassified: every misclassified pixel, edge \
-         placement included. Cycles: the frame (light \
-         pass, then camera pass) in the architecture's per-tile timing model. Bytes: all DRAM traffic, map reads \
-         as fetched through the architecture's map cache.\n",
+        "{}; sweep {} ({}). {} rows ({configs} configurations × architectures), {} skipped. Budgets bound \
+         artifacts — acne and leaks, pixels misclassified against the exact reference away from its shadow \
+         boundaries — in percent of the pixels facing the light; edge placement is printed beside them. Cycles: \
+         the frame, light pass then camera pass, in each architecture's per-tile timing model; bytes: all DRAM \
+         traffic, map reads as fetched through the map cache; energy: DRAM, buffers, caches and units.\n",
+        manifest.umbra_version,
+        manifest.sweep,
+        manifest.sweep_hash,
         rows.len(),
         skipped.len()
     );
     for scene in scenes_of(rows) {
-        let mine: Vec<&Row> = rows.iter().filter(|r| r.scene == scene).collect();
+        let mine: Vec<&Row> = rows.iter().filter(|r| r.config.scene == scene).collect();
         let _ = writeln!(s, "## {scene}\n");
-        let _ = writeln!(
-            s,
-            "| artifact budget | cheapest in cycles | cycles | artifacts % | misclassified % | cheapest in bytes | bytes | artifacts % | misclassified % |"
-        );
-        let _ = writeln!(s, "|---:|---|---:|---:|---:|---|---:|---:|---:|");
-        for budget in BUDGETS {
-            let by = |key: fn(&Row) -> Option<u64>| match cheapest(&mine, budget, key) {
-                Some(r) => format!(
-                    "{} | {} | {:.4} | {:.4}",
-                    r.label(),
-                    key(r).unwrap_or(0),
-                    r.artifact_percent.unwrap_or(f64::NAN),
-                    r.misclassified_percent.unwrap_or(f64::NAN)
-                ),
-                None => "none meets it | – | – | –".to_owned(),
-            };
-            let _ = writeln!(s, "| {budget} % | {} | {} |", by(|r| r.total_cycles), by(|r| r.total_bytes));
-        }
-        let best = mine.iter().filter(|r| r.misclassified_percent.is_some()).min_by(|a, b| {
-            a.misclassified_percent.partial_cmp(&b.misclassified_percent).unwrap_or(std::cmp::Ordering::Equal)
-        });
-        if let Some(b) = best {
-            let _ = writeln!(
-                s,
-                "\nLowest error: {} at {:.4} %.",
-                b.render_label(),
-                b.misclassified_percent.unwrap_or(f64::NAN)
-            );
-        }
-        if let Some(n) = mine.iter().find_map(|r| r.evaluated).filter(|&n| n > 0) {
-            #[allow(clippy::cast_precision_loss, reason = "a pixel count")]
-            let one = 100.0 / n as f64;
-            let _ = writeln!(s, "{n} pixels evaluated: one pixel is {one:.4} %.");
-        }
-        let _ = writeln!(s);
+        scene_summary(&mut s, &mine, &manifest.budgets);
     }
     if !skipped.is_empty() {
-        let _ = writeln!(s, "## Skipped\n");
-        let _ = writeln!(s, "| row | configuration | reason |");
-        let _ = writeln!(s, "|---:|---|---|");
+        let _ = writeln!(s, "## Skipped\n\n| row | configuration | reason |\n|---:|---|---|");
         for r in skipped {
-            let _ = writeln!(s, "| {} | {} {} | {} |", r.index, r.scene, r.label(), r.reason.replace('|', "\\|"));
+            let _ = writeln!(
+                s,
+                "| {} | {} {} | {} |",
+                r.config_index,
+                r.config.scene,
+                r.label(),
+                r.reason.replace('|', "\\|")
+            );
         }
     }
     s
+}
+
+fn scene_summary(s: &mut String, rows: &[&Row], budgets: &[f64]) {
+    // The smallest image of the sweep sets the budget a pixel is.
+    let pixel = rows.iter().filter_map(|r| r.metrics.map(|m| m.evaluated_px)).filter(|&n| n > 0).min().map(|n| {
+        #[allow(clippy::cast_precision_loss, reason = "a pixel count")]
+        let p = 100.0 / n as f64;
+        p
+    });
+    let _ = writeln!(s, "| artifact budget | cost | cheapest | cost | artifacts % | misclassified % |");
+    let _ = writeln!(s, "|---:|---|---|---:|---:|---:|");
+    for &budget in budgets {
+        let flag = if pixel.is_some_and(|p| budget < p) { " (below one pixel)" } else { "" };
+        for (name, key) in KEYS {
+            let cell = match cheapest(rows, budget, key) {
+                Some((r, ties)) => {
+                    let m = r.metrics.unwrap_or_default();
+                    let tie = if ties > 1 { format!(" ({ties} tie; the first in sweep order)") } else { String::new() };
+                    format!(
+                        "{}{tie} | {} | {:.4} | {:.4}",
+                        r.label(),
+                        r.cost.as_ref().map_or(0, key),
+                        m.artifact_percent,
+                        m.misclassified_percent
+                    )
+                }
+                None => "none meets it | – | – | –".to_owned(),
+            };
+            let _ = writeln!(s, "| {budget} %{flag} | {name} | {cell} |");
+        }
+    }
+    if let Some(p) = pixel {
+        let _ = writeln!(
+            s,
+            "\nOne pixel is {p:.4} % of those evaluated at the sweep's smallest image: a budget below it is met only \
+             by a configuration with no artifact at all.\n"
+        );
+    }
+    // Per family, in cycles.
+    let mut families: Vec<&str> = Vec::new();
+    for r in rows {
+        if !families.contains(&r.config.family.as_str()) {
+            families.push(&r.config.family);
+        }
+    }
+    let _ = write!(s, "Cheapest in cycles per algorithm family:\n\n| family |");
+    for b in budgets {
+        let _ = write!(s, " {b} % |");
+    }
+    let _ = writeln!(s, "\n|---|{}", "---|".repeat(budgets.len()));
+    for f in &families {
+        let _ = write!(s, "| {f} |");
+        let fam: Vec<&Row> = rows.iter().copied().filter(|r| r.config.family == *f).collect();
+        for &b in budgets {
+            let cell = cheapest(&fam, b, KEYS[0].1).map_or_else(
+                || "–".to_owned(),
+                |(r, _)| format!("{} ({})", r.render_label(), r.cost.as_ref().map_or(0, |c| c.total_cycles)),
+            );
+            let _ = write!(s, " {cell} |");
+        }
+        let _ = writeln!(s);
+    }
+    let _ = writeln!(s);
+    crossovers(s, rows, budgets);
+    bottlenecks(s, rows, budgets);
+}
+
+/// Where the winner (cheapest in cycles under the loosest budget) changes
+/// with image size and map size, as measured; and, from the winner's and
+/// the cheapest shadow-volume configuration's split of cycles into a light
+/// pass (fixed) and a camera pass (per pixel), the image size at which
+/// they cross.
+fn crossovers(s: &mut String, rows: &[&Row], budgets: &[f64]) {
+    let Some(&loose) = budgets.iter().max_by(|a, b| a.total_cmp(b)) else { return };
+    let by = |axis: &str, value: &dyn Fn(&Row) -> String| {
+        let mut values: Vec<String> = Vec::new();
+        for r in rows {
+            if !values.contains(&value(r)) {
+                values.push(value(r));
+            }
+        }
+        if values.len() < 2 {
+            return String::new();
+        }
+        let mut out = format!("Winner within {loose} % by {axis}:");
+        for v in &values {
+            let sub: Vec<&Row> = rows.iter().copied().filter(|r| value(r) == *v).collect();
+            let w =
+                cheapest(&sub, loose, KEYS[0].1).map_or_else(|| "none".to_owned(), |(r, _)| r.config.family.clone());
+            let _ = write!(out, " {v}: {w};");
+        }
+        out.pop();
+        out + ".\n\n"
+    };
+    s.push_str(&by("image size", &|r| format!("{}×{}", r.config.image_width_px, r.config.image_height_px)));
+    s.push_str(&by("map side", &|r| format!("{}²", r.config.map_side_texels)));
+    let volumes: Vec<&Row> = rows.iter().copied().filter(|r| r.config.algorithm == "volumes").collect();
+    let maps: Vec<&Row> = rows.iter().copied().filter(|r| r.config.algorithm != "volumes").collect();
+    if let (Some((v, _)), Some((m, _))) = (cheapest(&volumes, loose, KEYS[0].1), cheapest(&maps, loose, KEYS[0].1)) {
+        let (Some(vc), Some(mc)) = (&v.cost, &m.cost) else { return };
+        #[allow(clippy::cast_precision_loss, reason = "cycle and pixel counts")]
+        let (pixels, v_px, m_px, m_fixed) = {
+            let px = f64::from(v.config.image_width_px) * f64::from(v.config.image_height_px);
+            (px, vc.total_cycles as f64 / px, mc.camera_cycles as f64 / px, mc.light_cycles as f64)
+        };
+        let _ = write!(
+            s,
+            "Shadow volumes against maps within {loose} %: the cheapest volumes take {:.2} cycles a pixel \
+             (overdraw × stencil work), the cheapest map configuration ({}) {:.2} a pixel plus {:.0} for its light \
+             pass. ",
+            v_px,
+            m.render_label(),
+            m_px,
+            m_fixed
+        );
+        if v_px > m_px {
+            let cross = m_fixed / (v_px - m_px);
+            let side = (cross / pixels).sqrt();
+            let _ = writeln!(
+                s,
+                "They cross at about {:.0} pixels ({:.0}×{:.0} at this aspect): volumes are the cheaper below it, \
+                 maps above.\n",
+                cross,
+                side * f64::from(v.config.image_width_px),
+                side * f64::from(v.config.image_height_px)
+            );
+        } else {
+            let _ = writeln!(s, "Volumes cost no more a pixel, so they stay the cheaper at every image size.\n");
+        }
+    }
+}
+
+/// For each configuration that wins (the cheapest in cycles within the
+/// loosest budget) at some architecture parameter point, its bottlenecks
+/// at every point: where a parameter moves one, this shows it.
+fn bottlenecks(s: &mut String, rows: &[&Row], budgets: &[f64]) {
+    let Some(&loose) = budgets.iter().max_by(|a, b| a.total_cmp(b)) else { return };
+    let mut points: Vec<(&str, &str)> = Vec::new();
+    for r in rows {
+        let a = (r.config.arch.as_str(), r.config.arch_params.as_str());
+        if !points.contains(&a) {
+            points.push(a);
+        }
+    }
+    if points.iter().all(|a| a.1.is_empty()) {
+        return;
+    }
+    let at = |r: &Row, p: (&str, &str)| r.config.arch == p.0 && r.config.arch_params == p.1;
+    let mut winners: Vec<usize> = Vec::new();
+    for &p in &points {
+        let sub: Vec<&Row> = rows.iter().copied().filter(|r| at(r, p)).collect();
+        if let Some((w, _)) = cheapest(&sub, loose, KEYS[0].1)
+            && !winners.contains(&w.config_index)
+        {
+            winners.push(w.config_index);
+        }
+    }
+    let _ = writeln!(
+        s,
+        "Bottlenecks (light pass / camera pass) of each configuration that wins within {loose} % at some \
+         architecture point, at every point:\n\n| configuration | architecture | parameters | cycles | light pass | camera pass |\n|---|---|---|---:|---|---|"
+    );
+    for w in winners {
+        let mine: Vec<&Row> = rows.iter().copied().filter(|r| r.config_index == w).collect();
+        let mut seen: Vec<(String, String)> = Vec::new();
+        for &p in &points {
+            if let Some(c) = mine.iter().find(|r| at(r, p)).and_then(|r| Some((r, r.cost.as_ref()?))) {
+                let (r, c) = c;
+                let _ = writeln!(
+                    s,
+                    "| {} | {} | {} | {} | {} | {} |",
+                    r.render_label(),
+                    p.0,
+                    p.1,
+                    c.total_cycles,
+                    c.light_bottleneck,
+                    c.camera_bottleneck
+                );
+                seen.push((c.light_bottleneck.clone(), c.camera_bottleneck.clone()));
+            }
+        }
+        seen.dedup();
+        if seen.len() > 1
+            && let Some(r) = mine.first()
+        {
+            let _ = writeln!(s, "| {}: the parameters move its bottleneck | | | | | |", r.render_label());
+        }
+    }
+    let _ = writeln!(s);
 }

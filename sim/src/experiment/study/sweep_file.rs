@@ -1,0 +1,425 @@
+//! Sweep files: every axis of a study in TOML, written by the user or
+//! bundled (`sweeps/quick.toml`, `sweeps/full.toml`).
+//!
+//! ```toml
+//! name = "mine"
+//! scenes = ["table", "my-scene.toml"]      # bundled names or files (relative to this file)
+//! images = [[640, 360], [1920, 1080]]     # an axis: width × height
+//! reference_rays = 2                       # rays per pixel side for the area reference
+//! formats = ["d16", "d24"]
+//! maps = [256, 1024]
+//! filters = ["point", "bilinear", { name = "jitter8", jitter = { num_samples = 8, res_factor = 3.0 } }]
+//! archs = ["talisman", "my-gpu.toml"]     # bundled names or files
+//! budgets = [1.0, 0.1, 0.01]              # percent artifacts
+//!
+//! [[arch_axes]]                            # any architecture key, with units as `--set` takes them
+//! key = "map_cache.size"
+//! values = ["0", "16KiB", "64KiB"]
+//!
+//! [[algorithms]]                           # one entry per algorithm, each list an axis
+//! algo = "first"                           # as `umbra render --algo` spells it
+//! bias = [0.0, 0.001, 0.005]
+//! ```
+//!
+//! An algorithm entry may list `bias`, `bias1` (bias-range), `offset`
+//! (dual), `virtual_samples` and `cull` (as `umbra render --cull` takes it);
+//! each list multiplies the variants.
+
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+use umbra_core::shadow::{Filter, Jitter, MapCoord};
+use umbra_core::{DepthFormatKind, RasterConfig};
+
+use super::{Spec, Variant};
+use crate::cost::arch::Arch;
+use crate::io::limits::Limits;
+use crate::pass::render::{Algorithm, Culling};
+use crate::world::scene::Scene;
+use crate::world::scene_file::BUNDLED;
+
+/// The bundled sweep files, by name.
+pub const BUNDLED_SWEEPS: [(&str, &str); 2] =
+    [("quick", include_str!("../../../../sweeps/quick.toml")), ("full", include_str!("../../../../sweeps/full.toml"))];
+
+/// What is wrong with a sweep file: the file, the key, the problem.
+#[derive(Debug, thiserror::Error)]
+#[error("{}: {key}: {problem}", file.display())]
+pub struct SweepError {
+    /// The sweep file (or `--sweep` for a bundled name).
+    pub file: PathBuf,
+    /// The key, with its position in a list (`algorithms[2].offset`).
+    pub key: String,
+    /// What is wrong.
+    pub problem: String,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct FileText {
+    name: String,
+    scenes: Vec<String>,
+    images: Vec<[u32; 2]>,
+    reference_rays: u32,
+    formats: Vec<String>,
+    maps: Vec<u32>,
+    filters: Vec<FilterText>,
+    #[serde(default)]
+    archs: Vec<String>,
+    #[serde(default)]
+    arch_axes: Vec<AxisText>,
+    budgets: Vec<f64>,
+    algorithms: Vec<AlgorithmText>,
+}
+
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum FilterText {
+    Preset(String),
+    Jitter {
+        name: String,
+        jitter: JitterText,
+    },
+    Box {
+        name: String,
+        #[serde(rename = "box")]
+        size: u8,
+    },
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct JitterText {
+    num_samples: u16,
+    res_factor: f64,
+    #[serde(default)]
+    min_samples: Option<u16>,
+    #[serde(default)]
+    min_size: Option<f64>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct AxisText {
+    key: String,
+    values: Vec<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct AlgorithmText {
+    algo: String,
+    #[serde(default)]
+    bias: Option<Vec<f64>>,
+    #[serde(default)]
+    bias1: Option<f64>,
+    #[serde(default)]
+    offset: Option<Vec<f64>>,
+    #[serde(default)]
+    virtual_samples: Option<Vec<bool>>,
+    #[serde(default)]
+    cull: Option<Vec<String>>,
+}
+
+/// A sweep file's text and where it came from.
+#[derive(Clone, Debug)]
+pub struct SweepFile {
+    /// The file (a bundled sweep: `sweeps/<name>.toml`).
+    pub file: PathBuf,
+    /// Its text.
+    pub text: String,
+    /// Whether it is bundled (its scenes and architectures are then
+    /// bundled names).
+    pub bundled: bool,
+}
+
+impl SweepFile {
+    /// A bundled sweep by name.
+    ///
+    /// # Errors
+    /// [`SweepError`] with key `(name)` for an unknown name.
+    pub fn bundled(name: &str) -> Result<Self, SweepError> {
+        let file = PathBuf::from(format!("sweeps/{name}.toml"));
+        let (_, text) = BUNDLED_SWEEPS.iter().find(|(n, _)| *n == name).ok_or_else(|| SweepError {
+            file: "--sweep".into(),
+            key: "(name)".into(),
+            problem: format!("no bundled sweep `{name}`; there are {}", BUNDLED_SWEEPS.map(|(n, _)| n).join(", ")),
+        })?;
+        Ok(Self { file, text: (*text).to_owned(), bundled: true })
+    }
+
+    /// A bundled sweep by name, or a sweep file (a path, or a name ending
+    /// in `.toml`), read within `limits`.
+    ///
+    /// # Errors
+    /// [`SweepError`] naming the file.
+    pub fn open(name: &str, limits: &Limits) -> Result<Self, SweepError> {
+        let path = Path::new(name);
+        if !(path.extension().is_some_and(|e| e == "toml") || path.components().count() > 1 || path.is_file()) {
+            return Self::bundled(name);
+        }
+        let bytes = limits.read_file(path).map_err(|e| SweepError {
+            file: path.to_owned(),
+            key: "(file)".into(),
+            problem: e.to_string(),
+        })?;
+        let text = String::from_utf8(bytes).map_err(|e| SweepError {
+            file: path.to_owned(),
+            key: "(file)".into(),
+            problem: format!("not UTF-8: {e}"),
+        })?;
+        Ok(Self { file: path.to_owned(), text, bundled: false })
+    }
+
+    /// The hash every row of this sweep carries.
+    #[must_use]
+    pub fn hash(&self) -> String {
+        crate::io::provenance::hash(self.text.as_bytes())
+    }
+
+    fn err(&self, key: impl Into<String>, problem: impl Into<String>) -> SweepError {
+        SweepError { file: self.file.clone(), key: key.into(), problem: problem.into() }
+    }
+
+    /// A scene or architecture named in the file: a bundled name as it is,
+    /// a file relative to the sweep file's folder.
+    fn relative(&self, name: &str, bundled: bool) -> String {
+        if bundled || self.bundled {
+            return name.to_owned();
+        }
+        self.file.parent().map_or_else(|| name.to_owned(), |d| d.join(name).display().to_string())
+    }
+
+    /// The sweep's axes, every one checked: scenes and architectures loaded,
+    /// algorithms, formats, filters, maps and images valid.
+    ///
+    /// # Errors
+    /// [`SweepError`] naming the key and the problem.
+    #[allow(clippy::too_many_lines, reason = "one check per axis, in the file's order")]
+    pub fn spec(&self, limits: &Limits) -> Result<Spec, SweepError> {
+        let t: FileText = toml::from_str(&self.text).map_err(|e| {
+            let key =
+                e.span().map_or_else(|| "(syntax)".to_owned(), |s| format!("(line {})", line_of(&self.text, s.start)));
+            self.err(key, e.message().to_owned())
+        })?;
+        let mut scenes = Vec::new();
+        for (i, s) in t.scenes.iter().enumerate() {
+            let bundled = BUNDLED.iter().any(|(n, _)| n == s);
+            let scene = Scene::open(&self.relative(s, bundled), limits)
+                .map_err(|e| self.err(format!("scenes[{i}]"), e.to_string()))?;
+            scenes.push(scene);
+        }
+        // Sizes beyond the limits are not refused here: each configuration
+        // that asks for one is a skipped row naming the limit.
+        for (i, &[w, h]) in t.images.iter().enumerate() {
+            RasterConfig::new(w, h, RasterConfig::DEFAULT_TILE_SIZE, RasterConfig::DEFAULT_SUBPIXEL_BITS)
+                .map_err(|e| self.err(format!("images[{i}]"), e.to_string()))?;
+        }
+        if !(1..=16).contains(&t.reference_rays) {
+            return Err(self.err("reference_rays", format!("{} is outside 1..=16", t.reference_rays)));
+        }
+        let formats = t
+            .formats
+            .iter()
+            .enumerate()
+            .map(|(i, f)| match f.as_str() {
+                "d16" => Ok(DepthFormatKind::D16),
+                "d24" => Ok(DepthFormatKind::D24),
+                "f32" => Ok(DepthFormatKind::F32),
+                _ => Err(self.err(format!("formats[{i}]"), format!("`{f}` is not d16, d24 or f32"))),
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        for (i, &side) in t.maps.iter().enumerate() {
+            RasterConfig::new(side, side, RasterConfig::DEFAULT_TILE_SIZE, RasterConfig::DEFAULT_SUBPIXEL_BITS)
+                .map_err(|e| self.err(format!("maps[{i}]"), e.to_string()))?;
+        }
+        let filters = t
+            .filters
+            .iter()
+            .enumerate()
+            .map(|(i, f)| self.filter(&format!("filters[{i}]"), f))
+            .collect::<Result<Vec<_>, _>>()?;
+        let (archs, arch_params) = self.archs(&t)?;
+        for (i, &b) in t.budgets.iter().enumerate() {
+            if !(b.is_finite() && b > 0.0 && b <= 100.0) {
+                return Err(self.err(format!("budgets[{i}]"), format!("{b} is not a percentage in (0, 100]")));
+            }
+        }
+        let mut variants = Vec::new();
+        for (i, a) in t.algorithms.iter().enumerate() {
+            variants.extend(self.variants(&format!("algorithms[{i}]"), a)?);
+        }
+        for (key, empty) in [
+            ("scenes", t.scenes.is_empty()),
+            ("images", t.images.is_empty()),
+            ("formats", t.formats.is_empty()),
+            ("maps", t.maps.is_empty()),
+            ("filters", t.filters.is_empty()),
+            ("algorithms", variants.is_empty()),
+        ] {
+            if empty {
+                return Err(self.err(key, "the axis is empty"));
+            }
+        }
+        Ok(Spec {
+            scenes,
+            variants,
+            formats,
+            map_sizes: t.maps,
+            filters,
+            archs,
+            arch_params,
+            images: t.images,
+            reference_samples: t.reference_rays,
+            budgets: t.budgets,
+            name: t.name,
+            hash: self.hash(),
+            limits: *limits,
+        })
+    }
+
+    fn filter(&self, key: &str, f: &FilterText) -> Result<(String, Filter), SweepError> {
+        let coord = |k: &str, v: f64| {
+            MapCoord::checked_from_num(v).filter(|_| v.is_finite() && v >= 0.0).ok_or_else(|| {
+                self.err(format!("{key}.jitter.{k}"), format!("{v} is not a non-negative number of texels"))
+            })
+        };
+        Ok(match f {
+            FilterText::Preset(name) => crate::experiment::presets::FILTERS
+                .iter()
+                .find(|(n, _)| n == name)
+                .map(|(n, f)| ((*n).to_owned(), *f))
+                .ok_or_else(|| {
+                    self.err(
+                        key,
+                        format!("`{name}` is not a filter (point, bilinear, box3, jitter4, jitter16, or a table)"),
+                    )
+                })?,
+            FilterText::Jitter { name, jitter } => {
+                let j = Jitter {
+                    num_samples: jitter.num_samples,
+                    res_factor: coord("res_factor", jitter.res_factor)?,
+                    min_samples: jitter.min_samples.unwrap_or(1),
+                    min_size: coord("min_size", jitter.min_size.unwrap_or(0.0))?,
+                };
+                if !(1..=256).contains(&j.num_samples) || j.min_samples == 0 || j.min_samples > j.num_samples {
+                    return Err(self.err(
+                        format!("{key}.jitter"),
+                        "num_samples must be in 1..=256, min_samples in 1..=num_samples",
+                    ));
+                }
+                (name.clone(), Filter::Jittered(j))
+            }
+            FilterText::Box { name, size } => {
+                if !(1..=15).contains(size) || size % 2 == 0 {
+                    return Err(self.err(format!("{key}.box"), format!("{size} is not an odd size in 1..=15")));
+                }
+                (name.clone(), Filter::Box { size: *size })
+            }
+        })
+    }
+
+    /// The architectures, each crossed with every point of the parameter
+    /// axes (named `<arch>-<key>-<value>…`), with each point's assignments.
+    fn archs(&self, t: &FileText) -> Result<(Vec<Arch>, Vec<String>), SweepError> {
+        let mut base = Vec::new();
+        for (i, a) in t.archs.iter().enumerate() {
+            let bundled = crate::cost::arch::file::BUNDLED.iter().any(|(n, _)| n == a);
+            base.push(
+                Arch::open(&self.relative(a, bundled)).map_err(|e| self.err(format!("archs[{i}]"), e.to_string()))?,
+            );
+        }
+        let mut points: Vec<Vec<(usize, &str)>> = vec![Vec::new()];
+        for (i, axis) in t.arch_axes.iter().enumerate() {
+            if axis.values.is_empty() {
+                return Err(self.err(format!("arch_axes[{i}].values"), "the axis is empty"));
+            }
+            points = points
+                .iter()
+                .flat_map(|p| axis.values.iter().map(move |v| [p.clone(), vec![(i, v.as_str())]].concat()))
+                .collect();
+        }
+        let word = |s: &str| s.chars().map(|c| if c.is_ascii_alphanumeric() { c } else { '_' }).collect::<String>();
+        let (mut archs, mut params) = (Vec::new(), Vec::new());
+        for a in &base {
+            for p in &points {
+                let mut arch = a.clone();
+                let mut assignments = Vec::new();
+                for &(i, value) in p {
+                    let key = &t.arch_axes[i].key;
+                    arch.set(&format!("{key}={value}"))
+                        .map_err(|e| self.err(format!("arch_axes[{i}]"), format!("on {}: {e}", a.name)))?;
+                    arch.name = format!("{}-{}-{}", arch.name, word(key), word(value));
+                    assignments.push(format!("{key}={value}"));
+                }
+                arch.check().map_err(|(k, e)| self.err(format!("arch_axes ({k})"), e.to_string()))?;
+                archs.push(arch);
+                params.push(assignments.join(","));
+            }
+        }
+        Ok((archs, params))
+    }
+
+    /// The variants of one algorithm entry: every combination of its lists.
+    fn variants(&self, key: &str, a: &AlgorithmText) -> Result<Vec<Variant>, SweepError> {
+        let one = |v: &Option<Vec<f64>>, default: f64| v.clone().unwrap_or_else(|| vec![default]);
+        let biases = one(&a.bias, 0.0);
+        let offsets = one(&a.offset, f64::NAN);
+        for (k, &b) in biases.iter().chain(a.bias1.iter()).enumerate() {
+            if !(b.is_finite() && (0.0..=1.0).contains(&b)) {
+                return Err(self.err(format!("{key}.bias"), format!("value {k}, {b}, is not a depth in [0, 1]")));
+            }
+        }
+        let culls = a
+            .cull
+            .clone()
+            .unwrap_or_else(|| vec!["algorithm".to_owned()])
+            .iter()
+            .map(|c| c.parse::<Culling>().map_err(|e| self.err(format!("{key}.cull"), e.to_string())))
+            .collect::<Result<Vec<_>, _>>()?;
+        let needs = |what: &str| self.err(format!("{key}.{what}"), format!("`{}` needs `{what}`", a.algo));
+        let algorithms: Vec<Algorithm> = match a.algo.as_str() {
+            "first" => vec![Algorithm::First],
+            "bias-range" => vec![Algorithm::BiasRange { hi: a.bias1.ok_or_else(|| needs("bias1"))? }],
+            "second" => vec![Algorithm::Second],
+            "second-ffc" => vec![Algorithm::SecondFrontCulled],
+            "midpoint" => vec![Algorithm::Midpoint],
+            "dual" => {
+                if a.offset.is_none() {
+                    return Err(needs("offset"));
+                }
+                for &o in &offsets {
+                    if !(o.is_finite() && (0.0..=1.0).contains(&o)) {
+                        return Err(self.err(format!("{key}.offset"), format!("{o} is not a depth in [0, 1]")));
+                    }
+                }
+                offsets.iter().map(|&offset| Algorithm::Dual { offset }).collect()
+            }
+            "silhouette" => vec![Algorithm::Silhouette { packed: false }],
+            "silhouette-packed" => vec![Algorithm::Silhouette { packed: true }],
+            "volumes" => vec![Algorithm::Volumes],
+            other => {
+                return Err(self.err(
+                    format!("{key}.algo"),
+                    format!("`{other}` is not an algorithm (first, bias-range, second, second-ffc, midpoint, dual, silhouette, silhouette-packed, volumes)"),
+                ));
+            }
+        };
+        let mut out = Vec::new();
+        for &algorithm in &algorithms {
+            for &bias in &biases {
+                for &vs in a.virtual_samples.as_deref().unwrap_or(&[true]) {
+                    for &culling in &culls {
+                        out.push(Variant { algorithm, bias, virtual_samples: vs, culling });
+                    }
+                }
+            }
+        }
+        Ok(out)
+    }
+}
+
+/// The line (from 1) of byte `offset` in `text`.
+fn line_of(text: &str, offset: usize) -> usize {
+    text.get(..offset).map_or(0, |t| t.matches('\n').count()) + 1
+}

@@ -1,0 +1,39 @@
+//! Where an output came from: the version (with the git revision when built
+//! from a checkout) and the command line, written into every output.
+
+/// `umbra <version>`, with ` (git <revision>)` when built from a checkout
+/// (`-modified` when its tracked files differed from the revision).
+#[must_use]
+pub fn version() -> String {
+    let revision = env!("UMBRA_GIT_REVISION");
+    if revision.is_empty() {
+        format!("umbra {}", env!("CARGO_PKG_VERSION"))
+    } else {
+        format!("umbra {} (git {revision})", env!("CARGO_PKG_VERSION"))
+    }
+}
+
+/// `arg` as a POSIX shell word: as it is when it needs no quoting, else in
+/// single quotes.
+#[must_use]
+pub fn shell_word(arg: &str) -> String {
+    if !arg.is_empty() && arg.chars().all(|c| c.is_ascii_alphanumeric() || "-_./=,:+%@".contains(c)) {
+        arg.to_owned()
+    } else {
+        format!("'{}'", arg.replace('\'', r"'\''"))
+    }
+}
+
+/// This process's command line, each argument a shell word.
+#[must_use]
+pub fn command_line() -> String {
+    std::env::args().map(|a| shell_word(&a)).collect::<Vec<_>>().join(" ")
+}
+
+/// The FNV-1a 64-bit hash of `bytes`, in hex: names a sweep file's exact
+/// text in its outputs (not a cryptographic digest; it tells sweeps apart).
+#[must_use]
+pub fn hash(bytes: &[u8]) -> String {
+    let h = bytes.iter().fold(0xcbf2_9ce4_8422_2325_u64, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3));
+    format!("{h:016x}")
+}

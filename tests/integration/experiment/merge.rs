@@ -1,0 +1,99 @@
+//! `merge` refuses every input that would make the merged run lie, naming
+//! the file: a missing shard, a shard of another sweep, a shard given
+//! twice, a shard without its manifest, a truncated or empty results file,
+//! and a row that fails validation (a negative error, a NaN).
+
+use std::path::{Path, PathBuf};
+
+use umbra::sim::experiment::study::{self, Manifest, Row, Shard, Spec, StudyError, Variant};
+use umbra::sim::io::limits::Limits;
+use umbra::sim::pass::render::Algorithm;
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("umbra-merge-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).expect("temp dir");
+    d
+}
+
+/// A tiny sweep: one scene, two algorithms, one format, map, filter and
+/// architecture, 48×27.
+fn tiny(hash: &str) -> Spec {
+    let scenes = study::load_scenes(&["table"], &Limits::DEFAULT).expect("bundled");
+    let mut spec = Spec::quick(scenes);
+    spec.variants = vec![Variant::new(Algorithm::First, 0.002), Variant::new(Algorithm::Second, 0.0)];
+    spec.formats.truncate(1);
+    spec.map_sizes = vec![128];
+    spec.filters.truncate(1);
+    spec.archs.truncate(1);
+    spec.images = vec![[48, 27]];
+    spec.reference_samples = 1;
+    spec.hash = hash.to_owned();
+    spec
+}
+
+/// Shard `i/n` of `spec` written into a folder named `tag-i`.
+fn shard(spec: &Spec, tag: &str, i: usize, n: usize) -> PathBuf {
+    let d = dir(&format!("{tag}-{i}"));
+    let s = Shard { index: i, count: n };
+    let rows = study::run(spec, s, &indicatif::ProgressBar::hidden());
+    study::write_partial(&d, &rows, &Manifest::new(spec, s, rows.len())).expect("write");
+    d
+}
+
+/// `merge` of `inputs` must fail with a message naming `file` and saying
+/// `what`.
+fn refused(inputs: &[PathBuf], file: &Path, what: &str) {
+    let out = dir("out");
+    let e = study::merge(inputs, &out, &Limits::DEFAULT).expect_err("refused");
+    let text = e.to_string();
+    assert!(text.contains(&file.display().to_string()) && text.contains(what), "{what}: {text}");
+    assert!(!out.join("results.jsonl").exists(), "nothing is written on refusal");
+}
+
+fn rewrite(d: &Path, edit: impl Fn(&mut Row)) {
+    let mut rows = study::read_rows(d, &Limits::DEFAULT).expect("rows");
+    rows.iter_mut().for_each(edit);
+    let m: Manifest = serde_json::from_slice(&std::fs::read(d.join("manifest.json")).expect("manifest")).expect("JSON");
+    study::write_partial(d, &rows, &m).expect("write");
+}
+
+#[test]
+fn merge_refuses_what_would_lie() {
+    let spec = tiny("aaaa");
+    let s: Vec<PathBuf> = (0..2).map(|i| shard(&spec, "good", i, 2)).collect();
+    // The good case merges.
+    let out = dir("ok");
+    assert_eq!(study::merge(&s, &out, &Limits::DEFAULT).expect("merges"), 2);
+    // A missing shard: 1 of 2.
+    refused(&s[..1], &dir("out"), "shard 1/2");
+    // A shard given twice.
+    refused(&[s[0].clone(), s[0].clone()], &s[0].join("manifest.json"), "given twice");
+    // A shard of another sweep.
+    let other = shard(&tiny("bbbb"), "other", 1, 2);
+    refused(&[s[0].clone(), other.clone()], &other.join("manifest.json"), "another sweep");
+    // A shard of a run split another way.
+    let three = shard(&spec, "three", 1, 3);
+    refused(&[s[0].clone(), three.clone()], &three.join("manifest.json"), "3-ways");
+    // No manifest.
+    let bare = dir("bare");
+    std::fs::copy(s[1].join("results.jsonl"), bare.join("results.jsonl")).expect("copy");
+    refused(&[s[0].clone(), bare.clone()], &bare.join("manifest.json"), "");
+    // An empty results file where the manifest counts a row.
+    let empty = shard(&spec, "empty", 1, 2);
+    std::fs::write(empty.join("results.jsonl"), "").expect("truncate");
+    refused(&[s[0].clone(), empty.clone()], &empty.join("results.jsonl"), "0 rows where the manifest says 1");
+    // A row with a negative error, and one with NaN.
+    let negative = shard(&spec, "negative", 1, 2);
+    rewrite(&negative, |r| r.metrics.iter_mut().for_each(|m| m.misclassified_percent = -5.0));
+    refused(&[s[0].clone(), negative.clone()], &negative.join("results.jsonl"), "misclassified_percent -5");
+    let nan = shard(&spec, "nan", 1, 2);
+    rewrite(&nan, |r| r.metrics.iter_mut().for_each(|m| m.rms_error = f64::NAN));
+    let e = study::merge(&[s[0].clone(), nan.clone()], &dir("out"), &Limits::DEFAULT).expect_err("refused");
+    assert!(e.to_string().contains("results.jsonl"), "{e}");
+    // A row of another sweep slipped into a shard.
+    let foreign = shard(&spec, "foreign", 1, 2);
+    rewrite(&foreign, |r| r.config.sweep_hash = "cccc".into());
+    refused(&[s[0].clone(), foreign.clone()], &foreign.join("results.jsonl"), "of sweep cccc");
+    assert!(matches!(study::merge(&[], &dir("none"), &Limits::DEFAULT), Err(StudyError::Merge { .. })));
+}

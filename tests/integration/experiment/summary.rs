@@ -1,0 +1,134 @@
+//! The summary from a synthetic results file whose answers are known: the
+//! cheapest row under each budget in cycles, bytes and energy; ties and
+//! how they were broken; a budget below one pixel flagged; the winner by
+//! image size; the image size at which shadow volumes stop being the
+//! cheapest; the bottleneck an architecture parameter moves.
+
+use umbra::sim::experiment::study::{Manifest, Row, RowConfig, RowCost, RowMetrics, Status, summary};
+
+/// A row: `algorithm` of `family` at `image` on `arch` (`params`), with
+/// `artifacts` percent of 10 000 evaluated pixels, and its costs: light and
+/// camera cycles, bytes, energy, and the camera pass's bottleneck.
+#[allow(clippy::too_many_arguments, reason = "a synthetic row")]
+fn row(
+    index: usize,
+    (algorithm, family): (&str, &str),
+    image: [u32; 2],
+    (arch, params): (&str, &str),
+    artifacts: f64,
+    (light, camera): (u64, u64),
+    bytes: u64,
+    energy_uj: f64,
+    bottleneck: &str,
+) -> Row {
+    Row {
+        config_index: index,
+        arch_index: 0,
+        config: RowConfig {
+            scene: "synthetic".into(),
+            algorithm: algorithm.into(),
+            family: family.into(),
+            bias: 0.0,
+            bias1: None,
+            offset: None,
+            virtual_samples: true,
+            culling: "algorithm".into(),
+            depth_format: "d16".into(),
+            map_side_texels: 256,
+            filter_name: "point".into(),
+            arch: arch.into(),
+            arch_params: params.into(),
+            image_width_px: image[0],
+            image_height_px: image[1],
+            reference_rays_per_side: 1,
+            command: String::new(),
+            umbra_version: String::new(),
+            sweep_hash: String::new(),
+        },
+        status: Status::Ok,
+        reason: String::new(),
+        metrics: Some(RowMetrics {
+            evaluated_px: 10_000,
+            misclassified_percent: artifacts + 0.5,
+            artifact_percent: artifacts,
+            ..RowMetrics::default()
+        }),
+        cost: Some(RowCost {
+            light_cycles: light,
+            camera_cycles: camera,
+            total_cycles: light + camera,
+            total_dram_bytes: bytes,
+            energy_uj,
+            light_bottleneck: "depth".into(),
+            camera_bottleneck: bottleneck.into(),
+            ..RowCost::default()
+        }),
+    }
+}
+
+fn manifest() -> Manifest {
+    Manifest {
+        sweep: "synthetic".into(),
+        sweep_hash: "0".into(),
+        umbra_version: "test".into(),
+        shard: "0/1".into(),
+        configurations: 5,
+        architectures: 1,
+        rows: 6,
+        budgets: vec![1.0, 0.1, 0.001],
+        command: String::new(),
+    }
+}
+
+/// The line of `md` for `budget` and cost `what`.
+fn line<'a>(md: &'a str, budget: &str, what: &str) -> &'a str {
+    md.lines().find(|l| l.starts_with(&format!("| {budget} ")) && l.contains(&format!("| {what} |"))).expect("a line")
+}
+
+#[test]
+fn summary_answers_what_wins_where() {
+    let (small, large) = ([100, 100], [200, 100]);
+    let (a, b) = (("talisman", "dram.bandwidth=1GB/s"), ("talisman", "dram.bandwidth=8GB/s"));
+    let rows = vec![
+        // At 100×100 (10 000 px): volumes 2 cycles a pixel, 20 000; the map
+        // 10 000 + 1 a pixel, 20 000 too: a tie in cycles, broken by order.
+        row(0, ("volumes", "shadow volumes"), small, a, 0.0, (0, 20_000), 900, 5.0, "depth"),
+        row(1, ("second-ffc", "second depth"), small, a, 0.05, (10_000, 10_000), 500, 4.0, "memory"),
+        // First depth: cheapest in energy but 0.5 % artifacts.
+        row(2, ("first", "first depth"), small, a, 0.5, (9_000, 12_000), 700, 1.0, "memory"),
+        // At 200×100: volumes 40 000, the map 30 000.
+        row(3, ("volumes", "shadow volumes"), large, a, 0.0, (0, 40_000), 1_800, 9.0, "depth"),
+        row(4, ("second-ffc", "second depth"), large, a, 0.05, (10_000, 20_000), 800, 6.0, "memory"),
+        // The same map configuration on a faster DRAM: shadow-bound.
+        Row {
+            arch_index: 1,
+            ..row(4, ("second-ffc", "second depth"), large, b, 0.05, (10_000, 15_000), 800, 6.0, "shadow")
+        },
+    ];
+    let md = summary(&rows, &manifest());
+    println!("{md}");
+    // 1 %: cycles — rows 0 and 1 tie at 20 000, row 0 first in order.
+    let l = line(&md, "1 %", "cycles");
+    assert!(l.contains("volumes") && l.contains("| 20000 |") && l.contains("2 tie"), "{l}");
+    // 1 %: bytes — the map at 500; energy — first depth at 1 µJ.
+    assert!(line(&md, "1 %", "DRAM bytes").contains("second-ffc"), "{md}");
+    assert!(line(&md, "1 %", "energy (nJ)").contains("first") && line(&md, "1 %", "energy (nJ)").contains("| 1000 |"));
+    // 0.1 %: first depth's 0.5 % no longer meets it: energy goes to the map.
+    assert!(line(&md, "0.1 %", "energy (nJ)").contains("second-ffc"), "{md}");
+    // 0.001 % is below one pixel of 10 000 (0.01 %): flagged, and met only
+    // by the volumes' zero.
+    let l = line(&md, "0.001 %", "cycles");
+    assert!(l.contains("below one pixel") && l.contains("volumes"), "{l}");
+    // The winner by image size: volumes (first of the tie) at 100×100, the
+    // map at 200×100.
+    assert!(md.contains("by image size: 100×100: shadow volumes; 200×100: second depth"), "{md}");
+    // Volumes cost 2 a pixel; the cheapest map 1 a pixel plus 10 000: they
+    // cross at 10 000 pixels.
+    assert!(md.contains("They cross at about 10000 pixels"), "{md}");
+    // The DRAM bandwidth moves the map configuration's camera pass from
+    // memory-bound to shadow-bound.
+    let ffc = "second-ffc, d16, 256², point";
+    assert!(md.contains(&format!("| {ffc} | talisman | dram.bandwidth=1GB/s | 30000 | depth | memory |")), "{md}");
+    assert!(md.contains(&format!("| {ffc} | talisman | dram.bandwidth=8GB/s | 25000 | depth | shadow |")), "{md}");
+    assert!(md.contains(&format!("| {ffc}: the parameters move its bottleneck |")), "{md}");
+}

@@ -1,0 +1,125 @@
+//! Sweep files: the bundled ones load and round-trip through the copy a
+//! study writes; a user's file with an architecture-parameter axis and a
+//! scene beside it loads; a bad file is refused naming its key.
+
+use umbra::sim::experiment::study::{SweepFile, Variant};
+use umbra::sim::io::limits::Limits;
+use umbra::sim::pass::render::{Algorithm, Culling};
+
+fn dir(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("umbra-sweeps-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).expect("temp dir");
+    d
+}
+
+#[test]
+fn bundled_sweeps_load_and_round_trip() {
+    let l = Limits::DEFAULT;
+    for name in ["quick", "full"] {
+        let f = SweepFile::bundled(name).expect("bundled");
+        let spec = f.spec(&l).expect("valid");
+        let copy = dir(name).join("sweep.toml");
+        std::fs::write(&copy, &f.text).expect("write");
+        let again = SweepFile::open(copy.to_str().expect("UTF-8"), &l).expect("opens").spec(&l).expect("valid");
+        assert_eq!(again.hash, spec.hash);
+        assert_eq!(again.configs(), spec.configs());
+        assert_eq!(again.variants, spec.variants);
+        assert_eq!(again.images, spec.images);
+    }
+    let quick = SweepFile::bundled("quick").and_then(|f| f.spec(&l)).expect("valid");
+    assert!(quick.images.iter().all(|&[w, h]| w >= 640 && h >= 360), "{:?}", quick.images);
+    // 3 first-depth biases, a bias range, second with and without virtual
+    // samples, second-ffc, midpoint, dual unlimited, dual with and without
+    // culling, two silhouette maps and volumes.
+    assert_eq!(quick.variants.len(), 14);
+    assert!(quick.variants.contains(&Variant::new(Algorithm::Dual { offset: 0.005 }, 0.0).without_culling()));
+    let full = SweepFile::bundled("full").and_then(|f| f.spec(&l)).expect("valid");
+    assert_eq!(full.images, vec![[1920, 1080]]);
+}
+
+#[test]
+fn a_users_sweep_file_with_an_architecture_axis() {
+    let d = dir("user");
+    std::fs::write(
+        d.join("plate.toml"),
+        "name = \"plate\"\nimage = [64, 48]\n[camera]\nposition = [0.0, 3.0, 3.0]\ntarget = [0.0, 0.0, 0.0]\nfov = 50.0\nnear = 0.5\nfar = 20.0\n\
+         [[lights]]\nkind = \"spot\"\nposition = [1.0, 5.0, 1.0]\ntarget = [0.0, 0.0, 0.0]\nfov = 60.0\nnear = 1.0\nfar = 10.0\n\
+         [[objects]]\nmesh = { box = { min = [-2.0, -0.1, -2.0], max = [2.0, 0.0, 2.0] } }\n",
+    )
+    .expect("write");
+    let text = r#"
+name = "mine"
+scenes = ["plate.toml", "table"]
+images = [[64, 36], [128, 72]]
+reference_rays = 1
+formats = ["d16"]
+maps = [128]
+filters = ["point", { name = "jitter8", jitter = { num_samples = 8, res_factor = 1.0 } }]
+archs = ["talisman"]
+budgets = [1.0]
+
+[[arch_axes]]
+key = "map_cache.size"
+values = ["0B", "16KiB"]
+
+[[algorithms]]
+algo = "dual"
+offset = [0.005, 0.02]
+cull = ["algorithm", "solids=none"]
+"#;
+    let f = d.join("mine.toml");
+    std::fs::write(&f, text).expect("write");
+    let spec =
+        match SweepFile::open(f.to_str().expect("UTF-8"), &Limits::DEFAULT).and_then(|s| s.spec(&Limits::DEFAULT)) {
+            Ok(s) => s,
+            Err(e) => panic!("{e}"),
+        };
+    assert_eq!(spec.scenes[0].name, "plate");
+    assert_eq!(spec.images.len(), 2);
+    assert_eq!(spec.variants.len(), 4);
+    assert_eq!(spec.variants[1].culling, "solids=none".parse::<Culling>().expect("valid"));
+    assert_eq!(spec.archs.len(), 2);
+    assert_eq!(spec.arch_params, vec!["map_cache.size=0B".to_owned(), "map_cache.size=16KiB".to_owned()]);
+    assert_eq!(spec.archs[1].map_cache.size, 16 * 1024);
+    assert_eq!(spec.configs().len(), 2 * 2 * 4 * 2);
+}
+
+#[test]
+fn a_bad_sweep_file_names_its_key() {
+    let d = dir("bad");
+    let base = "name = \"b\"\nscenes = [\"table\"]\nimages = [[64, 36]]\nreference_rays = 1\nformats = [\"d16\"]\n\
+                maps = [128]\nfilters = [\"point\"]\narchs = [\"talisman\"]\nbudgets = [1.0]\n";
+    for (extra, replace, key) in [
+        ("[[algorithms]]\nalgo = \"fourth\"\n", None, "algorithms[0].algo"),
+        ("[[algorithms]]\nalgo = \"dual\"\n", None, "algorithms[0].offset"),
+        ("[[algorithms]]\nalgo = \"first\"\nbias = [2.0]\n", None, "algorithms[0].bias"),
+        ("[[algorithms]]\nalgo = \"first\"\ncull = [\"walls=none\"]\n", None, "algorithms[0].cull"),
+        ("[[algorithms]]\nalgo = \"first\"\n", Some(("\"d16\"", "\"d12\"")), "formats[0]"),
+        ("[[algorithms]]\nalgo = \"first\"\n", Some(("maps = [128]", "maps = [0]")), "maps[0]"),
+        ("[[algorithms]]\nalgo = \"first\"\n", Some(("\"point\"", "\"blur\"")), "filters[0]"),
+        ("[[algorithms]]\nalgo = \"first\"\n", Some(("\"talisman\"", "\"cray\"")), "archs[0]"),
+        ("[[algorithms]]\nalgo = \"first\"\n", Some(("[\"table\"]", "[\"nowhere\"]")), "scenes[0]"),
+        ("[[algorithms]]\nalgo = \"first\"\n", Some(("budgets = [1.0]", "budgets = [-1.0]")), "budgets[0]"),
+        (
+            "[[algorithms]]\nalgo = \"first\"\n[[arch_axes]]\nkey = \"clock\"\nvalues = [\"fast\"]\n",
+            None,
+            "arch_axes[0]",
+        ),
+        ("[[algorithms]]\nalgo = \"first\"\nspeed = 3\n", None, "(line"),
+    ] {
+        let mut text = format!("{base}{extra}");
+        if let Some((a, b)) = replace {
+            text = text.replace(a, b);
+        }
+        let f = d.join("bad.toml");
+        std::fs::write(&f, &text).expect("write");
+        let Err(e) =
+            SweepFile::open(f.to_str().expect("UTF-8"), &Limits::DEFAULT).and_then(|s| s.spec(&Limits::DEFAULT))
+        else {
+            panic!("{key}: accepted");
+        };
+        assert!(e.key.starts_with(key) && e.to_string().contains("bad.toml"), "{key}: {e}");
+    }
+    assert!(SweepFile::bundled("huge").is_err_and(|e| e.key == "(name)"));
+}
