@@ -108,7 +108,7 @@ fn log_log_chart<'a, DB: DrawingBackend>(
         .y_desc(y_desc)
         .x_labels(6)
         .y_labels(8)
-        .x_label_formatter(&|x| format!("{x:.0e}"))
+        .x_label_formatter(&|x| format!("{x:.1e}"))
         .y_label_formatter(&|y| format!("{y:.0e}"))
         .label_style(("sans-serif", 14))
         .draw()
@@ -325,4 +325,107 @@ impl Figure for Lines<'_> {
 /// [`StudyError::Plot`] or [`StudyError::Output`].
 pub fn lines(base: &Path, title: &str, x_desc: &str, y_desc: &str, series: &[Series]) -> Result<(), StudyError> {
     both(base, &Lines { title, x_desc, y_desc, series })
+}
+
+/// The cheapest cycles per algorithm family at each architecture point.
+struct AxisPlot<'a> {
+    title: String,
+    /// The points' labels, in order (x = 0, 1, …).
+    points: Vec<String>,
+    /// Per family: `(point, cycles)`.
+    series: Vec<(&'a str, Vec<(f64, f64)>)>,
+}
+
+impl Figure for AxisPlot<'_> {
+    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        area.fill(&WHITE).map_err(|e| e.to_string())?;
+        let (plot, legend) = area.split_horizontally(SIZE.0 - 230);
+        #[allow(clippy::cast_precision_loss, reason = "a few points")]
+        let xr = -0.5..(self.points.len() as f64 - 0.5);
+        let yr = log_range(self.series.iter().flat_map(|s| s.1.iter().map(|p| p.1)), 1.0);
+        let mut chart = ChartBuilder::on(&plot)
+            .caption(&self.title, ("sans-serif", 20))
+            .margin(12)
+            .x_label_area_size(45)
+            .y_label_area_size(70)
+            .build_cartesian_2d(xr, yr.log_scale())
+            .map_err(|e| e.to_string())?;
+        let labels = self.points.clone();
+        chart
+            .configure_mesh()
+            .x_desc("architecture point")
+            .y_desc("cycles of the cheapest configuration")
+            .x_labels(self.points.len())
+            .x_label_formatter(&move |x| {
+                let k = x.round();
+                #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "an index")]
+                let label = labels.get(k as usize).filter(|_| (x - k).abs() < 1e-6 && k >= 0.0);
+                label.cloned().unwrap_or_default()
+            })
+            .y_label_formatter(&|y| format!("{y:.1e}"))
+            .label_style(("sans-serif", 12))
+            .draw()
+            .map_err(|e| e.to_string())?;
+        for (k, (name, pts)) in self.series.iter().enumerate() {
+            let color = PALETTE[k % PALETTE.len()];
+            chart
+                .draw_series(LineSeries::new(pts.iter().copied(), color.stroke_width(2)))
+                .map_err(|e| e.to_string())?;
+            chart.draw_series(pts.iter().map(|&p| Circle::new(p, 4, color.filled()))).map_err(|e| e.to_string())?;
+            #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap, reason = "a few families")]
+            let y = 40 + 22 * k as i32;
+            legend.draw(&Circle::new((14, y + 7), 5, color.filled())).map_err(|e| e.to_string())?;
+            legend.draw(&Text::new((*name).to_owned(), (30, y), ("sans-serif", 14))).map_err(|e| e.to_string())?;
+        }
+        Ok(())
+    }
+}
+
+/// For a sweep with architecture-parameter axes: the cycles of the
+/// cheapest configuration of each algorithm family within `budget`, at
+/// every architecture point. Writes `arch-axes-<scene>.{svg,png}`; nothing
+/// when the rows have no parameter axis.
+///
+/// # Errors
+/// [`StudyError::Plot`] or [`StudyError::Output`].
+pub fn arch_axes(dir: &Path, scene: &str, rows: &[&Row], budget: f64) -> Result<(), StudyError> {
+    if rows.iter().all(|r| r.config.arch_params.is_empty()) {
+        return Ok(());
+    }
+    let mut points: Vec<(&str, &str)> = Vec::new();
+    for r in rows {
+        let p = (r.config.arch.as_str(), r.config.arch_params.as_str());
+        if !points.contains(&p) {
+            points.push(p);
+        }
+    }
+    let one_arch = points.windows(2).all(|w| w[0].0.split('-').next() == w[1].0.split('-').next());
+    let labels = points.iter().map(|(a, p)| if one_arch { (*p).to_owned() } else { format!("{a}: {p}") }).collect();
+    let series = FAMILIES
+        .iter()
+        .map(|&f| {
+            let pts = points
+                .iter()
+                .enumerate()
+                .filter_map(|(k, &(a, p))| {
+                    let cycles = rows
+                        .iter()
+                        .filter(|r| r.config.family == f && r.config.arch == a && r.config.arch_params == p)
+                        .filter(|r| r.complete() && r.metrics.is_some_and(|m| m.artifact_percent <= budget))
+                        .filter_map(|r| r.cost.as_ref().map(|c| c.total_cycles))
+                        .min()?;
+                    #[allow(clippy::cast_precision_loss, reason = "plot coordinates")]
+                    Some((k as f64, cycles as f64))
+                })
+                .collect::<Vec<_>>();
+            (f, pts)
+        })
+        .filter(|(_, pts)| !pts.is_empty())
+        .collect();
+    let fig = AxisPlot {
+        title: format!("{scene}: cheapest within {budget} % at each architecture point"),
+        points: labels,
+        series,
+    };
+    both(&dir.join(format!("arch-axes-{scene}")), &fig)
 }
