@@ -4,6 +4,7 @@
 
 pub mod algorithm;
 pub mod camera;
+pub mod costed;
 pub mod light;
 pub mod render;
 

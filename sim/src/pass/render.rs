@@ -15,8 +15,9 @@ use super::PassError;
 use super::algorithm::MapKind;
 pub use super::algorithm::{Algorithm, Cull, Culling};
 use super::camera::{self, CameraFrame, CameraImage, CameraOptions, Tiling, map_view, visibility, volumes};
+pub use super::costed::{Fan, cost, cost_unshadowed, render_costed};
 use super::light::{self, DEFAULT_BIN_CAPACITY, LightFrame, LightMaps, LightOptions, RawMaps};
-use crate::cost::arch::{Arch, ArchProbe, CostReport, PassKind};
+use crate::cost::arch::Tee;
 use crate::cost::counters::Counters;
 use crate::io::limits::{LimitError, Limits};
 use crate::truth::metrics::{Metrics, compare};
@@ -54,6 +55,9 @@ pub struct RenderConfig {
 /// Why a render failed.
 #[derive(Debug, thiserror::Error)]
 pub enum RenderError {
+    /// Costing on an architecture failed (in a pass shared with others).
+    #[error("cost: {0}")]
+    Cost(String),
     /// The light or camera pass could not run.
     #[error(transparent)]
     Pass(#[from] PassError),
@@ -113,11 +117,11 @@ pub enum TruthSource<'p> {
 
 /// A render configuration checked once: its map and camera targets.
 #[derive(Clone, Copy, Debug)]
-struct Checked {
+pub(super) struct Checked {
     /// The light pass's target (the map).
-    map: RasterConfig,
+    pub(super) map: RasterConfig,
     /// The camera pass's target (the image).
-    image: RasterConfig,
+    pub(super) image: RasterConfig,
 }
 
 impl RenderConfig {
@@ -175,7 +179,7 @@ impl RenderConfig {
     /// Check the map side, the image size and the scene's triangles against
     /// `limits`, before any buffer is allocated, and the targets the passes
     /// will draw (the light pass's with `tile`-pixel tiles).
-    fn check(&self, scene: &Scene, limits: &Limits, tile: u32) -> Result<Checked, RenderError> {
+    pub(super) fn check(&self, scene: &Scene, limits: &Limits, tile: u32) -> Result<Checked, RenderError> {
         limits.check_map(self.map_size)?;
         limits.check_image(self.width, self.height)?;
         let triangles: usize = scene.objects.iter().map(|o| o.mesh.triangles.len()).sum();
@@ -202,6 +206,21 @@ pub fn render(
     truth_from: TruthSource<'_>,
 ) -> Result<Render, RenderError> {
     let checked = cfg.check(scene, limits, RasterConfig::DEFAULT_TILE_SIZE)?;
+    let truth = truth_of(scene, cfg, truth_from)?;
+    let none = (umbra_core::NoProbe, &mut umbra_core::NoProbe);
+    Ok(match cfg.format {
+        DepthFormatKind::D16 => render_in::<D16, _, _>(scene, cfg, checked, truth, none)?.0,
+        DepthFormatKind::D24 => render_in::<D24, _, _>(scene, cfg, checked, truth, none)?.0,
+        DepthFormatKind::F32 => render_in::<F32, _, _>(scene, cfg, checked, truth, none)?.0,
+    })
+}
+
+/// The reference `truth_from` names, of the configuration's image size.
+pub(super) fn truth_of(
+    scene: &Scene,
+    cfg: &RenderConfig,
+    truth_from: TruthSource<'_>,
+) -> Result<Vec<Option<PixelTruth>>, RenderError> {
     let truth = match truth_from {
         TruthSource::Build(progress) => truth(scene, cfg.width, cfg.height, cfg.reference_samples, progress)?,
         TruthSource::Given(t) => t,
@@ -209,11 +228,7 @@ pub fn render(
     if truth.len() as u64 != u64::from(cfg.width) * u64::from(cfg.height) {
         return Err(RenderError::Truth { width: cfg.width, height: cfg.height, found: truth.len() });
     }
-    match cfg.format {
-        DepthFormatKind::D16 => render_in::<D16>(scene, cfg, checked, truth),
-        DepthFormatKind::D24 => render_in::<D24>(scene, cfg, checked, truth),
-        DepthFormatKind::F32 => render_in::<F32>(scene, cfg, checked, truth),
-    }
+    Ok(truth)
 }
 
 /// The exact reference of `scene` seen from its camera at `width × height`
@@ -238,7 +253,7 @@ pub fn truth(
 
 /// The light pass and the camera pass of a render, reporting to the two
 /// probes: the maps, the light probe and the camera image.
-fn passes<F: DepthFormat, L: Probe, C: Probe>(
+pub(super) fn passes<F: DepthFormat, L: Probe, C: Probe>(
     scene: &Scene,
     cfg: &RenderConfig,
     checked: Checked,
@@ -304,21 +319,24 @@ fn silhouette<S: SilStore, F: DepthFormat, L: Probe, C: Probe>(
     Ok(())
 }
 
-fn render_in<F: DepthFormat>(
+/// The render of `cfg`, its events counted, and reporting to two more
+/// probes besides (the architectures costed from the same passes).
+pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
     scene: &Scene,
     cfg: &RenderConfig,
     checked: Checked,
     truth: Vec<Option<PixelTruth>>,
-) -> Result<Render, RenderError> {
+    (light_also, camera_also): (L, &mut C),
+) -> Result<(Render, L), RenderError> {
     let mut camera_events = Counters::new(&checked.image);
     let mut frame = LightFrame::new();
-    let (light_events, image) = passes::<F, _, _>(
+    let (Tee(light_events, light_also), image) = passes::<F, _, _>(
         scene,
         cfg,
         checked,
         &mut frame,
-        Counters::new(&checked.map),
-        &mut camera_events,
+        Tee(Counters::new(&checked.map), light_also),
+        &mut Tee(&mut camera_events, camera_also),
         Tiling::DEFAULT,
     )?;
     let metrics = compare(&image.pixels, &truth, image.width);
@@ -333,121 +351,5 @@ fn render_in<F: DepthFormat>(
         light::widen,
     );
     let maps = RawMaps { format: cfg.format, maps };
-    Ok(Render { image, maps, truth, metrics, light_events, camera_events })
-}
-
-/// The cost of a render of `scene` on an architecture, within `limits`
-/// (checked as [`render`] checks them): both passes through its timing
-/// model, the light pass and the camera's visibility in the architecture's
-/// tiles.
-///
-/// # Errors
-/// See [`RenderError`].
-pub fn cost(scene: &Scene, cfg: &RenderConfig, arch: &Arch, limits: &Limits) -> Result<CostReport, RenderError> {
-    cost_with(scene, cfg, arch, limits, true)
-}
-
-/// The cost of drawing `scene` from its camera at `width × height` without
-/// shadows: the visibility pass and every covered pixel shaded, no light
-/// pass and no shadow unit (the baseline frame rates are measured against).
-///
-/// # Errors
-/// See [`RenderError`].
-pub fn cost_unshadowed(
-    scene: &Scene,
-    (width, height): (u32, u32),
-    arch: &Arch,
-    limits: &Limits,
-) -> Result<CostReport, RenderError> {
-    let cfg = RenderConfig {
-        algorithm: Algorithm::First,
-        format: DepthFormatKind::D24,
-        map_size: 8,
-        filter: Filter::Point,
-        bias: 0.0,
-        virtual_samples: false,
-        width,
-        height,
-        reference_samples: 1,
-        culling: Culling::ALGORITHM,
-    };
-    cost_with(scene, &cfg, arch, limits, false)
-}
-
-fn cost_with(
-    scene: &Scene,
-    cfg: &RenderConfig,
-    arch: &Arch,
-    limits: &Limits,
-    shadowed: bool,
-) -> Result<CostReport, RenderError> {
-    let checked = cfg.check(scene, limits, arch.raster.tile)?;
-    let image = RasterConfig::new(cfg.width, cfg.height, arch.raster.tile, RasterConfig::DEFAULT_SUBPIXEL_BITS)
-        .map_err(RenderError::ImageSize)?;
-    let checked = Checked { image, ..checked };
-    // Off-chip depth through a depth cache needs each fragment's address.
-    let cached = arch.depth_cache.size > 0;
-    let light_detail = cached && !arch.on_chip.light_depth;
-    let camera_detail = cached && !arch.on_chip.camera_depth;
-    macro_rules! with_format {
-        ($f:ty) => {
-            match (light_detail, camera_detail) {
-                (false, false) => cost_in::<$f, false, false>(scene, cfg, checked, arch, shadowed),
-                (true, false) => cost_in::<$f, true, false>(scene, cfg, checked, arch, shadowed),
-                (false, true) => cost_in::<$f, false, true>(scene, cfg, checked, arch, shadowed),
-                (true, true) => cost_in::<$f, true, true>(scene, cfg, checked, arch, shadowed),
-            }
-        };
-    }
-    match cfg.format {
-        DepthFormatKind::D16 => with_format!(D16),
-        DepthFormatKind::D24 => with_format!(D24),
-        DepthFormatKind::F32 => with_format!(F32),
-    }
-}
-
-fn cost_in<F: DepthFormat, const L: bool, const C: bool>(
-    scene: &Scene,
-    cfg: &RenderConfig,
-    checked: Checked,
-    arch: &Arch,
-    shadowed: bool,
-) -> Result<CostReport, RenderError> {
-    let units = cfg.algorithm.units::<F>(cfg.bias);
-    let mut light = ArchProbe::<L>::new(arch, PassKind::Light, checked.map, cfg.format, units.unit.buffers());
-    let sil = if units.map == (MapKind::Silhouette { packed: true }) { Packed::BYTES } else { SilPoint::BYTES };
-    let mut camera = ArchProbe::<C>::new(arch, PassKind::Camera, checked.image, D24::KIND, 1);
-    if shadowed && units.map != MapKind::Volumes {
-        camera = camera.reading(units.unit.buffers(), cfg.format.bytes(), sil);
-    }
-    let config = if shadowed {
-        let frame = &mut LightFrame::new();
-        light = passes::<F, _, _>(scene, cfg, checked, frame, light, &mut camera, arch.tiling())?.0;
-        cfg.describe()
-    } else {
-        let mut frame = CameraFrame::default();
-        let size = (checked.image.width(), checked.image.height());
-        visibility(&mut frame, scene, size, arch.tiling(), &mut camera)?;
-        for (k, &id) in frame.ids().iter().enumerate() {
-            if id != umbra_core::NO_TRIANGLE {
-                #[allow(clippy::cast_possible_truncation, reason = "pixel coordinates of a checked image")]
-                let (x, y) = ((k % size.0 as usize) as u32, (k / size.0 as usize) as u32);
-                camera.event(umbra_core::probe::Event::PixelShaded { x, y });
-            }
-        }
-        format!("no shadow, image {}x{}", cfg.width, cfg.height)
-    };
-    light.finish();
-    camera.finish();
-    let samples = match cfg.filter {
-        Filter::Point => 1,
-        Filter::Bilinear => 4,
-        Filter::Box { size } => u64::from(size) * u64::from(size),
-        Filter::Jittered(j) => u64::from(j.num_samples),
-    };
-    let mut report = CostReport::new((&scene.name, config), &light, &camera, samples);
-    let triangles: usize = scene.objects.iter().map(|o| o.mesh.triangles.len()).sum();
-    report.sen.triangles = triangles as u64;
-    report.sen.silhouette_edges = Occluders::new(scene).silhouette_edges().len() as u64;
-    Ok(report)
+    Ok((Render { image, maps, truth, metrics, light_events, camera_events }, light_also))
 }

@@ -4,4 +4,5 @@ mod arch;
 mod arch_file;
 mod cache;
 mod correlation;
+mod shared;
 mod storage;

@@ -4,8 +4,9 @@ use indicatif::ProgressBar;
 use rayon::prelude::*;
 
 use super::{Config, Row, RowCost, RowMetrics, Shard, Spec, StudyError};
+use crate::cost::arch::Arch;
 use crate::io::limits::Limits;
-use crate::pass::render::{RenderConfig, TruthSource, cost, render, truth};
+use crate::pass::render::{RenderConfig, TruthSource, render_costed, truth};
 use crate::truth::reference::PixelTruth;
 use crate::world::scene::Scene;
 
@@ -27,48 +28,42 @@ pub fn render_config(spec: &Spec, c: &Config) -> RenderConfig {
     }
 }
 
-/// Render one configuration once and cost it on every preset: one row per
-/// preset (one row when the sweep has none). A render or costing that fails
-/// gives skipped rows that say why.
+/// Render one configuration once and cost it on every architecture: one
+/// row per architecture (one row when the sweep has none). A render or
+/// costing that fails gives skipped rows that say why.
 ///
 /// The render (light pass, camera pass, metrics against the scene's
-/// reference from [`truths`]) runs once; each
-/// preset re-runs the two passes through its own probe, because a preset's
-/// tile size changes the light pass's events (`PixelFlow`'s 128² regions
-/// bin and flush differently from 32² chunks), so one recorded event stream
-/// cannot stand for all three. The exact reference, the expensive part, is
-/// not recomputed.
+/// reference from [`truths`]) also costs the architectures that draw as it
+/// does; the others are costed in one run of the passes per tiling
+/// ([`render_costed`]), because a tile size changes the light pass's events
+/// (`PixelFlow`'s 128² regions bin and flush differently from 32² chunks).
+/// The exact reference, the expensive part, is not recomputed.
 #[must_use]
 pub fn run_config(spec: &Spec, c: &Config, truths: &[Truth]) -> Vec<Row> {
     let scene = &spec.scenes[c.scene];
     let cfg = render_config(spec, c);
-    let metrics = match &truths[c.scene * spec.images.len() + c.image] {
-        Ok(t) => render(scene, &cfg, &spec.limits, TruthSource::Given(t.clone())).map_err(|e| e.to_string()),
+    let done = match &truths[c.scene * spec.images.len() + c.image] {
+        Ok(t) => render_costed(scene, &cfg, &spec.limits, TruthSource::Given(t.clone()), &spec.archs)
+            .map_err(|e| e.to_string()),
         Err(e) => Err(format!("reference: {e}")),
     };
-    let metrics = metrics.map(|r| {
+    let done = done.map(|(r, costs)| {
         let t = &r.camera_events.totals;
-        RowMetrics::new(&r.metrics, ratio(t.tangent_setups, t.tangent_setups + t.trivial_pixels()))
+        (RowMetrics::new(&r.metrics, ratio(t.tangent_setups, t.tangent_setups + t.trivial_pixels())), costs)
     });
-    if spec.archs.is_empty() {
-        let mut row = Row::new(spec, c, None);
-        match &metrics {
-            Ok(m) => row.metrics = Some(*m),
-            Err(e) => row.skip(format!("render: {e}")),
-        }
-        return vec![row];
-    }
-    spec.archs
-        .iter()
-        .enumerate()
-        .map(|(i, arch)| {
-            let mut row = Row::new(spec, c, Some((i, arch)));
-            match &metrics {
-                Ok(m) => {
+    let arch_rows: Vec<Option<(usize, &Arch)>> =
+        if spec.archs.is_empty() { vec![None] } else { spec.archs.iter().enumerate().map(Some).collect() };
+    arch_rows
+        .into_iter()
+        .map(|arch| {
+            let mut row = Row::new(spec, c, arch);
+            match &done {
+                Ok((m, costs)) => {
                     row.metrics = Some(*m);
-                    match cost(scene, &cfg, arch, &spec.limits) {
-                        Ok(report) => row.cost = Some(RowCost::new(&report)),
-                        Err(e) => row.skip(format!("cost on {}: {e}", arch.name)),
+                    match arch.map(|(i, a)| (a, &costs[i])) {
+                        Some((_, Ok(report))) => row.cost = Some(RowCost::new(report)),
+                        Some((a, Err(e))) => row.skip(format!("cost on {}: {e}", a.name)),
+                        None => {}
                     }
                 }
                 Err(e) => row.skip(format!("render: {e}")),

@@ -1,0 +1,281 @@
+//! A render's cost on architectures ([`crate::cost::arch`]), in as few
+//! passes as their tilings allow.
+//!
+//! An architecture's timing model needs the passes' events in its own tiles
+//! (and, for a depth cache, each fragment's address), so architectures
+//! that share a tiling and that detail are costed from one pass's events,
+//! each through its own probe ([`Fan`]); the functional render's passes
+//! cost those whose tiling is its own.
+
+use umbra_core::probe::{Event, Fragment, TexelRead};
+use umbra_core::shadow::Filter;
+use umbra_core::silhouette::{Packed, SilPoint, SilStore};
+use umbra_core::{D16, D24, DepthFormat, DepthFormatKind, F32, Probe, RasterConfig};
+
+use super::algorithm::MapKind;
+use super::camera::{CameraFrame, visibility};
+use super::light::LightFrame;
+use super::render::{
+    Algorithm, Checked, Culling, Render, RenderConfig, RenderError, TruthSource, passes, render_in, truth_of,
+};
+use crate::cost::arch::{Arch, ArchProbe, CostReport, PassKind};
+use crate::io::limits::Limits;
+use crate::world::occluders::Occluders;
+use crate::world::scene::Scene;
+
+/// Every event to each of several probes, in order.
+#[derive(Debug)]
+pub struct Fan<P>(pub Vec<P>);
+
+impl<P: Probe> Probe for Fan<P> {
+    const FRAGMENTS: bool = P::FRAGMENTS;
+    const TEXELS: bool = P::TEXELS;
+    const EVENTS: bool = P::EVENTS;
+
+    #[inline]
+    fn event(&mut self, e: Event) {
+        self.0.iter_mut().for_each(|p| p.event(e));
+    }
+
+    #[inline]
+    fn fragment(&mut self, f: Fragment) {
+        self.0.iter_mut().for_each(|p| p.fragment(f));
+    }
+
+    #[inline]
+    fn texel_read(&mut self, r: TexelRead) {
+        self.0.iter_mut().for_each(|p| p.texel_read(r));
+    }
+}
+
+/// How an architecture needs the passes drawn: its tile, whether it
+/// finishes each draw before the next, and whether its light and camera
+/// passes need each fragment's address (a depth cache in front of off-chip
+/// depth).
+type Tiling = (u32, bool, bool, bool);
+
+fn tiling(arch: &Arch) -> Tiling {
+    let cached = arch.depth_cache.size > 0;
+    (arch.raster.tile, arch.immediate(), cached && !arch.on_chip.light_depth, cached && !arch.on_chip.camera_depth)
+}
+
+/// The depth samples a lookup of `filter` takes (Sen et al.'s figure).
+const fn samples(filter: Filter) -> u64 {
+    match filter {
+        Filter::Point => 1,
+        Filter::Bilinear => 4,
+        Filter::Box { size } => size as u64 * size as u64,
+        Filter::Jittered(j) => j.num_samples as u64,
+    }
+}
+
+/// The two passes' probes of `archs` for `cfg` on `checked`.
+fn probes<F: DepthFormat, const L: bool, const C: bool>(
+    cfg: &RenderConfig,
+    checked: Checked,
+    archs: &[&Arch],
+    shadowed: bool,
+) -> (Fan<ArchProbe<L>>, Fan<ArchProbe<C>>) {
+    let units = cfg.algorithm.units::<F>(cfg.bias);
+    let sil = if units.map == (MapKind::Silhouette { packed: true }) { Packed::BYTES } else { SilPoint::BYTES };
+    let light = archs
+        .iter()
+        .map(|a| ArchProbe::<L>::new(a, PassKind::Light, checked.map, cfg.format, units.unit.buffers()))
+        .collect();
+    let camera = archs
+        .iter()
+        .map(|a| {
+            let p = ArchProbe::<C>::new(a, PassKind::Camera, checked.image, D24::KIND, 1);
+            if shadowed && units.map != MapKind::Volumes {
+                p.reading(units.unit.buffers(), cfg.format.bytes(), sil)
+            } else {
+                p
+            }
+        })
+        .collect();
+    (Fan(light), Fan(camera))
+}
+
+/// The reports of the probes, once the passes have run.
+fn reports<const L: bool, const C: bool>(
+    scene: &Scene,
+    cfg: &RenderConfig,
+    config: &str,
+    Fan(light): Fan<ArchProbe<L>>,
+    Fan(camera): Fan<ArchProbe<C>>,
+) -> Vec<CostReport> {
+    let triangles: usize = scene.objects.iter().map(|o| o.mesh.triangles.len()).sum();
+    let edges = if light.is_empty() { 0 } else { Occluders::new(scene).silhouette_edges().len() };
+    light
+        .into_iter()
+        .zip(camera)
+        .map(|(mut l, mut c)| {
+            l.finish();
+            c.finish();
+            let mut r = CostReport::new((&scene.name, config.to_owned()), &l, &c, samples(cfg.filter));
+            r.sen.triangles = triangles as u64;
+            r.sen.silhouette_edges = edges as u64;
+            r
+        })
+        .collect()
+}
+
+/// The cost of a render of `scene` on an architecture, within `limits`
+/// (checked as [`super::render::render`] checks them): both passes through
+/// its timing model, the light pass and the camera's visibility in the
+/// architecture's tiles.
+///
+/// # Errors
+/// See [`RenderError`].
+pub fn cost(scene: &Scene, cfg: &RenderConfig, arch: &Arch, limits: &Limits) -> Result<CostReport, RenderError> {
+    cost_group(scene, cfg, &[arch], limits, true).map(|mut r| r.remove(0))
+}
+
+/// The cost of drawing `scene` from its camera at `width × height` without
+/// shadows: the visibility pass and every covered pixel shaded, no light
+/// pass and no shadow unit (the baseline frame rates are measured against).
+///
+/// # Errors
+/// See [`RenderError`].
+pub fn cost_unshadowed(
+    scene: &Scene,
+    (width, height): (u32, u32),
+    arch: &Arch,
+    limits: &Limits,
+) -> Result<CostReport, RenderError> {
+    let cfg = RenderConfig {
+        algorithm: Algorithm::First,
+        format: DepthFormatKind::D24,
+        map_size: 8,
+        filter: Filter::Point,
+        bias: 0.0,
+        virtual_samples: false,
+        width,
+        height,
+        reference_samples: 1,
+        culling: Culling::ALGORITHM,
+    };
+    cost_group(scene, &cfg, &[arch], limits, false).map(|mut r| r.remove(0))
+}
+
+/// The cost on `archs`, which share a [`Tiling`] (the first's), from one
+/// run of the passes.
+fn cost_group(
+    scene: &Scene,
+    cfg: &RenderConfig,
+    archs: &[&Arch],
+    limits: &Limits,
+    shadowed: bool,
+) -> Result<Vec<CostReport>, RenderError> {
+    let Some(first) = archs.first() else { return Ok(Vec::new()) };
+    let (tile, _, light_detail, camera_detail) = tiling(first);
+    let checked = cfg.check(scene, limits, tile)?;
+    let image = RasterConfig::new(cfg.width, cfg.height, tile, RasterConfig::DEFAULT_SUBPIXEL_BITS)
+        .map_err(RenderError::ImageSize)?;
+    let checked = Checked { image, ..checked };
+    macro_rules! with_format {
+        ($f:ty) => {
+            match (light_detail, camera_detail) {
+                (false, false) => cost_in::<$f, false, false>(scene, cfg, checked, archs, shadowed),
+                (true, false) => cost_in::<$f, true, false>(scene, cfg, checked, archs, shadowed),
+                (false, true) => cost_in::<$f, false, true>(scene, cfg, checked, archs, shadowed),
+                (true, true) => cost_in::<$f, true, true>(scene, cfg, checked, archs, shadowed),
+            }
+        };
+    }
+    match cfg.format {
+        DepthFormatKind::D16 => with_format!(D16),
+        DepthFormatKind::D24 => with_format!(D24),
+        DepthFormatKind::F32 => with_format!(F32),
+    }
+}
+
+fn cost_in<F: DepthFormat, const L: bool, const C: bool>(
+    scene: &Scene,
+    cfg: &RenderConfig,
+    checked: Checked,
+    archs: &[&Arch],
+    shadowed: bool,
+) -> Result<Vec<CostReport>, RenderError> {
+    let (mut light, mut camera) = probes::<F, L, C>(cfg, checked, archs, shadowed);
+    let drawing = archs.first().map_or(super::camera::Tiling::DEFAULT, |a| a.tiling());
+    let config = if shadowed {
+        let frame = &mut LightFrame::new();
+        light = passes::<F, _, _>(scene, cfg, checked, frame, light, &mut camera, drawing)?.0;
+        cfg.describe()
+    } else {
+        let mut frame = CameraFrame::default();
+        let size = (checked.image.width(), checked.image.height());
+        visibility(&mut frame, scene, size, drawing, &mut camera)?;
+        for (k, &id) in frame.ids().iter().enumerate() {
+            if id != umbra_core::NO_TRIANGLE {
+                #[allow(clippy::cast_possible_truncation, reason = "pixel coordinates of a checked image")]
+                let (x, y) = ((k % size.0 as usize) as u32, (k / size.0 as usize) as u32);
+                camera.event(Event::PixelShaded { x, y });
+            }
+        }
+        format!("no shadow, image {}x{}", cfg.width, cfg.height)
+    };
+    Ok(reports(scene, cfg, &config, light, camera))
+}
+
+/// The render of `cfg` (as [`super::render::render`]) and its cost on each
+/// of `archs` (as [`cost`], in their order), in as few passes as their
+/// tilings allow: the render's own passes cost the architectures that draw
+/// as it does (32-pixel tiles, no per-draw finish, no fragment detail), and
+/// each other tiling's architectures share one run of the passes. A
+/// costing that fails is that architecture's error.
+///
+/// # Errors
+/// The render's [`RenderError`].
+pub fn render_costed(
+    scene: &Scene,
+    cfg: &RenderConfig,
+    limits: &Limits,
+    truth_from: TruthSource<'_>,
+    archs: &[Arch],
+) -> Result<(Render, Vec<Result<CostReport, RenderError>>), RenderError> {
+    let own: Tiling = (RasterConfig::DEFAULT_TILE_SIZE, false, false, false);
+    let checked = cfg.check(scene, limits, RasterConfig::DEFAULT_TILE_SIZE)?;
+    let truth = truth_of(scene, cfg, truth_from)?;
+    let shared: Vec<&Arch> = archs.iter().filter(|a| tiling(a) == own).collect();
+    macro_rules! with_format {
+        ($f:ty) => {{
+            let (light, mut camera) = probes::<$f, false, false>(cfg, checked, &shared, true);
+            let (render, light) = render_in::<$f, _, _>(scene, cfg, checked, truth, (light, &mut camera))?;
+            (render, reports(scene, cfg, &cfg.describe(), light, camera))
+        }};
+    }
+    let (render, mut costed) = match cfg.format {
+        DepthFormatKind::D16 => with_format!(D16),
+        DepthFormatKind::D24 => with_format!(D24),
+        DepthFormatKind::F32 => with_format!(F32),
+    };
+    costed.reverse();
+    let mut out: Vec<Option<Result<CostReport, RenderError>>> = archs.iter().map(|_| None).collect();
+    for (k, a) in archs.iter().enumerate() {
+        if tiling(a) == own {
+            out[k] = costed.pop().map(Ok);
+        }
+    }
+    // The other tilings, each group in one run.
+    let mut groups: Vec<(Tiling, Vec<usize>)> = Vec::new();
+    for (k, a) in archs.iter().enumerate().filter(|(_, a)| tiling(a) != own) {
+        match groups.iter_mut().find(|g| g.0 == tiling(a)) {
+            Some(g) => g.1.push(k),
+            None => groups.push((tiling(a), vec![k])),
+        }
+    }
+    for (_, members) in groups {
+        let group: Vec<&Arch> = members.iter().map(|&k| &archs[k]).collect();
+        match cost_group(scene, cfg, &group, limits, true) {
+            Ok(reports) => members.iter().zip(reports).for_each(|(&k, r)| out[k] = Some(Ok(r))),
+            Err(e) => {
+                let text = e.to_string();
+                members.iter().for_each(|&k| out[k] = Some(Err(RenderError::Cost(text.clone()))));
+            }
+        }
+    }
+    let out = out.into_iter().map(|r| r.unwrap_or_else(|| Err(RenderError::Cost("not costed".into())))).collect();
+    Ok((render, out))
+}
