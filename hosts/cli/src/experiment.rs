@@ -95,7 +95,7 @@ pub(super) fn plan(args: &PlanArgs, limits: &Limits) -> Result<()> {
     spec.limits = *limits;
     spec.arch = args.archs.one("talisman")?;
     let p = plan(&scene, &spec)?;
-    let md = p.markdown(&scene.name, budget);
+    let md = p.markdown(&scene, budget);
     print!("{md}");
     if !p.meets(budget) {
         println!("\nThe measured artifacts exceed the budget: no candidate meets it at this image size.");

@@ -222,13 +222,26 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
             )?;
         }
     }
-    write_text(&out.join("metrics.json"), &serde_json::to_string_pretty(&r.metrics)?)?;
+    // The metrics, with what made them.
+    let mut record = serde_json::to_value(r.metrics)?;
+    if let Some(fields) = record.as_object_mut() {
+        for (k, v) in [
+            ("umbra_version", umbra_sim::io::provenance::version()),
+            ("command", umbra_sim::io::provenance::command_line()),
+            ("scene", scene.source.clone()),
+            ("configuration", cfg.describe()),
+            ("render_again", cfg.command(&scene.source)),
+        ] {
+            fields.insert(k.to_owned(), serde_json::Value::String(v));
+        }
+    }
+    write_text(&out.join("metrics.json"), &serde_json::to_string_pretty(&record)?)?;
     let m = &r.metrics;
     let t = &r.camera_events.totals;
     println!(
-        "render `{}`: {:?}, {} map {}², {filter_name} filter, bias {}, culling {}, {}×{}",
+        "render `{}`: {}, {} map {}², {filter_name} filter, bias {}, culling {}, {}×{}",
         scene.name,
-        cfg.algorithm,
+        cfg.algorithm.flags().trim_start_matches("--algo "),
         cfg.format.name(),
         cfg.map_size,
         cfg.bias,

@@ -322,14 +322,19 @@ pub fn plan(scene: &Scene, spec: &PlanSpec) -> Result<Plan, PlanError> {
 impl Plan {
     /// The plan as Markdown: the choices, why, and the figures.
     #[must_use]
-    pub fn markdown(&self, scene: &str, budget_percent: f64) -> String {
+    pub fn markdown(&self, scene: &Scene, budget_percent: f64) -> String {
         use std::fmt::Write as _;
         let mut s = String::new();
         let c = &self.config;
         let _ = writeln!(
             s,
-            "## Plan for `{scene}` (artifact budget {budget_percent}%)\n\n{:?}, {:?}, {}² map, {} filter\n",
-            c.algorithm, c.format, c.map_size, self.filter
+            "## Plan for `{}` (artifact budget {budget_percent}%)\n\n{}, {}, {}² map, {} filter\n\n`{}`\n",
+            scene.name,
+            c.algorithm.name(),
+            c.format.name(),
+            c.map_size,
+            self.filter,
+            c.command(&scene.source)
         );
         for r in &self.reasons {
             let _ = writeln!(s, "- {r}");

@@ -129,9 +129,9 @@ impl RenderConfig {
     #[must_use]
     pub fn describe(&self) -> String {
         format!(
-            "{:?}, {:?}, map {}², filter {:?}, bias {}, virtual samples {}, culling {}, image {}x{}, {}² reference rays",
-            self.algorithm,
-            self.format,
+            "{}, {}, map {}², filter {:?}, bias {}, virtual samples {}, culling {}, image {}x{}, {}² reference rays",
+            self.algorithm.flags().trim_start_matches("--algo "),
+            self.format.name(),
             self.map_size,
             self.filter,
             self.bias,

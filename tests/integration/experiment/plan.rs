@@ -20,7 +20,7 @@ fn plans_meet_their_budget_and_cost_no_more_than_the_full_configuration() {
         spec.image = [192, 108];
         spec.map_sizes = vec![128, 256, 512, 1024];
         let p = plan(&scene, &spec).expect("plans");
-        println!("{}", p.markdown(name, BUDGET));
+        println!("{}", p.markdown(&scene, BUDGET));
         assert!(p.meets(BUDGET), "{name}: measured {:.3} % > {BUDGET} %", p.measured.artifact_percent);
         assert!(
             p.measured.cycles <= p.full.cycles && p.measured.bytes <= p.full.bytes,

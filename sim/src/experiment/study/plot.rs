@@ -9,7 +9,7 @@ use std::path::Path;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::{Row, RowCost, StudyError};
+use super::{Manifest, Row, RowCost, StudyError};
 pub use crate::io::output::FONT_PATHS;
 use crate::io::output::font;
 
@@ -157,6 +157,21 @@ struct Pareto<'a> {
     family_of: Vec<usize>,
     archs: Vec<&'a str>,
     budgets: &'a [f64],
+    /// What made it: the version, the sweep and its hash.
+    provenance: [String; 2],
+}
+
+/// `lines` at the foot of a legend area.
+fn footnote<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, lines: &[String]) -> Result<(), String> {
+    #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap, reason = "a few lines on a small plot")]
+    let top = SIZE.1 as i32 - 20 * lines.len() as i32 - 10;
+    for (k, l) in lines.iter().enumerate() {
+        #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap, reason = "a few lines")]
+        let y = top + 20 * k as i32;
+        area.draw(&Text::new(l.clone(), (6, y), ("sans-serif", 11).into_font().color(&BLACK.mix(0.6))))
+            .map_err(|e| e.to_string())?;
+    }
+    Ok(())
 }
 
 impl Figure for Pareto<'_> {
@@ -233,7 +248,7 @@ impl Figure for Pareto<'_> {
                 .map_err(|e| e.to_string())
             })?;
         }
-        Ok(())
+        footnote(&legend, &self.provenance)
     }
 }
 
@@ -245,7 +260,7 @@ impl Figure for Pareto<'_> {
 ///
 /// # Errors
 /// [`StudyError::Plot`] or [`StudyError::Output`].
-pub fn pareto(dir: &Path, scene: &str, rows: &[&Row], budgets: &[f64]) -> Result<(), StudyError> {
+pub fn pareto(dir: &Path, scene: &str, rows: &[&Row], manifest: &Manifest) -> Result<(), StudyError> {
     let rows: Vec<&Row> = rows.iter().copied().filter(|r| r.complete()).collect();
     let mut archs: Vec<&str> = Vec::new();
     for r in &rows {
@@ -274,7 +289,8 @@ pub fn pareto(dir: &Path, scene: &str, rows: &[&Row], budgets: &[f64]) -> Result
             arch_of: arch_of.clone(),
             family_of: family_of.clone(),
             archs: archs.clone(),
-            budgets,
+            budgets: &manifest.budgets,
+            provenance: provenance(manifest),
         };
         both(&dir.join(format!("pareto-{scene}-{what}")), &fig)?;
     }
@@ -327,6 +343,11 @@ pub fn lines(base: &Path, title: &str, x_desc: &str, y_desc: &str, series: &[Ser
     both(base, &Lines { title, x_desc, y_desc, series })
 }
 
+/// A plot's two lines of provenance: the version; the sweep and its hash.
+fn provenance(m: &Manifest) -> [String; 2] {
+    [m.umbra_version.clone(), format!("sweep {} {}", m.sweep, m.sweep_hash)]
+}
+
 /// The cheapest cycles per algorithm family at each architecture point.
 struct AxisPlot<'a> {
     title: String,
@@ -334,6 +355,7 @@ struct AxisPlot<'a> {
     points: Vec<String>,
     /// Per family: `(point, cycles)`.
     series: Vec<(&'a str, Vec<(f64, f64)>)>,
+    provenance: [String; 2],
 }
 
 impl Figure for AxisPlot<'_> {
@@ -377,18 +399,20 @@ impl Figure for AxisPlot<'_> {
             legend.draw(&Circle::new((14, y + 7), 5, color.filled())).map_err(|e| e.to_string())?;
             legend.draw(&Text::new((*name).to_owned(), (30, y), ("sans-serif", 14))).map_err(|e| e.to_string())?;
         }
-        Ok(())
+        footnote(&legend, &self.provenance)
     }
 }
 
 /// For a sweep with architecture-parameter axes: the cycles of the
-/// cheapest configuration of each algorithm family within `budget`, at
+/// cheapest configuration of each algorithm family within the loosest
+/// budget, at
 /// every architecture point. Writes `arch-axes-<scene>.{svg,png}`; nothing
 /// when the rows have no parameter axis.
 ///
 /// # Errors
 /// [`StudyError::Plot`] or [`StudyError::Output`].
-pub fn arch_axes(dir: &Path, scene: &str, rows: &[&Row], budget: f64) -> Result<(), StudyError> {
+pub fn arch_axes(dir: &Path, scene: &str, rows: &[&Row], manifest: &Manifest) -> Result<(), StudyError> {
+    let Some(&budget) = manifest.budgets.iter().max_by(|a, b| a.total_cmp(b)) else { return Ok(()) };
     if rows.iter().all(|r| r.config.arch_params.is_empty()) {
         return Ok(());
     }
@@ -426,6 +450,7 @@ pub fn arch_axes(dir: &Path, scene: &str, rows: &[&Row], budget: f64) -> Result<
         title: format!("{scene}: cheapest within {budget} % at each architecture point"),
         points: labels,
         series,
+        provenance: provenance(manifest),
     };
     both(&dir.join(format!("arch-axes-{scene}")), &fig)
 }

@@ -19,10 +19,8 @@ pub fn write_outputs(dir: &Path, rows: &[Row], manifest: &Manifest) -> Result<()
     write_text(&dir.join("results.csv"), &csv(&rows)?)?;
     for scene in scenes_of(&rows) {
         let mine: Vec<&Row> = rows.iter().filter(|r| r.config.scene == scene).collect();
-        plot::pareto(dir, &scene, &mine, &manifest.budgets)?;
-        if let Some(&loose) = manifest.budgets.iter().max_by(|a, b| a.total_cmp(b)) {
-            plot::arch_axes(dir, &scene, &mine, loose)?;
-        }
+        plot::pareto(dir, &scene, &mine, manifest)?;
+        plot::arch_axes(dir, &scene, &mine, manifest)?;
     }
     write_text(&dir.join("summary.md"), &summary(&rows, manifest))?;
     super::write_manifest(dir, manifest)
