@@ -119,6 +119,9 @@ fn summary_answers_what_wins_where() {
     // by the volumes' zero.
     let l = line(&md, "0.001 %", "cycles");
     assert!(l.contains("below one pixel") && l.contains("volumes"), "{l}");
+    // Per family, in each cost: first depth meets only 1 %, at 1 µJ.
+    assert!(md.contains("Cheapest per algorithm family in energy (nJ):"), "{md}");
+    assert!(md.contains("| first depth | first bias 0, d16, 256², point (1000) | – | – |"), "{md}");
     // The winner by image size: volumes (first of the tie) at 100×100, the
     // map at 200×100.
     assert!(md.contains("by image size: 100×100: shadow volumes; 200×100: second depth"), "{md}");

@@ -63,13 +63,15 @@ fn both(base: &Path, f: &impl Figure) -> Result<(), StudyError> {
 }
 
 /// Colours of the presets (and of series), in sweep order.
-const PALETTE: [RGBColor; 6] = [
+const PALETTE: [RGBColor; 8] = [
     RGBColor(31, 119, 180),
     RGBColor(255, 127, 14),
     RGBColor(44, 160, 44),
     RGBColor(214, 39, 40),
     RGBColor(148, 103, 189),
     RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(127, 127, 127),
 ];
 
 /// Errors of zero are drawn at this floor on the log axis (percent).
@@ -96,7 +98,7 @@ fn log_log_chart<'a, DB: DrawingBackend>(
 ) -> Result<LogLogChart<'a, DB>, String> {
     area.fill(&WHITE).map_err(|e| e.to_string())?;
     let mut chart = ChartBuilder::on(area)
-        .caption(title, ("sans-serif", 22))
+        .caption(title, ("sans-serif", 18))
         .margin(12)
         .x_label_area_size(45)
         .y_label_area_size(70)
@@ -310,27 +312,33 @@ struct Lines<'a> {
 
 impl Figure for Lines<'_> {
     fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        area.fill(&WHITE).map_err(|e| e.to_string())?;
+        // The legend beside the chart, never over the data.
+        let (plot, legend) = area.split_horizontally(SIZE.0 - 300);
         let xr = log_range(self.series.iter().flat_map(|s| s.1.iter().map(|p| p.0)), 1e-12);
         let yr = log_range(self.series.iter().flat_map(|s| s.1.iter().map(|p| p.1)), ERROR_FLOOR);
-        let mut chart = log_log_chart(area, self.title, xr, yr, self.x_desc, self.y_desc)?;
+        let mut chart = log_log_chart(&plot, self.title, xr, yr, self.x_desc, self.y_desc)?;
         for (k, (name, pts)) in self.series.iter().enumerate() {
             let color = PALETTE[k % PALETTE.len()];
             let pts: Vec<(f64, f64)> = pts.iter().map(|&(x, y)| (x, y.max(ERROR_FLOOR))).collect();
             chart
                 .draw_series(LineSeries::new(pts.iter().copied(), color.stroke_width(2)))
-                .map_err(|e| e.to_string())?
-                .label(name.as_str())
-                .legend(move |(x, y)| PathElement::new(vec![(x - 8, y), (x + 8, y)], color.stroke_width(2)));
-            chart.draw_series(pts.iter().map(|&p| Circle::new(p, 3, color.filled()))).map_err(|e| e.to_string())?;
+                .map_err(|e| e.to_string())?;
+            // Hollow markers a size larger for each series, so that one on
+            // another still shows.
+            #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap, reason = "a few series")]
+            let size = 3 + k as i32;
+            chart
+                .draw_series(pts.iter().map(|&p| Circle::new(p, size, color.stroke_width(2))))
+                .map_err(|e| e.to_string())?;
+            #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap, reason = "a few series")]
+            let y = 40 + 22 * k as i32;
+            legend
+                .draw(&PathElement::new(vec![(4, y + 7), (22, y + 7)], color.stroke_width(2)))
+                .map_err(|e| e.to_string())?;
+            legend.draw(&Text::new(name.clone(), (28, y), ("sans-serif", 13))).map_err(|e| e.to_string())?;
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 14))
-            .draw()
-            .map_err(|e| e.to_string())
+        Ok(())
     }
 }
 

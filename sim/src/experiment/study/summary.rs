@@ -186,24 +186,26 @@ fn scene_summary(s: &mut String, rows: &[&Row], budgets: &[f64]) {
             families.push(&r.config.family);
         }
     }
-    let _ = write!(s, "Cheapest in cycles per algorithm family:\n\n| family |");
-    for b in budgets {
-        let _ = write!(s, " {b} % |");
-    }
-    let _ = writeln!(s, "\n|---|{}", "---|".repeat(budgets.len()));
-    for f in &families {
-        let _ = write!(s, "| {f} |");
-        let fam: Vec<&Row> = rows.iter().copied().filter(|r| r.config.family == *f).collect();
-        for &b in budgets {
-            let cell = cheapest(&fam, b, KEYS[0].1).map_or_else(
-                || "–".to_owned(),
-                |(r, _)| format!("{} ({})", r.render_label(), r.cost.as_ref().map_or(0, |c| c.total_cycles)),
-            );
-            let _ = write!(s, " {cell} |");
+    for (name, key) in KEYS {
+        let _ = write!(s, "Cheapest per algorithm family in {name}:\n\n| family |");
+        for b in budgets {
+            let _ = write!(s, " {b} % |");
+        }
+        let _ = writeln!(s, "\n|---|{}", "---|".repeat(budgets.len()));
+        for f in &families {
+            let _ = write!(s, "| {f} |");
+            let fam: Vec<&Row> = rows.iter().copied().filter(|r| r.config.family == *f).collect();
+            for &b in budgets {
+                let cell = cheapest(&fam, b, key).map_or_else(
+                    || "–".to_owned(),
+                    |(r, _)| format!("{} ({})", r.render_label(), r.cost.as_ref().map_or(0, key)),
+                );
+                let _ = write!(s, " {cell} |");
+            }
+            let _ = writeln!(s);
         }
         let _ = writeln!(s);
     }
-    let _ = writeln!(s);
     crossovers(s, rows, budgets);
     bottlenecks(s, rows, budgets);
 }
