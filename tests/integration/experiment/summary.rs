@@ -135,3 +135,33 @@ fn summary_answers_what_wins_where() {
     assert!(md.contains(&format!("| {ffc} | talisman | dram.bandwidth=8GB/s | 25000 | depth | shadow |")), "{md}");
     assert!(md.contains(&format!("| {ffc}: the parameters move its bottleneck |")), "{md}");
 }
+
+/// Scene names become file names only as slugs: a name that climbs out of
+/// the folder writes inside it, a dot does not turn one plot into another,
+/// and two names with one slug are refused rather than overwrite each other.
+#[test]
+fn scene_names_never_become_paths() {
+    let base = std::env::temp_dir().join(format!("umbra-slug-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&base);
+    let out = base.join("inside").join("out");
+    let named = |name: &str, k: usize| {
+        let r = row(k, ("second-ffc", "second depth"), [100, 100], ("talisman", ""), 0.05, (1, 1), 1, 1.0, "depth");
+        Row { config: RowConfig { scene: name.into(), ..r.config }, ..r }
+    };
+    let rows = vec![named("/../../../ESCAPED", 0), named("table.v2", 1)];
+    umbra::sim::experiment::study::write_outputs(&out, &rows, &manifest()).expect("written");
+    let mut names: Vec<String> =
+        std::fs::read_dir(&out).expect("out").map(|e| e.expect("entry").file_name().to_string_lossy().into()).collect();
+    names.sort();
+    for f in ["pareto-__________ESCAPED-cycles.png", "pareto-table_v2-bytes.svg", "pareto-table_v2-cycles.svg"] {
+        assert!(names.iter().any(|n| n == f), "{f} not in {names:?}");
+    }
+    // Nothing beside or above the output folder.
+    let above: Vec<_> = std::fs::read_dir(base.join("inside")).expect("dir").collect();
+    assert_eq!(above.len(), 1, "only out/ inside {}", base.display());
+    assert!(!base.join("ESCAPED-cycles.png").exists() && std::fs::read_dir(&base).expect("dir").count() == 1);
+    let clash = vec![named("a.b", 0), named("a/b", 1)];
+    let e = umbra::sim::experiment::study::write_outputs(&base.join("clash"), &clash, &manifest()).expect_err("clash");
+    assert!(e.to_string().contains("`a.b` and `a/b`"), "{e}");
+    let _ = std::fs::remove_dir_all(&base);
+}

@@ -17,10 +17,20 @@ pub fn write_outputs(dir: &Path, rows: &[Row], manifest: &Manifest) -> Result<()
     sort_rows(&mut rows);
     write_text(&dir.join("results.jsonl"), &jsonl(&rows))?;
     write_text(&dir.join("results.csv"), &csv(&rows)?)?;
-    for scene in scenes_of(&rows) {
-        let mine: Vec<&Row> = rows.iter().filter(|r| r.config.scene == scene).collect();
-        plot::pareto(dir, &scene, &mine, manifest)?;
-        plot::arch_axes(dir, &scene, &mine, manifest)?;
+    let scenes = scenes_of(&rows);
+    let slugs: Vec<String> = scenes.iter().map(|s| slug(s)).collect();
+    for (k, s) in slugs.iter().enumerate() {
+        if let Some(j) = slugs[..k].iter().position(|t| t == s) {
+            return Err(StudyError::Plot {
+                path: dir.join(format!("pareto-{s}-cycles.svg")),
+                problem: format!("scenes `{}` and `{}` would share this file name", scenes[j], scenes[k]),
+            });
+        }
+    }
+    for (scene, name) in scenes.iter().zip(&slugs) {
+        let mine: Vec<&Row> = rows.iter().filter(|r| &r.config.scene == scene).collect();
+        plot::pareto(dir, name, &mine, manifest)?;
+        plot::arch_axes(dir, name, &mine, manifest)?;
     }
     write_text(&dir.join("summary.md"), &summary(&rows, manifest))?;
     super::write_manifest(dir, manifest)
@@ -59,6 +69,16 @@ fn csv(rows: &[Row]) -> Result<String, StudyError> {
     }
     let bytes = w.into_inner().map_err(|e| StudyError::Csv(e.into_error().into()))?;
     Ok(String::from_utf8_lossy(&bytes).into_owned())
+}
+
+/// A scene name as it may appear in a file name: letters, digits, `-` and
+/// `_` kept, anything else (a `/`, a `.`) made `_`, so that no name writes
+/// outside the output folder or changes a file's extension.
+#[must_use]
+pub fn slug(name: &str) -> String {
+    let s: String =
+        name.chars().map(|c| if c.is_ascii_alphanumeric() || c == '-' || c == '_' { c } else { '_' }).collect();
+    if s.is_empty() { "scene".to_owned() } else { s }
 }
 
 /// Scene names in order of first appearance.
