@@ -57,6 +57,8 @@ pub enum Cull {
 }
 
 impl Cull {
+    /// Every choice, in the order of [`Cull::NAMES`].
+    pub const ALL: [Self; 4] = [Self::Algorithm, Self::None, Self::Front, Self::Back];
     /// The names the command line and the study's rows use.
     pub const NAMES: [&'static str; 4] = ["algorithm", "none", "front", "back"];
 
@@ -123,10 +125,9 @@ impl std::str::FromStr for Culling {
         }
         for part in text.split(',') {
             let (class, choice) = part.split_once('=').ok_or_else(|| err(format!("`{part}` has no `=`")))?;
-            let cull = Cull::NAMES
-                .iter()
-                .position(|n| *n == choice)
-                .map(|k| [Cull::Algorithm, Cull::None, Cull::Front, Cull::Back][k])
+            let cull = Cull::ALL
+                .into_iter()
+                .find(|c| c.name() == choice)
                 .ok_or_else(|| err(format!("`{choice}` is not a culling")))?;
             match class {
                 "solids" => c.solids = cull,

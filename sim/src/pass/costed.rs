@@ -170,9 +170,6 @@ fn cost_group(
     let Some(first) = archs.first() else { return Ok(Vec::new()) };
     let (tile, _, light_detail, camera_detail) = tiling(first);
     let checked = cfg.check(scene, limits, tile)?;
-    let image = RasterConfig::new(cfg.width, cfg.height, tile, RasterConfig::DEFAULT_SUBPIXEL_BITS)
-        .map_err(RenderError::ImageSize)?;
-    let checked = Checked { image, ..checked };
     macro_rules! with_format {
         ($f:ty) => {
             match (light_detail, camera_detail) {
@@ -246,18 +243,15 @@ pub fn render_costed(
             (render, reports(scene, cfg, &cfg.describe(), light, camera))
         }};
     }
-    let (render, mut costed) = match cfg.format {
+    let (render, costed) = match cfg.format {
         DepthFormatKind::D16 => with_format!(D16),
         DepthFormatKind::D24 => with_format!(D24),
         DepthFormatKind::F32 => with_format!(F32),
     };
-    costed.reverse();
-    let mut out: Vec<Option<Result<CostReport, RenderError>>> = archs.iter().map(|_| None).collect();
-    for (k, a) in archs.iter().enumerate() {
-        if tiling(a) == own {
-            out[k] = costed.pop().map(Ok);
-        }
-    }
+    // The shared reports, in the architectures' order.
+    let mut costed = costed.into_iter();
+    let mut out: Vec<Option<Result<CostReport, RenderError>>> =
+        archs.iter().map(|a| if tiling(a) == own { costed.next().map(Ok) } else { None }).collect();
     // The other tilings, each group in one run.
     let mut groups: Vec<(Tiling, Vec<usize>)> = Vec::new();
     for (k, a) in archs.iter().enumerate().filter(|(_, a)| tiling(a) != own) {

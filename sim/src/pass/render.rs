@@ -178,15 +178,14 @@ impl RenderConfig {
 
     /// Check the map side, the image size and the scene's triangles against
     /// `limits`, before any buffer is allocated, and the targets the passes
-    /// will draw (the light pass's with `tile`-pixel tiles).
+    /// will draw, both in `tile`-pixel tiles.
     pub(super) fn check(&self, scene: &Scene, limits: &Limits, tile: u32) -> Result<Checked, RenderError> {
         limits.check_map(self.map_size)?;
         limits.check_image(self.width, self.height)?;
         let triangles: usize = scene.objects.iter().map(|o| o.mesh.triangles.len()).sum();
         limits.check_triangles(u64::try_from(triangles).unwrap_or(u64::MAX))?;
         let bits = RasterConfig::DEFAULT_SUBPIXEL_BITS;
-        let image = RasterConfig::new(self.width, self.height, RasterConfig::DEFAULT_TILE_SIZE, bits)
-            .map_err(RenderError::ImageSize)?;
+        let image = RasterConfig::new(self.width, self.height, tile, bits).map_err(RenderError::ImageSize)?;
         // Shadow volumes draw no map: one texel stands for it.
         let side = if self.algorithm == Algorithm::Volumes { 1 } else { self.map_size };
         let map = RasterConfig::new(side, side, tile, bits).map_err(RenderError::MapSize)?;

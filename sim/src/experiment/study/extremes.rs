@@ -249,12 +249,8 @@ pub fn markdown(rows: &[Row]) -> String {
     let _ = writeln!(s, "\n## Other extremes\n");
     let _ = writeln!(s, "| case | algorithm | d16 | d24 | f32 |");
     let _ = writeln!(s, "|---|---|---:|---:|---:|");
-    let mut cases: Vec<&str> = Vec::new();
-    for r in rows.iter().filter(|r| ratio_of(&r.config.scene).is_none()) {
-        if !cases.contains(&r.config.scene.as_str()) {
-            cases.push(&r.config.scene);
-        }
-    }
+    let cases =
+        super::distinct(rows.iter().filter(|r| ratio_of(&r.config.scene).is_none()).map(|r| r.config.scene.as_str()));
     for case in cases {
         for v in variants() {
             let name = v.algorithm.name();

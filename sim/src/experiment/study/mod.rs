@@ -43,6 +43,23 @@ pub use summary::{slug, summary, write_outputs};
 pub use sweep::{Config, Shard, Spec, UNLIMITED_OFFSET, Variant, jittered};
 pub use sweep_file::{BUNDLED_SWEEPS, SweepError, SweepFile};
 
+/// The distinct `values`, in order of first appearance (scenes, families,
+/// architecture points as the rows list them).
+fn distinct<T: PartialEq>(values: impl IntoIterator<Item = T>) -> Vec<T> {
+    let mut out = Vec::new();
+    for v in values {
+        if !out.contains(&v) {
+            out.push(v);
+        }
+    }
+    out
+}
+
+/// The loosest of the error budgets.
+fn loosest(budgets: &[f64]) -> Option<f64> {
+    budgets.iter().copied().max_by(f64::total_cmp)
+}
+
 /// Why the study could not run or write its files.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]

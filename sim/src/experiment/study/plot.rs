@@ -9,7 +9,8 @@ use std::path::Path;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::{Manifest, Row, RowCost, StudyError};
+use super::summary::{KEYS, cheapest};
+use super::{Manifest, Row, RowCost, StudyError, distinct, loosest};
 pub use crate::io::output::FONT_PATHS;
 use crate::io::output::font;
 
@@ -121,28 +122,30 @@ fn log_log_chart<'a, DB: DrawingBackend>(
 /// The algorithm families in the order their markers are listed.
 const FAMILIES: [&str; 5] = ["first depth", "second depth", "midpoint and dual", "silhouette map", "shadow volumes"];
 
-/// A hollow marker of family `f`, `size` pixels, at `p`.
+/// Draw the hollow marker of family `f` (an index into [`FAMILIES`]),
+/// `size` pixels, at pixel `at` of `area` (a chart's points are mapped to
+/// pixels first, so the chart and the legend draw the same shapes).
 fn marker<DB: DrawingBackend>(
-    chart: &mut LogLogChart<'_, DB>,
+    area: &DrawingArea<DB, Shift>,
+    at: (i32, i32),
     f: usize,
-    p: (f64, f64),
     size: i32,
     style: ShapeStyle,
 ) -> Result<(), String> {
-    let e = EmptyElement::at(p);
-    let r = match f {
-        0 => chart.draw_series(std::iter::once(e + Circle::new((0, 0), size, style))),
-        1 => chart.draw_series(std::iter::once(e + TriangleMarker::new((0, 0), size + 1, style))),
-        2 => chart.draw_series(std::iter::once(e + Rectangle::new([(-size, -size), (size, size)], style))),
-        3 => chart.draw_series(std::iter::once(e + Cross::new((0, 0), size, style))),
-        _ => chart.draw_series(std::iter::once(
-            e + PathElement::new(
+    let e = EmptyElement::at(at);
+    match f {
+        0 => area.draw(&(e + Circle::new((0, 0), size, style))),
+        1 => area.draw(&(e + TriangleMarker::new((0, 0), size + 1, style))),
+        2 => area.draw(&(e + Rectangle::new([(-size, -size), (size, size)], style))),
+        3 => area.draw(&(e + Cross::new((0, 0), size, style))),
+        _ => area.draw(
+            &(e + PathElement::new(
                 vec![(0, -size - 1), (size + 1, 0), (0, size + 1), (-size - 1, 0), (0, -size - 1)],
                 style,
-            ),
-        )),
-    };
-    r.map(|_| ()).map_err(|e| e.to_string())
+            )),
+        ),
+    }
+    .map_err(|e| e.to_string())
 }
 
 /// Draws a legend entry's swatch centred at a point of the legend's area.
@@ -198,10 +201,11 @@ impl Figure for Pareto<'_> {
         // none hides another.
         for (k, _) in self.archs.iter().enumerate() {
             let color = PALETTE[k % PALETTE.len()];
+            #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap, reason = "a few presets")]
+            let size = 3 + 2 * k as i32;
             for ((p, a), f) in self.points.iter().zip(&self.arch_of).zip(&self.family_of) {
                 if *a == k {
-                    #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap, reason = "a few presets")]
-                    marker(&mut chart, *f, *p, 3 + 2 * k as i32, color.mix(0.7).stroke_width(1))?;
+                    marker(area, chart.backend_coord(p), *f, size, color.mix(0.7).stroke_width(1))?;
                 }
             }
         }
@@ -237,18 +241,7 @@ impl Figure for Pareto<'_> {
             l.draw(&PathElement::new(vec![(x - 9, y), (x + 9, y)], BLACK.mix(0.5))).map_err(|e| e.to_string())
         })?;
         for (f, name) in FAMILIES.iter().enumerate() {
-            line(name, &|l, c| {
-                let e = EmptyElement::at(c);
-                let s = BLACK.stroke_width(1);
-                match f {
-                    0 => l.draw(&(e + Circle::new((0, 0), 5, s))),
-                    1 => l.draw(&(e + TriangleMarker::new((0, 0), 6, s))),
-                    2 => l.draw(&(e + Rectangle::new([(-5, -5), (5, 5)], s))),
-                    3 => l.draw(&(e + Cross::new((0, 0), 5, s))),
-                    _ => l.draw(&(e + PathElement::new(vec![(0, -6), (6, 0), (0, 6), (-6, 0), (0, -6)], s))),
-                }
-                .map_err(|e| e.to_string())
-            })?;
+            line(name, &|l, c| marker(l, c, f, 5, BLACK.stroke_width(1)))?;
         }
         footnote(&legend, &self.provenance)
     }
@@ -264,12 +257,7 @@ impl Figure for Pareto<'_> {
 /// [`StudyError::Plot`] or [`StudyError::Output`].
 pub fn pareto(dir: &Path, scene: &str, rows: &[&Row], manifest: &Manifest) -> Result<(), StudyError> {
     let rows: Vec<&Row> = rows.iter().copied().filter(|r| r.complete()).collect();
-    let mut archs: Vec<&str> = Vec::new();
-    for r in &rows {
-        if !archs.contains(&r.config.arch.as_str()) {
-            archs.push(&r.config.arch);
-        }
-    }
+    let archs = distinct(rows.iter().map(|r| r.config.arch.as_str()));
     let arch_of: Vec<usize> =
         rows.iter().map(|r| archs.iter().position(|a| *a == r.config.arch).unwrap_or(0)).collect();
     let family_of: Vec<usize> =
@@ -420,17 +408,11 @@ impl Figure for AxisPlot<'_> {
 /// # Errors
 /// [`StudyError::Plot`] or [`StudyError::Output`].
 pub fn arch_axes(dir: &Path, scene: &str, rows: &[&Row], manifest: &Manifest) -> Result<(), StudyError> {
-    let Some(&budget) = manifest.budgets.iter().max_by(|a, b| a.total_cmp(b)) else { return Ok(()) };
+    let Some(budget) = loosest(&manifest.budgets) else { return Ok(()) };
     if rows.iter().all(|r| r.config.arch_params.is_empty()) {
         return Ok(());
     }
-    let mut points: Vec<(&str, &str)> = Vec::new();
-    for r in rows {
-        let p = (r.config.arch.as_str(), r.config.arch_params.as_str());
-        if !points.contains(&p) {
-            points.push(p);
-        }
-    }
+    let points = distinct(rows.iter().map(|r| r.config.arch_point()));
     let one_arch = points.windows(2).all(|w| w[0].0.split('-').next() == w[1].0.split('-').next());
     let labels = points.iter().map(|(a, p)| if one_arch { (*p).to_owned() } else { format!("{a}: {p}") }).collect();
     let series = FAMILIES
@@ -439,15 +421,15 @@ pub fn arch_axes(dir: &Path, scene: &str, rows: &[&Row], manifest: &Manifest) ->
             let pts = points
                 .iter()
                 .enumerate()
-                .filter_map(|(k, &(a, p))| {
-                    let cycles = rows
+                .filter_map(|(k, &point)| {
+                    let mine: Vec<&Row> = rows
                         .iter()
-                        .filter(|r| r.config.family == f && r.config.arch == a && r.config.arch_params == p)
-                        .filter(|r| r.complete() && r.metrics.is_some_and(|m| m.artifact_percent <= budget))
-                        .filter_map(|r| r.cost.as_ref().map(|c| c.total_cycles))
-                        .min()?;
+                        .copied()
+                        .filter(|r| r.config.family == f && r.config.arch_point() == point)
+                        .collect();
+                    let (best, _) = cheapest(&mine, budget, KEYS[0].1)?;
                     #[allow(clippy::cast_precision_loss, reason = "plot coordinates")]
-                    Some((k as f64, cycles as f64))
+                    Some((k as f64, best.cost.as_ref()?.total_cycles as f64))
                 })
                 .collect::<Vec<_>>();
             (f, pts)

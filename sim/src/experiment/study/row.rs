@@ -180,6 +180,14 @@ pub struct RowCost {
     pub map_bytes_per_px: f64,
 }
 
+impl RowConfig {
+    /// The architecture point: its name and parameter assignments.
+    #[must_use]
+    pub fn arch_point(&self) -> (&str, &str) {
+        (&self.arch, &self.arch_params)
+    }
+}
+
 impl RowMetrics {
     /// The metrics of a render, with its fraction of virtual-sampled lookups.
     #[must_use]

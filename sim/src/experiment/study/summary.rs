@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use super::{Manifest, Row, RowCost, StudyError, jsonl, plot, sort_rows};
+use super::{Manifest, Row, RowCost, StudyError, distinct, jsonl, loosest, plot, sort_rows};
 use crate::io::output::write_text;
 
 /// Write `results.jsonl`, `results.csv`, the Pareto plots per scene,
@@ -83,20 +83,14 @@ pub fn slug(name: &str) -> String {
 
 /// Scene names in order of first appearance.
 fn scenes_of(rows: &[Row]) -> Vec<String> {
-    let mut names: Vec<String> = Vec::new();
-    for r in rows {
-        if !names.contains(&r.config.scene) {
-            names.push(r.config.scene.clone());
-        }
-    }
-    names
+    distinct(rows.iter().map(|r| r.config.scene.clone()))
 }
 
 /// A cost of a row: cycles, DRAM bytes or energy (nJ, rounded).
-type Key = fn(&RowCost) -> u64;
+pub(super) type Key = fn(&RowCost) -> u64;
 
 /// The costs the summary ranks by.
-const KEYS: [(&str, Key); 3] = [
+pub(super) const KEYS: [(&str, Key); 3] = [
     ("cycles", |c| c.total_cycles),
     ("DRAM bytes", |c| c.total_dram_bytes),
     #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "nanojoules, rounded")]
@@ -106,7 +100,7 @@ const KEYS: [(&str, Key); 3] = [
 /// The complete rows whose artifacts are within `budget` percent, the
 /// cheapest by `key`, and how many tie with it (ties are broken by sweep
 /// order: the first configuration, then the first architecture).
-fn cheapest<'a>(rows: &[&'a Row], budget: f64, key: Key) -> Option<(&'a Row, usize)> {
+pub(super) fn cheapest<'a>(rows: &[&'a Row], budget: f64, key: Key) -> Option<(&'a Row, usize)> {
     let ok: Vec<(&Row, u64)> = rows
         .iter()
         .copied()
@@ -199,13 +193,7 @@ fn scene_summary(s: &mut String, rows: &[&Row], budgets: &[f64]) {
              by a configuration with no artifact at all.\n"
         );
     }
-    // Per family, in cycles.
-    let mut families: Vec<&str> = Vec::new();
-    for r in rows {
-        if !families.contains(&r.config.family.as_str()) {
-            families.push(&r.config.family);
-        }
-    }
+    let families = distinct(rows.iter().map(|r| r.config.family.as_str()));
     for (name, key) in KEYS {
         let _ = write!(s, "Cheapest per algorithm family in {name}:\n\n| family |");
         for b in budgets {
@@ -236,14 +224,9 @@ fn scene_summary(s: &mut String, rows: &[&Row], budgets: &[f64]) {
 /// pass (fixed) and a camera pass (per pixel), the image size at which
 /// they cross.
 fn crossovers(s: &mut String, rows: &[&Row], budgets: &[f64]) {
-    let Some(&loose) = budgets.iter().max_by(|a, b| a.total_cmp(b)) else { return };
+    let Some(loose) = loosest(budgets) else { return };
     let by = |axis: &str, value: &dyn Fn(&Row) -> String| {
-        let mut values: Vec<String> = Vec::new();
-        for r in rows {
-            if !values.contains(&value(r)) {
-                values.push(value(r));
-            }
-        }
+        let values = distinct(rows.iter().map(|r| value(r)));
         if values.len() < 2 {
             return String::new();
         }
@@ -299,18 +282,12 @@ fn crossovers(s: &mut String, rows: &[&Row], budgets: &[f64]) {
 /// loosest budget) at some architecture parameter point, its bottlenecks
 /// at every point: where a parameter moves one, this shows it.
 fn bottlenecks(s: &mut String, rows: &[&Row], budgets: &[f64]) {
-    let Some(&loose) = budgets.iter().max_by(|a, b| a.total_cmp(b)) else { return };
-    let mut points: Vec<(&str, &str)> = Vec::new();
-    for r in rows {
-        let a = (r.config.arch.as_str(), r.config.arch_params.as_str());
-        if !points.contains(&a) {
-            points.push(a);
-        }
-    }
+    let Some(loose) = loosest(budgets) else { return };
+    let points = distinct(rows.iter().map(|r| r.config.arch_point()));
     if points.iter().all(|a| a.1.is_empty()) {
         return;
     }
-    let at = |r: &Row, p: (&str, &str)| r.config.arch == p.0 && r.config.arch_params == p.1;
+    let at = |r: &Row, p: (&str, &str)| r.config.arch_point() == p;
     let mut winners: Vec<usize> = Vec::new();
     for &p in &points {
         let sub: Vec<&Row> = rows.iter().copied().filter(|r| at(r, p)).collect();

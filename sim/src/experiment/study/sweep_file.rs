@@ -28,7 +28,7 @@
 use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
-use umbra_core::shadow::{Filter, Jitter, MapCoord};
+use umbra_core::shadow::{Bias, DepthTest, Filter, Jitter, MapCoord, ShadowConfig};
 use umbra_core::{DepthFormatKind, RasterConfig};
 
 use super::{Spec, Variant};
@@ -284,7 +284,7 @@ impl SweepFile {
                 self.err(format!("{key}.jitter.{k}"), format!("{v} is not a non-negative number of texels"))
             })
         };
-        Ok(match f {
+        let (name, filter) = match f {
             FilterText::Preset(name) => crate::experiment::presets::FILTERS
                 .iter()
                 .find(|(n, _)| n == name)
@@ -295,28 +295,21 @@ impl SweepFile {
                         format!("`{name}` is not a filter (point, bilinear, box3, jitter4, jitter16, or a table)"),
                     )
                 })?,
-            FilterText::Jitter { name, jitter } => {
-                let j = Jitter {
+            FilterText::Jitter { name, jitter } => (
+                name.clone(),
+                Filter::Jittered(Jitter {
                     num_samples: jitter.num_samples,
                     res_factor: coord("res_factor", jitter.res_factor)?,
                     min_samples: jitter.min_samples.unwrap_or(1),
                     min_size: coord("min_size", jitter.min_size.unwrap_or(0.0))?,
-                };
-                if !(1..=256).contains(&j.num_samples) || j.min_samples == 0 || j.min_samples > j.num_samples {
-                    return Err(self.err(
-                        format!("{key}.jitter"),
-                        "num_samples must be in 1..=256, min_samples in 1..=num_samples",
-                    ));
-                }
-                (name.clone(), Filter::Jittered(j))
-            }
-            FilterText::Box { name, size } => {
-                if !(1..=15).contains(size) || size % 2 == 0 {
-                    return Err(self.err(format!("{key}.box"), format!("{size} is not an odd size in 1..=15")));
-                }
-                (name.clone(), Filter::Box { size: *size })
-            }
-        })
+                }),
+            ),
+            FilterText::Box { name, size } => (name.clone(), Filter::Box { size: *size }),
+        };
+        // The shadow unit's own check of the filter, as every render makes it.
+        ShadowConfig::new(DepthTest::First, Bias::default(), filter, false)
+            .map_err(|e| self.err(key, e.to_string()))?;
+        Ok((name, filter))
     }
 
     /// The architectures, each crossed with every point of the parameter
