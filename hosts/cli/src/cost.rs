@@ -1,11 +1,12 @@
 //! `umbra cost` and `umbra trace`: a render's cost on architectures, and its timeline.
 
 use crate::render::{RenderArgs, render_config};
+use crate::say::say;
 use anyhow::{Result, bail};
 use umbra_sim::cost::arch::Arch;
 use umbra_sim::cost::arch::file::BUNDLED;
+use umbra_sim::io::folder::OutputFolder;
 use umbra_sim::io::limits::Limits;
-use umbra_sim::io::output::write_text;
 
 /// Which architectures, and what to change in them.
 #[derive(clap::Args, Debug, Clone, Default)]
@@ -73,35 +74,32 @@ pub(super) fn command_line() -> String {
 pub(super) fn cost(args: &CostArgs, trace: bool, limits: &Limits) -> Result<()> {
     let (scene, cfg, _) = render_config(&args.render, limits)?;
     let archs = args.archs.resolve(&BUNDLED.map(|b| b.0))?;
-    let out = &args.render.out;
     let command = command_line();
+    let mut folder = OutputFolder::create(&args.render.out)?;
     let mut reports = Vec::new();
     for arch in &archs {
         let report = umbra_sim::pass::render::cost(&scene, &cfg, arch, limits)?;
         let name = &arch.name;
         if trace {
-            let path = out.join(format!("trace-{name}.json"));
-            write_text(&path, &serde_json::to_string(&report.trace())?)?;
-            println!(
-                "wrote {} ({:.3} ms of {name} in {} tiles)",
-                path.display(),
+            folder.write_text(&format!("trace-{name}.json"), &serde_json::to_string(&report.trace())?)?;
+            say!(
+                "trace-{name}.json: {:.3} ms of {name} in {} tiles",
                 report.seconds * 1e3,
                 report.tiles[0].len() + report.tiles[1].len()
             );
         } else {
-            println!("{}", report.markdown());
-            write_text(&out.join(format!("stats-{name}.txt")), &report.stats(&command))?;
+            say!("{}", report.markdown());
+            folder.write_text(&format!("stats-{name}.txt"), &report.stats(&command))?;
         }
-        write_text(&out.join(format!("arch-{name}.toml")), &arch.to_toml())?;
+        folder.write_text(&format!("arch-{name}.toml"), &arch.to_toml())?;
         reports.push(report);
     }
     if !trace {
-        let path = out.join("cost.json");
-        let json = serde_json::json!({ "version": env!("CARGO_PKG_VERSION"), "command": command, "reports": reports });
-        write_text(&path, &serde_json::to_string_pretty(&json)?)?;
-        println!("wrote {} and stats-<arch>.txt, arch-<arch>.toml", path.display());
+        let json = serde_json::json!({ "version": umbra_sim::io::provenance::version(), "command": command, "reports": reports });
+        folder.write_text("cost.json", &serde_json::to_string_pretty(&json)?)?;
     }
-    Ok(())
+    let manifest = folder.finish(None)?;
+    crate::say::wrote(&args.render.out, &manifest)
 }
 
 #[derive(clap::Args, Debug)]
@@ -121,19 +119,20 @@ pub(super) struct CorrelateArgs {
 pub(super) fn correlate(args: &CorrelateArgs, limits: &Limits) -> Result<()> {
     let scene = umbra_sim::world::scene::Scene::open(&args.scene, limits)?;
     let arch = args.archs.one("r300")?;
+    let mut folder = OutputFolder::create(&args.out)?;
     let c = umbra_sim::experiment::correlation::run(&scene, &arch, limits)?;
     let md = c.markdown();
-    print!("{md}");
-    write_text(&args.out.join("table1.md"), &md)?;
+    say!("{}", md.trim_end());
+    folder.write_text("table1.md", &md)?;
     let json = serde_json::json!({
-        "version": env!("CARGO_PKG_VERSION"),
+        "version": umbra_sim::io::provenance::version(),
         "command": command_line(),
         "scene": scene.name,
         "arch": arch,
         "correlation": c,
     });
-    write_text(&args.out.join("table1.json"), &serde_json::to_string_pretty(&json)?)?;
-    write_text(&args.out.join(format!("arch-{}.toml", arch.name)), &arch.to_toml())?;
-    println!("wrote {}", args.out.join("table1.md").display());
-    Ok(())
+    folder.write_text("table1.json", &serde_json::to_string_pretty(&json)?)?;
+    folder.write_text(&format!("arch-{}.toml", arch.name), &arch.to_toml())?;
+    let manifest = folder.finish(None)?;
+    crate::say::wrote(&args.out, &manifest)
 }

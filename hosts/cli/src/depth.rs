@@ -3,13 +3,15 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+use crate::say::say;
 use anyhow::{Context, Result};
 use clap::ValueEnum;
 use umbra_core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, RasterConfig};
 use umbra_sim::cost::counters::Counters;
 use umbra_sim::glam::{Mat4, Vec3};
+use umbra_sim::io::folder::OutputFolder;
 use umbra_sim::io::limits::Limits;
-use umbra_sim::io::output::{RawMap, write_npy, write_preview, write_text};
+use umbra_sim::io::output::{RawMap, write_npy, write_preview};
 use umbra_sim::pass::light::RawMaps;
 use umbra_sim::world::mesh::Mesh;
 use umbra_sim::world::scene::{Light, Object, Perspective, Scene, parse_matrix};
@@ -159,35 +161,28 @@ pub(super) fn depth(args: &DepthArgs, limits: &Limits) -> Result<()> {
     };
     let config = LightPassConfig { raster, unit, max_z_cull: !args.no_max_z_cull };
     let draws = scene.draws(matrix, cull);
+    let mut folder = OutputFolder::create(&args.out)?;
     let (maps, counters) = RawMaps::render(config, format, &draws, Counters::new(&raster))?;
 
-    std::fs::create_dir_all(&args.out).with_context(|| format!("cannot create {}", args.out.display()))?;
-    let written = write_maps(&args.out, &maps)?;
-    let report = tile_report(&scene, &maps, &counters, args);
-    write_text(&args.out.join("tiles.md"), &report)?;
-    write_text(&args.out.join("counters.json"), &serde_json::to_string_pretty(&counters.totals)?)?;
-    println!("{}", summary(&maps, &counters));
-    for f in written.iter().chain([&args.out.join("tiles.md"), &args.out.join("counters.json")]) {
-        println!("wrote {}", f.display());
-    }
-    Ok(())
+    write_maps(&mut folder, &maps)?;
+    folder.write_text("tiles.md", &tile_report(&scene, &maps, &counters, args))?;
+    folder.write_text("counters.json", &serde_json::to_string_pretty(&counters.totals)?)?;
+    let manifest = folder.finish(None)?;
+    say!("{}", summary(&maps, &counters));
+    crate::say::wrote(&args.out, &manifest)
 }
 
-fn write_maps(dir: &Path, maps: &RawMaps) -> Result<Vec<PathBuf>> {
+fn write_maps(folder: &mut OutputFolder, maps: &RawMaps) -> Result<()> {
     let (w, h) = (maps.maps.config.raster.width(), maps.maps.config.raster.height());
-    let mut files = Vec::new();
     for (name, data) in [("z1", &maps.maps.z1), ("z2", &maps.maps.z2)] {
         if data.is_empty() {
             continue;
         }
-        let npy = dir.join(format!("{name}.npy"));
-        let png = dir.join(format!("{name}.png"));
         let map = RawMap { format: maps.format, width: w, height: h, raw: data };
-        write_npy(&npy, &map)?;
-        write_preview(&png, &map)?;
-        files.extend([npy, png]);
+        write_npy(folder, &format!("{name}.npy"), &map)?;
+        write_preview(folder, &format!("{name}.png"), &map)?;
     }
-    Ok(files)
+    Ok(())
 }
 
 /// The configuration of a pass in one line.

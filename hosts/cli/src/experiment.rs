@@ -3,11 +3,12 @@
 use std::path::PathBuf;
 
 use crate::cost::ArchArgs;
+use crate::say::say;
 use anyhow::{Context, Result, bail};
 use indicatif::ProgressBar;
 use umbra_core::RasterConfig;
+use umbra_sim::io::folder::OutputFolder;
 use umbra_sim::io::limits::Limits;
-use umbra_sim::io::output::write_text;
 use umbra_sim::world::scene::Scene;
 
 #[derive(clap::Args, Debug)]
@@ -84,7 +85,8 @@ pub(super) struct MergeArgs {
 /// `umbra plan`.
 pub(super) fn plan(args: &PlanArgs, limits: &Limits) -> Result<()> {
     use umbra_sim::experiment::plan::{PlanSpec, plan};
-    let text = args.error_budget.trim().trim_end_matches('%');
+    let text = args.error_budget.trim();
+    let text = text.strip_suffix('%').unwrap_or(text);
     let budget: f64 =
         text.trim().parse().with_context(|| format!("--error-budget `{}` is not a percentage", args.error_budget))?;
     if !budget.is_finite() || !(0.0..=100.0).contains(&budget) {
@@ -94,17 +96,18 @@ pub(super) fn plan(args: &PlanArgs, limits: &Limits) -> Result<()> {
     let mut spec = PlanSpec::new(&scene, budget);
     spec.limits = *limits;
     spec.arch = args.archs.one("talisman")?;
+    let mut folder = OutputFolder::create(&args.out)?;
     let p = plan(&scene, &spec)?;
     let md = p.markdown(&scene, budget);
-    print!("{md}");
+    say!("{}", md.trim_end());
     if !p.meets(budget) {
-        println!("\nThe measured artifacts exceed the budget: no candidate meets it at this image size.");
+        say!("\nThe measured artifacts exceed the budget: no candidate meets it at this image size.");
     }
-    std::fs::create_dir_all(&args.out).with_context(|| format!("creating {}", args.out.display()))?;
-    write_text(&args.out.join("plan.md"), &md)?;
-    write_text(&args.out.join("plan.json"), &serde_json::to_string_pretty(&p)?)?;
-    write_text(&args.out.join(format!("arch-{}.toml", spec.arch.name)), &spec.arch.to_toml())?;
-    Ok(())
+    folder.write_text("plan.md", &md)?;
+    folder.write_text("plan.json", &serde_json::to_string_pretty(&p)?)?;
+    folder.write_text(&format!("arch-{}.toml", spec.arch.name), &spec.arch.to_toml())?;
+    let manifest = folder.finish(None)?;
+    crate::say::wrote(&args.out, &manifest)
 }
 
 /// `umbra study`.
@@ -157,6 +160,7 @@ pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
         spec.map_sizes.clone_from(&args.maps);
     }
     let shard = args.shard.as_deref().map(Shard::parse).transpose()?.unwrap_or(Shard::ALL);
+    let mut folder = OutputFolder::create(&args.out)?;
     let style =
         indicatif::ProgressStyle::with_template("{prefix} [{elapsed_precise}] {wide_bar} {pos}/{len} ETA {eta}")
             .context("progress bar template")?;
@@ -168,27 +172,30 @@ pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
     let skipped = rows.iter().filter(|r| r.metrics.is_none()).count();
     let manifest = Manifest::new(&spec, shard, rows.len());
     if shard == Shard::ALL {
-        study::write_outputs(&args.out, &rows, &manifest)?;
-        println!("{}", study::summary(&rows, &manifest));
+        study::write_outputs(&mut folder, &rows, &manifest)?;
     } else {
-        study::write_partial(&args.out, &rows, &manifest)?;
+        study::write_partial(&mut folder, &rows)?;
     }
-    write_text(&args.out.join("sweep.toml"), &file.text)?;
+    folder.write_text("sweep.toml", &file.text)?;
     // The effective architectures, beside the rows that name them.
     for arch in &spec.archs {
-        write_text(&args.out.join(format!("arch-{}.toml", arch.name)), &arch.to_toml())?;
+        folder.write_text(&format!("arch-{}.toml", arch.name), &arch.to_toml())?;
     }
-    println!(
-        "study: {configs} configurations, {} rows ({skipped} skipped) in {:.1} s; wrote {}",
+    let extremes = if args.extremes { Some(study::extremes::run_all(&mut folder, limits)?) } else { None };
+    study::finish(folder, &manifest)?;
+    if shard == Shard::ALL {
+        say!("{}", study::summary(&rows, &manifest));
+    }
+    if let Some(report) = extremes {
+        say!("{report}");
+    }
+    say!(
+        "study: {configs} configurations, {} rows ({skipped} skipped) in {:.1} s; wrote {} (its files in {})",
         rows.len(),
         start.elapsed().as_secs_f64(),
-        args.out.display()
+        args.out.display(),
+        args.out.join(umbra_sim::io::folder::MANIFEST).display()
     );
-    if args.extremes {
-        let report = study::extremes::run_all(&args.out, limits)?;
-        println!("{report}");
-        println!("wrote {}", args.out.join("extremes.md").display());
-    }
     Ok(())
 }
 

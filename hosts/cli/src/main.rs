@@ -14,6 +14,9 @@ mod cost;
 mod depth;
 mod experiment;
 mod render;
+mod say;
+
+use say::say;
 
 /// Umbra: a bit-exact model of fixed-function shadow-mapping hardware.
 ///
@@ -107,7 +110,7 @@ fn main() -> Result<()> {
         Some(Command::Plan(args)) => plan(&args, limits),
         Some(Command::Merge(args)) => {
             let n = umbra_sim::experiment::study::merge(&args.inputs, &args.out, limits)?;
-            println!("merged {n} rows into {}", args.out.display());
+            say!("merged {n} rows into {}", args.out.display());
             Ok(())
         }
         None => {

@@ -3,14 +3,14 @@
 use std::path::PathBuf;
 
 use crate::depth::{Format, format_kind};
+use crate::say::say;
 use anyhow::{Context, Result, bail};
 use clap::ValueEnum;
 use indicatif::ProgressBar;
 use umbra_core::shadow::{Filter, Jitter, MapCoord};
+use umbra_sim::io::folder::OutputFolder;
 use umbra_sim::io::limits::Limits;
-use umbra_sim::io::output::{
-    RawMap, write_error_image, write_preview, write_shadow_image, write_shadow_term, write_text,
-};
+use umbra_sim::io::output::{RawMap, write_error_image, write_preview, write_shadow_image, write_shadow_term};
 use umbra_sim::pass::render::{Algorithm, Culling, RenderConfig, TruthSource};
 use umbra_sim::world::scene::Scene;
 
@@ -206,18 +206,20 @@ fn jitter(args: &RenderArgs) -> Result<Jitter> {
 /// `umbra render`: the pictures, the metrics and the events of one render.
 pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
     let (scene, cfg, filter_name) = render_config(args, limits)?;
+    let mut folder = OutputFolder::create(&args.out)?;
     let progress = ProgressBar::new(u64::from(cfg.height)).with_message("reference rays");
     let r = umbra_sim::pass::render::render(&scene, &cfg, limits, TruthSource::Build(&progress))?;
     progress.finish_and_clear();
-    let out = &args.out;
     let (w, h) = (r.maps.maps.config.raster.width(), r.maps.maps.config.raster.height());
-    write_shadow_image(&out.join("shaded.png"), &r.image, scene.light().direction())?;
-    write_shadow_term(&out.join("shadow.png"), &r.image)?;
-    write_error_image(&out.join("error.png"), &r.image, &r.truth, scene.light().direction())?;
+    let f = &mut folder;
+    write_shadow_image(f, "shaded.png", &r.image, scene.light().direction())?;
+    write_shadow_term(f, "shadow.png", &r.image)?;
+    write_error_image(f, "error.png", &r.image, &r.truth, scene.light().direction())?;
     for (name, data) in [("z1", &r.maps.maps.z1), ("z2", &r.maps.maps.z2)] {
         if !data.is_empty() {
             write_preview(
-                &out.join(format!("{name}.png")),
+                f,
+                &format!("{name}.png"),
                 &RawMap { format: r.maps.format, width: w, height: h, raw: data },
             )?;
         }
@@ -235,10 +237,11 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
             fields.insert(k.to_owned(), serde_json::Value::String(v));
         }
     }
-    write_text(&out.join("metrics.json"), &serde_json::to_string_pretty(&record)?)?;
+    folder.write_text("metrics.json", &serde_json::to_string_pretty(&record)?)?;
+    let manifest = folder.finish(None)?;
     let m = &r.metrics;
     let t = &r.camera_events.totals;
-    println!(
+    say!(
         "render `{}`: {}, {} map {}², {filter_name} filter, bias {}, culling {}, {}×{}",
         scene.name,
         cfg.algorithm.flags().trim_start_matches("--algo "),
@@ -249,9 +252,9 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
         cfg.width,
         cfg.height
     );
-    println!("| pixels evaluated | false shadow | false light | misclassified | mean abs error |");
-    println!("|---:|---:|---:|---:|---:|");
-    println!(
+    say!("| pixels evaluated | false shadow | false light | misclassified | mean abs error |");
+    say!("|---:|---:|---:|---:|---:|");
+    say!(
         "| {} | {:.3} % | {:.3} % | {:.3} % | {:.4} |",
         m.evaluated,
         100.0 * m.false_shadow_rate,
@@ -259,7 +262,7 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
         m.misclassified_percent,
         m.mean_abs_error
     );
-    println!(
+    say!(
         "misclassified: {} edge placement, {} acne, {} leaks ({:.3} % artifacts); {} ties at ½; RMS area error {:.4}; boundary displacement {:.2} / {:.2} / {:.2} pixels, {:.2} / {:.2} / {:.2} texels (mean / 95th percentile / max)",
         m.edge_placement,
         m.acne,
@@ -274,12 +277,12 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
         m.displacement_texels[1],
         m.displacement_texels[2]
     );
-    println!(
+    say!(
         "map footprint: {:.3} texels per pixel (the map is {} on screen)",
         m.texels_per_pixel,
         if m.texels_per_pixel < 1.0 { "magnified" } else { "minified" }
     );
-    println!(
+    say!(
         "virtual samples for {} pixels, {} trivially decided, {} tangent fallbacks, {} lookups culled, {} map bytes read",
         t.tangent_setups,
         t.trivial_pixels(),
@@ -287,8 +290,5 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
         t.lookups_culled,
         t.map_read_bytes
     );
-    for f in ["shaded.png", "shadow.png", "error.png", "z1.png", "metrics.json"] {
-        println!("wrote {}", out.join(f).display());
-    }
-    Ok(())
+    crate::say::wrote(&args.out, &manifest)
 }

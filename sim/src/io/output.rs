@@ -1,14 +1,14 @@
 //! Files a person or another tool can open: NumPy arrays of raw texels, PNG
 //! previews, Markdown tables.
 
-use std::fs::File;
-use std::io::{BufWriter, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 use plotters::style::FontStyle;
 use umbra_core::DepthFormatKind;
 
+use super::folder::OutputFolder;
 use crate::pass::light::{raw_depth, raw_far};
 
 /// Why an output file could not be written.
@@ -30,6 +30,15 @@ pub enum OutputError {
         /// What went wrong.
         problem: String,
     },
+    /// The folder cannot take the file: a name outside it, a folder that
+    /// is a file, a manifest that does not match.
+    #[error("{path}: {problem}")]
+    Folder {
+        /// The file or folder.
+        path: PathBuf,
+        /// What is wrong.
+        problem: String,
+    },
     /// Encoding the image failed.
     #[error("{path}: {source}")]
     Image {
@@ -40,32 +49,38 @@ pub enum OutputError {
     },
 }
 
-/// Where DejaVu Sans is looked for when `$UMBRA_FONT` is unset.
-pub const FONT_PATHS: [&str; 3] = [
-    "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
-    "/usr/share/fonts/TTF/DejaVuSans.ttf",
-    "/usr/share/fonts/dejavu/DejaVuSans.ttf",
-];
+/// The pictures' font, DejaVu Sans (Bitstream Vera licence, `assets/DejaVuSans.LICENSE`), bundled so that
+/// no system font is needed.
+const FONT: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
 
-/// Register the pictures' font once (text needs it for its metrics); the error names the files tried.
+/// Register the pictures' font once (text needs it for its metrics).
 pub(crate) fn font() -> Result<(), String> {
-    static FONT: OnceLock<Result<(), String>> = OnceLock::new();
-    FONT.get_or_init(|| {
-        let paths: Vec<PathBuf> = std::env::var_os("UMBRA_FONT")
-            .map(|p| vec![PathBuf::from(p)])
-            .unwrap_or_else(|| FONT_PATHS.iter().map(PathBuf::from).collect());
-        let Some(bytes) = paths.iter().find_map(|p| std::fs::read(p).ok()) else {
-            return Err(format!(
-                "no font: tried {} (install fonts-dejavu-core or set UMBRA_FONT to a .ttf file)",
-                paths.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")
-            ));
-        };
-        // Registered once for the life of the process, as plotters requires.
-        let bytes: &'static [u8] = Box::leak(bytes.into_boxed_slice());
-        plotters::style::register_font("sans-serif", FontStyle::Normal, bytes)
-            .map_err(|_| "the font file is not a TrueType font".to_owned())
-    })
-    .clone()
+    static REGISTERED: OnceLock<Result<(), String>> = OnceLock::new();
+    REGISTERED
+        .get_or_init(|| {
+            plotters::style::register_font("sans-serif", FontStyle::Normal, FONT)
+                .map_err(|_| "the bundled font is not a TrueType font".to_owned())
+        })
+        .clone()
+}
+
+/// `pixels` as a PNG file's bytes; an error names `path`.
+///
+/// # Errors
+/// [`OutputError::Image`].
+pub fn png(
+    path: &Path,
+    pixels: &[u8],
+    width: u32,
+    height: u32,
+    color: image::ColorType,
+) -> Result<Vec<u8>, OutputError> {
+    use image::ImageEncoder;
+    let mut bytes = Vec::new();
+    image::codecs::png::PngEncoder::new(&mut bytes)
+        .write_image(pixels, width, height, color.into())
+        .map_err(|source| OutputError::Image { path: path.to_owned(), source })?;
+    Ok(bytes)
 }
 
 fn io(path: &Path) -> impl FnOnce(std::io::Error) -> OutputError + '_ {
@@ -85,22 +100,22 @@ pub struct RawMap<'a> {
     pub raw: &'a [u32],
 }
 
-/// Write a `height × width` map of raw texels as a C-order `.npy` array:
-/// `<u2` for 16-bit depth, `<u4` for 24-bit depth and for the f32 format's bits.
+/// Write a `height × width` map of raw texels as a C-order `.npy` array
+/// named `name` in `folder`: `<u2` for 16-bit depth, `<u4` for 24-bit depth
+/// and for the f32 format's bits.
 ///
 /// # Errors
-/// [`OutputError::Io`].
-pub fn write_npy(path: &Path, map: &RawMap<'_>) -> Result<(), OutputError> {
+/// [`OutputError::Io`] naming the file.
+pub fn write_npy(folder: &mut OutputFolder, name: &str, map: &RawMap<'_>) -> Result<PathBuf, OutputError> {
     let RawMap { format, width, height, raw } = *map;
-    let file = File::create(path).map_err(io(path))?;
-    let mut w = BufWriter::new(file);
+    let mut bytes = Vec::new();
     let shape = [u64::from(height), u64::from(width)];
     match format {
-        DepthFormatKind::D16 => npy_body(&mut w, &shape, raw.iter().map(|&v| u16::try_from(v).unwrap_or(u16::MAX))),
-        DepthFormatKind::D24 | DepthFormatKind::F32 => npy_body(&mut w, &shape, raw.iter().copied()),
+        DepthFormatKind::D16 => npy_body(&mut bytes, &shape, raw.iter().map(|&v| u16::try_from(v).unwrap_or(u16::MAX))),
+        DepthFormatKind::D24 | DepthFormatKind::F32 => npy_body(&mut bytes, &shape, raw.iter().copied()),
     }
-    .map_err(io(path))?;
-    w.flush().map_err(io(path))
+    .map_err(io(&folder.dir().join(name)))?;
+    folder.write(name, &bytes)
 }
 
 fn npy_body<T: npyz::AutoSerialize>(
@@ -114,12 +129,13 @@ fn npy_body<T: npyz::AutoSerialize>(
     out.finish()
 }
 
-/// Write a greyscale PNG preview of a map: the depths present are stretched
-/// over black (nearest) to light grey, and the clear value is white.
+/// Write a greyscale PNG preview of a map as `name` in `folder`: the
+/// depths present are stretched over black (nearest) to light grey, and
+/// the clear value is white.
 ///
 /// # Errors
-/// [`OutputError::Image`].
-pub fn write_preview(path: &Path, map: &RawMap<'_>) -> Result<(), OutputError> {
+/// [`OutputError::Image`] or [`OutputError::Io`] naming the file.
+pub fn write_preview(folder: &mut OutputFolder, name: &str, map: &RawMap<'_>) -> Result<PathBuf, OutputError> {
     let RawMap { format, width, height, raw } = *map;
     let far = raw_far(format);
     let depths = raw.iter().filter(|&&v| v != far).map(|&v| raw_depth(format, v));
@@ -137,19 +153,7 @@ pub fn write_preview(path: &Path, map: &RawMap<'_>) -> Result<(), OutputError> {
             }
         })
         .collect();
-    image::save_buffer(path, &pixels, width, height, image::ColorType::L8)
-        .map_err(|source| OutputError::Image { path: path.to_owned(), source })
-}
-
-/// Write text to a file, creating its folder.
-///
-/// # Errors
-/// [`OutputError::Io`].
-pub fn write_text(path: &Path, text: &str) -> Result<(), OutputError> {
-    if let Some(dir) = path.parent() {
-        std::fs::create_dir_all(dir).map_err(io(path))?;
-    }
-    std::fs::write(path, text).map_err(io(path))
+    save(folder, name, &pixels, width, height, image::ColorType::L8)
 }
 
 /// Write the camera pass as a picture a person can read: surfaces grey by
@@ -160,10 +164,11 @@ pub fn write_text(path: &Path, text: &str) -> Result<(), OutputError> {
 /// # Errors
 /// [`OutputError::Image`].
 pub fn write_shadow_image(
-    path: &Path,
+    folder: &mut OutputFolder,
+    name: &str,
     image: &crate::pass::camera::CameraImage,
     light_dir: umbra_core::glam::Vec3,
-) -> Result<(), OutputError> {
+) -> Result<PathBuf, OutputError> {
     let to_light = -light_dir.normalize_or_zero();
     let pixels: Vec<u8> = image
         .pixels
@@ -179,15 +184,19 @@ pub fn write_shadow_image(
             g
         })
         .collect();
-    save(path, &pixels, image.width, image.height, image::ColorType::L8)
+    save(folder, name, &pixels, image.width, image.height, image::ColorType::L8)
 }
 
-fn save(path: &Path, pixels: &[u8], width: u32, height: u32, color: image::ColorType) -> Result<(), OutputError> {
-    if let Some(dir) = path.parent() {
-        std::fs::create_dir_all(dir).map_err(io(path))?;
-    }
-    image::save_buffer(path, pixels, width, height, color)
-        .map_err(|source| OutputError::Image { path: path.to_owned(), source })
+fn save(
+    folder: &mut OutputFolder,
+    name: &str,
+    pixels: &[u8],
+    width: u32,
+    height: u32,
+    color: image::ColorType,
+) -> Result<PathBuf, OutputError> {
+    let bytes = png(&folder.dir().join(name), pixels, width, height, color)?;
+    folder.write(name, &bytes)
 }
 
 /// Write the shadow term alone: white lit, black fully shadowed, the
@@ -195,7 +204,11 @@ fn save(path: &Path, pixels: &[u8], width: u32, height: u32, color: image::Color
 ///
 /// # Errors
 /// [`OutputError::Image`].
-pub fn write_shadow_term(path: &Path, image: &crate::pass::camera::CameraImage) -> Result<(), OutputError> {
+pub fn write_shadow_term(
+    folder: &mut OutputFolder,
+    name: &str,
+    image: &crate::pass::camera::CameraImage,
+) -> Result<PathBuf, OutputError> {
     let pixels: Vec<u8> = image
         .pixels
         .iter()
@@ -208,7 +221,7 @@ pub fn write_shadow_term(path: &Path, image: &crate::pass::camera::CameraImage) 
             g
         })
         .collect();
-    save(path, &pixels, image.width, image.height, image::ColorType::L8)
+    save(folder, name, &pixels, image.width, image.height, image::ColorType::L8)
 }
 
 /// The error map's colours: edge placement, acne, leaks.
@@ -220,14 +233,14 @@ pub const ERROR_COLOURS: [[u8; 3]; 3] = [[235, 170, 0], [220, 30, 30], [30, 100,
 /// band below the image giving each colour's meaning and count.
 ///
 /// # Errors
-/// [`OutputError::Image`] for an unwritable file; [`OutputError::Font`]
-/// when no font is found for the legend.
+/// [`OutputError::Image`] or [`OutputError::Io`] naming the file.
 pub fn write_error_image(
-    path: &Path,
+    folder: &mut OutputFolder,
+    name: &str,
     image: &crate::pass::camera::CameraImage,
     truth: &[Option<crate::truth::reference::PixelTruth>],
     light_dir: umbra_core::glam::Vec3,
-) -> Result<(), OutputError> {
+) -> Result<PathBuf, OutputError> {
     use crate::truth::metrics::{Verdict, verdicts};
     use plotters::prelude::*;
     let to_light = -light_dir.normalize_or_zero();
@@ -252,7 +265,8 @@ pub fn write_error_image(
         };
         rgb[3 * k..3 * k + 3].copy_from_slice(&colour);
     }
-    font().map_err(|problem| OutputError::Font { path: path.to_owned(), problem })?;
+    let path = folder.dir().join(name);
+    font().map_err(|problem| OutputError::Font { path: path.clone(), problem })?;
     let drawn = {
         let root = BitMapBackend::with_buffer(&mut rgb, (w, h + band)).into_drawing_area();
         let legend = [
@@ -276,6 +290,6 @@ pub fn write_error_image(
             })
             .and_then(|()| root.present())
     };
-    drawn.map_err(|e| OutputError::Font { path: path.to_owned(), problem: e.to_string() })?;
-    save(path, &rgb, w, h + band, image::ColorType::Rgb8)
+    drawn.map_err(|e| OutputError::Font { path, problem: e.to_string() })?;
+    save(folder, name, &rgb, w, h + band, image::ColorType::Rgb8)
 }

@@ -6,6 +6,7 @@
 use std::path::{Path, PathBuf};
 
 use umbra::sim::experiment::study::{self, Manifest, Row, Shard, Spec, StudyError, Variant};
+use umbra::sim::io::folder::RunManifest;
 use umbra::sim::io::limits::Limits;
 use umbra::sim::pass::render::Algorithm;
 
@@ -37,7 +38,7 @@ fn shard(spec: &Spec, tag: &str, i: usize, n: usize) -> PathBuf {
     let d = dir(&format!("{tag}-{i}"));
     let s = Shard { index: i, count: n };
     let rows = study::run(spec, s, &indicatif::ProgressBar::hidden());
-    study::write_partial(&d, &rows, &Manifest::new(spec, s, rows.len())).expect("write");
+    study::write_run(&d, &rows, &Manifest::new(spec, s, rows.len())).expect("write");
     d
 }
 
@@ -54,8 +55,10 @@ fn refused(inputs: &[PathBuf], file: &Path, what: &str) {
 fn rewrite(d: &Path, edit: impl Fn(&mut Row)) {
     let mut rows = study::read_rows(d, &Limits::DEFAULT).expect("rows");
     rows.iter_mut().for_each(edit);
-    let m: Manifest = serde_json::from_slice(&std::fs::read(d.join("manifest.json")).expect("manifest")).expect("JSON");
-    study::write_partial(d, &rows, &m).expect("write");
+    let run: RunManifest =
+        serde_json::from_slice(&std::fs::read(d.join("manifest.json")).expect("manifest")).expect("JSON");
+    let m: Manifest = serde_json::from_value(run.study.expect("a study's manifest")).expect("study record");
+    study::write_run(d, &rows, &m).expect("write");
 }
 
 #[test]
@@ -82,7 +85,7 @@ fn merge_refuses_what_would_lie() {
     // An empty results file where the manifest counts a row.
     let empty = shard(&spec, "empty", 1, 2);
     std::fs::write(empty.join("results.jsonl"), "").expect("truncate");
-    refused(&[s[0].clone(), empty.clone()], &empty.join("results.jsonl"), "0 rows where the manifest says 1");
+    refused(&[s[0].clone(), empty.clone()], &empty.join("results.jsonl"), "differs from the manifest");
     // A row with a negative error, and one with NaN.
     let negative = shard(&spec, "negative", 1, 2);
     rewrite(&negative, |r| r.metrics.iter_mut().for_each(|m| m.misclassified_percent = -5.0));

@@ -99,8 +99,8 @@ fn same_bytes_on_one_and_two_threads() {
     let (a, b) = (dir("threads-1"), dir("threads-2"));
     let rows1 = run_on(1, &spec, Shard::ALL);
     let rows2 = run_on(2, &spec, Shard::ALL);
-    study::write_outputs(&a, &rows1, &whole(&spec, &rows1)).expect("write");
-    study::write_outputs(&b, &rows2, &whole(&spec, &rows2)).expect("write");
+    study::write_run(&a, &rows1, &whole(&spec, &rows1)).expect("write");
+    study::write_run(&b, &rows2, &whole(&spec, &rows2)).expect("write");
     let n = spec.configs().len();
     assert_eq!(n, 2 * 2 * 2 * 2);
     assert_eq!(rows1.len(), n * Arch::era_presets().len());
@@ -140,7 +140,7 @@ pub fn shards(spec: &Spec, tag: &str) -> Vec<PathBuf> {
             let shard = Shard::parse(&format!("{i}/3")).expect("valid");
             let rows = run_on(2, spec, shard);
             assert!(rows.iter().all(|r| r.config_index % 3 == i));
-            study::write_partial(&d, &rows, &Manifest::new(spec, shard, rows.len())).expect("write");
+            study::write_run(&d, &rows, &Manifest::new(spec, shard, rows.len())).expect("write");
             d
         })
         .collect()
@@ -154,15 +154,15 @@ fn shards_merge_into_the_whole_run() {
     let spec = small();
     let full = dir("whole");
     let rows = run_on(2, &spec, Shard::ALL);
-    study::write_outputs(&full, &rows, &whole(&spec, &rows)).expect("write");
+    study::write_run(&full, &rows, &whole(&spec, &rows)).expect("write");
     let shards = shards(&spec, "merge");
     let merged = dir("merged");
     let inputs = vec![shards[2].join("results.jsonl"), shards[0].clone(), shards[1].join("results.jsonl")];
     let n = study::merge(&inputs, &merged, &Limits::DEFAULT).expect("merge");
     assert_eq!(n, spec.configs().len() * Arch::era_presets().len());
     assert_eq!(outputs(&full), outputs(&merged));
-    let m: Manifest =
-        serde_json::from_slice(&std::fs::read(merged.join("manifest.json")).expect("manifest")).expect("JSON");
+    let run = umbra::sim::io::folder::RunManifest::verify(&merged, u64::MAX).expect("a complete folder");
+    let m: Manifest = serde_json::from_value(run.study.expect("the study's record")).expect("JSON");
     assert_eq!((m.shard.as_str(), m.rows), ("0/1", n));
     for bad in ["3/3", "1", "a/2", "0/0"] {
         assert!(Shard::parse(bad).is_err(), "{bad}");
@@ -284,7 +284,9 @@ fn extremes_give_finite_metrics() {
 fn extremes_keep_to_their_limits() {
     let out = dir("extremes-limits");
     let limits = Limits { max_map_side: 256, ..Limits::DEFAULT };
-    let md = extremes::run_all(&out, &limits).expect("runs");
+    let mut folder = umbra::sim::io::folder::OutputFolder::create(&out).expect("folder");
+    let md = extremes::run_all(&mut folder, &limits).expect("runs");
+    folder.finish(None).expect("finished");
     let rows = study::read_rows(&out.join("extremes.jsonl"), &Limits::DEFAULT).expect("written");
     assert_eq!(rows.len(), extremes::scenes().len() * extremes::variants().len() * 3);
     for r in &rows {

@@ -149,7 +149,7 @@ fn scene_names_never_become_paths() {
         Row { config: RowConfig { scene: name.into(), ..r.config }, ..r }
     };
     let rows = vec![named("/../../../ESCAPED", 0), named("table.v2", 1)];
-    umbra::sim::experiment::study::write_outputs(&out, &rows, &manifest()).expect("written");
+    umbra::sim::experiment::study::write_run(&out, &rows, &manifest()).expect("written");
     let mut names: Vec<String> =
         std::fs::read_dir(&out).expect("out").map(|e| e.expect("entry").file_name().to_string_lossy().into()).collect();
     names.sort();
@@ -161,7 +161,7 @@ fn scene_names_never_become_paths() {
     assert_eq!(above.len(), 1, "only out/ inside {}", base.display());
     assert!(!base.join("ESCAPED-cycles.png").exists() && std::fs::read_dir(&base).expect("dir").count() == 1);
     let clash = vec![named("a.b", 0), named("a/b", 1)];
-    let e = umbra::sim::experiment::study::write_outputs(&base.join("clash"), &clash, &manifest()).expect_err("clash");
+    let e = umbra::sim::experiment::study::write_run(&base.join("clash"), &clash, &manifest()).expect_err("clash");
     assert!(e.to_string().contains("`a.b` and `a/b`"), "{e}");
     let _ = std::fs::remove_dir_all(&base);
 }

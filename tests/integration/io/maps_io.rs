@@ -114,10 +114,11 @@ fn npy_holds_raw_texels() {
     let cfg = LightPassConfig { raster, unit: DepthUnit::Dual, max_z_cull: true };
     let draws = scene.draws(scene.light().view_projection(), CullMode::None);
     let dir = scratch("npy");
+    let mut folder = umbra::sim::io::folder::OutputFolder::create(&dir).expect("folder");
     for (format, descr, bytes) in [(DepthFormatKind::D16, "<u2", 2usize), (DepthFormatKind::D24, "<u4", 4)] {
         let (maps, _) = RawMaps::render(cfg, format, &draws, umbra::core::NoProbe).expect("renders");
-        let path = dir.join(format!("{}.npy", format.name()));
-        write_npy(&path, &RawMap { format, width: 48, height: 32, raw: &maps.maps.z1 }).expect("writes");
+        let map = RawMap { format, width: 48, height: 32, raw: &maps.maps.z1 };
+        let path = write_npy(&mut folder, &format!("{}.npy", format.name()), &map).expect("writes");
         let file = std::fs::read(&path).expect("reads");
         assert_eq!(&file[..6], b"\x93NUMPY");
         let header_len = usize::from(u16::from_le_bytes([file[8], file[9]]));

@@ -14,7 +14,6 @@
 //! None may panic; each must give a finite metric.
 
 use std::fmt::Write as _;
-use std::path::Path;
 
 use glam::Vec3;
 use indicatif::ProgressBar;
@@ -22,8 +21,8 @@ use umbra_core::DepthFormatKind;
 
 use super::plot::{self, Series};
 use super::{Row, Shard, Spec, StudyError, Variant};
+use crate::io::folder::OutputFolder;
 use crate::io::limits::Limits;
-use crate::io::output::write_text;
 use crate::pass::render::Algorithm;
 use crate::world::mesh::Mesh;
 use crate::world::scene::{Light, Object, Scene};
@@ -301,18 +300,19 @@ pub fn precision_series(rows: &[Row]) -> Vec<Series> {
 /// Run every extreme at 160×90 on the current rayon pool, within
 /// `limits` (a configuration beyond them is a skipped row that names the
 /// limit), and write `extremes.jsonl`, `extremes.md` and
-/// `precision.{svg,png}` into `dir`. Returns the Markdown.
+/// `precision.{svg,png}` into `folder`. Returns the Markdown.
 ///
 /// # Errors
 /// See [`StudyError`].
-pub fn run_all(dir: &Path, limits: &Limits) -> Result<String, StudyError> {
+pub fn run_all(folder: &mut OutputFolder, limits: &Limits) -> Result<String, StudyError> {
     let spec = Spec { limits: *limits, ..spec(scenes(), 160, 90) };
     let rows = super::run(&spec, Shard::ALL, &ProgressBar::hidden());
-    write_text(&dir.join("extremes.jsonl"), &super::jsonl(&rows))?;
+    folder.write_text("extremes.jsonl", &super::jsonl(&rows))?;
     let md = markdown(&rows);
-    write_text(&dir.join("extremes.md"), &md)?;
+    folder.write_text("extremes.md", &md)?;
     plot::lines(
-        &dir.join("precision"),
+        folder,
+        "precision",
         "Depth precision against the light's near/far ratio (table; f32 = d24)",
         "light far / near",
         "misclassified % (0 drawn at 1e-3)",

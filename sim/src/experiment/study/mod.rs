@@ -38,7 +38,7 @@ pub use row::{Row, RowConfig, RowCost, RowMetrics, Status};
 use run::sort_rows;
 pub use run::{Truth, load_scenes, render_config, run, run_config, truths};
 use shards::jsonl;
-pub use shards::{Manifest, invalid, merge, read_rows, write_manifest, write_partial};
+pub use shards::{Manifest, finish, invalid, merge, read_rows, write_partial, write_run};
 pub use summary::{slug, summary, write_outputs};
 pub use sweep::{Config, Shard, Spec, UNLIMITED_OFFSET, Variant, jittered};
 pub use sweep_file::{BUNDLED_SWEEPS, SweepError, SweepFile};

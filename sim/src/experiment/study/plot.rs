@@ -1,18 +1,16 @@
 //! The study's plots, as SVG and PNG: error against cost with the Pareto
 //! front, and error against a swept parameter.
 //!
-//! Text needs a font for its metrics in both backends: DejaVu Sans from the
-//! system (`fonts-dejavu-core`), or the TrueType file `$UMBRA_FONT` names.
-
-use std::path::Path;
+//! Text needs a font for its metrics in both backends: the bundled DejaVu
+//! Sans.
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::summary::{KEYS, cheapest};
 use super::{Manifest, Row, RowCost, StudyError, distinct, loosest};
-pub use crate::io::output::FONT_PATHS;
-use crate::io::output::font;
+use crate::io::folder::OutputFolder;
+use crate::io::output::{font, png};
 
 /// Plot size in pixels.
 const SIZE: (u32, u32) = (900, 600);
@@ -40,11 +38,12 @@ trait Figure {
     fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<(), String>;
 }
 
-/// Draw `f` into `base.svg` and `base.png`.
-fn both(base: &Path, f: &impl Figure) -> Result<(), StudyError> {
-    let err = |path: &Path, problem: String| StudyError::Plot { path: path.to_owned(), problem };
-    let svg_path = base.with_extension("svg");
-    let png_path = base.with_extension("png");
+/// Draw `f` into `base.svg` and `base.png` in `folder`.
+fn both(folder: &mut OutputFolder, base: &str, f: &impl Figure) -> Result<(), StudyError> {
+    let err = |path: &std::path::Path, problem: String| StudyError::Plot { path: path.to_owned(), problem };
+    let (svg_name, png_name) = (format!("{base}.svg"), format!("{base}.png"));
+    let svg_path = folder.dir().join(&svg_name);
+    let png_path = folder.dir().join(&png_name);
     font().map_err(|e| err(&svg_path, e))?;
     let mut svg = String::new();
     {
@@ -52,15 +51,16 @@ fn both(base: &Path, f: &impl Figure) -> Result<(), StudyError> {
         f.draw(&area).map_err(|e| err(&svg_path, e))?;
         area.present().map_err(|e| err(&svg_path, e.to_string()))?;
     }
-    crate::io::output::write_text(&svg_path, &svg)?;
+    folder.write_text(&svg_name, &svg)?;
     let mut rgb = vec![0u8; (SIZE.0 * SIZE.1 * 3) as usize];
     {
         let area = BitMapBackend::with_buffer(&mut rgb, SIZE).into_drawing_area();
         f.draw(&area).map_err(|e| err(&png_path, e))?;
         area.present().map_err(|e| err(&png_path, e.to_string()))?;
     }
-    image::save_buffer(&png_path, &rgb, SIZE.0, SIZE.1, image::ColorType::Rgb8)
-        .map_err(|e| err(&png_path, e.to_string()))
+    let bytes = png(&png_path, &rgb, SIZE.0, SIZE.1, image::ColorType::Rgb8)?;
+    folder.write(&png_name, &bytes)?;
+    Ok(())
 }
 
 /// Colours of the presets (and of series), in sweep order.
@@ -255,7 +255,7 @@ impl Figure for Pareto<'_> {
 ///
 /// # Errors
 /// [`StudyError::Plot`] or [`StudyError::Output`].
-pub fn pareto(dir: &Path, scene: &str, rows: &[&Row], manifest: &Manifest) -> Result<(), StudyError> {
+pub fn pareto(folder: &mut OutputFolder, scene: &str, rows: &[&Row], manifest: &Manifest) -> Result<(), StudyError> {
     let rows: Vec<&Row> = rows.iter().copied().filter(|r| r.complete()).collect();
     let archs = distinct(rows.iter().map(|r| r.config.arch.as_str()));
     let arch_of: Vec<usize> =
@@ -282,7 +282,7 @@ pub fn pareto(dir: &Path, scene: &str, rows: &[&Row], manifest: &Manifest) -> Re
             budgets: &manifest.budgets,
             provenance: provenance(manifest),
         };
-        both(&dir.join(format!("pareto-{scene}-{what}")), &fig)?;
+        both(folder, &format!("pareto-{scene}-{what}"), &fig)?;
     }
     Ok(())
 }
@@ -335,8 +335,15 @@ impl Figure for Lines<'_> {
 ///
 /// # Errors
 /// [`StudyError::Plot`] or [`StudyError::Output`].
-pub fn lines(base: &Path, title: &str, x_desc: &str, y_desc: &str, series: &[Series]) -> Result<(), StudyError> {
-    both(base, &Lines { title, x_desc, y_desc, series })
+pub fn lines(
+    folder: &mut OutputFolder,
+    base: &str,
+    title: &str,
+    x_desc: &str,
+    y_desc: &str,
+    series: &[Series],
+) -> Result<(), StudyError> {
+    both(folder, base, &Lines { title, x_desc, y_desc, series })
 }
 
 /// A plot's two lines of provenance: the version; the sweep and its hash.
@@ -407,7 +414,7 @@ impl Figure for AxisPlot<'_> {
 ///
 /// # Errors
 /// [`StudyError::Plot`] or [`StudyError::Output`].
-pub fn arch_axes(dir: &Path, scene: &str, rows: &[&Row], manifest: &Manifest) -> Result<(), StudyError> {
+pub fn arch_axes(folder: &mut OutputFolder, scene: &str, rows: &[&Row], manifest: &Manifest) -> Result<(), StudyError> {
     let Some(budget) = loosest(&manifest.budgets) else { return Ok(()) };
     if rows.iter().all(|r| r.config.arch_params.is_empty()) {
         return Ok(());
@@ -442,5 +449,5 @@ pub fn arch_axes(dir: &Path, scene: &str, rows: &[&Row], manifest: &Manifest) ->
         series,
         provenance: provenance(manifest),
     };
-    both(&dir.join(format!("arch-axes-{scene}")), &fig)
+    both(folder, &format!("arch-axes-{scene}"), &fig)
 }

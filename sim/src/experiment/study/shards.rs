@@ -6,8 +6,8 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use super::{Row, Shard, Spec, Status, StudyError, sort_rows, write_outputs};
+use crate::io::folder::{OutputFolder, RunManifest};
 use crate::io::limits::Limits;
-use crate::io::output::write_text;
 
 /// What a study run (whole or one shard) wrote: enough to tell whether
 /// shards belong together and are complete.
@@ -63,24 +63,38 @@ pub(super) fn jsonl(rows: &[Row]) -> String {
     s
 }
 
-/// Write a shard's partial `results.jsonl` and its `manifest.json` into
-/// `dir`.
+/// Write a shard's partial `results.jsonl` into `folder`.
 ///
 /// # Errors
 /// [`StudyError::Output`].
-pub fn write_partial(dir: &Path, rows: &[Row], manifest: &Manifest) -> Result<(), StudyError> {
-    write_text(&dir.join("results.jsonl"), &jsonl(rows))?;
-    write_manifest(dir, manifest)
+pub fn write_partial(folder: &mut OutputFolder, rows: &[Row]) -> Result<(), StudyError> {
+    folder.write_text("results.jsonl", &jsonl(rows))?;
+    Ok(())
 }
 
-/// Write `manifest.json` into `dir`.
+/// Finish a study's folder: its `manifest.json` lists the files and
+/// carries `manifest` as its `study` record.
 ///
 /// # Errors
 /// [`StudyError::Output`].
-pub fn write_manifest(dir: &Path, manifest: &Manifest) -> Result<(), StudyError> {
+pub fn finish(folder: OutputFolder, manifest: &Manifest) -> Result<RunManifest, StudyError> {
     // A Manifest holds only strings and numbers: it always serialises.
-    write_text(&dir.join("manifest.json"), &serde_json::to_string_pretty(manifest).unwrap_or_default())?;
-    Ok(())
+    Ok(folder.finish(serde_json::to_value(manifest).ok())?)
+}
+
+/// Write a whole run's files (or, for a shard, its rows) into a fresh
+/// folder `dir` and finish it.
+///
+/// # Errors
+/// See [`StudyError`].
+pub fn write_run(dir: &Path, rows: &[Row], manifest: &Manifest) -> Result<RunManifest, StudyError> {
+    let mut folder = OutputFolder::create(dir)?;
+    if manifest.shard == "0/1" {
+        write_outputs(&mut folder, rows, manifest)?;
+    } else {
+        write_partial(&mut folder, rows)?;
+    }
+    finish(folder, manifest)
 }
 
 /// Read the rows of a `results.jsonl` (or of the one in a folder), a file
@@ -102,13 +116,18 @@ pub fn read_rows(path: &Path, limits: &Limits) -> Result<Vec<Row>, StudyError> {
         .collect()
 }
 
-/// Read the `manifest.json` beside a shard's rows.
+/// Read the `manifest.json` beside a shard's rows, having checked every
+/// file it lists (a truncated or changed results file does not match).
 fn read_manifest(input: &Path, limits: &Limits) -> Result<(PathBuf, Manifest), StudyError> {
     let dir = if input.is_dir() { input.to_owned() } else { input.parent().unwrap_or(Path::new(".")).to_owned() };
-    let file = dir.join("manifest.json");
-    let bytes = limits.read_file(&file).map_err(|source| StudyError::Read { path: file.clone(), source })?;
+    let file = dir.join(crate::io::folder::MANIFEST);
+    let run = RunManifest::verify(&dir, limits.max_file_bytes)?;
+    if !run.files.iter().any(|f| f.path == "results.jsonl") {
+        return Err(refuse(&file, "lists no results.jsonl: not a study's folder"));
+    }
+    let study = run.study.ok_or_else(|| refuse(&file, "has no study record: not a study's folder"))?;
     let m =
-        serde_json::from_slice(&bytes).map_err(|source| StudyError::Parse { path: file.clone(), line: 0, source })?;
+        serde_json::from_value(study).map_err(|source| StudyError::Parse { path: file.clone(), line: 0, source })?;
     Ok((file, m))
 }
 
@@ -244,6 +263,6 @@ pub fn merge(inputs: &[PathBuf], out: &Path, limits: &Limits) -> Result<usize, S
         return Err(refuse(out, format!("{} rows merged where the sweep has {expected}", rows.len())));
     }
     let whole = Manifest { shard: "0/1".into(), rows: rows.len(), command: crate::io::provenance::command_line(), ..m };
-    write_outputs(out, &rows, &whole)?;
+    write_run(out, &rows, &whole)?;
     Ok(rows.len())
 }

@@ -1,39 +1,38 @@
 //! The study's outputs: the results table, the summary an architect reads,
 //! and the plots.
 
-use std::fmt::Write as _;
-use std::path::Path;
-
 use super::{Manifest, Row, RowCost, StudyError, distinct, jsonl, loosest, plot, sort_rows};
-use crate::io::output::write_text;
+use crate::io::folder::OutputFolder;
+use std::fmt::Write as _;
 
-/// Write `results.jsonl`, `results.csv`, the Pareto plots per scene,
-/// `summary.md` and `manifest.json` for a whole run's rows.
+/// Write `results.jsonl`, `results.csv`, the Pareto plots per scene and
+/// `summary.md` for a whole run's rows into `folder` (whose manifest,
+/// written when it is finished, carries `manifest`).
 ///
 /// # Errors
 /// See [`StudyError`].
-pub fn write_outputs(dir: &Path, rows: &[Row], manifest: &Manifest) -> Result<(), StudyError> {
+pub fn write_outputs(folder: &mut OutputFolder, rows: &[Row], manifest: &Manifest) -> Result<(), StudyError> {
     let mut rows = rows.to_vec();
     sort_rows(&mut rows);
-    write_text(&dir.join("results.jsonl"), &jsonl(&rows))?;
-    write_text(&dir.join("results.csv"), &csv(&rows)?)?;
+    folder.write_text("results.jsonl", &jsonl(&rows))?;
+    folder.write_text("results.csv", &csv(&rows)?)?;
     let scenes = scenes_of(&rows);
     let slugs: Vec<String> = scenes.iter().map(|s| slug(s)).collect();
     for (k, s) in slugs.iter().enumerate() {
         if let Some(j) = slugs[..k].iter().position(|t| t == s) {
             return Err(StudyError::Plot {
-                path: dir.join(format!("pareto-{s}-cycles.svg")),
+                path: folder.dir().join(format!("pareto-{s}-cycles.svg")),
                 problem: format!("scenes `{}` and `{}` would share this file name", scenes[j], scenes[k]),
             });
         }
     }
     for (scene, name) in scenes.iter().zip(&slugs) {
         let mine: Vec<&Row> = rows.iter().filter(|r| &r.config.scene == scene).collect();
-        plot::pareto(dir, name, &mine, manifest)?;
-        plot::arch_axes(dir, name, &mine, manifest)?;
+        plot::pareto(folder, name, &mine, manifest)?;
+        plot::arch_axes(folder, name, &mine, manifest)?;
     }
-    write_text(&dir.join("summary.md"), &summary(&rows, manifest))?;
-    super::write_manifest(dir, manifest)
+    folder.write_text("summary.md", &summary(&rows, manifest))?;
+    Ok(())
 }
 
 /// A row's leaves, `(field name, value)`, in order: blocks flattened, each

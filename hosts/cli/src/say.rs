@@ -1,0 +1,54 @@
+//! The command's printing: a closed stdout (the reader went away, as
+//! `| head` does) stops the printing quietly and the run goes on to finish
+//! its files; any other error writing stdout ends the command with an
+//! error naming it.
+
+use std::io::Write;
+use std::path::Path;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use anyhow::{Result, anyhow};
+use umbra_sim::io::folder::{MANIFEST, RunManifest};
+
+/// Set once stdout is found closed.
+static CLOSED: AtomicBool = AtomicBool::new(false);
+
+/// Print one line.
+///
+/// # Errors
+/// Writing stdout failed for another reason than a closed pipe.
+pub(crate) fn line(args: std::fmt::Arguments<'_>) -> Result<()> {
+    if CLOSED.load(Ordering::Relaxed) {
+        return Ok(());
+    }
+    let mut out = std::io::stdout().lock();
+    match out.write_fmt(args).and_then(|()| out.write_all(b"\n")).and_then(|()| out.flush()) {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => {
+            CLOSED.store(true, Ordering::Relaxed);
+            Ok(())
+        }
+        Err(e) => Err(anyhow!("stdout: {e}")),
+        Ok(()) => Ok(()),
+    }
+}
+
+/// Print a line (formatted as by `println!`), returning an error from the
+/// enclosing function when stdout fails (see [`line`]).
+macro_rules! say {
+    ($($t:tt)*) => {
+        $crate::say::line(format_args!($($t)*))?
+    };
+}
+pub(crate) use say;
+
+/// Print the files a finished folder holds, its manifest last.
+///
+/// # Errors
+/// As [`line`].
+pub(crate) fn wrote(dir: &Path, manifest: &RunManifest) -> Result<()> {
+    for f in &manifest.files {
+        say!("wrote {}", dir.join(&f.path).display());
+    }
+    say!("wrote {}", dir.join(MANIFEST).display());
+    Ok(())
+}

@@ -1,0 +1,287 @@
+//! An output folder as a run leaves it: every file whole or absent, and a
+//! manifest, written last, that says which files the run wrote.
+//!
+//! A run opens its folder before its long work (so an unwritable `--out`
+//! fails first), writes each file to a temporary beside it and renames it
+//! into place only after the data reached the disk, and finishes by
+//! removing what an earlier run listed and this one did not write, then
+//! writing `manifest.json` (files, sizes, SHA-256, command line, version).
+//! While a run is under way the folder has no `manifest.json`, only
+//! `manifest.pending.json` listing every file an earlier or the current
+//! run may have left, so a killed run's folder is visibly incomplete and
+//! the next run still knows what to clean. Files Umbra did not list are
+//! never touched, and no name leaves the folder.
+
+use std::io::Write;
+use std::path::{Component, Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
+
+use super::output::OutputError;
+
+/// The manifest of a finished run.
+pub const MANIFEST: &str = "manifest.json";
+/// The record of a run under way (or killed).
+pub const PENDING: &str = "manifest.pending.json";
+/// Largest manifest read back (an earlier run's), bytes.
+const MAX_MANIFEST_BYTES: u64 = 16 << 20;
+
+/// One file a run wrote.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FileRecord {
+    /// Its path inside the folder, `/`-separated.
+    pub path: String,
+    /// Its size.
+    pub bytes: u64,
+    /// Its SHA-256, lower-case hex.
+    pub sha256: String,
+}
+
+/// `manifest.json`: what made the folder and every file in it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RunManifest {
+    /// The version that wrote it (with its git revision).
+    pub umbra_version: String,
+    /// The command line.
+    pub command: String,
+    /// Every file the run wrote, in the order written.
+    pub files: Vec<FileRecord>,
+    /// The study's own record (sweep, shard, row counts), for `merge`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub study: Option<serde_json::Value>,
+}
+
+impl RunManifest {
+    /// Read the manifest of `dir` and check every file it lists (each at
+    /// most `max_bytes`) against its size and hash.
+    ///
+    /// # Errors
+    /// [`OutputError::Folder`] naming the manifest or the file that does
+    /// not match: a folder without a matching manifest is incomplete.
+    pub fn verify(dir: &Path, max_bytes: u64) -> Result<Self, OutputError> {
+        let path = dir.join(MANIFEST);
+        let bytes = read_small(&path)
+            .map_err(|e| problem(&path, format!("no manifest: the run that wrote this folder did not finish ({e})")))?;
+        let m: Self = serde_json::from_slice(&bytes).map_err(|e| problem(&path, format!("not a manifest: {e}")))?;
+        for f in &m.files {
+            let file = dir.join(checked_name(&path, &f.path)?);
+            if f.bytes > max_bytes {
+                return Err(problem(&file, format!("listed at {} bytes, above the limit of {max_bytes}", f.bytes)));
+            }
+            let data = read_small_limit(&file, f.bytes.saturating_add(1))
+                .map_err(|e| problem(&file, format!("listed in the manifest but unreadable: {e}")))?;
+            if data.len() as u64 != f.bytes || sha256(&data) != f.sha256 {
+                return Err(problem(&file, "differs from the manifest (truncated or changed since it was written)"));
+            }
+        }
+        Ok(m)
+    }
+}
+
+/// What `manifest.pending.json` holds.
+#[derive(Debug, Default, Serialize, Deserialize)]
+struct Pending {
+    /// Files an earlier or the current run may have left.
+    files: Vec<String>,
+}
+
+/// An output folder being written by one run.
+#[derive(Debug)]
+pub struct OutputFolder {
+    dir: PathBuf,
+    /// Files earlier runs listed (removed at the end unless rewritten).
+    earlier: Vec<String>,
+    written: Vec<FileRecord>,
+}
+
+fn problem(path: &Path, problem: impl Into<String>) -> OutputError {
+    OutputError::Folder { path: path.to_owned(), problem: problem.into() }
+}
+
+fn io(path: &Path) -> impl FnOnce(std::io::Error) -> OutputError + '_ {
+    move |source| OutputError::Io { path: path.to_owned(), source }
+}
+
+/// SHA-256 of `bytes` in lower-case hex.
+#[must_use]
+pub fn sha256(bytes: &[u8]) -> String {
+    Sha256::digest(bytes).iter().fold(String::with_capacity(64), |mut s, b| {
+        use std::fmt::Write as _;
+        let _ = write!(s, "{b:02x}");
+        s
+    })
+}
+
+/// `name` as a path inside a folder: relative, plain components only (no
+/// `..`, no root, no prefix), not empty.
+fn checked_name<'a>(context: &Path, name: &'a str) -> Result<&'a Path, OutputError> {
+    let path = Path::new(name);
+    let plain = path.components().all(|c| matches!(c, Component::Normal(_)));
+    if name.is_empty() || !plain || name.contains('\\') {
+        return Err(problem(context, format!("`{name}` is not a file name inside the output folder")));
+    }
+    Ok(path)
+}
+
+/// Read a small regular file whole, refusing special files before opening
+/// them.
+fn read_small(path: &Path) -> std::io::Result<Vec<u8>> {
+    read_small_limit(path, MAX_MANIFEST_BYTES)
+}
+
+fn read_small_limit(path: &Path, max: u64) -> std::io::Result<Vec<u8>> {
+    use std::io::Read;
+    if !std::fs::metadata(path)?.is_file() {
+        return Err(std::io::Error::other("not a regular file"));
+    }
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)?.take(max).read_to_end(&mut bytes)?;
+    Ok(bytes)
+}
+
+/// The names an earlier run's record in `file` lists, if it is one of
+/// ours; anything else lists nothing (and so is never acted on).
+fn listed(file: &Path, dir: &Path) -> Vec<String> {
+    let Ok(bytes) = read_small(file) else { return Vec::new() };
+    let names = if file.ends_with(MANIFEST) {
+        serde_json::from_slice::<RunManifest>(&bytes).map(|m| m.files.into_iter().map(|f| f.path).collect())
+    } else {
+        serde_json::from_slice::<Pending>(&bytes).map(|p| p.files)
+    };
+    names.unwrap_or_default().into_iter().filter(|n| checked_name(dir, n).is_ok()).collect()
+}
+
+impl OutputFolder {
+    /// Open `dir` for a run: create it, prove it writable, and mark it
+    /// under way (its `manifest.json` is gone until [`finish`](Self::finish)).
+    ///
+    /// # Errors
+    /// [`OutputError::Io`] or [`OutputError::Folder`] naming the folder.
+    pub fn create(dir: &Path) -> Result<Self, OutputError> {
+        if dir.exists() && !dir.is_dir() {
+            return Err(problem(dir, "exists and is not a folder"));
+        }
+        std::fs::create_dir_all(dir).map_err(io(dir))?;
+        let mut probe = tempfile::Builder::new().prefix(".umbra-probe").tempfile_in(dir).map_err(io(dir))?;
+        probe.write_all(b"umbra").and_then(|()| probe.as_file().sync_all()).map_err(io(dir))?;
+        drop(probe);
+        let mut earlier = listed(&dir.join(MANIFEST), dir);
+        for n in listed(&dir.join(PENDING), dir) {
+            if !earlier.contains(&n) {
+                earlier.push(n);
+            }
+        }
+        let folder = Self { dir: dir.to_owned(), earlier, written: Vec::new() };
+        folder.record_pending()?;
+        match std::fs::remove_file(dir.join(MANIFEST)) {
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => return Err(io(&dir.join(MANIFEST))(e)),
+            _ => {}
+        }
+        Ok(folder)
+    }
+
+    /// The folder.
+    #[must_use]
+    pub fn dir(&self) -> &Path {
+        &self.dir
+    }
+
+    /// The files written so far.
+    #[must_use]
+    pub fn written(&self) -> &[FileRecord] {
+        &self.written
+    }
+
+    fn record_pending(&self) -> Result<(), OutputError> {
+        let mut files = self.earlier.clone();
+        files.extend(self.written.iter().map(|f| f.path.clone()).filter(|n| !self.earlier.contains(n)));
+        // A list of strings always serialises.
+        let text = serde_json::to_string_pretty(&Pending { files }).unwrap_or_default();
+        atomic(&self.dir.join(PENDING), text.as_bytes())
+    }
+
+    /// Write `bytes` as `name` (a path inside the folder): whole, or not at
+    /// all. Returns the file's path.
+    ///
+    /// # Errors
+    /// [`OutputError::Folder`] for a name outside the folder or one of the
+    /// manifests; [`OutputError::Io`] naming the file for any write error.
+    pub fn write(&mut self, name: &str, bytes: &[u8]) -> Result<PathBuf, OutputError> {
+        let relative = checked_name(&self.dir, name)?;
+        if name == MANIFEST || name == PENDING {
+            return Err(problem(&self.dir, format!("`{name}` is the folder's own record")));
+        }
+        let path = self.dir.join(relative);
+        let record = FileRecord { path: name.to_owned(), bytes: bytes.len() as u64, sha256: sha256(bytes) };
+        self.written.retain(|f| f.path != name);
+        self.written.push(record);
+        self.record_pending()?;
+        atomic(&path, bytes)?;
+        Ok(path)
+    }
+
+    /// Write UTF-8 text as `name`.
+    ///
+    /// # Errors
+    /// As [`write`](Self::write).
+    pub fn write_text(&mut self, name: &str, text: &str) -> Result<PathBuf, OutputError> {
+        self.write(name, text.as_bytes())
+    }
+
+    /// End the run: remove the files earlier runs listed that this one did
+    /// not write, write `manifest.json`, drop the pending record.
+    ///
+    /// # Errors
+    /// [`OutputError::Io`] naming the file that could not be removed or
+    /// written.
+    pub fn finish(self, study: Option<serde_json::Value>) -> Result<RunManifest, OutputError> {
+        for name in &self.earlier {
+            if self.written.iter().any(|f| &f.path == name) {
+                continue;
+            }
+            let path = self.dir.join(name);
+            // Only a file or a link is removed: never a folder.
+            let is_file = std::fs::symlink_metadata(&path).is_ok_and(|m| !m.is_dir());
+            if is_file {
+                std::fs::remove_file(&path).map_err(io(&path))?;
+            }
+        }
+        let manifest = RunManifest {
+            umbra_version: super::provenance::version(),
+            command: super::provenance::command_line(),
+            files: self.written,
+            study,
+        };
+        // Strings, numbers and a JSON value always serialise.
+        let text = serde_json::to_string_pretty(&manifest).unwrap_or_default();
+        atomic(&self.dir.join(MANIFEST), text.as_bytes())?;
+        let pending = self.dir.join(PENDING);
+        std::fs::remove_file(&pending).map_err(io(&pending))?;
+        Ok(manifest)
+    }
+}
+
+/// Write `bytes` to a temporary beside `path`, flush it to the disk, and
+/// rename it into place; on any error nothing is left.
+fn atomic(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
+    let parent = path.parent().unwrap_or(Path::new("."));
+    std::fs::create_dir_all(parent).map_err(io(path))?;
+    let mut tmp = tempfile::Builder::new().prefix(".umbra-").suffix(".tmp").tempfile_in(parent).map_err(io(path))?;
+    write_all_synced(tmp.as_file_mut(), bytes).map_err(io(path))?;
+    tmp.persist(path).map_err(|e| io(path)(e.error))?;
+    Ok(())
+}
+
+/// Write `bytes` to `sink` and make sure they reached it: any error —
+/// a full disk included — is returned, never lost in a buffer.
+///
+/// # Errors
+/// The OS error.
+pub fn write_all_synced(sink: &mut std::fs::File, bytes: &[u8]) -> std::io::Result<()> {
+    sink.write_all(bytes)?;
+    sink.flush()?;
+    sink.sync_all()
+}
