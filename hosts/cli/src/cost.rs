@@ -28,17 +28,20 @@ pub(super) struct ArchArgs {
 impl ArchArgs {
     /// The chosen architectures with the overrides applied; `default` names
     /// them when `--arch` is not given.
-    pub(super) fn resolve(&self, default: &[&str]) -> Result<Vec<Arch>> {
+    pub(super) fn resolve(&self, default: &[&str], limits: &Limits) -> Result<Vec<Arch>> {
         let names: Vec<&str> =
             if self.arch.is_empty() { default.to_vec() } else { self.arch.iter().map(String::as_str).collect() };
-        let mut archs = Vec::new();
+        let mut archs: Vec<Arch> = Vec::new();
         for name in names {
-            if name == "all" {
-                archs.extend(Arch::presets()?);
-            } else {
-                archs.push(Arch::open(name)?);
+            let more = if name == "all" { Arch::presets()? } else { vec![Arch::open(name, limits)?] };
+            for arch in more {
+                if archs.iter().any(|a| a.name == arch.name) {
+                    bail!("--arch {name}: architecture `{}` is chosen twice", arch.name);
+                }
+                archs.push(arch);
             }
         }
+        crate::no_repeats("--set", self.set.iter().map(|s| s.split_once('=').map_or(s.as_str(), |(k, _)| k.trim())))?;
         for arch in &mut archs {
             for s in &self.set {
                 arch.set(s)?;
@@ -48,8 +51,8 @@ impl ArchArgs {
     }
 
     /// The one architecture a command needs.
-    pub(super) fn one(&self, default: &str) -> Result<Arch> {
-        let mut archs = self.resolve(&[default])?;
+    pub(super) fn one(&self, default: &str, limits: &Limits) -> Result<Arch> {
+        let mut archs = self.resolve(&[default], limits)?;
         if archs.len() != 1 {
             bail!("this command costs on one architecture; --arch names {}", archs.len());
         }
@@ -73,7 +76,7 @@ pub(super) fn command_line() -> String {
 /// `umbra cost` and `umbra trace`.
 pub(super) fn cost(args: &CostArgs, trace: bool, limits: &Limits) -> Result<()> {
     let (scene, cfg, _) = render_config(&args.render, limits)?;
-    let archs = args.archs.resolve(&BUNDLED.map(|b| b.0))?;
+    let archs = args.archs.resolve(&BUNDLED.map(|b| b.0), limits)?;
     let command = command_line();
     let mut folder = OutputFolder::create(&args.render.out)?;
     let mut reports = Vec::new();
@@ -118,7 +121,7 @@ pub(super) struct CorrelateArgs {
 /// `umbra correlate`.
 pub(super) fn correlate(args: &CorrelateArgs, limits: &Limits) -> Result<()> {
     let scene = umbra_sim::world::scene::Scene::open(&args.scene, limits)?;
-    let arch = args.archs.one("r300")?;
+    let arch = args.archs.one("r300", limits)?;
     let mut folder = OutputFolder::create(&args.out)?;
     let c = umbra_sim::experiment::correlation::run(&scene, &arch, limits)?;
     let md = c.markdown();

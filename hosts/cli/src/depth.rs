@@ -4,7 +4,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use crate::say::say;
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
 use clap::ValueEnum;
 use umbra_core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, RasterConfig};
 use umbra_sim::cost::counters::Counters;
@@ -48,7 +48,7 @@ pub(super) struct DepthArgs {
     #[arg(long)]
     pub(super) matrix: Option<String>,
     /// Map width and height in texels.
-    #[arg(long, default_value_t = 512)]
+    #[arg(long, default_value_t = 512, value_parser = clap::value_parser!(u32).range(1..))]
     pub(super) size: u32,
     /// Depth format.
     #[arg(long, value_enum, default_value_t = Format::D24)]
@@ -98,16 +98,16 @@ pub(super) fn format_kind(f: Format) -> DepthFormatKind {
     }
 }
 
-/// Read the `--matrix` argument: inline JSON or a file holding it (a
-/// regular file within `limits`).
+/// Read the `--matrix` argument: a file holding the JSON (a regular file
+/// within `limits`) when one exists at that path, else inline JSON.
 fn read_matrix(arg: &str, limits: &Limits) -> Result<Mat4> {
-    let text = if arg.trim_start().starts_with('[') {
-        arg.to_owned()
-    } else {
-        let bytes = limits.read_file(Path::new(arg)).with_context(|| format!("--matrix: cannot read file `{arg}`"))?;
-        String::from_utf8(bytes).with_context(|| format!("--matrix: file `{arg}` is not UTF-8 text"))?
-    };
-    parse_matrix(&text).with_context(|| format!("--matrix `{arg}`"))
+    let path = Path::new(arg);
+    if path.exists() {
+        let bytes = limits.read_file(path).with_context(|| format!("--matrix: cannot read file `{arg}`"))?;
+        let text = String::from_utf8(bytes).with_context(|| format!("--matrix: file `{arg}` is not UTF-8 text"))?;
+        return parse_matrix(&text).with_context(|| format!("--matrix: file `{arg}`"));
+    }
+    parse_matrix(arg).with_context(|| format!("--matrix `{arg}`: no such file, and not a 4×4 JSON array"))
 }
 
 /// A spot light that frames a mesh, looking down from above and to the side.
@@ -163,12 +163,16 @@ pub(super) fn depth(args: &DepthArgs, limits: &Limits) -> Result<()> {
     let draws = scene.draws(matrix, cull);
     let mut folder = OutputFolder::create(&args.out)?;
     let (maps, counters) = RawMaps::render(config, format, &draws, Counters::new(&raster))?;
+    if counters.totals.setups == 0 {
+        let view = if args.matrix.is_some() { "--matrix" } else { "lights[0]" };
+        bail!("{view}: the map receives no fragment: no triangle lies in the view between near and far");
+    }
 
     write_maps(&mut folder, &maps)?;
     folder.write_text("tiles.md", &tile_report(&scene, &maps, &counters, args))?;
     folder.write_text("counters.json", &serde_json::to_string_pretty(&counters.totals)?)?;
     let manifest = folder.finish(None)?;
-    say!("{}", summary(&maps, &counters));
+    say!("{}", summary(&maps, &counters, scene.ignored()));
     crate::say::wrote(&args.out, &manifest)
 }
 
@@ -205,12 +209,15 @@ fn describe(maps: &RawMaps) -> String {
 }
 
 /// Totals and a grid of fragments per tile, for the terminal.
-fn summary(maps: &RawMaps, c: &Counters) -> String {
+fn summary(maps: &RawMaps, c: &Counters, ignored: umbra_sim::world::mesh::Ignored) -> String {
     let t = &c.totals;
     let raster = maps.maps.config.raster;
     let across = raster.tiles().0;
     let mut s = String::new();
     let _ = writeln!(s, "light pass {}", describe(maps));
+    if !ignored.is_empty() {
+        let _ = writeln!(s, "{ignored}");
+    }
     let _ = writeln!(
         s,
         "triangles {} submitted, {} set up, {} rejected (facing {}, clipped {}, degenerate {}, no coverage {}, non-finite {})",
@@ -248,7 +255,7 @@ fn tile_report(scene: &Scene, maps: &RawMaps, c: &Counters, args: &DepthArgs) ->
     let raster = maps.maps.config.raster;
     let mut s = String::new();
     let _ = writeln!(s, "# Light-pass tiles: {}\n", scene.name);
-    let _ = writeln!(s, "{}, cull {:?}.\n", describe(maps), args.cull);
+    let _ = writeln!(s, "{}, cull {:?}; {}.\n", describe(maps), args.cull, scene.ignored());
     let _ = writeln!(s, "| tile | triangles | fragments | culled | flushes | z1 min | z1 max | z2 min | z2 max |");
     let _ = writeln!(s, "|---|---:|---:|---:|---:|---:|---:|---:|---:|");
     for (i, (k, st)) in c.tiles.iter().zip(&maps.maps.tiles).enumerate() {

@@ -38,14 +38,14 @@ pub(super) struct StudyArgs {
     pub(super) sweep: String,
     /// The bundled quick sweep (`--sweep quick`): 3 scenes, a few
     /// parameters of each algorithm, 640×360.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "sweep")]
     pub(super) quick: bool,
     /// Image sizes, in place of the sweep's (`--image 640x360`; repeat for
     /// several: an axis).
     #[arg(long = "image")]
     pub(super) images: Vec<String>,
     /// Reference rays per pixel side, in place of the sweep's.
-    #[arg(long)]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=16))]
     pub(super) reference_rays: Option<u32>,
     /// Error budgets, percent artifacts, in place of the sweep's
     /// (`--budgets 1,0.1`).
@@ -95,7 +95,7 @@ pub(super) fn plan(args: &PlanArgs, limits: &Limits) -> Result<()> {
     let scene = Scene::open(&args.scene, limits)?;
     let mut spec = PlanSpec::new(&scene, budget);
     spec.limits = *limits;
-    spec.arch = args.archs.one("talisman")?;
+    spec.arch = args.archs.one("talisman", limits)?;
     let mut folder = OutputFolder::create(&args.out)?;
     let p = plan(&scene, &spec)?;
     let md = p.markdown(&scene, budget);
@@ -113,13 +113,17 @@ pub(super) fn plan(args: &PlanArgs, limits: &Limits) -> Result<()> {
 /// `umbra study`.
 pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
     use umbra_sim::experiment::study::{self, Manifest, Shard, SweepFile};
+    crate::no_repeats("scene", args.scenes.iter().map(String::as_str))?;
+    crate::no_repeats("--image", args.images.iter().map(String::as_str))?;
+    let maps: Vec<String> = args.maps.iter().map(u32::to_string).collect();
+    crate::no_repeats("--maps", maps.iter().map(String::as_str))?;
     let file = SweepFile::open(if args.quick { "quick" } else { &args.sweep }, limits)?;
     let mut spec = file.spec(limits)?;
     if !args.scenes.is_empty() {
         spec.scenes = study::load_scenes(&args.scenes, limits)?;
     }
     if !args.archs.arch.is_empty() {
-        spec.archs = args.archs.resolve(&[])?;
+        spec.archs = args.archs.resolve(&[], limits)?;
         spec.arch_params.clear();
     } else {
         for arch in &mut spec.archs {
@@ -138,8 +142,8 @@ pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
         spec.reference_samples = n;
     }
     if !args.budgets.is_empty() {
-        if let Some(b) = args.budgets.iter().find(|b| !(b.is_finite() && **b > 0.0 && **b <= 100.0)) {
-            bail!("--budgets {b} is not a percentage in (0, 100]");
+        if let Some((_, problem)) = study::budgets_problem(&args.budgets) {
+            bail!("--budgets: {problem}");
         }
         spec.budgets.clone_from(&args.budgets);
     }

@@ -97,6 +97,17 @@ enum Command {
     Plan(PlanArgs),
 }
 
+/// Refuse a list flag that names one thing twice (it would run it twice).
+fn no_repeats<'a>(flag: &str, items: impl IntoIterator<Item = &'a str>) -> Result<()> {
+    let mut seen = std::collections::BTreeSet::new();
+    for item in items {
+        if !seen.insert(item) {
+            anyhow::bail!("{flag} `{item}` is given twice");
+        }
+    }
+    Ok(())
+}
+
 fn main() -> Result<()> {
     let cli = Cli::parse();
     let limits = &cli.limits.limits();

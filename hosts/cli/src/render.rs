@@ -62,7 +62,7 @@ pub(super) struct RenderArgs {
     #[arg(long, value_enum, default_value_t = Format::D24)]
     pub(super) depth: Format,
     /// Map side in texels.
-    #[arg(long, default_value_t = 1024)]
+    #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u32).range(1..))]
     pub(super) map: u32,
     /// Percentage-closer filter.
     #[arg(long, value_enum, default_value_t = FilterArg::Bilinear)]
@@ -74,13 +74,13 @@ pub(super) struct RenderArgs {
     #[arg(long, default_value_t = 0.005)]
     pub(super) bias1: f64,
     /// Reeves' `NumSamples` (--filter jitter): samples per lookup.
-    #[arg(long, default_value_t = 16)]
+    #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u16).range(1..))]
     pub(super) num_samples: u16,
     /// Reeves' `ResFactor` (--filter jitter): enlarges the sampled region.
     #[arg(long, default_value_t = 3.0)]
     pub(super) res_factor: f64,
     /// Reeves' `MinSamples` (--filter jitter): fewest samples per axis.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u16).range(1..))]
     pub(super) min_samples: u16,
     /// Reeves' `MinSize` (--filter jitter): smallest half-size of the
     /// sampled region, texels.
@@ -98,13 +98,13 @@ pub(super) struct RenderArgs {
     #[arg(long)]
     pub(super) no_virtual_samples: bool,
     /// Image width (default: the scene's).
-    #[arg(long)]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     pub(super) width: Option<u32>,
     /// Image height (default: the scene's).
-    #[arg(long)]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     pub(super) height: Option<u32>,
     /// Reference rays per pixel side for the area-averaged visibility.
-    #[arg(long, default_value_t = 4)]
+    #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=16))]
     pub(super) reference_samples: u32,
     /// Output folder.
     #[arg(long, default_value = "out/render")]
@@ -252,6 +252,9 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
         cfg.width,
         cfg.height
     );
+    if !scene.ignored().is_empty() {
+        say!("the scene's OBJ files: {}", scene.ignored());
+    }
     say!("| pixels evaluated | false shadow | false light | misclassified | mean abs error |");
     say!("|---:|---:|---:|---:|---:|");
     say!(

@@ -80,14 +80,24 @@ impl Limits {
     }
 
     /// Read a whole regular file of at most [`Limits::max_file_bytes`],
-    /// never reading past the limit (devices and files that grow included).
+    /// never reading past the limit (files that grow included). A
+    /// directory, pipe, socket or device is refused before it is opened
+    /// (opening a pipe blocks until a writer comes), and the open itself
+    /// does not wait, should one replace the file in between.
     ///
     /// # Errors
     /// [`FileError::Io`] when it cannot be opened or read,
-    /// [`FileError::NotAFile`] for a directory, device or pipe,
+    /// [`FileError::NotAFile`] for a directory, device, socket or pipe,
     /// [`FileError::Limit`] when it is larger than the limit.
     pub fn read_file(&self, path: &Path) -> Result<Vec<u8>, FileError> {
-        let file = std::fs::File::open(path)?;
+        if !std::fs::metadata(path)?.is_file() {
+            return Err(FileError::NotAFile);
+        }
+        let mut options = std::fs::OpenOptions::new();
+        options.read(true);
+        #[cfg(unix)]
+        std::os::unix::fs::OpenOptionsExt::custom_flags(&mut options, libc::O_NONBLOCK);
+        let file = options.open(path)?;
         let meta = file.metadata()?;
         if !meta.is_file() {
             return Err(FileError::NotAFile);
@@ -148,6 +158,19 @@ pub enum LimitError {
     #[error("{triangles} triangles is above the limit of {max} (`max_triangles`)")]
     Triangles {
         /// Triangles asked for (so far, when counted object by object).
+        triangles: u64,
+        /// The limit.
+        max: u64,
+    },
+    /// An OBJ file of too many primitives: its triangles, and the polyline
+    /// segments and points it holds besides (ignored, but read).
+    #[error(
+        "{primitives} primitives, {triangles} of them triangles and the rest polyline segments and points, is above the limit of {max} (`max_triangles`)"
+    )]
+    Primitives {
+        /// Triangles, segments and points.
+        primitives: u64,
+        /// The triangles among them.
         triangles: u64,
         /// The limit.
         max: u64,

@@ -89,6 +89,13 @@ pub enum RenderError {
     /// The map, the image or the scene is beyond the [`Limits`].
     #[error(transparent)]
     Limit(#[from] LimitError),
+    /// The camera sees no surface facing the light: there is no pixel to
+    /// measure (never a result of 0 % error).
+    #[error("camera: the view shows no surface facing the light, so no pixel can be evaluated")]
+    NothingEvaluated,
+    /// The light's map receives no fragment: the light sees no object.
+    #[error("lights[0]: the light's map receives no fragment: no triangle lies in its view between near and far")]
+    EmptyMap,
 }
 
 /// Everything a render produced.
@@ -227,6 +234,9 @@ pub(super) fn truth_of(
     if truth.len() as u64 != u64::from(cfg.width) * u64::from(cfg.height) {
         return Err(RenderError::Truth { width: cfg.width, height: cfg.height, found: truth.len() });
     }
+    if !truth.iter().flatten().any(|t| t.faces_light) {
+        return Err(RenderError::NothingEvaluated);
+    }
     Ok(truth)
 }
 
@@ -338,6 +348,9 @@ pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
         &mut Tee(&mut camera_events, camera_also),
         Tiling::DEFAULT,
     )?;
+    if frame.maps().is_some() && light_events.totals.setups == 0 {
+        return Err(RenderError::EmptyMap);
+    }
     let metrics = compare(&image.pixels, &truth, image.width);
     let maps = frame.maps().map_or_else(
         // Shadow volumes draw no map: one far texel stands for it.

@@ -163,6 +163,18 @@ impl Scene {
         self.lights.first().copied().unwrap_or(Light::Spot(self.camera))
     }
 
+    /// The polyline segments and points the scene's OBJ files held,
+    /// left out of its meshes.
+    #[must_use]
+    pub fn ignored(&self) -> crate::world::mesh::Ignored {
+        let mut all = crate::world::mesh::Mesh::default();
+        for o in &self.objects {
+            all.ignored.segments += o.mesh.ignored.segments;
+            all.ignored.points += o.mesh.ignored.points;
+        }
+        all.ignored
+    }
+
     /// Every triangle of every object in draw order, with flat normals: the
     /// ids the visibility unit records index this list.
     #[must_use]

@@ -213,7 +213,7 @@ fn silhouette_map_artifacts_stay_local() {
     let tip = Vec3::new(-0.9, 1.0, 0.0);
     let half = 5f32.to_radians();
     let (a, b) = (tip + Vec3::new(1.8, 0.0, 1.8 * half.tan()), tip + Vec3::new(1.8, 0.0, -1.8 * half.tan()));
-    let wedge = Mesh { positions: vec![tip, a, b], triangles: vec![[0, 1, 2]] };
+    let wedge = Mesh { positions: vec![tip, a, b], triangles: vec![[0, 1, 2]], ..Mesh::default() };
     for (occluders, solid) in [(slabs, true), (vec![wedge], false)] {
         let mut s = scene(Vec::new());
         s.objects.extend(occluders.into_iter().map(|mesh| Object { name: "occluder".into(), mesh, solid }));

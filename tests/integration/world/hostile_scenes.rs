@@ -59,8 +59,43 @@ fn negative_and_zero_sizes_are_named() {
         let p = problem(with(sphere, &to), key);
         assert!(matches!(p, Problem::Size { .. }), "{to}: {p}");
     }
-    let p = problem(with("image = [64, 48]", "image = [-64, 48]"), "image[0]");
-    assert!(matches!(p, Problem::Size { value, min, .. } if value == -64.0 && min == 1.0), "{p}");
+    // The image is whole pixels: a negative side, a fraction or a third
+    // element is refused at its line, never rounded or dropped.
+    for (to, says) in [
+        ("image = [-64, 48]", "integer `-64`"),
+        ("image = [64.5, 48]", "floating point `64.5`"),
+        ("image = [64, 48, 7]", "invalid length 3, expected 2 values"),
+        ("image = [64]", "invalid length 1, expected 2 values"),
+    ] {
+        let p = problem(with("image = [64, 48]", to), "line 3");
+        assert!(matches!(&p, Problem::Syntax(s) if s.contains(says)), "{to}: {p}");
+    }
+    // So is every fixed-length array: a fourth coordinate is not dropped.
+    let p = problem(with("position = [0.0, 2.0, 5.0]", "position = [0.0, 2.0, 5.0, 1.0]"), "line 6");
+    assert!(matches!(&p, Problem::Syntax(s) if s.contains("expected 3 values")), "{p}");
+}
+
+/// Values are checked as the f32 pipeline holds them: a near plane that is
+/// 0 in f32, near and far equal in f32, a camera or a light at its target
+/// are each refused naming the key, where checks in f64 let them through.
+#[test]
+fn values_that_vanish_in_f32_are_named() {
+    for (from, to, key) in [
+        ("near = 0.5", "near = 1e-50", "camera.near"),
+        ("near = 0.5\nfar = 20.0", "near = 20.0\nfar = 20.0000001", "camera.near"),
+        ("near = 1.0\nfar = 10.0", "near = 1e-46\nfar = 10.0", "lights[0].near"),
+    ] {
+        // In f64 each pair is positive and ordered: only f32 sees the problem.
+        let p = problem(with(from, to), key);
+        assert!(matches!(p, Problem::NearFar { .. }), "{to}: {p}");
+    }
+    for (from, to, key) in [
+        ("target = [0.0, 0.0, 0.0]\nfov", "target = [0.0, 2.0, 5.0000000001]\nfov", "camera.position"),
+        ("position = [0.0, 5.0, 0.0]", "position = [0.0, 0.0, 0.0]", "lights[0].position"),
+    ] {
+        let p = problem(with(from, to), key);
+        assert!(matches!(p, Problem::LooksNowhere { .. }), "{to}: {p}");
+    }
 }
 
 /// Five spheres of 1024 × 1024 make 5 · 2 · 1024 · 1023 = 10 475 520
@@ -234,4 +269,71 @@ fn directories_and_devices_are_not_files() {
     let missing = dir.join("no-such.toml");
     let p = problem(Scene::load(&missing, &Limits::DEFAULT), "(file)");
     assert!(matches!(&p, Problem::Read(e) if e.kind() == std::io::ErrorKind::NotFound), "{p}");
+}
+
+/// Polylines (`l`) and points (`p`) are not surfaces: they are left out of
+/// the mesh and counted, and they count against the primitive limit
+/// before anything is loaded (one `l` record of many vertices used to
+/// become that many filled triangles).
+#[test]
+fn polylines_and_points_are_counted_not_filled() {
+    let dir = scratch("polyline");
+    let path = dir.join("lines.obj");
+    // Two triangles, a polyline of 6 vertices (5 segments), 2 points.
+    let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 2 0 0\nv 2 1 0\n\
+               f 1 2 3\nf 2 4 3\nl 1 2 3 4 5 6\np 5 6\n";
+    std::fs::write(&path, obj).expect("write");
+    let at = |max_triangles| Mesh::load_obj(&path, &Limits { max_triangles, ..Limits::DEFAULT });
+    // 2 + 5 + 2 = 9 primitives: 8 is one short.
+    let err = at(8).expect_err("over the limit");
+    let nine = LimitError::Primitives { primitives: 9, triangles: 2, max: 8 };
+    assert!(matches!(err, MeshError::Limit { source, .. } if source == nine), "{err}");
+    let mesh = at(9).expect("at the limit");
+    assert_eq!(mesh.triangles, vec![[0, 1, 2], [1, 3, 2]], "the faces alone");
+    assert_eq!((mesh.ignored.segments, mesh.ignored.points), (5, 2));
+}
+
+/// Every malformed record the loader reads is named with its file and
+/// line, so the loader itself (which names none) never reports one.
+#[test]
+fn every_obj_error_names_its_line() {
+    let dir = scratch("obj-lines");
+    let head = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    for (bad, says) in [
+        ("vt 0.5", "texture coordinate"),
+        ("vn 0 1", "normal needs three"),
+        ("v 1 2 3 0", "vertex is x y z"),
+        ("v 1 2 3 4 5", "vertex is x y z"),
+        ("l 1", "needs at least 2"),
+        ("l 1 9", "names no vertex"),
+        ("p 0", "names no vertex"),
+        ("usemtl", "names no material"),
+        ("f 1 2 3/7", "no texture coordinate"),
+    ] {
+        let path = dir.join("bad.obj");
+        std::fs::write(&path, format!("{head}f 1 2 3\n{bad}\n")).expect("write");
+        let err = Mesh::load_obj(&path, &Limits::DEFAULT).expect_err(bad);
+        assert!(matches!(err, MeshError::Syntax { line: 5, .. }), "{bad}: {err}");
+        let text = err.to_string();
+        assert!(text.contains("bad.obj:5") && text.contains(says), "{bad}: {text}");
+    }
+}
+
+/// A camera that sees no surface facing the light, and a light that sees
+/// no triangle, are errors naming the scene key, never "0 pixels
+/// evaluated, 0.000 % misclassified".
+#[test]
+fn nothing_to_measure_is_an_error_not_a_perfect_score() {
+    let hidden = indicatif::ProgressBar::hidden();
+    let run = |scene: Scene| render(&scene, &render_config(64, 64, 48), &Limits::DEFAULT, TruthSource::Build(&hidden));
+    let away = with("target = [0.0, 0.0, 0.0]\nfov", "target = [0.0, 2.0, 10.0]\nfov").expect("valid");
+    let err = run(away).err().expect("the camera looks away from the ball");
+    assert!(matches!(err, RenderError::NothingEvaluated) && err.to_string().starts_with("camera:"), "{err}");
+    let aside = with(
+        "position = [0.0, 5.0, 0.0]\ntarget = [0.0, 0.0, 0.0]",
+        "position = [9.0, 5.0, 0.0]\ntarget = [9.0, 0.0, 0.0]",
+    )
+    .expect("valid");
+    let err = run(aside).err().expect("the light's box misses the ball");
+    assert!(matches!(err, RenderError::EmptyMap) && err.to_string().starts_with("lights[0]:"), "{err}");
 }

@@ -128,8 +128,8 @@ fn each_bad_input_has_its_own_error() {
     assert!(matches!(p, Problem::Size { .. }), "{p}");
     let p = problem(with("image = [64, 48]", "image = [64, 100000]"), "image");
     assert!(matches!(p, Problem::Limit(_)), "{p}");
-    let p = problem(with("image = [64, 48]", "image = [64, 1e10]"), "image[1]");
-    assert!(matches!(p, Problem::Size { .. }), "{p}");
+    let p = problem(with("image = [64, 48]", "image = [64, 10000000000]"), "line 3");
+    assert!(matches!(p, Problem::Syntax(_)), "{p}");
     let p = problem(with("radius = 0.5", "radius = 0.0"), "objects[0].mesh.radius");
     assert!(matches!(p, Problem::Size { .. }), "{p}");
     let p = problem(with("extent = 3.0", "extent = -1.0"), "lights[0].extent");

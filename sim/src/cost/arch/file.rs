@@ -11,6 +11,8 @@ use std::path::Path;
 
 use serde::Serialize;
 
+use crate::io::limits::Limits;
+
 pub use super::keys::{PARAMS, Param, Unit, Value};
 use super::keys::{from_text, from_toml};
 
@@ -289,17 +291,16 @@ impl Arch {
         Ok(arch)
     }
 
-    /// Load an architecture file.
+    /// Load an architecture file (a regular file within `limits`).
     ///
     /// # Errors
     /// [`ArchError`] naming the file, the key and the problem.
-    pub fn load(path: &Path) -> Result<Self, ArchError> {
+    pub fn load(path: &Path, limits: &Limits) -> Result<Self, ArchError> {
         let name = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| ArchError {
-            file: name.clone(),
-            key: "(file)".into(),
-            problem: Problem::Read(e.to_string()),
-        })?;
+        let read =
+            |problem: String| ArchError { file: name.clone(), key: "(file)".into(), problem: Problem::Read(problem) };
+        let bytes = limits.read_file(path).map_err(|e| read(e.to_string()))?;
+        let text = String::from_utf8(bytes).map_err(|_| read("not UTF-8 text".into()))?;
         Self::parse(&text, &name)
     }
 
@@ -337,10 +338,10 @@ impl Arch {
     ///
     /// # Errors
     /// [`ArchError`] naming the file, the key and the problem.
-    pub fn open(name: &str) -> Result<Self, ArchError> {
+    pub fn open(name: &str, limits: &Limits) -> Result<Self, ArchError> {
         let path = Path::new(name);
         let names_a_file = path.extension().is_some_and(|e| e == "toml") || path.components().count() > 1;
-        if names_a_file || path.is_file() { Self::load(path) } else { Self::bundled(name) }
+        if names_a_file || path.exists() { Self::load(path, limits) } else { Self::bundled(name) }
     }
 
     /// Apply one `key=value` override (`dram.bandwidth=25.6GB/s`,

@@ -55,6 +55,29 @@ fn distinct<T: PartialEq>(values: impl IntoIterator<Item = T>) -> Vec<T> {
     out
 }
 
+/// Most error budgets a study takes (each is a line on every plot and a
+/// column of every table).
+pub const MAX_BUDGETS: usize = 16;
+
+/// Why a list of error budgets is unusable, if it is: more than
+/// [`MAX_BUDGETS`], a value that is not a percentage in (0, 100], or one
+/// given twice. The message names the offending entry by its index.
+#[must_use]
+pub fn budgets_problem(budgets: &[f64]) -> Option<(usize, String)> {
+    if budgets.len() > MAX_BUDGETS {
+        return Some((MAX_BUDGETS, format!("{} budgets; at most {MAX_BUDGETS}", budgets.len())));
+    }
+    for (i, &b) in budgets.iter().enumerate() {
+        if !(b.is_finite() && b > 0.0 && b <= 100.0) {
+            return Some((i, format!("{b} is not a percentage in (0, 100]")));
+        }
+        if let Some(j) = budgets[..i].iter().position(|&c| c == b) {
+            return Some((i, format!("{b} repeats budget {j}")));
+        }
+    }
+    None
+}
+
 /// The loosest of the error budgets.
 fn loosest(budgets: &[f64]) -> Option<f64> {
     budgets.iter().copied().max_by(f64::total_cmp)

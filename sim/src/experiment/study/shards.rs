@@ -168,7 +168,8 @@ pub fn invalid(r: &Row) -> Option<String> {
                 return Some(format!("{name} {v} is not a finite non-negative number"));
             }
         }
-        if m.edge_placement_px + m.acne_px + m.leaks_px > m.evaluated_px {
+        let misclassified = m.edge_placement_px.checked_add(m.acne_px).and_then(|n| n.checked_add(m.leaks_px));
+        if misclassified.is_none_or(|n| n > m.evaluated_px) {
             return Some("more misclassified pixels than evaluated".into());
         }
     }
@@ -204,6 +205,9 @@ pub fn merge(inputs: &[PathBuf], out: &Path, limits: &Limits) -> Result<usize, S
         let mine = read_rows(input, limits)?;
         let (file, m) = read_manifest(input, limits)?;
         let shard = Shard::parse(&m.shard).map_err(|_| refuse(&file, format!("shard `{}` is not i/n", m.shard)))?;
+        if let Some((i, problem)) = super::budgets_problem(&m.budgets) {
+            return Err(refuse(&file, format!("budgets[{i}]: {problem}")));
+        }
         if let Some(f) = &first {
             if (f.sweep_hash.as_str(), f.umbra_version.as_str()) != (m.sweep_hash.as_str(), m.umbra_version.as_str()) {
                 return Err(refuse(
@@ -258,8 +262,9 @@ pub fn merge(inputs: &[PathBuf], out: &Path, limits: &Limits) -> Result<usize, S
     {
         return Err(StudyError::Duplicate { index: w[0].config_index, arch: w[0].config.arch.clone() });
     }
-    let expected = m.configurations * m.architectures;
-    if rows.len() != expected {
+    let expected = m.configurations.checked_mul(m.architectures);
+    if expected != Some(rows.len()) {
+        let expected = expected.map_or_else(|| "more than can be counted".to_owned(), |n| n.to_string());
         return Err(refuse(out, format!("{} rows merged where the sweep has {expected}", rows.len())));
     }
     let whole = Manifest { shard: "0/1".into(), rows: rows.len(), command: crate::io::provenance::command_line(), ..m };

@@ -33,6 +33,7 @@ use umbra_core::{DepthFormatKind, RasterConfig};
 
 use super::{Spec, Variant};
 use crate::cost::arch::Arch;
+use crate::io::exact::Exact;
 use crate::io::limits::Limits;
 use crate::pass::render::{Algorithm, Culling};
 use crate::world::scene::Scene;
@@ -59,7 +60,7 @@ pub struct SweepError {
 struct FileText {
     name: String,
     scenes: Vec<String>,
-    images: Vec<[u32; 2]>,
+    images: Vec<Exact<2, u32>>,
     reference_rays: u32,
     formats: Vec<String>,
     maps: Vec<u32>,
@@ -211,7 +212,7 @@ impl SweepFile {
         }
         // Sizes beyond the limits are not refused here: each configuration
         // that asks for one is a skipped row naming the limit.
-        for (i, &[w, h]) in t.images.iter().enumerate() {
+        for (i, &Exact([w, h])) in t.images.iter().enumerate() {
             RasterConfig::new(w, h, RasterConfig::DEFAULT_TILE_SIZE, RasterConfig::DEFAULT_SUBPIXEL_BITS)
                 .map_err(|e| self.err(format!("images[{i}]"), e.to_string()))?;
         }
@@ -239,15 +240,31 @@ impl SweepFile {
             .enumerate()
             .map(|(i, f)| self.filter(&format!("filters[{i}]"), f))
             .collect::<Result<Vec<_>, _>>()?;
-        let (archs, arch_params) = self.archs(&t)?;
-        for (i, &b) in t.budgets.iter().enumerate() {
-            if !(b.is_finite() && b > 0.0 && b <= 100.0) {
-                return Err(self.err(format!("budgets[{i}]"), format!("{b} is not a percentage in (0, 100]")));
-            }
+        let (archs, arch_params) = self.archs(&t, limits)?;
+        if let Some((i, problem)) = super::budgets_problem(&t.budgets) {
+            return Err(self.err(format!("budgets[{i}]"), problem));
         }
         let mut variants = Vec::new();
         for (i, a) in t.algorithms.iter().enumerate() {
             variants.extend(self.variants(&format!("algorithms[{i}]"), a)?);
+        }
+        // An axis that names one value twice would run every configuration
+        // with it twice.
+        let names = |v: &[(String, Filter)]| v.iter().map(|f| f.0.clone()).collect::<Vec<_>>();
+        for (key, twice) in [
+            ("scenes", repeated(&scenes.iter().map(|s| s.name.clone()).collect::<Vec<_>>())),
+            ("images", repeated(&t.images)),
+            ("formats", repeated(&formats)),
+            ("maps", repeated(&t.maps)),
+            ("filters", repeated(&names(&filters))),
+            ("archs", repeated(&archs.iter().map(|a| a.name.clone()).collect::<Vec<_>>())),
+        ] {
+            if let Some((first, again)) = twice {
+                return Err(self.err(format!("{key}[{again}]"), format!("repeats {key}[{first}]")));
+            }
+        }
+        if let Some((first, again)) = repeated(&variants) {
+            return Err(self.err("algorithms", format!("variant {again} repeats variant {first}")));
         }
         for (key, empty) in [
             ("scenes", t.scenes.is_empty()),
@@ -269,7 +286,7 @@ impl SweepFile {
             filters,
             archs,
             arch_params,
-            images: t.images,
+            images: t.images.iter().map(|i| i.0).collect(),
             reference_samples: t.reference_rays,
             budgets: t.budgets,
             name: t.name,
@@ -314,12 +331,13 @@ impl SweepFile {
 
     /// The architectures, each crossed with every point of the parameter
     /// axes (named `<arch>-<key>-<value>…`), with each point's assignments.
-    fn archs(&self, t: &FileText) -> Result<(Vec<Arch>, Vec<String>), SweepError> {
+    fn archs(&self, t: &FileText, limits: &Limits) -> Result<(Vec<Arch>, Vec<String>), SweepError> {
         let mut base = Vec::new();
         for (i, a) in t.archs.iter().enumerate() {
             let bundled = crate::cost::arch::file::BUNDLED.iter().any(|(n, _)| n == a);
             base.push(
-                Arch::open(&self.relative(a, bundled)).map_err(|e| self.err(format!("archs[{i}]"), e.to_string()))?,
+                Arch::open(&self.relative(a, bundled), limits)
+                    .map_err(|e| self.err(format!("archs[{i}]"), e.to_string()))?,
             );
         }
         let mut points: Vec<Vec<(usize, &str)>> = vec![Vec::new()];
@@ -415,4 +433,9 @@ impl SweepFile {
 /// The line (from 1) of byte `offset` in `text`.
 fn line_of(text: &str, offset: usize) -> usize {
     text.get(..offset).map_or(0, |t| t.matches('\n').count()) + 1
+}
+
+/// The first value of `items` that repeats an earlier one: `(earlier, later)` indices.
+fn repeated<T: PartialEq>(items: &[T]) -> Option<(usize, usize)> {
+    items.iter().enumerate().find_map(|(k, x)| items[..k].iter().position(|y| y == x).map(|j| (j, k)))
 }

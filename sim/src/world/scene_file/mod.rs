@@ -33,6 +33,7 @@
 //! (from `../shared/meshes/` of the working directory, or `$UMBRA_MESHES`),
 //! `box`, `quad`, `sphere`, `torus`, `table`, `sheet`, `figure`.
 
+use crate::io::exact::Exact;
 use std::path::{Path, PathBuf};
 
 use glam::{EulerRot, Mat4, Quat, Vec3};
@@ -92,13 +93,21 @@ pub enum Problem {
         /// The value.
         value: f64,
     },
-    /// `near` is not below `far`, or not positive.
-    #[error("near {near} must be positive and below far {far}")]
+    /// `near` is not below `far`, or not positive, in the f32 the pipeline
+    /// uses (a near plane of 1e-50 is 0 there).
+    #[error("near {near} must be positive and below far {far} in f32, as the pipeline computes")]
     NearFar {
         /// Near.
         near: f64,
         /// Far.
         far: f64,
+    },
+    /// A view whose position is its target in the f32 the pipeline uses:
+    /// it looks nowhere.
+    #[error("the position {position:?} is the target (in f32, as the pipeline computes): the view looks nowhere")]
+    LooksNowhere {
+        /// The position, f32.
+        position: [f32; 3],
     },
     /// A size is zero, negative or absurd.
     #[error("{value} is outside {min}..={max}")]
@@ -232,14 +241,12 @@ impl Scene {
             );
             c.err(key, Problem::Syntax(e.message().trim().to_owned()))
         })?;
-        // Whole pixels a `u32` holds; then the limits, which name themselves.
-        let max_side = f64::from(u32::MAX);
-        let image = [
-            c.range("image[0]", parsed.image[0], 1.0, max_side)?,
-            c.range("image[1]", parsed.image[1], 1.0, max_side)?,
-        ];
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "checked in 1..=u32::MAX")]
-        let image = image.map(|v| v.round() as u32);
+        // Whole pixels (integers, read as such); then the limits, which
+        // name themselves.
+        let image = parsed.image.0;
+        for (k, &side) in image.iter().enumerate() {
+            c.range(&format!("image[{k}]"), f64::from(side), 1.0, f64::from(u32::MAX))?;
+        }
         limits.check_image(image[0], image[1]).map_err(|l| c.err("image", Problem::Limit(l)))?;
         let camera = c.view("camera", &parsed.camera)?;
         if parsed.lights.is_empty() {
@@ -255,9 +262,10 @@ impl Scene {
                 )?),
                 LightFile::Directional { position, target, extent, near, far } => {
                     let (near, far) = c.near_far(&key, *near, *far)?;
+                    let (position, target) = c.eye(&key, *position, *target)?;
                     Light::Directional(Orthographic {
-                        position: c.vec3(&format!("{key}.position"), *position)?,
-                        target: c.vec3(&format!("{key}.target"), *target)?,
+                        position,
+                        target,
                         extent: c.range(&format!("{key}.extent"), *extent, 1e-6, 1e6)?,
                         near,
                         far,
@@ -288,8 +296,8 @@ impl Scene {
             if matches!(o.mesh, MeshFile::Obj(_) | MeshFile::Shared(_)) {
                 loaded += u64::try_from(mesh.triangles.len()).unwrap_or(u64::MAX);
             }
-            let t = c.vec3(&format!("{key}.translate"), o.translate.unwrap_or([0.0; 3]))?;
-            let r = c.vec3(&format!("{key}.rotate"), o.rotate.unwrap_or([0.0; 3]))?;
+            let t = c.vec3(&format!("{key}.translate"), o.translate.unwrap_or(Exact([0.0; 3])))?;
+            let r = c.vec3(&format!("{key}.rotate"), o.rotate.unwrap_or(Exact([0.0; 3])))?;
             let s = c.range(&format!("{key}.scale"), o.scale.unwrap_or(1.0), 1e-6, 1e6)?;
             let rotation = Quat::from_euler(EulerRot::XYZ, r.x.to_radians(), r.y.to_radians(), r.z.to_radians());
             let mesh = mesh.transformed(&Mat4::from_scale_rotation_translation(Vec3::splat(s), rotation, t));

@@ -5,6 +5,8 @@ use std::path::Path;
 use glam::Vec3;
 use serde::Deserialize;
 
+use crate::io::exact::Exact;
+
 use super::{MAX_SUBDIVISION, Problem, SceneError};
 use crate::world::scene::Perspective;
 
@@ -12,7 +14,7 @@ use crate::world::scene::Perspective;
 #[serde(deny_unknown_fields)]
 pub(super) struct SceneFile {
     pub(super) name: Option<String>,
-    pub(super) image: [f64; 2],
+    pub(super) image: Exact<2, u32>,
     pub(super) camera: ViewFile,
     pub(super) lights: Vec<LightFile>,
     pub(super) objects: Vec<ObjectFile>,
@@ -21,8 +23,8 @@ pub(super) struct SceneFile {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct ViewFile {
-    pub(super) position: [f64; 3],
-    pub(super) target: [f64; 3],
+    pub(super) position: Exact<3>,
+    pub(super) target: Exact<3>,
     pub(super) fov: f64,
     pub(super) near: f64,
     pub(super) far: f64,
@@ -31,8 +33,8 @@ pub(super) struct ViewFile {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields, tag = "kind", rename_all = "lowercase")]
 pub(super) enum LightFile {
-    Spot { position: [f64; 3], target: [f64; 3], fov: f64, near: f64, far: f64 },
-    Directional { position: [f64; 3], target: [f64; 3], extent: f64, near: f64, far: f64 },
+    Spot { position: Exact<3>, target: Exact<3>, fov: f64, near: f64, far: f64 },
+    Directional { position: Exact<3>, target: Exact<3>, extent: f64, near: f64, far: f64 },
 }
 
 #[derive(Deserialize)]
@@ -40,8 +42,8 @@ pub(super) enum LightFile {
 pub(super) struct ObjectFile {
     pub(super) name: Option<String>,
     pub(super) mesh: MeshFile,
-    pub(super) translate: Option<[f64; 3]>,
-    pub(super) rotate: Option<[f64; 3]>,
+    pub(super) translate: Option<Exact<3>>,
+    pub(super) rotate: Option<Exact<3>>,
     pub(super) scale: Option<f64>,
     pub(super) solid: Option<bool>,
 }
@@ -51,14 +53,14 @@ pub(super) struct ObjectFile {
 pub(super) enum MeshFile {
     Obj(String),
     Shared(String),
-    Box { min: [f64; 3], max: [f64; 3] },
-    Quad { corner: [f64; 3], u: [f64; 3], v: [f64; 3] },
-    Sphere { center: [f64; 3], radius: f64, stacks: u32, slices: u32 },
-    Torus { center: [f64; 3], major: f64, minor: f64, rings: u32, sides: u32 },
+    Box { min: Exact<3>, max: Exact<3> },
+    Quad { corner: Exact<3>, u: Exact<3>, v: Exact<3> },
+    Sphere { center: Exact<3>, radius: f64, stacks: u32, slices: u32 },
+    Torus { center: Exact<3>, major: f64, minor: f64, rings: u32, sides: u32 },
     Table { width: f64, depth: f64, height: f64, top: f64, leg: f64 },
-    Sheet { center: [f64; 3], width: f64, height: f64, bend: f64, nx: u32, ny: u32 },
-    Figure { feet: [f64; 3], height: f64, head: Option<u32> },
-    Ell { min: [f64; 3], max: [f64; 3], thickness: f64 },
+    Sheet { center: Exact<3>, width: f64, height: f64, bend: f64, nx: u32, ny: u32 },
+    Figure { feet: Exact<3>, height: f64, head: Option<u32> },
+    Ell { min: Exact<3>, max: Exact<3>, thickness: f64 },
 }
 
 /// Checks with the file and the key at hand.
@@ -76,7 +78,7 @@ impl Check<'_> {
         if v.is_finite() && v.abs() < 1e30 { Ok(v as f32) } else { Err(self.err(key, Problem::NonFinite { value: v })) }
     }
 
-    pub(super) fn vec3(&self, key: &str, v: [f64; 3]) -> Result<Vec3, SceneError> {
+    pub(super) fn vec3(&self, key: &str, Exact(v): Exact<3>) -> Result<Vec3, SceneError> {
         Ok(Vec3::new(self.num(key, v[0])?, self.num(key, v[1])?, self.num(key, v[2])?))
     }
 
@@ -92,19 +94,35 @@ impl Check<'_> {
         self.range(key, f64::from(v), 1.0, f64::from(MAX_SUBDIVISION)).map(|_| v)
     }
 
+    /// Near and far as the pipeline holds them: f32, near a normal
+    /// positive number below far (checked after the conversion, so that a
+    /// near plane that rounds to 0 or onto far is refused).
     pub(super) fn near_far(&self, key: &str, near: f64, far: f64) -> Result<(f32, f32), SceneError> {
         let (n, f) = (self.num(&format!("{key}.near"), near)?, self.num(&format!("{key}.far"), far)?);
-        if near <= 0.0 || near >= far {
+        if !(n >= f32::MIN_POSITIVE && n < f) {
             return Err(self.err(format!("{key}.near"), Problem::NearFar { near, far }));
         }
         Ok((n, f))
     }
 
+    /// A view's position and target as the pipeline holds them: distinct
+    /// in f32.
+    pub(super) fn eye(&self, key: &str, position: Exact<3>, target: Exact<3>) -> Result<(Vec3, Vec3), SceneError> {
+        let p = self.vec3(&format!("{key}.position"), position)?;
+        let t = self.vec3(&format!("{key}.target"), target)?;
+        let along = t - p;
+        if !(along.length_squared() > 0.0 && along.normalize().is_finite()) {
+            return Err(self.err(format!("{key}.position"), Problem::LooksNowhere { position: p.to_array() }));
+        }
+        Ok((p, t))
+    }
+
     pub(super) fn view(&self, key: &str, v: &ViewFile) -> Result<Perspective, SceneError> {
         let (near, far) = self.near_far(key, v.near, v.far)?;
+        let (position, target) = self.eye(key, v.position, v.target)?;
         Ok(Perspective {
-            position: self.vec3(&format!("{key}.position"), v.position)?,
-            target: self.vec3(&format!("{key}.target"), v.target)?,
+            position,
+            target,
             fov_degrees: self.range(&format!("{key}.fov"), v.fov, 1.0, 170.0)?,
             near,
             far,

@@ -1,0 +1,269 @@
+//! The command against an adversarial user: inputs that would block, a
+//! full disk, a closed stdout, a killed run, a stale folder, names that
+//! would leave `--out`, and loose values. Each ends in a clear error or a
+//! folder that tells the truth about itself.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+use umbra_sim::io::folder::{MANIFEST, PENDING, RunManifest};
+
+mod common;
+use common::{dir, umbra};
+
+fn text(p: &Path) -> &str {
+    p.to_str().expect("a UTF-8 temp path")
+}
+
+fn command(args: &[&str]) -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_umbra"));
+    c.args(args).env("RUST_BACKTRACE", "0").env("RUST_LIB_BACKTRACE", "0");
+    c
+}
+
+/// `umbra` failed, and its message holds each of `needles`.
+fn fails_saying(o: &Output, needles: &[&str]) {
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "succeeded: {}", String::from_utf8_lossy(&o.stdout));
+    for n in needles {
+        assert!(err.contains(n), "`{n}` missing from: {err}");
+    }
+}
+
+/// A tiny sweep file (two scenes, three variants, 64×36) in `d`, or with
+/// `scenes` in place of its scenes.
+fn tiny_sweep(d: &Path, scenes: &str) -> PathBuf {
+    std::fs::create_dir_all(d).expect("dir");
+    let path = d.join("tiny.toml");
+    let text = format!(
+        "name = \"tiny\"\nscenes = {scenes}\nimages = [[64, 36]]\nreference_rays = 1\nformats = [\"d24\"]\n\
+         maps = [128]\nfilters = [\"point\"]\narchs = [\"talisman\"]\nbudgets = [1.0]\n\
+         [[algorithms]]\nalgo = \"first\"\nbias = [0.0, 0.005]\n[[algorithms]]\nalgo = \"second\"\n"
+    );
+    std::fs::write(&path, text).expect("sweep");
+    path
+}
+
+/// A FIFO given as any input is refused before it is opened (opening one
+/// blocks until a writer comes): each command ends within the time limit.
+#[test]
+fn a_fifo_never_blocks_an_input() {
+    let d = dir("fifo");
+    std::fs::create_dir_all(&d).expect("dir");
+    let fifo = d.join("pipe.toml");
+    assert!(Command::new("mkfifo").arg(&fifo).status().expect("mkfifo runs").success());
+    let out = d.join("out");
+    let f = text(&fifo);
+    for args in [
+        vec!["render", f, "--out", text(&out)],
+        vec!["depth", "--mesh", f, "--out", text(&out)],
+        vec!["depth", "--matrix", f, "--out", text(&out)],
+        vec!["merge", f, "--out", text(&out)],
+        vec!["study", "--sweep", f, "--out", text(&out)],
+        vec!["cost", "--arch", f, "--out", text(&out)],
+    ] {
+        let mut child = command(&args).stdout(Stdio::null()).stderr(Stdio::piped()).spawn().expect("spawns");
+        let start = Instant::now();
+        while child.try_wait().expect("waits").is_none() {
+            if start.elapsed() > Duration::from_secs(60) {
+                let _ = child.kill();
+                panic!("`umbra {}` blocked on a FIFO", args.join(" "));
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        fails_saying(&child.wait_with_output().expect("output"), &["pipe.toml", "not a regular file"]);
+    }
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Every write error ends the command non-zero naming what failed: a
+/// stdout that is `/dev/full` (ENOSPC), and a file past the size the OS
+/// allows this process (EFBIG, `ulimit -f`), after which the folder has no
+/// manifest: it does not look complete.
+#[test]
+fn a_write_error_fails_the_command() {
+    let d = dir("full");
+    let out = d.join("out");
+    let full = std::fs::OpenOptions::new().write(true).open("/dev/full").expect("/dev/full");
+    let o = command(&["depth", "--size", "64", "--out", text(&d.join("printed"))]).stdout(full).output().expect("runs");
+    fails_saying(&o, &["stdout", "No space left on device"]);
+    // 8 KiB of file: the 512² z1.npy (1 MiB) cannot be written. SIGXFSZ is
+    // ignored so that the write returns the error.
+    let o = Command::new("sh")
+        .args(["-c", "trap '' XFSZ; ulimit -f 8; exec \"$0\" \"$@\"", env!("CARGO_BIN_EXE_umbra")])
+        .args(["depth", "--size", "512", "--out", text(&out)])
+        .env("RUST_BACKTRACE", "0")
+        .output()
+        .expect("runs");
+    fails_saying(&o, &["z1.npy", "File too large"]);
+    assert!(!out.join(MANIFEST).exists() && !out.join("z1.npy").exists(), "no half-written output");
+    assert!(RunManifest::verify(&out, u64::MAX).is_err());
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// A reader that goes away (`| head`) stops the printing quietly; the run
+/// still finishes its folder.
+#[test]
+fn a_closed_stdout_ends_quietly() {
+    let d = dir("pipe");
+    let out = d.join("out");
+    let mut child = command(&["depth", "--size", "64", "--out", text(&out)])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawns");
+    drop(child.stdout.take());
+    let o = child.wait_with_output().expect("output");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success() && err.is_empty(), "{:?}: {err}", o.status);
+    RunManifest::verify(&out, u64::MAX).expect("the folder is complete");
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// A second run into a folder removes what the first wrote and it does
+/// not (a first-depth render leaves no old `z2`; a shard run leaves no
+/// summary of a whole run), and keeps the user's own files.
+#[test]
+fn no_stale_output_survives() {
+    let d = dir("stale");
+    let out = d.join("out");
+    assert!(umbra(&["depth", "--size", "64", "--unit", "dual", "--out", text(&out)]).status.success());
+    assert!(out.join("z2.png").exists() && out.join("z2.npy").exists());
+    std::fs::write(out.join("notes.txt"), "mine").expect("a user's file");
+    assert!(umbra(&["depth", "--size", "64", "--unit", "single", "--out", text(&out)]).status.success());
+    assert!(!out.join("z2.png").exists() && !out.join("z2.npy").exists(), "stale z2");
+    assert!(out.join("notes.txt").exists(), "a file Umbra did not write was removed");
+    RunManifest::verify(&out, u64::MAX).expect("complete");
+    let sweep = tiny_sweep(&d, r#"["table", "weiskopf-l"]"#);
+    let study = d.join("study");
+    assert!(umbra(&["study", "--sweep", text(&sweep), "--out", text(&study)]).status.success());
+    assert!(study.join("summary.md").exists());
+    let o = umbra(&["study", "--sweep", text(&sweep), "--shard", "0/2", "--out", text(&study)]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(!study.join("summary.md").exists() && !study.join("pareto-table-cycles.png").exists());
+    let m = RunManifest::verify(&study, u64::MAX).expect("complete");
+    assert_eq!(m.study.and_then(|s| s.get("shard").cloned()), Some(serde_json::json!("0/2")));
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// A run killed while it works leaves a folder without a manifest (an
+/// earlier run's manifest is gone with the start of the new one).
+#[test]
+fn a_killed_run_does_not_look_complete() {
+    let d = dir("killed");
+    let out = d.join("out");
+    let sweep = tiny_sweep(&d, r#"["table"]"#);
+    assert!(umbra(&["study", "--sweep", text(&sweep), "--out", text(&out)]).status.success());
+    RunManifest::verify(&out, u64::MAX).expect("the first run is complete");
+    // The quick sweep runs for minutes here: it is killed at its start.
+    let mut child = command(&["study", "--quick", "--out", text(&out)])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("spawns");
+    let start = Instant::now();
+    while !out.join(PENDING).exists() && start.elapsed() < Duration::from_secs(60) {
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    child.kill().expect("killed");
+    let _ = child.wait();
+    assert!(out.join(PENDING).exists() && !out.join(MANIFEST).exists(), "the folder looks complete");
+    assert!(RunManifest::verify(&out, u64::MAX).is_err());
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Scene names reach file names only as slugs: a name that climbs out of
+/// the folder writes inside it, and two names of one slug are refused.
+#[test]
+fn no_name_leaves_the_output_folder() {
+    let d = dir("names");
+    let base = d.join("a").join("b");
+    std::fs::create_dir_all(&base).expect("dir");
+    let table = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/table.toml"))
+        .expect("the bundled table");
+    let named = |file: &str, name: &str| {
+        let body = table.lines().filter(|l| !l.starts_with("name =")).collect::<Vec<_>>().join("\n");
+        std::fs::write(base.join(file), format!("name = {name:?}\n{body}")).expect("scene");
+        text(&base.join(file)).to_owned()
+    };
+    let (up, dot) = (named("up.toml", "/../../../ESCAPED"), named("dot.toml", "a.b"));
+    let sweep = tiny_sweep(&base, &format!("[{up:?}, {dot:?}]"));
+    let out = base.join("out");
+    let o = umbra(&["study", "--sweep", text(&sweep), "--out", text(&out)]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let files: Vec<String> =
+        RunManifest::verify(&out, u64::MAX).expect("complete").files.into_iter().map(|f| f.path).collect();
+    assert!(files.iter().any(|f| f == "pareto-__________ESCAPED-cycles.png"), "{files:?}");
+    assert!(files.iter().any(|f| f == "pareto-a_b-bytes.svg"), "{files:?}");
+    let mut above: Vec<_> = std::fs::read_dir(&d).expect("dir").map(|e| e.expect("entry").file_name()).collect();
+    above.extend(std::fs::read_dir(d.join("a")).expect("dir").map(|e| e.expect("entry").file_name()));
+    assert_eq!(above.len(), 2, "only a/ and a/b/: {above:?}");
+    let clash = named("slash.toml", "a/b");
+    let sweep = tiny_sweep(&base, &format!("[{dot:?}, {clash:?}]"));
+    fails_saying(&umbra(&["study", "--sweep", text(&sweep), "--out", text(&out)]), &["`a.b` and `a/b`"]);
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// What can be known to fail is found before the work: an output folder
+/// that cannot be made fails naming the folder, not a file written after
+/// the sweep ran.
+#[test]
+fn an_unwritable_output_folder_fails_first() {
+    let d = dir("preflight");
+    std::fs::create_dir_all(&d).expect("dir");
+    std::fs::write(d.join("file"), "not a folder").expect("file");
+    let out = d.join("file").join("out");
+    let o = umbra(&["study", "--quick", "--out", text(&out)]);
+    fails_saying(&o, &[text(&out)]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!err.contains("results.jsonl") && o.stdout.is_empty(), "{err}");
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Every flag and field is read strictly: zero sizes, doubled units,
+/// repeated list entries, conflicting flags and inline JSON that is not a
+/// matrix are refused naming the flag.
+#[test]
+fn loose_values_are_refused_naming_the_flag() {
+    let d = dir("strict");
+    let out = d.join("out");
+    let o = text(&out);
+    for (args, says) in [
+        (vec!["render", "--width", "0", "--out", o], "--width"),
+        (vec!["render", "--reference-samples", "17", "--out", o], "--reference-samples"),
+        (vec!["depth", "--size", "0", "--out", o], "--size"),
+        (vec!["plan", "--error-budget", "50%%", "--out", o], "--error-budget `50%%`"),
+        (vec!["depth", "--matrix", r#"{"a": 1}"#, "--out", o], "not a 4×4 JSON array"),
+        (vec!["study", "--maps", "256,256", "--out", o], "--maps `256` is given twice"),
+        (vec!["study", "--budgets", "1,1", "--out", o], "repeats budget 0"),
+        (vec!["study", "--budgets", "1e308", "--out", o], "not a percentage"),
+        (vec!["cost", "--arch", "talisman", "--arch", "talisman", "--out", o], "chosen twice"),
+        (vec!["cost", "--set", "clock=1GHz", "--set", "clock=2GHz", "--out", o], "--set `clock` is given twice"),
+        (vec!["study", "--quick", "--sweep", "full", "--out", o], "--sweep"),
+    ] {
+        fails_saying(&umbra(&args), &[says]);
+    }
+    assert!(!out.exists(), "nothing is written for a refused command");
+}
+
+/// An OBJ's polylines and points are reported as ignored, not filled.
+#[test]
+fn polylines_are_reported_not_drawn() {
+    let d = dir("polyline");
+    std::fs::create_dir_all(&d).expect("dir");
+    let obj = d.join("lines.obj");
+    std::fs::write(&obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nl 1 2 3 4 1\np 4\n").expect("obj");
+    let out = d.join("out");
+    let args = ["depth", "--mesh", text(&obj), "--size", "32", "--out", text(&out)];
+    let o = umbra(&args);
+    let printed = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(printed.contains("4 polyline segments and 1 points"), "{printed}");
+    assert!(printed.contains("triangles 1 submitted"), "{printed}");
+    fails_saying(
+        &umbra(&[&["--max-triangles", "5"][..], &args].concat()),
+        &["6 primitives, 1 of them triangles", "max_triangles"],
+    );
+    let _ = std::fs::remove_dir_all(&d);
+}
