@@ -163,6 +163,9 @@ pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
         }
         spec.map_sizes.clone_from(&args.maps);
     }
+    if let Some(problem) = spec.size_problem() {
+        bail!("the sweep with these flags: {problem}");
+    }
     let shard = args.shard.as_deref().map(Shard::parse).transpose()?.unwrap_or(Shard::ALL);
     let mut folder = OutputFolder::create(&args.out)?;
     let style =

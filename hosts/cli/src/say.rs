@@ -33,7 +33,7 @@ pub(crate) fn line(args: std::fmt::Arguments<'_>) -> Result<()> {
 }
 
 /// Print a line (formatted as by `println!`), returning an error from the
-/// enclosing function when stdout fails (see [`line`]).
+/// enclosing function when stdout fails (see [`line()`]).
 macro_rules! say {
     ($($t:tt)*) => {
         $crate::say::line(format_args!($($t)*))?
@@ -44,7 +44,7 @@ pub(crate) use say;
 /// Print the files a finished folder holds, its manifest last.
 ///
 /// # Errors
-/// As [`line`].
+/// As [`line()`].
 pub(crate) fn wrote(dir: &Path, manifest: &RunManifest) -> Result<()> {
     for f in &manifest.files {
         say!("wrote {}", dir.join(&f.path).display());

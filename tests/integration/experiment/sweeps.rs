@@ -90,6 +90,10 @@ fn a_bad_sweep_file_names_its_key() {
     let d = dir("bad");
     let base = "name = \"b\"\nscenes = [\"table\"]\nimages = [[64, 36]]\nreference_rays = 1\nformats = [\"d16\"]\n\
                 maps = [128]\nfilters = [\"point\"]\narchs = [\"talisman\"]\nbudgets = [1.0]\n";
+    let sides = (1..=2048).map(|k| (8 * k).to_string()).collect::<Vec<_>>().join(", ");
+    let maps = format!("maps = [{sides}]");
+    let biases = (0..513).map(|k| format!("{}", f64::from(k) / 1e4)).collect::<Vec<_>>().join(", ");
+    let big = format!("[[algorithms]]\nalgo = \"first\"\nbias = [{biases}]\n");
     for (extra, replace, key) in [
         ("[[algorithms]]\nalgo = \"fourth\"\n", None, "algorithms[0].algo"),
         ("[[algorithms]]\nalgo = \"dual\"\n", None, "algorithms[0].offset"),
@@ -107,6 +111,16 @@ fn a_bad_sweep_file_names_its_key() {
             "arch_axes[0]",
         ),
         ("[[algorithms]]\nalgo = \"first\"\nspeed = 3\n", None, "(line"),
+        // Repeats would run every configuration twice; sizes are whole.
+        ("[[algorithms]]\nalgo = \"first\"\n", Some(("maps = [128]", "maps = [128, 128]")), "maps[1]"),
+        ("[[algorithms]]\nalgo = \"first\"\n", Some(("[\"table\"]", "[\"table\", \"table\"]")), "scenes[1]"),
+        ("[[algorithms]]\nalgo = \"first\"\n", Some(("budgets = [1.0]", "budgets = [1.0, 1.0]")), "budgets[1]"),
+        ("[[algorithms]]\nalgo = \"first\"\nbias = [0.0, 0.0]\n", None, "algorithms"),
+        ("[[algorithms]]\nalgo = \"first\"\n", Some(("[[64, 36]]", "[[64, 36, 2]]")), "(line"),
+        ("[[algorithms]]\nalgo = \"first\"\n", Some(("[[64, 36]]", "[[64.5, 36]]")), "(line"),
+        // A sweep too large to run (2048 maps × 513 biases) is refused
+        // before it starts.
+        (&big, Some(("maps = [128]", &maps as &str)), "(axes)"),
     ] {
         let mut text = format!("{base}{extra}");
         if let Some((a, b)) = replace {

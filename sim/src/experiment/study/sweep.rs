@@ -58,6 +58,11 @@ pub fn jittered(n: u16) -> Filter {
     Filter::Jittered(Jitter { num_samples: n, ..Jitter::REEVES })
 }
 
+/// Most configurations a sweep may have.
+pub const MAX_CONFIGURATIONS: usize = 1 << 20;
+/// Most architecture points a sweep may cost each configuration on.
+pub const MAX_ARCHITECTURES: usize = 1024;
+
 /// The sweep's axes.
 #[derive(Clone, Debug)]
 pub struct Spec {
@@ -110,6 +115,30 @@ impl Spec {
     #[must_use]
     pub fn quick(scenes: Vec<Scene>) -> Self {
         Self { scenes, ..super::SweepFile::bundled("quick").and_then(|f| f.spec(&Limits::DEFAULT)).expect("valid") }
+    }
+
+    /// Why the sweep is too large to run, if it is: more than
+    /// [`MAX_CONFIGURATIONS`] configurations or [`MAX_ARCHITECTURES`]
+    /// architecture points (each a loop over the input, bounded here).
+    #[must_use]
+    pub fn size_problem(&self) -> Option<String> {
+        let axes = [
+            self.scenes.len(),
+            self.images.len(),
+            self.variants.len(),
+            self.formats.len(),
+            self.map_sizes.len(),
+            self.filters.len(),
+        ];
+        let configs = axes.iter().try_fold(1usize, |n, &k| n.checked_mul(k));
+        if configs.is_none_or(|n| n > MAX_CONFIGURATIONS) {
+            let n = configs.map_or_else(|| "more than can be counted".to_owned(), |n| n.to_string());
+            return Some(format!("{n} configurations; at most {MAX_CONFIGURATIONS}"));
+        }
+        if self.archs.len() > MAX_ARCHITECTURES {
+            return Some(format!("{} architecture points; at most {MAX_ARCHITECTURES}", self.archs.len()));
+        }
+        None
     }
 
     /// Every configuration, in the fixed order that numbers them: scene,

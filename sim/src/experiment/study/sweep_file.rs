@@ -278,7 +278,7 @@ impl SweepFile {
                 return Err(self.err(key, "the axis is empty"));
             }
         }
-        Ok(Spec {
+        let spec = Spec {
             scenes,
             variants,
             formats,
@@ -292,7 +292,11 @@ impl SweepFile {
             name: t.name,
             hash: self.hash(),
             limits: *limits,
-        })
+        };
+        match spec.size_problem() {
+            Some(problem) => Err(self.err("(axes)", problem)),
+            None => Ok(spec),
+        }
     }
 
     fn filter(&self, key: &str, f: &FilterText) -> Result<(String, Filter), SweepError> {
