@@ -168,13 +168,15 @@ fn peer(c: &mut Criterion) {
     g.bench_function("umbra d24, front end only", |b| {
         b.iter(|| {
             let mut set_up = 0u32;
-            front::mesh::<D24>(
+            let cache = &mut front::vertex::VertexCache::<{ front::vertex::CACHE_ENTRIES }>::new();
+            front::mesh::<D24, { front::vertex::CACHE_ENTRIES }>(
                 &raster,
                 &mesh.positions,
                 black_box(&mesh.triangles),
                 &light(),
                 CullMode::None,
                 0,
+                cache,
                 &mut |o| {
                     set_up += u32::from(matches!(o, front::Output::Setup(_)));
                 },

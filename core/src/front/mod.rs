@@ -58,17 +58,19 @@ pub fn check_indices(vertices: usize, triangles: &[[u32; 3]]) -> Result<(), Subm
 /// `transform` to light clip space (f32, the vertex unit), triangle ids
 /// counting up from `first_id`. Indices must have passed
 /// [`check_indices`]; a missing vertex is taken as NaN (and rejected).
+/// `cache` is cleared first (a draw call's vertices are its own).
 #[allow(clippy::too_many_arguments, reason = "one draw call's state")]
-pub fn mesh<F: DepthFormat>(
+pub fn mesh<F: DepthFormat, const N: usize>(
     raster: &RasterConfig,
     positions: &[Vec3],
     triangles: &[[u32; 3]],
     transform: &Mat4,
     cull: CullMode,
     first_id: u32,
+    cache: &mut VertexCache<N>,
     out: &mut impl FnMut(Output<'_>),
 ) {
-    let mut cache = VertexCache::new();
+    cache.clear();
     let mut id = first_id;
     for t in triangles {
         out(Output::Submitted);

@@ -10,9 +10,10 @@ use crate::depth::DepthFormat;
 use crate::front::clip::{ClipVertex, inside_all};
 use crate::front::snap::{SnappedVertex, snap};
 
-/// Entries of the post-transform cache (direct-mapped by index): a ring of
-/// a few hundred vertices, so that a strip of a mesh finds the vertices the
-/// strip before it shared.
+/// Entries of the default post-transform cache (direct-mapped by index): a
+/// ring of a few hundred vertices, so that a strip of a mesh finds the
+/// vertices the strip before it shared. A caller short of memory passes a
+/// smaller [`VertexCache`]; results do not depend on its size.
 pub const CACHE_ENTRIES: usize = 256;
 
 /// A vertex after the vertex unit.
@@ -52,17 +53,34 @@ pub(crate) fn process<F: DepthFormat>(
     Processed::new::<F>(raster, transform, p)
 }
 
-/// The post-transform cache of one draw call. It keeps what most triangles
-/// need, the snapped vertex of a vertex inside every clip plane; the
-/// clipper's few triangles run their vertices through the unit again.
-pub(crate) struct VertexCache {
-    tags: [u32; CACHE_ENTRIES],
-    snapped: [Option<SnappedVertex>; CACHE_ENTRIES],
+/// The post-transform cache of one draw call, `N` entries direct-mapped by
+/// vertex index (`N = 0`: none, every corner is processed). It keeps what
+/// most triangles need, the snapped vertex of a vertex inside every clip
+/// plane; the clipper's few triangles run their vertices through the unit
+/// again. Its memory is `N · (4 + size_of::<Option<SnappedVertex>>())`
+/// bytes: 36 an entry on Cortex-M and x86-64.
+#[derive(Clone, Debug)]
+pub struct VertexCache<const N: usize> {
+    tags: [u32; N],
+    snapped: [Option<SnappedVertex>; N],
 }
 
-impl VertexCache {
-    pub(crate) const fn new() -> Self {
-        Self { tags: [u32::MAX; CACHE_ENTRIES], snapped: [None; CACHE_ENTRIES] }
+impl<const N: usize> Default for VertexCache<N> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<const N: usize> VertexCache<N> {
+    /// An empty cache (filled as a draw call's vertices come).
+    #[must_use]
+    pub const fn new() -> Self {
+        Self { tags: [u32::MAX; N], snapped: [None; N] }
+    }
+
+    /// Forget every entry: the next draw call transforms anew.
+    pub fn clear(&mut self) {
+        self.tags.fill(u32::MAX);
     }
 
     /// The snapped vertex `index`, from the cache or computed; `None` when
@@ -75,7 +93,10 @@ impl VertexCache {
         positions: &[Vec3],
         index: u32,
     ) -> Option<SnappedVertex> {
-        let slot = index as usize % CACHE_ENTRIES;
+        if N == 0 {
+            return process::<F>(raster, transform, positions, index).snapped;
+        }
+        let slot = index as usize % N;
         if let (Some(tag), Some(entry)) = (self.tags.get_mut(slot), self.snapped.get_mut(slot)) {
             if *tag != index {
                 *entry = process::<F>(raster, transform, positions, index).snapped;

@@ -16,6 +16,7 @@ use glam::{Mat4, Vec3, Vec4};
 
 use crate::config::{ConfigError, CullMode, DepthUnit, LightPassConfig};
 use crate::depth::{DepthFormat, TileState};
+use crate::front::vertex::{CACHE_ENTRIES, VertexCache};
 use crate::front::{self, Output};
 use crate::probe::{Event, FlushReason, NoProbe, Probe, RejectReason};
 use crate::raster::bin::{Bin, MAX_SETUPS, SetupIndex, touches};
@@ -97,9 +98,28 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
         transform: &Mat4,
         cull: CullMode,
     ) -> Result<(), SubmitError> {
+        let mut cache = VertexCache::<CACHE_ENTRIES>::new();
+        self.draw_mesh_cached(positions, triangles, transform, cull, &mut cache)
+    }
+
+    /// [`draw_mesh`](Self::draw_mesh) with the caller's post-transform
+    /// cache, of any size (a microcontroller's few entries, or none): the
+    /// results are the same, only the vertex unit's work differs.
+    ///
+    /// # Errors
+    /// [`SubmitError::IndexOutOfRange`] before anything is drawn.
+    pub fn draw_mesh_cached<const N: usize>(
+        &mut self,
+        positions: &[Vec3],
+        triangles: &[[u32; 3]],
+        transform: &Mat4,
+        cull: CullMode,
+        cache: &mut VertexCache<N>,
+    ) -> Result<(), SubmitError> {
         front::check_indices(positions.len(), triangles)?;
         let raster = self.cfg.raster;
-        front::mesh::<F>(&raster, positions, triangles, transform, cull, self.triangles, &mut |o| self.take(o));
+        let first = self.triangles;
+        front::mesh::<F, N>(&raster, positions, triangles, transform, cull, first, cache, &mut |o| self.take(o));
         Ok(())
     }
 

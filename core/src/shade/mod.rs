@@ -36,6 +36,7 @@
 
 mod divider;
 mod interp;
+pub mod stream;
 
 use glam::{Mat4, Vec3};
 
@@ -43,6 +44,7 @@ use crate::config::ConfigError;
 use crate::depth::{DepthFormat, PlaneZ};
 use crate::light_pass::NO_TRIANGLE;
 use crate::probe::{Event, Probe};
+use crate::raster::tile::TileRect;
 use crate::shadow::{
     Lookup, MapCoord, MapView, Shadow, ShadowConfig, Slope, TangentPlane, shadow, shadow_with_virtual_samples,
 };
@@ -250,8 +252,36 @@ pub fn shade_with<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, P: Probe>
     setups: &mut [ShadeSetup],
     probe: &mut P,
 ) -> Result<(), ConfigError> {
+    let whole = TileRect { x0: 0, y0: 0, x1: cfg.width, y1: cfg.height };
+    shade_rect(cfg, whole, ids, map, scene, out, unit, setups, probe)
+}
+
+/// [`shade_with`] over one rectangle of the image (a tile of a camera pass
+/// streamed by tile): `ids` and `out` are the rectangle's, row-major, and
+/// every pixel keeps its place in the whole image, so the rectangle's
+/// results are the bits the whole image has there.
+///
+/// # Errors
+/// [`ConfigError::Window`] when `rect` is empty or leaves the image;
+/// [`ConfigError::BufferLength`] when `ids` or `out` is not its size.
+#[allow(clippy::too_many_arguments, reason = "the unit's inputs, its store and its probe")]
+pub fn shade_rect<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, P: Probe>(
+    cfg: &ShadeConfig,
+    rect: TileRect,
+    ids: &[u32],
+    map: &MapView<'_, F>,
+    scene: &S,
+    out: &mut [Shaded],
+    unit: &U,
+    setups: &mut [ShadeSetup],
+    probe: &mut P,
+) -> Result<(), ConfigError> {
+    let TileRect { x0, y0, x1, y1 } = rect;
+    if x0 > x1 || y0 > y1 || x1 > cfg.width || y1 > cfg.height {
+        return Err(ConfigError::Window { x0, y0, width: x1.wrapping_sub(x0), height: y1.wrapping_sub(y0) });
+    }
     // Saturating: on a 32-bit target the product of two `u32` sides can overflow.
-    let texels = (cfg.width as usize).saturating_mul(cfg.height as usize);
+    let texels = ((x1 - x0) as usize).saturating_mul((y1 - y0) as usize);
     for (buffer, found) in [("ids", ids.len()), ("out", out.len())] {
         if found != texels {
             return Err(ConfigError::BufferLength { buffer, expected: texels, found });
@@ -261,15 +291,15 @@ pub fn shade_with<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, P: Probe>
     let setups = if setups.is_empty() { &mut one[..] } else { setups };
     setups.fill(ShadeSetup::EMPTY);
     let light_inverse_transpose = cfg.light.inverse().transpose();
-    let width = cfg.width as usize;
+    let width = (x1 - x0) as usize;
     if width == 0 {
         return Ok(());
     }
     // The store is consulted when the id changes along a row; the source
     // is asked only when the store misses.
     let (mut run, mut interp): (u32, Option<&Interp>) = (NO_TRIANGLE, None);
-    for (py, (ids, out)) in (0u32..).zip(ids.chunks_exact(width).zip(out.chunks_exact_mut(width))) {
-        for (px, (&id, o)) in (0u32..).zip(ids.iter().zip(out.iter_mut())) {
+    for (py, (ids, out)) in (y0..).zip(ids.chunks_exact(width).zip(out.chunks_exact_mut(width))) {
+        for (px, (&id, o)) in (x0..).zip(ids.iter().zip(out.iter_mut())) {
             if id != run {
                 run = id;
                 interp = None;

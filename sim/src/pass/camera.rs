@@ -194,6 +194,79 @@ pub fn render<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
     Ok(())
 }
 
+/// The camera pass streamed by tile ([`umbra_core::shade::stream`]): the
+/// core's pass a microcontroller runs, one tile of visibility and results
+/// at a time, the scene's geometry sent again for every tile; the tiles
+/// put back together into the image here. Bit for bit [`render`]'s image.
+///
+/// # Errors
+/// [`PassError`] for an unusable size or buffer.
+pub fn streamed<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
+    scene: &Scene,
+    view: &MapView<'_, F>,
+    unit: &U,
+    options: &CameraOptions,
+    probe: &mut P,
+) -> Result<CameraImage, PassError> {
+    use umbra_core::shade::stream::{TileBuffers, camera_pass_by_tile};
+    let CameraOptions { width, height, shadow, virtual_samples, tiling } = *options;
+    let raster = RasterConfig::new(width, height, tiling.tile, RasterConfig::DEFAULT_SUBPIXEL_BITS)?;
+    let vis = LightPassConfig { raster, unit: DepthUnit::Single, max_z_cull: true };
+    #[allow(clippy::cast_precision_loss, reason = "an aspect ratio")]
+    let camera = scene.camera.view_projection_aspect(width as f32 / height as f32);
+    let cfg = ShadeConfig {
+        camera,
+        light: scene.light().view_projection(),
+        width,
+        height,
+        shadow,
+        virtual_samples,
+        normals: Normals::Flat,
+        seed: 0x5eed,
+    };
+    let triangles = scene.triangles();
+    let source = |id: u32| triangles.get(id as usize).copied();
+    let tile = (tiling.tile * tiling.tile) as usize;
+    let (mut depth, mut ids, mut pixels) =
+        (vec![D24::FAR; tile], vec![NO_TRIANGLE; tile], vec![Shaded::BACKGROUND; tile]);
+    let mut state = [TileState::cleared(D24::FAR, 0)];
+    let mut bins = [Bin::<DEFAULT_BIN_CAPACITY>::new()];
+    let mut store = vec![Setup::EMPTY; triangles.len().clamp(1, DEFAULT_SETUPS)];
+    let mut shade_setups = vec![ShadeSetup::EMPTY; SHADE_SETUPS];
+    let buffers = TileBuffers::<D24, DEFAULT_BIN_CAPACITY> {
+        depth: &mut depth,
+        ids: &mut ids,
+        state: &mut state,
+        bins: &mut bins,
+        setups: &mut store,
+        shade_setups: &mut shade_setups,
+        pixels: &mut pixels,
+    };
+    let draws = scene.draws(camera, CullMode::None);
+    let mut image = vec![Shaded::BACKGROUND; raster.texel_count()];
+    // The draw that failed, for the error.
+    let failed = core::cell::Cell::new(0);
+    let draw = |pass: &mut LightPass<'_, D24, &mut P, DEFAULT_BIN_CAPACITY>| {
+        draws.iter().enumerate().try_for_each(|(k, d)| {
+            failed.set(k);
+            pass.draw_mesh(d.positions, d.triangles, &d.transform, d.cull)
+        })
+    };
+    let sink = |rect: umbra_core::TileRect, tile: &[Shaded]| {
+        let w = (rect.x1 - rect.x0) as usize;
+        for (row, y) in tile.chunks_exact(w).zip(rect.y0..) {
+            let at = y as usize * width as usize + rect.x0 as usize;
+            image[at..at + w].copy_from_slice(row);
+        }
+    };
+    camera_pass_by_tile(vis, &cfg, view, &source, unit, buffers, &mut *probe, draw, sink).map_err(|e| match e {
+        umbra_core::shade::stream::StreamError::Submit(source) => PassError::Submit { draw: failed.get(), source },
+        umbra_core::shade::stream::StreamError::Config(e) => PassError::from(e),
+        _ => PassError::from(umbra_core::ConfigError::Window { x0: 0, y0: 0, width, height }),
+    })?;
+    Ok(CameraImage { width, height, pixels: image })
+}
+
 /// The camera pass of depth-fail shadow volumes into `frame`: the
 /// visibility unit (walking the image as `tiling` says), then the stencil unit over every occluder's volume; a
 /// pixel is in shadow where its stencil is non-zero.

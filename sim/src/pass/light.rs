@@ -2,6 +2,7 @@
 
 use glam::{Mat4, Vec3};
 use umbra_core::depth::Texel;
+use umbra_core::front::vertex::{CACHE_ENTRIES, VertexCache};
 use umbra_core::front::{self, Output};
 use umbra_core::raster::bin::Bin;
 use umbra_core::raster::setup::Setup;
@@ -323,7 +324,8 @@ fn bands_into<F: DepthFormat, const B: usize>(
         setups.clear();
         by_band.resize_with(rows.len(), Vec::new);
         by_band.iter_mut().for_each(Vec::clear);
-        front::mesh::<F>(&r, d.positions, run, &d.transform, d.cull, id, &mut |o| {
+        let cache = &mut VertexCache::<CACHE_ENTRIES>::new();
+        front::mesh::<F, CACHE_ENTRIES>(&r, d.positions, run, &d.transform, d.cull, id, cache, &mut |o| {
             if let Output::Setup(s) = o {
                 // A job holds at most FRONT_END_RUN setups.
                 let k = u32::try_from(setups.len()).unwrap_or(u32::MAX);
