@@ -61,6 +61,8 @@ pub(crate) fn process<F: DepthFormat>(
 /// bytes: 36 an entry on Cortex-M and x86-64.
 #[derive(Clone, Debug)]
 pub struct VertexCache<const N: usize> {
+    /// The cached vertex's index plus one; 0 for an empty entry (so that an
+    /// empty cache is all zero bytes, and a `static` one costs no flash).
     tags: [u32; N],
     snapped: [Option<SnappedVertex>; N],
 }
@@ -75,12 +77,12 @@ impl<const N: usize> VertexCache<N> {
     /// An empty cache (filled as a draw call's vertices come).
     #[must_use]
     pub const fn new() -> Self {
-        Self { tags: [u32::MAX; N], snapped: [None; N] }
+        Self { tags: [0; N], snapped: [None; N] }
     }
 
     /// Forget every entry: the next draw call transforms anew.
     pub fn clear(&mut self) {
-        self.tags.fill(u32::MAX);
+        self.tags.fill(0);
     }
 
     /// The snapped vertex `index`, from the cache or computed; `None` when
@@ -97,10 +99,14 @@ impl<const N: usize> VertexCache<N> {
             return process::<F>(raster, transform, positions, index).snapped;
         }
         let slot = index as usize % N;
-        if let (Some(tag), Some(entry)) = (self.tags.get_mut(slot), self.snapped.get_mut(slot)) {
-            if *tag != index {
+        // Index u32::MAX has no tag (its key wraps to "empty"): never cached.
+        let key = index.wrapping_add(1);
+        if let (Some(tag), Some(entry)) = (self.tags.get_mut(slot), self.snapped.get_mut(slot))
+            && key != 0
+        {
+            if *tag != key {
                 *entry = process::<F>(raster, transform, positions, index).snapped;
-                *tag = index;
+                *tag = key;
             }
             return *entry;
         }

@@ -21,6 +21,9 @@ macro_rules! totals {
         pub const NAMES: &[&str] = &[$(stringify!($name)),+];
 
         impl Totals {
+            /// Nothing counted yet (a `const`, for a `static`).
+            pub const ZERO: Self = Self { $($name: 0,)+ };
+
             /// Every field with its name, in declaration order (the names
             /// the firmware prints).
             #[must_use]

@@ -1,7 +1,10 @@
-//! Umbra's demo scene on a Cortex-M4F: renders it through `umbra-core`
-//! (via `umbra-demo`) in static buffers, prints the checksums and event
-//! totals as `key=value` lines over semihosting, and exits 0 (1 on an
-//! error or a panic).
+//! Umbra's demo scene on a Cortex-M: renders it through `umbra-core` (via
+//! `umbra-demo`) in static buffers, the camera pass streamed by tile, and
+//! prints the checksums, the event totals and the memory it took as
+//! `key=value` lines over semihosting, then exits 0 (1 on an error or a
+//! panic). The board's RAM decides the variant: the full demo (64² map)
+//! on the Cortex-M4F and the Cortex-M3, a 24² map on the Cortex-M0's
+//! 16 KiB.
 #![no_std]
 #![no_main]
 
@@ -12,38 +15,64 @@ use cortex_m::interrupt::{self, Mutex};
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use panic_semihosting as _;
-use umbra_demo::{Memory, footprint};
+use umbra_demo::footprint;
+
+/// The demo variant this board's RAM holds.
+#[cfg(not(small_ram))]
+type Memory = umbra_demo::Full;
+#[cfg(small_ram)]
+type Memory = umbra_demo::Small;
 
 /// Every buffer of both passes, zero-initialised in `.bss`.
 static MEMORY: Mutex<RefCell<Memory>> = Mutex::new(RefCell::new(Memory::new()));
 
 #[entry]
 fn main() -> ! {
-    let result = interrupt::free(|cs| umbra_demo::render(&mut MEMORY.borrow(cs).borrow_mut()));
-    let status = match result {
+    // Paint the free stack, so that its peak use can be read back.
+    cortex_m_stack::repaint_stack();
+    let status = interrupt::free(|cs| report(&mut MEMORY.borrow(cs).borrow_mut()));
+    debug::exit(status);
+    loop {
+        cortex_m::asm::wfi();
+    }
+}
+
+/// Render into `mem` and print what it made; the exit status.
+fn report(mem: &mut Memory) -> debug::ExitStatus {
+    match umbra_demo::render(mem) {
         Ok(s) => {
             hprintln!("map_checksum={:#018x}", s.map_checksum);
             hprintln!("camera_checksum={:#018x}", s.camera_checksum);
             hprintln!("covered={}", s.covered);
             hprintln!("shadowed={}", s.shadowed);
-            for (pass, totals) in [("light", &s.light), ("camera", &s.camera)] {
+            let (light, camera) = mem.totals();
+            for (pass, totals) in [("light", light), ("camera", camera)] {
                 for (name, value) in totals.fields() {
                     hprintln!("{pass}.{name}={value}");
                 }
             }
-            let predicted = footprint::light_pass(&umbra_demo::light_footprint_config()).map(|f| f.total());
-            hprintln!("light_ram_formula={}", predicted.unwrap_or(0));
-            hprintln!("light_ram_types={}", umbra_demo::LIGHT_BUFFER_BYTES);
+            let side = Memory::MAP_SIDE;
+            hprintln!("map_side={side}");
+            let light = footprint::light_pass(&umbra_demo::light_footprint_config(side, Memory::SETUPS)).map(|f| f.total());
+            let camera = footprint::camera_pass(&umbra_demo::camera_footprint_config()).map(|f| f.total());
+            let (light_types, camera_types) = umbra_demo::buffer_bytes::<{ Memory::MAP_TEXELS }, { Memory::MAP_TILES }, { Memory::SETUPS }>();
+            hprintln!("light_ram_formula={}", light.unwrap_or(0));
+            hprintln!("light_ram_types={light_types}");
+            hprintln!("camera_ram_formula={}", camera.unwrap_or(0));
+            hprintln!("camera_ram_types={camera_types}");
             hprintln!("memory_bytes={}", size_of::<Memory>());
+            // The stack region runs from the end of the statics to the top
+            // of RAM; the part never written since the paint is what the
+            // peak (the render and this printing) left.
+            let region = cortex_m_stack::stack_size();
+            let peak = region.saturating_sub(cortex_m_stack::stack_painted());
+            hprintln!("stack_region={region}");
+            hprintln!("stack_peak={peak}");
             debug::EXIT_SUCCESS
         }
         Err(e) => {
             hprintln!("error={e}");
             debug::EXIT_FAILURE
         }
-    };
-    debug::exit(status);
-    loop {
-        cortex_m::asm::wfi();
     }
 }

@@ -11,14 +11,36 @@
 //! | bins ([`umbra_core::raster::bin::Bin`], a `heapless::Vec<u16, B>`) | `n · ⌈(p + 2B) / p⌉·p`, `p` the pointer width (its length is a `usize`) |
 //! | setup store ([`umbra_core::raster::setup::Setup`]) | `S · 160`: three edges of three `i64` (72), the depth plane of three `i128` (48), a bounding box of four `u32` (16), two `I32F32` depth bounds (16) and the id (4), padded to a multiple of 8 (ARM) or 16 (x86-64): 160 on both |
 //!
-//! The driver's own state (the vertex cache and the clipper's polygon) is
-//! on the stack, not counted here. On Cortex-M `p = 4`; on x86-64 `p = 8`.
+//! On Cortex-M `p = 4`; on x86-64 `p = 8`.
+//!
+//! The camera pass streamed by tile ([`umbra_core::shade::stream`]) needs,
+//! for a camera tile of `C × C` pixels, one tile of everything, whatever
+//! the image's size (the setup store is shared with the light pass):
+//!
+//! | buffer | bytes |
+//! |---|---|
+//! | visibility depth and ids | `C² · (t + 4)` |
+//! | one tile summary, one bin | `⌈(5t + 8) / 4⌉·4 + ⌈(p + 2B) / p⌉·p` |
+//! | the shading unit's setup store ([`umbra_core::shade::ShadeSetup`]) | `K · 416`: the triangle's interpolation planes in integers and its map-space setup |
+//! | one tile of results ([`umbra_core::shade::Shaded`]) | `C² · 40` |
+//!
+//! The driver keeps the vertex cache ([`umbra_core::front::vertex::VertexCache`],
+//! `V · 36` bytes for `V` entries) where the caller puts it, and the
+//! clipper's polygon (nine vertices of four `f64`) on the stack.
 
 use umbra_core::{ConfigError, DepthFormatKind, DepthUnit, RasterConfig};
 
 /// Bytes of one entry of the setup store.
 /// `72 + 48 + 16 + 16 + 4 = 156`, padded to 160.
 pub const SETUP_BYTES: usize = (3 * 3 * 8 + 3 * 16 + 4 * 4 + 2 * 8 + 4_usize).div_ceil(16) * 16;
+
+/// Bytes of one entry of the shading unit's setup store.
+pub const SHADE_SETUP_BYTES: usize = 416;
+/// Bytes of one pixel's result.
+pub const SHADED_BYTES: usize = 40;
+/// Bytes of one vertex-cache entry: a `u32` tag and an optional snapped
+/// vertex (three 64-bit words and the option's word).
+pub const VERTEX_CACHE_ENTRY_BYTES: usize = 4 + 32;
 
 /// The pointer width of the target this is compiled for, bytes.
 pub const POINTER_BYTES: usize = core::mem::size_of::<usize>();
@@ -107,6 +129,57 @@ pub fn light_pass(cfg: &FootprintConfig) -> Result<Footprint, ConfigError> {
     })
 }
 
+/// A camera pass streamed by tile, as far as its memory goes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CameraFootprint {
+    /// Camera tile side `C`, pixels.
+    pub tile: u32,
+    /// The visibility unit's depth format.
+    pub format: DepthFormatKind,
+    /// Bin capacity `B`, triangles.
+    pub bin_capacity: usize,
+    /// The shading unit's setup-store entries `K`.
+    pub shade_setups: usize,
+    /// Pointer width of the target, bytes.
+    pub pointer_bytes: usize,
+}
+
+/// The streamed camera pass's buffers, bytes each.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct CameraBuffers {
+    /// Visibility depth and ids of one tile.
+    pub visibility: usize,
+    /// One tile summary and one bin.
+    pub tile: usize,
+    /// The shading unit's setup store.
+    pub shade_setups: usize,
+    /// One tile of results.
+    pub results: usize,
+}
+
+impl CameraBuffers {
+    /// All of it.
+    #[must_use]
+    pub const fn total(&self) -> usize {
+        self.visibility + self.tile + self.shade_setups + self.results
+    }
+}
+
+/// The RAM of a camera pass streamed by tile with this shape.
+///
+/// # Errors
+/// [`ConfigError::TileSize`] for a tile side the core does not accept.
+pub fn camera_pass(cfg: &CameraFootprint) -> Result<CameraBuffers, ConfigError> {
+    let raster = RasterConfig::new(cfg.tile, cfg.tile, cfg.tile, RasterConfig::DEFAULT_SUBPIXEL_BITS)?;
+    let (pixels, t) = (raster.texel_count(), texel_bytes(cfg.format));
+    Ok(CameraBuffers {
+        visibility: pixels * (t + 4),
+        tile: tile_state_bytes(t) + bin_bytes(cfg.bin_capacity, cfg.pointer_bytes),
+        shade_setups: cfg.shade_setups * SHADE_SETUP_BYTES,
+        results: pixels * SHADED_BYTES,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use core::mem::size_of;
@@ -116,6 +189,27 @@ mod tests {
     use umbra_core::{DepthFormatKind, DepthUnit, TileState};
 
     use super::*;
+
+    #[test]
+    fn camera_element_sizes_match_the_types() {
+        use umbra_core::front::vertex::VertexCache;
+        use umbra_core::shade::{ShadeSetup, Shaded};
+        assert_eq!(SHADE_SETUP_BYTES, size_of::<ShadeSetup>());
+        assert_eq!(SHADED_BYTES, size_of::<Shaded>());
+        assert_eq!(16 * VERTEX_CACHE_ENTRY_BYTES, size_of::<VertexCache<16>>());
+        let cfg = CameraFootprint {
+            tile: 8,
+            format: DepthFormatKind::D24,
+            bin_capacity: 16,
+            shade_setups: 1,
+            pointer_bytes: POINTER_BYTES,
+        };
+        // By hand: 64 · 8 + 28 + (p + 32), 416, 64 · 40.
+        let f = camera_pass(&cfg).unwrap();
+        assert_eq!(f.visibility, 512);
+        assert_eq!(f.tile, 28 + bin_bytes(16, POINTER_BYTES));
+        assert_eq!((f.shade_setups, f.results), (416, 2560));
+    }
 
     #[test]
     fn element_sizes_match_the_types() {

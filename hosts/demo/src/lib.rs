@@ -10,38 +10,46 @@ use core::fmt;
 use core::mem::size_of;
 
 use umbra_core::depth::PlaneZ;
+use umbra_core::front::vertex::VertexCache;
 use umbra_core::glam::Vec3;
 use umbra_core::raster::bin::Bin;
 use umbra_core::raster::setup::{DepthPlane, Edge, Setup};
-use umbra_core::shade::{Normals, ShadeConfig, Shaded, shade};
+use umbra_core::shade::stream::{StreamError, TileBuffers, camera_pass_by_tile};
+use umbra_core::shade::{MapUnit, Normals, ShadeConfig, ShadeSetup, Shaded};
 use umbra_core::shadow::{Bias, DepthTest, Filter, MapView, Shadow, ShadowConfig, ShadowConfigError};
 use umbra_core::{
     ConfigError, CullMode, D16, D24, DepthFormat, DepthUnit, LightBuffers, LightPass, LightPassConfig, RasterConfig,
-    SubmitError, TileState,
+    SubmitError, TileRect, TileState,
 };
 
 pub use checksum::Fnv1a;
 pub use umbra_core::probe::Totals;
 
-/// Map side, texels.
+/// Map side of the full demo, texels.
 pub const MAP: u32 = 64;
-/// Camera image side, pixels.
+/// Camera image side, pixels (the camera pass streams it by tile, so its
+/// size costs no RAM).
 pub const IMAGE: u32 = 64;
-/// Tile side of both passes, pixels.
+/// Tile side of the light pass, texels.
 pub const TILE: u32 = 16;
+/// Tile side of the camera pass, pixels: the unit it streams in.
+pub const CAMERA_TILE: u32 = 8;
 /// Bin capacity: small, so that full bins flush early.
 pub const BIN_CAPACITY: usize = 16;
-/// Setup-store entries: fewer than the scene's triangles, so the store
-/// fills and every bin is drained once mid-pass.
-pub const SETUPS: usize = 32;
+/// Setup-store entries of the full demo: fewer than the scene's
+/// triangles, so the store fills and every bin is drained once mid-pass.
+pub const SETUPS: usize = 16;
+/// Post-transform vertex-cache entries.
+pub const VERTEX_CACHE: usize = 16;
+/// The shading unit's setup-store entries: none kept in the demo's
+/// memory (an entry is 416 bytes, and the unit then keeps the one it works
+/// on, on the stack).
+pub const SHADE_SETUPS: usize = 0;
 /// Seed of the shading unit's per-pixel random numbers.
 pub const SEED: u64 = 0x5eed;
 
-const MAP_TEXELS: usize = (MAP * MAP) as usize;
-const IMAGE_TEXELS: usize = (IMAGE * IMAGE) as usize;
-const MAP_TILES: usize = (MAP / TILE * (MAP / TILE)) as usize;
-const IMAGE_TILES: usize = (IMAGE / TILE * (IMAGE / TILE)) as usize;
-const BINS: usize = if MAP_TILES > IMAGE_TILES { MAP_TILES } else { IMAGE_TILES };
+/// Pixels of one camera tile.
+pub const CAMERA_TILE_TEXELS: usize = (CAMERA_TILE * CAMERA_TILE) as usize;
 
 /// A pixel result with every byte zero, so that a `static` [`Memory`] is
 /// zero-initialised (no flash image).
@@ -58,27 +66,60 @@ const ZERO_SETUP: Setup = Setup {
     triangle: 0,
 };
 
-/// Every buffer of both passes. Bins and the setup store are shared: the
-/// camera pass starts after the light pass has drained them.
-pub struct Memory {
+/// Every buffer of both passes for a map of `MAP_TEXELS` texels in
+/// `MAP_TILES` tiles, with a setup store of `SETUPS` entries: the maps and their tiles, and one camera tile of
+/// everything (the camera pass is streamed by tile, so no buffer the size
+/// of the image exists). The setup store is shared: the camera pass starts
+/// after the light pass has drained it.
+pub struct Memory<const MAP_TEXELS: usize, const MAP_TILES: usize, const SETUPS: usize> {
     z1: [u16; MAP_TEXELS],
     z2: [u16; MAP_TEXELS],
     map_tiles: [TileState<u16>; MAP_TILES],
-    depth: [u32; IMAGE_TEXELS],
-    ids: [u32; IMAGE_TEXELS],
-    image_tiles: [TileState<u32>; IMAGE_TILES],
-    bins: [Bin<BIN_CAPACITY>; BINS],
+    bins: [Bin<BIN_CAPACITY>; MAP_TILES],
     setups: [Setup; SETUPS],
-    pixels: [Shaded; IMAGE_TEXELS],
+    cache: VertexCache<VERTEX_CACHE>,
+    depth: [u32; CAMERA_TILE_TEXELS],
+    ids: [u32; CAMERA_TILE_TEXELS],
+    camera_tile: [TileState<u32>; 1],
+    camera_bin: [Bin<BIN_CAPACITY>; 1],
+    shade_setups: [ShadeSetup; SHADE_SETUPS],
+    pixels: [Shaded; CAMERA_TILE_TEXELS],
+    light: Totals,
+    camera: Totals,
 }
 
-impl Default for Memory {
+/// The full demo's memory: a 64² map, 16 setups.
+pub type Full = Memory<{ 64 * 64 }, 16, SETUPS>;
+/// The largest demo a part of 16 KiB of RAM holds beside its stack: a 24²
+/// map and 4 setups (a 28² map, or 24² with 16 setups, leaves the
+/// Cortex-M0's 7.6 KB of stack no room).
+pub type Small = Memory<{ 24 * 24 }, 4, 4>;
+
+impl<const MAP_TEXELS: usize, const MAP_TILES: usize, const SETUPS: usize> Default
+    for Memory<MAP_TEXELS, MAP_TILES, SETUPS>
+{
     fn default() -> Self {
         Self::new()
     }
 }
 
-impl Memory {
+impl<const MAP_TEXELS: usize, const MAP_TILES: usize, const SETUPS: usize> Memory<MAP_TEXELS, MAP_TILES, SETUPS> {
+    /// The map's side: the square root of `MAP_TEXELS`.
+    pub const MAP_SIDE: u32 = {
+        let mut side = 0u32;
+        while ((side + 1) * (side + 1)) as usize <= MAP_TEXELS {
+            side += 1;
+        }
+        side
+    };
+
+    /// Texels of the map.
+    pub const MAP_TEXELS: usize = MAP_TEXELS;
+    /// Tiles of the map.
+    pub const MAP_TILES: usize = MAP_TILES;
+    /// Setup-store entries.
+    pub const SETUPS: usize = SETUPS;
+
     /// All buffers zeroed (a `const`, so it can initialise a `static`).
     #[must_use]
     pub const fn new() -> Self {
@@ -86,13 +127,25 @@ impl Memory {
             z1: [0; MAP_TEXELS],
             z2: [0; MAP_TEXELS],
             map_tiles: [TileState::cleared(0, 0); MAP_TILES],
-            depth: [0; IMAGE_TEXELS],
-            ids: [0; IMAGE_TEXELS],
-            image_tiles: [TileState::cleared(0, 0); IMAGE_TILES],
-            bins: [const { Bin::new() }; BINS],
+            bins: [const { Bin::new() }; MAP_TILES],
             setups: [ZERO_SETUP; SETUPS],
-            pixels: [ZERO_PIXEL; IMAGE_TEXELS],
+            cache: VertexCache::new(),
+            depth: [0; CAMERA_TILE_TEXELS],
+            ids: [0; CAMERA_TILE_TEXELS],
+            camera_tile: [TileState::cleared(0, 0)],
+            camera_bin: [const { Bin::new() }],
+            shade_setups: [ShadeSetup::EMPTY; SHADE_SETUPS],
+            pixels: [ZERO_PIXEL; CAMERA_TILE_TEXELS],
+            light: Totals::ZERO,
+            camera: Totals::ZERO,
         }
+    }
+
+    /// The event totals of the last [`render`]: the light pass's, and the
+    /// camera pass's (visibility and shading).
+    #[must_use]
+    pub const fn totals(&self) -> (&Totals, &Totals) {
+        (&self.light, &self.camera)
     }
 
     /// The light pass's nearest and second-nearest depths, row-major.
@@ -100,45 +153,64 @@ impl Memory {
     pub const fn maps(&self) -> (&[u16], &[u16]) {
         (&self.z1, &self.z2)
     }
-
-    /// The camera pass's result per pixel, row-major.
-    #[must_use]
-    pub const fn pixels(&self) -> &[Shaded] {
-        &self.pixels
-    }
 }
 
-/// The demo's light pass as [`footprint::light_pass`] describes it, on
-/// the target this is compiled for.
+/// The demo's light pass as [`footprint::light_pass`] describes it, for a
+/// map of side `map` and `setups` setup-store entries, on the target this
+/// is compiled for.
 #[must_use]
-pub const fn light_footprint_config() -> footprint::FootprintConfig {
+pub const fn light_footprint_config(map: u32, setups: usize) -> footprint::FootprintConfig {
     footprint::FootprintConfig {
-        width: MAP,
-        height: MAP,
+        width: map,
+        height: map,
         tile: TILE,
         format: umbra_core::DepthFormatKind::D16,
         unit: DepthUnit::Dual,
         bin_capacity: BIN_CAPACITY,
-        setups: SETUPS,
+        setups,
         pointer_bytes: footprint::POINTER_BYTES,
     }
 }
 
-/// Bytes of the buffers the demo's light pass uses, from `size_of` of their
-/// types on the target this is compiled for: what
-/// [`light_footprint_config`] must predict.
-pub const LIGHT_BUFFER_BYTES: usize = 2 * size_of::<[u16; MAP_TEXELS]>()
-    + size_of::<[TileState<u16>; MAP_TILES]>()
-    + size_of::<[Bin<BIN_CAPACITY>; MAP_TILES]>()
-    + size_of::<[Setup; SETUPS]>();
+/// The demo's camera pass as [`footprint::camera_pass`] describes it.
+#[must_use]
+pub const fn camera_footprint_config() -> footprint::CameraFootprint {
+    footprint::CameraFootprint {
+        tile: CAMERA_TILE,
+        format: umbra_core::DepthFormatKind::D24,
+        bin_capacity: BIN_CAPACITY,
+        shade_setups: SHADE_SETUPS,
+        pointer_bytes: footprint::POINTER_BYTES,
+    }
+}
 
-/// What [`render`] reports.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// Bytes of every buffer the demo's two passes use, from `size_of` of
+/// their types on the target this is compiled for: what the footprint
+/// formulas must predict (the vertex cache besides).
+#[must_use]
+pub const fn buffer_bytes<const MAP_TEXELS: usize, const MAP_TILES: usize, const SETUPS: usize>() -> (usize, usize) {
+    let light = 2 * size_of::<[u16; MAP_TEXELS]>()
+        + size_of::<[TileState<u16>; MAP_TILES]>()
+        + size_of::<[Bin<BIN_CAPACITY>; MAP_TILES]>()
+        + size_of::<[Setup; SETUPS]>();
+    let camera = size_of::<[u32; CAMERA_TILE_TEXELS]>() * 2
+        + size_of::<[TileState<u32>; 1]>()
+        + size_of::<[Bin<BIN_CAPACITY>; 1]>()
+        + size_of::<[ShadeSetup; SHADE_SETUPS]>()
+        + size_of::<[Shaded; CAMERA_TILE_TEXELS]>();
+    (light, camera)
+}
+
+/// What [`render`] reports (the event totals stay in the [`Memory`]: they
+/// are large for a microcontroller's stack).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Summary {
     /// FNV-1a 64 of the light pass's maps: every `z1` texel, then every
     /// `z2` texel, row-major, each as 2 little-endian bytes.
     pub map_checksum: u64,
-    /// FNV-1a 64 of the camera pass, per pixel row-major: the triangle id
+    /// FNV-1a 64 of the camera pass, per pixel in the order the streamed
+    /// pass makes them (8×8 tiles row-major, pixels row-major in a tile):
+    /// the triangle id
     /// (`u32`); then `0u8` when there is no light point, or `1u8` and the
     /// point's `x`, `y` (`i32` bits of 16.16 texels) and `z` (`i64` bits of
     /// 32.32 LSBs); then the shadow fraction (`u32` bits of 16.16).
@@ -148,10 +220,6 @@ pub struct Summary {
     pub covered: u32,
     /// Covered pixels wholly in shadow.
     pub shadowed: u32,
-    /// Event totals of the light pass.
-    pub light: Totals,
-    /// Event totals of the camera pass (visibility and shading).
-    pub camera: Totals,
 }
 
 /// Why the demo could not render (none of these happens with the bundled
@@ -191,19 +259,29 @@ impl From<SubmitError> for DemoError {
     }
 }
 
+impl From<StreamError> for DemoError {
+    fn from(e: StreamError) -> Self {
+        match e {
+            StreamError::Submit(e) => Self::Submit(e),
+            StreamError::Config(e) => Self::Config(e),
+            _ => Self::Config(ConfigError::Window { x0: 0, y0: 0, width: IMAGE, height: IMAGE }),
+        }
+    }
+}
+
 impl From<ShadowConfigError> for DemoError {
     fn from(e: ShadowConfigError) -> Self {
         Self::Shadow(e)
     }
 }
 
-/// The light pass's configuration: 64² map, 16-pixel tiles, dual depth
-/// unit, max-z culling.
+/// The light pass's configuration: a `map`² map, 16-pixel tiles, dual
+/// depth unit, max-z culling.
 ///
 /// # Errors
-/// None for the constants here; the core's check is kept.
-pub fn light_config() -> Result<LightPassConfig, ConfigError> {
-    let raster = RasterConfig::new(MAP, MAP, TILE, RasterConfig::DEFAULT_SUBPIXEL_BITS)?;
+/// A map side the core refuses.
+pub fn light_config(map: u32) -> Result<LightPassConfig, ConfigError> {
+    let raster = RasterConfig::new(map, map, TILE, RasterConfig::DEFAULT_SUBPIXEL_BITS)?;
     Ok(LightPassConfig { raster, unit: DepthUnit::Dual, max_z_cull: true })
 }
 
@@ -216,67 +294,94 @@ pub fn shadow_config() -> Result<ShadowConfig, ShadowConfigError> {
     ShadowConfig::new(DepthTest::Second, Bias::ZERO, Filter::Box { size: 2 }, true)
 }
 
-/// Render the bundled scene ([`scene`]) into `mem`: the light pass (64²,
-/// D16, dual), then the camera pass (visibility at 64² in D24, shading
-/// with second depth, virtual samples and a 2×2 box filter).
+/// The shading configuration of the camera pass against a map of side
+/// `map` (the light matrix does not depend on it).
 ///
 /// # Errors
-/// [`DemoError`] if the core rejects a configuration (it does not).
-pub fn render(mem: &mut Memory) -> Result<Summary, DemoError> {
-    let light = scene::light_matrix();
-    let camera = scene::camera_matrix();
-
-    // Light pass.
-    let light_cfg = light_config()?;
-    let buffers = LightBuffers::<D16, BIN_CAPACITY> {
-        z1: &mut mem.z1,
-        z2: &mut mem.z2,
-        ids: &mut [],
-        tiles: &mut mem.map_tiles,
-        bins: &mut mem.bins[..MAP_TILES],
-        setups: &mut mem.setups,
-    };
-    let mut pass = LightPass::<D16, Totals, BIN_CAPACITY>::new(light_cfg, buffers, Totals::default())?;
-    pass.draw_mesh(&scene::POSITIONS, &scene::INDICES, &light, CullMode::None)?;
-    let light_totals = pass.finish();
-
-    // Camera pass: visibility, then shading against the maps.
-    let raster = RasterConfig::new(IMAGE, IMAGE, TILE, RasterConfig::DEFAULT_SUBPIXEL_BITS)?;
-    let vis_cfg = LightPassConfig { raster, unit: DepthUnit::Single, max_z_cull: true };
-    let buffers = LightBuffers::<D24, BIN_CAPACITY> {
-        z1: &mut mem.depth,
-        z2: &mut [],
-        ids: &mut mem.ids,
-        tiles: &mut mem.image_tiles,
-        bins: &mut mem.bins[..IMAGE_TILES],
-        setups: &mut mem.setups,
-    };
-    let mut pass = LightPass::<D24, Totals, BIN_CAPACITY>::new(vis_cfg, buffers, Totals::default())?;
-    pass.draw_mesh(&scene::POSITIONS, &scene::INDICES, &camera, CullMode::None)?;
-    let mut camera_totals = pass.finish();
-
-    let view = MapView::<D16>::new(light_cfg.raster, &mem.z1, &mem.z2, &mem.map_tiles)?;
-    let cfg = ShadeConfig {
-        camera,
-        light,
+/// None for the constants here; the core's check is kept.
+pub fn shade_config() -> Result<ShadeConfig, ShadowConfigError> {
+    Ok(ShadeConfig {
+        camera: scene::camera_matrix(),
+        light: scene::light_matrix(),
         width: IMAGE,
         height: IMAGE,
         shadow: shadow_config()?,
         virtual_samples: true,
         normals: Normals::Flat,
         seed: SEED,
-    };
-    shade(&cfg, &mem.ids, &view, &scene::triangle, &mut mem.pixels, &mut camera_totals)?;
+    })
+}
 
-    let seen = mem.pixels.iter().filter(|p| p.triangle != umbra_core::NO_TRIANGLE);
-    let (covered, shadowed) = seen.fold((0, 0), |(c, s), p| (c + 1, s + u32::from(p.shadow == Shadow::ONE)));
-    Ok(Summary {
-        map_checksum: map_checksum::<D16>(&mem.z1, &mem.z2),
-        camera_checksum: camera_checksum(&mem.pixels),
-        covered,
-        shadowed,
+/// The camera pass's visibility: the `IMAGE`² image in `CAMERA_TILE`-pixel
+/// tiles, 24-bit depth, single unit, max-z culling.
+///
+/// # Errors
+/// None for the constants here; the core's check is kept.
+pub fn visibility_config() -> Result<LightPassConfig, ConfigError> {
+    let raster = RasterConfig::new(IMAGE, IMAGE, CAMERA_TILE, RasterConfig::DEFAULT_SUBPIXEL_BITS)?;
+    Ok(LightPassConfig { raster, unit: DepthUnit::Single, max_z_cull: true })
+}
+
+/// Render the bundled scene ([`scene`]) into `mem`: the light pass (a
+/// `MAP_SIDE`² map, D16, dual), then the camera pass streamed by tile
+/// ([`umbra_core::shade::stream`]: visibility of each 8×8 tile in D24, then
+/// shading with second depth, virtual samples and a 2×2 box filter), each
+/// tile's results folded into the checksum as it is made.
+///
+/// # Errors
+/// [`DemoError`] if the core rejects a configuration (it does not).
+pub fn render<const MAP_TEXELS: usize, const MAP_TILES: usize, const SETUPS: usize>(
+    mem: &mut Memory<MAP_TEXELS, MAP_TILES, SETUPS>,
+) -> Result<Summary, DemoError> {
+    let Memory {
+        z1,
+        z2,
+        map_tiles,
+        bins,
+        setups,
+        cache,
+        depth,
+        ids,
+        camera_tile,
+        camera_bin,
+        shade_setups,
+        pixels,
         light: light_totals,
         camera: camera_totals,
+    } = mem;
+    let light_cfg = light_config(Memory::<MAP_TEXELS, MAP_TILES, SETUPS>::MAP_SIDE)?;
+    // The probes are borrowed, not moved: the totals are large for a
+    // microcontroller's stack.
+    (*light_totals, *camera_totals) = (Totals::ZERO, Totals::ZERO);
+    let buffers = LightBuffers::<D16, BIN_CAPACITY> { z1, z2, ids: &mut [], tiles: map_tiles, bins, setups };
+    let mut pass = LightPass::<D16, &mut Totals, BIN_CAPACITY>::new(light_cfg, buffers, &mut *light_totals)?;
+    pass.draw_mesh_cached(&scene::POSITIONS, &scene::INDICES, &scene::light_matrix(), CullMode::None, cache)?;
+    pass.finish();
+
+    let view = MapView::<D16>::new(light_cfg.raster, z1, z2, map_tiles)?;
+    let cfg = shade_config()?;
+    let tile = TileBuffers::<D24, BIN_CAPACITY> {
+        depth,
+        ids,
+        state: camera_tile,
+        bins: camera_bin,
+        setups,
+        shade_setups,
+        pixels,
+    };
+    let camera = scene::camera_matrix();
+    let draw = |p: &mut LightPass<'_, D24, &mut Totals, BIN_CAPACITY>| {
+        p.draw_mesh_cached(&scene::POSITIONS, &scene::INDICES, &camera, CullMode::None, cache)
+    };
+    let mut image = CameraChecksum::new();
+    let sink = |rect: TileRect, tile: &[Shaded]| image.tile(rect, tile);
+    let vis = visibility_config()?;
+    camera_pass_by_tile(vis, &cfg, &view, &scene::triangle, &MapUnit, tile, &mut *camera_totals, draw, sink)?;
+    Ok(Summary {
+        map_checksum: map_checksum::<D16>(z1, z2),
+        camera_checksum: image.hash.finish(),
+        covered: image.covered,
+        shadowed: image.shadowed,
     })
 }
 
@@ -288,30 +393,67 @@ pub fn map_checksum<F: DepthFormat<Texel = u16>>(z1: &[u16], z2: &[u16]) -> u64 
     h.finish()
 }
 
-/// [`Summary::camera_checksum`] of per-pixel results.
-#[must_use]
-pub fn camera_checksum(pixels: &[Shaded]) -> u64 {
-    let mut h = Fnv1a::new();
-    for p in pixels {
-        h.u32(p.triangle);
-        match p.light {
-            None => h.bytes(&[0]),
-            Some(l) => {
-                h.bytes(&[1]);
-                h.i32(l.x.to_bits());
-                h.i32(l.y.to_bits());
-                h.i64(l.z.to_bits());
+/// The camera pass's checksum and counts, folded tile by tile in the order
+/// the streamed pass makes them (tiles row-major, pixels row-major in a
+/// tile): [`Summary::camera_checksum`], covered and shadowed pixels.
+#[derive(Clone, Copy, Debug)]
+pub struct CameraChecksum {
+    hash: Fnv1a,
+    /// Pixels the camera sees the scene in.
+    pub covered: u32,
+    /// Covered pixels wholly in shadow.
+    pub shadowed: u32,
+}
+
+impl Default for CameraChecksum {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl CameraChecksum {
+    /// Nothing folded in.
+    #[must_use]
+    pub const fn new() -> Self {
+        Self { hash: Fnv1a::new(), covered: 0, shadowed: 0 }
+    }
+
+    /// Fold in one tile's results (its rectangle names it; the order of
+    /// tiles is the caller's).
+    pub fn tile(&mut self, _rect: TileRect, pixels: &[Shaded]) {
+        for p in pixels {
+            self.hash.u32(p.triangle);
+            match p.light {
+                None => self.hash.bytes(&[0]),
+                Some(l) => {
+                    self.hash.bytes(&[1]);
+                    self.hash.i32(l.x.to_bits());
+                    self.hash.i32(l.y.to_bits());
+                    self.hash.i64(l.z.to_bits());
+                }
+            }
+            self.hash.u32(p.shadow.to_bits());
+            if p.triangle != umbra_core::NO_TRIANGLE {
+                self.covered += 1;
+                self.shadowed += u32::from(p.shadow == Shadow::ONE);
             }
         }
-        h.u32(p.shadow.to_bits());
     }
-    h.finish()
+
+    /// The checksum so far.
+    #[must_use]
+    pub fn finish(&self) -> u64 {
+        self.hash.finish()
+    }
 }
 
 #[cfg(test)]
 mod tests {
     extern crate std;
     use std::boxed::Box;
+    use std::vec;
+
+    use umbra_core::shade::shade;
 
     use super::*;
 
@@ -320,24 +462,78 @@ mod tests {
     /// the work the configuration asks for.
     #[test]
     fn the_scene_exercises_the_passes() {
-        let mut mem = Box::new(Memory::new());
+        let mut mem = Box::new(Full::new());
         let s = render(&mut mem).unwrap();
+        let (light, camera) = mem.totals();
         assert!(s.covered > IMAGE * IMAGE / 2, "{s:?}");
         assert!(s.shadowed > 100 && s.shadowed < s.covered / 2, "{s:?}");
-        assert_eq!(s.light.submitted, scene::TRIANGLES as u64);
-        assert_eq!(s.camera.submitted, scene::TRIANGLES as u64);
+        assert_eq!(light.submitted, scene::TRIANGLES as u64);
+        // The camera pass sends the scene once per 8×8 tile.
+        assert_eq!(camera.submitted, (scene::TRIANGLES * 64) as u64);
         // Every flush stores its tile; the small setup store makes some
         // tiles flush twice, so they are loaded back.
-        assert_eq!(s.light.flushes(), s.light.tile_stores);
-        assert!(s.light.tile_loads > 0);
+        assert_eq!(light.flushes(), light.tile_stores);
+        assert!(light.tile_loads > 0);
         // The dual unit reads z1 and z2 for every fragment.
-        assert_eq!(s.light.depth_reads(), 2 * s.light.fragments);
-        assert!(s.camera.virtual_samples > 0 && s.camera.lookups_culled > 0);
+        assert_eq!(light.depth_reads(), 2 * light.fragments);
+        assert!(camera.virtual_samples > 0 && camera.lookups_culled > 0);
+    }
+
+    /// The streamed camera pass gives the full-frame pass's pixels: the
+    /// whole image's visibility and shading, through the core's full-frame
+    /// units, folded in the same tile order, has the same checksum.
+    #[test]
+    fn the_streamed_camera_pass_is_the_full_frame_one() {
+        for map in [64u32, 24] {
+            let (s, z1, z2, tiles) = if map == 64 {
+                let mut mem = Box::new(Full::new());
+                let s = render(&mut mem).unwrap();
+                (s, mem.z1.to_vec(), mem.z2.to_vec(), mem.map_tiles.to_vec())
+            } else {
+                let mut mem = Box::new(Small::new());
+                let s = render(&mut mem).unwrap();
+                (s, mem.z1.to_vec(), mem.z2.to_vec(), mem.map_tiles.to_vec())
+            };
+            let texels = (IMAGE * IMAGE) as usize;
+            let vis = visibility_config().unwrap();
+            let n = vis.raster.tile_count();
+            let (mut depth, mut ids) = (vec![0u32; texels], vec![0u32; texels]);
+            let (mut states, mut bins) = (vec![TileState::cleared(0, 0); n], vec![Bin::<BIN_CAPACITY>::new(); n]);
+            let mut setups = vec![ZERO_SETUP; 16];
+            let buffers = LightBuffers::<D24, BIN_CAPACITY> {
+                z1: &mut depth,
+                z2: &mut [],
+                ids: &mut ids,
+                tiles: &mut states,
+                bins: &mut bins,
+                setups: &mut setups,
+            };
+            let mut pass = LightPass::<D24, Totals, BIN_CAPACITY>::new(vis, buffers, Totals::default()).unwrap();
+            pass.draw_mesh(&scene::POSITIONS, &scene::INDICES, &scene::camera_matrix(), CullMode::None).unwrap();
+            pass.finish();
+            let view = MapView::<D16>::new(light_config(map).unwrap().raster, &z1, &z2, &tiles).unwrap();
+            let mut out = vec![Shaded::BACKGROUND; texels];
+            shade(&shade_config().unwrap(), &ids, &view, &scene::triangle, &mut out, &mut Totals::default()).unwrap();
+            let mut whole = CameraChecksum::new();
+            for t in 0..n {
+                let r = vis.raster.tile_rect(vis.raster.tile_id(t));
+                let tile: std::vec::Vec<Shaded> = (r.y0..r.y1)
+                    .flat_map(|y| (r.x0..r.x1).map(move |x| (y * IMAGE + x) as usize))
+                    .map(|i| out[i])
+                    .collect();
+                whole.tile(r, &tile);
+            }
+            assert_eq!((whole.finish(), whole.covered, whole.shadowed), (s.camera_checksum, s.covered, s.shadowed));
+        }
     }
 
     #[test]
     fn the_footprint_predicts_the_demo_buffers() {
-        let f = footprint::light_pass(&light_footprint_config()).unwrap();
-        assert_eq!(f.total(), LIGHT_BUFFER_BYTES);
+        let light = footprint::light_pass(&light_footprint_config(MAP, SETUPS)).unwrap();
+        let camera = footprint::camera_pass(&camera_footprint_config()).unwrap();
+        assert_eq!((light.total(), camera.total()), buffer_bytes::<{ 64 * 64 }, 16, SETUPS>());
+        let small = footprint::light_pass(&light_footprint_config(24, 4)).unwrap();
+        assert_eq!(small.total(), buffer_bytes::<{ 24 * 24 }, 4, 4>().0);
+        assert_eq!((Full::MAP_SIDE, Small::MAP_SIDE), (64, 24));
     }
 }
