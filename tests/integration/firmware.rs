@@ -106,7 +106,7 @@ fn build_firmware(target: &str) -> PathBuf {
 fn run_firmware(board: &Board, elf: &Path) -> (i32, BTreeMap<String, String>) {
     let mut child = Command::new("qemu-system-arm")
         .args(board.machine)
-        .args(["-nographic", "-semihosting-config", "enable=on,target=native", "-kernel"])
+        .args(["-nographic", "-semihosting-config", "enable=on,target=native", "-icount", "shift=0", "-kernel"])
         .arg(elf)
         .stdin(Stdio::null())
         .stdout(Stdio::piped())
@@ -211,6 +211,12 @@ fn firmware_under_qemu_matches_the_host_within_budget() {
         assert!(peak < region, "{t}: the stack reached the statics ({peak} of {region} bytes)");
         assert!(statics + peak <= board.ram, "{t}: {statics} B of statics + {peak} B of stack > {} B", board.ram);
         assert!(flash <= board.flash, "{t}: {flash} B of flash > {} B", board.flash);
+        // Each pass's instructions, from SysTick under `-icount shift=0`:
+        // some, and the light pass of 62 triangles fewer than the camera
+        // pass that sends them once per tile of 64.
+        let (light, camera) = (number("light_instructions"), number("camera_instructions"));
+        assert!(light > 100_000 && camera > 10 * light, "{t}: {light} and {camera} instructions");
+        eprintln!("{t}: light pass {light} instructions, camera pass {camera}; {statics} B statics, {peak} B stack");
     }
 }
 

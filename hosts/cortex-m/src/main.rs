@@ -12,6 +12,8 @@ use core::cell::RefCell;
 use core::mem::size_of;
 
 use cortex_m::interrupt::{self, Mutex};
+use cortex_m::peripheral::SYST;
+use cortex_m::peripheral::syst::SystClkSource;
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use panic_semihosting as _;
@@ -30,17 +32,40 @@ static MEMORY: Mutex<RefCell<Memory>> = Mutex::new(RefCell::new(Memory::new()));
 fn main() -> ! {
     // Paint the free stack, so that its peak use can be read back.
     cortex_m_stack::repaint_stack();
-    let status = interrupt::free(|cs| report(&mut MEMORY.borrow(cs).borrow_mut()));
+    let status = match cortex_m::Peripherals::take() {
+        Some(p) => interrupt::free(|cs| report(&mut MEMORY.borrow(cs).borrow_mut(), p.SYST)),
+        None => debug::EXIT_FAILURE,
+    };
     debug::exit(status);
     loop {
         cortex_m::asm::wfi();
     }
 }
 
-/// Render into `mem` and print what it made; the exit status.
-fn report(mem: &mut Memory) -> debug::ExitStatus {
-    match umbra_demo::render(mem) {
+/// Render into `mem` and print what it made; the exit status. SysTick,
+/// counting down at the core clock, times each pass: under QEMU's
+/// `-icount shift=0` one instruction is one nanosecond of the board's
+/// clock, so the ticks count instructions in the board's clock period.
+fn report(mem: &mut Memory, mut timer: SYST) -> debug::ExitStatus {
+    timer.set_clock_source(SystClkSource::Core);
+    timer.set_reload(0x00ff_ffff);
+    timer.clear_current();
+    timer.enable_counter();
+    let start = SYST::get_current();
+    let mut light_end = start;
+    let rendered = umbra_demo::render_with(mem, || light_end = SYST::get_current());
+    let end = SYST::get_current();
+    match rendered {
         Ok(s) => {
+            // A 24-bit down-counter: elapsed ticks modulo 2²⁴ (a pass of
+            // more than 2²⁴ ticks would wrap: 0.67 s at 25 MHz).
+            let ticks = |from: u32, to: u32| u64::from(from.wrapping_sub(to) & 0x00ff_ffff);
+            let clock_ps: u64 = env!("UMBRA_CLOCK_PS").parse().unwrap_or(0);
+            for (pass, t) in [("light", ticks(start, light_end)), ("camera", ticks(light_end, end))] {
+                hprintln!("{pass}_ticks={t}");
+                // One instruction a nanosecond under `-icount shift=0`.
+                hprintln!("{pass}_instructions={}", t * clock_ps / 1000);
+            }
             hprintln!("map_checksum={:#018x}", s.map_checksum);
             hprintln!("camera_checksum={:#018x}", s.camera_checksum);
             hprintln!("covered={}", s.covered);
@@ -53,9 +78,11 @@ fn report(mem: &mut Memory) -> debug::ExitStatus {
             }
             let side = Memory::MAP_SIDE;
             hprintln!("map_side={side}");
-            let light = footprint::light_pass(&umbra_demo::light_footprint_config(side, Memory::SETUPS)).map(|f| f.total());
+            let light =
+                footprint::light_pass(&umbra_demo::light_footprint_config(side, Memory::SETUPS)).map(|f| f.total());
             let camera = footprint::camera_pass(&umbra_demo::camera_footprint_config()).map(|f| f.total());
-            let (light_types, camera_types) = umbra_demo::buffer_bytes::<{ Memory::MAP_TEXELS }, { Memory::MAP_TILES }, { Memory::SETUPS }>();
+            let (light_types, camera_types) =
+                umbra_demo::buffer_bytes::<{ Memory::MAP_TEXELS }, { Memory::MAP_TILES }, { Memory::SETUPS }>();
             hprintln!("light_ram_formula={}", light.unwrap_or(0));
             hprintln!("light_ram_types={light_types}");
             hprintln!("camera_ram_formula={}", camera.unwrap_or(0));

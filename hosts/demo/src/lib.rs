@@ -333,6 +333,18 @@ pub fn visibility_config() -> Result<LightPassConfig, ConfigError> {
 pub fn render<const MAP_TEXELS: usize, const MAP_TILES: usize, const SETUPS: usize>(
     mem: &mut Memory<MAP_TEXELS, MAP_TILES, SETUPS>,
 ) -> Result<Summary, DemoError> {
+    render_with(mem, || ())
+}
+
+/// [`render`], calling `between` after the light pass and before the
+/// camera pass (a firmware reads its timer there).
+///
+/// # Errors
+/// [`DemoError`] if the core rejects a configuration (it does not).
+pub fn render_with<const MAP_TEXELS: usize, const MAP_TILES: usize, const SETUPS: usize>(
+    mem: &mut Memory<MAP_TEXELS, MAP_TILES, SETUPS>,
+    between: impl FnOnce(),
+) -> Result<Summary, DemoError> {
     let Memory {
         z1,
         z2,
@@ -357,6 +369,7 @@ pub fn render<const MAP_TEXELS: usize, const MAP_TILES: usize, const SETUPS: usi
     let mut pass = LightPass::<D16, &mut Totals, BIN_CAPACITY>::new(light_cfg, buffers, &mut *light_totals)?;
     pass.draw_mesh_cached(&scene::POSITIONS, &scene::INDICES, &scene::light_matrix(), CullMode::None, cache)?;
     pass.finish();
+    between();
 
     let view = MapView::<D16>::new(light_cfg.raster, z1, z2, map_tiles)?;
     let cfg = shade_config()?;
