@@ -26,7 +26,10 @@
 //!
 //! The driver keeps the vertex cache ([`umbra_core::front::vertex::VertexCache`],
 //! `V · 36` bytes for `V` entries) where the caller puts it, and the
-//! clipper's polygon (nine vertices of four `f64`) on the stack.
+//! clipper's scratch on the stack: two polygons of at most
+//! [`umbra_core::front::clip::MAX_POLYGON`] (nine) vertices of four `f64`,
+//! [`CLIP_POLYGON_BYTES`] each — a bound the six clip planes set, not a
+//! choice.
 
 use umbra_core::{ConfigError, DepthFormatKind, DepthUnit, RasterConfig};
 
@@ -41,6 +44,10 @@ pub const SHADED_BYTES: usize = 40;
 /// Bytes of one vertex-cache entry: a `u32` tag and an optional snapped
 /// vertex (three 64-bit words and the option's word).
 pub const VERTEX_CACHE_ENTRY_BYTES: usize = 4 + 32;
+
+/// Bytes of one of the clipper's polygons: nine vertices of 32 bytes and
+/// the length, padded to the vertices' 8-byte alignment.
+pub const CLIP_POLYGON_BYTES: usize = (umbra_core::front::clip::MAX_POLYGON * 32 + POINTER_BYTES).div_ceil(8) * 8;
 
 /// The pointer width of the target this is compiled for, bytes.
 pub const POINTER_BYTES: usize = core::mem::size_of::<usize>();
@@ -197,6 +204,7 @@ mod tests {
         assert_eq!(SHADE_SETUP_BYTES, size_of::<ShadeSetup>());
         assert_eq!(SHADED_BYTES, size_of::<Shaded>());
         assert_eq!(16 * VERTEX_CACHE_ENTRY_BYTES, size_of::<VertexCache<16>>());
+        assert_eq!(CLIP_POLYGON_BYTES, size_of::<umbra_core::front::clip::Polygon>());
         let cfg = CameraFootprint {
             tile: 8,
             format: DepthFormatKind::D24,
