@@ -8,7 +8,7 @@ use anyhow::{Context, Result, bail};
 use clap::ValueEnum;
 use umbra_core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, RasterConfig};
 use umbra_sim::cost::counters::Counters;
-use umbra_sim::glam::{Mat4, Vec3};
+use umbra_sim::glam::Mat4;
 use umbra_sim::io::folder::OutputFolder;
 use umbra_sim::io::limits::Limits;
 use umbra_sim::io::output::{RawMap, write_npy, write_preview};
@@ -110,27 +110,12 @@ fn read_matrix(arg: &str, limits: &Limits) -> Result<Mat4> {
     parse_matrix(arg).with_context(|| format!("--matrix `{arg}`: no such file, and not a 4×4 JSON array"))
 }
 
-/// A spot light that frames a mesh, looking down from above and to the side.
-fn framing_light(mesh: &Mesh) -> Result<Perspective> {
-    let (lo, hi) = mesh.bounds().context("the mesh has no vertices")?;
-    let center = (lo + hi) / 2.0;
-    let radius = ((hi - lo).length() / 2.0).max(f32::MIN_POSITIVE);
-    let distance = 3.0 * radius;
-    Ok(Perspective {
-        position: center + Vec3::new(1.0, 2.0, 1.5).normalize() * distance,
-        target: center,
-        fov_degrees: 2.0 * (radius / distance).asin().to_degrees() * 1.1,
-        near: distance - 1.2 * radius,
-        far: distance + 1.2 * radius,
-    })
-}
-
 pub(super) fn depth(args: &DepthArgs, limits: &Limits) -> Result<()> {
     limits.check_map(args.size).with_context(|| format!("--size {}", args.size))?;
     let scene = match &args.mesh {
         Some(path) => {
             let mesh = Mesh::load_obj(path, limits)?;
-            let light = framing_light(&mesh)?;
+            let light = Perspective::framing(&mesh).context("the mesh has no vertices")?;
             let name = path.file_stem().map_or_else(|| "mesh".into(), |s| s.to_string_lossy().into_owned());
             let lights = vec![Light::Spot(light)];
             Scene {

@@ -33,6 +33,25 @@ pub struct Perspective {
 }
 
 impl Perspective {
+    /// A spot light that frames `mesh`, looking down at it from above and
+    /// to the side, its near and far planes hugging the mesh's bounding
+    /// sphere: the view `umbra depth --mesh` and the peer benches draw a
+    /// mesh from. `None` for a mesh without vertices.
+    #[must_use]
+    pub fn framing(mesh: &crate::world::mesh::Mesh) -> Option<Self> {
+        let (lo, hi) = mesh.bounds()?;
+        let center = (lo + hi) / 2.0;
+        let radius = ((hi - lo).length() / 2.0).max(f32::MIN_POSITIVE);
+        let distance = 3.0 * radius;
+        Some(Self {
+            position: center + Vec3::new(1.0, 2.0, 1.5).normalize() * distance,
+            target: center,
+            fov_degrees: 2.0 * (radius / distance).asin().to_degrees() * 1.1,
+            near: distance - 1.2 * radius,
+            far: distance + 1.2 * radius,
+        })
+    }
+
     /// World space to clip space (depth `[0, 1]`, y up, right-handed).
     #[must_use]
     pub fn view_projection(&self) -> Mat4 {
