@@ -6,6 +6,11 @@
 //! multiply by the prime `0x100_0000_01b3` modulo 2⁶⁴. Multi-byte values
 //! are fed as their little-endian bytes, whatever the target's own order.
 
+use umbra_core::TileRect;
+use umbra_core::depth::DepthFormat;
+use umbra_core::shade::Shaded;
+use umbra_core::shadow::Shadow;
+
 /// A running FNV-1a 64 hash.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Fnv1a(u64);
@@ -59,6 +64,68 @@ impl Fnv1a {
     #[must_use]
     pub const fn finish(self) -> u64 {
         self.0
+    }
+}
+
+/// [`Summary::map_checksum`](crate::Summary::map_checksum) of maps of any format with 16-bit texels.
+#[must_use]
+pub fn map_checksum<F: DepthFormat<Texel = u16>>(z1: &[u16], z2: &[u16]) -> u64 {
+    let mut h = Fnv1a::new();
+    z1.iter().chain(z2).for_each(|&t| h.u16(t));
+    h.finish()
+}
+
+/// The camera pass's checksum and counts, folded tile by tile in the order
+/// the streamed pass makes them (tiles row-major, pixels row-major in a
+/// tile): [`Summary::camera_checksum`](crate::Summary::camera_checksum), covered and shadowed pixels.
+#[derive(Clone, Copy, Debug)]
+pub struct CameraChecksum {
+    hash: Fnv1a,
+    /// Pixels the camera sees the scene in.
+    pub covered: u32,
+    /// Covered pixels wholly in shadow.
+    pub shadowed: u32,
+}
+
+impl Default for CameraChecksum {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl CameraChecksum {
+    /// Nothing folded in.
+    #[must_use]
+    pub const fn new() -> Self {
+        Self { hash: Fnv1a::new(), covered: 0, shadowed: 0 }
+    }
+
+    /// Fold in one tile's results (its rectangle names it; the order of
+    /// tiles is the caller's).
+    pub fn tile(&mut self, _rect: TileRect, pixels: &[Shaded]) {
+        for p in pixels {
+            self.hash.u32(p.triangle);
+            match p.light {
+                None => self.hash.bytes(&[0]),
+                Some(l) => {
+                    self.hash.bytes(&[1]);
+                    self.hash.i32(l.x.to_bits());
+                    self.hash.i32(l.y.to_bits());
+                    self.hash.i64(l.z.to_bits());
+                }
+            }
+            self.hash.u32(p.shadow.to_bits());
+            if p.triangle != umbra_core::NO_TRIANGLE {
+                self.covered += 1;
+                self.shadowed += u32::from(p.shadow == Shadow::ONE);
+            }
+        }
+    }
+
+    /// The checksum so far.
+    #[must_use]
+    pub fn finish(&self) -> u64 {
+        self.hash.finish()
     }
 }
 

@@ -18,11 +18,11 @@ use umbra_core::shade::stream::{StreamError, TileBuffers, camera_pass_by_tile};
 use umbra_core::shade::{MapUnit, Normals, ShadeConfig, ShadeSetup, Shaded};
 use umbra_core::shadow::{Bias, DepthTest, Filter, MapView, Shadow, ShadowConfig, ShadowConfigError};
 use umbra_core::{
-    ConfigError, CullMode, D16, D24, DepthFormat, DepthUnit, LightBuffers, LightPass, LightPassConfig, RasterConfig,
-    SubmitError, TileRect, TileState,
+    ConfigError, CullMode, D16, D24, DepthUnit, LightBuffers, LightPass, LightPassConfig, RasterConfig, SubmitError,
+    TileRect, TileState,
 };
 
-pub use checksum::Fnv1a;
+pub use checksum::{CameraChecksum, Fnv1a, map_checksum};
 pub use umbra_core::probe::Totals;
 
 /// Map side of the full demo, texels.
@@ -392,72 +392,10 @@ pub fn render_with<const MAP_TEXELS: usize, const MAP_TILES: usize, const SETUPS
     camera_pass_by_tile(vis, &cfg, &view, &scene::triangle, &MapUnit, tile, &mut *camera_totals, draw, sink)?;
     Ok(Summary {
         map_checksum: map_checksum::<D16>(z1, z2),
-        camera_checksum: image.hash.finish(),
+        camera_checksum: image.finish(),
         covered: image.covered,
         shadowed: image.shadowed,
     })
-}
-
-/// [`Summary::map_checksum`] of maps of any format with 16-bit texels.
-#[must_use]
-pub fn map_checksum<F: DepthFormat<Texel = u16>>(z1: &[u16], z2: &[u16]) -> u64 {
-    let mut h = Fnv1a::new();
-    z1.iter().chain(z2).for_each(|&t| h.u16(t));
-    h.finish()
-}
-
-/// The camera pass's checksum and counts, folded tile by tile in the order
-/// the streamed pass makes them (tiles row-major, pixels row-major in a
-/// tile): [`Summary::camera_checksum`], covered and shadowed pixels.
-#[derive(Clone, Copy, Debug)]
-pub struct CameraChecksum {
-    hash: Fnv1a,
-    /// Pixels the camera sees the scene in.
-    pub covered: u32,
-    /// Covered pixels wholly in shadow.
-    pub shadowed: u32,
-}
-
-impl Default for CameraChecksum {
-    fn default() -> Self {
-        Self::new()
-    }
-}
-
-impl CameraChecksum {
-    /// Nothing folded in.
-    #[must_use]
-    pub const fn new() -> Self {
-        Self { hash: Fnv1a::new(), covered: 0, shadowed: 0 }
-    }
-
-    /// Fold in one tile's results (its rectangle names it; the order of
-    /// tiles is the caller's).
-    pub fn tile(&mut self, _rect: TileRect, pixels: &[Shaded]) {
-        for p in pixels {
-            self.hash.u32(p.triangle);
-            match p.light {
-                None => self.hash.bytes(&[0]),
-                Some(l) => {
-                    self.hash.bytes(&[1]);
-                    self.hash.i32(l.x.to_bits());
-                    self.hash.i32(l.y.to_bits());
-                    self.hash.i64(l.z.to_bits());
-                }
-            }
-            self.hash.u32(p.shadow.to_bits());
-            if p.triangle != umbra_core::NO_TRIANGLE {
-                self.covered += 1;
-                self.shadowed += u32::from(p.shadow == Shadow::ONE);
-            }
-        }
-    }
-
-    /// The checksum so far.
-    #[must_use]
-    pub fn finish(&self) -> u64 {
-        self.hash.finish()
-    }
 }
 
 #[cfg(test)]

@@ -106,6 +106,29 @@ impl CameraFrame {
     }
 }
 
+/// The scene's camera for a `width × height` image (the field of view is
+/// vertical).
+fn camera_matrix(scene: &Scene, width: u32, height: u32) -> Mat4 {
+    #[allow(clippy::cast_precision_loss, reason = "an aspect ratio")]
+    let aspect = width as f32 / height as f32;
+    scene.camera.view_projection_aspect(aspect)
+}
+
+/// The shading unit's configuration for `options`, seen through `camera`,
+/// against the scene's light: flat tangent planes, the fixed seed.
+fn shade_config(scene: &Scene, camera: Mat4, options: &CameraOptions) -> ShadeConfig {
+    ShadeConfig {
+        camera,
+        light: scene.light().view_projection(),
+        width: options.width,
+        height: options.height,
+        shadow: options.shadow,
+        virtual_samples: options.virtual_samples,
+        normals: Normals::Flat,
+        seed: 0x5eed,
+    }
+}
+
 /// The visibility unit over `scene` from its camera at `width × height`
 /// walking the image as `tiling` says into `frame`'s depth and ids.
 ///
@@ -120,8 +143,7 @@ pub fn visibility<P: Probe>(
 ) -> Result<Visibility, PassError> {
     let raster = RasterConfig::new(width, height, tiling.tile, RasterConfig::DEFAULT_SUBPIXEL_BITS)?;
     let config = LightPassConfig { raster, unit: DepthUnit::Single, max_z_cull: true };
-    #[allow(clippy::cast_precision_loss, reason = "an aspect ratio")]
-    let camera = scene.camera.view_projection_aspect(width as f32 / height as f32);
+    let camera = camera_matrix(scene, width, height);
     let (texels, tiles) = (raster.texel_count(), raster.tile_count());
     let triangles: usize = scene.objects.iter().map(|o| o.mesh.triangles.len()).sum();
     frame.size = (width, height);
@@ -173,18 +195,8 @@ pub fn render<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
     options: &CameraOptions,
     probe: &mut P,
 ) -> Result<(), PassError> {
-    let CameraOptions { width, height, shadow, virtual_samples, tiling } = *options;
-    let Visibility { camera, .. } = visibility(frame, scene, (width, height), tiling, probe)?;
-    let cfg = ShadeConfig {
-        camera,
-        light: scene.light().view_projection(),
-        width,
-        height,
-        shadow,
-        virtual_samples,
-        normals: Normals::Flat,
-        seed: 0x5eed,
-    };
+    let Visibility { camera, .. } = visibility(frame, scene, (options.width, options.height), options.tiling, probe)?;
+    let cfg = shade_config(scene, camera, options);
     let triangles = scene.triangles();
     let source = |id: u32| triangles.get(id as usize).copied();
     // Every pixel is written: the fill only sizes a new frame.
@@ -209,21 +221,11 @@ pub fn streamed<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
     probe: &mut P,
 ) -> Result<CameraImage, PassError> {
     use umbra_core::shade::stream::{TileBuffers, camera_pass_by_tile};
-    let CameraOptions { width, height, shadow, virtual_samples, tiling } = *options;
+    let CameraOptions { width, height, tiling, .. } = *options;
     let raster = RasterConfig::new(width, height, tiling.tile, RasterConfig::DEFAULT_SUBPIXEL_BITS)?;
     let vis = LightPassConfig { raster, unit: DepthUnit::Single, max_z_cull: true };
-    #[allow(clippy::cast_precision_loss, reason = "an aspect ratio")]
-    let camera = scene.camera.view_projection_aspect(width as f32 / height as f32);
-    let cfg = ShadeConfig {
-        camera,
-        light: scene.light().view_projection(),
-        width,
-        height,
-        shadow,
-        virtual_samples,
-        normals: Normals::Flat,
-        seed: 0x5eed,
-    };
+    let camera = camera_matrix(scene, width, height);
+    let cfg = shade_config(scene, camera, options);
     let triangles = scene.triangles();
     let source = |id: u32| triangles.get(id as usize).copied();
     let tile = (tiling.tile * tiling.tile) as usize;

@@ -67,15 +67,15 @@ pub fn budgets_problem(budgets: &[f64]) -> Option<(usize, String)> {
     if budgets.len() > MAX_BUDGETS {
         return Some((MAX_BUDGETS, format!("{} budgets; at most {MAX_BUDGETS}", budgets.len())));
     }
-    for (i, &b) in budgets.iter().enumerate() {
-        if !(b.is_finite() && b > 0.0 && b <= 100.0) {
-            return Some((i, format!("{b} is not a percentage in (0, 100]")));
-        }
-        if let Some(j) = budgets[..i].iter().position(|&c| c == b) {
-            return Some((i, format!("{b} repeats budget {j}")));
-        }
+    if let Some((i, b)) = budgets.iter().enumerate().find(|&(_, &b)| !(b.is_finite() && b > 0.0 && b <= 100.0)) {
+        return Some((i, format!("{b} is not a percentage in (0, 100]")));
     }
-    None
+    repeated(budgets).map(|(j, i)| (i, format!("{} repeats budget {j}", budgets[i])))
+}
+
+/// The first value of `items` that repeats an earlier one: `(earlier, later)` indices.
+pub(super) fn repeated<T: PartialEq>(items: &[T]) -> Option<(usize, usize)> {
+    items.iter().enumerate().find_map(|(k, x)| items[..k].iter().position(|y| y == x).map(|j| (j, k)))
 }
 
 /// The loosest of the error budgets.

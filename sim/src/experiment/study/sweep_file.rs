@@ -31,7 +31,7 @@ use serde::Deserialize;
 use umbra_core::shadow::{Bias, DepthTest, Filter, Jitter, MapCoord, ShadowConfig};
 use umbra_core::{DepthFormatKind, RasterConfig};
 
-use super::{Spec, Variant};
+use super::{Spec, Variant, repeated};
 use crate::cost::arch::Arch;
 use crate::io::exact::Exact;
 use crate::io::limits::Limits;
@@ -437,9 +437,4 @@ impl SweepFile {
 /// The line (from 1) of byte `offset` in `text`.
 fn line_of(text: &str, offset: usize) -> usize {
     text.get(..offset).map_or(0, |t| t.matches('\n').count()) + 1
-}
-
-/// The first value of `items` that repeats an earlier one: `(earlier, later)` indices.
-fn repeated<T: PartialEq>(items: &[T]) -> Option<(usize, usize)> {
-    items.iter().enumerate().find_map(|(k, x)| items[..k].iter().position(|y| y == x).map(|j| (j, k)))
 }
