@@ -220,6 +220,22 @@ pub enum ConfigError {
         /// The length given.
         found: usize,
     },
+    /// The light pass was not built with the datapath the configuration
+    /// needs ([`crate::light_pass::Datapaths`]).
+    NotBuilt {
+        /// The depth unit asked for.
+        unit: DepthUnit,
+        /// Whether triangle ids were asked for.
+        ids: bool,
+        /// Whether max-z culling was asked for.
+        max_z_cull: bool,
+    },
+    /// The shadow unit was not built with a datapath the configuration
+    /// needs ([`crate::shadow::Built`]).
+    ShadowNotBuilt {
+        /// What is missing.
+        missing: &'static str,
+    },
 }
 
 impl fmt::Display for ConfigError {
@@ -238,6 +254,12 @@ impl fmt::Display for ConfigError {
             Self::BufferLength { buffer, expected, found } => {
                 write!(f, "buffer `{buffer}` has length {found}, the configuration needs {expected}")
             }
+            Self::NotBuilt { unit, ids, max_z_cull } => {
+                let ids = if ids { " with triangle ids" } else { "" };
+                let cull = if max_z_cull { "with" } else { "without" };
+                write!(f, "this light pass is not built with the {unit:?} depth unit{ids} {cull} max-z culling")
+            }
+            Self::ShadowNotBuilt { missing } => write!(f, "this shadow unit is not built with {missing}"),
         }
     }
 }

@@ -18,7 +18,9 @@ pub mod stencil;
 pub use config::{ConfigError, CullMode, DepthUnit, LightPassConfig, RasterConfig};
 pub use depth::TileState;
 pub use depth::{D16, D24, DepthFormat, DepthFormatKind, F32};
-pub use light_pass::{LightBuffers, LightPass, NO_TRIANGLE, SubmitError};
+pub use light_pass::{
+    Datapaths, DualOnly, Every, LightBuffers, LightPass, NO_TRIANGLE, SingleOnly, SubmitError, VisibilityOnly,
+};
 pub use probe::{Event, Fragment, NoProbe, Probe};
 pub use raster::tile::{TileId, TileRect};
 

@@ -9,7 +9,8 @@ use umbra::core::probe::{Event, FlushReason, Fragment, Probe};
 use umbra::core::raster::bin::Bin;
 use umbra::core::raster::setup::Setup;
 use umbra::core::{
-    CullMode, DepthFormat, DepthUnit, LightBuffers, LightPass, LightPassConfig, RasterConfig, TileState,
+    ConfigError, CullMode, Datapaths, DepthFormat, DepthUnit, LightBuffers, LightPass, LightPassConfig, RasterConfig,
+    TileState,
 };
 
 /// Records every fragment and counts the events tests look at.
@@ -93,6 +94,15 @@ impl<F: DepthFormat, const B: usize> Buffers<F, B> {
 
     /// Start a pass over these buffers.
     pub fn pass<P: Probe>(&mut self, cfg: LightPassConfig, probe: P) -> LightPass<'_, F, P, B> {
+        self.pass_built(cfg, probe).expect("buffers sized from the configuration")
+    }
+
+    /// Start a pass built with the datapaths `D` over these buffers.
+    pub fn pass_built<P: Probe, D: Datapaths>(
+        &mut self,
+        cfg: LightPassConfig,
+        probe: P,
+    ) -> Result<LightPass<'_, F, P, B, D>, ConfigError> {
         let buffers = LightBuffers {
             z1: &mut self.z1,
             z2: &mut self.z2,
@@ -101,7 +111,7 @@ impl<F: DepthFormat, const B: usize> Buffers<F, B> {
             bins: &mut self.bins,
             setups: &mut self.setups,
         };
-        LightPass::new(cfg, buffers, probe).expect("buffers sized from the configuration")
+        LightPass::new(cfg, buffers, probe)
     }
 
     fn maps(self) -> Maps<F::Texel> {

@@ -1,9 +1,9 @@
 //! The Cortex-M firmware (`hosts/cortex-m`) under QEMU, on three boards —
 //! the Cortex-M4F of MPS2-AN386, the Cortex-M3 of the LM3S6965 and the
 //! Cortex-M0 of the micro:bit — renders the demo scene bit for bit as the
-//! host does: the same map and camera checksums, the same event totals;
-//! and stays within each board's memory budget, its measured peak stack
-//! included. And the host's demo agrees with the simulator's own light
+//! host does: the same map and camera checksums, the same event totals
+//! (on the boards built with the counters); and stays within each board's
+//! memory budget, its measured peak stack included. And the host's demo agrees with the simulator's own light
 //! pass and event counters.
 //!
 //! Without `qemu-system-arm` or a target the firmware test is skipped with
@@ -32,6 +32,8 @@ struct Board {
     machine: &'static [&'static str],
     /// The demo variant its RAM holds: the full one, or the small one.
     small: bool,
+    /// Whether its firmware is built with the event counters.
+    counted: bool,
     /// RAM the firmware may use, statics and peak stack together.
     ram: u64,
     /// Flash the firmware may use (vector table, code, read-only data and
@@ -44,23 +46,26 @@ const BOARDS: [Board; 3] = [
         target: "thumbv7em-none-eabihf",
         machine: &["-machine", "mps2-an386", "-cpu", "cortex-m4"],
         small: false,
+        counted: true,
         ram: 4 << 20,
         flash: 512 << 10,
     },
     // The budget of the issue that set it: 32 KiB of the part's 64 KiB of
-    // SRAM. Its flash is the part's 256 KiB (the 64 KiB budget is not met:
-    // see hosts/cortex-m/README.md).
+    // SRAM and 64 KiB of its 256 KiB of flash (which leaves the event
+    // counters out).
     Board {
         target: "thumbv7m-none-eabi",
         machine: &["-machine", "lm3s6965evb", "-cpu", "cortex-m3"],
         small: false,
+        counted: false,
         ram: 32 << 10,
-        flash: 256 << 10,
+        flash: 64 << 10,
     },
     Board {
         target: "thumbv6m-none-eabi",
         machine: &["-machine", "microbit"],
         small: true,
+        counted: true,
         ram: 16 << 10,
         flash: 256 << 10,
     },
@@ -190,7 +195,9 @@ fn firmware_under_qemu_matches_the_host_within_budget() {
         assert_eq!(status, 0, "{t}: firmware exit status; output: {got:?}");
         let (want, side, setups) = host_lines(board.small);
         for (key, want) in want {
-            assert_eq!(got.get(&key), Some(&want), "{t}: {key}: firmware vs host");
+            let total = key.starts_with("light.") || key.starts_with("camera.");
+            let want = (board.counted || !total).then_some(want);
+            assert_eq!(got.get(&key), want.as_ref(), "{t}: {key}: firmware vs host");
         }
         // The footprint formulas, evaluated on the target, equal the sizes
         // of the buffer types there, and what the host computes for a

@@ -74,8 +74,10 @@ fn snap_to(raster: &RasterConfig, v: &ClipVertex, depth: impl Fn(f64) -> PlaneZ)
         return None;
     }
     // Rounding overshoot at the guard band is clamped; the band lies
-    // far outside the target, so no sample moves.
-    let snap = |s: f64| SubPx(crate::round::round_ties_even(s.clamp(-limit, limit)));
+    // far outside the target, so no sample moves. (`max`/`min` rather
+    // than `clamp`: the same for finite `s`, without `clamp`'s panic path
+    // for bounds it cannot see are ordered.)
+    let snap = |s: f64| SubPx(crate::round::round_ties_even(s.max(-limit).min(limit)));
     // A window's coordinates: the whole target's, shifted exactly.
     let [ox, oy] = raster.origin().map(|o| i64::from(o) << raster.subpixel_bits());
     Some(SnappedVertex { x: SubPx(snap(sx).0 - ox), y: SubPx(snap(sy).0 - oy), z: depth(z * inv_w) })

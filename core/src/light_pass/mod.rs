@@ -12,6 +12,8 @@
 //! the bin capacity, the setup-store size or the tile size: only the events
 //! reported on the way do.
 
+use core::marker::PhantomData;
+
 use glam::{Mat4, Vec3, Vec4};
 
 use crate::config::{ConfigError, CullMode, DepthUnit, LightPassConfig};
@@ -26,25 +28,30 @@ use crate::raster::{TileView, rasterize};
 use resolve::resolve;
 
 mod buffers;
+mod datapaths;
 mod resolve;
 
 pub use buffers::{LightBuffers, NO_TRIANGLE, SubmitError};
+pub use datapaths::{Datapaths, DualOnly, Every, SingleOnly, VisibilityOnly};
 
-/// A light pass in progress.
-pub struct LightPass<'a, F: DepthFormat, P: Probe = NoProbe, const B: usize = 64> {
+/// A light pass in progress, built with the datapaths `D` ([`Every`]
+/// unless the caller needs fewer).
+pub struct LightPass<'a, F: DepthFormat, P: Probe = NoProbe, const B: usize = 64, D: Datapaths = Every> {
     cfg: LightPassConfig,
     buf: LightBuffers<'a, F, B>,
     setups_used: usize,
     triangles: u32,
     probe: P,
+    datapaths: PhantomData<D>,
 }
 
-impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
+impl<'a, F: DepthFormat, P: Probe, const B: usize, D: Datapaths> LightPass<'a, F, P, B, D> {
     /// Start a light pass: check the buffers against the configuration and
     /// clear the map.
     ///
     /// # Errors
-    /// [`ConfigError::BufferLength`] naming the first buffer whose length is wrong.
+    /// [`ConfigError::BufferLength`] naming the first buffer whose length is
+    /// wrong; [`ConfigError::NotBuilt`] if `D` lacks the datapath `cfg` needs.
     pub fn new(cfg: LightPassConfig, buf: LightBuffers<'a, F, B>, probe: P) -> Result<Self, ConfigError> {
         const { assert!(B > 0, "a bin must hold at least one triangle") };
         let r = &cfg.raster;
@@ -63,6 +70,7 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
         if buf.setups.is_empty() || buf.setups.len() > MAX_SETUPS {
             return Err(ConfigError::BufferLength { buffer: "setups", expected: MAX_SETUPS, found: buf.setups.len() });
         }
+        D::check(&cfg, !buf.ids.is_empty())?;
         buf.z1.fill(F::FAR);
         buf.z2.fill(F::FAR);
         buf.ids.fill(NO_TRIANGLE);
@@ -70,7 +78,7 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
             *t = TileState::cleared(F::FAR, r.tile_rect(r.tile_id(i)).area());
         }
         buf.bins.iter_mut().for_each(Bin::clear);
-        Ok(Self { cfg, buf, setups_used: 0, triangles: 0, probe })
+        Ok(Self { cfg, buf, setups_used: 0, triangles: 0, probe, datapaths: PhantomData })
     }
 
     /// The configuration.
@@ -249,13 +257,27 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize> LightPass<'a, F, P, B> {
         let dual = self.cfg.unit == DepthUnit::Dual;
         for &i in bin.iter() {
             let Some(s) = setups.get(usize::from(i)) else { continue };
+            let probe = &mut self.probe;
+            // Only the datapaths built are in the program ([`Datapaths`]);
+            // `new` refused a configuration needing another.
             match (dual, with_ids, self.cfg.max_z_cull) {
-                (false, false, false) => rasterize::<F, P, false, false, false>(s, &mut view, &mut self.probe),
-                (false, false, true) => rasterize::<F, P, false, false, true>(s, &mut view, &mut self.probe),
-                (false, true, false) => rasterize::<F, P, false, true, false>(s, &mut view, &mut self.probe),
-                (false, true, true) => rasterize::<F, P, false, true, true>(s, &mut view, &mut self.probe),
-                (true, _, false) => rasterize::<F, P, true, false, false>(s, &mut view, &mut self.probe),
-                (true, _, true) => rasterize::<F, P, true, false, true>(s, &mut view, &mut self.probe),
+                (false, false, false) if D::SINGLE && D::UNCULLED => {
+                    rasterize::<F, P, D, false, false, false>(s, &mut view, probe)
+                }
+                (false, false, true) if D::SINGLE && D::CULLED => {
+                    rasterize::<F, P, D, false, false, true>(s, &mut view, probe)
+                }
+                (false, true, false) if D::VISIBILITY && D::UNCULLED => {
+                    rasterize::<F, P, D, false, true, false>(s, &mut view, probe)
+                }
+                (false, true, true) if D::VISIBILITY && D::CULLED => {
+                    rasterize::<F, P, D, false, true, true>(s, &mut view, probe)
+                }
+                (true, _, false) if D::DUAL && D::UNCULLED => {
+                    rasterize::<F, P, D, true, false, false>(s, &mut view, probe)
+                }
+                (true, _, true) if D::DUAL && D::CULLED => rasterize::<F, P, D, true, false, true>(s, &mut view, probe),
+                _ => {}
             }
         }
         bin.clear();

@@ -32,6 +32,7 @@
 use crate::budget::{ROUND_HALF, TILE_SIZES};
 use crate::depth::DepthFormat;
 use crate::depth::{SpanEdges, SpanOut, TileState, count_of, min_max, span, tile_rows};
+use crate::light_pass::Datapaths;
 use crate::probe::{Buffer, CullLevel, Event, Fragment, Probe};
 use crate::raster::mask::{LANE_GROUP, LANES, Lanes, RowMask, Serial, WIDEST};
 use crate::raster::setup::{Coverage, Setup};
@@ -107,8 +108,16 @@ const SPAN: u32 = 8;
 /// Most blocks in one row of the largest tile.
 const MAX_RUNS: usize = (*TILE_SIZES.end() / BLOCK) as usize;
 
-/// Rasterize one set-up triangle into one tile.
-pub(crate) fn rasterize<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: bool, const MAX_Z_CULL: bool>(
+/// Rasterize one set-up triangle into one tile, with the traversal
+/// copies `D` has ([`Datapaths::STALE_MAX_COPY`]).
+pub(crate) fn rasterize<
+    F: DepthFormat,
+    P: Probe,
+    D: Datapaths,
+    const DUAL: bool,
+    const IDS: bool,
+    const MAX_Z_CULL: bool,
+>(
     s: &Setup,
     view: &mut TileView<'_, F::Texel>,
     probe: &mut P,
@@ -135,7 +144,9 @@ pub(crate) fn rasterize<F: DepthFormat, P: Probe, const DUAL: bool, const IDS: b
         }
         // Blocks can be culled only if part of the triangle reaches the max.
         let cull_blocks = farthest >= view.state.cull_max;
-        if view.state.cull_count > 0 {
+        // Counting where the max is stale lowers a zero count by
+        // nothing: the same summary, one comparison a fragment dearer.
+        if view.state.cull_count > 0 || !D::STALE_MAX_COPY {
             return traverse::<F, P, DUAL, IDS, true>(s, view, &rect, coverage, cull_blocks, probe);
         }
         return traverse::<F, P, DUAL, IDS, false>(s, view, &rect, coverage, cull_blocks, probe);

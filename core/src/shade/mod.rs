@@ -38,6 +38,8 @@ mod divider;
 mod interp;
 pub mod stream;
 
+use core::marker::PhantomData;
+
 use glam::{Mat4, Vec3};
 
 use crate::config::ConfigError;
@@ -46,7 +48,7 @@ use crate::light_pass::NO_TRIANGLE;
 use crate::probe::{Event, Probe};
 use crate::raster::tile::TileRect;
 use crate::shadow::{
-    Lookup, MapCoord, MapView, Shadow, ShadowConfig, Slope, TangentPlane, shadow, shadow_with_virtual_samples,
+    AllFilters, Built, Lookup, MapCoord, MapView, Shadow, ShadowConfig, Slope, TangentPlane, lookup, virtual_samples,
 };
 use crate::silhouette::{SilStore, SilhouetteMap};
 use divider::Reciprocal;
@@ -171,6 +173,12 @@ pub fn shade<F: DepthFormat, S: TriangleSource, P: Probe>(
 
 /// The unit that turns a pixel's lookup into its shadow fraction.
 pub trait ShadowUnit<F: DepthFormat> {
+    /// The datapaths the unit is built with: the shading unit leaves out
+    /// what they do not need (the jittered filter's per-pixel footprint,
+    /// smooth normals' tangent planes) and refuses a configuration they
+    /// lack before it shades.
+    type Built: Built;
+
     /// Decide one lookup against `map`; `tangent` solves the receiver's
     /// tangent plane on the map, for units that use virtual samples.
     fn decide<P: Probe, T: FnOnce() -> Option<Slope>>(
@@ -184,11 +192,14 @@ pub trait ShadowUnit<F: DepthFormat> {
 }
 
 /// The shadow unit of [`crate::shadow`]: the configured test and filter,
-/// with Wang & Molnar's virtual samples when the configuration asks.
+/// with Wang & Molnar's virtual samples when the configuration asks; built
+/// with every filter.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct MapUnit;
 
 impl<F: DepthFormat> ShadowUnit<F> for MapUnit {
+    type Built = AllFilters;
+
     fn decide<P: Probe, T: FnOnce() -> Option<Slope>>(
         &self,
         map: &MapView<'_, F>,
@@ -197,11 +208,53 @@ impl<F: DepthFormat> ShadowUnit<F> for MapUnit {
         tangent: T,
         probe: &mut P,
     ) -> Shadow {
-        if cfg.virtual_samples {
-            shadow_with_virtual_samples(map, &cfg.shadow, lookup, tangent, probe)
-        } else {
-            shadow(map, &cfg.shadow, lookup, probe)
-        }
+        decide_on_map::<F, P, T, AllFilters>(map, cfg, lookup, tangent, probe)
+    }
+}
+
+/// [`MapUnit`] built with the datapaths `K` only ([`crate::shadow::Built`]):
+/// `MapUnitWith::<BoxFilter>::new()` is a unit with the box filter alone,
+/// a constant bias and flat normals' tangent planes, and the code of no
+/// other.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct MapUnitWith<K: Built>(PhantomData<K>);
+
+impl<K: Built> MapUnitWith<K> {
+    /// The unit.
+    #[must_use]
+    pub const fn new() -> Self {
+        Self(PhantomData)
+    }
+}
+
+impl<F: DepthFormat, K: Built> ShadowUnit<F> for MapUnitWith<K> {
+    type Built = K;
+
+    fn decide<P: Probe, T: FnOnce() -> Option<Slope>>(
+        &self,
+        map: &MapView<'_, F>,
+        cfg: &ShadeConfig,
+        lookup: &Lookup,
+        tangent: T,
+        probe: &mut P,
+    ) -> Shadow {
+        decide_on_map::<F, P, T, K>(map, cfg, lookup, tangent, probe)
+    }
+}
+
+/// The map units' decision, with the datapaths `K`.
+#[inline]
+fn decide_on_map<F: DepthFormat, P: Probe, T: FnOnce() -> Option<Slope>, K: Built>(
+    map: &MapView<'_, F>,
+    cfg: &ShadeConfig,
+    l: &Lookup,
+    tangent: T,
+    probe: &mut P,
+) -> Shadow {
+    if cfg.virtual_samples {
+        virtual_samples::<F, P, K>(map, &cfg.shadow, l, tangent, probe)
+    } else {
+        lookup::<F, P, K>(map, &cfg.shadow, l, l.slope, probe)
     }
 }
 
@@ -211,6 +264,8 @@ impl<F: DepthFormat> ShadowUnit<F> for MapUnit {
 pub struct SilhouetteUnit<'s, 'a, S: SilStore>(pub &'s SilhouetteMap<'a, S>);
 
 impl<F: DepthFormat, S: SilStore> ShadowUnit<F> for SilhouetteUnit<'_, '_, S> {
+    type Built = AllFilters;
+
     fn decide<P: Probe, T: FnOnce() -> Option<Slope>>(
         &self,
         map: &MapView<'_, F>,
@@ -276,6 +331,9 @@ pub fn shade_rect<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, P: Probe>
     setups: &mut [ShadeSetup],
     probe: &mut P,
 ) -> Result<(), ConfigError> {
+    if let Some(missing) = U::Built::missing(&cfg.shadow, cfg.normals == Normals::Smooth) {
+        return Err(ConfigError::ShadowNotBuilt { missing });
+    }
     let TileRect { x0, y0, x1, y1 } = rect;
     if x0 > x1 || y0 > y1 || x1 > cfg.width || y1 > cfg.height {
         return Err(ConfigError::Window { x0, y0, width: x1.wrapping_sub(x0), height: y1.wrapping_sub(y0) });
@@ -350,7 +408,7 @@ fn shade_pixel<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
         x: point.x,
         y: point.y,
         z,
-        footprint: if matches!(cfg.shadow.filter(), crate::shadow::Filter::Jittered(_)) {
+        footprint: if U::Built::JITTERED && matches!(cfg.shadow.filter(), crate::shadow::Filter::Jittered(_)) {
             interp.footprint_at::<F>(&point, px, py)
         } else {
             interp.footprint
@@ -364,12 +422,14 @@ fn shade_pixel<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
         (Normals::Flat, None) => {
             TangentPlane::new(interp.corner, interp.face, light_inverse_transpose).slope::<F>(&raster)
         }
-        (Normals::Smooth, _) => {
+        (Normals::Smooth, _) if U::Built::SMOOTH_TANGENTS => {
             let [x, y, zz, ww] = Interp::at_pixel(&interp.world, px, py);
             #[allow(clippy::cast_possible_truncation, reason = "a world point, as the scene gives it")]
             let p = Vec3::new((x / ww) as f32, (y / ww) as f32, (zz / ww) as f32);
             TangentPlane::new(p, normal, light_inverse_transpose).slope::<F>(&raster)
         }
+        // Refused before shading.
+        (Normals::Smooth, _) => None,
     };
     let s = unit.decide(map, cfg, &lookup, tangent, probe);
     Shaded { triangle: id, light: Some(LightPoint { z, ..point }), normal, shadow: s }

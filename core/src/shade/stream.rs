@@ -17,7 +17,7 @@
 
 use crate::config::{ConfigError, DepthUnit, LightPassConfig};
 use crate::depth::{DepthFormat, TileState};
-use crate::light_pass::{LightBuffers, LightPass, SubmitError};
+use crate::light_pass::{Datapaths, LightBuffers, LightPass, SubmitError};
 use crate::probe::Probe;
 use crate::raster::bin::Bin;
 use crate::raster::setup::Setup;
@@ -85,7 +85,9 @@ impl From<SubmitError> for StreamError {
 /// `draw` sends the scene's geometry to a visibility pass on that tile,
 /// the shading unit shades it against `map`, and `sink` receives the
 /// tile's rectangle and its results, row-major. `vis` must be a single
-/// depth unit; `cfg`'s image size must be the raster's. The probe sees the
+/// depth unit (and `D`, the datapaths its visibility pass is built with,
+/// must have it: [`crate::light_pass::VisibilityOnly`] is all it needs);
+/// `cfg`'s image size must be the raster's. The probe sees the
 /// events of every tile's passes and is handed back.
 ///
 /// # Errors
@@ -93,7 +95,7 @@ impl From<SubmitError> for StreamError {
 /// size (checked before any tile is drawn); [`StreamError::Submit`] for
 /// geometry `draw` could not send.
 #[allow(clippy::too_many_arguments, reason = "the pass's inputs, its memory, its probe, and its two callers' ends")]
-pub fn camera_pass_by_tile<V, F, S, U, P, const B: usize>(
+pub fn camera_pass_by_tile<V, F, S, U, P, D, const B: usize>(
     vis: LightPassConfig,
     cfg: &ShadeConfig,
     map: &MapView<'_, F>,
@@ -101,7 +103,7 @@ pub fn camera_pass_by_tile<V, F, S, U, P, const B: usize>(
     unit: &U,
     buf: TileBuffers<'_, V, B>,
     mut probe: P,
-    mut draw: impl FnMut(&mut LightPass<'_, V, P, B>) -> Result<(), SubmitError>,
+    mut draw: impl FnMut(&mut LightPass<'_, V, P, B, D>) -> Result<(), SubmitError>,
     mut sink: impl FnMut(TileRect, &[Shaded]),
 ) -> Result<P, StreamError>
 where
@@ -110,6 +112,7 @@ where
     S: TriangleSource,
     U: ShadowUnit<F>,
     P: Probe,
+    D: Datapaths,
 {
     let raster = vis.raster;
     if vis.unit != DepthUnit::Single || [raster.width(), raster.height()] != [cfg.width, cfg.height] {

@@ -1,8 +1,8 @@
 //! The filters: compare each sample, then weigh the results.
 
 use super::{
-    Bias, DepthTest, Filter, HALF, Lookup, MapCoord, MapView, Shadow, ShadowConfig, Slope, Texels, floor, jitter_grid,
-    reference_bounds,
+    AllFilters, Bias, Built, DepthTest, Filter, HALF, Lookup, MapCoord, MapView, Shadow, ShadowConfig, Slope, Texels,
+    floor, jitter_grid, reference_bounds,
 };
 use crate::budget::MAP_FRACTION_BITS;
 use crate::depth::{DepthFormat, PlaneZ};
@@ -11,15 +11,17 @@ use crate::raster::tile::TileRect;
 
 /// Shadow a lookup: the fraction of its samples in shadow.
 pub fn shadow<F: DepthFormat, P: Probe>(map: &MapView<'_, F>, cfg: &ShadowConfig, l: &Lookup, probe: &mut P) -> Shadow {
-    lookup(map, cfg, l, l.slope, probe)
+    lookup::<F, P, AllFilters>(map, cfg, l, l.slope, probe)
 }
 
 /// [`shadow`] with the receiver's slope given apart from the lookup (a
 /// pixel's ordinary and virtual-sample lookups share the rest). The front
 /// of the unit (footprint, clip, the tile-bounds cull) decides most lookups
-/// on its own; the filter runs for the rest.
+/// on its own; the filter runs for the rest. Only the datapaths `K` has
+/// are in the program; a configuration needing another is lit (the units
+/// refuse such configurations before they shade: [`Built::missing`]).
 #[inline(always)]
-pub(super) fn lookup<F: DepthFormat, P: Probe>(
+pub(crate) fn lookup<F: DepthFormat, P: Probe, K: Built>(
     map: &MapView<'_, F>,
     cfg: &ShadowConfig,
     l: &Lookup,
@@ -30,7 +32,7 @@ pub(super) fn lookup<F: DepthFormat, P: Probe>(
         return Shadow::ZERO;
     }
     let grid = match cfg.filter {
-        Filter::Jittered(j) => Some(jitter_grid(&j, l.footprint)),
+        Filter::Jittered(j) if K::JITTERED => Some(jitter_grid(&j, l.footprint)),
         _ => None,
     };
     let Some(footprint) = Texels::under(cfg.filter, l, grid) else { return Shadow::ZERO };
@@ -66,7 +68,7 @@ pub(super) fn lookup<F: DepthFormat, P: Probe>(
             return Shadow::ONE;
         }
     }
-    if let (Filter::Box { .. }, true, None, Bias::Constant(b)) = (cfg.filter, whole, slope, cfg.bias) {
+    if let (Filter::Box { .. }, true, None, Bias::Constant(b), true) = (cfg.filter, whole, slope, cfg.bias, K::BOX) {
         return uniform_box(
             map,
             cfg.test,
@@ -75,7 +77,7 @@ pub(super) fn lookup<F: DepthFormat, P: Probe>(
             probe,
         );
     }
-    filter(map, cfg, &Lookup { slope, ..*l }, footprint, grid, probe)
+    filter::<F, P, K>(map, cfg, &Lookup { slope, ..*l }, footprint, grid, probe)
 }
 
 /// The commonest filter, inline: a box all on the map against one receiver
@@ -123,7 +125,7 @@ fn report_reads<F: DepthFormat, P: Probe>(
 /// The filter: the samples of a lookup the front did not decide, over its
 /// footprint (inclusive; samples off the map are lit).
 #[inline(never)]
-fn filter<F: DepthFormat, P: Probe>(
+fn filter<F: DepthFormat, P: Probe, K: Built>(
     map: &MapView<'_, F>,
     cfg: &ShadowConfig,
     l: &Lookup,
@@ -136,18 +138,19 @@ fn filter<F: DepthFormat, P: Probe>(
     let mut sample = |x: i32, y: i32, z: i64, rng: &mut oorandom::Rand32| -> bool {
         let bias = match cfg.bias {
             Bias::Constant(b) => b.to_bits(),
-            Bias::Range { lo, hi } => lerp_bits(lo.to_bits(), hi.to_bits(), rng.rand_u32()),
+            Bias::Range { lo, hi } if K::BIAS_RANGE => lerp_bits(lo.to_bits(), hi.to_bits(), rng.rand_u32()),
+            Bias::Range { .. } => 0,
         };
         let shadowed = map.sample(cfg.test, (x.into(), y.into()), z, bias, probe);
         reads += u32::from(shadowed.is_some());
         shadowed.unwrap_or(false)
     };
     let result = match (cfg.filter, grid) {
-        (Filter::Point, _) => {
+        (Filter::Point, _) if K::POINT => {
             let (x, y) = (footprint.x0, footprint.y0);
             Shadow::from_num(u8::from(sample(x, y, l.depth_at(x, y), &mut rng)))
         }
-        (Filter::Bilinear, _) => {
+        (Filter::Bilinear, _) if K::BILINEAR => {
             // Weights from the fractional position, 16 bits each: they sum to 2³² exactly.
             let fx = u64::from(l.x.saturating_sub(HALF).frac().to_bits().unsigned_abs());
             let fy = u64::from(l.y.saturating_sub(HALF).frac().to_bits().unsigned_abs());
@@ -170,7 +173,7 @@ fn filter<F: DepthFormat, P: Probe>(
                 .sum();
             fraction(shadowed, 1 << (2 * MAP_FRACTION_BITS))
         }
-        (Filter::Box { .. }, _) => {
+        (Filter::Box { .. }, _) if K::BOX => {
             let mut count = 0u64;
             // One evaluation per row, then forward differences along it
             // (the box all on the map against one depth is `uniform_box`).
@@ -184,7 +187,7 @@ fn filter<F: DepthFormat, P: Probe>(
             }
             fraction(count, u64::from(footprint.count()))
         }
-        (Filter::Jittered(_), Some((half, [ns, nt]))) => {
+        (Filter::Jittered(_), Some((half, [ns, nt]))) if K::JITTERED => {
             // Subregions of 2·half/n texels; each sample jittered within its own.
             let step = |h: MapCoord, n: u32| {
                 MapCoord::from_bits(h.to_bits().saturating_mul(2) / i32::try_from(n.max(1)).unwrap_or(i32::MAX))
@@ -206,7 +209,8 @@ fn filter<F: DepthFormat, P: Probe>(
             }
             fraction(count, u64::from(ns * nt))
         }
-        (Filter::Jittered(_), None) => Shadow::ZERO,
+        // A jittered filter without its grid, or a filter not built.
+        _ => Shadow::ZERO,
     };
     report_reads(map, cfg.test, reads, l.slope.is_some(), probe);
     result

@@ -45,6 +45,7 @@
 //! read and the skip is reported (Reeves et al. 1987 §3.3's per-tile max z).
 //! The result is exactly the one the samples would give.
 
+mod built;
 mod config;
 mod cull;
 mod filter;
@@ -52,14 +53,17 @@ mod footprint;
 mod map;
 mod tangent;
 
+pub use built::{AllFilters, BoxFilter, Built};
 pub use config::{Bias, DepthTest, Filter, Jitter, ShadowConfig, ShadowConfigError};
 use cull::reference_bounds;
+use filter::at_format;
+pub(crate) use filter::lookup;
 pub use filter::shadow;
-use filter::{at_format, lookup};
 pub(crate) use footprint::mul_shift;
 pub use footprint::{Lookup, Slope, jitter_grid};
 use footprint::{Texels, floor};
 pub use map::MapView;
+pub(crate) use tangent::virtual_samples;
 pub use tangent::{TangentPlane, shadow_with_virtual_samples};
 
 use fixed::types::{I16F16, U16F16};

@@ -1,6 +1,6 @@
 //! Tangent planes: the receiver's plane in light space, and the pass of virtual samples.
 
-use super::{Filter, Lookup, MapView, Shadow, ShadowConfig, Slope, lookup};
+use super::{AllFilters, Built, Filter, Lookup, MapView, Shadow, ShadowConfig, Slope, lookup};
 use crate::budget::PLANE_ONE;
 use crate::config::RasterConfig;
 use crate::depth::DepthFormat;
@@ -60,21 +60,33 @@ pub fn shadow_with_virtual_samples<F: DepthFormat, P: Probe>(
     setup: impl FnOnce() -> Option<Slope>,
     probe: &mut P,
 ) -> Shadow {
+    virtual_samples::<F, P, AllFilters>(map, cfg, l, setup, probe)
+}
+
+/// [`shadow_with_virtual_samples`] on a unit built with the datapaths `K`.
+#[inline]
+pub(crate) fn virtual_samples<F: DepthFormat, P: Probe, K: Built>(
+    map: &MapView<'_, F>,
+    cfg: &ShadowConfig,
+    l: &Lookup,
+    setup: impl FnOnce() -> Option<Slope>,
+    probe: &mut P,
+) -> Shadow {
     // "All nearby samples": the filter's own and the 2×2 texels around the
     // point, so that a lone sample (a point filter, or a jittered filter on
     // a footprint under a texel) is not taken as agreement with itself.
-    let ordinary = lookup(map, cfg, l, None, probe);
+    let ordinary = lookup::<F, P, K>(map, cfg, l, None, probe);
     // Bilinear and boxes of 2 or more already read those texels.
     let covers_2x2 = matches!(cfg.filter, Filter::Bilinear) || matches!(cfg.filter, Filter::Box { size } if size >= 2);
     let around = || ShadowConfig { filter: Filter::Box { size: 2 }, ..*cfg };
     let agree = |s: Shadow| s == Shadow::ZERO || s == Shadow::ONE;
-    if agree(ordinary) && (covers_2x2 || lookup(map, &around(), l, None, probe) == ordinary) {
+    if agree(ordinary) && (covers_2x2 || lookup::<F, P, K>(map, &around(), l, None, probe) == ordinary) {
         probe.event(Event::TrivialPixel { lit: ordinary == Shadow::ZERO });
         return ordinary;
     }
     probe.event(Event::TangentSetup);
     match setup() {
-        Some(slope) => lookup(map, cfg, l, Some(slope), probe),
+        Some(slope) => lookup::<F, P, K>(map, cfg, l, Some(slope), probe),
         None => {
             probe.event(Event::TangentFallback);
             ordinary

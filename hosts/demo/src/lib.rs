@@ -4,6 +4,7 @@
 
 pub mod checksum;
 pub mod footprint;
+mod render;
 pub mod scene;
 
 use core::fmt;
@@ -14,15 +15,13 @@ use umbra_core::front::vertex::VertexCache;
 use umbra_core::glam::Vec3;
 use umbra_core::raster::bin::Bin;
 use umbra_core::raster::setup::{DepthPlane, Edge, Setup};
-use umbra_core::shade::stream::{StreamError, TileBuffers, camera_pass_by_tile};
-use umbra_core::shade::{MapUnit, Normals, ShadeConfig, ShadeSetup, Shaded};
-use umbra_core::shadow::{Bias, DepthTest, Filter, MapView, Shadow, ShadowConfig, ShadowConfigError};
-use umbra_core::{
-    ConfigError, CullMode, D16, D24, DepthUnit, LightBuffers, LightPass, LightPassConfig, RasterConfig, SubmitError,
-    TileRect, TileState,
-};
+use umbra_core::shade::stream::StreamError;
+use umbra_core::shade::{Normals, ShadeConfig, ShadeSetup, Shaded};
+use umbra_core::shadow::{Bias, DepthTest, Filter, Shadow, ShadowConfig, ShadowConfigError};
+use umbra_core::{ConfigError, DepthUnit, LightPassConfig, RasterConfig, SubmitError, TileState};
 
 pub use checksum::{CameraChecksum, Fnv1a, map_checksum};
+pub use render::{render, render_uncounted_with, render_with};
 pub use umbra_core::probe::Totals;
 
 /// Map side of the full demo, texels.
@@ -90,10 +89,10 @@ pub struct Memory<const MAP_TEXELS: usize, const MAP_TILES: usize, const SETUPS:
 
 /// The full demo's memory: a 64² map, 16 setups.
 pub type Full = Memory<{ 64 * 64 }, 16, SETUPS>;
-/// The largest demo a part of 16 KiB of RAM holds beside its stack with a
-/// margin: a 24² map and 4 setups, 936 bytes to spare on the Cortex-M0 (a
-/// 28² map leaves 76 bytes; 16 setups need 1,920 more).
-pub type Small = Memory<{ 24 * 24 }, 4, 4>;
+/// The largest demo a part of 16 KiB of RAM holds beside its stack: a 32²
+/// map and 4 setups, 644 bytes to spare on the Cortex-M0 (a 36² map needs
+/// 1,368 bytes more, 8 setups 640).
+pub type Small = Memory<{ 32 * 32 }, 4, 4>;
 
 impl<const MAP_TEXELS: usize, const MAP_TILES: usize, const SETUPS: usize> Default
     for Memory<MAP_TEXELS, MAP_TILES, SETUPS>
@@ -322,82 +321,6 @@ pub fn visibility_config() -> Result<LightPassConfig, ConfigError> {
     Ok(LightPassConfig { raster, unit: DepthUnit::Single, max_z_cull: true })
 }
 
-/// Render the bundled scene ([`scene`]) into `mem`: the light pass (a
-/// `MAP_SIDE`² map, D16, dual), then the camera pass streamed by tile
-/// ([`umbra_core::shade::stream`]: visibility of each 8×8 tile in D24, then
-/// shading with second depth, virtual samples and a 2×2 box filter), each
-/// tile's results folded into the checksum as it is made.
-///
-/// # Errors
-/// [`DemoError`] if the core rejects a configuration (it does not).
-pub fn render<const MAP_TEXELS: usize, const MAP_TILES: usize, const SETUPS: usize>(
-    mem: &mut Memory<MAP_TEXELS, MAP_TILES, SETUPS>,
-) -> Result<Summary, DemoError> {
-    render_with(mem, || ())
-}
-
-/// [`render`], calling `between` after the light pass and before the
-/// camera pass (a firmware reads its timer there).
-///
-/// # Errors
-/// [`DemoError`] if the core rejects a configuration (it does not).
-pub fn render_with<const MAP_TEXELS: usize, const MAP_TILES: usize, const SETUPS: usize>(
-    mem: &mut Memory<MAP_TEXELS, MAP_TILES, SETUPS>,
-    between: impl FnOnce(),
-) -> Result<Summary, DemoError> {
-    let Memory {
-        z1,
-        z2,
-        map_tiles,
-        bins,
-        setups,
-        cache,
-        depth,
-        ids,
-        camera_tile,
-        camera_bin,
-        shade_setups,
-        pixels,
-        light: light_totals,
-        camera: camera_totals,
-    } = mem;
-    let light_cfg = light_config(Memory::<MAP_TEXELS, MAP_TILES, SETUPS>::MAP_SIDE)?;
-    // The probes are borrowed, not moved: the totals are large for a
-    // microcontroller's stack.
-    (*light_totals, *camera_totals) = (Totals::ZERO, Totals::ZERO);
-    let buffers = LightBuffers::<D16, BIN_CAPACITY> { z1, z2, ids: &mut [], tiles: map_tiles, bins, setups };
-    let mut pass = LightPass::<D16, &mut Totals, BIN_CAPACITY>::new(light_cfg, buffers, &mut *light_totals)?;
-    pass.draw_mesh_cached(&scene::POSITIONS, &scene::INDICES, &scene::light_matrix(), CullMode::None, cache)?;
-    pass.finish();
-    between();
-
-    let view = MapView::<D16>::new(light_cfg.raster, z1, z2, map_tiles)?;
-    let cfg = shade_config()?;
-    let tile = TileBuffers::<D24, BIN_CAPACITY> {
-        depth,
-        ids,
-        state: camera_tile,
-        bins: camera_bin,
-        setups,
-        shade_setups,
-        pixels,
-    };
-    let camera = scene::camera_matrix();
-    let draw = |p: &mut LightPass<'_, D24, &mut Totals, BIN_CAPACITY>| {
-        p.draw_mesh_cached(&scene::POSITIONS, &scene::INDICES, &camera, CullMode::None, cache)
-    };
-    let mut image = CameraChecksum::new();
-    let sink = |rect: TileRect, tile: &[Shaded]| image.tile(rect, tile);
-    let vis = visibility_config()?;
-    camera_pass_by_tile(vis, &cfg, &view, &scene::triangle, &MapUnit, tile, &mut *camera_totals, draw, sink)?;
-    Ok(Summary {
-        map_checksum: map_checksum::<D16>(z1, z2),
-        camera_checksum: image.finish(),
-        covered: image.covered,
-        shadowed: image.shadowed,
-    })
-}
-
 #[cfg(test)]
 mod tests {
     extern crate std;
@@ -405,6 +328,8 @@ mod tests {
     use std::vec;
 
     use umbra_core::shade::shade;
+    use umbra_core::shadow::MapView;
+    use umbra_core::{CullMode, D16, D24, LightBuffers, LightPass};
 
     use super::*;
 
@@ -435,7 +360,7 @@ mod tests {
     /// units, folded in the same tile order, has the same checksum.
     #[test]
     fn the_streamed_camera_pass_is_the_full_frame_one() {
-        for map in [64u32, 24] {
+        for map in [64u32, 32] {
             let (s, z1, z2, tiles) = if map == 64 {
                 let mut mem = Box::new(Full::new());
                 let s = render(&mut mem).unwrap();
@@ -478,13 +403,28 @@ mod tests {
         }
     }
 
+    /// Without the counters the render is the same bits, and the totals
+    /// are left as they were.
+    #[test]
+    fn the_uncounted_render_is_the_counted_one() {
+        let mut mem = Box::new(Full::new());
+        let counted = render(&mut mem).unwrap();
+        let totals = *mem.totals().0;
+        assert!(totals.fragments > 0);
+        let mut fresh = Box::new(Full::new());
+        assert_eq!(render_uncounted_with(&mut fresh, || ()).unwrap(), counted);
+        assert_eq!(fresh.totals(), (&Totals::ZERO, &Totals::ZERO));
+        assert_eq!(render_uncounted_with(&mut mem, || ()).unwrap(), counted);
+        assert_eq!(*mem.totals().0, totals);
+    }
+
     #[test]
     fn the_footprint_predicts_the_demo_buffers() {
         let light = footprint::light_pass(&light_footprint_config(MAP, SETUPS)).unwrap();
         let camera = footprint::camera_pass(&camera_footprint_config()).unwrap();
         assert_eq!((light.total(), camera.total()), buffer_bytes::<{ 64 * 64 }, 16, SETUPS>());
-        let small = footprint::light_pass(&light_footprint_config(24, 4)).unwrap();
-        assert_eq!(small.total(), buffer_bytes::<{ 24 * 24 }, 4, 4>().0);
-        assert_eq!((Full::MAP_SIDE, Small::MAP_SIDE), (64, 24));
+        let small = footprint::light_pass(&light_footprint_config(32, 4)).unwrap();
+        assert_eq!(small.total(), buffer_bytes::<{ 32 * 32 }, 4, 4>().0);
+        assert_eq!((Full::MAP_SIDE, Small::MAP_SIDE), (64, 32));
     }
 }

@@ -91,30 +91,67 @@ pub const POSITIONS: [Vec3; VERTICES] = build_positions();
 pub const INDICES: [[u32; 3]; TRIANGLES] = build_triangles();
 
 /// Where the spot light is and what it looks at.
-const LIGHT_EYE: Vec3 = Vec3::new(0.9, 2.4, 1.3);
+pub const LIGHT_EYE: Vec3 = Vec3::new(0.9, 2.4, 1.3);
 /// Where the camera is.
-const CAMERA_EYE: Vec3 = Vec3::new(-0.4, 1.5, 2.4);
+pub const CAMERA_EYE: Vec3 = Vec3::new(-0.4, 1.5, 2.4);
 /// The point both look at.
-const TARGET: Vec3 = Vec3::new(0.0, 0.2, 0.0);
+pub const TARGET: Vec3 = Vec3::new(0.0, 0.2, 0.0);
 
-/// A perspective view-projection (D3D depth `[0, 1]`, y up, right-handed),
-/// square aspect.
-fn view_projection(eye: Vec3, fov_degrees: f32, near: f32, far: f32) -> Mat4 {
-    let view = umbra_core::glam::camera::rh::view::look_at_mat4(eye, TARGET, Vec3::Y);
-    let proj = umbra_core::glam::camera::rh::proj::directx::perspective(fov_degrees.to_radians(), 1.0, near, far);
-    proj * view
+/// World to light clip space: a spot light at [`LIGHT_EYE`] looking at
+/// [`TARGET`], 55° field of view, near 1, far 5 (D3D depth `[0, 1]`, y up,
+/// right-handed, square aspect). Stored as the f32 bits glam's `look_at`
+/// and `perspective` give (a test checks them), so that a firmware carries
+/// no trigonometry.
+pub const LIGHT_MATRIX: Mat4 = Mat4::from_cols_array(&[
+    1.579_416_5,
+    -0.887_913_1,
+    -0.415_245_03,
+    -0.332_196_03,
+    0.0,
+    1.121_102_3,
+    -1.015_043_5,
+    -0.812_034_8,
+    -1.093_442_2,
+    -1.282_541_2,
+    -0.599_798_4,
+    -0.479_838_7,
+    0.0,
+    -0.224_220_51,
+    2.339_563,
+    2.871_650_2,
+]);
+
+/// World to camera clip space: the camera at [`CAMERA_EYE`] looking at
+/// [`TARGET`], 38° field of view, near 0.5, far 6, as [`LIGHT_MATRIX`].
+pub const CAMERA_MATRIX: Mat4 = Mat4::from_cols_array(&[
+    2.864_696,
+    0.224_997_82,
+    0.158_181_7,
+    0.144_999_89,
+    0.0,
+    2.561_513_7,
+    -0.514_090_5,
+    -0.471_249_6,
+    0.477_449_33,
+    -1.349_986_9,
+    -0.949_090_24,
+    -0.869_999_35,
+    0.0,
+    -0.512_302_7,
+    2.566_770_8,
+    2.852_873,
+]);
+
+/// World to light clip space ([`LIGHT_MATRIX`]).
+#[must_use]
+pub const fn light_matrix() -> Mat4 {
+    LIGHT_MATRIX
 }
 
-/// World to light clip space: a spot light above and to the side.
+/// World to camera clip space ([`CAMERA_MATRIX`]).
 #[must_use]
-pub fn light_matrix() -> Mat4 {
-    view_projection(LIGHT_EYE, 55.0, 1.0, 5.0)
-}
-
-/// World to camera clip space.
-#[must_use]
-pub fn camera_matrix() -> Mat4 {
-    view_projection(CAMERA_EYE, 38.0, 0.5, 6.0)
+pub const fn camera_matrix() -> Mat4 {
+    CAMERA_MATRIX
 }
 
 /// The triangle with id `id`, with its face normal at every vertex.
@@ -144,6 +181,20 @@ mod tests {
             };
             assert!(n.dot((a + b + c) / 3.0 - centre) > 0.0, "triangle {t} winds inwards");
         }
+    }
+
+    /// The stored matrices are the views they are documented as, bit for
+    /// bit: glam's `look_at` and D3D `perspective` from the eyes, target,
+    /// fields of view and planes named.
+    #[test]
+    fn the_matrices_are_the_named_views() {
+        use umbra_core::glam::camera::rh::{proj::directx::perspective, view::look_at_mat4};
+        let view = |eye: Vec3, fov: f32, near: f32, far: f32| {
+            perspective(fov.to_radians(), 1.0, near, far) * look_at_mat4(eye, TARGET, Vec3::Y)
+        };
+        let bits = |m: Mat4| m.to_cols_array().map(f32::to_bits);
+        assert_eq!(bits(LIGHT_MATRIX), bits(view(LIGHT_EYE, 55.0, 1.0, 5.0)));
+        assert_eq!(bits(CAMERA_MATRIX), bits(view(CAMERA_EYE, 38.0, 0.5, 6.0)));
     }
 
     #[test]

@@ -1,6 +1,7 @@
 //! The raster block against a brute-force rasterizer: the fill rule, watertight meshes, every tiling, max-z culling.
 
 mod culling;
+mod datapaths;
 mod fill_rule;
 mod tiling;
 mod watertight;

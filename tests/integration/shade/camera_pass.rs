@@ -5,9 +5,11 @@ use proptest::prelude::*;
 use umbra::core::glam::{Mat4, Vec3, Vec4};
 use umbra::core::probe::Probe;
 use umbra::core::probe::Totals;
-use umbra::core::shade::{MapUnit, Normals, SceneTriangle, ShadeConfig, ShadeSetup, Shaded, shade, shade_with};
-use umbra::core::shadow::{Bias, DepthTest, Filter, Jitter, MapView, Shadow, ShadowConfig};
-use umbra::core::{CullMode, D16, D24, DepthFormat, DepthUnit, F32, NO_TRIANGLE, NoProbe};
+use umbra::core::shade::{
+    MapUnit, MapUnitWith, Normals, SceneTriangle, ShadeConfig, ShadeSetup, Shaded, shade, shade_with,
+};
+use umbra::core::shadow::{Bias, BoxFilter, DepthTest, Filter, Jitter, MapView, Shadow, ShadowConfig};
+use umbra::core::{ConfigError, CullMode, D16, D24, DepthFormat, DepthUnit, F32, NO_TRIANGLE, NoProbe};
 
 use crate::common::{config, run, run_visibility};
 
@@ -190,17 +192,76 @@ fn culled_camera_pass_equals_unculled() {
     }
 }
 
-/// The shading unit's setup store only saves work: with no store (every
-/// run of pixels set up anew), one entry, a few, many, or a store left
-/// full by a pass under another light, the pixels are the same.
-#[test]
-fn setup_stores_of_any_size_shade_alike() {
+/// A floor and six boxes of rising heights in a row.
+fn row_of_boxes() -> Scene {
     let mut scene = Scene { tris: Vec::new() };
     scene.add(Vec3::new(-4.0, 0.0, 3.0), Vec3::new(4.0, 0.0, 3.0), Vec3::new(0.0, 0.0, -5.0));
     for i in 0..6u8 {
         let x = f32::from(i) * 0.35 - 1.0;
         scene.cuboid(Vec3::new(x, 0.0, -0.6), Vec3::new(x + 0.2, 0.4 + f32::from(i) * 0.1, 0.6));
     }
+    scene
+}
+
+/// A shadow unit built with the box filter alone shades as the unit
+/// built with every filter, pixel and event alike, for the configurations
+/// it has; it refuses the others, naming what it lacks, before it shades.
+#[test]
+fn a_box_only_unit_shades_as_the_whole_unit_and_refuses_the_rest() {
+    let scene = row_of_boxes();
+    let light = perspective(Vec3::new(1.5, 4.0, 2.0), Vec3::ZERO, 1.4, 1.0, 20.0);
+    let cfg = config(128, 16, DepthUnit::Dual, true);
+    let (maps, _) = run::<D16, _, 64>(cfg, &scene.clip(&light, true), CullMode::None, 4096, NoProbe);
+    let view = MapView::<D16>::new(cfg.raster, &maps.z1, &maps.z2, &maps.tiles).expect("sized");
+    let (ids, _, _) = run_visibility::<D24>(CAMERA, 16, &scene.clip(&camera(), false), true);
+    let source = |id: u32| scene.tris.get(id as usize).copied();
+    let shade_by = |cam: &ShadeConfig, boxed: bool| {
+        let mut out = vec![Shaded::BACKGROUND; (CAMERA * CAMERA) as usize];
+        let mut totals = Totals::default();
+        let r = if boxed {
+            shade_with(cam, &ids, &view, &source, &mut out, &MapUnitWith::<BoxFilter>::new(), &mut [], &mut totals)
+        } else {
+            shade_with(cam, &ids, &view, &source, &mut out, &MapUnit, &mut [], &mut totals)
+        };
+        r.map(|()| (out, totals))
+    };
+    for size in [1, 2, 3] {
+        for test in [DepthTest::First, DepthTest::Second] {
+            for virtual_samples in [false, true] {
+                let bias = if test == DepthTest::First { Bias::Constant(D16::plane_z(0.002)) } else { Bias::ZERO };
+                let shadow = ShadowConfig::new(test, bias, Filter::Box { size }, true).expect("valid");
+                let cam = camera_config(light, shadow, virtual_samples, Normals::Flat);
+                let (whole, boxed) = (shade_by(&cam, false).unwrap(), shade_by(&cam, true).unwrap());
+                assert!(whole.0.iter().any(|p| p.shadow == Shadow::ONE), "the boxes cast shadows");
+                assert!(whole == boxed, "box {size}, {test:?}, virtual samples {virtual_samples}");
+            }
+        }
+    }
+    let refused = |shadow: ShadowConfig, normals: Normals, missing: &'static str| {
+        let cam = camera_config(light, shadow, true, normals);
+        assert_eq!(shade_by(&cam, true).map(drop), Err(ConfigError::ShadowNotBuilt { missing }));
+        assert!(shade_by(&cam, false).is_ok(), "the whole unit takes {missing}");
+    };
+    refused(second(Filter::Point), Normals::Flat, "the point filter");
+    refused(second(Filter::Bilinear), Normals::Flat, "the bilinear filter");
+    refused(second(Filter::Jittered(Jitter::REEVES)), Normals::Flat, "the jittered filter");
+    let range = ShadowConfig::new(
+        DepthTest::First,
+        Bias::Range { lo: D16::plane_z(0.0), hi: D16::plane_z(0.01) },
+        Filter::Box { size: 2 },
+        true,
+    )
+    .unwrap();
+    refused(range, Normals::Flat, "a bias range");
+    refused(second(Filter::Box { size: 2 }), Normals::Smooth, "tangent planes from smooth normals");
+}
+
+/// The shading unit's setup store only saves work: with no store (every
+/// run of pixels set up anew), one entry, a few, many, or a store left
+/// full by a pass under another light, the pixels are the same.
+#[test]
+fn setup_stores_of_any_size_shade_alike() {
+    let scene = row_of_boxes();
     let light = perspective(Vec3::new(1.5, 4.0, 2.0), Vec3::ZERO, 1.4, 1.0, 20.0);
     let other = perspective(Vec3::new(-2.0, 3.0, 1.0), Vec3::ZERO, 1.2, 1.0, 20.0);
     let cfg = config(128, 16, DepthUnit::Dual, true);
