@@ -2,17 +2,18 @@
 //! the camera's matrix, then shading against a 1024² dual 24-bit map of the
 //! bundled default scene (second depth, virtual samples), into a frame kept
 //! from one pass to the next as a framebuffer is; for the 3×3 box also into
-//! a new frame each time (83 MB of results to allocate). Also prints the
+//! a new frame each time (83 MB of results to allocate) and keeping only
+//! each pixel's shadow fraction (4 bytes, not 40). Also prints the
 //! fraction of covered pixels that needed virtual samples.
 #![allow(missing_docs, clippy::cast_precision_loss, reason = "bench harness")]
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use std::hint::black_box;
 use umbra::core::shade::MapUnit;
-use umbra::core::shadow::{Bias, DepthTest, ShadowConfig};
+use umbra::core::shadow::{Bias, DepthTest, Shadow, ShadowConfig};
 use umbra::core::{CullMode, D24, DepthUnit, LightPassConfig, NO_TRIANGLE, NoProbe, RasterConfig};
 use umbra::sim::cost::counters::Counters;
-use umbra::sim::pass::camera::{CameraFrame, CameraOptions, Tiling, map_view, render};
+use umbra::sim::pass::camera::{CameraFrame, CameraOptions, Tiling, map_view, render, render_into};
 use umbra::sim::pass::light::{LightMaps, LightOptions};
 use umbra::sim::world::scene::Scene;
 
@@ -54,6 +55,15 @@ fn bench_camera(c: &mut Criterion) {
             })
         });
         if name == "box3" {
+            // The shadow fraction alone, 4 bytes a pixel, into a kept buffer.
+            let mut shadows: Vec<Shadow> = Vec::new();
+            g.bench_function(BenchmarkId::new(name, "fraction_only"), |b| {
+                b.iter(|| {
+                    render_into(&mut frame, &scene, &view, &MapUnit, &options, &mut NoProbe, &mut shadows)
+                        .expect("renders");
+                    black_box(&shadows);
+                })
+            });
             g.bench_function(BenchmarkId::new(name, "new_frame"), |b| {
                 b.iter(|| {
                     let mut frame = CameraFrame::default();

@@ -8,7 +8,8 @@
 //!
 //! The map is row-major, `width × height` texels, row 0 at the top (see
 //! [`crate::front::snap`](mod@crate::front::snap) for the orientation). [`LightPass::new`] clears it to the
-//! far value; [`LightPass::finish`] drains every bin. Results do not depend on
+//! far value ([`LightPass::new_kept`] only the tiles the last pass over the
+//! same buffers wrote); [`LightPass::finish`] drains every bin. Results do not depend on
 //! the bin capacity, the setup-store size or the tile size: only the events
 //! reported on the way do.
 
@@ -16,7 +17,7 @@ use core::marker::PhantomData;
 
 use glam::{Mat4, Vec3, Vec4};
 
-use crate::config::{ConfigError, CullMode, DepthUnit, LightPassConfig};
+use crate::config::{ConfigError, CullMode, DepthUnit, LightPassConfig, RasterConfig};
 use crate::depth::{DepthFormat, TileState};
 use crate::front::vertex::{CACHE_ENTRIES, VertexCache};
 use crate::front::{self, Output};
@@ -53,6 +54,29 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize, D: Datapaths> LightPass<'a, F
     /// [`ConfigError::BufferLength`] naming the first buffer whose length is
     /// wrong; [`ConfigError::NotBuilt`] if `D` lacks the datapath `cfg` needs.
     pub fn new(cfg: LightPassConfig, buf: LightBuffers<'a, F, B>, probe: P) -> Result<Self, ConfigError> {
+        Self::start(cfg, buf, probe, false)
+    }
+
+    /// Start a light pass over buffers that a light pass of the same
+    /// configuration drew last (its tile summaries describe them), clearing
+    /// only the tiles it wrote: a tile whose summary says it holds only the
+    /// clear value (its `z1_min` is the far value, so every texel is) is
+    /// left as it is — the fast clear of hardware that keeps a cleared bit
+    /// per tile — so the clear costs the tiles the last pass touched, not
+    /// the map's area. The maps are the bits [`LightPass::new`] gives.
+    ///
+    /// Buffers with any other history (another configuration, an id
+    /// buffer the last pass did not have, texels written since) must start
+    /// with [`LightPass::new`]: a summary that does not describe its tile is
+    /// trusted here.
+    ///
+    /// # Errors
+    /// As [`LightPass::new`].
+    pub fn new_kept(cfg: LightPassConfig, buf: LightBuffers<'a, F, B>, probe: P) -> Result<Self, ConfigError> {
+        Self::start(cfg, buf, probe, true)
+    }
+
+    fn start(cfg: LightPassConfig, mut buf: LightBuffers<'a, F, B>, probe: P, kept: bool) -> Result<Self, ConfigError> {
         const { assert!(B > 0, "a bin must hold at least one triangle") };
         let r = &cfg.raster;
         let texels = r.texel_count();
@@ -71,9 +95,13 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize, D: Datapaths> LightPass<'a, F
             return Err(ConfigError::BufferLength { buffer: "setups", expected: MAX_SETUPS, found: buf.setups.len() });
         }
         D::check(&cfg, !buf.ids.is_empty())?;
-        buf.z1.fill(F::FAR);
-        buf.z2.fill(F::FAR);
-        buf.ids.fill(NO_TRIANGLE);
+        if kept {
+            clear_written::<F, B>(r, &mut buf);
+        } else {
+            buf.z1.fill(F::FAR);
+            buf.z2.fill(F::FAR);
+            buf.ids.fill(NO_TRIANGLE);
+        }
         for (i, t) in buf.tiles.iter_mut().enumerate() {
             *t = TileState::cleared(F::FAR, r.tile_rect(r.tile_id(i)).area());
         }
@@ -309,5 +337,24 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize, D: Datapaths> LightPass<'a, F
         }
         self.setups_used = 0;
         self.probe
+    }
+}
+
+/// Clear the tiles of `buf` whose summaries say they hold more than the
+/// clear value: every row of the tile in `z1`, `z2` and `ids`.
+fn clear_written<F: DepthFormat, const B: usize>(r: &RasterConfig, buf: &mut LightBuffers<'_, F, B>) {
+    let width = r.width() as usize;
+    for (i, state) in buf.tiles.iter().enumerate() {
+        if state.z1_min == F::FAR {
+            continue;
+        }
+        let rect = r.tile_rect(r.tile_id(i));
+        for y in rect.y0..rect.y1 {
+            let row = y as usize * width;
+            let (x0, x1) = (row + rect.x0 as usize, row + rect.x1 as usize);
+            buf.z1.get_mut(x0..x1).into_iter().for_each(|t| t.fill(F::FAR));
+            buf.z2.get_mut(x0..x1).into_iter().for_each(|t| t.fill(F::FAR));
+            buf.ids.get_mut(x0..x1).into_iter().for_each(|t| t.fill(NO_TRIANGLE));
+        }
     }
 }

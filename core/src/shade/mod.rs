@@ -37,8 +37,7 @@
 mod divider;
 mod interp;
 pub mod stream;
-
-use core::marker::PhantomData;
+mod unit;
 
 use glam::{Mat4, Vec3};
 
@@ -47,12 +46,10 @@ use crate::depth::{DepthFormat, PlaneZ};
 use crate::light_pass::NO_TRIANGLE;
 use crate::probe::{Event, Probe};
 use crate::raster::tile::TileRect;
-use crate::shadow::{
-    AllFilters, Built, Lookup, MapCoord, MapView, Shadow, ShadowConfig, Slope, TangentPlane, lookup, virtual_samples,
-};
-use crate::silhouette::{SilStore, SilhouetteMap};
+use crate::shadow::{Built, Lookup, MapCoord, MapView, Shadow, ShadowConfig, TangentPlane};
 use divider::Reciprocal;
 use interp::Interp;
+pub use unit::{MapUnit, MapUnitWith, ShadowUnit, SilhouetteUnit};
 
 /// One triangle of the scene, in world space.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -142,6 +139,36 @@ impl Shaded {
 
 const _: () = assert!(size_of::<Shaded>() == 40, "a pixel's result is ten 32-bit words");
 
+/// What the shading unit writes for a pixel: the whole [`Shaded`] result,
+/// or the part of it a caller asks for — [`Shadow`], the fraction alone,
+/// 4 bytes rather than 40 (and the interpolated normal, which the fraction
+/// does not need, is then not worked out).
+pub trait PixelResult: Copy {
+    /// The result of a pixel no triangle covers.
+    const BACKGROUND: Self;
+
+    /// The part of a pixel's result kept.
+    fn keep(shaded: Shaded) -> Self;
+}
+
+impl PixelResult for Shaded {
+    const BACKGROUND: Self = Self::BACKGROUND;
+
+    #[inline(always)]
+    fn keep(shaded: Shaded) -> Self {
+        shaded
+    }
+}
+
+impl PixelResult for Shadow {
+    const BACKGROUND: Self = Self::ZERO;
+
+    #[inline(always)]
+    fn keep(shaded: Shaded) -> Self {
+        shaded.shadow
+    }
+}
+
 /// Entries of [`shade`]'s setup store (on the stack: small enough for a
 /// microcontroller's).
 pub const SETUP_STORE: usize = 16;
@@ -159,123 +186,16 @@ fn pixel_seed(seed: u64, px: u32, py: u32) -> u64 {
 ///
 /// # Errors
 /// [`ConfigError::BufferLength`] when `ids` or `out` is not `width × height`.
-pub fn shade<F: DepthFormat, S: TriangleSource, P: Probe>(
+pub fn shade<F: DepthFormat, S: TriangleSource, R: PixelResult, P: Probe>(
     cfg: &ShadeConfig,
     ids: &[u32],
     map: &MapView<'_, F>,
     scene: &S,
-    out: &mut [Shaded],
+    out: &mut [R],
     probe: &mut P,
 ) -> Result<(), ConfigError> {
     let mut setups = [ShadeSetup::EMPTY; SETUP_STORE];
     shade_with(cfg, ids, map, scene, out, &MapUnit, &mut setups, probe)
-}
-
-/// The unit that turns a pixel's lookup into its shadow fraction.
-pub trait ShadowUnit<F: DepthFormat> {
-    /// The datapaths the unit is built with: the shading unit leaves out
-    /// what they do not need (the jittered filter's per-pixel footprint,
-    /// smooth normals' tangent planes) and refuses a configuration they
-    /// lack before it shades.
-    type Built: Built;
-
-    /// Decide one lookup against `map`; `tangent` solves the receiver's
-    /// tangent plane on the map, for units that use virtual samples.
-    fn decide<P: Probe, T: FnOnce() -> Option<Slope>>(
-        &self,
-        map: &MapView<'_, F>,
-        cfg: &ShadeConfig,
-        lookup: &Lookup,
-        tangent: T,
-        probe: &mut P,
-    ) -> Shadow;
-}
-
-/// The shadow unit of [`crate::shadow`]: the configured test and filter,
-/// with Wang & Molnar's virtual samples when the configuration asks; built
-/// with every filter.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct MapUnit;
-
-impl<F: DepthFormat> ShadowUnit<F> for MapUnit {
-    type Built = AllFilters;
-
-    fn decide<P: Probe, T: FnOnce() -> Option<Slope>>(
-        &self,
-        map: &MapView<'_, F>,
-        cfg: &ShadeConfig,
-        lookup: &Lookup,
-        tangent: T,
-        probe: &mut P,
-    ) -> Shadow {
-        decide_on_map::<F, P, T, AllFilters>(map, cfg, lookup, tangent, probe)
-    }
-}
-
-/// [`MapUnit`] built with the datapaths `K` only ([`crate::shadow::Built`]):
-/// `MapUnitWith::<BoxFilter>::new()` is a unit with the box filter alone,
-/// a constant bias and flat normals' tangent planes, and the code of no
-/// other.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct MapUnitWith<K: Built>(PhantomData<K>);
-
-impl<K: Built> MapUnitWith<K> {
-    /// The unit.
-    #[must_use]
-    pub const fn new() -> Self {
-        Self(PhantomData)
-    }
-}
-
-impl<F: DepthFormat, K: Built> ShadowUnit<F> for MapUnitWith<K> {
-    type Built = K;
-
-    fn decide<P: Probe, T: FnOnce() -> Option<Slope>>(
-        &self,
-        map: &MapView<'_, F>,
-        cfg: &ShadeConfig,
-        lookup: &Lookup,
-        tangent: T,
-        probe: &mut P,
-    ) -> Shadow {
-        decide_on_map::<F, P, T, K>(map, cfg, lookup, tangent, probe)
-    }
-}
-
-/// The map units' decision, with the datapaths `K`.
-#[inline]
-fn decide_on_map<F: DepthFormat, P: Probe, T: FnOnce() -> Option<Slope>, K: Built>(
-    map: &MapView<'_, F>,
-    cfg: &ShadeConfig,
-    l: &Lookup,
-    tangent: T,
-    probe: &mut P,
-) -> Shadow {
-    if cfg.virtual_samples {
-        virtual_samples::<F, P, K>(map, &cfg.shadow, l, tangent, probe)
-    } else {
-        lookup::<F, P, K>(map, &cfg.shadow, l, l.slope, probe)
-    }
-}
-
-/// Sen et al.'s silhouette-map test ([`crate::silhouette`]) in place of the
-/// filter: four corner tests, then the skewed quadrants.
-#[derive(Debug)]
-pub struct SilhouetteUnit<'s, 'a, S: SilStore>(pub &'s SilhouetteMap<'a, S>);
-
-impl<F: DepthFormat, S: SilStore> ShadowUnit<F> for SilhouetteUnit<'_, '_, S> {
-    type Built = AllFilters;
-
-    fn decide<P: Probe, T: FnOnce() -> Option<Slope>>(
-        &self,
-        map: &MapView<'_, F>,
-        cfg: &ShadeConfig,
-        lookup: &Lookup,
-        _tangent: T,
-        probe: &mut P,
-    ) -> Shadow {
-        crate::silhouette::shadow(self.0, map, &cfg.shadow, lookup.x, lookup.y, lookup.z, probe)
-    }
 }
 
 /// One entry of the shading unit's setup store: a triangle's interpolator
@@ -297,12 +217,12 @@ impl ShadeSetup {
 /// # Errors
 /// [`ConfigError::BufferLength`] when `ids` or `out` is not `width × height`.
 #[allow(clippy::too_many_arguments, reason = "the unit's inputs, its store and its probe")]
-pub fn shade_with<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, P: Probe>(
+pub fn shade_with<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, R: PixelResult, P: Probe>(
     cfg: &ShadeConfig,
     ids: &[u32],
     map: &MapView<'_, F>,
     scene: &S,
-    out: &mut [Shaded],
+    out: &mut [R],
     unit: &U,
     setups: &mut [ShadeSetup],
     probe: &mut P,
@@ -320,13 +240,13 @@ pub fn shade_with<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, P: Probe>
 /// [`ConfigError::Window`] when `rect` is empty or leaves the image;
 /// [`ConfigError::BufferLength`] when `ids` or `out` is not its size.
 #[allow(clippy::too_many_arguments, reason = "the unit's inputs, its store and its probe")]
-pub fn shade_rect<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, P: Probe>(
+pub fn shade_rect<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, R: PixelResult, P: Probe>(
     cfg: &ShadeConfig,
     rect: TileRect,
     ids: &[u32],
     map: &MapView<'_, F>,
     scene: &S,
-    out: &mut [Shaded],
+    out: &mut [R],
     unit: &U,
     setups: &mut [ShadeSetup],
     probe: &mut P,
@@ -374,9 +294,9 @@ pub fn shade_rect<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, P: Probe>
             *o = match interp {
                 Some(i) => {
                     probe.event(Event::PixelShaded { x: px, y: py });
-                    shade_pixel(cfg, map, unit, probe, &light_inverse_transpose, (px, py), i)
+                    R::keep(shade_pixel(cfg, map, unit, probe, &light_inverse_transpose, (px, py), i))
                 }
-                None => Shaded::BACKGROUND,
+                None => R::BACKGROUND,
             };
         }
     }

@@ -24,13 +24,13 @@ use crate::raster::setup::Setup;
 use crate::raster::tile::TileRect;
 use crate::shadow::MapView;
 
-use super::{ShadeConfig, ShadeSetup, Shaded, ShadowUnit, TriangleSource, shade_rect};
+use super::{PixelResult, ShadeConfig, ShadeSetup, Shaded, ShadowUnit, TriangleSource, shade_rect};
 
 /// The caller-owned memory of a camera pass streamed by tile: one tile of
 /// everything, besides the setup stores. For a tile of `T × T` pixels:
 /// `depth`, `ids` and `pixels` of `T²` entries, one tile summary and one
 /// bin.
-pub struct TileBuffers<'a, V: DepthFormat, const B: usize> {
+pub struct TileBuffers<'a, V: DepthFormat, const B: usize, R: PixelResult = Shaded> {
     /// The visibility unit's depth for one tile.
     pub depth: &'a mut [V::Texel],
     /// The visible triangle's id per pixel of one tile.
@@ -43,8 +43,9 @@ pub struct TileBuffers<'a, V: DepthFormat, const B: usize> {
     pub setups: &'a mut [Setup],
     /// The shading unit's setup store (any length; empty: none).
     pub shade_setups: &'a mut [ShadeSetup],
-    /// One tile of results, handed to the sink.
-    pub pixels: &'a mut [Shaded],
+    /// One tile of results (the whole [`Shaded`] or the part kept), handed
+    /// to the sink.
+    pub pixels: &'a mut [R],
 }
 
 /// Why the streamed pass stopped.
@@ -95,22 +96,23 @@ impl From<SubmitError> for StreamError {
 /// size (checked before any tile is drawn); [`StreamError::Submit`] for
 /// geometry `draw` could not send.
 #[allow(clippy::too_many_arguments, reason = "the pass's inputs, its memory, its probe, and its two callers' ends")]
-pub fn camera_pass_by_tile<V, F, S, U, P, D, const B: usize>(
+pub fn camera_pass_by_tile<V, F, S, U, R, P, D, const B: usize>(
     vis: LightPassConfig,
     cfg: &ShadeConfig,
     map: &MapView<'_, F>,
     scene: &S,
     unit: &U,
-    buf: TileBuffers<'_, V, B>,
+    buf: TileBuffers<'_, V, B, R>,
     mut probe: P,
     mut draw: impl FnMut(&mut LightPass<'_, V, P, B, D>) -> Result<(), SubmitError>,
-    mut sink: impl FnMut(TileRect, &[Shaded]),
+    mut sink: impl FnMut(TileRect, &[R]),
 ) -> Result<P, StreamError>
 where
     V: DepthFormat,
     F: DepthFormat,
     S: TriangleSource,
     U: ShadowUnit<F>,
+    R: PixelResult,
     P: Probe,
     D: Datapaths,
 {

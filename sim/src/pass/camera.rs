@@ -4,7 +4,7 @@
 use glam::Mat4;
 use umbra_core::raster::bin::Bin;
 use umbra_core::raster::setup::Setup;
-use umbra_core::shade::{Normals, ShadeConfig, ShadeSetup, Shaded, ShadowUnit, shade_with};
+use umbra_core::shade::{Normals, PixelResult, ShadeConfig, ShadeSetup, Shaded, ShadowUnit, shade_with};
 use umbra_core::shadow::{MapView, Shadow, ShadowConfig};
 use umbra_core::{
     CullMode, D24, DepthFormat, DepthUnit, LightBuffers, LightPass, LightPassConfig, NO_TRIANGLE, Probe, RasterConfig,
@@ -85,6 +85,9 @@ pub struct CameraFrame {
     store: Vec<Setup>,
     shade_setups: Vec<ShadeSetup>,
     size: (u32, u32),
+    /// The configuration the visibility buffers were last drawn with: a
+    /// pass with the same one clears only the tiles that pass wrote.
+    drawn: Option<LightPassConfig>,
     /// The shaded pixels of the last pass, row-major.
     pub pixels: Vec<Shaded>,
 }
@@ -147,6 +150,7 @@ pub fn visibility<P: Probe>(
     let (texels, tiles) = (raster.texel_count(), raster.tile_count());
     let triangles: usize = scene.objects.iter().map(|o| o.mesh.triangles.len()).sum();
     frame.size = (width, height);
+    let kept = frame.drawn.replace(config) == Some(config) && frame.z.len() == texels;
     let CameraFrame { z, ids, tiles: states, bins, store, .. } = frame;
     z.resize(texels, D24::FAR);
     ids.resize(texels, NO_TRIANGLE);
@@ -154,7 +158,11 @@ pub fn visibility<P: Probe>(
     bins.resize(tiles, Bin::new());
     store.resize(triangles.clamp(1, DEFAULT_SETUPS), Setup::EMPTY);
     let buffers = LightBuffers { z1: z, z2: &mut [], ids, tiles: states, bins, setups: store };
-    let mut pass = LightPass::<D24, &mut P, DEFAULT_BIN_CAPACITY>::new(config, buffers, &mut *probe)?;
+    let mut pass = if kept {
+        LightPass::<D24, &mut P, DEFAULT_BIN_CAPACITY>::new_kept(config, buffers, &mut *probe)?
+    } else {
+        LightPass::<D24, &mut P, DEFAULT_BIN_CAPACITY>::new(config, buffers, &mut *probe)?
+    };
     for (draw, d) in scene.draws(camera, CullMode::None).iter().enumerate() {
         pass.draw_mesh(d.positions, d.triangles, &d.transform, d.cull)
             .map_err(|source| PassError::Submit { draw, source })?;
@@ -195,14 +203,35 @@ pub fn render<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
     options: &CameraOptions,
     probe: &mut P,
 ) -> Result<(), PassError> {
+    let mut pixels = std::mem::take(&mut frame.pixels);
+    let done = render_into(frame, scene, view, unit, options, probe, &mut pixels);
+    frame.pixels = pixels;
+    done
+}
+
+/// [`render`] keeping only the part of each pixel's result `R` holds — the
+/// shadow fraction alone ([`umbra_core::shadow::Shadow`]: 4 bytes a pixel
+/// rather than 40) — in `out`, row-major; `frame.pixels` is left as it was.
+///
+/// # Errors
+/// As [`render`].
+pub fn render_into<F: DepthFormat, U: ShadowUnit<F>, R: PixelResult, P: Probe>(
+    frame: &mut CameraFrame,
+    scene: &Scene,
+    view: &MapView<'_, F>,
+    unit: &U,
+    options: &CameraOptions,
+    probe: &mut P,
+    out: &mut Vec<R>,
+) -> Result<(), PassError> {
     let Visibility { camera, .. } = visibility(frame, scene, (options.width, options.height), options.tiling, probe)?;
     let cfg = shade_config(scene, camera, options);
     let triangles = scene.triangles();
     let source = |id: u32| triangles.get(id as usize).copied();
     // Every pixel is written: the fill only sizes a new frame.
-    frame.pixels.resize(frame.ids.len(), Shaded::BACKGROUND);
+    out.resize(frame.ids.len(), R::BACKGROUND);
     frame.shade_setups.resize(SHADE_SETUPS, ShadeSetup::EMPTY);
-    shade_with(&cfg, &frame.ids, view, &source, &mut frame.pixels, unit, &mut frame.shade_setups, probe)?;
+    shade_with(&cfg, &frame.ids, view, &source, out, unit, &mut frame.shade_setups, probe)?;
     Ok(())
 }
 

@@ -154,9 +154,9 @@ fn draw_into<F: DepthFormat, P: Probe, const B: usize>(
         return Ok(probe);
     }
     let setups = options.setups.unwrap_or_else(|| store_size::<P>(&config, draws));
-    maps.resize(config);
+    let kept = maps.resize(config);
     let LightMaps { z1, z2, tiles, .. } = maps;
-    run::<F, P, B>(config, z1, z2, tiles, pass, setups, probe, |pass| {
+    run::<F, P, B>(config, kept, z1, z2, tiles, pass, setups, probe, |pass| {
         for (draw, d) in draws.iter().enumerate() {
             pass.draw_mesh(d.positions, d.triangles, &d.transform, d.cull)
                 .map_err(|source| PassError::Submit { draw, source })?;
@@ -176,20 +176,27 @@ impl<T: Copy> LightMaps<T> {
 
     /// Fit the maps to `config` (the pass clears them): nothing to do at
     /// the sizes they have, new zeroed pages (not written twice) otherwise.
-    fn resize(&mut self, config: LightPassConfig)
+    /// Whether they are kept: the last pass drew them with this
+    /// configuration, so their tile summaries describe them and the pass
+    /// need clear only the tiles it wrote ([`LightPass::new_kept`]).
+    fn resize(&mut self, config: LightPassConfig) -> bool
     where
         T: Default,
     {
-        fn fit<V: Clone>(v: &mut Vec<V>, len: usize, value: V) {
-            if v.len() != len {
+        fn fit<V: Clone>(v: &mut Vec<V>, len: usize, value: V) -> bool {
+            let kept = v.len() == len;
+            if !kept {
                 *v = vec![value; len];
             }
+            kept
         }
         let texels = config.raster.texel_count();
+        let same = self.config == config;
         self.config = config;
-        fit(&mut self.z1, texels, T::default());
-        fit(&mut self.z2, if config.unit == DepthUnit::Dual { texels } else { 0 }, T::default());
-        fit(&mut self.tiles, config.raster.tile_count(), TileState::cleared(T::default(), 0));
+        let z1 = fit(&mut self.z1, texels, T::default());
+        let z2 = fit(&mut self.z2, if config.unit == DepthUnit::Dual { texels } else { 0 }, T::default());
+        let tiles = fit(&mut self.tiles, config.raster.tile_count(), TileState::cleared(T::default(), 0));
+        same && z1 && z2 && tiles
     }
 }
 
@@ -248,12 +255,14 @@ impl<T, const B: usize> Default for LightFrame<T, B> {
     }
 }
 
-/// Run one light pass over the given maps (the pass clears them), with the
-/// bins and a setup store of `setups` entries from `scratch`: `feed` draws,
-/// then the pass is finished.
+/// Run one light pass over the given maps (the pass clears them: the
+/// tiles the last pass wrote, when they are `kept`), with the bins and a
+/// setup store of `setups` entries from `scratch`: `feed` draws, then the
+/// pass is finished.
 #[allow(clippy::too_many_arguments, reason = "the buffers of one pass")]
 fn run<F: DepthFormat, P: Probe, const B: usize>(
     config: LightPassConfig,
+    kept: bool,
     z1: &mut [F::Texel],
     z2: &mut [F::Texel],
     tiles: &mut [TileState<F::Texel>],
@@ -267,7 +276,11 @@ fn run<F: DepthFormat, P: Probe, const B: usize>(
     scratch.store.resize(setups, Setup::EMPTY);
     let PassScratch { bins, store } = scratch;
     let buffers = LightBuffers { z1, z2, ids: &mut [], tiles, bins, setups: store };
-    let mut pass = LightPass::<F, P, B>::new(config, buffers, probe)?;
+    let mut pass = if kept {
+        LightPass::<F, P, B>::new_kept(config, buffers, probe)?
+    } else {
+        LightPass::<F, P, B>::new(config, buffers, probe)?
+    };
     feed(&mut pass)?;
     Ok(pass.finish())
 }
@@ -337,8 +350,9 @@ fn bands_into<F: DepthFormat, const B: usize>(
         });
     });
     let pieces = &job_scratch[..];
-    // Each band draws into its own rows of the maps and its own tiles.
-    maps.resize(config);
+    // Each band draws into its own rows of the maps and its own tiles (a
+    // band of whole tile rows: its tiles' summaries are the map's).
+    let kept = maps.resize(config);
     band_scratch.resize_with(rows.len(), PassScratch::new);
     let mut jobs = Vec::with_capacity(rows.len());
     let (mut z1, mut z2, mut tiles) = (&mut maps.z1[..], &mut maps.z2[..], &mut maps.tiles[..]);
@@ -364,7 +378,7 @@ fn bands_into<F: DepthFormat, const B: usize>(
             let store = own().count().clamp(1, BAND_SETUPS);
             let (window, y0) = (windows[band], rows[band].0);
             let band = LightPassConfig { raster: window, ..config };
-            run::<F, _, B>(band, z1, z2, tiles, scratch, store, umbra_core::NoProbe, |pass| {
+            run::<F, _, B>(band, kept, z1, z2, tiles, scratch, store, umbra_core::NoProbe, |pass| {
                 own().for_each(|s| pass.draw_setup_from(s, [0, y0]));
                 Ok(())
             })

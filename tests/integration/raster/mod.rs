@@ -2,6 +2,7 @@
 
 mod culling;
 mod datapaths;
+mod fast_clear;
 mod fill_rule;
 mod tiling;
 mod watertight;

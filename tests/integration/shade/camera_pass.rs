@@ -256,6 +256,30 @@ fn a_box_only_unit_shades_as_the_whole_unit_and_refuses_the_rest() {
     refused(second(Filter::Box { size: 2 }), Normals::Smooth, "tangent planes from smooth normals");
 }
 
+/// A pass that keeps only each pixel's shadow fraction writes the
+/// fractions the whole results hold, and reports the same events.
+#[test]
+fn the_fraction_alone_is_the_whole_results_fraction() {
+    let scene = row_of_boxes();
+    let light = perspective(Vec3::new(1.5, 4.0, 2.0), Vec3::ZERO, 1.4, 1.0, 20.0);
+    let cfg = config(128, 16, DepthUnit::Dual, true);
+    let (maps, _) = run::<D24, _, 64>(cfg, &scene.clip(&light, true), CullMode::None, 4096, NoProbe);
+    let view = MapView::<D24>::new(cfg.raster, &maps.z1, &maps.z2, &maps.tiles).expect("sized");
+    let (ids, _, _) = run_visibility::<D24>(CAMERA, 16, &scene.clip(&camera(), false), true);
+    let source = |id: u32| scene.tris.get(id as usize).copied();
+    for filter in filters() {
+        let cam = camera_config(light, second(filter), true, Normals::Flat);
+        let n = (CAMERA * CAMERA) as usize;
+        let (mut whole, mut fractions) = (vec![Shaded::BACKGROUND; n], vec![Shadow::ONE; n]);
+        let (mut a, mut b) = (Totals::default(), Totals::default());
+        shade_with(&cam, &ids, &view, &source, &mut whole, &MapUnit, &mut [], &mut a).expect("sized");
+        shade_with(&cam, &ids, &view, &source, &mut fractions, &MapUnit, &mut [], &mut b).expect("sized");
+        assert!(whole.iter().any(|p| p.shadow == Shadow::ONE) && whole.iter().any(|p| p.shadow == Shadow::ZERO));
+        assert!(whole.iter().map(|p| p.shadow).eq(fractions.iter().copied()), "{filter:?}");
+        assert_eq!(a, b, "{filter:?}");
+    }
+}
+
 /// The shading unit's setup store only saves work: with no store (every
 /// run of pixels set up anew), one entry, a few, many, or a store left
 /// full by a pass under another light, the pixels are the same.
