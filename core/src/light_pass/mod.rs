@@ -17,14 +17,14 @@ use core::marker::PhantomData;
 
 use glam::{Mat4, Vec3, Vec4};
 
-use crate::config::{ConfigError, CullMode, DepthUnit, LightPassConfig, RasterConfig};
+use crate::config::{ConfigError, CullMode, DepthUnit, LightPassConfig};
 use crate::depth::{DepthFormat, TileState};
 use crate::front::vertex::{CACHE_ENTRIES, VertexCache};
 use crate::front::{self, Output};
 use crate::probe::{Event, FlushReason, NoProbe, Probe, RejectReason};
 use crate::raster::bin::{Bin, MAX_SETUPS, SetupIndex, touches};
 use crate::raster::setup::Setup;
-use crate::raster::tile::TileId;
+use crate::raster::tile::{TileId, TileRect};
 use crate::raster::{TileView, rasterize};
 use resolve::resolve;
 
@@ -62,8 +62,12 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize, D: Datapaths> LightPass<'a, F
     /// only the tiles it wrote: a tile whose summary says it holds only the
     /// clear value (its `z1_min` is the far value, so every texel is) is
     /// left as it is — the fast clear of hardware that keeps a cleared bit
-    /// per tile — so the clear costs the tiles the last pass touched, not
-    /// the map's area. The maps are the bits [`LightPass::new`] gives.
+    /// per tile — and the others are cleared when they are first loaded
+    /// (just before their first triangles, while the tile is in cache) or,
+    /// if no triangle reaches them, at [`LightPass::finish`]. The clear
+    /// costs the tiles the last pass touched, not the map's area, and the
+    /// maps are the bits [`LightPass::new`] gives. Until a kept tile is
+    /// first stored, its summary's `z1_max` marks a pending clear.
     ///
     /// Buffers with any other history (another configuration, an id
     /// buffer the last pass did not have, texels written since) must start
@@ -76,7 +80,7 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize, D: Datapaths> LightPass<'a, F
         Self::start(cfg, buf, probe, true)
     }
 
-    fn start(cfg: LightPassConfig, mut buf: LightBuffers<'a, F, B>, probe: P, kept: bool) -> Result<Self, ConfigError> {
+    fn start(cfg: LightPassConfig, buf: LightBuffers<'a, F, B>, probe: P, kept: bool) -> Result<Self, ConfigError> {
         const { assert!(B > 0, "a bin must hold at least one triangle") };
         let r = &cfg.raster;
         let texels = r.texel_count();
@@ -95,15 +99,19 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize, D: Datapaths> LightPass<'a, F
             return Err(ConfigError::BufferLength { buffer: "setups", expected: MAX_SETUPS, found: buf.setups.len() });
         }
         D::check(&cfg, !buf.ids.is_empty())?;
-        if kept {
-            clear_written::<F, B>(r, &mut buf);
-        } else {
+        if !kept {
             buf.z1.fill(F::FAR);
             buf.z2.fill(F::FAR);
             buf.ids.fill(NO_TRIANGLE);
         }
         for (i, t) in buf.tiles.iter_mut().enumerate() {
+            // A kept tile the last pass wrote is cleared when it is first
+            // loaded, or at the finish if no triangle reaches it.
+            let pending = kept && t.z1_min != F::FAR;
             *t = TileState::cleared(F::FAR, r.tile_rect(r.tile_id(i)).area());
+            if pending {
+                t.z1_max = pending_clear::<F>();
+            }
         }
         buf.bins.iter_mut().for_each(Bin::clear);
         Ok(Self { cfg, buf, setups_used: 0, triangles: 0, probe, datapaths: PhantomData })
@@ -278,6 +286,9 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize, D: Datapaths> LightPass<'a, F
         self.probe.event(Event::BinFlush { tile, triangles, reason });
         if state.stores > 0 {
             self.probe.event(Event::TileLoad { tile, bytes: tile_bytes });
+        } else if state.z1_max == pending_clear::<F>() {
+            state.z1_max = F::FAR;
+            clear_tile::<F>(rect, raster.width() as usize, z1, z2, ids);
         }
         let width = raster.width() as usize;
         let with_ids = !ids.is_empty();
@@ -331,6 +342,11 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize, D: Datapaths> LightPass<'a, F
                 let tile = self.cfg.raster.tile_id(t);
                 let rect = self.cfg.raster.tile_rect(tile);
                 let bytes = rect.area() * F::KIND.bytes() * self.cfg.unit.buffers();
+                let LightBuffers { z1, z2, ids, tiles, .. } = &mut self.buf;
+                if tiles[t].z1_max == pending_clear::<F>() {
+                    tiles[t].z1_max = F::FAR;
+                    clear_tile::<F>(rect, self.cfg.raster.width() as usize, z1, z2, ids);
+                }
                 self.buf.tiles[t].stores = 1;
                 self.probe.event(Event::TileStore { tile, bytes, cleared: true });
             }
@@ -340,21 +356,21 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize, D: Datapaths> LightPass<'a, F
     }
 }
 
-/// Clear the tiles of `buf` whose summaries say they hold more than the
-/// clear value: every row of the tile in `z1`, `z2` and `ids`.
-fn clear_written<F: DepthFormat, const B: usize>(r: &RasterConfig, buf: &mut LightBuffers<'_, F, B>) {
-    let width = r.width() as usize;
-    for (i, state) in buf.tiles.iter().enumerate() {
-        if state.z1_min == F::FAR {
-            continue;
-        }
-        let rect = r.tile_rect(r.tile_id(i));
-        for y in rect.y0..rect.y1 {
-            let row = y as usize * width;
-            let (x0, x1) = (row + rect.x0 as usize, row + rect.x1 as usize);
-            buf.z1.get_mut(x0..x1).into_iter().for_each(|t| t.fill(F::FAR));
-            buf.z2.get_mut(x0..x1).into_iter().for_each(|t| t.fill(F::FAR));
-            buf.ids.get_mut(x0..x1).into_iter().for_each(|t| t.fill(NO_TRIANGLE));
-        }
+/// The mark of a kept tile whose clear is pending, in its `z1_max` until
+/// it is first loaded: not the far value, which a summary of a cleared
+/// tile holds (the nearest value, which no max of an unstored tile holds).
+fn pending_clear<F: DepthFormat>() -> F::Texel {
+    F::Texel::default()
+}
+
+/// Clear one tile's rows of `z1`, `z2` and `ids` (a row-major map `width`
+/// texels wide; empty buffers are left).
+fn clear_tile<F: DepthFormat>(rect: TileRect, width: usize, z1: &mut [F::Texel], z2: &mut [F::Texel], ids: &mut [u32]) {
+    for y in rect.y0..rect.y1 {
+        let row = y as usize * width;
+        let (x0, x1) = (row + rect.x0 as usize, row + rect.x1 as usize);
+        z1.get_mut(x0..x1).into_iter().for_each(|t| t.fill(F::FAR));
+        z2.get_mut(x0..x1).into_iter().for_each(|t| t.fill(F::FAR));
+        ids.get_mut(x0..x1).into_iter().for_each(|t| t.fill(NO_TRIANGLE));
     }
 }
