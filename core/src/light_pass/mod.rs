@@ -80,6 +80,9 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize, D: Datapaths> LightPass<'a, F
         Self::start(cfg, buf, probe, true)
     }
 
+    /// Out of line, as [`LightPass::finish`]: once a pass, and a
+    /// microcontroller's streamed camera pass keeps their frames off its own.
+    #[inline(never)]
     fn start(cfg: LightPassConfig, buf: LightBuffers<'a, F, B>, probe: P, kept: bool) -> Result<Self, ConfigError> {
         const { assert!(B > 0, "a bin must hold at least one triangle") };
         let r = &cfg.raster;
@@ -273,7 +276,10 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize, D: Datapaths> LightPass<'a, F
         self.setups_used = 0;
     }
 
-    /// Rasterize a tile's bin: load (or clear), every triangle, resolve, store.
+    /// Rasterize a tile's bin: load (or clear), every triangle, resolve,
+    /// store. Out of line: once a tile, and its frame stays off the
+    /// callers' (a microcontroller's stack).
+    #[inline(never)]
     fn flush_tile(&mut self, t: usize, reason: FlushReason) {
         let raster = self.cfg.raster;
         let tile = raster.tile_id(t);
@@ -333,7 +339,10 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize, D: Datapaths> LightPass<'a, F
         self.flush_all(FlushReason::Draw);
     }
 
-    /// Drain every bin, store every tile, and hand back the probe.
+    /// Drain every bin, store every tile, and hand back the probe. Out of
+    /// line (once a pass; inlined into a streamed camera pass, its frame
+    /// grew the Cortex-M0's peak stack by 1.1 KB).
+    #[inline(never)]
     pub fn finish(mut self) -> P {
         for t in 0..self.buf.bins.len() {
             if !self.buf.bins[t].is_empty() {
@@ -364,7 +373,8 @@ fn pending_clear<F: DepthFormat>() -> F::Texel {
 }
 
 /// Clear one tile's rows of `z1`, `z2` and `ids` (a row-major map `width`
-/// texels wide; empty buffers are left).
+/// texels wide; empty buffers are left). Out of line: it runs once a tile.
+#[inline(never)]
 fn clear_tile<F: DepthFormat>(rect: TileRect, width: usize, z1: &mut [F::Texel], z2: &mut [F::Texel], ids: &mut [u32]) {
     for y in rect.y0..rect.y1 {
         let row = y as usize * width;
