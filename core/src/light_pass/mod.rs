@@ -60,7 +60,7 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize, D: Datapaths> LightPass<'a, F
     /// Start a light pass over buffers that a light pass of the same
     /// configuration drew last (its tile summaries describe them), clearing
     /// only the tiles it wrote: a tile whose summary says it holds only the
-    /// clear value (its `z1_min` is the far value, so every texel is) is
+    /// clear value (its `z1_min` and `z1_max` are the far value) is
     /// left as it is — the fast clear of hardware that keeps a cleared bit
     /// per tile — and the others are cleared when they are first loaded
     /// (just before their first triangles, while the tile is in cache) or,
@@ -108,9 +108,10 @@ impl<'a, F: DepthFormat, P: Probe, const B: usize, D: Datapaths> LightPass<'a, F
             buf.ids.fill(NO_TRIANGLE);
         }
         for (i, t) in buf.tiles.iter_mut().enumerate() {
-            // A kept tile the last pass wrote is cleared when it is first
-            // loaded, or at the finish if no triangle reaches it.
-            let pending = kept && t.z1_min != F::FAR;
+            // A kept tile the last pass wrote — or whose clear a pass
+            // dropped before its finish left pending — is cleared when it
+            // is first loaded, or at the finish if no triangle reaches it.
+            let pending = kept && (t.z1_min != F::FAR || t.z1_max != F::FAR);
             *t = TileState::cleared(F::FAR, r.tile_rect(r.tile_id(i)).area());
             if pending {
                 t.z1_max = pending_clear::<F>();
