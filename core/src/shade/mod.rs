@@ -182,7 +182,8 @@ fn pixel_seed(seed: u64, px: u32, py: u32) -> u64 {
 }
 
 /// Shade every pixel: `ids` from the visibility unit, `out` receives one
-/// [`Shaded`] per pixel, row-major.
+/// result per pixel, row-major — the whole [`Shaded`], or the part of it
+/// a [`PixelResult`] keeps.
 ///
 /// # Errors
 /// [`ConfigError::BufferLength`] when `ids` or `out` is not `width × height`.
