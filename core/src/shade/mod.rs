@@ -34,6 +34,7 @@
 //! the light-space points of its right and lower neighbours on the same
 //! triangle's plane (two more evaluations, for the jittered filter only).
 
+mod blocks;
 mod divider;
 mod interp;
 pub mod stream;
@@ -146,6 +147,10 @@ const _: () = assert!(size_of::<Shaded>() == 40, "a pixel's result is ten 32-bit
 pub trait PixelResult: Copy {
     /// The result of a pixel no triangle covers.
     const BACKGROUND: Self;
+    /// Whether [`keep`](Self::keep) reads the shadow fraction and nothing
+    /// else: then the unit may settle a block of pixels at once, without
+    /// their light points ([`ShadowUnit::settle`]).
+    const FRACTION_ONLY: bool = false;
 
     /// The part of a pixel's result kept.
     fn keep(shaded: Shaded) -> Self;
@@ -162,6 +167,7 @@ impl PixelResult for Shaded {
 
 impl PixelResult for Shadow {
     const BACKGROUND: Self = Self::ZERO;
+    const FRACTION_ONLY: bool = true;
 
     #[inline(always)]
     fn keep(shaded: Shaded) -> Self {
@@ -274,6 +280,10 @@ pub fn shade_rect<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, R: PixelR
     if width == 0 {
         return Ok(());
     }
+    if R::FRACTION_ONLY && !P::EVENTS && blocks::settle(cfg) {
+        blocks::shade(cfg, rect, ids, map, scene, out, unit, setups, &light_inverse_transpose);
+        return Ok(());
+    }
     // The store is consulted when the id changes along a row; the source
     // is asked only when the store misses.
     let (mut run, mut interp): (u32, Option<&Interp>) = (NO_TRIANGLE, None);
@@ -281,16 +291,7 @@ pub fn shade_rect<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, R: PixelR
         for (px, (&id, o)) in (x0..).zip(ids.iter().zip(out.iter_mut())) {
             if id != run {
                 run = id;
-                interp = None;
-                if id != NO_TRIANGLE {
-                    let slot = id as usize % setups.len();
-                    if let Some(entry) = setups.get_mut(slot) {
-                        interp = match entry {
-                            ShadeSetup(Some(c)) if c.id == id => Some(&*c),
-                            _ => scene.triangle(id).map(|tri| &*entry.0.insert(Interp::new::<F>(cfg, map, id, &tri))),
-                        };
-                    }
-                }
+                interp = setup_of(cfg, map, scene, setups, id);
             }
             *o = match interp {
                 Some(i) => {
@@ -302,6 +303,29 @@ pub fn shade_rect<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, R: PixelR
         }
     }
     Ok(())
+}
+
+/// The interpolator setup of triangle `id` from the store (direct-mapped
+/// by id), set up from the scene when the store misses; `None` for no
+/// triangle, or one the scene does not have.
+#[inline]
+fn setup_of<'s, F: DepthFormat, S: TriangleSource>(
+    cfg: &ShadeConfig,
+    map: &MapView<'_, F>,
+    scene: &S,
+    setups: &'s mut [ShadeSetup],
+    id: u32,
+) -> Option<&'s Interp> {
+    if id == NO_TRIANGLE {
+        return None;
+    }
+    let slot = id as usize % setups.len();
+    let entry = setups.get_mut(slot)?;
+    if entry.0.as_ref().is_none_or(|c| c.id != id) {
+        let tri = scene.triangle(id)?;
+        entry.0 = Some(Interp::new::<F>(cfg, map, id, &tri));
+    }
+    entry.0.as_ref()
 }
 
 /// One pixel of [`shade_with`].

@@ -7,7 +7,9 @@ use core::marker::PhantomData;
 use super::ShadeConfig;
 use crate::depth::DepthFormat;
 use crate::probe::Probe;
-use crate::shadow::{AllFilters, Built, Lookup, MapView, Shadow, Slope, lookup, virtual_samples};
+use crate::shadow::{
+    AllFilters, Built, Lookup, MapCoord, MapView, Shadow, Slope, lookup, settle_region, virtual_samples,
+};
 use crate::silhouette::{SilStore, SilhouetteMap};
 
 /// The unit that turns a pixel's lookup into its shadow fraction.
@@ -28,6 +30,22 @@ pub trait ShadowUnit<F: DepthFormat> {
         tangent: T,
         probe: &mut P,
     ) -> Shadow;
+
+    /// The fraction [`decide`](Self::decide) gives every pixel of a block
+    /// whose map positions lie in `[lo, hi]` and receiver depths in `z`
+    /// (flat receivers), when the unit can settle them all at once without
+    /// their own lookups; `None` otherwise (the default: each pixel is
+    /// decided alone).
+    fn settle(
+        &self,
+        _map: &MapView<'_, F>,
+        _cfg: &ShadeConfig,
+        _lo: [MapCoord; 2],
+        _hi: [MapCoord; 2],
+        _z: (i64, i64),
+    ) -> Option<Shadow> {
+        None
+    }
 }
 
 /// The shadow unit of [`crate::shadow`]: the configured test and filter,
@@ -48,6 +66,17 @@ impl<F: DepthFormat> ShadowUnit<F> for MapUnit {
         probe: &mut P,
     ) -> Shadow {
         decide_on_map::<F, P, T, AllFilters>(map, cfg, lookup, tangent, probe)
+    }
+
+    fn settle(
+        &self,
+        map: &MapView<'_, F>,
+        cfg: &ShadeConfig,
+        lo: [MapCoord; 2],
+        hi: [MapCoord; 2],
+        z: (i64, i64),
+    ) -> Option<Shadow> {
+        settle_region(map, &cfg.shadow, lo, hi, z)
     }
 }
 
@@ -78,6 +107,17 @@ impl<F: DepthFormat, K: Built> ShadowUnit<F> for MapUnitWith<K> {
         probe: &mut P,
     ) -> Shadow {
         decide_on_map::<F, P, T, K>(map, cfg, lookup, tangent, probe)
+    }
+
+    fn settle(
+        &self,
+        map: &MapView<'_, F>,
+        cfg: &ShadeConfig,
+        lo: [MapCoord; 2],
+        hi: [MapCoord; 2],
+        z: (i64, i64),
+    ) -> Option<Shadow> {
+        if K::BOX { settle_region(map, &cfg.shadow, lo, hi, z) } else { None }
     }
 }
 

@@ -1,8 +1,8 @@
 //! Lookup culling: the tiles' stored bounds decide a lookup before any texel is read.
 
-use super::{DepthTest, MapView};
-use crate::depth::DepthFormat;
+use super::{DepthTest, Filter, Lookup, MapCoord, MapView, Shadow, ShadowConfig, Texels, at_format};
 use crate::depth::TileState;
+use crate::depth::{DepthFormat, PlaneZ};
 use crate::raster::tile::TileRect;
 
 /// The smallest and largest reference depth over the tiles under `r`, from
@@ -46,4 +46,44 @@ fn over_tiles<F: DepthFormat>(
         }
     }
     (lo, hi)
+}
+
+/// A region's lookups settled at once: the ordinary (no tangent plane)
+/// lookups of every point whose map position lies in `[lo, hi]` (texels)
+/// and whose receiver depth lies in `z` ([`PlaneZ`](crate::depth::PlaneZ)
+/// bits), through a box filter with lookup culling — all lit, all
+/// shadowed, or `None` when the tiles' bounds do not settle them all. The
+/// union of the points' footprints is bounded by the footprints at `lo`
+/// and `hi` (a box's texels follow its point), and its reference bounds
+/// hold every point's, so a region settled here gives each point the
+/// fraction its own lookup gives ([`super::filter`]'s front), bit for bit.
+#[must_use]
+pub(crate) fn settle_region<F: DepthFormat>(
+    map: &MapView<'_, F>,
+    cfg: &ShadowConfig,
+    lo: [MapCoord; 2],
+    hi: [MapCoord; 2],
+    z: (i64, i64),
+) -> Option<Shadow> {
+    if !cfg.cull_lookups || !matches!(cfg.filter, Filter::Box { .. }) {
+        return None;
+    }
+    let (z_lo, z_hi) = z;
+    if z_hi < 0 {
+        // Nearer than the near plane: lit.
+        return Some(Shadow::ZERO);
+    }
+    let at =
+        |[x, y]: [MapCoord; 2]| Lookup { x, y, z: PlaneZ::ZERO, footprint: [MapCoord::ZERO; 2], seed: 0, slope: None };
+    let (first, last) = (Texels::under(cfg.filter, &at(lo), None)?, Texels::under(cfg.filter, &at(hi), None)?);
+    let union = Texels { x0: first.x0, y0: first.y0, x1: last.x1, y1: last.y1 };
+    let (inside_map, whole) = union.clip(map.raster.width(), map.raster.height());
+    // Every footprint off the map: lit.
+    let Some(inside_map) = inside_map else { return Some(Shadow::ZERO) };
+    let (bias_lo, bias_hi) = cfg.bias.bounds();
+    let (r_lo, r_hi) = reference_bounds(map, cfg.test, &inside_map);
+    if at_format::<F>(z_hi.saturating_sub(bias_lo)) <= r_lo {
+        return Some(Shadow::ZERO);
+    }
+    (whole && z_lo >= 0 && at_format::<F>(z_lo.saturating_sub(bias_hi)) > r_hi).then_some(Shadow::ONE)
 }

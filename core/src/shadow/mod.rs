@@ -56,6 +56,7 @@ mod tangent;
 pub use built::{AllFilters, BoxFilter, Built};
 pub use config::{Bias, DepthTest, Filter, Jitter, ShadowConfig, ShadowConfigError};
 use cull::reference_bounds;
+pub(crate) use cull::settle_region;
 use filter::at_format;
 pub(crate) use filter::lookup;
 pub use filter::shadow;

@@ -8,7 +8,7 @@ use umbra::core::probe::Totals;
 use umbra::core::shade::{
     MapUnit, MapUnitWith, Normals, SceneTriangle, ShadeConfig, ShadeSetup, Shaded, shade, shade_with,
 };
-use umbra::core::shadow::{Bias, BoxFilter, DepthTest, Filter, Jitter, MapView, Shadow, ShadowConfig};
+use umbra::core::shadow::{Bias, BoxFilter, DepthTest, Filter, Jitter, MapCoord, MapView, Shadow, ShadowConfig};
 use umbra::core::{ConfigError, CullMode, D16, D24, DepthFormat, DepthUnit, F32, NO_TRIANGLE, NoProbe};
 
 use crate::common::{config, run, run_visibility};
@@ -277,6 +277,38 @@ fn the_fraction_alone_is_the_whole_results_fraction() {
         assert!(whole.iter().any(|p| p.shadow == Shadow::ONE) && whole.iter().any(|p| p.shadow == Shadow::ZERO));
         assert!(whole.iter().map(|p| p.shadow).eq(fractions.iter().copied()), "{filter:?}");
         assert_eq!(a, b, "{filter:?}");
+    }
+}
+
+/// Blocks of pixels at the map's edge: under a light whose map covers only
+/// part of the boxes' shadows (outside it is lit), the fractions by
+/// blocks (a fraction-only pass with no probe) are the pixel unit's.
+#[test]
+fn blocks_at_the_maps_edge_give_the_pixel_units_fractions() {
+    let scene = row_of_boxes();
+    for fov in [0.35f32, 0.5, 0.7] {
+        let light = perspective(Vec3::new(0.6, 4.0, 1.0), Vec3::new(-0.3, 0.0, 0.0), fov, 1.0, 20.0);
+        let cfg = config(128, 16, DepthUnit::Dual, true);
+        let (maps, _) = run::<D24, _, 64>(cfg, &scene.clip(&light, true), CullMode::None, 4096, NoProbe);
+        let view = MapView::<D24>::new(cfg.raster, &maps.z1, &maps.z2, &maps.tiles).expect("sized");
+        let (ids, _, _) = run_visibility::<D24>(CAMERA, 16, &scene.clip(&camera(), false), true);
+        let source = |id: u32| scene.tris.get(id as usize).copied();
+        for size in [2, 3] {
+            let cam = camera_config(light, second(Filter::Box { size }), true, Normals::Flat);
+            let n = (CAMERA * CAMERA) as usize;
+            let (mut whole, mut fractions) = (vec![Shaded::BACKGROUND; n], vec![Shadow::ONE; n]);
+            shade_with(&cam, &ids, &view, &source, &mut whole, &MapUnit, &mut [], &mut NoProbe).expect("sized");
+            shade_with(&cam, &ids, &view, &source, &mut fractions, &MapUnit, &mut [], &mut NoProbe).expect("sized");
+            let outside = whole
+                .iter()
+                .filter(|p| p.light.is_some_and(|l| l.x < MapCoord::ZERO || l.x.to_num::<u32>() >= 128))
+                .count();
+            assert!(
+                outside > 100 && whole.iter().any(|p| p.shadow == Shadow::ONE),
+                "fov {fov}: the map's edge crosses the image"
+            );
+            assert!(whole.iter().map(|p| p.shadow).eq(fractions.iter().copied()), "fov {fov}, box {size}");
+        }
     }
 }
 
