@@ -9,7 +9,9 @@
 //! than one unit of the last place. So the block's points lie in the
 //! corners' bounding box widened by that unit, and a flat receiver's depth
 //! — the light pass's plane, linear on the map, then floored — between its
-//! values at that box's corners. [`ShadowUnit::settle`] decides the lookups
+//! values at that box's corners (or, for a triangle with no plane on the
+//! map, its own depth `Z/Λw`, projective as well: between its corners'
+//! values, widened by the division's unit). [`ShadowUnit::settle`] decides the lookups
 //! of that whole region or declines; a declined block, and any block that
 //! is not one flat triangle, is shaded pixel by pixel. The fractions are
 //! the pixel-by-pixel unit's, bit for bit (a test compares them); the
@@ -100,24 +102,33 @@ struct Region {
 
 /// The map region a block of one flat triangle covers: the bounding box
 /// of its corner pixels' light points widened by one unit of the last
-/// place, and the range of the light pass's plane over it; `None` when a
-/// corner is behind the light or the triangle has no plane on the map.
+/// place, and the range of the receiver's depth over it (the light pass's
+/// plane over the box, or the triangle's own depths at the corners when
+/// it has no plane on the map); `None` when a corner is behind the light.
 fn region<F: DepthFormat>(interp: &Interp, block: &TileRect) -> Option<Region> {
     let (x1, y1) = (block.x1 - 1, block.y1 - 1);
     let corners = [(block.x0, block.y0), (x1, block.y0), (block.x0, y1), (x1, y1)];
+    // Without the light pass's plane, a receiver's depth is its own light
+    // point's, `Z/Λw`: projective too, so bounded by the corners' (and the
+    // truncated division by one unit).
+    let own_depth = interp.plane.is_none();
     let mut lo = [MapCoord::MAX; 2];
     let mut hi = [MapCoord::MIN; 2];
+    let (mut z_lo, mut z_hi) = (i64::MAX, i64::MIN);
     for (px, py) in corners {
-        let p = interp.light_point::<F>(px, py, false)?;
+        let p = interp.light_point::<F>(px, py, own_depth)?;
         lo = [lo[0].min(p.x), lo[1].min(p.y)];
         hi = [hi[0].max(p.x), hi[1].max(p.y)];
+        (z_lo, z_hi) = (z_lo.min(p.z.to_bits().saturating_sub(1)), z_hi.max(p.z.to_bits().saturating_add(1)));
     }
     let lo = lo.map(|c| c.saturating_sub(MapCoord::DELTA));
     let hi = hi.map(|c| c.saturating_add(MapCoord::DELTA));
-    let (mut z_lo, mut z_hi) = (i64::MAX, i64::MIN);
-    for (x, y) in [(lo[0], lo[1]), (hi[0], lo[1]), (lo[0], hi[1]), (hi[0], hi[1])] {
-        let (z, _) = interp.plane_at(&LightPoint { x, y, z: PlaneZ::ZERO })?;
-        (z_lo, z_hi) = (z_lo.min(z.to_bits()), z_hi.max(z.to_bits()));
+    if !own_depth {
+        (z_lo, z_hi) = (i64::MAX, i64::MIN);
+        for (x, y) in [(lo[0], lo[1]), (hi[0], lo[1]), (lo[0], hi[1]), (hi[0], hi[1])] {
+            let (z, _) = interp.plane_at(&LightPoint { x, y, z: PlaneZ::ZERO })?;
+            (z_lo, z_hi) = (z_lo.min(z.to_bits()), z_hi.max(z.to_bits()));
+        }
     }
     Some(Region { lo, hi, z: (z_lo, z_hi) })
 }
