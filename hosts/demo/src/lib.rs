@@ -90,7 +90,7 @@ pub struct Memory<const MAP_TEXELS: usize, const MAP_TILES: usize, const SETUPS:
 /// The full demo's memory: a 64² map, 16 setups.
 pub type Full = Memory<{ 64 * 64 }, 16, SETUPS>;
 /// The largest demo a part of 16 KiB of RAM holds beside its stack: a 32²
-/// map and 4 setups, 532 bytes to spare on the Cortex-M0 (a 36² map needs
+/// map and 4 setups, 612 bytes to spare on the Cortex-M0 (a 36² map needs
 /// 1,368 bytes more, 8 setups 640).
 pub type Small = Memory<{ 32 * 32 }, 4, 4>;
 
