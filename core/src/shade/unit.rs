@@ -51,37 +51,14 @@ pub trait ShadowUnit<F: DepthFormat> {
 /// The shadow unit of [`crate::shadow`]: the configured test and filter,
 /// with Wang & Molnar's virtual samples when the configuration asks; built
 /// with every filter.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct MapUnit;
+pub type MapUnit = MapUnitWith<AllFilters>;
 
-impl<F: DepthFormat> ShadowUnit<F> for MapUnit {
-    type Built = AllFilters;
+/// The [`MapUnit`](tyalias@MapUnit), as a value (`&MapUnit`, as of a unit struct).
+#[allow(non_upper_case_globals, reason = "the value of the unit type of the same name")]
+pub const MapUnit: MapUnit = MapUnitWith::new();
 
-    fn decide<P: Probe, T: FnOnce() -> Option<Slope>>(
-        &self,
-        map: &MapView<'_, F>,
-        cfg: &ShadeConfig,
-        lookup: &Lookup,
-        tangent: T,
-        probe: &mut P,
-    ) -> Shadow {
-        decide_on_map::<F, P, T, AllFilters>(map, cfg, lookup, tangent, probe)
-    }
-
-    fn settle(
-        &self,
-        map: &MapView<'_, F>,
-        cfg: &ShadeConfig,
-        lo: [MapCoord; 2],
-        hi: [MapCoord; 2],
-        z: (i64, i64),
-    ) -> Option<Shadow> {
-        settle_region(map, &cfg.shadow, lo, hi, z)
-    }
-}
-
-/// [`MapUnit`] built with the datapaths `K` only ([`crate::shadow::Built`]):
-/// `MapUnitWith::<BoxFilter>::new()` is a unit with the box filter alone,
+/// The map's shadow unit built with the datapaths `K` ([`crate::shadow::Built`]):
+/// [`MapUnit`](tyalias@MapUnit) with all of them; `MapUnitWith::<BoxFilter>::new()` the box filter alone,
 /// a constant bias and flat normals' tangent planes, and the code of no
 /// other.
 #[derive(Clone, Copy, Debug, Default)]

@@ -190,7 +190,7 @@ pub fn map_view<F: DepthFormat>(maps: &LightMaps<F::Texel>, front_culled: bool) 
 
 /// The camera pass into `frame`: the visibility unit over `scene` from its
 /// camera, then the shading unit against `view` with shadow unit `unit`
-/// (the map's [`MapUnit`](umbra_core::shade::MapUnit), or Sen et al.'s silhouette unit), reporting every
+/// (the map's [`MapUnit`](tyalias@umbra_core::shade::MapUnit), or Sen et al.'s silhouette unit), reporting every
 /// event of both units to `probe`. The shaded pixels are `frame.pixels`.
 ///
 /// # Errors
