@@ -60,29 +60,35 @@ pub(super) fn shade<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, R: Pixe
 ) {
     let width = (rect.x1 - rect.x0) as usize;
     let at = |px: u32, py: u32| (py - rect.y0) as usize * width + (px - rect.x0) as usize;
+    // The store is consulted when the id changes, as in the pixel unit.
+    let (mut run, mut interp): (u32, Option<&Interp>) = (NO_TRIANGLE, None);
     for by in (rect.y0..rect.y1).step_by(BLOCK as usize) {
         for bx in (rect.x0..rect.x1).step_by(BLOCK as usize) {
             let block = TileRect { x0: bx, y0: by, x1: (bx + BLOCK).min(rect.x1), y1: (by + BLOCK).min(rect.y1) };
             let pixels = || (block.y0..block.y1).flat_map(move |py| (block.x0..block.x1).map(move |px| (px, py)));
             let first = ids.get(at(bx, by)).copied().unwrap_or(NO_TRIANGLE);
             let one_triangle = first != NO_TRIANGLE && pixels().all(|(px, py)| ids.get(at(px, py)) == Some(&first));
-            let settled = if one_triangle {
-                setup_of(cfg, map, scene, setups, first)
-                    .and_then(|i| region::<F>(i, &block))
-                    .and_then(|r| unit.settle(map, cfg, r.lo, r.hi, r.z))
-            } else {
-                None
-            };
+            let mut settled = None;
+            if one_triangle {
+                if first != run {
+                    (run, interp) = (first, setup_of(cfg, map, scene, setups, first));
+                }
+                settled =
+                    interp.and_then(|i| region::<F>(i, &block)).and_then(|r| unit.settle(map, cfg, r.lo, r.hi, r.z));
+            }
             for (px, py) in pixels() {
                 let k = at(px, py);
                 let result = match settled {
                     Some(shadow) => R::keep(Shaded { shadow, ..Shaded::BACKGROUND }),
-                    None => match setup_of(cfg, map, scene, setups, ids.get(k).copied().unwrap_or(NO_TRIANGLE)) {
-                        Some(i) => {
-                            R::keep(shade_pixel(cfg, map, unit, &mut NoProbe, light_inverse_transpose, (px, py), i))
+                    None => {
+                        let id = ids.get(k).copied().unwrap_or(NO_TRIANGLE);
+                        if id != run {
+                            (run, interp) = (id, setup_of(cfg, map, scene, setups, id));
                         }
-                        None => R::BACKGROUND,
-                    },
+                        interp.map_or(R::BACKGROUND, |i| {
+                            R::keep(shade_pixel(cfg, map, unit, &mut NoProbe, light_inverse_transpose, (px, py), i))
+                        })
+                    }
                 };
                 if let Some(o) = out.get_mut(k) {
                     *o = result;
