@@ -1,6 +1,7 @@
 //! The shading unit on blocks of pixels: when only the shadow fraction is
 //! kept, a 4×4 block of one flat triangle is settled at once when the
-//! shadow unit's tile bounds settle the region of the map it covers.
+//! shadow unit settles the region of the map it covers: by the tiles'
+//! stored bounds, or else by the region's texels.
 //!
 //! The light points of a block of pixels on one triangle lie in the convex
 //! hull of its corner pixels' points: the map position is a projective

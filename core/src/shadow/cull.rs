@@ -52,11 +52,14 @@ fn over_tiles<F: DepthFormat>(
 /// lookups of every point whose map position lies in `[lo, hi]` (texels)
 /// and whose receiver depth lies in `z` ([`PlaneZ`](crate::depth::PlaneZ)
 /// bits), through a box filter with lookup culling — all lit, all
-/// shadowed, or `None` when the tiles' bounds do not settle them all. The
-/// union of the points' footprints is bounded by the footprints at `lo`
-/// and `hi` (a box's texels follow its point), and its reference bounds
-/// hold every point's, so a region settled here gives each point the
-/// fraction its own lookup gives ([`super::filter`]'s front), bit for bit.
+/// shadowed, or `None` when they differ. The union of the points'
+/// footprints is the box from the footprint at `lo` to the one at `hi` (a
+/// box's texels follow its point). The tiles' stored bounds over it are
+/// consulted first; when they do not settle it, its references are read
+/// texel by texel (up to [`SETTLE_TEXELS`] of them), as the points' own
+/// lookups would read them. Either way a region is settled lit exactly
+/// when every point's lookup is lit, and shadowed exactly when every one
+/// is shadowed ([`super::filter`]'s front), bit for bit.
 #[must_use]
 pub(crate) fn settle_region<F: DepthFormat>(
     map: &MapView<'_, F>,
@@ -81,9 +84,48 @@ pub(crate) fn settle_region<F: DepthFormat>(
     // Every footprint off the map: lit.
     let Some(inside_map) = inside_map else { return Some(Shadow::ZERO) };
     let (bias_lo, bias_hi) = cfg.bias.bounds();
+    // Every sample is lit at or beyond `lit_from`, shadowed below `shadowed_below`.
+    let lit_from = at_format::<F>(z_hi.saturating_sub(bias_lo));
+    let shadowed_below = (whole && z_lo >= 0).then(|| at_format::<F>(z_lo.saturating_sub(bias_hi)));
     let (r_lo, r_hi) = reference_bounds(map, cfg.test, &inside_map);
-    if at_format::<F>(z_hi.saturating_sub(bias_lo)) <= r_lo {
+    if lit_from <= r_lo {
         return Some(Shadow::ZERO);
     }
-    (whole && z_lo >= 0 && at_format::<F>(z_lo.saturating_sub(bias_hi)) > r_hi).then_some(Shadow::ONE)
+    if shadowed_below.is_some_and(|s| s > r_hi) {
+        return Some(Shadow::ONE);
+    }
+    if inside_map.area() > SETTLE_TEXELS {
+        return None;
+    }
+    settle_by_texels(map, cfg.test, &inside_map, lit_from, shadowed_below)
+}
+
+/// The most texels [`settle_region`] reads to settle a region the tiles'
+/// bounds do not (a 4×4 block of pixels over a 3×3 box at up to three
+/// texels a pixel reads 225).
+const SETTLE_TEXELS: u32 = 256;
+
+/// The region's references read texel by texel: lit when every one is at
+/// or beyond `lit_from`, shadowed when every one lies below
+/// `shadowed_below`; `None` as soon as a row shows neither holds.
+fn settle_by_texels<F: DepthFormat>(
+    map: &MapView<'_, F>,
+    test: DepthTest,
+    r: &TileRect,
+    lit_from: i64,
+    shadowed_below: Option<i64>,
+) -> Option<Shadow> {
+    let below = shadowed_below.unwrap_or(i64::MIN);
+    let (mut lit, mut shadowed) = (true, shadowed_below.is_some());
+    for y in r.y0..r.y1 {
+        for x in r.x0..r.x1 {
+            let reference = map.reference(test, x, y);
+            lit &= reference >= lit_from;
+            shadowed &= reference < below;
+        }
+        if !lit && !shadowed {
+            return None;
+        }
+    }
+    if lit { Some(Shadow::ZERO) } else { shadowed.then_some(Shadow::ONE) }
 }
