@@ -30,8 +30,12 @@ use crate::probe::NoProbe;
 use crate::raster::tile::TileRect;
 use crate::shadow::Filter;
 
-/// The side of a block, pixels.
-const BLOCK: u32 = 4;
+/// The side of a block, pixels: a block that does not settle is tried
+/// again as four of half the side, and those pixel by pixel.
+const BLOCK: u32 = 8;
+
+/// The side of the smallest block tried.
+const SUB_BLOCK: u32 = 4;
 
 /// Whether blocks can be settled under `cfg`: flat receivers, and a box
 /// filter whose ordinary lookup alone decides a pixel it settles (with
@@ -59,41 +63,98 @@ pub(super) fn shade<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, R: Pixe
     setups: &mut [ShadeSetup],
     light_inverse_transpose: &Mat4,
 ) {
-    let width = (rect.x1 - rect.x0) as usize;
-    let at = |px: u32, py: u32| (py - rect.y0) as usize * width + (px - rect.x0) as usize;
-    // The store is consulted when the id changes, as in the pixel unit.
-    let (mut run, mut interp): (u32, Option<&Interp>) = (NO_TRIANGLE, None);
+    let mut blocks = Blocks { cfg, rect, ids, map, scene, unit, setups, run: (NO_TRIANGLE, None) };
     for by in (rect.y0..rect.y1).step_by(BLOCK as usize) {
         for bx in (rect.x0..rect.x1).step_by(BLOCK as usize) {
-            let block = TileRect { x0: bx, y0: by, x1: (bx + BLOCK).min(rect.x1), y1: (by + BLOCK).min(rect.y1) };
-            let pixels = || (block.y0..block.y1).flat_map(move |py| (block.x0..block.x1).map(move |px| (px, py)));
-            let first = ids.get(at(bx, by)).copied().unwrap_or(NO_TRIANGLE);
-            let one_triangle = first != NO_TRIANGLE && pixels().all(|(px, py)| ids.get(at(px, py)) == Some(&first));
-            let mut settled = None;
-            if one_triangle {
-                if first != run {
-                    (run, interp) = (first, setup_of(cfg, map, scene, setups, first));
-                }
-                settled =
-                    interp.and_then(|i| region::<F>(i, &block)).and_then(|r| unit.settle(map, cfg, r.lo, r.hi, r.z));
+            let block = blocks.block(bx, by, BLOCK);
+            if blocks.fill(&block, out) {
+                continue;
             }
-            for (px, py) in pixels() {
-                let k = at(px, py);
-                let result = match settled {
-                    Some(shadow) => R::keep(Shaded { shadow, ..Shaded::BACKGROUND }),
-                    None => {
-                        let id = ids.get(k).copied().unwrap_or(NO_TRIANGLE);
-                        if id != run {
-                            (run, interp) = (id, setup_of(cfg, map, scene, setups, id));
-                        }
-                        interp.map_or(R::BACKGROUND, |i| {
-                            R::keep(shade_pixel(cfg, map, unit, &mut NoProbe, light_inverse_transpose, (px, py), i))
-                        })
+            for sy in (block.y0..block.y1).step_by(SUB_BLOCK as usize) {
+                for sx in (block.x0..block.x1).step_by(SUB_BLOCK as usize) {
+                    let sub = blocks.block(sx, sy, SUB_BLOCK).intersect(&block).unwrap_or(block);
+                    if !blocks.fill(&sub, out) {
+                        blocks.pixels(&sub, out, light_inverse_transpose);
                     }
-                };
-                if let Some(o) = out.get_mut(k) {
-                    *o = result;
                 }
+            }
+        }
+    }
+}
+
+/// The block unit's state over one rectangle of the image.
+struct Blocks<'c, 'm, 's, F: DepthFormat, S, U> {
+    cfg: &'c ShadeConfig,
+    rect: TileRect,
+    ids: &'c [u32],
+    map: &'c MapView<'m, F>,
+    scene: &'c S,
+    unit: &'c U,
+    setups: &'s mut [ShadeSetup],
+    /// The triangle last met and its setup's place in the store (the
+    /// store is consulted when the id changes, as in the pixel unit).
+    run: (u32, Option<usize>),
+}
+
+impl<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>> Blocks<'_, '_, '_, F, S, U> {
+    /// The block of side `side` at `(x, y)`, cut to the rectangle.
+    fn block(&self, x: u32, y: u32, side: u32) -> TileRect {
+        TileRect { x0: x, y0: y, x1: (x + side).min(self.rect.x1), y1: (y + side).min(self.rect.y1) }
+    }
+
+    /// The rows of `block` in a buffer of the rectangle's pixels.
+    fn rows(&self, block: &TileRect) -> impl Iterator<Item = core::ops::Range<usize>> + use<F, S, U> {
+        let (width, x0, y0) = (self.rect.width() as usize, self.rect.x0, self.rect.y0);
+        let (a, b) = ((block.x0 - x0) as usize, (block.x1 - x0) as usize);
+        (block.y0 - y0..block.y1 - y0).map(move |y| y as usize * width + a..y as usize * width + b)
+    }
+
+    /// The setup of triangle `id`, from the last one met or the store.
+    fn interp(&mut self, id: u32) -> Option<&Interp> {
+        if id != self.run.0 {
+            let found = setup_of(self.cfg, self.map, self.scene, self.setups, id).is_some();
+            self.run = (id, found.then(|| id as usize % self.setups.len()));
+        }
+        self.setups.get(self.run.1?)?.0.as_ref()
+    }
+
+    /// Fill `block` with one result when it can be settled at once: no
+    /// triangle (the background), or one flat triangle whose map region
+    /// the shadow unit settles. Whether it did.
+    fn fill<R: PixelResult>(&mut self, block: &TileRect, out: &mut [R]) -> bool {
+        let first = self.ids.get(self.rows(block).next().map_or(0, |r| r.start)).copied().unwrap_or(NO_TRIANGLE);
+        if !self.rows(block).all(|r| self.ids.get(r).is_some_and(|row| row.iter().all(|&id| id == first))) {
+            return false;
+        }
+        let result = if first == NO_TRIANGLE {
+            R::BACKGROUND
+        } else {
+            let settled = self
+                .interp(first)
+                .and_then(|i| region::<F>(i, block))
+                .and_then(|r| self.unit.settle(self.map, self.cfg, r.lo, r.hi, r.z));
+            match settled {
+                Some(shadow) => R::keep(Shaded { shadow, ..Shaded::BACKGROUND }),
+                None => return false,
+            }
+        };
+        for r in self.rows(block) {
+            if let Some(row) = out.get_mut(r) {
+                row.fill(result);
+            }
+        }
+        true
+    }
+
+    /// Shade `block` pixel by pixel.
+    fn pixels<R: PixelResult>(&mut self, block: &TileRect, out: &mut [R], light_inverse_transpose: &Mat4) {
+        for (py, r) in (block.y0..).zip(self.rows(block)) {
+            let (Some(ids), Some(out)) = (self.ids.get(r.clone()), out.get_mut(r)) else { continue };
+            for (px, (&id, o)) in (block.x0..).zip(ids.iter().zip(out)) {
+                let (cfg, map, unit) = (self.cfg, self.map, self.unit);
+                *o = self.interp(id).map_or(R::BACKGROUND, |i| {
+                    R::keep(shade_pixel(cfg, map, unit, &mut NoProbe, light_inverse_transpose, (px, py), i))
+                });
             }
         }
     }

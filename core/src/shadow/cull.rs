@@ -84,48 +84,22 @@ pub(crate) fn settle_region<F: DepthFormat>(
     // Every footprint off the map: lit.
     let Some(inside_map) = inside_map else { return Some(Shadow::ZERO) };
     let (bias_lo, bias_hi) = cfg.bias.bounds();
-    // Every sample is lit at or beyond `lit_from`, shadowed below `shadowed_below`.
+    // Every sample is lit when its reference is at or beyond `lit_from`,
+    // and shadowed when it lies below `shadowed_below`.
     let lit_from = at_format::<F>(z_hi.saturating_sub(bias_lo));
     let shadowed_below = (whole && z_lo >= 0).then(|| at_format::<F>(z_lo.saturating_sub(bias_hi)));
-    let (r_lo, r_hi) = reference_bounds(map, cfg.test, &inside_map);
-    if lit_from <= r_lo {
-        return Some(Shadow::ZERO);
-    }
-    if shadowed_below.is_some_and(|s| s > r_hi) {
-        return Some(Shadow::ONE);
-    }
-    if inside_map.area() > SETTLE_TEXELS {
-        return None;
-    }
-    settle_by_texels(map, cfg.test, &inside_map, lit_from, shadowed_below)
+    let settle = |(r_lo, r_hi): (i64, i64)| {
+        if lit_from <= r_lo {
+            Some(Shadow::ZERO)
+        } else {
+            shadowed_below.is_some_and(|s| s > r_hi).then_some(Shadow::ONE)
+        }
+    };
+    settle(reference_bounds(map, cfg.test, &inside_map))
+        .or_else(|| (inside_map.area() <= SETTLE_TEXELS).then(|| settle(map.texel_bounds(cfg.test, &inside_map)))?)
 }
 
 /// The most texels [`settle_region`] reads to settle a region the tiles'
 /// bounds do not (a 4×4 block of pixels over a 3×3 box at up to three
 /// texels a pixel reads 225).
 const SETTLE_TEXELS: u32 = 256;
-
-/// The region's references read texel by texel: lit when every one is at
-/// or beyond `lit_from`, shadowed when every one lies below
-/// `shadowed_below`; `None` as soon as a row shows neither holds.
-fn settle_by_texels<F: DepthFormat>(
-    map: &MapView<'_, F>,
-    test: DepthTest,
-    r: &TileRect,
-    lit_from: i64,
-    shadowed_below: Option<i64>,
-) -> Option<Shadow> {
-    let below = shadowed_below.unwrap_or(i64::MIN);
-    let (mut lit, mut shadowed) = (true, shadowed_below.is_some());
-    for y in r.y0..r.y1 {
-        for x in r.x0..r.x1 {
-            let reference = map.reference(test, x, y);
-            lit &= reference >= lit_from;
-            shadowed &= reference < below;
-        }
-        if !lit && !shadowed {
-            return None;
-        }
-    }
-    if lit { Some(Shadow::ZERO) } else { shadowed.then_some(Shadow::ONE) }
-}

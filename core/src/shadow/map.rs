@@ -3,8 +3,9 @@
 use super::{DepthTest, at_format};
 use crate::config::RasterConfig;
 use crate::depth::DepthFormat;
-use crate::depth::TileState;
+use crate::depth::{Texel, TileState};
 use crate::probe::{Buffer, Probe, TexelRead};
+use crate::raster::tile::TileRect;
 
 /// A light pass's maps, as the shadow unit reads them.
 #[derive(Clone, Copy, Debug)]
@@ -124,6 +125,42 @@ impl<'a, F: DepthFormat> MapView<'a, F> {
         } else {
             (t.z2_min, t.z2_max)
         }
+    }
+
+    /// The smallest and largest reference over the texels of `r` (inside
+    /// the map), read row by row: a test that reads one buffer reduces its
+    /// texels and widens the two it keeps.
+    pub(super) fn texel_bounds(&self, test: DepthTest, r: &TileRect) -> (i64, i64) {
+        let second = if self.second_in_z1 { self.z1 } else { self.z2 };
+        let one = match test {
+            DepthTest::First => Some(self.z1),
+            DepthTest::Second => Some(second),
+            _ => None,
+        };
+        let (mut lo, mut hi) = (i64::MAX, i64::MIN);
+        match one {
+            // No second depth: nothing behind.
+            Some([]) => return (F::widen(F::FAR), F::widen(F::FAR)),
+            Some(buf) => {
+                let w = self.raster.width() as usize;
+                let (x0, x1) = (r.x0 as usize, r.x1 as usize);
+                for y in r.y0 as usize..r.y1 as usize {
+                    let row = buf.get(y * w + x0..y * w + x1).unwrap_or_default();
+                    if let (Some(a), Some(b)) = (row.iter().map(|t| t.key()).min(), row.iter().map(|t| t.key()).max()) {
+                        (lo, hi) = (lo.min(F::widen(F::Texel::from_key(a))), hi.max(F::widen(F::Texel::from_key(b))));
+                    }
+                }
+            }
+            None => {
+                for y in r.y0..r.y1 {
+                    for x in r.x0..r.x1 {
+                        let reference = self.reference(test, x, y);
+                        (lo, hi) = (lo.min(reference), hi.max(reference));
+                    }
+                }
+            }
+        }
+        (lo, hi)
     }
 
     pub(super) fn reference(&self, test: DepthTest, x: u32, y: u32) -> i64 {
