@@ -19,7 +19,8 @@
 //! noisy machine where times do not.
 //!
 //! The environment varies the pass: `TORUS=50x40` (rings × sides: 4 000
-//! larger triangles), `UNIT=single|dual`, `CULL=0|1` (max-z culling),
+//! larger triangles), `MESH=path.obj` (an OBJ mesh in place of the torus,
+//! from the spot light that frames it, as the `llvmpipe` bench draws it), `UNIT=single|dual`, `CULL=0|1` (max-z culling),
 //! `ARCH=talisman|immediate|…` (the counting path: that bundled
 //! architecture's timing probe on every event, the immediate-mode ones
 //! with their depth cache fed fragment by fragment):
@@ -33,6 +34,7 @@ use std::hash::{DefaultHasher, Hash, Hasher};
 use umbra::core::glam::Vec3;
 use umbra::core::{CullMode, D24, DepthFormat, DepthUnit, LightPassConfig, NoProbe, RasterConfig};
 use umbra::sim::cost::arch::{Arch, ArchProbe, PassKind};
+use umbra::sim::io::limits::Limits;
 use umbra::sim::pass::light::{Draw, LightFrame, LightOptions, render};
 use umbra::sim::world::mesh::Mesh;
 use umbra::sim::world::scene::Perspective;
@@ -52,10 +54,25 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
         Err(_) => (250, 200),
     };
-    let mesh = Mesh::torus(Vec3::ZERO, 1.0, 0.4, rings, sides);
-    let light =
-        Perspective { position: Vec3::new(0.0, 2.2, 2.6), target: Vec3::ZERO, fov_degrees: 55.0, near: 1.0, far: 8.0 }
-            .view_projection();
+    let (mesh, light) = match std::env::var("MESH") {
+        // An OBJ mesh from the spot light that frames it, as the `llvmpipe` bench draws it.
+        Ok(path) => {
+            let mesh = Mesh::load_obj(std::path::Path::new(&path), &Limits::DEFAULT)?;
+            let light = Perspective::framing(&mesh).ok_or("the mesh has no extent to frame")?.view_projection();
+            (mesh, light)
+        }
+        Err(_) => (
+            Mesh::torus(Vec3::ZERO, 1.0, 0.4, rings, sides),
+            Perspective {
+                position: Vec3::new(0.0, 2.2, 2.6),
+                target: Vec3::ZERO,
+                fov_degrees: 55.0,
+                near: 1.0,
+                far: 8.0,
+            }
+            .view_projection(),
+        ),
+    };
     let raster = RasterConfig::new(side, side, 32, 8)?;
     let unit = match std::env::var("UNIT").as_deref() {
         Ok("dual") => DepthUnit::Dual,

@@ -126,7 +126,7 @@ fn snap_and_set_up<F: DepthFormat>(
 }
 
 fn set_up(raster: &RasterConfig, v: [SnappedVertex; 3], cull: CullMode, id: u32, out: &mut impl FnMut(Output<'_>)) {
-    match Setup::new(raster, v, cull, id) {
+    match Setup::covering(raster, v, cull, id) {
         Ok(s) => out(Output::Setup(&s)),
         Err(reason) => out(Output::Rejected(reason)),
     }

@@ -228,6 +228,10 @@ fn round_div(n: i128, d: i128) -> i128 {
     (2 * n + d).div_euclid(2 * d)
 }
 
+/// The most pixel centres in a bounding box that [`Setup::covering`]
+/// tests before it solves the depth plane.
+const SMALL_BOX: u32 = 16;
+
 /// `floor(v / 2^s)` and `ceil(v / 2^s)`.
 #[inline]
 const fn floor_shift(v: i64, s: u32) -> i64 {
@@ -260,6 +264,37 @@ impl Setup {
     /// [`RejectReason::NoCoverage`] when no pixel centre of the target lies
     /// in its bounding box.
     pub fn new(cfg: &RasterConfig, v: [SnappedVertex; 3], cull: CullMode, triangle: u32) -> Result<Self, RejectReason> {
+        Self::build(cfg, v, cull, triangle, false)
+    }
+
+    /// [`Setup::new`] as the rasterizer's front end sets up: a triangle
+    /// whose bounding box holds at most four pixel centres has
+    /// them tested before its depth plane is solved, and is rejected as
+    /// [`RejectReason::NoCoverage`] when it covers none (most of a fine
+    /// mesh's triangles, seen from afar). It draws what [`Setup::new`]'s
+    /// setup draws; only the plane of a triangle that draws nothing is
+    /// not solved.
+    ///
+    /// # Errors
+    /// Those of [`Setup::new`].
+    #[inline]
+    pub fn covering(
+        cfg: &RasterConfig,
+        v: [SnappedVertex; 3],
+        cull: CullMode,
+        triangle: u32,
+    ) -> Result<Self, RejectReason> {
+        Self::build(cfg, v, cull, triangle, true)
+    }
+
+    #[inline(never)]
+    fn build(
+        cfg: &RasterConfig,
+        v: [SnappedVertex; 3],
+        cull: CullMode,
+        triangle: u32,
+        test_small: bool,
+    ) -> Result<Self, RejectReason> {
         let limit = 1i64 << WINDOW_COORD_BITS;
         if v.iter().any(|p| !(-limit..=limit).contains(&p.x.0) || !(-limit..=limit).contains(&p.y.0)) {
             return Err(RejectReason::OutOfRange);
@@ -307,6 +342,15 @@ impl Setup {
             Edge { dx: -ey * unit, dy: ex * unit, c: ex * (half - a.y.0) - ey * (half - a.x.0) + bias }
         };
         let edges = [edge(&v0, &v1), edge(&v1, &v2), edge(&v2, &v0)];
+        // A small triangle's few pixel centres are tested before its depth
+        // plane is solved.
+        if test_small && bbox.area() <= SMALL_BOX {
+            let covers = (bbox.y0..bbox.y1)
+                .any(|y| (bbox.x0..bbox.x1).any(|x| edges.iter().all(|e| e.at(i64::from(x), i64::from(y)) >= 0)));
+            if !covers {
+                return Err(RejectReason::NoCoverage);
+            }
+        }
 
         let z0 = i128::from(v0.z.to_bits());
         // Within the budget, so the differences of x and y are i64.

@@ -179,8 +179,9 @@ proptest! {
 
     /// A setup moved into a window ([`Setup::in_window`]: integer re-basing
     /// of edges and plane) equals the setup made from the vertices snapped
-    /// in that window, and is `None` exactly when the window's own setup
-    /// finds no pixel to cover.
+    /// in that window, and is `None` when the window's own setup finds no
+    /// pixel to cover (or covers none of the window's pixel centres, when
+    /// the window's front end rejects a small triangle that covers none).
     #[test]
     fn setups_moved_into_a_window_equal_setups_made_there(
         tris in triangles(12),
@@ -210,7 +211,15 @@ proptest! {
                 match (a, b) {
                     (Some(a), Some(b)) => prop_assert_eq!(a, b),
                     (Some(a), None) => prop_assert!(false, "the window covers {:?}, the moved setup nothing", a.bbox),
-                    (_, Some(b)) => prop_assert!(false, "the moved setup covers {:?}, the window nothing", b.bbox),
+                    // The window's front end rejects a small triangle that
+                    // covers none of its pixel centres before solving its
+                    // plane; moved in, the same triangle covers none either.
+                    (_, Some(b)) => {
+                        let r = b.bbox;
+                        let covered = (r.y0..r.y1)
+                            .any(|y| (r.x0..r.x1).any(|x| b.covers(i64::from(x), i64::from(y))));
+                        prop_assert!(!covered, "the moved setup covers pixels of {:?}, the window nothing", r);
+                    }
                     (_, None) => {}
                 }
             }
