@@ -1,7 +1,9 @@
 //! The shading unit on blocks of pixels: when only the shadow fraction is
-//! kept, a 4×4 block of one flat triangle is settled at once when the
-//! shadow unit settles the region of the map it covers: by the tiles'
-//! stored bounds, or else by the region's texels.
+//! kept, an 8×8 block of one flat triangle, or else each 4×4 block in it,
+//! is settled at once when the shadow unit settles the region of the map
+//! it covers: by the tiles' stored bounds, or else by the region's texels
+//! ([`crate::shadow`]'s lookup culling, over a block's region). A block
+//! no triangle covers is the background at once.
 //!
 //! The light points of a block of pixels on one triangle lie in the convex
 //! hull of its corner pixels' points: the map position is a projective
@@ -12,11 +14,12 @@
 //! — the light pass's plane, linear on the map, then floored — between its
 //! values at that box's corners (or, for a triangle with no plane on the
 //! map, its own depth `Z/Λw`, projective as well: between its corners'
-//! values, widened by the division's unit). [`ShadowUnit::settle`] decides the lookups
-//! of that whole region or declines; a declined block, and any block that
-//! is not one flat triangle, is shaded pixel by pixel. The fractions are
-//! the pixel-by-pixel unit's, bit for bit (a test compares them); the
-//! events would not be, so probes that watch events take the pixel unit.
+//! values, widened by the division's unit). [`ShadowUnit::settle`] decides
+//! the lookups of that whole region or declines; a declined 4×4 block, and
+//! any that is not one flat triangle, is shaded pixel by pixel. The
+//! fractions are the pixel-by-pixel unit's, bit for bit (a test compares
+//! them); the events would not be, so probes that watch events take the
+//! pixel unit.
 
 use glam::Mat4;
 

@@ -1,6 +1,7 @@
 //! The shading unit by blocks: a pass that keeps only the shadow fraction
-//! and watches no events settles 4×4 blocks of one flat triangle at once
-//! where the shadow unit can. Its fractions are the pixel-by-pixel
+//! and watches no events settles 8×8 and 4×4 blocks of one flat triangle
+//! at once where the shadow unit can (images whose sides are no multiple
+//! of a block's, so that blocks are cut at their edges). Its fractions are the pixel-by-pixel
 //! unit's, bit for bit, on every bundled scene, depth test and box.
 
 use umbra::core::shade::{MapUnit, MapUnitWith, ShadowUnit};
@@ -55,7 +56,7 @@ fn blocks_give_the_pixel_units_fractions() {
             for (size, virtual_samples) in [(2, true), (3, true), (1, false), (5, false)] {
                 let shadow = ShadowConfig::new(test, bias, Filter::Box { size }, true).expect("valid");
                 let options =
-                    CameraOptions { width: 200, height: 120, shadow, virtual_samples, tiling: Tiling::DEFAULT };
+                    CameraOptions { width: 203, height: 117, shadow, virtual_samples, tiling: Tiling::DEFAULT };
                 let (whole, fractions) = both::<D24, _>(&scene, 256, &MapUnit, &options);
                 assert!(whole == fractions, "{name}: {test:?}, box {size}, virtual samples {virtual_samples}");
                 shadowed += whole.iter().filter(|&&s| s == Shadow::ONE).count();
@@ -63,7 +64,7 @@ fn blocks_give_the_pixel_units_fractions() {
         }
         // The unit built with the box alone settles blocks too.
         let shadow = ShadowConfig::new(DepthTest::Second, Bias::ZERO, Filter::Box { size: 2 }, true).expect("valid");
-        let options = CameraOptions { width: 160, height: 96, shadow, virtual_samples: true, tiling: Tiling::DEFAULT };
+        let options = CameraOptions { width: 157, height: 94, shadow, virtual_samples: true, tiling: Tiling::DEFAULT };
         let (whole, fractions) = both::<D16, _>(&scene, 128, &MapUnitWith::<BoxFilter>::new(), &options);
         assert!(whole == fractions, "{name}: the box-only unit");
     }

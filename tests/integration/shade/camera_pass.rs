@@ -5,8 +5,9 @@ use proptest::prelude::*;
 use umbra::core::glam::{Mat4, Vec3, Vec4};
 use umbra::core::probe::Probe;
 use umbra::core::probe::Totals;
+use umbra::core::raster::tile::TileRect;
 use umbra::core::shade::{
-    MapUnit, MapUnitWith, Normals, SceneTriangle, ShadeConfig, ShadeSetup, Shaded, shade, shade_with,
+    MapUnit, MapUnitWith, Normals, SceneTriangle, ShadeConfig, ShadeSetup, Shaded, shade, shade_rect, shade_with,
 };
 use umbra::core::shadow::{Bias, BoxFilter, DepthTest, Filter, Jitter, MapCoord, MapView, Shadow, ShadowConfig};
 use umbra::core::{ConfigError, CullMode, D16, D24, DepthFormat, DepthUnit, F32, NO_TRIANGLE, NoProbe};
@@ -282,7 +283,8 @@ fn the_fraction_alone_is_the_whole_results_fraction() {
 
 /// Blocks of pixels at the map's edge: under a light whose map covers only
 /// part of the boxes' shadows (outside it is lit), the fractions by
-/// blocks (a fraction-only pass with no probe) are the pixel unit's.
+/// blocks (a fraction-only pass with no probe) are the pixel unit's, over
+/// the whole image and over rectangles of it.
 #[test]
 fn blocks_at_the_maps_edge_give_the_pixel_units_fractions() {
     let scene = row_of_boxes();
@@ -308,6 +310,25 @@ fn blocks_at_the_maps_edge_give_the_pixel_units_fractions() {
                 "fov {fov}: the map's edge crosses the image"
             );
             assert!(whole.iter().map(|p| p.shadow).eq(fractions.iter().copied()), "fov {fov}, box {size}");
+            // By rectangles whose sides are no multiple of a block's: the
+            // blocks cut at each rectangle's edges give the same fractions.
+            let mut by_rects = vec![Shadow::ONE; n];
+            for (y0, x0) in (0..CAMERA).step_by(11).flat_map(|y| (0..CAMERA).step_by(13).map(move |x| (y, x))) {
+                let rect = TileRect { x0, y0, x1: (x0 + 13).min(CAMERA), y1: (y0 + 11).min(CAMERA) };
+                let at = |x: u32, y: u32| (y * CAMERA + x) as usize;
+                let rows = || (rect.y0..rect.y1).map(|y| at(rect.x0, y)..at(rect.x1, y));
+                let rect_ids: Vec<u32> = rows().flat_map(|r| ids[r].to_vec()).collect();
+                let mut out = vec![Shadow::ONE; rect_ids.len()];
+                shade_rect(&cam, rect, &rect_ids, &view, &source, &mut out, &MapUnit, &mut [], &mut NoProbe)
+                    .expect("sized");
+                for (r, chunk) in rows().zip(out.chunks(rect.width() as usize)) {
+                    by_rects[r].copy_from_slice(chunk);
+                }
+            }
+            assert!(
+                whole.iter().map(|p| p.shadow).eq(by_rects.iter().copied()),
+                "fov {fov}, box {size}, by rectangles"
+            );
         }
     }
 }
