@@ -268,8 +268,8 @@ impl Setup {
     }
 
     /// [`Setup::new`] as the rasterizer's front end sets up: a triangle
-    /// whose bounding box holds at most four pixel centres has
-    /// them tested before its depth plane is solved, and is rejected as
+    /// whose bounding box holds at most 16 pixel centres has them tested
+    /// before its depth plane is solved, and is rejected as
     /// [`RejectReason::NoCoverage`] when it covers none (most of a fine
     /// mesh's triangles, seen from afar). It draws what [`Setup::new`]'s
     /// setup draws; only the plane of a triangle that draws nothing is
