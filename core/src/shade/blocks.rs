@@ -25,7 +25,7 @@ use glam::Mat4;
 
 use super::{
     Interp, LightPoint, MapCoord, MapView, Normals, PixelResult, ShadeConfig, ShadeSetup, Shaded, ShadowUnit,
-    TriangleSource, setup_of, shade_pixel,
+    TriangleSource, setup_of, setup_slot, shade_pixel,
 };
 use crate::depth::{DepthFormat, PlaneZ};
 use crate::light_pass::NO_TRIANGLE;
@@ -116,7 +116,7 @@ impl<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>> Blocks<'_, '_, '_, F, 
     fn interp(&mut self, id: u32) -> Option<&Interp> {
         if id != self.run.0 {
             let found = setup_of(self.cfg, self.map, self.scene, self.setups, id).is_some();
-            self.run = (id, found.then(|| id as usize % self.setups.len()));
+            self.run = (id, found.then(|| setup_slot(id, self.setups.len())));
         }
         self.setups.get(self.run.1?)?.0.as_ref()
     }

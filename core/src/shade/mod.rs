@@ -319,13 +319,20 @@ fn setup_of<'s, F: DepthFormat, S: TriangleSource>(
     if id == NO_TRIANGLE {
         return None;
     }
-    let slot = id as usize % setups.len();
+    let slot = setup_slot(id, setups.len());
     let entry = setups.get_mut(slot)?;
     if entry.0.as_ref().is_none_or(|c| c.id != id) {
         let tri = scene.triangle(id)?;
         entry.0 = Some(Interp::new::<F>(cfg, map, id, &tri));
     }
     entry.0.as_ref()
+}
+
+/// The entry of a direct-mapped setup store of `len` entries that holds
+/// triangle `id`'s setup.
+#[inline]
+fn setup_slot(id: u32, len: usize) -> usize {
+    id as usize % len
 }
 
 /// One pixel of [`shade_with`].
