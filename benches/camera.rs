@@ -12,8 +12,9 @@ use std::hint::black_box;
 use umbra::core::shade::MapUnit;
 use umbra::core::shadow::{Bias, DepthTest, Shadow, ShadowConfig};
 use umbra::core::{CullMode, D24, DepthUnit, LightPassConfig, NO_TRIANGLE, NoProbe, RasterConfig};
-use umbra::sim::cost::counters::Counters;
-use umbra::sim::pass::camera::{CameraFrame, CameraOptions, Tiling, map_view, render, render_into};
+use umbra::sim::base::counters::Counters;
+use umbra::sim::base::maps::Tiling;
+use umbra::sim::pass::camera::{CameraFrame, CameraOptions, map_view, render, render_into};
 use umbra::sim::pass::light::{LightMaps, LightOptions};
 use umbra::sim::world::scene::Scene;
 
@@ -36,7 +37,8 @@ fn bench_camera(c: &mut Criterion) {
     let mut g = c.benchmark_group("camera_pass_1080p");
     g.sample_size(10);
     g.throughput(Throughput::Elements(u64::from(W * H)));
-    for (name, filter) in filters {
+    for filter in filters {
+        let name = filter.to_string();
         let shadow = ShadowConfig::new(DepthTest::Second, Bias::ZERO, filter, true).expect("valid");
         let options = CameraOptions { width: W, height: H, shadow, virtual_samples: true, tiling: Tiling::DEFAULT };
         let mut counters = Counters::new(&RasterConfig::new(W, H, 32, 8).expect("valid"));
@@ -48,7 +50,7 @@ fn bench_camera(c: &mut Criterion) {
             100.0 * counters.totals.tangent_setups as f64 / covered,
             counters.totals.lookups_culled
         );
-        g.bench_function(BenchmarkId::new(name, "virtual_samples"), |b| {
+        g.bench_function(BenchmarkId::new(name.as_str(), "virtual_samples"), |b| {
             b.iter(|| {
                 render(&mut frame, &scene, &view, &MapUnit, &options, &mut NoProbe).expect("renders");
                 black_box(&frame.pixels);
@@ -57,14 +59,14 @@ fn bench_camera(c: &mut Criterion) {
         if name == "box3" {
             // The shadow fraction alone, 4 bytes a pixel, into a kept buffer.
             let mut shadows: Vec<Shadow> = Vec::new();
-            g.bench_function(BenchmarkId::new(name, "fraction_only"), |b| {
+            g.bench_function(BenchmarkId::new(name.as_str(), "fraction_only"), |b| {
                 b.iter(|| {
                     render_into(&mut frame, &scene, &view, &MapUnit, &options, &mut NoProbe, &mut shadows)
                         .expect("renders");
                     black_box(&shadows);
                 })
             });
-            g.bench_function(BenchmarkId::new(name, "new_frame"), |b| {
+            g.bench_function(BenchmarkId::new(name.as_str(), "new_frame"), |b| {
                 b.iter(|| {
                     let mut frame = CameraFrame::default();
                     render(&mut frame, &scene, &view, &MapUnit, &options, &mut NoProbe).expect("renders");

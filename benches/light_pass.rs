@@ -9,7 +9,7 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 use std::hint::black_box;
 use umbra::core::glam::{Mat4, Vec3};
 use umbra::core::{CullMode, D16, D24, DepthFormat, DepthUnit, LightPassConfig, NoProbe, RasterConfig};
-use umbra::sim::cost::counters::Counters;
+use umbra::sim::base::counters::Counters;
 use umbra::sim::pass::light::{Draw, LightMaps, LightOptions};
 
 const SIZE: u32 = 1024;

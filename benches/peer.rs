@@ -28,7 +28,7 @@ use std::hint::black_box;
 use umbra::core::front;
 use umbra::core::glam::{Mat4, Vec3};
 use umbra::core::{CullMode, D24, DepthUnit, LightPassConfig, NoProbe, Probe, RasterConfig};
-use umbra::sim::cost::counters::Counters;
+use umbra::sim::base::counters::Counters;
 use umbra::sim::pass::light::{Draw, LightFrame, LightMaps, LightOptions, render};
 use umbra::sim::world::mesh::Mesh;
 use umbra::sim::world::scene::Perspective;

@@ -70,10 +70,11 @@ fn bench_lookups(c: &mut Criterion) {
     g.sample_size(10);
     g.throughput(Throughput::Elements(u64::from(W * H)));
     let filters = umbra::sim::experiment::presets::FILTERS;
-    for (name, filter) in filters {
+    for filter in filters {
+        let name = filter.to_string();
         for cull in [false, true] {
             let cfg = ShadowConfig::new(DepthTest::Second, Bias::ZERO, filter, cull).expect("valid");
-            g.bench_function(BenchmarkId::new(name, if cull { "cull" } else { "nocull" }), |b| {
+            g.bench_function(BenchmarkId::new(name.as_str(), if cull { "cull" } else { "nocull" }), |b| {
                 b.iter(|| {
                     (0..W * H)
                         .map(|k| shadow(&view, &cfg, &lookup(k), &mut NoProbe).to_bits())

@@ -22,8 +22,9 @@ use umbra::core::probe::TexelRead;
 use umbra::core::shade::{MapUnit, Normals, ShadeConfig, ShadeSetup, Shaded, TriangleSource, shade_with};
 use umbra::core::shadow::{Bias, DepthTest, Filter, MapView, ShadowConfig};
 use umbra::core::{ConfigError, CullMode, D24, DepthUnit, Event, LightPassConfig, NoProbe, Probe, RasterConfig};
+use umbra::sim::base::maps::Tiling;
 use umbra::sim::experiment::presets::FILTERS;
-use umbra::sim::pass::camera::{CameraFrame, SHADE_SETUPS, Tiling, map_view, visibility};
+use umbra::sim::pass::camera::{CameraFrame, SHADE_SETUPS, map_view, visibility};
 use umbra::sim::pass::light::{LightMaps, LightOptions};
 use umbra::sim::world::scene::Scene;
 use umbra::sim::world::scene_file::BUNDLED;
@@ -109,7 +110,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut digest = DefaultHasher::new();
     if all {
         let mut configs = Vec::new();
-        for (_, filter) in FILTERS {
+        for filter in FILTERS {
             for (test, bias) in [
                 (DepthTest::Second, Bias::ZERO),
                 (DepthTest::First, Bias::Range { lo: PlaneZ::ZERO, hi: PlaneZ::from_num(300) }),
@@ -126,7 +127,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     } else {
         // A preset's name picks its filter instead of the 3×3 box.
-        let named = std::env::args().nth(2).and_then(|n| FILTERS.iter().find(|(name, _)| *name == n).map(|f| f.1));
+        let named = std::env::args().nth(2).and_then(|n| n.parse::<umbra::core::shadow::Filter>().ok());
         let filter = named.unwrap_or(Filter::Box { size: 3 });
         let shadow = ShadowConfig::new(DepthTest::Second, Bias::ZERO, filter, true)?;
         shade_scene(

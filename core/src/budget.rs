@@ -8,10 +8,10 @@
 //! |---|---|---|
 //! | target side | `2^MAX_TARGET_BITS` = 16 384 pixels | [`crate::config::RasterConfig::new`] |
 //! | snapped coordinate | `±2^COORD_BITS` subpixels (±2¹⁶ pixels of guard band, 8 subpixel bits) | [`crate::front::snap`](mod@crate::front::snap) |
-//! | in a window | `±2^WINDOW_COORD_BITS` subpixels | [`crate::raster::setup`] |
-//! | edge function at a pixel centre | `< 2^EDGE_BITS` = 2⁵³ (`i64`) | [`crate::raster::setup::Edge`] |
+//! | in a window | `±2^WINDOW_COORD_BITS` subpixels | [`crate::front::setup`] |
+//! | edge function at a pixel centre | `< 2^EDGE_BITS` = 2⁵³ (`i64`) | [`crate::front::setup::Edge`] |
 //! | depth in the interpolator | `[0, 2^DEPTH_BITS)` = `[0, 2⁵⁶)` ([`crate::depth::PlaneZ`], 32 fraction bits below an LSB) | [`crate::depth`] |
-//! | depth plane numerators | `< 2^DEPTH_NUMERATOR_BITS` (`i128`) | [`crate::raster::setup::DepthPlane`] |
+//! | depth plane numerators | `< 2^DEPTH_NUMERATOR_BITS` (`i128`) | [`crate::front::setup::DepthPlane`] |
 //! | map coordinate | texels with `MAP_FRACTION_BITS` = 16 fraction bits | [`crate::shadow::MapCoord`] |
 //! | shading forms | denominator scaled by `2^DENOMINATOR_BITS` = 2⁴⁴, narrow below `2^NARROW_FORM_BITS` | [`crate::shade`] |
 

@@ -8,7 +8,7 @@
 use core::fmt;
 
 use crate::budget::{GUARD_BITS, MAX_SUBPIXEL_BITS, MAX_TARGET_BITS, TILE_SIZES};
-use crate::raster::tile::{TileId, TileRect};
+use crate::grid::{TileId, TileRect};
 
 /// The rasterizer's geometry: target, tiles and subpixel grid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -167,6 +167,13 @@ pub enum CullMode {
     /// Discard light-facing triangles (solids; second depth by front-face culling).
     Front,
 }
+
+impl CullMode {
+    /// Every mode.
+    pub const ALL: [Self; 3] = [Self::None, Self::Back, Self::Front];
+}
+
+crate::spelled!(CullMode, "cull mode", { None => "none", Back => "back", Front => "front" });
 
 /// Everything the light pass needs to know besides its buffers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -11,14 +11,14 @@
 use arbitrary::Arbitrary;
 use libfuzzer_sys::fuzz_target;
 use umbra_core::depth::Texel;
+use umbra_core::front::setup::Setup;
 use umbra_core::glam::{Mat4, Vec3, Vec4};
 use umbra_core::raster::bin::Bin;
-use umbra_core::raster::setup::Setup;
 use umbra_core::{
     ConfigError, CullMode, D16, D24, DepthFormat, DepthUnit, F32, LightBuffers, LightPass, LightPassConfig, NoProbe,
     RasterConfig, SubmitError, TileState,
 };
-use umbra_sim::cost::counters::Counters;
+use umbra_sim::base::counters::Counters;
 
 #[derive(Arbitrary, Debug)]
 struct Input {

@@ -11,9 +11,9 @@
 use arbitrary::Arbitrary;
 use libfuzzer_sys::fuzz_target;
 use umbra_core::depth::PlaneZ;
+use umbra_core::front::setup::Setup;
 use umbra_core::glam::{Mat4, Vec3, Vec4};
 use umbra_core::raster::bin::Bin;
-use umbra_core::raster::setup::Setup;
 use umbra_core::shade::{Normals, SceneTriangle, ShadeConfig, Shaded, shade};
 use umbra_core::shadow::{
     Bias, DepthTest, Filter, Jitter, Lookup, MapCoord, MapView, Shadow, ShadowConfig, Slope, TangentPlane, shadow,

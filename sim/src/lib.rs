@@ -1,5 +1,39 @@
 #![forbid(unsafe_code)]
 #![doc = include_str!("../README.md")]
+//!
+//! # The API in one sitting
+//!
+//! Load a scene (a bundled name, a scene file or an OBJ mesh), choose an
+//! architecture (a bundled preset or a file), then render, cost, sweep or
+//! plan. The names below are the whole API a library user needs; the
+//! modules hold the units behind them.
+//!
+//! ```
+//! use umbra_sim::{Algorithm, Arch, Limits, RenderConfig, Scene, TruthSource};
+//!
+//! let limits = Limits::DEFAULT;
+//! let scene = Scene::open("table", &limits)?;
+//! let arch = Arch::open("mobile-tbdr", &limits)?;
+//! // First depth at bias 0.002, on a small image and map to keep this quick.
+//! let config = RenderConfig {
+//!     algorithm: Algorithm::First,
+//!     bias: 0.002,
+//!     width: 160,
+//!     height: 90,
+//!     map_size: 256,
+//!     ..RenderConfig::DEFAULT
+//! }
+//! .checked()?;
+//! let render = umbra_sim::render(&scene, &config, &limits, TruthSource::Quiet)?;
+//! assert!(render.metrics.evaluated > 0);
+//! let cost = umbra_sim::cost(&scene, &config, &arch, &limits)?;
+//! assert!(cost.cycles > 0.0 && cost.bytes > 0);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+pub mod base;
+
+pub mod io;
 
 pub mod world;
 
@@ -8,9 +42,17 @@ pub mod pass;
 pub mod cost;
 pub mod truth;
 
-pub mod experiment;
+pub mod render;
 
-pub mod io;
+pub mod experiment;
 
 pub use glam;
 pub use umbra_core as core;
+
+pub use cost::arch::{Arch, CostReport};
+pub use experiment::plan::{Plan, PlanSpec, plan};
+pub use experiment::study::{Row, Spec as StudySpec, SweepFile, run as study};
+pub use io::limits::Limits;
+pub use render::{Algorithm, Culling, Render, RenderConfig, TruthSource, cost, render};
+pub use world::mesh::Mesh;
+pub use world::scene::Scene;

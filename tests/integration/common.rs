@@ -4,10 +4,10 @@
 
 use proptest::prelude::*;
 use umbra::core::depth::Texel;
+use umbra::core::front::setup::Setup;
 use umbra::core::glam::Vec4;
 use umbra::core::probe::{Event, FlushReason, Fragment, Probe};
 use umbra::core::raster::bin::Bin;
-use umbra::core::raster::setup::Setup;
 use umbra::core::{
     ConfigError, CullMode, Datapaths, DepthFormat, DepthUnit, LightBuffers, LightPass, LightPassConfig, RasterConfig,
     TileState,
@@ -320,7 +320,8 @@ pub fn camera_image<F: DepthFormat, P: Probe>(
     (width, height): (u32, u32),
     probe: &mut P,
 ) -> umbra::sim::pass::camera::CameraImage {
-    use umbra::sim::pass::camera::{CameraOptions, Tiling, map_view, render};
+    use umbra::sim::base::maps::Tiling;
+    use umbra::sim::pass::camera::{CameraOptions, map_view, render};
     let view = map_view::<F>(maps, false).expect("maps fit their configuration");
     let options = CameraOptions { width, height, shadow, virtual_samples, tiling: Tiling::DEFAULT };
     render(frame, scene, &view, &umbra::core::shade::MapUnit, &options, probe).expect("renders");

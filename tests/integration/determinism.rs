@@ -7,9 +7,9 @@ use umbra::core::probe::Totals;
 use umbra::core::shade::Shaded;
 use umbra::core::shadow::Filter;
 use umbra::core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, RasterConfig};
-use umbra::sim::cost::counters::Counters;
+use umbra::sim::base::counters::Counters;
 use umbra::sim::pass::light::RawMaps;
-use umbra::sim::pass::render::{Algorithm, Culling, Render, RenderConfig, TruthSource, render};
+use umbra::sim::render::{Algorithm, Culling, Render, RenderConfig, TruthSource, render};
 use umbra::sim::world::scene::Scene;
 
 /// 1, 2 and every core of the machine (at least 3, so the pools differ).
@@ -68,7 +68,7 @@ fn light_maps_are_the_same_on_any_thread_count() {
             for threads in thread_counts() {
                 assert_eq!(first, on(threads, pass), "{format:?} {unit:?} on {threads} threads");
             }
-            let far = umbra::sim::pass::light::raw_far(format);
+            let far = umbra::sim::base::maps::raw_far(format);
             assert!(first.maps.z1.iter().any(|&t| t != far), "the scene is in view of the light");
         }
     }
@@ -88,7 +88,7 @@ fn a_render_is_the_same_on_any_thread_count() {
         virtual_samples: true,
         width: 80,
         height: 45,
-        reference_samples: 2,
+        reference_rays: 2,
         culling: Culling::ALGORITHM,
     };
     let hidden = indicatif::ProgressBar::hidden();
@@ -169,7 +169,7 @@ fn banded_and_per_draw_light_passes_equal_the_whole_pass() {
 fn an_unwatched_pass_draws_the_maps_of_a_counted_one() {
     use umbra::core::D24;
     use umbra::core::glam::Vec3;
-    use umbra::sim::cost::counters::Counters;
+    use umbra::sim::base::counters::Counters;
     use umbra::sim::pass::light::{Draw, LightMaps, LightOptions};
     use umbra::sim::world::mesh::Mesh;
     use umbra::sim::world::scene::Perspective;

@@ -18,7 +18,7 @@ use std::time::{Duration, Instant};
 use object::{Object, ObjectSection};
 use umbra::core::D16;
 use umbra::core::probe::Totals;
-use umbra::sim::cost::counters::Counters;
+use umbra::sim::base::counters::Counters;
 use umbra::sim::pass::light::{Draw, LightFrame, LightOptions, render};
 use umbra_demo::footprint::{self, CameraFootprint, FootprintConfig};
 use umbra_demo::{BIN_CAPACITY, Full, SETUPS, Small, Summary, scene};

@@ -28,4 +28,5 @@ mod truth;
 mod world;
 
 mod determinism;
+mod layers;
 mod regressions;

@@ -98,7 +98,7 @@ pub trait DepthFormat: Copy + Default + core::fmt::Debug + Send + Sync + 'static
     /// The texel of a depth known to lie inside `[0, 1]` up to the
     /// interpolator's rounding error (a pixel centre inside the triangle),
     /// given as [`PlaneZ`] bits **plus [`ROUND_HALF`]**: then rounding is a
-    /// shift and no clamp is needed (see [`crate::raster::setup`] for the bound).
+    /// shift and no clamp is needed (see [`crate::front::setup`] for the bound).
     /// Any other input gives an unspecified texel, never a panic.
     #[inline(always)]
     fn texel_inside(biased_bits: i64) -> Self::Texel {
@@ -263,17 +263,9 @@ impl DepthFormatKind {
     pub const fn bytes(self) -> u32 {
         self.bits() / 8
     }
-
-    /// A short name: `d16`, `d24`, `f32`.
-    #[must_use]
-    pub const fn name(self) -> &'static str {
-        match self {
-            Self::D16 => "d16",
-            Self::D24 => "d24",
-            Self::F32 => "f32",
-        }
-    }
 }
+
+crate::spelled!(DepthFormatKind, "depth format", { D16 => "d16", D24 => "d24", F32 => "f32" });
 
 #[cfg(test)]
 mod tests {

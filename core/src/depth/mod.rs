@@ -2,6 +2,7 @@
 //! how texels compare), the depth unit updated per fragment (single, dual,
 //! and with ids for visibility), and the per-tile state it keeps.
 
+pub mod datapaths;
 pub mod format;
 mod tile;
 mod unit;

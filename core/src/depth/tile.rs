@@ -69,7 +69,7 @@ impl<T: Copy> TileState<T> {
 }
 
 /// The rows of a tile's rectangle `r` in a row-major buffer of `width` columns.
-pub(crate) fn tile_rows<T>(buf: &[T], r: crate::raster::tile::TileRect, width: usize) -> impl Iterator<Item = &[T]> {
+pub(crate) fn tile_rows<T>(buf: &[T], r: crate::grid::TileRect, width: usize) -> impl Iterator<Item = &[T]> {
     (r.y0..r.y1).filter_map(move |y| {
         let base = y as usize * width;
         buf.get(base + r.x0 as usize..base + r.x1 as usize)

@@ -14,6 +14,8 @@
 //! ids, the pieces are the same, bit for bit.
 
 pub mod clip;
+mod plane;
+pub mod setup;
 pub mod snap;
 pub mod vertex;
 
@@ -22,11 +24,10 @@ use glam::{Mat4, Vec3};
 use crate::config::{CullMode, RasterConfig};
 use crate::depth::DepthFormat;
 use crate::front::clip::{ClipVertex, Clipped, Polygon, clip_triangle};
+use crate::front::setup::Setup;
 use crate::front::snap::{SnappedVertex, snap};
 use crate::front::vertex::{VertexCache, process};
-use crate::light_pass::SubmitError;
 use crate::probe::RejectReason;
-use crate::raster::setup::Setup;
 
 /// What the front end reports, in submission order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -131,3 +132,30 @@ fn set_up(raster: &RasterConfig, v: [SnappedVertex; 3], cull: CullMode, id: u32,
         Err(reason) => out(Output::Rejected(reason)),
     }
 }
+
+/// A triangle list that cannot be drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum SubmitError {
+    /// A triangle names a vertex that does not exist.
+    IndexOutOfRange {
+        /// Position of the triangle in the index list.
+        triangle: usize,
+        /// The index it holds.
+        index: u32,
+        /// How many vertices there are.
+        vertices: usize,
+    },
+}
+
+impl core::fmt::Display for SubmitError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match *self {
+            Self::IndexOutOfRange { triangle, index, vertices } => {
+                write!(f, "triangle {triangle} names vertex {index}, but there are only {vertices} vertices")
+            }
+        }
+    }
+}
+
+impl core::error::Error for SubmitError {}

@@ -10,7 +10,7 @@
 //! # Integer budget
 //! The guard band keeps every snapped coordinate inside `±2^GUARD_BITS`
 //! pixels, so with at most 8 subpixel bits it fits in [`crate::budget::COORD_BITS`] bits
-//! plus sign. Edge functions in [`crate::raster::setup`] build on that bound.
+//! plus sign. Edge functions in [`crate::front::setup`] build on that bound.
 
 use crate::budget::{BEYOND_FAR, COORD_BITS, PLANE_FRACTION_BITS, PLANE_ONE};
 use crate::config::RasterConfig;

@@ -1,8 +1,8 @@
 //! The memory the light-pass driver works in, owned by the caller, and what it refuses.
 
 use crate::depth::{DepthFormat, TileState};
+use crate::front::setup::Setup;
 use crate::raster::bin::Bin;
-use crate::raster::setup::Setup;
 
 /// The caller-owned memory of a light pass.
 pub struct LightBuffers<'a, F: DepthFormat, const B: usize> {
@@ -24,30 +24,3 @@ pub struct LightBuffers<'a, F: DepthFormat, const B: usize> {
 
 /// The id of a pixel that no triangle covers.
 pub const NO_TRIANGLE: u32 = u32::MAX;
-
-/// A triangle list that cannot be drawn.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[non_exhaustive]
-pub enum SubmitError {
-    /// A triangle names a vertex that does not exist.
-    IndexOutOfRange {
-        /// Position of the triangle in the index list.
-        triangle: usize,
-        /// The index it holds.
-        index: u32,
-        /// How many vertices there are.
-        vertices: usize,
-    },
-}
-
-impl core::fmt::Display for SubmitError {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        match *self {
-            Self::IndexOutOfRange { triangle, index, vertices } => {
-                write!(f, "triangle {triangle} names vertex {index}, but there are only {vertices} vertices")
-            }
-        }
-    }
-}
-
-impl core::error::Error for SubmitError {}

@@ -19,21 +19,21 @@ use glam::{Mat4, Vec3, Vec4};
 
 use crate::config::{ConfigError, CullMode, DepthUnit, LightPassConfig};
 use crate::depth::{DepthFormat, TileState};
+use crate::front::setup::Setup;
 use crate::front::vertex::{CACHE_ENTRIES, VertexCache};
 use crate::front::{self, Output};
+use crate::grid::{TileId, TileRect};
 use crate::probe::{Event, FlushReason, NoProbe, Probe, RejectReason};
 use crate::raster::bin::{Bin, MAX_SETUPS, SetupIndex, touches};
-use crate::raster::setup::Setup;
-use crate::raster::tile::{TileId, TileRect};
 use crate::raster::{TileView, rasterize};
 use resolve::resolve;
 
 mod buffers;
-mod datapaths;
 mod resolve;
 
-pub use buffers::{LightBuffers, NO_TRIANGLE, SubmitError};
-pub use datapaths::{Datapaths, DualOnly, Every, SingleOnly, VisibilityOnly};
+pub use crate::depth::datapaths::{Datapaths, DualOnly, Every, SingleOnly, VisibilityOnly};
+pub use crate::front::SubmitError;
+pub use buffers::{LightBuffers, NO_TRIANGLE};
 
 /// A light pass in progress, built with the datapaths `D` ([`Every`]
 /// unless the caller needs fewer).
@@ -49,6 +49,34 @@ pub struct LightPass<'a, F: DepthFormat, P: Probe = NoProbe, const B: usize = 64
 impl<'a, F: DepthFormat, P: Probe, const B: usize, D: Datapaths> LightPass<'a, F, P, B, D> {
     /// Start a light pass: check the buffers against the configuration and
     /// clear the map.
+    ///
+    /// Every buffer is the caller's (here on the stack: a 16² dual map in
+    /// 8-texel tiles, 64-entry bins, 32 triangle setups):
+    ///
+    /// ```
+    /// use umbra_core::front::setup::Setup;
+    /// use umbra_core::glam::{Mat4, Vec3};
+    /// use umbra_core::probe::Totals;
+    /// use umbra_core::raster::bin::Bin;
+    /// use umbra_core::{CullMode, D16, DepthFormat, DepthUnit, LightBuffers, LightPass, LightPassConfig, RasterConfig, TileState};
+    ///
+    /// let raster = RasterConfig::new(16, 16, 8, 4)?;
+    /// let cfg = LightPassConfig { raster, unit: DepthUnit::Dual, max_z_cull: true };
+    /// let (mut z1, mut z2) = ([0u16; 256], [0u16; 256]);
+    /// let mut tiles = [TileState::cleared(D16::FAR, 0); 4];
+    /// let mut bins = [const { Bin::<64>::new() }; 4];
+    /// let mut setups = [Setup::EMPTY; 32];
+    /// let buffers = LightBuffers { z1: &mut z1, z2: &mut z2, ids: &mut [], tiles: &mut tiles, bins: &mut bins, setups: &mut setups };
+    /// let mut pass = LightPass::<D16, _, 64>::new(cfg, buffers, Totals::default())?;
+    /// // Two triangles at depth ½ over the whole map (clip space: x, y in [-1, 1], z/w in [0, 1]).
+    /// let quad = [Vec3::new(-1.0, -1.0, 0.5), Vec3::new(1.0, -1.0, 0.5), Vec3::new(1.0, 1.0, 0.5), Vec3::new(-1.0, 1.0, 0.5)];
+    /// pass.draw_mesh(&quad, &[[0, 1, 2], [0, 2, 3]], &Mat4::IDENTITY, CullMode::None)?;
+    /// let totals = pass.finish();
+    /// assert_eq!(totals.fragments, 256); // every texel once: the fill rule shares the diagonal
+    /// assert!(z1.iter().all(|&z| z == D16::quantize(0.5)));
+    /// assert!(z2.iter().all(|&z| z == D16::FAR)); // nothing behind it
+    /// # Ok::<(), Box<dyn core::error::Error>>(())
+    /// ```
     ///
     /// # Errors
     /// [`ConfigError::BufferLength`] naming the first buffer whose length is

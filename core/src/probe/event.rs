@@ -1,7 +1,7 @@
 //! What the units report: one event per batch of work, and the per-fragment
 //! and per-texel detail probes may ask for.
 
-use crate::raster::tile::TileId;
+use crate::grid::TileId;
 
 /// A buffer the units read or write.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -8,7 +8,7 @@
 //! Bins hold indices into the shared triangle-setup store; when that store
 //! is full, every bin is drained.
 
-use crate::raster::setup::Setup;
+use crate::front::setup::Setup;
 
 /// Index of a set-up triangle in the setup store.
 pub type SetupIndex = u16;
@@ -23,6 +23,6 @@ pub type Bin<const B: usize> = heapless::Vec<SetupIndex, B>;
 /// corner test, so a bin may hold a triangle that then covers nothing there.
 #[inline]
 #[must_use]
-pub fn touches(s: &Setup, r: &crate::raster::tile::TileRect) -> bool {
-    r.intersect(&s.bbox).is_some_and(|r| s.classify(&r) != crate::raster::setup::Coverage::Empty)
+pub fn touches(s: &Setup, r: &crate::grid::TileRect) -> bool {
+    r.intersect(&s.bbox).is_some_and(|r| s.classify(&r) != crate::front::setup::Coverage::Empty)
 }

@@ -17,8 +17,8 @@
 
 use wide::i32x8;
 
-use crate::raster::setup::{Edge, Setup};
-use crate::raster::tile::TileRect;
+use crate::front::setup::{Edge, Setup};
+use crate::grid::TileRect;
 
 /// Whether the rasterizer draws masks in lanes: on targets with a SIMD
 /// unit (x86-64's SSE2, AArch64's NEON, WebAssembly's SIMD128). Elsewhere
@@ -170,9 +170,9 @@ mod tests {
     use super::{Lanes, RowMask, Serial, WIDEST};
     use crate::config::{CullMode, RasterConfig};
     use crate::depth::PlaneZ;
+    use crate::front::setup::Setup;
     use crate::front::snap::{SnappedVertex, SubPx};
-    use crate::raster::setup::Setup;
-    use crate::raster::tile::TileRect;
+    use crate::grid::TileRect;
 
     /// A rectangle's row masks (at most 16 rows here).
     type Rows = heapless::Vec<u64, 16>;

@@ -31,12 +31,12 @@
 
 use crate::budget::{ROUND_HALF, TILE_SIZES};
 use crate::depth::DepthFormat;
+use crate::depth::datapaths::Datapaths;
 use crate::depth::{SpanEdges, SpanOut, TileState, count_of, min_max, span, tile_rows};
-use crate::light_pass::Datapaths;
+use crate::front::setup::{Coverage, Setup};
+use crate::grid::{TileId, TileRect};
 use crate::probe::{Buffer, CullLevel, Event, Fragment, Probe};
 use crate::raster::mask::{LANE_GROUP, LANES, Lanes, RowMask, Serial, WIDEST};
-use crate::raster::setup::{Coverage, Setup};
-use crate::raster::tile::{TileId, TileRect};
 
 /// Bytes of one visible-triangle id.
 const ID_BYTES: u32 = 4;

@@ -28,9 +28,9 @@ use super::{
     TriangleSource, setup_of, setup_slot, shade_pixel,
 };
 use crate::depth::{DepthFormat, PlaneZ};
+use crate::grid::TileRect;
 use crate::light_pass::NO_TRIANGLE;
 use crate::probe::NoProbe;
-use crate::raster::tile::TileRect;
 use crate::shadow::Filter;
 
 /// The side of a block, pixels: a block that does not settle is tried

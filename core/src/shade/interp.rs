@@ -7,9 +7,9 @@ use crate::budget::{DENOMINATOR_SCALE, MAP_FRACTION_BITS, MAP_HALF, NARROW_FORM_
 use crate::config::CullMode;
 use crate::depth::{DepthFormat, PlaneZ};
 use crate::front::clip::inside_all;
+use crate::front::setup::{DepthPlane, Setup};
 use crate::front::snap::snap;
 use crate::light_pass::NO_TRIANGLE;
-use crate::raster::setup::{DepthPlane, Setup};
 use crate::round::saturate;
 use crate::shadow::{MapCoord, MapView, Slope};
 

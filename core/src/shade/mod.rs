@@ -44,9 +44,9 @@ use glam::{Mat4, Vec3};
 
 use crate::config::ConfigError;
 use crate::depth::{DepthFormat, PlaneZ};
+use crate::grid::TileRect;
 use crate::light_pass::NO_TRIANGLE;
 use crate::probe::{Event, Probe};
-use crate::raster::tile::TileRect;
 use crate::shadow::{Built, Lookup, MapCoord, MapView, Shadow, ShadowConfig, TangentPlane};
 use divider::Reciprocal;
 use interp::Interp;

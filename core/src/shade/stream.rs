@@ -17,11 +17,11 @@
 
 use crate::config::{ConfigError, DepthUnit, LightPassConfig};
 use crate::depth::{DepthFormat, TileState};
+use crate::front::setup::Setup;
+use crate::grid::TileRect;
 use crate::light_pass::{Datapaths, LightBuffers, LightPass, SubmitError};
 use crate::probe::Probe;
 use crate::raster::bin::Bin;
-use crate::raster::setup::Setup;
-use crate::raster::tile::TileRect;
 use crate::shadow::MapView;
 
 use super::{PixelResult, ShadeConfig, ShadeSetup, Shaded, ShadowUnit, TriangleSource, shade_rect};

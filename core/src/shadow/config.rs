@@ -118,6 +118,119 @@ pub enum Filter {
     Jittered(Jitter),
 }
 
+impl Filter {
+    /// The box sides the shadow unit takes.
+    pub const BOX_SIDES: core::ops::RangeInclusive<u8> = 1..=16;
+}
+
+/// The one spelling of a filter, which [`Filter`]'s `FromStr` reads back:
+/// `point`, `bilinear`, `box<N>` (N in `1..=16`), and Reeves' jittered
+/// filter as `jitter<NumSamples>` followed by each parameter that differs
+/// from Figure 4's (`,res-factor=<texels>`, `,min-samples=<n>`,
+/// `,min-size=<texels>`): `jitter16` is [`Jitter::REEVES`], `jitter4` the
+/// same with 4 samples.
+///
+/// ```
+/// use umbra_core::shadow::{Filter, Jitter, MapCoord};
+/// assert_eq!(Filter::Box { size: 5 }.to_string(), "box5");
+/// assert_eq!("box5".parse(), Ok(Filter::Box { size: 5 }));
+/// let soft = Filter::Jittered(Jitter { num_samples: 8, res_factor: MapCoord::lit("1.5"), ..Jitter::REEVES });
+/// assert_eq!(soft.to_string(), "jitter8,res-factor=1.5");
+/// assert_eq!("jitter8,res-factor=1.5".parse(), Ok(soft));
+/// ```
+impl fmt::Display for Filter {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Point => f.write_str("point"),
+            Self::Bilinear => f.write_str("bilinear"),
+            Self::Box { size } => write!(f, "box{size}"),
+            Self::Jittered(j) => {
+                let r = Jitter::REEVES;
+                write!(f, "jitter{}", j.num_samples)?;
+                if j.res_factor != r.res_factor {
+                    write!(f, ",res-factor={}", j.res_factor)?;
+                }
+                if j.min_samples != r.min_samples {
+                    write!(f, ",min-samples={}", j.min_samples)?;
+                }
+                if j.min_size != r.min_size {
+                    write!(f, ",min-size={}", j.min_size)?;
+                }
+                Ok(())
+            }
+        }
+    }
+}
+
+/// Text that names no filter, with what is wrong with it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FilterNameError {
+    /// Not `point`, `bilinear`, `box<N>` or `jitter<N>…`.
+    Unknown,
+    /// A box side outside `1..=16`.
+    BoxSide,
+    /// A sample count that is not a whole number from 1 to 65535.
+    Samples(&'static str),
+    /// A jitter parameter that is not `res-factor`, `min-samples` or `min-size`.
+    Parameter,
+    /// A size in texels that is not a non-negative number below 32768.
+    Texels(&'static str),
+}
+
+impl fmt::Display for FilterNameError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Self::Unknown => {
+                "not a filter: expected point, bilinear, box<N> (N from 1 to 16) or jitter<N> with optional \
+                 ,res-factor=<texels>,min-samples=<n>,min-size=<texels>"
+            }
+            Self::BoxSide => "a box filter's side must be 1 to 16 texels",
+            Self::Samples(p) => return write!(f, "{p} must be a whole number from 1 to 65535"),
+            Self::Parameter => "a jitter parameter must be res-factor, min-samples or min-size",
+            Self::Texels(p) => return write!(f, "{p} must be a non-negative number of texels below 32768"),
+        })
+    }
+}
+
+impl core::error::Error for FilterNameError {}
+
+impl core::str::FromStr for Filter {
+    type Err = FilterNameError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let samples =
+            |p: &'static str, t: &str| t.parse::<u16>().ok().filter(|&n| n >= 1).ok_or(FilterNameError::Samples(p));
+        let texels = |p: &'static str, t: &str| {
+            t.parse::<MapCoord>().ok().filter(|v| *v >= MapCoord::ZERO).ok_or(FilterNameError::Texels(p))
+        };
+        match s {
+            "point" => return Ok(Self::Point),
+            "bilinear" => return Ok(Self::Bilinear),
+            _ => {}
+        }
+        if let Some(side) = s.strip_prefix("box") {
+            let size = side.parse::<u8>().map_err(|_| FilterNameError::BoxSide)?;
+            return if Self::BOX_SIDES.contains(&size) {
+                Ok(Self::Box { size })
+            } else {
+                Err(FilterNameError::BoxSide)
+            };
+        }
+        let rest = s.strip_prefix("jitter").ok_or(FilterNameError::Unknown)?;
+        let mut parts = rest.split(',');
+        let mut j = Jitter { num_samples: samples("num-samples", parts.next().unwrap_or_default())?, ..Jitter::REEVES };
+        for part in parts {
+            match part.split_once('=') {
+                Some(("res-factor", v)) => j.res_factor = texels("res-factor", v)?,
+                Some(("min-samples", v)) => j.min_samples = samples("min-samples", v)?,
+                Some(("min-size", v)) => j.min_size = texels("min-size", v)?,
+                _ => return Err(FilterNameError::Parameter),
+            }
+        }
+        Ok(Self::Jittered(j))
+    }
+}
+
 /// A validated shadow-unit configuration.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct ShadowConfig {
@@ -174,7 +287,9 @@ impl ShadowConfig {
     /// See [`ShadowConfigError`].
     pub fn new(test: DepthTest, bias: Bias, filter: Filter, cull_lookups: bool) -> Result<Self, ShadowConfigError> {
         match filter {
-            Filter::Box { size } if !(1..=16).contains(&size) => return Err(ShadowConfigError::BoxSize { size }),
+            Filter::Box { size } if !Filter::BOX_SIDES.contains(&size) => {
+                return Err(ShadowConfigError::BoxSize { size });
+            }
             Filter::Jittered(j) => {
                 if !(1..=256).contains(&j.num_samples) || j.min_samples == 0 || j.min_samples > j.num_samples {
                     return Err(ShadowConfigError::Samples { num_samples: j.num_samples, min_samples: j.min_samples });

@@ -3,7 +3,7 @@
 use super::{DepthTest, Filter, Lookup, MapCoord, MapView, Shadow, ShadowConfig, Texels, at_format};
 use crate::depth::TileState;
 use crate::depth::{DepthFormat, PlaneZ};
-use crate::raster::tile::TileRect;
+use crate::grid::TileRect;
 
 /// The smallest and largest reference depth over the tiles under `r`, from
 /// their stored bounds. A test that reads one buffer takes that buffer's

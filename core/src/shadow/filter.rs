@@ -6,8 +6,8 @@ use super::{
 };
 use crate::budget::MAP_FRACTION_BITS;
 use crate::depth::{DepthFormat, PlaneZ};
+use crate::grid::TileRect;
 use crate::probe::{Event, Probe};
-use crate::raster::tile::TileRect;
 
 /// Shadow a lookup: the fraction of its samples in shadow.
 pub fn shadow<F: DepthFormat, P: Probe>(map: &MapView<'_, F>, cfg: &ShadowConfig, l: &Lookup, probe: &mut P) -> Shadow {

@@ -5,7 +5,7 @@ use fixed::types::U16F16;
 use super::{Filter, HALF, Jitter, MapCoord};
 use crate::budget::{MAP_FRACTION_BITS, MAP_HALF};
 use crate::depth::PlaneZ;
-use crate::raster::tile::TileRect;
+use crate::grid::TileRect;
 
 /// One lookup: a surface point in light space and its footprint.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -4,8 +4,8 @@ use super::{DepthTest, at_format};
 use crate::config::RasterConfig;
 use crate::depth::DepthFormat;
 use crate::depth::{Texel, TileState};
+use crate::grid::TileRect;
 use crate::probe::{Buffer, Probe, TexelRead};
-use crate::raster::tile::TileRect;
 
 /// A light pass's maps, as the shadow unit reads them.
 #[derive(Clone, Copy, Debug)]

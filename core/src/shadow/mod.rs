@@ -54,7 +54,7 @@ mod map;
 mod tangent;
 
 pub use built::{AllFilters, BoxFilter, Built};
-pub use config::{Bias, DepthTest, Filter, Jitter, ShadowConfig, ShadowConfigError};
+pub use config::{Bias, DepthTest, Filter, FilterNameError, Jitter, ShadowConfig, ShadowConfigError};
 use cull::reference_bounds;
 pub(crate) use cull::settle_region;
 use filter::at_format;

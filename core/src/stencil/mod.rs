@@ -34,10 +34,10 @@ pub use volume::{Volume, VolumeLight};
 use crate::config::{ConfigError, CullMode, RasterConfig};
 use crate::depth::DepthFormat;
 use crate::front::clip::{ClipVertex, Clipped, DepthClip, Polygon, clip_triangle_with};
+use crate::front::setup::Setup;
 use crate::front::snap::{SnappedVertex, snap_beyond_far};
+use crate::grid::TileId;
 use crate::probe::{Event, Probe, RejectReason};
-use crate::raster::setup::Setup;
-use crate::raster::tile::TileId;
 
 /// Pixel bounds `(x0, y0, x1, y1)`, half-open.
 type Rect = (u32, u32, u32, u32);

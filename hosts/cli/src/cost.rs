@@ -75,13 +75,13 @@ pub(super) fn command_line() -> String {
 
 /// `umbra cost` and `umbra trace`.
 pub(super) fn cost(args: &CostArgs, trace: bool, limits: &Limits) -> Result<()> {
-    let (scene, cfg, _) = render_config(&args.render, limits)?;
+    let (scene, cfg) = render_config(&args.render, limits)?;
     let archs = args.archs.resolve(&BUNDLED.map(|b| b.0), limits)?;
     let command = command_line();
     let mut folder = OutputFolder::create(&args.render.out)?;
     let mut reports = Vec::new();
     for arch in &archs {
-        let report = umbra_sim::pass::render::cost(&scene, &cfg, arch, limits)?;
+        let report = umbra_sim::render::cost(&scene, &cfg, arch, limits)?;
         let name = &arch.name;
         if trace {
             folder.write_text(&format!("trace-{name}.json"), &serde_json::to_string(&report.trace())?)?;

@@ -7,7 +7,7 @@ use crate::say::say;
 use anyhow::{Context, Result, bail};
 use clap::ValueEnum;
 use umbra_core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, RasterConfig};
-use umbra_sim::cost::counters::Counters;
+use umbra_sim::base::counters::Counters;
 use umbra_sim::glam::Mat4;
 use umbra_sim::io::folder::OutputFolder;
 use umbra_sim::io::limits::Limits;
@@ -15,20 +15,6 @@ use umbra_sim::io::output::{RawMap, write_npy, write_preview};
 use umbra_sim::pass::light::RawMaps;
 use umbra_sim::world::mesh::Mesh;
 use umbra_sim::world::scene::{Light, Object, Perspective, Scene, parse_matrix};
-
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub(super) enum Format {
-    D16,
-    D24,
-    F32,
-}
-
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub(super) enum Cull {
-    None,
-    Back,
-    Front,
-}
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub(super) enum Unit {
@@ -48,14 +34,14 @@ pub(super) struct DepthArgs {
     #[arg(long)]
     pub(super) matrix: Option<String>,
     /// Map width and height in texels.
-    #[arg(long, default_value_t = 512, value_parser = clap::value_parser!(u32).range(1..))]
-    pub(super) size: u32,
-    /// Depth format.
-    #[arg(long, value_enum, default_value_t = Format::D24)]
-    pub(super) format: Format,
-    /// Facing to discard.
-    #[arg(long, value_enum, default_value_t = Cull::None)]
-    pub(super) cull: Cull,
+    #[arg(long, default_value_t = 512, value_parser = clap::value_parser!(u32).range(1..), alias = "size")]
+    pub(super) map: u32,
+    /// Depth format: d16, d24, f32.
+    #[arg(long, default_value = "d24", alias = "format")]
+    pub(super) depth: DepthFormatKind,
+    /// Facing to discard: none, back, front.
+    #[arg(long, default_value = "none")]
+    pub(super) cull: CullMode,
     /// Depth unit: nearest only, or nearest and second nearest.
     #[arg(long, value_enum, default_value_t = Unit::Dual)]
     pub(super) unit: Unit,
@@ -78,23 +64,15 @@ impl Default for DepthArgs {
         Self {
             mesh: None,
             matrix: None,
-            size: 512,
-            format: Format::D24,
-            cull: Cull::None,
+            map: 512,
+            depth: DepthFormatKind::D24,
+            cull: CullMode::None,
             unit: Unit::Dual,
             tile: RasterConfig::DEFAULT_TILE_SIZE,
             subpixel_bits: RasterConfig::DEFAULT_SUBPIXEL_BITS,
             no_max_z_cull: false,
             out: PathBuf::from("out/depth"),
         }
-    }
-}
-
-pub(super) fn format_kind(f: Format) -> DepthFormatKind {
-    match f {
-        Format::D16 => DepthFormatKind::D16,
-        Format::D24 => DepthFormatKind::D24,
-        Format::F32 => DepthFormatKind::F32,
     }
 }
 
@@ -111,7 +89,7 @@ fn read_matrix(arg: &str, limits: &Limits) -> Result<Mat4> {
 }
 
 pub(super) fn depth(args: &DepthArgs, limits: &Limits) -> Result<()> {
-    limits.check_map(args.size).with_context(|| format!("--size {}", args.size))?;
+    limits.check_map(args.map).with_context(|| format!("--map {}", args.map))?;
     let scene = match &args.mesh {
         Some(path) => {
             let mesh = Mesh::load_obj(path, limits)?;
@@ -133,17 +111,12 @@ pub(super) fn depth(args: &DepthArgs, limits: &Limits) -> Result<()> {
         Some(m) => read_matrix(m, limits)?,
         None => scene.light().view_projection(),
     };
-    let raster = RasterConfig::new(args.size, args.size, args.tile, args.subpixel_bits)?;
+    let raster = RasterConfig::new(args.map, args.map, args.tile, args.subpixel_bits)?;
     let unit = match args.unit {
         Unit::Single => DepthUnit::Single,
         Unit::Dual => DepthUnit::Dual,
     };
-    let format = format_kind(args.format);
-    let cull = match args.cull {
-        Cull::None => CullMode::None,
-        Cull::Back => CullMode::Back,
-        Cull::Front => CullMode::Front,
-    };
+    let (format, cull) = (args.depth, args.cull);
     let config = LightPassConfig { raster, unit, max_z_cull: !args.no_max_z_cull };
     let draws = scene.draws(matrix, cull);
     let mut folder = OutputFolder::create(&args.out)?;

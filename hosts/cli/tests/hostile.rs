@@ -86,13 +86,13 @@ fn a_write_error_fails_the_command() {
     let d = dir("full");
     let out = d.join("out");
     let full = std::fs::OpenOptions::new().write(true).open("/dev/full").expect("/dev/full");
-    let o = command(&["depth", "--size", "64", "--out", text(&d.join("printed"))]).stdout(full).output().expect("runs");
+    let o = command(&["depth", "--map", "64", "--out", text(&d.join("printed"))]).stdout(full).output().expect("runs");
     fails_saying(&o, &["stdout", "No space left on device"]);
     // 8 KiB of file: the 512² z1.npy (1 MiB) cannot be written. SIGXFSZ is
     // ignored so that the write returns the error.
     let o = Command::new("sh")
         .args(["-c", "trap '' XFSZ; ulimit -f 8; exec \"$0\" \"$@\"", env!("CARGO_BIN_EXE_umbra")])
-        .args(["depth", "--size", "512", "--out", text(&out)])
+        .args(["depth", "--map", "512", "--out", text(&out)])
         .env("RUST_BACKTRACE", "0")
         .output()
         .expect("runs");
@@ -108,7 +108,7 @@ fn a_write_error_fails_the_command() {
 fn a_closed_stdout_ends_quietly() {
     let d = dir("pipe");
     let out = d.join("out");
-    let mut child = command(&["depth", "--size", "64", "--out", text(&out)])
+    let mut child = command(&["depth", "--map", "64", "--out", text(&out)])
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
@@ -128,10 +128,10 @@ fn a_closed_stdout_ends_quietly() {
 fn no_stale_output_survives() {
     let d = dir("stale");
     let out = d.join("out");
-    assert!(umbra(&["depth", "--size", "64", "--unit", "dual", "--out", text(&out)]).status.success());
+    assert!(umbra(&["depth", "--map", "64", "--unit", "dual", "--out", text(&out)]).status.success());
     assert!(out.join("z2.png").exists() && out.join("z2.npy").exists());
     std::fs::write(out.join("notes.txt"), "mine").expect("a user's file");
-    assert!(umbra(&["depth", "--size", "64", "--unit", "single", "--out", text(&out)]).status.success());
+    assert!(umbra(&["depth", "--map", "64", "--unit", "single", "--out", text(&out)]).status.success());
     assert!(!out.join("z2.png").exists() && !out.join("z2.npy").exists(), "stale z2");
     assert!(out.join("notes.txt").exists(), "a file Umbra did not write was removed");
     RunManifest::verify(&out, u64::MAX).expect("complete");
@@ -231,8 +231,8 @@ fn loose_values_are_refused_naming_the_flag() {
     let o = text(&out);
     for (args, says) in [
         (vec!["render", "--width", "0", "--out", o], "--width"),
-        (vec!["render", "--reference-samples", "17", "--out", o], "--reference-samples"),
-        (vec!["depth", "--size", "0", "--out", o], "--size"),
+        (vec!["render", "--reference-rays", "17", "--out", o], "--reference-rays"),
+        (vec!["depth", "--map", "0", "--out", o], "--map"),
         (vec!["plan", "--error-budget", "50%%", "--out", o], "--error-budget `50%%`"),
         (vec!["depth", "--matrix", r#"{"a": 1}"#, "--out", o], "not a 4×4 JSON array"),
         (vec!["study", "--maps", "256,256", "--out", o], "--maps `256` is given twice"),
@@ -255,7 +255,7 @@ fn polylines_are_reported_not_drawn() {
     let obj = d.join("lines.obj");
     std::fs::write(&obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nl 1 2 3 4 1\np 4\n").expect("obj");
     let out = d.join("out");
-    let args = ["depth", "--mesh", text(&obj), "--size", "32", "--out", text(&out)];
+    let args = ["depth", "--mesh", text(&obj), "--map", "32", "--out", text(&out)];
     let o = umbra(&args);
     let printed = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));

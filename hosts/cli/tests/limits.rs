@@ -39,11 +39,11 @@ fn fails_saying(o: &Output, needles: &[&str]) {
 #[test]
 fn a_map_side_beyond_the_limit_is_refused_and_the_option_moves_the_limit() {
     let out = dir("map");
-    let o = umbra(&["--max-map-side", "64", "depth", "--size", "96", "--out", text(&out)]);
-    fails_saying(&o, &["--size 96", "map side 96", "limit of 64", "max_map_side"]);
+    let o = umbra(&["--max-map-side", "64", "depth", "--map", "96", "--out", text(&out)]);
+    fails_saying(&o, &["--map 96", "map side 96", "limit of 64", "max_map_side"]);
     assert!(!out.exists(), "nothing is written");
     // After the subcommand too (the options are global), and at the limit.
-    succeeds(&umbra(&["depth", "--size", "96", "--max-map-side", "96", "--out", text(&out)]));
+    succeeds(&umbra(&["depth", "--map", "96", "--max-map-side", "96", "--out", text(&out)]));
     let z1 = std::fs::read(out.join("z1.npy")).expect("z1 written");
     assert!(z1.len() > 96 * 96 * 4, "a 96² map of 32-bit texels: {} bytes", z1.len());
     let _ = std::fs::remove_dir_all(&out);
@@ -55,7 +55,7 @@ fn a_mesh_beyond_the_triangle_or_file_limit_is_refused_before_it_is_built() {
     let (out, obj) =
         input("mesh", "fan.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv -1 0 0\nv 0 -1 0\nf 1 2 3\nf 1 3 4\nf 1 4 5\n");
     let maps = out.join("maps");
-    let mesh = ["depth", "--mesh", text(&obj), "--size", "32", "--out", text(&maps)];
+    let mesh = ["depth", "--mesh", text(&obj), "--map", "32", "--out", text(&maps)];
     fails_saying(&umbra(&[&["--max-triangles", "2"][..], &mesh].concat()), &["3 triangles", "max_triangles"]);
     fails_saying(&umbra(&[&["--max-file-bytes", "16"][..], &mesh].concat()), &["fan.obj", "max_file_bytes"]);
     assert!(!maps.exists(), "nothing is written");
@@ -85,7 +85,7 @@ fn every_file_the_command_reads_is_a_regular_file_within_the_file_limit() {
     // A light matrix in a file: the identity, 41 bytes of JSON.
     let (out, matrix) = input("files", "matrix.json", "[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]");
     let maps = out.join("maps");
-    let depth = ["depth", "--size", "32", "--out", text(&maps), "--matrix"];
+    let depth = ["depth", "--map", "32", "--out", text(&maps), "--matrix"];
     fails_saying(&umbra(&[&depth[..], &["/dev/zero"]].concat()), &["--matrix", "not a regular file"]);
     let small = [&["--max-file-bytes", "20"][..], &depth, &[text(&matrix)]].concat();
     fails_saying(&umbra(&small), &["--matrix", "max_file_bytes"]);

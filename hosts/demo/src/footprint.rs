@@ -9,7 +9,7 @@
 //! | maps `z1` (and `z2` for the dual unit) | `W·H · t · u`, `t` = 2 (D16) or 4 (D24 in a `u32`, F32), `u` = 1 or 2 buffers |
 //! | tile summaries ([`umbra_core::TileState`]) | `n · ⌈(5t + 8) / 4⌉·4`: five depths and two `u32` counters |
 //! | bins ([`umbra_core::raster::bin::Bin`], a `heapless::Vec<u16, B>`) | `n · ⌈(p + 2B) / p⌉·p`, `p` the pointer width (its length is a `usize`) |
-//! | setup store ([`umbra_core::raster::setup::Setup`]) | `S · 160`: three edges of three `i64` (72), the depth plane of three `i128` (48), a bounding box of four `u32` (16), two `I32F32` depth bounds (16) and the id (4), padded to a multiple of 8 (ARM) or 16 (x86-64): 160 on both |
+//! | setup store ([`umbra_core::front::setup::Setup`]) | `S · 160`: three edges of three `i64` (72), the depth plane of three `i128` (48), a bounding box of four `u32` (16), two `I32F32` depth bounds (16) and the id (4), padded to a multiple of 8 (ARM) or 16 (x86-64): 160 on both |
 //!
 //! On Cortex-M `p = 4`; on x86-64 `p = 8`.
 //!
@@ -191,8 +191,8 @@ pub fn camera_pass(cfg: &CameraFootprint) -> Result<CameraBuffers, ConfigError> 
 mod tests {
     use core::mem::size_of;
 
+    use umbra_core::front::setup::Setup;
     use umbra_core::raster::bin::Bin;
-    use umbra_core::raster::setup::Setup;
     use umbra_core::{DepthFormatKind, DepthUnit, TileState};
 
     use super::*;

@@ -11,10 +11,10 @@ use core::fmt;
 use core::mem::size_of;
 
 use umbra_core::depth::PlaneZ;
+use umbra_core::front::setup::{DepthPlane, Edge, Setup};
 use umbra_core::front::vertex::VertexCache;
 use umbra_core::glam::Vec3;
 use umbra_core::raster::bin::Bin;
-use umbra_core::raster::setup::{DepthPlane, Edge, Setup};
 use umbra_core::shade::stream::StreamError;
 use umbra_core::shade::{Normals, ShadeConfig, ShadeSetup, Shaded};
 use umbra_core::shadow::{Bias, DepthTest, Filter, Shadow, ShadowConfig, ShadowConfigError};

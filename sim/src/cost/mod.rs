@@ -1,7 +1,6 @@
 //! What a pass costs: the architecture and its timing model, the map
-//! cache, the map's storage schemes, and the event counters.
+//! cache, the map's storage schemes.
 
 pub mod arch;
 pub mod cache;
-pub mod counters;
 pub mod storage;

@@ -58,7 +58,7 @@ impl MapShape {
     /// The shape of a `width × height` map in `format`, cleared to its far value.
     #[must_use]
     pub fn of_format(width: u32, height: u32, format: DepthFormatKind) -> Self {
-        Self { width, height, texel_bytes: format.bytes(), clear: crate::pass::light::raw_far(format) }
+        Self { width, height, texel_bytes: format.bytes(), clear: crate::base::maps::raw_far(format) }
     }
 
     fn texels(&self) -> usize {

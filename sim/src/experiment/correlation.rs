@@ -17,7 +17,7 @@ use umbra_core::shadow::Filter;
 
 use crate::cost::arch::Arch;
 use crate::io::limits::Limits;
-use crate::pass::render::{Algorithm, Culling, RenderConfig, RenderError, cost, cost_unshadowed};
+use crate::render::{Algorithm, Culling, RenderConfig, RenderError, cost, cost_unshadowed};
 use crate::world::scene::Scene;
 
 /// Their frame rate without shadows (Table 1, first row).
@@ -102,7 +102,7 @@ pub fn run(scene: &Scene, arch: &Arch, limits: &Limits) -> Result<Correlation, R
                 virtual_samples: false,
                 width,
                 height,
-                reference_samples: 1,
+                reference_rays: 1,
                 culling: Culling::ALGORITHM,
             };
             let predicted = cost(scene, &cfg, arch, limits)?.fps;

@@ -28,7 +28,7 @@ use crate::cost::storage::StorageBytes;
 use crate::experiment::presets::FILTERS;
 use crate::io::limits::Limits;
 use crate::pass::light::{self, DEFAULT_BIN_CAPACITY, LightFrame, LightOptions};
-use crate::pass::render::{Algorithm, Culling, Render, RenderConfig, RenderError, TruthSource, cost, render, truth};
+use crate::render::{Algorithm, Culling, Render, RenderConfig, RenderError, TruthSource, cost, render, truth};
 use crate::truth::metrics::Metrics;
 use crate::truth::reference::PixelTruth;
 use crate::world::scene::Scene;
@@ -49,8 +49,8 @@ pub struct PlanSpec {
     pub budget_percent: f64,
     /// Map sides to try, ascending.
     pub map_sizes: Vec<u32>,
-    /// Filters to try, by name from [`FILTERS`].
-    pub filters: Vec<&'static str>,
+    /// Filters to try.
+    pub filters: Vec<Filter>,
     /// The architecture whose cost is minimised.
     pub arch: Arch,
     /// Camera image for the measurement (the prediction uses a quarter).
@@ -67,7 +67,7 @@ impl PlanSpec {
         Self {
             budget_percent,
             map_sizes: vec![128, 256, 512, 1024, 2048],
-            filters: vec!["point", "bilinear", "box3"],
+            filters: FILTERS[..3].to_vec(),
             arch: Arch::bundled("talisman").unwrap_or_default(),
             image: scene.image,
             limits: Limits::DEFAULT,
@@ -98,8 +98,9 @@ pub struct Figures {
 pub struct Plan {
     /// The configuration, at the measurement's image size.
     pub config: RenderConfig,
-    /// Its filter's name.
-    pub filter: &'static str,
+    /// Its filter.
+    #[serde(with = "crate::base::text")]
+    pub filter: Filter,
     /// Its depth format's name.
     pub format: String,
     /// The thinnest gap between surfaces (1st percentile), in 16-bit steps.
@@ -204,16 +205,26 @@ fn evaluate(
 
 /// Plan `scene` within `spec`.
 ///
+/// ```
+/// use umbra_core::shadow::Filter;
+/// use umbra_sim::{Limits, PlanSpec, Scene};
+/// let scene = Scene::open("weiskopf-l", &Limits::DEFAULT)?;
+/// let spec = PlanSpec {
+///     map_sizes: vec![128, 256],
+///     filters: vec![Filter::Point, Filter::Bilinear],
+///     image: [96, 72],
+///     ..PlanSpec::new(&scene, 1.0)
+/// };
+/// let plan = umbra_sim::plan(&scene, &spec)?;
+/// assert!(spec.map_sizes.contains(&plan.config.map_size));
+/// assert!(plan.config.command(&scene.source).starts_with("umbra render weiskopf-l"));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
 /// # Errors
 /// See [`PlanError`].
 pub fn plan(scene: &Scene, spec: &PlanSpec) -> Result<Plan, PlanError> {
-    let filters: Vec<(&'static str, Filter)> = spec
-        .filters
-        .iter()
-        .map(|n| {
-            FILTERS.iter().find(|(f, _)| f == n).copied().ok_or_else(|| PlanError::Spec(format!("unknown filter {n}")))
-        })
-        .collect::<Result<_, _>>()?;
+    let filters = &spec.filters;
     if spec.map_sizes.is_empty() || filters.is_empty() {
         return Err(PlanError::Spec("no map size or no filter to choose from".into()));
     }
@@ -253,7 +264,7 @@ pub fn plan(scene: &Scene, spec: &PlanSpec) -> Result<Plan, PlanError> {
             virtual_samples: true,
             width: image[0],
             height: image[1],
-            reference_samples: rays,
+            reference_rays: rays,
             culling: Culling::ALGORITHM,
         }
     };
@@ -263,28 +274,28 @@ pub fn plan(scene: &Scene, spec: &PlanSpec) -> Result<Plan, PlanError> {
     let hidden = ProgressBar::hidden();
     let quarter_truth = truth(scene, quarter[0], quarter[1], 1, &hidden)?;
     let image_truth = truth(scene, spec.image[0], spec.image[1], 4, &hidden)?;
-    let mut best: Option<(Figures, u32, (&'static str, Filter))> = None;
-    let mut most_accurate: Option<(Figures, u32, (&'static str, Filter))> = None;
+    let mut best: Option<(Figures, u32, Filter)> = None;
+    let mut most_accurate: Option<(Figures, u32, Filter)> = None;
     for &map in &spec.map_sizes {
-        for &(name, filter) in &filters {
+        for &filter in filters {
             let (f, _) = evaluate(scene, &at(quarter, map, filter, algorithm, format, 1), spec, &quarter_truth)?;
             if most_accurate.is_none_or(|(b, ..)| f.artifact_percent < b.artifact_percent) {
-                most_accurate = Some((f, map, (name, filter)));
+                most_accurate = Some((f, map, filter));
             }
             if f.artifact_percent <= spec.budget_percent
                 && best.is_none_or(|(b, ..)| (f.cycles, f.bytes) < (b.cycles, b.bytes))
             {
-                best = Some((f, map, (name, filter)));
+                best = Some((f, map, filter));
             }
         }
     }
     let predicted_to_meet = best.is_some();
-    let Some((predicted, map, (filter_name, filter))) = best.or(most_accurate) else {
+    let Some((predicted, map, filter)) = best.or(most_accurate) else {
         return Err(PlanError::Spec("no candidate".into()));
     };
     if predicted_to_meet {
         reasons.push(format!(
-            "{map}² map with the {filter_name} filter: the cheapest candidate predicted under {}% ({} candidates at {}×{})",
+            "{map}² map with the {filter} filter: the cheapest candidate predicted under {}% ({} candidates at {}×{})",
             spec.budget_percent,
             spec.map_sizes.len() * filters.len(),
             quarter[0],
@@ -292,7 +303,7 @@ pub fn plan(scene: &Scene, spec: &PlanSpec) -> Result<Plan, PlanError> {
         ));
     } else {
         reasons.push(format!(
-            "no candidate is predicted under {}%: the most accurate, {map}² with the {filter_name} filter",
+            "no candidate is predicted under {}%: the most accurate, {map}² with the {filter} filter",
             spec.budget_percent
         ));
     }
@@ -306,7 +317,7 @@ pub fn plan(scene: &Scene, spec: &PlanSpec) -> Result<Plan, PlanError> {
     let (full, _) = evaluate(scene, &full_config, spec, &image_truth)?;
     Ok(Plan {
         config,
-        filter: filter_name,
+        filter,
         format: format!("{format:?}"),
         gap_lsbs,
         open_surfaces,

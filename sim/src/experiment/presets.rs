@@ -4,10 +4,11 @@ use umbra_core::shadow::{Filter, Jitter};
 
 /// The filters of the trade study: point, bilinear, 3×3 box, and Reeves'
 /// jittered filter with 4 and with 16 samples.
-pub const FILTERS: [(&str, Filter); 5] = [
-    ("point", Filter::Point),
-    ("bilinear", Filter::Bilinear),
-    ("box3", Filter::Box { size: 3 }),
-    ("jitter4", Filter::Jittered(Jitter { num_samples: 4, ..Jitter::REEVES })),
-    ("jitter16", Filter::Jittered(Jitter::REEVES)),
+/// Each is named by its one spelling, its `Display`.
+pub const FILTERS: [Filter; 5] = [
+    Filter::Point,
+    Filter::Bilinear,
+    Filter::Box { size: 3 },
+    Filter::Jittered(Jitter { num_samples: 4, ..Jitter::REEVES }),
+    Filter::Jittered(Jitter::REEVES),
 ];

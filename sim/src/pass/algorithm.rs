@@ -40,6 +40,49 @@ pub enum Algorithm {
     Volumes,
 }
 
+/// The one spelling of an algorithm: its [`Algorithm::name`].
+impl std::fmt::Display for Algorithm {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A name that is no algorithm's.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error(
+    "`{0}` is not an algorithm (first, bias-range, second, second-ffc, midpoint, dual, silhouette, silhouette-packed, volumes)"
+)]
+pub struct UnknownAlgorithm(pub String);
+
+/// The paper an algorithm comes from, as the study groups them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Family {
+    /// Williams' first depth, with a constant bias or Reeves' range.
+    FirstDepth,
+    /// Wang & Molnar's second depth.
+    SecondDepth,
+    /// Woo's midpoint and Weiskopf & Ertl's dual depth.
+    MidpointDual,
+    /// Sen, Cammarano & Hanrahan's silhouette map.
+    Silhouette,
+    /// Depth-fail stencil shadow volumes.
+    Volumes,
+}
+
+impl Family {
+    /// Every family, in the order of the papers.
+    pub const ALL: [Self; 5] =
+        [Self::FirstDepth, Self::SecondDepth, Self::MidpointDual, Self::Silhouette, Self::Volumes];
+}
+
+umbra_core::spelled!(Family, "algorithm family", {
+    FirstDepth => "first depth",
+    SecondDepth => "second depth",
+    MidpointDual => "midpoint and dual",
+    Silhouette => "silhouette map",
+    Volumes => "shadow volumes",
+});
+
 /// How the light pass culls one class of object.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -57,17 +100,11 @@ pub enum Cull {
 }
 
 impl Cull {
-    /// Every choice, in the order of [`Cull::NAMES`].
+    /// Every choice.
     pub const ALL: [Self; 4] = [Self::Algorithm, Self::None, Self::Front, Self::Back];
-    /// The names the command line and the study's rows use.
-    pub const NAMES: [&'static str; 4] = ["algorithm", "none", "front", "back"];
-
-    /// This choice's name.
-    #[must_use]
-    pub const fn name(self) -> &'static str {
-        Self::NAMES[self as usize]
-    }
 }
+
+umbra_core::spelled!(Cull, "culling", { Algorithm => "algorithm", None => "none", Front => "front", Back => "back" });
 
 /// The light pass's culling per object class: closed solids and open
 /// surfaces (Weiskopf & Ertl §3.2 cull solids' back faces and nothing of an
@@ -87,15 +124,16 @@ impl Culling {
     pub const ALGORITHM: Self = Self { solids: Cull::Algorithm, open: Cull::Algorithm };
     /// Nothing culled (Weiskopf & Ertl's Figure 5 (b)–(d) and 6).
     pub const OFF: Self = Self { solids: Cull::None, open: Cull::None };
+}
 
-    /// A short label, the form `umbra render --cull` takes: `algorithm`
-    /// for the algorithm's own, else `solids=…,open=…`.
-    #[must_use]
-    pub fn label(self) -> String {
-        if self == Self::ALGORITHM {
-            "algorithm".to_owned()
+/// The one spelling `umbra render --cull`, sweep files and rows use:
+/// `algorithm` for the algorithm's own, else `solids=…,open=…`.
+impl std::fmt::Display for Culling {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if *self == Self::ALGORITHM {
+            f.write_str("algorithm")
         } else {
-            format!("solids={},open={}", self.solids.name(), self.open.name())
+            write!(f, "solids={},open={}", self.solids.name(), self.open.name())
         }
     }
 }
@@ -247,14 +285,54 @@ impl Algorithm {
 
     /// The paper the algorithm comes from, as the study groups them.
     #[must_use]
-    pub const fn family(self) -> &'static str {
+    pub const fn family(self) -> Family {
         match self {
-            Self::First | Self::BiasRange { .. } => "first depth",
-            Self::Second | Self::SecondFrontCulled => "second depth",
-            Self::Midpoint | Self::Dual { .. } => "midpoint and dual",
-            Self::Silhouette { .. } => "silhouette map",
-            Self::Volumes => "shadow volumes",
+            Self::First | Self::BiasRange { .. } => Family::FirstDepth,
+            Self::Second | Self::SecondFrontCulled => Family::SecondDepth,
+            Self::Midpoint | Self::Dual { .. } => Family::MidpointDual,
+            Self::Silhouette { .. } => Family::Silhouette,
+            Self::Volumes => Family::Volumes,
         }
+    }
+
+    /// Every algorithm's name, in the order of the papers.
+    pub const NAMES: [&'static str; 9] = [
+        "first",
+        "bias-range",
+        "second",
+        "second-ffc",
+        "midpoint",
+        "dual",
+        "silhouette",
+        "silhouette-packed",
+        "volumes",
+    ];
+
+    /// The algorithm named `name` ([`Algorithm::name`]), with Reeves'
+    /// `Bias1` for a bias range and the offset for dual depth (the others
+    /// take neither).
+    ///
+    /// ```
+    /// use umbra_sim::pass::algorithm::Algorithm;
+    /// assert_eq!(Algorithm::named("dual", 0.005, 0.01), Ok(Algorithm::Dual { offset: 0.01 }));
+    /// assert!(Algorithm::named("third", 0.0, 0.0).is_err());
+    /// ```
+    ///
+    /// # Errors
+    /// [`UnknownAlgorithm`] for any other name.
+    pub fn named(name: &str, bias1: f64, offset: f64) -> Result<Self, UnknownAlgorithm> {
+        Ok(match name {
+            "first" => Self::First,
+            "bias-range" => Self::BiasRange { hi: bias1 },
+            "second" => Self::Second,
+            "second-ffc" => Self::SecondFrontCulled,
+            "midpoint" => Self::Midpoint,
+            "dual" => Self::Dual { offset },
+            "silhouette" => Self::Silhouette { packed: false },
+            "silhouette-packed" => Self::Silhouette { packed: true },
+            "volumes" => Self::Volumes,
+            _ => return Err(UnknownAlgorithm(name.to_owned())),
+        })
     }
 
     /// The algorithm as `umbra render` takes it: `--algo` and its own

@@ -2,8 +2,8 @@
 //! matrix, then the shading unit against a light pass's maps.
 
 use glam::Mat4;
+use umbra_core::front::setup::Setup;
 use umbra_core::raster::bin::Bin;
-use umbra_core::raster::setup::Setup;
 use umbra_core::shade::{Normals, PixelResult, ShadeConfig, ShadeSetup, Shaded, ShadowUnit, shade_with};
 use umbra_core::shadow::{MapView, Shadow, ShadowConfig};
 use umbra_core::{
@@ -12,6 +12,7 @@ use umbra_core::{
 };
 
 use super::PassError;
+use crate::base::maps::Tiling;
 use crate::pass::light::{DEFAULT_BIN_CAPACITY, DEFAULT_SETUPS, LightMaps};
 use crate::world::scene::Scene;
 
@@ -39,21 +40,6 @@ pub struct CameraOptions {
     pub virtual_samples: bool,
     /// The visibility unit's tiles and draw order.
     pub tiling: Tiling,
-}
-
-/// How the visibility unit walks the image: the bits depend on neither; the
-/// architecture a pass is costed on does.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Tiling {
-    /// Side of the tiles.
-    pub tile: u32,
-    /// Finish each draw before the next (an immediate-mode machine).
-    pub per_draw: bool,
-}
-
-impl Tiling {
-    /// The default tiles, every draw binned before any is drawn.
-    pub const DEFAULT: Self = Self { tile: RasterConfig::DEFAULT_TILE_SIZE, per_draw: false };
 }
 
 /// What the visibility unit decided besides its buffers: the camera's
@@ -314,7 +300,7 @@ pub fn volumes<P: Probe>(
     let vis = visibility(frame, scene, size, tiling, probe)?;
     let occluders = crate::world::occluders::Occluders::new(scene);
     let stencil =
-        crate::world::occluders::stencil::<D24, _>(scene, &occluders, &vis.camera, vis.raster, &frame.z, probe)?;
+        crate::pass::occluders::stencil::<D24, _>(scene, &occluders, &vis.camera, vis.raster, &frame.z, probe)?;
     let triangles = scene.triangles();
     frame.pixels.clear();
     frame.pixels.extend(frame.ids.iter().zip(&stencil).map(|(&id, &s)| match triangles.get(id as usize) {

@@ -1,17 +1,15 @@
 //! Run the core's light pass over buffers owned here.
 
-use glam::{Mat4, Vec3};
 use umbra_core::depth::Texel;
+use umbra_core::front::setup::Setup;
 use umbra_core::front::vertex::{CACHE_ENTRIES, VertexCache};
 use umbra_core::front::{self, Output};
 use umbra_core::raster::bin::Bin;
-use umbra_core::raster::setup::Setup;
-use umbra_core::{
-    CullMode, D16, D24, DepthFormat, DepthFormatKind, DepthUnit, F32, LightBuffers, LightPass, LightPassConfig, Probe,
-    TileState,
-};
+use umbra_core::{DepthFormat, DepthFormatKind, DepthUnit, LightBuffers, LightPass, LightPassConfig, Probe, TileState};
 
 use super::PassError;
+use crate::base::maps::with_format;
+pub use crate::world::scene::Draw;
 
 /// Bin capacity the simulator uses unless told otherwise: bins live in
 /// memory, so they are deep (a bin of 2-byte entries is 512 bytes).
@@ -28,19 +26,6 @@ pub const DEFAULT_SETUPS: usize = umbra_core::raster::bin::MAX_SETUPS;
 /// grows with the tiles.
 fn unwatched_setups(raster: &umbra_core::RasterConfig) -> usize {
     raster.tile_count().saturating_mul(4).clamp(4096, DEFAULT_SETUPS)
-}
-
-/// One draw call: a mesh, its transform to light clip space and its cull mode.
-#[derive(Clone, Copy, Debug)]
-pub struct Draw<'a> {
-    /// Object-space positions.
-    pub positions: &'a [Vec3],
-    /// Vertex indices, three per triangle.
-    pub triangles: &'a [[u32; 3]],
-    /// Object space to light clip space.
-    pub transform: Mat4,
-    /// Which facing to discard.
-    pub cull: CullMode,
 }
 
 /// The maps of one light pass.
@@ -438,31 +423,7 @@ impl RawMaps {
             let (maps, probe) = LightMaps::draw::<F, P>(config, draws, LightOptions::default(), probe)?;
             Ok((widen(&maps), probe))
         }
-        let (maps, probe) = match format {
-            DepthFormatKind::D16 => pass::<D16, P>(config, draws, probe)?,
-            DepthFormatKind::D24 => pass::<D24, P>(config, draws, probe)?,
-            DepthFormatKind::F32 => pass::<F32, P>(config, draws, probe)?,
-        };
+        let (maps, probe) = with_format!(format, F => pass::<F, P>(config, draws, probe)?);
         Ok((Self { format, maps }, probe))
-    }
-}
-
-/// The depth a raw texel of `format` stands for, in `[0, 1]`.
-#[must_use]
-pub fn raw_depth(format: DepthFormatKind, raw: u32) -> f64 {
-    match format {
-        DepthFormatKind::D16 => D16::unquantize(u16::try_from(raw).unwrap_or(u16::MAX)),
-        DepthFormatKind::D24 => D24::unquantize(raw),
-        DepthFormatKind::F32 => F32::unquantize(raw),
-    }
-}
-
-/// The clear (far) value of `format`, as raw bits.
-#[must_use]
-pub fn raw_far(format: DepthFormatKind) -> u32 {
-    match format {
-        DepthFormatKind::D16 => u32::from(D16::FAR),
-        DepthFormatKind::D24 => D24::FAR,
-        DepthFormatKind::F32 => F32::FAR,
     }
 }

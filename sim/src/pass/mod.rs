@@ -1,12 +1,11 @@
 //! The passes over buffers the simulator owns: the light pass (whole or in
-//! bands on every core), the camera pass, and a render of both for one
-//! shadow algorithm.
+//! bands on every core), the camera pass, and the silhouette and stencil
+//! passes over a scene's occluders; which units each algorithm uses.
 
 pub mod algorithm;
 pub mod camera;
-pub mod costed;
 pub mod light;
-pub mod render;
+pub mod occluders;
 
 use umbra_core::{ConfigError, SubmitError};
 

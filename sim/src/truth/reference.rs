@@ -18,27 +18,7 @@ use rayon::prelude::*;
 use umbra_core::NO_TRIANGLE;
 use umbra_core::shade::SceneTriangle;
 
-/// Where the light comes from.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum LightSource {
-    /// A point (spot) light at this position.
-    Point(DVec3),
-    /// A directional light shining along this direction.
-    Directional(DVec3),
-}
-
-impl LightSource {
-    /// The unit direction from `p` towards the light and the distance to it.
-    fn towards(&self, p: DVec3) -> (DVec3, f64) {
-        match *self {
-            Self::Point(l) => {
-                let d = l - p;
-                (d.normalize_or_zero(), d.length())
-            }
-            Self::Directional(dir) => (-dir.normalize_or_zero(), f64::INFINITY),
-        }
-    }
-}
+use crate::world::scene::LightSource;
 
 /// Why the reference could not be built.
 #[derive(Debug, thiserror::Error)]

@@ -7,13 +7,7 @@
 
 use std::collections::HashMap;
 
-use glam::{DVec3, Mat4, Vec3};
-use umbra_core::front::clip::ClipVertex;
-use umbra_core::probe::Probe;
-use umbra_core::shadow::{MapView, ShadowConfig};
-use umbra_core::silhouette::{SilStore, SilhouettePass};
-use umbra_core::stencil::{StencilPass, Volume, VolumeLight};
-use umbra_core::{ConfigError, DepthFormat, RasterConfig};
+use glam::Vec3;
 
 use crate::world::scene::{Light, Scene};
 
@@ -102,84 +96,4 @@ impl Occluders {
         }
         edges
     }
-}
-
-fn clip(m: &Mat4, p: Vec3) -> ClipVertex {
-    (*m * p.extend(1.0)).to_array().map(f64::from)
-}
-
-/// The silhouette map of `occluders` on the depth map `map` (`light` is
-/// its view-projection), its visibility tested with `cfg`'s test and bias.
-///
-/// # Errors
-/// [`ConfigError`] when `map` is unusable.
-pub fn silhouette_map<S: SilStore, F: DepthFormat, P: Probe>(
-    occluders: &Occluders,
-    light: &Mat4,
-    map: &MapView<'_, F>,
-    cfg: ShadowConfig,
-    probe: &mut P,
-) -> Result<Vec<S>, ConfigError> {
-    let r = *map.raster();
-    let mut texels = vec![S::default(); (r.width() as usize + 1) * (r.height() as usize + 1)];
-    let mut pass = SilhouettePass::new(&mut texels, map, cfg)?;
-    for [a, b] in occluders.silhouette_edges() {
-        pass.draw_clip(&clip(light, a), &clip(light, b), probe);
-    }
-    Ok(texels)
-}
-
-/// The light as the volumes need it under `camera`, with an extrusion
-/// that carries every volume past every point of the scene: a point
-/// light's to twice the scene's farthest distance from it, a directional
-/// light's by twice the scene's diagonal.
-#[must_use]
-pub fn volume_light(scene: &Scene, camera: &Mat4) -> VolumeLight {
-    let points = scene.objects.iter().flat_map(|o| o.mesh.positions.iter().map(|p| p.as_dvec3()));
-    let light = scene.light();
-    let clip4 = |v: glam::Vec4| (*camera * v).to_array().map(f64::from);
-    match light {
-        Light::Spot(s) => {
-            let l = s.position.as_dvec3();
-            let (near, far) = points.fold((f64::INFINITY, 0.0f64), |(lo, hi), p| {
-                let d = (p - l).length();
-                (lo.min(d), hi.max(d))
-            });
-            let t = if near > 0.0 && near.is_finite() { (2.0 * far / near).min(1e6) } else { 1e6 };
-            VolumeLight { clip: clip4(s.position.extend(1.0)), point: true, t }
-        }
-        Light::Directional(_) => {
-            let (lo, hi) = points.fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| (lo.min(p), hi.max(p)));
-            let diagonal = (hi - lo).length();
-            let towards = (-light.direction()).normalize_or_zero();
-            let t = if diagonal.is_finite() { 2.0 * diagonal } else { 0.0 };
-            VolumeLight { clip: clip4(towards.extend(0.0)), point: false, t }
-        }
-    }
-}
-
-/// Count the shadow volumes of `occluders` into a stencil over the camera
-/// target `raster`, against the scene depth `depth` the visibility unit
-/// stored under `camera`. Non-zero stencil: in shadow.
-///
-/// # Errors
-/// [`ConfigError`] when a buffer does not fit `raster`.
-pub fn stencil<F: DepthFormat, P: Probe>(
-    scene: &Scene,
-    occluders: &Occluders,
-    camera: &Mat4,
-    raster: RasterConfig,
-    depth: &[F::Texel],
-    probe: &mut P,
-) -> Result<Vec<u8>, ConfigError> {
-    let light = volume_light(scene, camera);
-    let mut stencil = vec![0u8; raster.texel_count()];
-    let mut pass = StencilPass::<F>::new(raster, depth, &mut stencil)?;
-    for t in &occluders.triangles {
-        let volume = Volume { tri: t.positions.map(|p| clip(camera, p)), sides: t.sides };
-        for tri in volume.triangles(&light) {
-            pass.draw(&tri, probe);
-        }
-    }
-    Ok(stencil)
 }

@@ -1,9 +1,8 @@
 //! Scenes: objects in world space, lights and a camera.
 
-use glam::{Mat4, Vec3};
+use glam::{DVec3, Mat4, Vec3};
 use umbra_core::CullMode;
 
-use crate::pass::light::Draw;
 use crate::world::mesh::Mesh;
 
 /// A mesh placed in the world.
@@ -134,10 +133,10 @@ impl Light {
 
     /// The light as the exact reference sees it.
     #[must_use]
-    pub fn source(&self) -> crate::truth::reference::LightSource {
+    pub fn source(&self) -> LightSource {
         match self {
-            Self::Spot(p) => crate::truth::reference::LightSource::Point(p.position.as_dvec3()),
-            Self::Directional(_) => crate::truth::reference::LightSource::Directional(self.direction().as_dvec3()),
+            Self::Spot(p) => LightSource::Point(p.position.as_dvec3()),
+            Self::Directional(_) => LightSource::Directional(self.direction().as_dvec3()),
         }
     }
 }
@@ -282,4 +281,39 @@ pub fn parse_matrix(json: &str) -> Result<Mat4, MatrixError> {
         }
     }
     Ok(Mat4::from_cols_array_2d(&m).transpose())
+}
+
+/// One draw call: a mesh, its transform to light clip space and its cull mode.
+#[derive(Clone, Copy, Debug)]
+pub struct Draw<'a> {
+    /// Object-space positions.
+    pub positions: &'a [Vec3],
+    /// Vertex indices, three per triangle.
+    pub triangles: &'a [[u32; 3]],
+    /// Object space to light clip space.
+    pub transform: Mat4,
+    /// Which facing to discard.
+    pub cull: CullMode,
+}
+
+/// Where the light comes from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LightSource {
+    /// A point (spot) light at this position.
+    Point(DVec3),
+    /// A directional light shining along this direction.
+    Directional(DVec3),
+}
+
+impl LightSource {
+    /// The unit direction from `p` towards the light and the distance to it.
+    pub(crate) fn towards(&self, p: DVec3) -> (DVec3, f64) {
+        match *self {
+            Self::Point(l) => {
+                let d = l - p;
+                (d.normalize_or_zero(), d.length())
+            }
+            Self::Directional(dir) => (-dir.normalize_or_zero(), f64::INFINITY),
+        }
+    }
 }

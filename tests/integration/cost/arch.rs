@@ -7,7 +7,7 @@ use umbra::core::{CullMode, D16, D24, DepthFormat, DepthFormatKind, DepthUnit, L
 use umbra::sim::cost::arch::file::BUNDLED;
 use umbra::sim::cost::arch::{Arch, ArchProbe, PassKind, PassTiming, Stage};
 use umbra::sim::io::limits::Limits;
-use umbra::sim::pass::render::{Algorithm, Culling, RenderConfig, cost};
+use umbra::sim::render::{Algorithm, Culling, RenderConfig, cost};
 use umbra::sim::world::scene::Scene;
 
 use crate::common::{run, triangles};
@@ -180,7 +180,7 @@ fn memory_bound_halves_and_compute_bound_stays() {
         virtual_samples: true,
         width: 240,
         height: 135,
-        reference_samples: 1,
+        reference_rays: 1,
         culling: Culling::ALGORITHM,
     };
     let frame = |arch: &Arch| cost(&scene, &cfg, arch, &Limits::DEFAULT).expect("costs");
@@ -220,7 +220,7 @@ fn energy_is_the_sum_over_units_recomputed_from_the_events() {
         virtual_samples: false,
         width: 160,
         height: 90,
-        reference_samples: 1,
+        reference_rays: 1,
         culling: Culling::ALGORITHM,
     };
     let arch = bundled("talisman");
@@ -275,7 +275,7 @@ fn shadow_volume_cost_follows_overdraw_and_stays_on_chip_on_a_tiler() {
         virtual_samples: false,
         width: w,
         height: h,
-        reference_samples: 1,
+        reference_rays: 1,
         culling: Culling::ALGORITHM,
     };
     let talisman = bundled("talisman");
@@ -320,7 +320,7 @@ fn sens_p_both_ways() {
             virtual_samples: false,
             width: w,
             height: h,
-            reference_samples: 1,
+            reference_rays: 1,
             culling: Culling::ALGORITHM,
         };
         cost(&scene, &cfg, &talisman, &Limits::DEFAULT).expect("costs").sen
@@ -347,7 +347,7 @@ fn the_timeline_is_the_timing_model() {
         virtual_samples: true,
         width: 160,
         height: 90,
-        reference_samples: 1,
+        reference_rays: 1,
         culling: Culling::ALGORITHM,
     };
     let arch = bundled("talisman");

@@ -9,27 +9,16 @@ use umbra::sim::io::limits::Limits;
 use umbra::sim::world::scene::Scene;
 
 #[test]
-fn table_1_ratios_match_the_readme() {
+fn table_1_ratios_follow_the_published_frame_rates() {
     let scene = Scene::bundled("factory").expect("bundled");
     assert_eq!(scene.objects.iter().map(|o| o.mesh.triangles.len()).sum::<usize>(), 13_284, "their count");
     assert_eq!(scene.image, [1100, 1100]);
     let c = run(&scene, &Arch::bundled("r300").expect("bundled"), &Limits::DEFAULT).expect("costs");
-    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).expect("README");
     assert_eq!(c.cells.len(), 12);
     for (cell, (_, _, published)) in c.cells.iter().zip(TABLE_1.iter().flat_map(|r| std::iter::repeat_n(r, 4))) {
         // The published ratio, worked from their frame rates.
         assert!(published.contains(&cell.published_fps));
         assert!((cell.published_ratio - cell.published_fps / NO_SHADOW_FPS).abs() < 1e-12);
-        let row = format!(
-            "| {} | {} | {}² | {:.3} | {:.3} | {:+.0} % |",
-            cell.filter,
-            cell.method,
-            cell.map,
-            cell.published_ratio,
-            cell.predicted_ratio,
-            100.0 * cell.error()
-        );
-        assert!(readme.contains(&row), "the README lacks the row\n{row}");
     }
     // Shadows cost time: every predicted ratio is below one, a second
     // depth costs more than a first, a bigger map and more samples too.

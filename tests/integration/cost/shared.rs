@@ -7,7 +7,7 @@ use umbra::core::DepthFormatKind;
 use umbra::core::shadow::Filter;
 use umbra::sim::cost::arch::Arch;
 use umbra::sim::io::limits::Limits;
-use umbra::sim::pass::render::{Algorithm, Culling, RenderConfig, TruthSource, cost, render, render_costed};
+use umbra::sim::render::{Algorithm, Culling, RenderConfig, TruthSource, cost, render, render_costed};
 use umbra::sim::world::scene::Scene;
 
 #[test]
@@ -36,7 +36,7 @@ fn a_shared_pass_costs_each_architecture_as_alone() {
             virtual_samples: true,
             width: 160,
             height: 96,
-            reference_samples: 1,
+            reference_rays: 1,
             culling: Culling::ALGORITHM,
         };
         let alone = render(&s, &cfg, &limits, TruthSource::Build(&indicatif::ProgressBar::hidden())).expect("renders");

@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use umbra::sim::experiment::study::{self, Manifest, Row, Shard, Spec, StudyError, Variant};
 use umbra::sim::io::folder::RunManifest;
 use umbra::sim::io::limits::Limits;
-use umbra::sim::pass::render::Algorithm;
+use umbra::sim::render::Algorithm;
 
 fn dir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("umbra-merge-{}-{name}", std::process::id()));
@@ -28,7 +28,7 @@ fn tiny(hash: &str) -> Spec {
     spec.filters.truncate(1);
     spec.archs.truncate(1);
     spec.images = vec![[48, 27]];
-    spec.reference_samples = 1;
+    spec.reference_rays = 1;
     spec.hash = hash.to_owned();
     spec
 }

@@ -3,7 +3,7 @@
 //! configuration (dual unit, 24-bit depth) at the same map size and filter.
 
 use umbra::sim::experiment::plan::{PlanSpec, plan};
-use umbra::sim::pass::render::Algorithm;
+use umbra::sim::render::Algorithm;
 use umbra::sim::world::scene::Scene;
 use umbra::sim::world::scene_file::BUNDLED;
 

@@ -12,7 +12,7 @@ use umbra::sim::experiment::study::extremes::{self, RATIOS};
 use umbra::sim::experiment::study::plot::pareto_front;
 use umbra::sim::experiment::study::{self, Manifest, Row, Shard, Spec, Status, Variant};
 use umbra::sim::io::limits::Limits;
-use umbra::sim::pass::render::Algorithm;
+use umbra::sim::render::Algorithm;
 use umbra::sim::world::scene::Scene;
 
 /// A folder of this test process for `name`, emptied.
@@ -31,7 +31,7 @@ fn small() -> Spec {
     spec.variants = vec![Variant::new(Algorithm::First, 0.002), Variant::new(Algorithm::Dual { offset: 0.005 }, 0.0)];
     spec.map_sizes = vec![128];
     spec.images = vec![[64, 36]];
-    spec.reference_samples = 1;
+    spec.reference_rays = 1;
     spec
 }
 
@@ -231,7 +231,7 @@ fn near_far_ratio_degrades_monotonically() {
     let rows = run_on(2, &extremes::spec(scenes, 160, 90), Shard::ALL);
     assert!(rows.iter().all(finite));
     for a in ["second", "midpoint", "dual"] {
-        for f in ["d16", "d24"] {
+        for f in [DepthFormatKind::D16, DepthFormatKind::D24] {
             let e: Vec<f64> = rows
                 .iter()
                 .filter(|r| r.config.algorithm == a && r.config.depth_format == f)
@@ -241,10 +241,10 @@ fn near_far_ratio_degrades_monotonically() {
             assert!(e.windows(2).all(|w| w[1] >= w[0] - 0.05), "{a} {f}: {e:?}");
         }
     }
-    let d16 = extremes::breakdown(&rows, "second", "d16").expect("d16 breaks down");
-    let d24 = extremes::breakdown(&rows, "second", "d24");
+    let d16 = extremes::breakdown(&rows, "second", DepthFormatKind::D16).expect("d16 breaks down");
+    let d24 = extremes::breakdown(&rows, "second", DepthFormatKind::D24);
     assert!(d24.is_none_or(|r| r > d16), "d24 breaks down at {d24:?}, d16 at {d16}");
-    let at = |f: &str, ratio: f64| {
+    let at = |f: DepthFormatKind, ratio: f64| {
         rows.iter()
             .find(|r| {
                 r.config.algorithm == "second"
@@ -256,7 +256,8 @@ fn near_far_ratio_degrades_monotonically() {
     };
     // 16 bits have run out at 10⁶ (every surface within a few steps of 1);
     // 24 bits have not.
-    assert!(at("d16", 1e6) > 10.0 * at("d24", 1e6), "{} vs {}", at("d16", 1e6), at("d24", 1e6));
+    let (d16, d24) = (DepthFormatKind::D16, DepthFormatKind::D24);
+    assert!(at(d16, 1e6) > 10.0 * at(d24, 1e6), "{} vs {}", at(d16, 1e6), at(d24, 1e6));
 }
 
 /// Grazing light within 0.1° and 0.02°, vertices either side of the guard

@@ -4,7 +4,7 @@
 
 use umbra::sim::experiment::study::{SweepFile, Variant};
 use umbra::sim::io::limits::Limits;
-use umbra::sim::pass::render::{Algorithm, Culling};
+use umbra::sim::render::{Algorithm, Culling};
 
 fn dir(name: &str) -> std::path::PathBuf {
     let d = std::env::temp_dir().join(format!("umbra-sweeps-{}-{name}", std::process::id()));
@@ -55,7 +55,7 @@ images = [[64, 36], [128, 72]]
 reference_rays = 1
 formats = ["d16"]
 maps = [128]
-filters = ["point", { name = "jitter8", jitter = { num_samples = 8, res_factor = 1.0 } }]
+filters = ["point", { name = "jitter8,res-factor=1", jitter = { num_samples = 8, res_factor = 1.0 } }]
 archs = ["talisman"]
 budgets = [1.0]
 

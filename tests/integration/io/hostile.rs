@@ -2,9 +2,9 @@
 //! configurations and buffers are typed errors.
 
 use proptest::prelude::*;
+use umbra::core::front::setup::Setup;
 use umbra::core::glam::{Mat4, Vec3, Vec4};
 use umbra::core::raster::bin::Bin;
-use umbra::core::raster::setup::Setup;
 use umbra::core::{
     ConfigError, CullMode, D16, D24, DepthFormat, DepthUnit, F32, LightBuffers, LightPass, LightPassConfig,
     RasterConfig, SubmitError, TileState,
@@ -64,7 +64,7 @@ proptest! {
     fn setup_of_any_snapped_vertices_never_panics(v in prop::array::uniform3((any::<i64>(), any::<i64>(), any::<i64>())), px in any::<i64>(), py in any::<i64>()) {
         use umbra::core::depth::PlaneZ;
         use umbra::core::front::snap::{SnappedVertex, SubPx};
-        use umbra::core::raster::tile::TileRect;
+        use umbra::core::grid::TileRect;
         let raster = RasterConfig::new(64, 64, 16, 8).expect("valid");
         let verts = v.map(|(x, y, z)| SnappedVertex { x: SubPx(x), y: SubPx(y), z: PlaneZ::from_bits(z) });
         if let Ok(s) = Setup::new(&raster, verts, CullMode::None, 0) {
@@ -87,8 +87,8 @@ proptest! {
         by in prop::array::uniform2(prop_oneof![0u32..48, any::<u32>()]),
     ) {
         use umbra::core::depth::PlaneZ;
-        use umbra::core::raster::setup::{DepthPlane, Edge};
-        use umbra::core::raster::tile::TileRect;
+        use umbra::core::front::setup::{DepthPlane, Edge};
+        use umbra::core::grid::TileRect;
         let setup = Setup {
             edges: edges.map(|(dx, dy, c)| Edge { dx, dy, c }),
             plane: DepthPlane { a: plane[0], b: plane[1], c: plane[2] },

@@ -5,10 +5,11 @@ use std::path::{Path, PathBuf};
 
 use umbra::core::glam::Vec4;
 use umbra::core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, RasterConfig};
-use umbra::sim::cost::counters::Counters;
+use umbra::sim::base::counters::Counters;
+use umbra::sim::base::maps::raw_far;
 use umbra::sim::io::limits::Limits;
 use umbra::sim::io::output::{RawMap, write_npy};
-use umbra::sim::pass::light::{Draw, RawMaps, raw_far};
+use umbra::sim::pass::light::{Draw, RawMaps};
 use umbra::sim::world::mesh::{Mesh, MeshError};
 use umbra::sim::world::scene::{MatrixError, Perspective, Scene, parse_matrix};
 

@@ -5,10 +5,10 @@
 //! kept frame, whose configuration may change between passes.
 
 use proptest::prelude::*;
+use umbra::core::front::setup::Setup;
 use umbra::core::glam::{Mat4, Vec3, Vec4};
 use umbra::core::probe::Totals;
 use umbra::core::raster::bin::Bin;
-use umbra::core::raster::setup::Setup;
 use umbra::core::{CullMode, D16, D24, DepthFormat, DepthUnit, LightBuffers, LightPass, LightPassConfig, NoProbe};
 use umbra::sim::pass::light::{DEFAULT_BIN_CAPACITY, Draw, LightFrame, LightMaps, LightOptions, render};
 use umbra::sim::world::mesh::Mesh;
@@ -142,7 +142,8 @@ fn the_kept_frame_equals_new_maps_whatever_came_before() {
 fn the_kept_camera_frame_equals_a_new_one() {
     use umbra::core::shade::MapUnit;
     use umbra::core::shadow::{Bias, DepthTest, Filter, ShadowConfig};
-    use umbra::sim::pass::camera::{CameraFrame, CameraOptions, Tiling, map_view, render as camera};
+    use umbra::sim::base::maps::Tiling;
+    use umbra::sim::pass::camera::{CameraFrame, CameraOptions, map_view, render as camera};
     use umbra::sim::world::scene::Scene;
 
     let shadow = ShadowConfig::new(DepthTest::Second, Bias::ZERO, Filter::Box { size: 3 }, true).expect("valid");

@@ -190,7 +190,7 @@ proptest! {
     ) {
         use umbra::core::RasterConfig;
         use umbra::core::front::{self, Output};
-        use umbra::core::raster::setup::Setup;
+        use umbra::core::front::setup::Setup;
         let whole = RasterConfig::new(128, 128, 16, 8).expect("valid");
         let (x0, y0) = (wx * 32, wy * 32);
         let window = whole.window(x0, y0, (ww * 32).min(128 - x0), (wh * 32).min(128 - y0)).expect("window");

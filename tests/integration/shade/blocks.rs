@@ -7,7 +7,8 @@
 use umbra::core::shade::{MapUnit, MapUnitWith, ShadowUnit};
 use umbra::core::shadow::{Bias, BoxFilter, DepthTest, Filter, Shadow, ShadowConfig};
 use umbra::core::{CullMode, D16, D24, DepthFormat, DepthUnit, LightPassConfig, NoProbe, RasterConfig};
-use umbra::sim::pass::camera::{CameraFrame, CameraOptions, Tiling, map_view, render, render_into};
+use umbra::sim::base::maps::Tiling;
+use umbra::sim::pass::camera::{CameraFrame, CameraOptions, map_view, render, render_into};
 use umbra::sim::pass::light::{LightMaps, LightOptions};
 use umbra::sim::world::scene::Scene;
 

@@ -3,9 +3,9 @@
 
 use proptest::prelude::*;
 use umbra::core::glam::{Mat4, Vec3, Vec4};
+use umbra::core::grid::TileRect;
 use umbra::core::probe::Probe;
 use umbra::core::probe::Totals;
-use umbra::core::raster::tile::TileRect;
 use umbra::core::shade::{
     MapUnit, MapUnitWith, Normals, SceneTriangle, ShadeConfig, ShadeSetup, Shaded, shade, shade_rect, shade_with,
 };

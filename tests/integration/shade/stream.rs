@@ -6,7 +6,8 @@ use umbra::core::probe::Totals;
 use umbra::core::shade::MapUnit;
 use umbra::core::shadow::{Bias, DepthTest, Filter, ShadowConfig};
 use umbra::core::{CullMode, D24, DepthUnit, LightPassConfig, NoProbe, RasterConfig};
-use umbra::sim::pass::camera::{CameraFrame, CameraOptions, Tiling, map_view, streamed};
+use umbra::sim::base::maps::Tiling;
+use umbra::sim::pass::camera::{CameraFrame, CameraOptions, map_view, streamed};
 use umbra::sim::pass::light::{LightMaps, LightOptions};
 use umbra::sim::world::scene::Scene;
 use umbra::sim::world::scene_file::BUNDLED;
@@ -60,8 +61,8 @@ fn streaming_by_tile_is_bit_identical_to_the_whole_frame() {
 /// give the same maps: the cache saves work, it decides nothing.
 #[test]
 fn the_vertex_cache_size_changes_no_result() {
+    use umbra::core::front::setup::Setup;
     use umbra::core::raster::bin::Bin;
-    use umbra::core::raster::setup::Setup;
     use umbra::core::{LightBuffers, LightPass, TileState};
     let scene = Scene::bundled("double-torus").expect("bundled");
     let raster = RasterConfig::new(96, 96, 16, 8).expect("valid");

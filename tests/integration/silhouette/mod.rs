@@ -6,7 +6,7 @@ use umbra::core::DepthFormatKind;
 use umbra::core::glam::{Mat4, Vec3};
 use umbra::core::shadow::Filter;
 use umbra::sim::io::limits::Limits;
-use umbra::sim::pass::render::{Algorithm, Culling, Render, RenderConfig, TruthSource, render};
+use umbra::sim::render::{Algorithm, Culling, Render, RenderConfig, TruthSource, render};
 use umbra::sim::world::mesh::Mesh;
 use umbra::sim::world::scene::{Light, Object, Orthographic, Perspective, Scene};
 
@@ -51,7 +51,7 @@ fn config(algorithm: Algorithm, map: u32, scene: &Scene) -> RenderConfig {
         virtual_samples: false,
         width: scene.image[0],
         height: scene.image[1],
-        reference_samples: 1,
+        reference_rays: 1,
         culling: Culling::ALGORITHM,
     }
 }
@@ -176,7 +176,7 @@ fn shadow_volumes_are_exact_away_from_boundaries() {
     for light in [s.lights[0], Light::Spot(spot)] {
         s.lights = vec![light];
         let mut cfg = config(Algorithm::Volumes, 8, &s);
-        cfg.reference_samples = 4;
+        cfg.reference_rays = 4;
         let r = render(&s, &cfg, &Limits::DEFAULT, TruthSource::Build(&ProgressBar::hidden())).expect("renders");
         let w = s.image[0] as usize;
         let (mut checked, mut shadowed, mut wrong) = (0, 0, Vec::new());
@@ -264,7 +264,7 @@ fn silhouette_map_artifacts_stay_local() {
 #[test]
 fn crowd_bandwidth_follows_sens_model() {
     use umbra::sim::cost::arch::Arch;
-    use umbra::sim::pass::render::cost;
+    use umbra::sim::render::cost;
     let mut s = Scene::bundled("crowd").expect("bundled");
     s.image = [480, 270];
     let talisman = Arch::bundled("talisman").expect("bundled");

@@ -11,18 +11,12 @@ use umbra::core::DepthFormatKind;
 use umbra::core::shadow::{Filter, Jitter, MapCoord};
 use umbra::sim::experiment::study::{self, Row, RowMetrics, Shard, Spec, Status, UNLIMITED_OFFSET, Variant};
 use umbra::sim::io::limits::Limits;
-use umbra::sim::pass::render::Algorithm;
+use umbra::sim::render::Algorithm;
 use umbra::sim::world::scene::Scene;
 
 /// A metrics-only sweep of one bundled scene at `size` (width, height,
 /// reference rays per pixel side), 24-bit maps.
-fn sweep(
-    scene: &str,
-    variants: Vec<Variant>,
-    maps: &[u32],
-    filters: Vec<(String, Filter)>,
-    size: (u32, u32, u32),
-) -> Vec<Row> {
+fn sweep(scene: &str, variants: Vec<Variant>, maps: &[u32], filters: Vec<Filter>, size: (u32, u32, u32)) -> Vec<Row> {
     let spec = Spec {
         scenes: vec![Scene::bundled(scene).expect("a bundled scene")],
         variants,
@@ -32,7 +26,7 @@ fn sweep(
         archs: Vec::new(),
         arch_params: Vec::new(),
         images: vec![[size.0, size.1]],
-        reference_samples: size.2,
+        reference_rays: size.2,
         budgets: Vec::new(),
         name: "claims".to_owned(),
         hash: String::new(),
@@ -62,8 +56,8 @@ fn sweep(
     rows
 }
 
-fn filter(name: &str, f: Filter) -> Vec<(String, Filter)> {
-    vec![(name.to_owned(), f)]
+fn filter(f: Filter) -> Vec<Filter> {
+    vec![f]
 }
 
 /// A measured row's metrics.
@@ -97,7 +91,7 @@ fn wang_molnar_no_first_depth_bias_is_acceptable() {
     let biases: Vec<f64> = (0..=30).map(|k| f64::from(k) * 0.001).collect();
     let mut variants: Vec<Variant> = biases.iter().map(|&b| Variant::new(Algorithm::First, b)).collect();
     variants.push(Variant::new(Algorithm::Second, 0.0));
-    let rows = sweep("table", variants, &[512], filter("bilinear", Filter::Bilinear), (512, 512, 1));
+    let rows = sweep("table", variants, &[512], filter(Filter::Bilinear), (512, 512, 1));
     let second = rows.iter().find(|r| r.config.algorithm == "second").expect("second");
     let first: Vec<&Row> = rows.iter().filter(|r| r.config.algorithm == "first").collect();
     let best = first.iter().map(|r| artifacts(r)).min().expect("biases");
@@ -139,7 +133,7 @@ fn weiskopf_ertl_dual_depth_with_culling() {
         Variant::new(Algorithm::Dual { offset: 0.05 }, 0.0).without_culling(),
         Variant::new(Algorithm::First, 0.02),
     ];
-    let rows = sweep("weiskopf-l", variants, &[128], filter("bilinear", Filter::Bilinear), (512, 512, 1));
+    let rows = sweep("weiskopf-l", variants, &[128], filter(Filter::Bilinear), (512, 512, 1));
     // One row per variant, in the variants' order.
     let get = |name: &str| {
         let k = ["dual", "midpoint-bfc", "midpoint", "dual-nocull", "first"].iter().position(|n| *n == name);
@@ -178,7 +172,7 @@ fn reeves_more_samples_less_error() {
         .flat_map(|&res| {
             [1u16, 4, 16].map(|n| {
                 let j = Jitter { num_samples: n, res_factor: MapCoord::from_num(res), ..Jitter::REEVES };
-                (format!("jitter{n}-res{res}"), Filter::Jittered(j))
+                Filter::Jittered(j)
             })
         })
         .collect();
@@ -211,8 +205,8 @@ fn reeves_more_samples_less_error() {
 fn sen_silhouette_maps_sharpen_magnified_edges() {
     let variants =
         vec![Variant::new(Algorithm::First, 0.002), Variant::new(Algorithm::Silhouette { packed: false }, 0.002)];
-    let zoom = sweep("crowd-zoom", variants.clone(), &[512], filter("point", Filter::Point), (600, 512, 1));
-    let wide = sweep("crowd", variants, &[2048], filter("point", Filter::Point), (512, 512, 1));
+    let zoom = sweep("crowd-zoom", variants.clone(), &[512], filter(Filter::Point), (600, 512, 1));
+    let wide = sweep("crowd", variants, &[2048], filter(Filter::Point), (512, 512, 1));
     let err = |r: &Row| m(r).misclassified_percent;
     let (map, sil) = (&zoom[0], &zoom[1]);
     assert!(m(map).texels_per_px < 1.0 && m(&wide[0]).texels_per_px > 1.0, "magnified, then minified");
@@ -233,7 +227,7 @@ fn sen_silhouette_maps_sharpen_magnified_edges() {
 #[test]
 fn sen_table_one_overdraw_and_silhouette_fill() {
     use umbra::sim::cost::arch::Arch;
-    use umbra::sim::pass::render::{Culling, RenderConfig, cost};
+    use umbra::sim::render::{Culling, RenderConfig, cost};
     let arch = Arch::bundled("talisman").expect("bundled");
     let figures = |scene: &str, algorithm| {
         let s = Scene::bundled(scene).expect("bundled");
@@ -246,7 +240,7 @@ fn sen_table_one_overdraw_and_silhouette_fill() {
             virtual_samples: true,
             width: s.image[0],
             height: s.image[1],
-            reference_samples: 1,
+            reference_rays: 1,
             culling: Culling::ALGORITHM,
         };
         cost(&s, &cfg, &arch, &Limits::DEFAULT).expect("costed").sen

@@ -7,8 +7,9 @@ use umbra::core::shade::Shaded;
 use umbra::core::shadow::Shadow;
 use umbra::sim::pass::camera::{CameraFrame, visibility};
 use umbra::sim::truth::metrics::compare;
-use umbra::sim::truth::reference::{LightSource, PixelTruth, Reference};
+use umbra::sim::truth::reference::{PixelTruth, Reference};
 use umbra::sim::world::mesh::Mesh;
+use umbra::sim::world::scene::LightSource;
 use umbra::sim::world::scene::{Light, Object, Perspective, Scene};
 
 /// A sphere of radius ½ centred 1 above the plane y = 0, under a light
@@ -35,7 +36,7 @@ fn a_sphere_casts_a_disc_under_a_directional_light() {
     let (w, h) = (160u32, 120u32);
     let mut frame = CameraFrame::default();
     let camera =
-        visibility(&mut frame, &scene, (w, h), umbra::sim::pass::camera::Tiling::DEFAULT, &mut umbra::core::NoProbe)
+        visibility(&mut frame, &scene, (w, h), umbra::sim::base::maps::Tiling::DEFAULT, &mut umbra::core::NoProbe)
             .expect("renders")
             .camera;
     let ids = frame.ids();
@@ -99,7 +100,7 @@ fn the_reference_does_not_depend_on_the_thread_count() {
     let (w, h) = (96u32, 64u32);
     let mut frame = CameraFrame::default();
     let camera =
-        visibility(&mut frame, &scene, (w, h), umbra::sim::pass::camera::Tiling::DEFAULT, &mut umbra::core::NoProbe)
+        visibility(&mut frame, &scene, (w, h), umbra::sim::base::maps::Tiling::DEFAULT, &mut umbra::core::NoProbe)
             .expect("renders")
             .camera;
     let ids = frame.ids();

@@ -8,7 +8,7 @@ use std::path::Path;
 use umbra::core::DepthFormatKind;
 use umbra::core::shadow::Filter;
 use umbra::sim::io::limits::{LimitError, Limits};
-use umbra::sim::pass::render::{Algorithm, Culling, RenderConfig, RenderError, TruthSource, render};
+use umbra::sim::render::{Algorithm, Culling, RenderConfig, RenderError, TruthSource, render};
 use umbra::sim::world::mesh::{Mesh, MeshError};
 use umbra::sim::world::scene::Scene;
 use umbra::sim::world::scene_file::{Problem, SceneError};
@@ -195,7 +195,7 @@ fn render_config(map_size: u32, width: u32, height: u32) -> RenderConfig {
         virtual_samples: true,
         width,
         height,
-        reference_samples: 1,
+        reference_rays: 1,
         culling: Culling::ALGORITHM,
     }
 }
@@ -225,11 +225,14 @@ fn huge_maps_and_images_are_refused_before_allocating() {
     let few = Limits { max_triangles: 100, ..Limits::DEFAULT };
     let err = render(&scene, &render_config(64, 64, 48), &few, TruthSource::Build(&hidden)).err().expect("refused");
     assert!(matches!(err, RenderError::Limit(LimitError::Triangles { max: 100, .. })), "{err}");
-    // Zero is the core's to refuse, and named as the map's.
+    // Zero is the configuration's to refuse, and named as the map's.
     let err = render(&scene, &render_config(0, 64, 48), &Limits::DEFAULT, TruthSource::Build(&hidden))
         .err()
         .expect("refused");
-    assert!(matches!(err, RenderError::MapSize(_)), "{err}");
+    assert!(
+        matches!(err, RenderError::Config(umbra::sim::render::RenderConfigError::Zero { quantity: "map_size" })),
+        "{err}"
+    );
 }
 
 #[test]

@@ -336,6 +336,14 @@ impl Arch {
     /// extension, which then must exist), else the bundled architecture of
     /// that name.
     ///
+    /// ```
+    /// use umbra_sim::{Arch, Limits};
+    /// let mut arch = Arch::open("mobile-tbdr", &Limits::DEFAULT)?;
+    /// arch.set("dram.bandwidth=25.6GB/s")?;
+    /// assert!(arch.set("dram.bandwidth=fast").is_err());
+    /// # Ok::<(), umbra_sim::cost::arch::ArchError>(())
+    /// ```
+    ///
     /// # Errors
     /// [`ArchError`] naming the file, the key and the problem.
     pub fn open(name: &str, limits: &Limits) -> Result<Self, ArchError> {
@@ -449,8 +457,8 @@ impl Arch {
     /// How the passes walk the target on this machine: its tiles, and draw
     /// by draw when it is immediate-mode.
     #[must_use]
-    pub const fn tiling(&self) -> crate::pass::camera::Tiling {
-        crate::pass::camera::Tiling { tile: self.raster.tile, per_draw: self.immediate() }
+    pub const fn tiling(&self) -> crate::base::maps::Tiling {
+        crate::base::maps::Tiling { tile: self.raster.tile, per_draw: self.immediate() }
     }
 
     /// Bytes DRAM moves per clock.

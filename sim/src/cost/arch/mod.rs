@@ -3,8 +3,6 @@
 //! energy per unit, tile by tile (see [`timing`]).
 
 use serde::Serialize;
-use umbra_core::Probe;
-use umbra_core::probe::Event;
 
 pub mod file;
 mod keys;
@@ -106,33 +104,5 @@ impl Dram {
     pub const fn shadow_bytes(&self, map_cached: bool) -> u64 {
         let map = if map_cached { self.map_fetched } else { self.map_reads + self.silhouette_reads };
         map + self.volume_depth_reads + self.stencil
-    }
-}
-
-/// Forwards every event, fragment and texel read to two probes.
-#[derive(Clone, Debug, Default)]
-pub struct Tee<A, B>(pub A, pub B);
-
-impl<A: Probe, B: Probe> Probe for Tee<A, B> {
-    const FRAGMENTS: bool = A::FRAGMENTS || B::FRAGMENTS;
-    const TEXELS: bool = A::TEXELS || B::TEXELS;
-    const EVENTS: bool = A::EVENTS || B::EVENTS;
-
-    #[inline]
-    fn event(&mut self, e: Event) {
-        self.0.event(e);
-        self.1.event(e);
-    }
-
-    #[inline]
-    fn fragment(&mut self, f: umbra_core::probe::Fragment) {
-        self.0.fragment(f);
-        self.1.fragment(f);
-    }
-
-    #[inline]
-    fn texel_read(&mut self, r: umbra_core::probe::TexelRead) {
-        self.0.texel_read(r);
-        self.1.texel_read(r);
     }
 }

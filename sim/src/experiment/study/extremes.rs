@@ -23,7 +23,7 @@ use super::plot::{self, Series};
 use super::{Row, Shard, Spec, StudyError, Variant};
 use crate::io::folder::OutputFolder;
 use crate::io::limits::Limits;
-use crate::pass::render::Algorithm;
+use crate::render::Algorithm;
 use crate::world::mesh::Mesh;
 use crate::world::scene::{Light, Object, Scene};
 
@@ -47,8 +47,13 @@ pub fn near_far_scene(ratio: f64) -> Scene {
         let near = (f64::from(p.far) / ratio) as f32;
         p.near = near;
     }
-    s.name = format!("near-far-{ratio:e}");
+    s.name = near_far_name(ratio);
     s
+}
+
+/// The name of the near/far scene at `ratio`.
+fn near_far_name(ratio: f64) -> String {
+    format!("near-far-{ratio:e}")
 }
 
 /// The `grazing` scene with its directional light `degrees` above the floor.
@@ -163,11 +168,11 @@ pub fn spec(scenes: Vec<Scene>, width: u32, height: u32) -> Spec {
         variants: variants(),
         formats: vec![DepthFormatKind::D16, DepthFormatKind::D24, DepthFormatKind::F32],
         map_sizes: vec![512],
-        filters: vec![("bilinear".to_owned(), umbra_core::shadow::Filter::Bilinear)],
+        filters: vec![umbra_core::shadow::Filter::Bilinear],
         archs: Vec::new(),
         arch_params: Vec::new(),
         images: vec![[width, height]],
-        reference_samples: 1,
+        reference_rays: 1,
         budgets: Vec::new(),
         name: "extremes".to_owned(),
         hash: String::new(),
@@ -185,7 +190,7 @@ pub fn scenes() -> Vec<Scene> {
 }
 
 /// Misclassified % of `rows` for one algorithm and format, in scene order.
-fn curve<'a>(rows: &'a [Row], algorithm: &'a str, format: &'a str) -> impl Iterator<Item = &'a Row> + 'a {
+fn curve<'a>(rows: &'a [Row], algorithm: &'a str, format: DepthFormatKind) -> impl Iterator<Item = &'a Row> + 'a {
     rows.iter().filter(move |r| r.config.algorithm == algorithm && r.config.depth_format == format)
 }
 
@@ -196,16 +201,16 @@ pub const BREAKDOWN_POINTS: f64 = 1.0;
 /// The smallest swept ratio at which `algorithm` in `format` misclassifies
 /// [`BREAKDOWN_POINTS`] more than at ratio 10; `None` if it never does.
 #[must_use]
-pub fn breakdown(rows: &[Row], algorithm: &str, format: &str) -> Option<f64> {
+pub fn breakdown(rows: &[Row], algorithm: &str, format: DepthFormatKind) -> Option<f64> {
     let errs: Vec<(f64, f64)> =
         curve(rows, algorithm, format).filter_map(|r| Some((ratio_of(&r.config.scene)?, misclassified(r)?))).collect();
     let base = errs.first()?.1;
     errs.iter().find(|(_, e)| *e > base + BREAKDOWN_POINTS).map(|(r, _)| *r)
 }
 
-/// The ratio of a `near-far-<ratio>` scene.
+/// The ratio of the near/far scene named `scene`, if it is one.
 fn ratio_of(scene: &str) -> Option<f64> {
-    scene.strip_prefix("near-far-")?.parse().ok()
+    RATIOS.iter().copied().find(|&r| near_far_name(r) == scene)
 }
 
 /// The extremes table in Markdown: the near/far sweep (misclassified % per
@@ -230,7 +235,7 @@ pub fn markdown(rows: &[Row]) -> String {
     let _ = writeln!(s, " breaks down at |");
     let _ = writeln!(s, "|---|---|{}---|", "---:|".repeat(RATIOS.len()));
     for v in variants() {
-        for f in ["d16", "d24", "f32"] {
+        for f in DepthFormatKind::ALL {
             let name = v.algorithm.name();
             let _ = write!(s, "| {name} | {f} |");
             for r in curve(rows, name, f).filter(|r| ratio_of(&r.config.scene).is_some()) {
@@ -246,7 +251,7 @@ pub fn markdown(rows: &[Row]) -> String {
         }
     }
     let _ = writeln!(s, "\n## Other extremes\n");
-    let _ = writeln!(s, "| case | algorithm | d16 | d24 | f32 |");
+    let _ = writeln!(s, "| case | algorithm | {} |", DepthFormatKind::ALL.map(|f| f.name()).join(" | "));
     let _ = writeln!(s, "|---|---|---:|---:|---:|");
     let cases =
         super::distinct(rows.iter().filter(|r| ratio_of(&r.config.scene).is_none()).map(|r| r.config.scene.as_str()));
@@ -254,7 +259,7 @@ pub fn markdown(rows: &[Row]) -> String {
         for v in variants() {
             let name = v.algorithm.name();
             let _ = write!(s, "| {case} | {name} |");
-            for f in ["d16", "d24", "f32"] {
+            for f in DepthFormatKind::ALL {
                 let c = rows
                     .iter()
                     .find(|r| r.config.scene == case && r.config.algorithm == name && r.config.depth_format == f);
@@ -286,7 +291,7 @@ fn cell(r: &Row) -> String {
 pub fn precision_series(rows: &[Row]) -> Vec<Series> {
     let mut out = Vec::new();
     for a in variants().iter().map(|v| v.algorithm.name()) {
-        for f in ["d16", "d24"] {
+        for f in [DepthFormatKind::D16, DepthFormatKind::D24] {
             let pts: Vec<(f64, f64)> =
                 curve(rows, a, f).filter_map(|r| Some((ratio_of(&r.config.scene)?, misclassified(r)?))).collect();
             let at = breakdown(rows, a, f)

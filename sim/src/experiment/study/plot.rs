@@ -11,6 +11,7 @@ use super::summary::{KEYS, cheapest};
 use super::{Manifest, Row, RowCost, StudyError, distinct, loosest};
 use crate::io::folder::OutputFolder;
 use crate::io::output::{font, png};
+use crate::pass::algorithm::Family;
 
 /// Plot size in pixels.
 const SIZE: (u32, u32) = (900, 600);
@@ -120,7 +121,7 @@ fn log_log_chart<'a, DB: DrawingBackend>(
 }
 
 /// The algorithm families in the order their markers are listed.
-const FAMILIES: [&str; 5] = ["first depth", "second depth", "midpoint and dual", "silhouette map", "shadow volumes"];
+const FAMILIES: [Family; 5] = Family::ALL;
 
 /// Draw the hollow marker of family `f` (an index into [`FAMILIES`]),
 /// `size` pixels, at pixel `at` of `area` (a chart's points are mapped to
@@ -241,7 +242,7 @@ impl Figure for Pareto<'_> {
             l.draw(&PathElement::new(vec![(x - 9, y), (x + 9, y)], BLACK.mix(0.5))).map_err(|e| e.to_string())
         })?;
         for (f, name) in FAMILIES.iter().enumerate() {
-            line(name, &|l, c| marker(l, c, f, 5, BLACK.stroke_width(1)))?;
+            line(name.name(), &|l, c| marker(l, c, f, 5, BLACK.stroke_width(1)))?;
         }
         footnote(&legend, &self.provenance)
     }
@@ -261,7 +262,7 @@ pub fn pareto(folder: &mut OutputFolder, scene: &str, rows: &[&Row], manifest: &
     let arch_of: Vec<usize> =
         rows.iter().map(|r| archs.iter().position(|a| *a == r.config.arch).unwrap_or(0)).collect();
     let family_of: Vec<usize> =
-        rows.iter().map(|r| FAMILIES.iter().position(|f| *f == r.config.family).unwrap_or(4)).collect();
+        rows.iter().map(|r| FAMILIES.iter().position(|&f| f == r.config.family).unwrap_or(4)).collect();
     for (what, axis, key) in [
         ("cycles", "cycles (light + camera passes)", (|c: &RowCost| c.total_cycles) as fn(&RowCost) -> u64),
         ("bytes", "DRAM bytes (both passes)", |c: &RowCost| c.total_dram_bytes),
@@ -439,7 +440,7 @@ pub fn arch_axes(folder: &mut OutputFolder, scene: &str, rows: &[&Row], manifest
                     Some((k as f64, best.cost.as_ref()?.total_cycles as f64))
                 })
                 .collect::<Vec<_>>();
-            (f, pts)
+            (f.name(), pts)
         })
         .filter(|(_, pts)| !pts.is_empty())
         .collect();

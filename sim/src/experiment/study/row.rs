@@ -10,8 +10,12 @@ use std::fmt::Write as _;
 
 use serde::{Deserialize, Serialize};
 
+use umbra_core::DepthFormatKind;
+use umbra_core::shadow::Filter;
+
 use super::{Config, Spec};
 use crate::cost::arch::{Arch, CostReport};
+use crate::pass::algorithm::{Culling, Family};
 use crate::truth::metrics::Metrics;
 
 /// Whether a row was measured.
@@ -51,11 +55,13 @@ pub struct Row {
 pub struct RowConfig {
     /// Scene name.
     pub scene: String,
-    /// The algorithm, spelt as `umbra render --algo` takes it.
+    /// The algorithm, spelt as `umbra render --algo` takes it
+    /// ([`Algorithm::name`](crate::pass::algorithm::Algorithm::name)).
     pub algorithm: String,
     /// Its family (first depth, second depth, midpoint and dual,
     /// silhouette map, shadow volumes).
-    pub family: String,
+    #[serde(with = "crate::base::text")]
+    pub family: Family,
     /// Bias, a depth in `[0, 1]` (Reeves' `Bias0` for a bias range).
     pub bias: f64,
     /// Reeves' `Bias1`, for a bias range.
@@ -66,13 +72,17 @@ pub struct RowConfig {
     pub virtual_samples: bool,
     /// The light pass's culling per object class (`algorithm`, or
     /// `solids=…,open=…` as `umbra render --cull` takes it).
-    pub culling: String,
+    #[serde(with = "crate::base::text")]
+    pub culling: Culling,
     /// Depth format (`d16`, `d24`, `f32`).
-    pub depth_format: String,
+    #[serde(with = "crate::base::text")]
+    pub depth_format: DepthFormatKind,
     /// Map side.
     pub map_side_texels: u32,
-    /// Filter name.
-    pub filter_name: String,
+    /// The filter, in its one spelling (`point`, `bilinear`, `box5`,
+    /// `jitter16`, `jitter8,res-factor=1.5`: [`Filter`]'s `Display`).
+    #[serde(with = "crate::base::text")]
+    pub filter_name: Filter,
     /// Architecture name (`-` when the sweep has none; with its
     /// parameter-axis values when the sweep has such axes).
     pub arch: String,
@@ -83,8 +93,8 @@ pub struct RowConfig {
     pub image_width_px: u32,
     /// Camera image height.
     pub image_height_px: u32,
-    /// Reference rays per pixel side.
-    pub reference_rays_per_side: u32,
+    /// Reference rays per pixel side (`n` for `n × n` rays a pixel).
+    pub reference_rays: u32,
     /// The `umbra render` command line that renders this configuration
     /// again.
     pub command: String,
@@ -263,20 +273,20 @@ impl Row {
             config: RowConfig {
                 scene: spec.scenes[c.scene].name.clone(),
                 algorithm: v.algorithm.name().to_owned(),
-                family: v.algorithm.family().to_owned(),
+                family: v.algorithm.family(),
                 bias: v.bias,
                 bias1: v.algorithm.bias_hi(),
                 offset: v.algorithm.offset(),
                 virtual_samples: v.virtual_samples,
-                culling: v.culling.label(),
-                depth_format: c.format.name().to_owned(),
+                culling: v.culling,
+                depth_format: c.format,
                 map_side_texels: c.map_size,
-                filter_name: spec.filters[c.filter].0.clone(),
+                filter_name: spec.filters[c.filter],
                 arch: arch.map_or_else(|| "-".to_owned(), |a| a.1.name.clone()),
                 arch_params: arch.and_then(|a| spec.arch_params.get(a.0)).cloned().unwrap_or_default(),
                 image_width_px: cfg.width,
                 image_height_px: cfg.height,
-                reference_rays_per_side: cfg.reference_samples,
+                reference_rays: cfg.reference_rays,
                 command: cfg.command(&spec.scenes[c.scene].source),
                 umbra_version: crate::io::provenance::version(),
                 sweep_hash: spec.hash.clone(),
@@ -320,16 +330,16 @@ impl Row {
         let mut s = c.algorithm.clone();
         if let Some(hi) = c.bias1 {
             let _ = write!(s, " bias {}…{hi}", c.bias);
-        } else if c.bias != 0.0 || c.family == "first depth" {
+        } else if c.bias != 0.0 || c.family == Family::FirstDepth {
             let _ = write!(s, " bias {}", c.bias);
         }
         if let Some(o) = c.offset {
             let _ = write!(s, " offset {o}");
         }
-        if !c.virtual_samples && c.algorithm.starts_with("second") {
+        if !c.virtual_samples && c.family == Family::SecondDepth {
             s.push_str(" no virtual samples");
         }
-        if c.culling != "algorithm" {
+        if c.culling != Culling::ALGORITHM {
             let _ = write!(s, " cull {}", c.culling);
         }
         let _ = write!(s, ", {}, {}², {}", c.depth_format, c.map_side_texels, c.filter_name);

@@ -6,7 +6,7 @@ use rayon::prelude::*;
 use super::{Config, Row, RowCost, RowMetrics, Shard, Spec, StudyError};
 use crate::cost::arch::Arch;
 use crate::io::limits::Limits;
-use crate::pass::render::{RenderConfig, TruthSource, render_costed, truth};
+use crate::render::{RenderConfig, TruthSource, render_costed, truth};
 use crate::truth::reference::PixelTruth;
 use crate::world::scene::Scene;
 
@@ -18,12 +18,12 @@ pub fn render_config(spec: &Spec, c: &Config) -> RenderConfig {
         algorithm: v.algorithm,
         format: c.format,
         map_size: c.map_size,
-        filter: spec.filters[c.filter].1,
+        filter: spec.filters[c.filter],
         bias: v.bias,
         virtual_samples: v.virtual_samples,
         width: spec.images[c.image][0],
         height: spec.images[c.image][1],
-        reference_samples: spec.reference_samples,
+        reference_rays: spec.reference_rays,
         culling: v.culling,
     }
 }
@@ -86,7 +86,7 @@ pub fn truths(spec: &Spec) -> Vec<Truth> {
     pairs
         .par_iter()
         .map(|&(scene, [w, h])| {
-            truth(scene, w, h, spec.reference_samples, &ProgressBar::hidden()).map_err(|e| e.to_string())
+            truth(scene, w, h, spec.reference_rays, &ProgressBar::hidden()).map_err(|e| e.to_string())
         })
         .collect()
 }
@@ -94,6 +94,30 @@ pub fn truths(spec: &Spec) -> Vec<Truth> {
 /// Run the configurations of `shard` in parallel (on the current rayon pool),
 /// ticking `progress` once per configuration. Rows come back sorted by
 /// configuration and preset.
+///
+/// ```
+/// use umbra_sim::{Limits, SweepFile};
+/// let text = r#"
+/// name = "mine"
+/// scenes = ["weiskopf-l"]
+/// images = [[96, 72]]
+/// reference_rays = 1
+/// formats = ["d16", "d24"]
+/// maps = [128]
+/// filters = ["point", "box5"]
+/// archs = ["talisman"]
+/// budgets = [1.0]
+/// [[algorithms]]
+/// algo = "first"
+/// bias = [0.002]
+/// "#;
+/// let file = SweepFile { file: "mine.toml".into(), text: text.to_owned(), bundled: false };
+/// let spec = file.spec(&Limits::DEFAULT)?;
+/// let rows = umbra_sim::study(&spec, umbra_sim::experiment::study::Shard::ALL, &indicatif::ProgressBar::hidden());
+/// assert_eq!(rows.len(), 4); // 2 formats × 2 filters × 1 architecture
+/// assert!(rows.iter().all(|r| r.complete()));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[must_use]
 pub fn run(spec: &Spec, shard: Shard, progress: &ProgressBar) -> Vec<Row> {
     let truths = truths(spec);

@@ -192,7 +192,7 @@ fn scene_summary(s: &mut String, rows: &[&Row], budgets: &[f64]) {
              by a configuration with no artifact at all.\n"
         );
     }
-    let families = distinct(rows.iter().map(|r| r.config.family.as_str()));
+    let families = distinct(rows.iter().map(|r| r.config.family));
     for (name, key) in KEYS {
         let _ = write!(s, "Cheapest per algorithm family in {name}:\n\n| family |");
         for b in budgets {
@@ -232,8 +232,8 @@ fn crossovers(s: &mut String, rows: &[&Row], budgets: &[f64]) {
         let mut out = format!("Winner within {loose} % by {axis}:");
         for v in &values {
             let sub: Vec<&Row> = rows.iter().copied().filter(|r| value(r) == *v).collect();
-            let w =
-                cheapest(&sub, loose, KEYS[0].1).map_or_else(|| "none".to_owned(), |(r, _)| r.config.family.clone());
+            let w = cheapest(&sub, loose, KEYS[0].1)
+                .map_or_else(|| "none".to_owned(), |(r, _)| r.config.family.to_string());
             let _ = write!(out, " {v}: {w};");
         }
         out.pop();

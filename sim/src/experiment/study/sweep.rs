@@ -6,7 +6,7 @@ use umbra_core::shadow::{Filter, Jitter};
 use super::StudyError;
 use crate::cost::arch::Arch;
 use crate::io::limits::Limits;
-use crate::pass::render::{Algorithm, Culling};
+use crate::render::{Algorithm, Culling};
 use crate::world::scene::Scene;
 
 /// One point on the study's algorithm axis: a shadow algorithm with its
@@ -75,7 +75,7 @@ pub struct Spec {
     /// Map sides in texels.
     pub map_sizes: Vec<u32>,
     /// Filters, with their names.
-    pub filters: Vec<(String, Filter)>,
+    pub filters: Vec<Filter>,
     /// Architectures; none: metrics only, one row per configuration.
     pub archs: Vec<Arch>,
     /// Each architecture's parameter-axis assignments (`key=value,…`;
@@ -85,7 +85,7 @@ pub struct Spec {
     /// can say where a winner changes with the image.
     pub images: Vec<[u32; 2]>,
     /// Reference rays per pixel side.
-    pub reference_samples: u32,
+    pub reference_rays: u32,
     /// The summary's error budgets, percent artifacts.
     pub budgets: Vec<f64>,
     /// The sweep's name (`quick`, `full`, or the file's).

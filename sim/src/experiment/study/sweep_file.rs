@@ -14,7 +14,7 @@
 //!
 //! [[arch_axes]]                            # any architecture key, with units as `--set` takes them
 //! key = "map_cache.size"
-//! values = ["0", "16KiB", "64KiB"]
+//! values = ["0B", "16KiB", "64KiB"]
 //!
 //! [[algorithms]]                           # one entry per algorithm, each list an axis
 //! algo = "first"                           # as `umbra render --algo` spells it
@@ -35,7 +35,7 @@ use super::{Spec, Variant, repeated};
 use crate::cost::arch::Arch;
 use crate::io::exact::Exact;
 use crate::io::limits::Limits;
-use crate::pass::render::{Algorithm, Culling};
+use crate::render::{Algorithm, Culling, RenderConfig};
 use crate::world::scene::Scene;
 use crate::world::scene_file::BUNDLED;
 
@@ -78,11 +78,13 @@ struct FileText {
 enum FilterText {
     Preset(String),
     Jitter {
-        name: String,
+        #[serde(default)]
+        name: Option<String>,
         jitter: JitterText,
     },
     Box {
-        name: String,
+        #[serde(default)]
+        name: Option<String>,
         #[serde(rename = "box")]
         size: u8,
     },
@@ -223,11 +225,8 @@ impl SweepFile {
             .formats
             .iter()
             .enumerate()
-            .map(|(i, f)| match f.as_str() {
-                "d16" => Ok(DepthFormatKind::D16),
-                "d24" => Ok(DepthFormatKind::D24),
-                "f32" => Ok(DepthFormatKind::F32),
-                _ => Err(self.err(format!("formats[{i}]"), format!("`{f}` is not d16, d24 or f32"))),
+            .map(|(i, f)| {
+                f.parse::<DepthFormatKind>().map_err(|e| self.err(format!("formats[{i}]"), format!("`{f}` is {e}")))
             })
             .collect::<Result<Vec<_>, _>>()?;
         for (i, &side) in t.maps.iter().enumerate() {
@@ -250,7 +249,7 @@ impl SweepFile {
         }
         // An axis that names one value twice would run every configuration
         // with it twice.
-        let names = |v: &[(String, Filter)]| v.iter().map(|f| f.0.clone()).collect::<Vec<_>>();
+        let names = |v: &[Filter]| v.iter().map(ToString::to_string).collect::<Vec<_>>();
         for (key, twice) in [
             ("scenes", repeated(&scenes.iter().map(|s| s.name.clone()).collect::<Vec<_>>())),
             ("images", repeated(&t.images)),
@@ -287,7 +286,7 @@ impl SweepFile {
             archs,
             arch_params,
             images: t.images.iter().map(|i| i.0).collect(),
-            reference_samples: t.reference_rays,
+            reference_rays: t.reference_rays,
             budgets: t.budgets,
             name: t.name,
             hash: self.hash(),
@@ -299,25 +298,18 @@ impl SweepFile {
         }
     }
 
-    fn filter(&self, key: &str, f: &FilterText) -> Result<(String, Filter), SweepError> {
+    fn filter(&self, key: &str, f: &FilterText) -> Result<Filter, SweepError> {
         let coord = |k: &str, v: f64| {
             MapCoord::checked_from_num(v).filter(|_| v.is_finite() && v >= 0.0).ok_or_else(|| {
                 self.err(format!("{key}.jitter.{k}"), format!("{v} is not a non-negative number of texels"))
             })
         };
         let (name, filter) = match f {
-            FilterText::Preset(name) => crate::experiment::presets::FILTERS
-                .iter()
-                .find(|(n, _)| n == name)
-                .map(|(n, f)| ((*n).to_owned(), *f))
-                .ok_or_else(|| {
-                    self.err(
-                        key,
-                        format!("`{name}` is not a filter (point, bilinear, box3, jitter4, jitter16, or a table)"),
-                    )
-                })?,
+            FilterText::Preset(text) => {
+                (None, text.parse::<Filter>().map_err(|e| self.err(key, format!("`{text}`: {e}")))?)
+            }
             FilterText::Jitter { name, jitter } => (
-                name.clone(),
+                name.as_ref(),
                 Filter::Jittered(Jitter {
                     num_samples: jitter.num_samples,
                     res_factor: coord("res_factor", jitter.res_factor)?,
@@ -325,12 +317,20 @@ impl SweepFile {
                     min_size: coord("min_size", jitter.min_size.unwrap_or(0.0))?,
                 }),
             ),
-            FilterText::Box { name, size } => (name.clone(), Filter::Box { size: *size }),
+            FilterText::Box { name, size } => (name.as_ref(), Filter::Box { size: *size }),
         };
+        // A table's name, when given, is the filter's one spelling: rows,
+        // summaries and `umbra render --filter` all use that spelling.
+        if let Some(name) = name.filter(|n| **n != filter.to_string()) {
+            return Err(self.err(
+                format!("{key}.name"),
+                format!("`{name}` is not this filter's name, `{filter}` (leave `name` out or write `{filter}`)"),
+            ));
+        }
         // The shadow unit's own check of the filter, as every render makes it.
         ShadowConfig::new(DepthTest::First, Bias::default(), filter, false)
             .map_err(|e| self.err(key, e.to_string()))?;
-        Ok((name, filter))
+        Ok(filter)
     }
 
     /// The architectures, each crossed with every point of the parameter
@@ -381,9 +381,7 @@ impl SweepFile {
         let biases = one(&a.bias, 0.0);
         let offsets = one(&a.offset, f64::NAN);
         for (k, &b) in biases.iter().chain(a.bias1.iter()).enumerate() {
-            if !(b.is_finite() && (0.0..=1.0).contains(&b)) {
-                return Err(self.err(format!("{key}.bias"), format!("value {k}, {b}, is not a depth in [0, 1]")));
-            }
+            RenderConfig::depth("bias", b).map_err(|e| self.err(format!("{key}.bias"), format!("value {k}: {e}")))?;
         }
         let culls = a
             .cull
@@ -393,33 +391,24 @@ impl SweepFile {
             .map(|c| c.parse::<Culling>().map_err(|e| self.err(format!("{key}.cull"), e.to_string())))
             .collect::<Result<Vec<_>, _>>()?;
         let needs = |what: &str| self.err(format!("{key}.{what}"), format!("`{}` needs `{what}`", a.algo));
-        let algorithms: Vec<Algorithm> = match a.algo.as_str() {
-            "first" => vec![Algorithm::First],
-            "bias-range" => vec![Algorithm::BiasRange { hi: a.bias1.ok_or_else(|| needs("bias1"))? }],
-            "second" => vec![Algorithm::Second],
-            "second-ffc" => vec![Algorithm::SecondFrontCulled],
-            "midpoint" => vec![Algorithm::Midpoint],
-            "dual" => {
-                if a.offset.is_none() {
-                    return Err(needs("offset"));
-                }
-                for &o in &offsets {
-                    if !(o.is_finite() && (0.0..=1.0).contains(&o)) {
-                        return Err(self.err(format!("{key}.offset"), format!("{o} is not a depth in [0, 1]")));
-                    }
-                }
-                offsets.iter().map(|&offset| Algorithm::Dual { offset }).collect()
+        if a.algo == "bias-range" && a.bias1.is_none() {
+            return Err(needs("bias1"));
+        }
+        if a.algo == "dual" {
+            if a.offset.is_none() {
+                return Err(needs("offset"));
             }
-            "silhouette" => vec![Algorithm::Silhouette { packed: false }],
-            "silhouette-packed" => vec![Algorithm::Silhouette { packed: true }],
-            "volumes" => vec![Algorithm::Volumes],
-            other => {
-                return Err(self.err(
-                    format!("{key}.algo"),
-                    format!("`{other}` is not an algorithm (first, bias-range, second, second-ffc, midpoint, dual, silhouette, silhouette-packed, volumes)"),
-                ));
+            for &o in &offsets {
+                RenderConfig::depth("offset", o).map_err(|e| self.err(format!("{key}.offset"), e.to_string()))?;
             }
-        };
+        }
+        let algorithms = offsets
+            .iter()
+            .map(|&offset| Algorithm::named(&a.algo, a.bias1.unwrap_or_default(), offset))
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(|e| self.err(format!("{key}.algo"), e.to_string()))?;
+        // Only dual depth has an offset: the others are one algorithm.
+        let algorithms = if a.algo == "dual" { algorithms } else { algorithms[..1].to_vec() };
         let mut out = Vec::new();
         for &algorithm in &algorithms {
             for &bias in &biases {

@@ -192,6 +192,15 @@ impl Scene {
     /// folder or a `.toml` extension, which then must exist), or else the
     /// bundled scene of that name; within `limits` either way.
     ///
+    /// ```
+    /// use umbra_sim::{Limits, Scene};
+    /// let table = Scene::open("table", &Limits::DEFAULT)?;
+    /// assert_eq!(table.image, [960, 540]);
+    /// let err = Scene::open("no-such-scene.toml", &Limits::DEFAULT).unwrap_err();
+    /// assert!(err.to_string().contains("no-such-scene.toml"));
+    /// # Ok::<(), umbra_sim::world::scene_file::SceneError>(())
+    /// ```
+    ///
     /// # Errors
     /// [`SceneError`] naming the file, the key and the problem.
     pub fn open(name: &str, limits: &Limits) -> Result<Self, SceneError> {

@@ -41,8 +41,8 @@ use crate::budget::{SLOPE_F64_LIMIT, WINDOW_COORD_BITS};
 use crate::config::{CullMode, RasterConfig};
 use crate::depth::PlaneZ;
 use crate::front::snap::SnappedVertex;
+use crate::grid::TileRect;
 use crate::probe::RejectReason;
-use crate::raster::tile::TileRect;
 use crate::round::i128_to_f64;
 
 pub use super::plane::DepthPlane;

@@ -4,7 +4,7 @@
 //! budget).
 
 use crate::depth::PlaneZ;
-use crate::raster::tile::TileRect;
+use crate::grid::TileRect;
 
 /// The depth plane in [`PlaneZ`] bits: `z(px, py) = c + a·px + b·py`,
 /// exact coefficients (see the module documentation).

@@ -1,5 +1,10 @@
 //! One render: the light pass for a shadow algorithm, the camera pass, the
-//! exact reference and the metrics between them.
+//! exact reference and the metrics between them ([`render`]); its cost on
+//! architectures ([`costed`]); its pictures ([`pictures`]). This layer sits
+//! above the passes, the cost model and the truth, and joins them.
+
+pub mod costed;
+pub mod pictures;
 
 use indicatif::ProgressBar;
 use serde::Serialize;
@@ -7,22 +12,22 @@ use umbra_core::depth::Texel;
 use umbra_core::shade::{MapUnit, SilhouetteUnit};
 use umbra_core::shadow::{Filter, MapView, ShadowConfig, ShadowConfigError};
 use umbra_core::silhouette::{Packed, SilPoint, SilStore, SilhouetteMap};
-use umbra_core::{
-    D16, D24, DepthFormat, DepthFormatKind, DepthUnit, F32, LightPassConfig, Probe, RasterConfig, TileState,
-};
+use umbra_core::{DepthFormat, DepthFormatKind, DepthUnit, LightPassConfig, Probe, RasterConfig, TileState};
 
-use super::PassError;
-use super::algorithm::MapKind;
-pub use super::algorithm::{Algorithm, Cull, Culling};
-use super::camera::{self, CameraFrame, CameraImage, CameraOptions, Tiling, map_view, visibility, volumes};
-pub use super::costed::{Fan, cost, cost_unshadowed, render_costed};
-use super::light::{self, DEFAULT_BIN_CAPACITY, LightFrame, LightMaps, LightOptions, RawMaps};
-use crate::cost::arch::Tee;
-use crate::cost::counters::Counters;
+pub use self::costed::{cost, cost_unshadowed, render_costed};
+use crate::base::counters::Counters;
+use crate::base::maps::{Tiling, with_format};
+use crate::base::probes::Tee;
 use crate::io::limits::{LimitError, Limits};
+use crate::pass::PassError;
+use crate::pass::algorithm::MapKind;
+pub use crate::pass::algorithm::{Algorithm, Cull, Culling};
+use crate::pass::camera::{self, CameraFrame, CameraImage, CameraOptions, map_view, visibility, volumes};
+use crate::pass::light::{self, DEFAULT_BIN_CAPACITY, LightFrame, LightMaps, LightOptions, RawMaps};
+use crate::pass::occluders::silhouette_map;
 use crate::truth::metrics::{Metrics, compare};
 use crate::truth::reference::{PixelTruth, Reference, ReferenceError};
-use crate::world::occluders::{Occluders, silhouette_map};
+use crate::world::occluders::Occluders;
 use crate::world::scene::Scene;
 
 /// What to render and how.
@@ -47,14 +52,40 @@ pub struct RenderConfig {
     /// Camera image height.
     pub height: u32,
     /// Reference rays per pixel side for the area-averaged visibility.
-    pub reference_samples: u32,
+    pub reference_rays: u32,
     /// The light pass's culling per object class.
     pub culling: Culling,
+}
+
+/// A render configuration no render takes, naming the quantity and the value.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum RenderConfigError {
+    /// A bias, `Bias1` or dual offset outside `[0, 1]` (or not a number).
+    #[error("{quantity} {value} is not a depth in [0, 1]")]
+    Depth {
+        /// `bias`, `bias1` or `offset`.
+        quantity: &'static str,
+        /// The value given.
+        value: f64,
+    },
+    /// Reference rays per pixel side outside `1..=16`.
+    #[error("reference_rays {0} is outside 1..=16")]
+    ReferenceRays(u32),
+    /// A map side or image side of zero.
+    #[error("{quantity} is 0: it must be at least 1")]
+    Zero {
+        /// `map_size`, `width` or `height`.
+        quantity: &'static str,
+    },
 }
 
 /// Why a render failed.
 #[derive(Debug, thiserror::Error)]
 pub enum RenderError {
+    /// The configuration asks for what no render takes.
+    #[error(transparent)]
+    Config(#[from] RenderConfigError),
     /// Costing on an architecture failed (in a pass shared with others).
     #[error("cost: {0}")]
     Cost(String),
@@ -116,6 +147,8 @@ pub struct Render {
 
 /// Where a render's exact reference comes from.
 pub enum TruthSource<'p> {
+    /// Built for this render, showing no progress.
+    Quiet,
     /// Built for this render; the bar ticks once per reference row.
     Build(&'p ProgressBar),
     /// Built before ([`truth`]) for the same scene, image size and rays.
@@ -132,21 +165,89 @@ pub(super) struct Checked {
 }
 
 impl RenderConfig {
+    /// The default render (`umbra render`'s): Wang & Molnar's second depth
+    /// with virtual samples, a 24-bit 1024² map, bilinear filtering, no
+    /// bias, the algorithm's culling, 960×540 against 4² reference rays a
+    /// pixel. Change fields with struct update syntax, then [`checked`](Self::checked).
+    pub const DEFAULT: Self = Self {
+        algorithm: Algorithm::Second,
+        format: DepthFormatKind::D24,
+        map_size: 1024,
+        filter: Filter::Bilinear,
+        bias: 0.0,
+        virtual_samples: true,
+        width: 960,
+        height: 540,
+        reference_rays: 4,
+        culling: Culling::ALGORITHM,
+    };
+
+    /// Reference rays per pixel side a render takes.
+    pub const REFERENCE_RAYS: std::ops::RangeInclusive<u32> = 1..=16;
+
+    /// `value` if it is a depth in `[0, 1]`, for the quantity named.
+    ///
+    /// # Errors
+    /// [`RenderConfigError::Depth`].
+    pub fn depth(quantity: &'static str, value: f64) -> Result<f64, RenderConfigError> {
+        if value.is_finite() && (0.0..=1.0).contains(&value) {
+            Ok(value)
+        } else {
+            Err(RenderConfigError::Depth { quantity, value })
+        }
+    }
+
+    /// The configuration, if a render takes it: every bias and offset a
+    /// depth in `[0, 1]`, 1 to 16 reference rays a side, no side of zero.
+    /// (Sizes against a machine's [`Limits`] and the filter against the
+    /// shadow unit are checked when the render starts.) Every render
+    /// checks this first; the command line and sweep files call it to
+    /// report a mistake before anything runs.
+    ///
+    /// ```
+    /// use umbra_sim::render::{Algorithm, RenderConfig, RenderConfigError};
+    /// let first = RenderConfig { algorithm: Algorithm::First, bias: 0.002, ..RenderConfig::DEFAULT };
+    /// assert!(first.checked().is_ok());
+    /// let bad = RenderConfig { bias: 1.5, ..first };
+    /// assert_eq!(bad.checked(), Err(RenderConfigError::Depth { quantity: "bias", value: 1.5 }));
+    /// ```
+    ///
+    /// # Errors
+    /// [`RenderConfigError`] naming the first quantity out of range.
+    pub fn checked(self) -> Result<Self, RenderConfigError> {
+        Self::depth("bias", self.bias)?;
+        if let Some(hi) = self.algorithm.bias_hi() {
+            Self::depth("bias1", hi)?;
+        }
+        if let Some(offset) = self.algorithm.offset() {
+            Self::depth("offset", offset)?;
+        }
+        if !Self::REFERENCE_RAYS.contains(&self.reference_rays) {
+            return Err(RenderConfigError::ReferenceRays(self.reference_rays));
+        }
+        for (quantity, side) in [("map_size", self.map_size), ("width", self.width), ("height", self.height)] {
+            if side == 0 {
+                return Err(RenderConfigError::Zero { quantity });
+            }
+        }
+        Ok(self)
+    }
+
     /// The configuration in words, every field (for the records outputs carry).
     #[must_use]
     pub fn describe(&self) -> String {
         format!(
-            "{}, {}, map {}², filter {:?}, bias {}, virtual samples {}, culling {}, image {}x{}, {}² reference rays",
+            "{}, {}, map {}², filter {}, bias {}, virtual samples {}, culling {}, image {}x{}, {}² reference rays",
             self.algorithm.flags().trim_start_matches("--algo "),
             self.format.name(),
             self.map_size,
             self.filter,
             self.bias,
             self.virtual_samples,
-            self.culling.label(),
+            self.culling,
             self.width,
             self.height,
-            self.reference_samples
+            self.reference_rays
         )
     }
 
@@ -154,31 +255,23 @@ impl RenderConfig {
     /// the scene `source` (a bundled name or a file) again, bit for bit.
     #[must_use]
     pub fn command(&self, source: &str) -> String {
-        let filter = match self.filter {
-            Filter::Point => "point".to_owned(),
-            Filter::Bilinear => "bilinear".to_owned(),
-            Filter::Box { size } => format!("box{size}"),
-            Filter::Jittered(j) => format!(
-                "jitter --num-samples {} --res-factor {} --min-samples {} --min-size {}",
-                j.num_samples, j.res_factor, j.min_samples, j.min_size
-            ),
-        };
         let quoted = crate::io::provenance::shell_word(source);
         let mut c = format!(
-            "umbra render {quoted} {} --depth {} --map {} --filter {filter} --bias {} --width {} --height {} --reference-samples {}",
+            "umbra render {quoted} {} --depth {} --map {} --filter {} --bias {} --width {} --height {} --reference-rays {}",
             self.algorithm.flags(),
             self.format.name(),
             self.map_size,
+            self.filter,
             self.bias,
             self.width,
             self.height,
-            self.reference_samples
+            self.reference_rays
         );
         if !self.virtual_samples {
             c.push_str(" --no-virtual-samples");
         }
         if self.culling != Culling::ALGORITHM {
-            c.push_str(&format!(" --cull {}", self.culling.label()));
+            c.push_str(&format!(" --cull {}", self.culling));
         }
         c
     }
@@ -187,6 +280,7 @@ impl RenderConfig {
     /// `limits`, before any buffer is allocated, and the targets the passes
     /// will draw, both in `tile`-pixel tiles.
     pub(super) fn check(&self, scene: &Scene, limits: &Limits, tile: u32) -> Result<Checked, RenderError> {
+        self.checked()?;
         limits.check_map(self.map_size)?;
         limits.check_image(self.width, self.height)?;
         let triangles: usize = scene.objects.iter().map(|o| o.mesh.triangles.len()).sum();
@@ -203,6 +297,17 @@ impl RenderConfig {
 /// Render `scene` with `cfg` within `limits`, against the exact reference
 /// `truth` names.
 ///
+/// ```
+/// use umbra_sim::{Limits, RenderConfig, Scene, TruthSource};
+/// let scene = Scene::open("weiskopf-l", &Limits::DEFAULT)?;
+/// let cfg = RenderConfig { width: 96, height: 72, map_size: 128, ..RenderConfig::DEFAULT };
+/// let r = umbra_sim::render(&scene, &cfg, &Limits::DEFAULT, TruthSource::Quiet)?;
+/// let m = &r.metrics;
+/// assert_eq!(m.evaluated as usize, r.truth.iter().flatten().filter(|t| t.faces_light).count());
+/// assert!(m.edge_placement + m.acne + m.leaks <= m.evaluated);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
 /// # Errors
 /// See [`RenderError`].
 pub fn render(
@@ -214,11 +319,7 @@ pub fn render(
     let checked = cfg.check(scene, limits, RasterConfig::DEFAULT_TILE_SIZE)?;
     let truth = truth_of(scene, cfg, truth_from)?;
     let none = (umbra_core::NoProbe, &mut umbra_core::NoProbe);
-    Ok(match cfg.format {
-        DepthFormatKind::D16 => render_in::<D16, _, _>(scene, cfg, checked, truth, none)?.0,
-        DepthFormatKind::D24 => render_in::<D24, _, _>(scene, cfg, checked, truth, none)?.0,
-        DepthFormatKind::F32 => render_in::<F32, _, _>(scene, cfg, checked, truth, none)?.0,
-    })
+    Ok(with_format!(cfg.format, F => render_in::<F, _, _>(scene, cfg, checked, truth, none)?.0))
 }
 
 /// The reference `truth_from` names, of the configuration's image size.
@@ -228,7 +329,8 @@ pub(super) fn truth_of(
     truth_from: TruthSource<'_>,
 ) -> Result<Vec<Option<PixelTruth>>, RenderError> {
     let truth = match truth_from {
-        TruthSource::Build(progress) => truth(scene, cfg.width, cfg.height, cfg.reference_samples, progress)?,
+        TruthSource::Quiet => truth(scene, cfg.width, cfg.height, cfg.reference_rays, &ProgressBar::hidden())?,
+        TruthSource::Build(progress) => truth(scene, cfg.width, cfg.height, cfg.reference_rays, progress)?,
         TruthSource::Given(t) => t,
     };
     if truth.len() as u64 != u64::from(cfg.width) * u64::from(cfg.height) {

@@ -7,56 +7,40 @@
 //! each through its own probe ([`Fan`]); the functional render's passes
 //! cost those whose tiling is its own.
 
-use umbra_core::probe::{Event, Fragment, TexelRead};
+use umbra_core::probe::Event;
 use umbra_core::shadow::Filter;
 use umbra_core::silhouette::{Packed, SilPoint, SilStore};
-use umbra_core::{D16, D24, DepthFormat, DepthFormatKind, F32, Probe, RasterConfig};
+use umbra_core::{DepthFormat, DepthFormatKind, Probe, RasterConfig};
 
-use super::algorithm::MapKind;
-use super::camera::{CameraFrame, visibility};
-use super::light::LightFrame;
-use super::render::{
-    Algorithm, Checked, Culling, Render, RenderConfig, RenderError, TruthSource, passes, render_in, truth_of,
-};
+use super::{Algorithm, Checked, Culling, Render, RenderConfig, RenderError, TruthSource, passes, render_in, truth_of};
+use crate::base::maps::{Tiling, with_format};
+use crate::base::probes::Fan;
 use crate::cost::arch::{Arch, ArchProbe, CostReport, PassKind};
 use crate::io::limits::Limits;
+use crate::pass::algorithm::MapKind;
+use crate::pass::camera::{CameraFrame, visibility};
+use crate::pass::light::LightFrame;
 use crate::world::occluders::Occluders;
 use crate::world::scene::Scene;
 
-/// Every event to each of several probes, in order.
-#[derive(Debug)]
-pub struct Fan<P>(pub Vec<P>);
-
-impl<P: Probe> Probe for Fan<P> {
-    const FRAGMENTS: bool = P::FRAGMENTS;
-    const TEXELS: bool = P::TEXELS;
-    const EVENTS: bool = P::EVENTS;
-
-    #[inline]
-    fn event(&mut self, e: Event) {
-        self.0.iter_mut().for_each(|p| p.event(e));
-    }
-
-    #[inline]
-    fn fragment(&mut self, f: Fragment) {
-        self.0.iter_mut().for_each(|p| p.fragment(f));
-    }
-
-    #[inline]
-    fn texel_read(&mut self, r: TexelRead) {
-        self.0.iter_mut().for_each(|p| p.texel_read(r));
-    }
+/// How an architecture needs the passes drawn: its [`Tiling`], and
+/// whether its light and camera passes need each fragment's address (a
+/// depth cache in front of off-chip depth). Architectures with the same
+/// shape are costed from one run of the passes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Shape {
+    tiling: Tiling,
+    light_addresses: bool,
+    camera_addresses: bool,
 }
 
-/// How an architecture needs the passes drawn: its tile, whether it
-/// finishes each draw before the next, and whether its light and camera
-/// passes need each fragment's address (a depth cache in front of off-chip
-/// depth).
-type Tiling = (u32, bool, bool, bool);
-
-fn tiling(arch: &Arch) -> Tiling {
+fn shape(arch: &Arch) -> Shape {
     let cached = arch.depth_cache.size > 0;
-    (arch.raster.tile, arch.immediate(), cached && !arch.on_chip.light_depth, cached && !arch.on_chip.camera_depth)
+    Shape {
+        tiling: arch.tiling(),
+        light_addresses: cached && !arch.on_chip.light_depth,
+        camera_addresses: cached && !arch.on_chip.camera_depth,
+    }
 }
 
 /// The depth samples a lookup of `filter` takes (Sen et al.'s figure).
@@ -85,7 +69,7 @@ fn probes<F: DepthFormat, const L: bool, const C: bool>(
     let camera = archs
         .iter()
         .map(|a| {
-            let p = ArchProbe::<C>::new(a, PassKind::Camera, checked.image, D24::KIND, 1);
+            let p = ArchProbe::<C>::new(a, PassKind::Camera, checked.image, DepthFormatKind::D24, 1);
             if shadowed && units.map != MapKind::Volumes {
                 p.reading(units.unit.buffers(), cfg.format.bytes(), sil)
             } else {
@@ -121,9 +105,21 @@ fn reports<const L: bool, const C: bool>(
 }
 
 /// The cost of a render of `scene` on an architecture, within `limits`
-/// (checked as [`super::render::render`] checks them): both passes through
+/// (checked as [`super::render`] checks them): both passes through
 /// its timing model, the light pass and the camera's visibility in the
 /// architecture's tiles.
+///
+/// ```
+/// use umbra_sim::{Arch, Limits, RenderConfig, Scene};
+/// let scene = Scene::open("weiskopf-l", &Limits::DEFAULT)?;
+/// let cfg = RenderConfig { width: 96, height: 72, map_size: 128, ..RenderConfig::DEFAULT };
+/// let (slow, fast) = (Arch::open("pixelflow", &Limits::DEFAULT)?, Arch::open("desktop-imr", &Limits::DEFAULT)?);
+/// let cost = |a: &Arch| umbra_sim::cost(&scene, &cfg, a, &Limits::DEFAULT);
+/// // The same frame, the same events: the machines differ in time only.
+/// assert_eq!(cost(&slow)?.pixels, cost(&fast)?.pixels);
+/// assert!(cost(&slow)?.seconds > cost(&fast)?.seconds);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 ///
 /// # Errors
 /// See [`RenderError`].
@@ -152,13 +148,13 @@ pub fn cost_unshadowed(
         virtual_samples: false,
         width,
         height,
-        reference_samples: 1,
+        reference_rays: 1,
         culling: Culling::ALGORITHM,
     };
     cost_group(scene, &cfg, &[arch], limits, false).map(|mut r| r.remove(0))
 }
 
-/// The cost on `archs`, which share a [`Tiling`] (the first's), from one
+/// The cost on `archs`, which share a [`Shape`] (the first's), from one
 /// run of the passes.
 fn cost_group(
     scene: &Scene,
@@ -168,23 +164,14 @@ fn cost_group(
     shadowed: bool,
 ) -> Result<Vec<CostReport>, RenderError> {
     let Some(first) = archs.first() else { return Ok(Vec::new()) };
-    let (tile, _, light_detail, camera_detail) = tiling(first);
-    let checked = cfg.check(scene, limits, tile)?;
-    macro_rules! with_format {
-        ($f:ty) => {
-            match (light_detail, camera_detail) {
-                (false, false) => cost_in::<$f, false, false>(scene, cfg, checked, archs, shadowed),
-                (true, false) => cost_in::<$f, true, false>(scene, cfg, checked, archs, shadowed),
-                (false, true) => cost_in::<$f, false, true>(scene, cfg, checked, archs, shadowed),
-                (true, true) => cost_in::<$f, true, true>(scene, cfg, checked, archs, shadowed),
-            }
-        };
-    }
-    match cfg.format {
-        DepthFormatKind::D16 => with_format!(D16),
-        DepthFormatKind::D24 => with_format!(D24),
-        DepthFormatKind::F32 => with_format!(F32),
-    }
+    let Shape { tiling, light_addresses: light_detail, camera_addresses: camera_detail } = shape(first);
+    let checked = cfg.check(scene, limits, tiling.tile)?;
+    with_format!(cfg.format, F => match (light_detail, camera_detail) {
+        (false, false) => cost_in::<F, false, false>(scene, cfg, checked, archs, shadowed),
+        (true, false) => cost_in::<F, true, false>(scene, cfg, checked, archs, shadowed),
+        (false, true) => cost_in::<F, false, true>(scene, cfg, checked, archs, shadowed),
+        (true, true) => cost_in::<F, true, true>(scene, cfg, checked, archs, shadowed),
+    })
 }
 
 fn cost_in<F: DepthFormat, const L: bool, const C: bool>(
@@ -195,7 +182,7 @@ fn cost_in<F: DepthFormat, const L: bool, const C: bool>(
     shadowed: bool,
 ) -> Result<Vec<CostReport>, RenderError> {
     let (mut light, mut camera) = probes::<F, L, C>(cfg, checked, archs, shadowed);
-    let drawing = archs.first().map_or(super::camera::Tiling::DEFAULT, |a| a.tiling());
+    let drawing = archs.first().map_or(Tiling::DEFAULT, |a| a.tiling());
     let config = if shadowed {
         let frame = &mut LightFrame::new();
         light = passes::<F, _, _>(scene, cfg, checked, frame, light, &mut camera, drawing)?.0;
@@ -216,7 +203,7 @@ fn cost_in<F: DepthFormat, const L: bool, const C: bool>(
     Ok(reports(scene, cfg, &config, light, camera))
 }
 
-/// The render of `cfg` (as [`super::render::render`]) and its cost on each
+/// The render of `cfg` (as [`super::render`]) and its cost on each
 /// of `archs` (as [`cost`], in their order), in as few passes as their
 /// tilings allow: the render's own passes cost the architectures that draw
 /// as it does (32-pixel tiles, no per-draw finish, no fragment detail), and
@@ -232,32 +219,25 @@ pub fn render_costed(
     truth_from: TruthSource<'_>,
     archs: &[Arch],
 ) -> Result<(Render, Vec<Result<CostReport, RenderError>>), RenderError> {
-    let own: Tiling = (RasterConfig::DEFAULT_TILE_SIZE, false, false, false);
+    let own = Shape { tiling: Tiling::DEFAULT, light_addresses: false, camera_addresses: false };
     let checked = cfg.check(scene, limits, RasterConfig::DEFAULT_TILE_SIZE)?;
     let truth = truth_of(scene, cfg, truth_from)?;
-    let shared: Vec<&Arch> = archs.iter().filter(|a| tiling(a) == own).collect();
-    macro_rules! with_format {
-        ($f:ty) => {{
-            let (light, mut camera) = probes::<$f, false, false>(cfg, checked, &shared, true);
-            let (render, light) = render_in::<$f, _, _>(scene, cfg, checked, truth, (light, &mut camera))?;
-            (render, reports(scene, cfg, &cfg.describe(), light, camera))
-        }};
-    }
-    let (render, costed) = match cfg.format {
-        DepthFormatKind::D16 => with_format!(D16),
-        DepthFormatKind::D24 => with_format!(D24),
-        DepthFormatKind::F32 => with_format!(F32),
-    };
+    let shared: Vec<&Arch> = archs.iter().filter(|a| shape(a) == own).collect();
+    let (render, costed) = with_format!(cfg.format, F => {
+        let (light, mut camera) = probes::<F, false, false>(cfg, checked, &shared, true);
+        let (render, light) = render_in::<F, _, _>(scene, cfg, checked, truth, (light, &mut camera))?;
+        (render, reports(scene, cfg, &cfg.describe(), light, camera))
+    });
     // The shared reports, in the architectures' order.
     let mut costed = costed.into_iter();
     let mut out: Vec<Option<Result<CostReport, RenderError>>> =
-        archs.iter().map(|a| if tiling(a) == own { costed.next().map(Ok) } else { None }).collect();
+        archs.iter().map(|a| if shape(a) == own { costed.next().map(Ok) } else { None }).collect();
     // The other tilings, each group in one run.
-    let mut groups: Vec<(Tiling, Vec<usize>)> = Vec::new();
-    for (k, a) in archs.iter().enumerate().filter(|(_, a)| tiling(a) != own) {
-        match groups.iter_mut().find(|g| g.0 == tiling(a)) {
+    let mut groups: Vec<(Shape, Vec<usize>)> = Vec::new();
+    for (k, a) in archs.iter().enumerate().filter(|(_, a)| shape(a) != own) {
+        match groups.iter_mut().find(|g| g.0 == shape(a)) {
             Some(g) => g.1.push(k),
-            None => groups.push((tiling(a), vec![k])),
+            None => groups.push((shape(a), vec![k])),
         }
     }
     for (_, members) in groups {

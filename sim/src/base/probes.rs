@@ -1,0 +1,57 @@
+//! Probes that pass the core's events on: to two probes ([`Tee`]) or to
+//! each of several ([`Fan`]).
+
+use umbra_core::probe::{Event, Fragment, Probe, TexelRead};
+
+/// Forwards every event, fragment and texel read to two probes.
+#[derive(Clone, Debug, Default)]
+pub struct Tee<A, B>(pub A, pub B);
+
+impl<A: Probe, B: Probe> Probe for Tee<A, B> {
+    const FRAGMENTS: bool = A::FRAGMENTS || B::FRAGMENTS;
+    const TEXELS: bool = A::TEXELS || B::TEXELS;
+    const EVENTS: bool = A::EVENTS || B::EVENTS;
+
+    #[inline]
+    fn event(&mut self, e: Event) {
+        self.0.event(e);
+        self.1.event(e);
+    }
+
+    #[inline]
+    fn fragment(&mut self, f: Fragment) {
+        self.0.fragment(f);
+        self.1.fragment(f);
+    }
+
+    #[inline]
+    fn texel_read(&mut self, r: TexelRead) {
+        self.0.texel_read(r);
+        self.1.texel_read(r);
+    }
+}
+
+/// Every event to each of several probes, in order.
+#[derive(Debug)]
+pub struct Fan<P>(pub Vec<P>);
+
+impl<P: Probe> Probe for Fan<P> {
+    const FRAGMENTS: bool = P::FRAGMENTS;
+    const TEXELS: bool = P::TEXELS;
+    const EVENTS: bool = P::EVENTS;
+
+    #[inline]
+    fn event(&mut self, e: Event) {
+        self.0.iter_mut().for_each(|p| p.event(e));
+    }
+
+    #[inline]
+    fn fragment(&mut self, f: Fragment) {
+        self.0.iter_mut().for_each(|p| p.fragment(f));
+    }
+
+    #[inline]
+    fn texel_read(&mut self, r: TexelRead) {
+        self.0.iter_mut().for_each(|p| p.texel_read(r));
+    }
+}
