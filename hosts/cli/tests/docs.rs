@@ -1,0 +1,190 @@
+//! The documentation cannot go stale. Every figure in `README.md` and
+//! `docs/*.md` sits in a block that names the `umbra` command printing it:
+//!
+//! ````text
+//! <!-- figure: umbra render --out target/figures/render-default -->
+//! ```text
+//! …what that command prints…
+//! ```
+//! <!-- /figure -->
+//! ````
+//!
+//! and every picture in a line `<!-- picture: target/figures/… -> docs/… -->`
+//! that names the file such a command wrote. This test runs each command
+//! and holds each block, and each picture, to what the current code
+//! writes; `UPDATE_FIGURES=1 cargo test -p umbra-cli --test docs` writes
+//! them instead. Every other `cargo umbra …` line in a shell block is held
+//! to the command line's grammar (run with `--help` appended, so nothing
+//! runs): a flag or a value the command no longer takes fails here.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// The workspace root, where the documented commands run.
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..").canonicalize().expect("the workspace")
+}
+
+/// README.md and every page of the guide.
+fn pages() -> Vec<PathBuf> {
+    let mut pages = vec![root().join("README.md")];
+    let mut guide: Vec<PathBuf> = std::fs::read_dir(root().join("docs"))
+        .expect("docs/")
+        .map(|e| e.expect("an entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "md"))
+        .collect();
+    guide.sort();
+    pages.extend(guide);
+    pages
+}
+
+/// One figure block: the command and the text between its fences.
+struct Figure {
+    command: String,
+    /// Byte range of the text inside the fences.
+    body: std::ops::Range<usize>,
+}
+
+const OPEN: &str = "<!-- figure: ";
+const CLOSE: &str = "<!-- /figure -->";
+
+fn figures(text: &str, page: &Path) -> Vec<Figure> {
+    let mut out = Vec::new();
+    let mut at = 0;
+    while let Some(start) = text[at..].find(OPEN).map(|k| k + at) {
+        let line_end = text[start..].find("-->").map(|k| k + start).expect("a figure marker ends with -->");
+        let command = text[start + OPEN.len()..line_end].trim().to_owned();
+        let fence = text[line_end..].find("```text\n").map(|k| k + line_end + "```text\n".len());
+        let close = text[line_end..].find(CLOSE).map(|k| k + line_end);
+        let (Some(body_start), Some(close)) = (fence, close) else {
+            panic!("{}: the figure `{command}` has no ```text block and {CLOSE}", page.display())
+        };
+        let body_end = text[..close].rfind("```").expect("a closing fence");
+        assert!(body_start <= body_end, "{}: the figure `{command}` is malformed", page.display());
+        out.push(Figure { command, body: body_start..body_end });
+        at = close + CLOSE.len();
+    }
+    out
+}
+
+/// Run a documented `umbra …` command from the workspace root; its stdout.
+fn run(command: &str) -> String {
+    let args: Vec<&str> = command.split_whitespace().collect();
+    assert_eq!(args.first(), Some(&"umbra"), "a figure's command starts with `umbra`: {command}");
+    let out = Command::new(env!("CARGO_BIN_EXE_umbra"))
+        .args(&args[1..])
+        .current_dir(root())
+        .env("RUST_BACKTRACE", "0")
+        .output()
+        .expect("the command runs");
+    assert!(out.status.success(), "`{command}` failed: {}", String::from_utf8_lossy(&out.stderr));
+    String::from_utf8(out.stdout).expect("UTF-8 output")
+}
+
+/// `target/figures/x.png -> docs/x.png` lines: a written picture and where
+/// the guide keeps it.
+fn pictures(text: &str) -> Vec<(PathBuf, PathBuf)> {
+    text.lines()
+        .filter_map(|l| l.trim().strip_prefix("<!-- picture: ")?.strip_suffix("-->"))
+        .map(|l| {
+            let (from, to) = l.split_once("->").expect("`from -> to`");
+            (root().join(from.trim()), root().join(to.trim()))
+        })
+        .collect()
+}
+
+#[test]
+fn every_documented_figure_is_what_the_code_prints() {
+    let update = std::env::var_os("UPDATE_FIGURES").is_some();
+    let mut stale = Vec::new();
+    let mut count = 0;
+    for page in pages() {
+        let text = std::fs::read_to_string(&page).expect("a page");
+        let mut fresh = text.clone();
+        // Back to front, so earlier ranges stay valid while rewriting.
+        for f in figures(&text, &page).iter().rev() {
+            count += 1;
+            let printed = run(&f.command);
+            if text[f.body.clone()] != printed {
+                stale.push(format!("{}: `{}`", page.display(), f.command));
+                fresh.replace_range(f.body.clone(), &printed);
+            }
+        }
+        for (written, kept) in pictures(&text) {
+            let now = std::fs::read(&written).unwrap_or_else(|e| panic!("{}: {e}", written.display()));
+            if std::fs::read(&kept).ok().as_deref() != Some(now.as_slice()) {
+                stale.push(format!("{}: {}", page.display(), kept.display()));
+                if update {
+                    std::fs::write(&kept, &now).expect("the picture is written");
+                }
+            }
+        }
+        if update && fresh != text {
+            std::fs::write(&page, fresh).expect("the page is written");
+        }
+    }
+    assert!(count >= 5, "only {count} figures: the README and the guide show what the tool prints");
+    assert!(update || stale.is_empty(), "stale (UPDATE_FIGURES=1 rewrites them):\n{}", stale.join("\n"));
+}
+
+/// The `cargo umbra …` lines of a page's shell blocks, without `cargo`.
+fn commands(text: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut shell = false;
+    for line in text.lines() {
+        let t = line.trim();
+        if t.starts_with("```") {
+            shell = matches!(t, "```sh" | "```bash" | "```shell" | "```console");
+            continue;
+        }
+        if shell {
+            let t = t.split(" #").next().unwrap_or_default().trim();
+            if let Some(rest) = t.strip_prefix("cargo umbra") {
+                out.push(format!("umbra{rest}"));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn every_documented_command_is_one_umbra_takes() {
+    let mut seen = 0;
+    for page in pages() {
+        let text = std::fs::read_to_string(&page).expect("a page");
+        for command in commands(&text) {
+            seen += 1;
+            // Words the shell would expand are left as they are: a
+            // documented command is written out in full.
+            let mut args: Vec<&str> = command.split_whitespace().skip(1).collect();
+            args.push("--help");
+            let out = common::umbra(&args);
+            assert!(
+                out.status.success(),
+                "{}: `{command}` is not a command umbra takes: {}",
+                page.display(),
+                String::from_utf8_lossy(&out.stderr)
+            );
+        }
+    }
+    assert!(seen >= 5, "only {seen} documented commands");
+}
+
+/// The checker itself: a stale flag fails, and a block is found.
+#[test]
+fn the_checks_catch_a_stale_flag_and_find_a_block() {
+    let out = common::umbra(&["render", "--filter", "box99", "--help"]);
+    assert!(!out.status.success(), "a bad value before --help is refused");
+    let out = common::umbra(&["render", "--no-such-flag", "--help"]);
+    assert!(!out.status.success(), "an unknown flag before --help is refused");
+    let page = "a\n<!-- figure: umbra depth --out x -->\n```text\nold\n```\n<!-- /figure -->\nb";
+    let f = figures(page, Path::new("page.md"));
+    assert_eq!(f.len(), 1);
+    assert_eq!((f[0].command.as_str(), &page[f[0].body.clone()]), ("umbra depth --out x", "old\n"));
+    assert_eq!(
+        commands("```sh\ncargo umbra cost --arch a.toml   # note\n```\ncargo umbra no"),
+        ["umbra cost --arch a.toml"]
+    );
+}
