@@ -142,7 +142,7 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
             ("command", umbra_sim::io::provenance::command_line()),
             ("scene", scene.source.clone()),
             ("configuration", cfg.describe()),
-            ("render_again", cfg.command(&scene.source)),
+            ("render_again", r.command.clone()),
         ] {
             fields.insert(k.to_owned(), serde_json::Value::String(v));
         }

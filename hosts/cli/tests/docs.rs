@@ -13,7 +13,9 @@
 //! that names the file such a command wrote. This test runs each command
 //! and holds each block, and each picture, to what the current code
 //! writes; `UPDATE_FIGURES=1 cargo test -p umbra-cli --test docs` writes
-//! them instead. Every other `cargo umbra …` line in a shell block is held
+//! them instead. The one part of an output that names the commit it was
+//! built from, the version's `(git …)`, is written as `(git <revision>)`:
+//! a page cannot hold the revision of the commit that holds it. Every other `cargo umbra …` line in a shell block is held
 //! to the command line's grammar (run with `--help` appended, so nothing
 //! runs): a flag or a value the command no longer takes fails here.
 
@@ -83,6 +85,27 @@ fn run(command: &str) -> String {
     String::from_utf8(out.stdout).expect("UTF-8 output")
 }
 
+/// `text` with every `(git <hex>[-modified])` written `(git <revision>)`.
+fn without_revision(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(at) = rest.find("(git ") {
+        let after = &rest[at + "(git ".len()..];
+        let end = after.find(')').unwrap_or(after.len());
+        let rev = &after[..end];
+        let hex = rev.trim_end_matches("-modified");
+        out.push_str(&rest[..at]);
+        if !hex.is_empty() && hex.chars().all(|c| c.is_ascii_hexdigit()) {
+            out.push_str("(git <revision>)");
+        } else {
+            out.push_str(&rest[at..at + "(git ".len() + end + usize::from(end < after.len())]);
+        }
+        rest = &after[(end + 1).min(after.len())..];
+    }
+    out.push_str(rest);
+    out
+}
+
 /// `target/figures/x.png -> docs/x.png` lines: a written picture and where
 /// the guide keeps it.
 fn pictures(text: &str) -> Vec<(PathBuf, PathBuf)> {
@@ -106,7 +129,7 @@ fn every_documented_figure_is_what_the_code_prints() {
         // Back to front, so earlier ranges stay valid while rewriting.
         for f in figures(&text, &page).iter().rev() {
             count += 1;
-            let printed = run(&f.command);
+            let printed = without_revision(&run(&f.command));
             if text[f.body.clone()] != printed {
                 stale.push(format!("{}: `{}`", page.display(), f.command));
                 fresh.replace_range(f.body.clone(), &printed);

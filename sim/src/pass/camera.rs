@@ -25,6 +25,8 @@ pub struct CameraImage {
     pub height: u32,
     /// One result per pixel, row-major.
     pub pixels: Vec<Shaded>,
+    /// The camera's view-projection the image was seen through.
+    pub camera: Mat4,
 }
 
 /// How a camera pass runs: the one options type of [`render`].
@@ -71,6 +73,8 @@ pub struct CameraFrame {
     store: Vec<Setup>,
     shade_setups: Vec<ShadeSetup>,
     size: (u32, u32),
+    /// The camera's view-projection of the last visibility pass.
+    camera: Mat4,
     /// The configuration the visibility buffers were last drawn with: a
     /// pass with the same one clears only the tiles that pass wrote.
     drawn: Option<LightPassConfig>,
@@ -91,7 +95,7 @@ impl CameraFrame {
     #[must_use]
     pub fn take_image(&mut self) -> CameraImage {
         let (width, height) = self.size;
-        CameraImage { width, height, pixels: core::mem::take(&mut self.pixels) }
+        CameraImage { width, height, pixels: core::mem::take(&mut self.pixels), camera: self.camera }
     }
 }
 
@@ -136,6 +140,7 @@ pub fn visibility<P: Probe>(
     let (texels, tiles) = (raster.texel_count(), raster.tile_count());
     let triangles: usize = scene.objects.iter().map(|o| o.mesh.triangles.len()).sum();
     frame.size = (width, height);
+    frame.camera = camera;
     let kept = frame.drawn.replace(config) == Some(config) && frame.z.len() == texels;
     let CameraFrame { z, ids, tiles: states, bins, store, .. } = frame;
     z.resize(texels, D24::FAR);
@@ -281,7 +286,7 @@ pub fn streamed<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
         umbra_core::shade::stream::StreamError::Config(e) => PassError::from(e),
         _ => PassError::from(umbra_core::ConfigError::Window { x0: 0, y0: 0, width, height }),
     })?;
-    Ok(CameraImage { width, height, pixels: image })
+    Ok(CameraImage { width, height, pixels: image, camera })
 }
 
 /// The camera pass of depth-fail shadow volumes into `frame`: the

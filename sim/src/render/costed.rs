@@ -12,7 +12,7 @@ use umbra_core::shadow::Filter;
 use umbra_core::silhouette::{Packed, SilPoint, SilStore};
 use umbra_core::{DepthFormat, DepthFormatKind, Probe, RasterConfig};
 
-use super::{Algorithm, Checked, Culling, Render, RenderConfig, RenderError, TruthSource, passes, render_in, truth_of};
+use super::{Algorithm, Checked, Culling, Render, RenderConfig, RenderError, TruthSource, passes, render_in};
 use crate::base::maps::{Tiling, with_format};
 use crate::base::probes::Fan;
 use crate::cost::arch::{Arch, ArchProbe, CostReport, PassKind};
@@ -221,11 +221,10 @@ pub fn render_costed(
 ) -> Result<(Render, Vec<Result<CostReport, RenderError>>), RenderError> {
     let own = Shape { tiling: Tiling::DEFAULT, light_addresses: false, camera_addresses: false };
     let checked = cfg.check(scene, limits, RasterConfig::DEFAULT_TILE_SIZE)?;
-    let truth = truth_of(scene, cfg, truth_from)?;
     let shared: Vec<&Arch> = archs.iter().filter(|a| shape(a) == own).collect();
     let (render, costed) = with_format!(cfg.format, F => {
         let (light, mut camera) = probes::<F, false, false>(cfg, checked, &shared, true);
-        let (render, light) = render_in::<F, _, _>(scene, cfg, checked, truth, (light, &mut camera))?;
+        let (render, light) = render_in::<F, _, _>(scene, cfg, checked, truth_from, (light, &mut camera))?;
         (render, reports(scene, cfg, &cfg.describe(), light, camera))
     });
     // The shared reports, in the architectures' order.

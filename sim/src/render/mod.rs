@@ -143,6 +143,9 @@ pub struct Render {
     pub light_events: Counters,
     /// Events of the camera pass.
     pub camera_events: Counters,
+    /// The `umbra render` command line that renders it again, bit for bit
+    /// ([`RenderConfig::command`]).
+    pub command: String,
 }
 
 /// Where a render's exact reference comes from.
@@ -317,20 +320,28 @@ pub fn render(
     truth_from: TruthSource<'_>,
 ) -> Result<Render, RenderError> {
     let checked = cfg.check(scene, limits, RasterConfig::DEFAULT_TILE_SIZE)?;
-    let truth = truth_of(scene, cfg, truth_from)?;
     let none = (umbra_core::NoProbe, &mut umbra_core::NoProbe);
-    Ok(with_format!(cfg.format, F => render_in::<F, _, _>(scene, cfg, checked, truth, none)?.0))
+    Ok(with_format!(cfg.format, F => render_in::<F, _, _>(scene, cfg, checked, truth_from, none)?.0))
 }
 
-/// The reference `truth_from` names, of the configuration's image size.
-pub(super) fn truth_of(
+/// The reference `truth_from` names for the render's `image`, of the
+/// configuration's image size: one built is cast through the triangles the
+/// render's own camera pass saw (the visibility of [`truth`], bit for bit).
+fn truth_of(
     scene: &Scene,
     cfg: &RenderConfig,
     truth_from: TruthSource<'_>,
+    image: &CameraImage,
 ) -> Result<Vec<Option<PixelTruth>>, RenderError> {
+    let build = |progress: &ProgressBar| -> Result<_, RenderError> {
+        let ids: Vec<u32> = image.pixels.iter().map(|p| p.triangle).collect();
+        let light = scene.light().source();
+        let reference = Reference::new(&scene.triangles())?;
+        Ok(reference.image(&ids, &image.camera, cfg.width, cfg.height, &light, cfg.reference_rays, progress))
+    };
     let truth = match truth_from {
-        TruthSource::Quiet => truth(scene, cfg.width, cfg.height, cfg.reference_rays, &ProgressBar::hidden())?,
-        TruthSource::Build(progress) => truth(scene, cfg.width, cfg.height, cfg.reference_rays, progress)?,
+        TruthSource::Quiet => build(&ProgressBar::hidden())?,
+        TruthSource::Build(progress) => build(progress)?,
         TruthSource::Given(t) => t,
     };
     if truth.len() as u64 != u64::from(cfg.width) * u64::from(cfg.height) {
@@ -436,9 +447,10 @@ pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
     scene: &Scene,
     cfg: &RenderConfig,
     checked: Checked,
-    truth: Vec<Option<PixelTruth>>,
+    truth_from: TruthSource<'_>,
     (light_also, camera_also): (L, &mut C),
 ) -> Result<(Render, L), RenderError> {
+    let command = cfg.command(&scene.source);
     let mut camera_events = Counters::new(&checked.image);
     let mut frame = LightFrame::new();
     let (Tee(light_events, light_also), image) = passes::<F, _, _>(
@@ -453,6 +465,7 @@ pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
     if frame.maps().is_some() && light_events.totals.setups == 0 {
         return Err(RenderError::EmptyMap);
     }
+    let truth = truth_of(scene, cfg, truth_from, &image)?;
     let metrics = compare(&image.pixels, &truth, image.width);
     let maps = frame.maps().map_or_else(
         // Shadow volumes draw no map: one far texel stands for it.
@@ -465,5 +478,5 @@ pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
         light::widen,
     );
     let maps = RawMaps { format: cfg.format, maps };
-    Ok((Render { image, maps, truth, metrics, light_events, camera_events }, light_also))
+    Ok((Render { image, maps, truth, metrics, light_events, camera_events, command }, light_also))
 }

@@ -115,3 +115,37 @@ fn the_reference_does_not_depend_on_the_thread_count() {
     assert_eq!(one, on(4));
     assert!(one.iter().flatten().any(|t| !t.lit) && one.iter().flatten().any(|t| t.lit));
 }
+
+/// A render's own reference, cast through the triangles its camera pass
+/// saw, is the reference `render::truth` builds with a visibility pass of
+/// its own (which the study shares between configurations), for every
+/// kind of camera pass: a depth map, front-face culling, a silhouette map
+/// and shadow volumes.
+#[test]
+fn a_renders_own_reference_is_the_shared_one() {
+    use umbra::sim::io::limits::Limits;
+    use umbra::sim::render::{Algorithm, RenderConfig, TruthSource, render, truth};
+    let scene = Scene::bundled("weiskopf-l").expect("bundled");
+    let shared = truth(&scene, 96, 72, 2, &indicatif::ProgressBar::hidden()).expect("a reference");
+    assert!(shared.iter().flatten().any(|t| t.faces_light));
+    for algorithm in [
+        Algorithm::First,
+        Algorithm::SecondFrontCulled,
+        Algorithm::Dual { offset: 0.01 },
+        Algorithm::Silhouette { packed: true },
+        Algorithm::Volumes,
+    ] {
+        let cfg = RenderConfig {
+            algorithm,
+            width: 96,
+            height: 72,
+            map_size: 128,
+            reference_rays: 2,
+            ..RenderConfig::DEFAULT
+        };
+        let own = render(&scene, &cfg, &Limits::DEFAULT, TruthSource::Quiet).expect("renders");
+        assert!(own.truth == shared, "{algorithm}: the references differ");
+        let given = render(&scene, &cfg, &Limits::DEFAULT, TruthSource::Given(shared.clone())).expect("renders");
+        assert_eq!(own.metrics, given.metrics, "{algorithm}");
+    }
+}
