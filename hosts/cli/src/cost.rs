@@ -78,7 +78,9 @@ pub(super) fn cost(args: &CostArgs, trace: bool, limits: &Limits) -> Result<()> 
     let (scene, cfg) = render_config(&args.render, limits)?;
     let archs = args.archs.resolve(&BUNDLED.map(|b| b.0), limits)?;
     let command = command_line();
-    let mut folder = OutputFolder::create(&args.render.out)?;
+    let own = if trace { "out/trace" } else { "out/cost" };
+    let out = args.render.out.clone().unwrap_or_else(|| std::path::PathBuf::from(own));
+    let mut folder = OutputFolder::create(&out)?;
     let mut reports = Vec::new();
     for arch in &archs {
         let report = umbra_sim::render::cost(&scene, &cfg, arch, limits)?;
@@ -102,7 +104,7 @@ pub(super) fn cost(args: &CostArgs, trace: bool, limits: &Limits) -> Result<()> 
         folder.write_text("cost.json", &serde_json::to_string_pretty(&json)?)?;
     }
     let manifest = folder.finish(None)?;
-    crate::say::wrote(&args.render.out, &manifest)
+    crate::say::wrote(&out, &manifest)
 }
 
 #[derive(clap::Args, Debug)]

@@ -108,8 +108,25 @@ fn no_repeats<'a>(flag: &str, items: impl IntoIterator<Item = &'a str>) -> Resul
     Ok(())
 }
 
+/// The most worker threads a run starts. `RAYON_NUM_THREADS` above it is
+/// lowered to it, with a notice: each thread costs a stack and a start, and
+/// a hundred thousand of them stop a one-second render. The results do not
+/// depend on the thread count.
+const MAX_THREADS: usize = 256;
+
+/// Clamp the worker threads `RAYON_NUM_THREADS` asks for to [`MAX_THREADS`].
+fn clamp_threads() {
+    let asked = std::env::var("RAYON_NUM_THREADS").ok().and_then(|v| v.trim().parse::<usize>().ok());
+    if let Some(n) = asked.filter(|&n| n > MAX_THREADS) {
+        eprintln!("RAYON_NUM_THREADS={n} is more than {MAX_THREADS} threads: using {MAX_THREADS}");
+        // Only fails if a pool was built already, and none is before this.
+        let _ = rayon::ThreadPoolBuilder::new().num_threads(MAX_THREADS).build_global();
+    }
+}
+
 fn main() -> Result<()> {
     let cli = Cli::parse();
+    clamp_threads();
     let limits = &cli.limits.limits();
     match cli.command {
         Some(Command::Depth(args)) => depth(&args, limits),

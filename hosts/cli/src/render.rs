@@ -66,9 +66,10 @@ pub(super) struct RenderArgs {
     /// Reference rays per pixel side for the area-averaged visibility.
     #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=16), alias = "reference-samples")]
     pub(super) reference_rays: u32,
-    /// Output folder.
-    #[arg(long, default_value = "out/render")]
-    pub(super) out: PathBuf,
+    /// Output folder (default: the command's own, out/render, out/cost or
+    /// out/trace, so that one command's run never replaces another's).
+    #[arg(long)]
+    pub(super) out: Option<PathBuf>,
 }
 
 impl Default for RenderArgs {
@@ -87,7 +88,7 @@ impl Default for RenderArgs {
             width: None,
             height: None,
             reference_rays: 4,
-            out: PathBuf::from("out/render"),
+            out: None,
         }
     }
 }
@@ -116,7 +117,8 @@ pub(super) fn render_config(args: &RenderArgs, limits: &Limits) -> Result<(Scene
 /// `umbra render`: the pictures, the metrics and the events of one render.
 pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
     let (scene, cfg) = render_config(args, limits)?;
-    let mut folder = OutputFolder::create(&args.out)?;
+    let out = args.out.clone().unwrap_or_else(|| PathBuf::from("out/render"));
+    let mut folder = OutputFolder::create(&out)?;
     let progress = ProgressBar::new(u64::from(cfg.height)).with_message("reference rays");
     let r = umbra_sim::render::render(&scene, &cfg, limits, TruthSource::Build(&progress))?;
     progress.finish_and_clear();
@@ -193,5 +195,5 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
         t.lookups_culled,
         t.map_read_bytes
     );
-    crate::say::wrote(&args.out, &manifest)
+    crate::say::wrote(&out, &manifest)
 }

@@ -267,3 +267,129 @@ fn polylines_are_reported_not_drawn() {
     );
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// The README's order, each command into its default folder: a cost and a
+/// trace after a render leave the render's pictures, and all three
+/// folders are whole.
+#[test]
+fn render_cost_and_trace_keep_each_others_outputs() {
+    let d = dir("defaults");
+    std::fs::create_dir_all(&d).expect("dir");
+    let small = ["table", "--width", "96", "--height", "54", "--map", "128", "--reference-rays", "1"];
+    for sub in ["render", "cost", "trace"] {
+        let o = command(&[&[sub][..], &small[..]].concat()).current_dir(&d).output().expect("runs");
+        assert!(o.status.success(), "{sub}: {}", String::from_utf8_lossy(&o.stderr));
+    }
+    for (folder, file) in [("render", "shaded.png"), ("cost", "cost.json"), ("trace", MANIFEST)] {
+        let f = d.join("out").join(folder);
+        assert!(f.join(file).is_file(), "{}", f.join(file).display());
+        RunManifest::verify(&f, u64::MAX).unwrap_or_else(|e| panic!("{folder}: {e}"));
+    }
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// `merge` never writes into one of its inputs.
+#[test]
+fn merge_refuses_an_input_as_its_output() {
+    let d = dir("merge-into-input");
+    let sweep = tiny_sweep(&d, r#"["table"]"#);
+    let shard = d.join("s0");
+    let o = umbra(&["study", "--sweep", text(&sweep), "--shard", "0/1", "--out", text(&shard)]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let before = std::fs::read(shard.join(MANIFEST)).expect("the shard's manifest");
+    fails_saying(&umbra(&["merge", text(&shard), "--out", text(&shard)]), &["s0", "is also --out"]);
+    assert_eq!(std::fs::read(shard.join(MANIFEST)).expect("kept"), before, "the shard is untouched");
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Arguments that are not UTF-8: a folder or a mesh path is taken as the
+/// OS gives it and recorded in the manifest's command line in bash's
+/// `$'…'` quoting; a scene name, which must be text, is refused by clap
+/// naming it. Never a panic.
+#[cfg(unix)]
+#[test]
+fn arguments_that_are_not_utf8_are_taken_or_refused_never_a_panic() {
+    use std::ffi::OsStr;
+    use std::os::unix::ffi::OsStrExt;
+    let d = dir("not-utf8");
+    std::fs::create_dir_all(&d).expect("dir");
+    let out = d.join(OsStr::from_bytes(b"out\xff"));
+    let o = command(&["depth", "--map", "32"]).arg("--out").arg(&out).output().expect("runs");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let m = RunManifest::verify(&out, u64::MAX).expect("a whole folder");
+    assert!(m.command.contains(r"out\377'"), "{}", m.command);
+    // The recorded word is the same bytes to the shell.
+    let word = m.command.split(' ').find(|w| w.starts_with("$'")).expect("a quoted word");
+    let echoed = Command::new("bash").arg("-c").arg(format!("printf %s {word}")).output().expect("bash");
+    assert_eq!(echoed.stdout, out.as_os_str().as_bytes());
+    let mesh = d.join(OsStr::from_bytes(b"t\xff.obj"));
+    let o = command(&["depth", "--out", text(&d.join("m"))]).arg("--mesh").arg(&mesh).output().expect("runs");
+    assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = command(&["render"]).arg(OsStr::from_bytes(b"t\xff")).output().expect("runs");
+    assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("UTF-8"));
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Every cache key has a stated range, checked before anything is
+/// allocated, and the error names the key at fault (not always the size).
+#[test]
+fn cache_geometry_is_checked_key_by_key_before_allocating() {
+    let d = dir("cache-keys");
+    let o = text(&d);
+    for (set, says) in [
+        ("map_cache.size=64GiB", "map_cache.size"),
+        ("map_cache.size=9e15B", "map_cache.size"),
+        ("map_cache.line=4GiB", "map_cache.line"),
+        ("map_cache.line=1B", "map_cache.line"),
+        ("map_cache.ways=0", "map_cache.ways"),
+        ("map_cache.ways=1048576", "map_cache.ways"),
+        ("map_cache.misses_in_flight=0", "map_cache.misses_in_flight"),
+    ] {
+        fails_saying(&umbra(&["cost", "--arch", "mobile-tbdr", "--set", set, "--out", o]), &[says]);
+    }
+    assert!(!d.exists(), "nothing is written for a refused architecture");
+}
+
+/// An `--out` that is a dangling or looping link is named as such; an
+/// earlier manifest above its size limit is refused naming the limit.
+#[cfg(unix)]
+#[test]
+fn a_dangling_out_and_a_huge_manifest_are_named() {
+    let d = dir("dangling");
+    std::fs::create_dir_all(&d).expect("dir");
+    std::os::unix::fs::symlink(d.join("nowhere"), d.join("dangling")).expect("a link");
+    std::os::unix::fs::symlink(d.join("loop"), d.join("loop")).expect("a loop");
+    for out in ["dangling", "loop"] {
+        fails_saying(
+            &umbra(&["depth", "--map", "32", "--out", text(&d.join(out))]),
+            &[out, "symbolic link to nothing"],
+        );
+    }
+    let out = d.join("big");
+    assert!(umbra(&["depth", "--map", "32", "--out", text(&out)]).status.success());
+    let f = std::fs::File::options().append(true).open(out.join(MANIFEST)).expect("manifest");
+    f.set_len(17 << 20).expect("grown past the limit");
+    let err = RunManifest::verify(&out, u64::MAX).expect_err("too big");
+    assert!(err.to_string().contains("larger than the 16777216 bytes"), "{err}");
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// A thread count far beyond the machine is lowered, with a notice, and the
+/// run gives the same result.
+#[test]
+fn a_huge_thread_count_is_lowered_with_a_notice() {
+    let d = dir("threads");
+    let small = ["render", "weiskopf-l", "--width", "64", "--height", "48", "--map", "64", "--reference-rays", "1"];
+    let run = |threads: &str, out: &str| {
+        let o = command(&small).args(["--out", text(&d.join(out))]).env("RAYON_NUM_THREADS", threads).output();
+        o.expect("runs")
+    };
+    let (many, one) = (run("100000", "many"), run("1", "one"));
+    assert!(many.status.success() && one.status.success(), "{}", String::from_utf8_lossy(&many.stderr));
+    assert!(String::from_utf8_lossy(&many.stderr).contains("RAYON_NUM_THREADS=100000 is more than 256"));
+    let metrics = |out: &str| std::fs::read_to_string(d.join(out).join("metrics.json")).expect("metrics");
+    let strip = |m: String| m.lines().filter(|l| !l.contains("\"command\"")).collect::<Vec<_>>().join("\n");
+    assert_eq!(strip(metrics("many")), strip(metrics("one")));
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -9,8 +9,16 @@
 //! While a run is under way the folder has no `manifest.json`, only
 //! `manifest.pending.json` listing every file an earlier or the current
 //! run may have left, so a killed run's folder is visibly incomplete and
-//! the next run still knows what to clean. Files Umbra did not list are
-//! never touched, and no name leaves the folder.
+//! the next run still knows what to clean.
+//!
+//! The folder trusts nothing it did not write and verify: a file an
+//! earlier record lists is removed only if its path lies inside the folder
+//! without passing through a symbolic link and its contents still hash to
+//! what the record says (a user's own file of the same name is kept); a run
+//! holds the folder's lock (`.umbra-lock`, an OS lock the kernel releases
+//! if the run dies), so a second run into it fails at once; temporaries a
+//! dead run left (`.umbra-*.tmp`) are removed by the next. Files are
+//! created as the process's umask allows (as `touch` would), not private.
 
 use std::io::Write;
 use std::path::{Component, Path, PathBuf};
@@ -83,18 +91,29 @@ impl RunManifest {
 
 /// What `manifest.pending.json` holds.
 #[derive(Debug, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 struct Pending {
-    /// Files an earlier or the current run may have left.
-    files: Vec<String>,
+    /// Files an earlier or the current run may have left, each with the
+    /// hash of the contents that run wrote (or was about to write).
+    files: Vec<FileRecord>,
 }
+
+/// The folder's lock file: held (an OS lock) for the whole run.
+pub const LOCK: &str = ".umbra-lock";
 
 /// An output folder being written by one run.
 #[derive(Debug)]
 pub struct OutputFolder {
     dir: PathBuf,
-    /// Files earlier runs listed (removed at the end unless rewritten).
-    earlier: Vec<String>,
+    /// Files earlier runs listed, with the hashes they recorded (removed at
+    /// the end unless rewritten, and only if they still match).
+    earlier: Vec<FileRecord>,
     written: Vec<FileRecord>,
+    /// The lock, released when the folder is dropped.
+    _lock: std::fs::File,
+    /// The permissions a new file gets under the process's umask.
+    #[cfg(unix)]
+    mode: u32,
 }
 
 fn problem(path: &Path, problem: impl Into<String>) -> OutputError {
@@ -138,20 +157,68 @@ fn read_small_limit(path: &Path, max: u64) -> std::io::Result<Vec<u8>> {
         return Err(std::io::Error::other("not a regular file"));
     }
     let mut bytes = Vec::new();
-    std::fs::File::open(path)?.take(max).read_to_end(&mut bytes)?;
+    std::fs::File::open(path)?.take(max.saturating_add(1)).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > max {
+        return Err(std::io::Error::other(format!("larger than the {max} bytes it may be")));
+    }
     Ok(bytes)
 }
 
-/// The names an earlier run's record in `file` lists, if it is one of
-/// ours; anything else lists nothing (and so is never acted on).
-fn listed(file: &Path, dir: &Path) -> Vec<String> {
+/// The files an earlier run's record in `file` lists, with their hashes,
+/// if it is one of ours; anything else lists nothing (and so is never
+/// acted on).
+fn listed(file: &Path, dir: &Path) -> Vec<FileRecord> {
     let Ok(bytes) = read_small(file) else { return Vec::new() };
-    let names = if file.ends_with(MANIFEST) {
-        serde_json::from_slice::<RunManifest>(&bytes).map(|m| m.files.into_iter().map(|f| f.path).collect())
+    let files = if file.ends_with(MANIFEST) {
+        serde_json::from_slice::<RunManifest>(&bytes).map(|m| m.files)
     } else {
         serde_json::from_slice::<Pending>(&bytes).map(|p| p.files)
     };
-    names.unwrap_or_default().into_iter().filter(|n| checked_name(dir, n).is_ok()).collect()
+    files.unwrap_or_default().into_iter().filter(|f| checked_name(dir, &f.path).is_ok()).collect()
+}
+
+/// Whether `name` lies inside `dir` with no symbolic link on the way: each
+/// part of it that exists a real folder or file, not a link (a part that
+/// does not exist yet is created as a real folder).
+fn plainly_inside(dir: &Path, name: &Path) -> bool {
+    let mut at = dir.to_owned();
+    name.components().all(|c| {
+        at.push(c);
+        match std::fs::symlink_metadata(&at) {
+            Ok(m) => !m.file_type().is_symlink(),
+            Err(e) => e.kind() == std::io::ErrorKind::NotFound,
+        }
+    })
+}
+
+/// Remove the temporaries (`.umbra-*.tmp`) a dead run left in `dir` and
+/// its sub-folders (not through links); only the lock's holder calls this.
+fn remove_dead_temporaries(dir: &Path) {
+    let Ok(entries) = std::fs::read_dir(dir) else { return };
+    for entry in entries.flatten() {
+        let Ok(kind) = entry.file_type() else { continue };
+        let name = entry.file_name();
+        let name = name.to_string_lossy();
+        if kind.is_dir() {
+            remove_dead_temporaries(&entry.path());
+        } else if kind.is_file() && name.starts_with(".umbra-") && name.ends_with(".tmp") {
+            let _ = std::fs::remove_file(entry.path());
+        }
+    }
+}
+
+/// Take the lock of `dir` for this run, or say that another run holds it.
+fn lock(dir: &Path) -> Result<std::fs::File, OutputError> {
+    let path = dir.join(LOCK);
+    let file = std::fs::OpenOptions::new().create(true).truncate(false).write(true).open(&path).map_err(io(&path))?;
+    match file.try_lock() {
+        Ok(()) => Ok(file),
+        Err(std::fs::TryLockError::WouldBlock) => Err(problem(
+            dir,
+            "is in use by another run of umbra (its lock .umbra-lock is held); wait for it or choose another --out",
+        )),
+        Err(std::fs::TryLockError::Error(e)) => Err(io(&path)(e)),
+    }
 }
 
 impl OutputFolder {
@@ -161,20 +228,36 @@ impl OutputFolder {
     /// # Errors
     /// [`OutputError::Io`] or [`OutputError::Folder`] naming the folder.
     pub fn create(dir: &Path) -> Result<Self, OutputError> {
+        if std::fs::symlink_metadata(dir).is_ok_and(|m| m.file_type().is_symlink()) && !dir.exists() {
+            return Err(problem(dir, "is a symbolic link to nothing (dangling, or a loop): give a folder"));
+        }
         if dir.exists() && !dir.is_dir() {
             return Err(problem(dir, "exists and is not a folder"));
         }
         std::fs::create_dir_all(dir).map_err(io(dir))?;
-        let mut probe = tempfile::Builder::new().prefix(".umbra-probe").tempfile_in(dir).map_err(io(dir))?;
-        probe.write_all(b"umbra").and_then(|()| probe.as_file().sync_all()).map_err(io(dir))?;
-        drop(probe);
+        let lock = lock(dir)?;
+        remove_dead_temporaries(dir);
+        // A file created as `touch` creates one: its mode is the umask's.
+        let probe_path = dir.join(format!(".umbra-probe-{}.tmp", std::process::id()));
+        let mut probe = std::fs::OpenOptions::new().write(true).create_new(true).open(&probe_path).map_err(io(dir))?;
+        let written = probe.write_all(b"umbra").and_then(|()| probe.sync_all()).and_then(|()| probe.metadata());
+        let _ = std::fs::remove_file(&probe_path);
+        #[cfg_attr(not(unix), allow(unused_variables))]
+        let metadata = written.map_err(io(dir))?;
         let mut earlier = listed(&dir.join(MANIFEST), dir);
-        for n in listed(&dir.join(PENDING), dir) {
-            if !earlier.contains(&n) {
-                earlier.push(n);
+        for f in listed(&dir.join(PENDING), dir) {
+            if !earlier.contains(&f) {
+                earlier.push(f);
             }
         }
-        let folder = Self { dir: dir.to_owned(), earlier, written: Vec::new() };
+        let folder = Self {
+            dir: dir.to_owned(),
+            earlier,
+            written: Vec::new(),
+            _lock: lock,
+            #[cfg(unix)]
+            mode: std::os::unix::fs::PermissionsExt::mode(&metadata.permissions()) & 0o777,
+        };
         folder.record_pending()?;
         match std::fs::remove_file(dir.join(MANIFEST)) {
             Err(e) if e.kind() != std::io::ErrorKind::NotFound => return Err(io(&dir.join(MANIFEST))(e)),
@@ -197,10 +280,19 @@ impl OutputFolder {
 
     fn record_pending(&self) -> Result<(), OutputError> {
         let mut files = self.earlier.clone();
-        files.extend(self.written.iter().map(|f| f.path.clone()).filter(|n| !self.earlier.contains(n)));
-        // A list of strings always serialises.
+        files.extend(self.written.iter().filter(|f| !self.earlier.contains(f)).cloned());
+        // Strings and numbers always serialise.
         let text = serde_json::to_string_pretty(&Pending { files }).unwrap_or_default();
-        atomic(&self.dir.join(PENDING), text.as_bytes())
+        self.atomic(&self.dir.join(PENDING), text.as_bytes())
+    }
+
+    /// [`atomic`], the file given the umask's permissions.
+    fn atomic(&self, path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
+        #[cfg(unix)]
+        let mode = Some(self.mode);
+        #[cfg(not(unix))]
+        let mode = None;
+        atomic(path, bytes, mode)
     }
 
     /// Write `bytes` as `name` (a path inside the folder): whole, or not at
@@ -219,7 +311,13 @@ impl OutputFolder {
         self.written.retain(|f| f.path != name);
         self.written.push(record);
         self.record_pending()?;
-        atomic(&path, bytes)?;
+        if !plainly_inside(&self.dir, relative.parent().unwrap_or(Path::new(""))) {
+            return Err(problem(
+                &path,
+                "its folder is reached through a symbolic link: a run writes only inside --out",
+            ));
+        }
+        self.atomic(&path, bytes)?;
         Ok(path)
     }
 
@@ -238,26 +336,32 @@ impl OutputFolder {
     /// [`OutputError::Io`] naming the file that could not be removed or
     /// written.
     pub fn finish(self, study: Option<serde_json::Value>) -> Result<RunManifest, OutputError> {
-        for name in &self.earlier {
-            if self.written.iter().any(|f| &f.path == name) {
+        for old in &self.earlier {
+            if self.written.iter().any(|f| f.path == old.path) {
                 continue;
             }
+            let name = Path::new(&old.path);
             let path = self.dir.join(name);
-            // Only a file or a link is removed: never a folder.
-            let is_file = std::fs::symlink_metadata(&path).is_ok_and(|m| !m.is_dir());
-            if is_file {
+            // Only a regular file inside the folder, reached through no link,
+            // whose contents are still what a run of ours wrote.
+            if !plainly_inside(&self.dir, name) || !std::fs::symlink_metadata(&path).is_ok_and(|m| m.is_file()) {
+                continue;
+            }
+            let ours = read_small_limit(&path, old.bytes)
+                .is_ok_and(|data| data.len() as u64 == old.bytes && sha256(&data) == old.sha256);
+            if ours {
                 std::fs::remove_file(&path).map_err(io(&path))?;
             }
         }
         let manifest = RunManifest {
             umbra_version: super::provenance::version(),
             command: super::provenance::command_line(),
-            files: self.written,
+            files: self.written.clone(),
             study,
         };
         // Strings, numbers and a JSON value always serialise.
         let text = serde_json::to_string_pretty(&manifest).unwrap_or_default();
-        atomic(&self.dir.join(MANIFEST), text.as_bytes())?;
+        self.atomic(&self.dir.join(MANIFEST), text.as_bytes())?;
         let pending = self.dir.join(PENDING);
         std::fs::remove_file(&pending).map_err(io(&pending))?;
         Ok(manifest)
@@ -265,11 +369,19 @@ impl OutputFolder {
 }
 
 /// Write `bytes` to a temporary beside `path`, flush it to the disk, and
-/// rename it into place; on any error nothing is left.
-fn atomic(path: &Path, bytes: &[u8]) -> Result<(), OutputError> {
+/// rename it into place, with the permissions `mode` (Unix) when given; on
+/// any error nothing is left.
+fn atomic(path: &Path, bytes: &[u8], mode: Option<u32>) -> Result<(), OutputError> {
     let parent = path.parent().unwrap_or(Path::new("."));
     std::fs::create_dir_all(parent).map_err(io(path))?;
     let mut tmp = tempfile::Builder::new().prefix(".umbra-").suffix(".tmp").tempfile_in(parent).map_err(io(path))?;
+    #[cfg(unix)]
+    if let Some(mode) = mode {
+        use std::os::unix::fs::PermissionsExt;
+        tmp.as_file().set_permissions(std::fs::Permissions::from_mode(mode)).map_err(io(path))?;
+    }
+    #[cfg(not(unix))]
+    let _ = mode;
     write_all_synced(tmp.as_file_mut(), bytes).map_err(io(path))?;
     tmp.persist(path).map_err(|e| io(path)(e.error))?;
     Ok(())

@@ -24,10 +24,44 @@ pub fn shell_word(arg: &str) -> String {
     }
 }
 
-/// This process's command line, each argument a shell word.
+/// An argument as the OS gave it, as a shell word: UTF-8 as
+/// [`shell_word`] writes it; otherwise (Unix) in the `$'…'` quoting of
+/// bash and zsh, each byte outside printable ASCII as `\ooo`, so the word
+/// stands for the same bytes.
+#[must_use]
+pub fn os_shell_word(arg: &std::ffi::OsStr) -> String {
+    if let Some(text) = arg.to_str() {
+        return shell_word(text);
+    }
+    #[cfg(unix)]
+    {
+        use std::fmt::Write as _;
+        use std::os::unix::ffi::OsStrExt;
+        let mut word = String::from("$'");
+        for &b in arg.as_bytes() {
+            match b {
+                b'\'' | b'\\' => {
+                    word.push('\\');
+                    word.push(char::from(b));
+                }
+                0x20..=0x7e => word.push(char::from(b)),
+                _ => {
+                    let _ = write!(word, "\\{b:03o}");
+                }
+            }
+        }
+        word.push('\'');
+        word
+    }
+    #[cfg(not(unix))]
+    shell_word(&arg.to_string_lossy())
+}
+
+/// This process's command line, each argument a shell word (an argument
+/// that is not UTF-8 included: see [`os_shell_word`]).
 #[must_use]
 pub fn command_line() -> String {
-    std::env::args().map(|a| shell_word(&a)).collect::<Vec<_>>().join(" ")
+    std::env::args_os().map(|a| os_shell_word(&a)).collect::<Vec<_>>().join(" ")
 }
 
 /// The FNV-1a 64-bit hash of `bytes`, in hex: names a sweep file's exact

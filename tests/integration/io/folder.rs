@@ -4,13 +4,17 @@
 
 use std::path::Path;
 
-use umbra::sim::io::folder::{MANIFEST, OutputFolder, PENDING, RunManifest, write_all_synced};
+use umbra::sim::io::folder::{LOCK, MANIFEST, OutputFolder, PENDING, RunManifest, sha256, write_all_synced};
 
 use crate::common::scratch;
 
+/// The folder's entries, but for its lock.
 fn names(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> =
-        std::fs::read_dir(dir).expect("dir").map(|e| e.expect("entry").file_name().to_string_lossy().into()).collect();
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .expect("dir")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into())
+        .filter(|n| n != LOCK)
+        .collect();
     v.sort();
     v
 }
@@ -88,5 +92,88 @@ fn an_unfinished_run_is_visibly_incomplete() {
     std::fs::write(dir.join("summary.md"), "whol").expect("truncate");
     let err = RunManifest::verify(&dir, u64::MAX).expect_err("changed");
     assert!(err.to_string().contains("summary.md") && err.to_string().contains("differs"), "{err}");
+    let _ = std::fs::remove_dir_all(&base);
+}
+
+/// A manifest (ours, forged or stale) that lists a file reached through a
+/// symbolic link, or a file whose contents are no longer what a run
+/// wrote, gets nothing deleted: the link's target outside the folder and
+/// the user's own file of a listed name survive the next run.
+#[cfg(unix)]
+#[test]
+fn a_listed_file_is_removed_only_inside_and_only_if_ours() {
+    let base = scratch("folder-trust");
+    let (dir, elsewhere) = (base.join("out"), base.join("elsewhere"));
+    std::fs::create_dir_all(&elsewhere).expect("dir");
+    std::fs::write(elsewhere.join("precious.txt"), "x").expect("a file outside");
+    let mut first = OutputFolder::create(&dir).expect("folder");
+    first.write("notes.md", b"x").expect("written");
+    first.write("old.png", b"x").expect("written");
+    first.finish(None).expect("finished");
+    // The user replaces notes.md with their own, and links sub/ elsewhere;
+    // a forged record lists sub/precious.txt with the hash of its contents.
+    std::fs::write(dir.join("notes.md"), "my own notes").expect("a user's file");
+    std::os::unix::fs::symlink(&elsewhere, dir.join("sub")).expect("a link");
+    let text = std::fs::read_to_string(dir.join(MANIFEST)).expect("manifest");
+    std::fs::write(dir.join(MANIFEST), text.replace("\"old.png\"", "\"sub/precious.txt\"")).expect("forged");
+    let mut pending = format!(r#"{{"files":[{{"path":"old.png","bytes":1,"sha256":"{}"}}]}}"#, sha256(b"x"));
+    std::fs::write(dir.join(PENDING), &pending).expect("a pending record");
+    OutputFolder::create(&dir).and_then(|f| f.finish(None)).expect("a run");
+    assert!(elsewhere.join("precious.txt").exists(), "a file through a link was deleted");
+    assert_eq!(std::fs::read_to_string(dir.join("notes.md")).ok().as_deref(), Some("my own notes"));
+    assert!(!dir.join("old.png").exists(), "a file of ours, as written, is removed");
+    // Nor does a run write through the link.
+    let mut f = OutputFolder::create(&dir).expect("folder");
+    let err = f.write("sub/new.txt", b"x").expect_err("refused");
+    assert!(err.to_string().contains("symbolic link"), "{err}");
+    assert!(!elsewhere.join("new.txt").exists());
+    pending.clear();
+    let _ = std::fs::remove_dir_all(&base);
+}
+
+/// One run a folder: a second run into a folder in use fails at once,
+/// naming it, and runs again once the first is done; a dead run's
+/// temporaries are removed by the next run.
+#[test]
+fn a_folder_in_use_is_refused_and_dead_temporaries_removed() {
+    let base = scratch("folder-lock");
+    let dir = base.join("out");
+    let first = OutputFolder::create(&dir).expect("folder");
+    let err = OutputFolder::create(&dir).expect_err("in use");
+    assert!(err.to_string().contains("in use") && err.to_string().contains("out"), "{err}");
+    drop(first);
+    std::fs::create_dir_all(dir.join("sub")).expect("dir");
+    for t in [".umbra-ab12.tmp", "sub/.umbra-cd34.tmp"] {
+        std::fs::write(dir.join(t), "half a file").expect("a dead run's temporary");
+    }
+    std::fs::write(dir.join("mine.tmp"), "a user's").expect("a user's file");
+    let f = OutputFolder::create(&dir).expect("free again");
+    assert!(!dir.join(".umbra-ab12.tmp").exists() && !dir.join("sub/.umbra-cd34.tmp").exists());
+    assert!(dir.join("mine.tmp").exists());
+    f.finish(None).expect("finished");
+    let _ = std::fs::remove_dir_all(&base);
+}
+
+/// Files get the permissions the umask gives a new file, as `touch` makes
+/// it, not a private 0600; a second run keeps them.
+#[cfg(unix)]
+#[test]
+fn files_are_as_readable_as_the_umask_allows() {
+    use std::os::unix::fs::PermissionsExt;
+    let base = scratch("folder-mode");
+    let dir = base.join("out");
+    std::fs::create_dir_all(&dir).expect("dir");
+    std::fs::write(base.join("touched"), "").expect("touch");
+    let touched = std::fs::metadata(base.join("touched")).expect("meta").permissions().mode() & 0o777;
+    assert_ne!(touched, 0o600, "this test needs a umask that lets others read (022 makes 0644)");
+    for _ in 0..2 {
+        let mut f = OutputFolder::create(&dir).expect("folder");
+        f.write("a.txt", b"x").expect("written");
+        f.finish(None).expect("finished");
+        for n in ["a.txt", MANIFEST] {
+            let mode = std::fs::metadata(dir.join(n)).expect("meta").permissions().mode() & 0o777;
+            assert_eq!(mode, touched, "{n}");
+        }
+    }
     let _ = std::fs::remove_dir_all(&base);
 }

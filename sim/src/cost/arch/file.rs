@@ -16,6 +16,16 @@ use crate::io::limits::Limits;
 pub use super::keys::{PARAMS, Param, Unit, Value};
 use super::keys::{from_text, from_toml};
 
+/// The largest cache an architecture may have, bytes: the model keeps a
+/// tag per line, so a cache's model takes at most 64 MiB / 16 B × 25 B =
+/// 100 MiB of memory.
+pub const MAX_CACHE_BYTES: u64 = 64 << 20;
+/// The smallest and largest cache line, bytes.
+const MIN_LINE: u64 = 16;
+const MAX_LINE: u64 = 4096;
+/// The most ways of a cache.
+const MAX_WAYS: u64 = 64;
+
 /// The bundled architecture files (presets), by name.
 pub const BUNDLED: [(&str, &str); 6] = [
     ("pixelflow", include_str!("../../../../arch/pixelflow.toml")),
@@ -407,21 +417,35 @@ impl Arch {
         if self.depth.fragments_per_clock == 0.0 {
             positive("depth.cycles_per_bit", self.depth.cycles_per_bit)?;
         }
-        for (prefix, c) in [("map_cache", &self.map_cache), ("depth_cache", &self.depth_cache)] {
+        for (keys, c) in [
+            (["map_cache.size", "map_cache.line", "map_cache.ways", "map_cache.misses_in_flight"], &self.map_cache),
+            (
+                ["depth_cache.size", "depth_cache.line", "depth_cache.ways", "depth_cache.misses_in_flight"],
+                &self.depth_cache,
+            ),
+        ] {
             if c.size == 0 {
                 continue;
             }
-            let key = if prefix == "map_cache" { "map_cache.size" } else { "depth_cache.size" };
-            let set = c.line.saturating_mul(c.ways);
-            #[allow(clippy::cast_precision_loss, reason = "a size")]
-            if !c.line.is_power_of_two() || c.ways == 0 || c.misses_in_flight == 0 || !c.size.is_multiple_of(set) {
-                return Err((
-                    key,
-                    Problem::Range {
-                        value: c.size as f64,
-                        what: "a whole number of sets of `ways` power-of-two lines, with misses_in_flight at least 1",
-                    },
-                ));
+            let [size, line, ways, misses] = keys;
+            let range = |key, value: u64, what| Err((key, Problem::Range { value: value as f64, what }));
+            #[allow(clippy::cast_precision_loss, reason = "sizes and counts, for the message")]
+            {
+                if c.size > MAX_CACHE_BYTES {
+                    return range(size, c.size, "at most 64 MiB (the model keeps a tag per line)");
+                }
+                if !c.line.is_power_of_two() || !(MIN_LINE..=MAX_LINE).contains(&c.line) {
+                    return range(line, c.line, "a power of two from 16 B to 4 KiB");
+                }
+                if !(1..=MAX_WAYS).contains(&c.ways) {
+                    return range(ways, c.ways, "from 1 to 64");
+                }
+                if c.misses_in_flight == 0 {
+                    return range(misses, c.misses_in_flight, "at least 1");
+                }
+                if !c.size.is_multiple_of(c.line * c.ways) {
+                    return range(size, c.size, "a whole number of sets of `ways` lines");
+                }
             }
         }
         Ok(())

@@ -198,6 +198,11 @@ pub fn invalid(r: &Row) -> Option<String> {
 /// # Errors
 /// See [`StudyError`].
 pub fn merge(inputs: &[PathBuf], out: &Path, limits: &Limits) -> Result<usize, StudyError> {
+    // The output is written while the inputs are read: never one of them.
+    let same = |a: &Path, b: &Path| a.canonicalize().ok().zip(b.canonicalize().ok()).is_some_and(|(a, b)| a == b);
+    if let Some(input) = inputs.iter().find(|i| same(i, out)) {
+        return Err(refuse(input, "is also --out: merge writes a new folder and never replaces a shard".to_owned()));
+    }
     let mut rows = Vec::new();
     let mut first: Option<Manifest> = None;
     let mut seen: Vec<usize> = Vec::new();
