@@ -20,7 +20,7 @@ const CORE: &[&[&str]] = &[
 ];
 
 /// `umbra-sim`'s layers, bottom first.
-const SIM: &[&[&str]] = &[&["base"], &["io"], &["world"], &["pass"], &["cost", "truth"], &["render"], &["experiment"]];
+const SIM: &[&[&str]] = &[&["base"], &["io"], &["world"], &["pass", "cost", "truth"], &["render"], &["experiment"]];
 
 /// One import: the importing file's module path and the imported path.
 #[derive(Debug)]

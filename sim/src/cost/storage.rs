@@ -19,13 +19,10 @@
 //! [`SparseTiles`] is the tile scheme as a store: it answers texel reads
 //! exactly as the dense buffer does (an absent tile reads as clear), and
 //! [`SparseTiles::bytes`] is the tile scheme's count for its one buffer.
-//! [`storage_bytes`] counts all three schemes for a map; [`of_maps`] does so
-//! for a light pass's [`LightMaps`].
+//! [`storage_bytes`] counts all three schemes for a map's buffers (a light
+//! pass's: `RawMaps::buffers`).
 
 use umbra_core::DepthFormatKind;
-use umbra_core::depth::Texel;
-
-use crate::pass::light::LightMaps;
 
 /// Bytes of the bounding-box scheme's header: the box as four `u16`
 /// (first column, first row, width, height; map sides are at most 2¹⁴).
@@ -264,24 +261,6 @@ pub fn storage_bytes(shape: &MapShape, buffers: &[&[u32]], tile: u32) -> Result<
         grid_tiles,
         stored_tiles,
     })
-}
-
-/// [`storage_bytes`] for a light pass's maps in `format`: `z1`, and `z2`
-/// when the pass kept it.
-///
-/// # Errors
-/// [`StorageError`] for a bad tile size.
-pub fn of_maps<T: Texel>(
-    maps: &LightMaps<T>,
-    format: DepthFormatKind,
-    tile: u32,
-) -> Result<StorageBytes, StorageError> {
-    let r = maps.config.raster;
-    let shape = MapShape::of_format(r.width(), r.height(), format);
-    let raw = |v: &[T]| v.iter().map(|t| t.to_raw()).collect::<Vec<u32>>();
-    let (z1, z2) = (raw(&maps.z1), raw(&maps.z2));
-    let buffers: Vec<&[u32]> = if z2.is_empty() { vec![&z1] } else { vec![&z1, &z2] };
-    storage_bytes(&shape, &buffers, tile)
 }
 
 /// One buffer of a map kept as Reeves' tile scheme: only the tiles that

@@ -24,7 +24,7 @@ use umbra_core::shadow::Filter;
 use umbra_core::{CullMode, DepthFormat, DepthFormatKind, DepthUnit, F32, LightPassConfig, RasterConfig};
 
 use crate::cost::arch::{Arch, CostReport};
-use crate::cost::storage::StorageBytes;
+use crate::cost::storage::{MapShape, StorageBytes, storage_bytes};
 use crate::experiment::presets::FILTERS;
 use crate::io::limits::Limits;
 use crate::pass::light::{self, DEFAULT_BIN_CAPACITY, LightFrame, LightOptions};
@@ -309,7 +309,9 @@ pub fn plan(scene: &Scene, spec: &PlanSpec) -> Result<Plan, PlanError> {
     }
     let config = at(spec.image, map, filter, algorithm, format, 4);
     let (measured, r) = evaluate(scene, &config, spec, &image_truth)?;
-    let storage = crate::cost::storage::of_maps(&r.maps.maps, r.maps.format, STORAGE_TILE)
+    let raster = r.maps.maps.config.raster;
+    let shape = MapShape::of_format(raster.width(), raster.height(), r.maps.format);
+    let storage = storage_bytes(&shape, &r.maps.buffers(), STORAGE_TILE)
         .map_err(|e| PlanError::Spec(format!("map storage: {e}")))?;
     // The same test with everything: the dual unit's own z2 and 24 bits.
     let full_algorithm = if algorithm == Algorithm::SecondFrontCulled { Algorithm::Second } else { algorithm };

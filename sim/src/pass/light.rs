@@ -392,6 +392,14 @@ pub struct RawMaps {
     pub maps: LightMaps<u32>,
 }
 
+impl RawMaps {
+    /// The buffers the pass kept: `z1`, and `z2` when the unit is dual.
+    #[must_use]
+    pub fn buffers(&self) -> Vec<&[u32]> {
+        [&self.maps.z1[..], &self.maps.z2[..]].into_iter().filter(|b| !b.is_empty()).collect()
+    }
+}
+
 /// The same maps with every texel widened to its raw `u32` bits.
 pub(crate) fn widen<T: Texel>(m: &LightMaps<T>) -> LightMaps<u32> {
     let raw = |v: &[T]| v.iter().map(|&t| T::to_raw(t)).collect();

@@ -9,7 +9,7 @@ use proptest::prelude::*;
 use umbra::core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, NoProbe, RasterConfig};
 use umbra::sim::cost::storage::{
     BOX_HEADER_BYTES, MapShape, REEVES_TILE, SparseTiles, StorageError, TILE_ENTRY_BYTES, TexelBox, finite_box,
-    of_maps, storage_bytes,
+    storage_bytes,
 };
 use umbra::sim::pass::light::RawMaps;
 use umbra::sim::world::scene::Scene;
@@ -137,8 +137,9 @@ fn sparse_tiles_read_back_rendered_scenes() {
                 let one = storage_bytes(&shape, &[dense], tile).unwrap();
                 assert_eq!(one.tiles, SparseTiles::new(shape, dense, tile).unwrap().bytes(), "{name} {buffer}");
             }
-            let both = of_maps(&maps.maps, maps.format, tile).unwrap();
-            assert_eq!(both, storage_bytes(&shape, &[&maps.maps.z1, &maps.maps.z2], tile).unwrap());
+            // A dual pass keeps both buffers.
+            assert_eq!(maps.buffers(), [&maps.maps.z1[..], &maps.maps.z2[..]]);
+            let both = storage_bytes(&shape, &maps.buffers(), tile).unwrap();
             assert_eq!(both.raw, 200 * 200 * 3 * 2);
             assert_eq!(both.buffers, 2);
         }
