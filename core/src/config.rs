@@ -168,11 +168,6 @@ pub enum CullMode {
     Front,
 }
 
-impl CullMode {
-    /// Every mode.
-    pub const ALL: [Self; 3] = [Self::None, Self::Back, Self::Front];
-}
-
 crate::spelled!(CullMode, "cull mode", { None => "none", Back => "back", Front => "front" });
 
 /// Everything the light pass needs to know besides its buffers.

@@ -27,7 +27,7 @@ impl fmt::Display for UnknownName {
 impl core::error::Error for UnknownName {}
 
 /// The name table of an enum of choices without data: `spelled!(Type,
-/// "what it is", { Variant => "name", … })` writes `Type::NAMES`,
+/// "what it is", { Variant => "name", … })` writes `Type::ALL`, `Type::NAMES`,
 /// `Type::name`, `Display` and `FromStr` (its error an [`UnknownName`]).
 ///
 /// ```
@@ -42,7 +42,10 @@ impl core::error::Error for UnknownName {}
 macro_rules! spelled {
     ($ty:ty, $what:literal, { $($v:ident => $s:literal),+ $(,)? }) => {
         impl $ty {
-            /// Every spelling, in declaration order.
+            /// Every value, in the table's order.
+            pub const ALL: [Self; [$($s),+].len()] = [$(Self::$v),+];
+
+            /// Every spelling, in the table's order.
             pub const NAMES: &'static [&'static str] = &[$($s),+];
 
             /// Its one spelling: its `Display`, and the only text its

@@ -245,9 +245,6 @@ pub enum DepthFormatKind {
 }
 
 impl DepthFormatKind {
-    /// Every format, coarsest first.
-    pub const ALL: [Self; 3] = [Self::D16, Self::D24, Self::F32];
-
     /// Bits a texel of this format holds.
     #[must_use]
     pub const fn bits(self) -> u32 {

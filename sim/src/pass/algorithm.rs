@@ -49,9 +49,7 @@ impl std::fmt::Display for Algorithm {
 
 /// A name that is no algorithm's.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error(
-    "`{0}` is not an algorithm (first, bias-range, second, second-ffc, midpoint, dual, silhouette, silhouette-packed, volumes)"
-)]
+#[error("`{name}` is not an algorithm ({})", Algorithm::NAMES.join(", "), name = .0)]
 pub struct UnknownAlgorithm(pub String);
 
 /// The paper an algorithm comes from, as the study groups them.
@@ -67,12 +65,6 @@ pub enum Family {
     Silhouette,
     /// Depth-fail stencil shadow volumes.
     Volumes,
-}
-
-impl Family {
-    /// Every family, in the order of the papers.
-    pub const ALL: [Self; 5] =
-        [Self::FirstDepth, Self::SecondDepth, Self::MidpointDual, Self::Silhouette, Self::Volumes];
 }
 
 umbra_core::spelled!(Family, "algorithm family", {
@@ -97,11 +89,6 @@ pub enum Cull {
     Front,
     /// Faces away from the light culled.
     Back,
-}
-
-impl Cull {
-    /// Every choice.
-    pub const ALL: [Self; 4] = [Self::Algorithm, Self::None, Self::Front, Self::Back];
 }
 
 umbra_core::spelled!(Cull, "culling", { Algorithm => "algorithm", None => "none", Front => "front", Back => "back" });
@@ -296,17 +283,32 @@ impl Algorithm {
     }
 
     /// Every algorithm's name, in the order of the papers.
-    pub const NAMES: [&'static str; 9] = [
-        "first",
-        "bias-range",
-        "second",
-        "second-ffc",
-        "midpoint",
-        "dual",
-        "silhouette",
-        "silhouette-packed",
-        "volumes",
-    ];
+    pub const NAMES: [&'static str; 9] = {
+        let every = Self::every(0.0, 0.0);
+        let mut names = [""; 9];
+        let mut k = 0;
+        while k < names.len() {
+            names[k] = every[k].name();
+            k += 1;
+        }
+        names
+    };
+
+    /// Every algorithm, in the order of the papers, those with a parameter
+    /// given `bias1` and `offset`.
+    const fn every(bias1: f64, offset: f64) -> [Self; 9] {
+        [
+            Self::First,
+            Self::BiasRange { hi: bias1 },
+            Self::Second,
+            Self::SecondFrontCulled,
+            Self::Midpoint,
+            Self::Dual { offset },
+            Self::Silhouette { packed: false },
+            Self::Silhouette { packed: true },
+            Self::Volumes,
+        ]
+    }
 
     /// The algorithm named `name` ([`Algorithm::name`]), with Reeves'
     /// `Bias1` for a bias range and the offset for dual depth (the others
@@ -321,18 +323,10 @@ impl Algorithm {
     /// # Errors
     /// [`UnknownAlgorithm`] for any other name.
     pub fn named(name: &str, bias1: f64, offset: f64) -> Result<Self, UnknownAlgorithm> {
-        Ok(match name {
-            "first" => Self::First,
-            "bias-range" => Self::BiasRange { hi: bias1 },
-            "second" => Self::Second,
-            "second-ffc" => Self::SecondFrontCulled,
-            "midpoint" => Self::Midpoint,
-            "dual" => Self::Dual { offset },
-            "silhouette" => Self::Silhouette { packed: false },
-            "silhouette-packed" => Self::Silhouette { packed: true },
-            "volumes" => Self::Volumes,
-            _ => return Err(UnknownAlgorithm(name.to_owned())),
-        })
+        Self::every(bias1, offset)
+            .into_iter()
+            .find(|a| a.name() == name)
+            .ok_or_else(|| UnknownAlgorithm(name.to_owned()))
     }
 
     /// The algorithm as `umbra render` takes it: `--algo` and its own

@@ -379,7 +379,6 @@ impl SweepFile {
     fn variants(&self, key: &str, a: &AlgorithmText) -> Result<Vec<Variant>, SweepError> {
         let one = |v: &Option<Vec<f64>>, default: f64| v.clone().unwrap_or_else(|| vec![default]);
         let biases = one(&a.bias, 0.0);
-        let offsets = one(&a.offset, f64::NAN);
         for (k, &b) in biases.iter().chain(a.bias1.iter()).enumerate() {
             RenderConfig::depth("bias", b).map_err(|e| self.err(format!("{key}.bias"), format!("value {k}: {e}")))?;
         }
@@ -394,21 +393,23 @@ impl SweepFile {
         if a.algo == "bias-range" && a.bias1.is_none() {
             return Err(needs("bias1"));
         }
-        if a.algo == "dual" {
-            if a.offset.is_none() {
-                return Err(needs("offset"));
-            }
-            for &o in &offsets {
-                RenderConfig::depth("offset", o).map_err(|e| self.err(format!("{key}.offset"), e.to_string()))?;
-            }
-        }
-        let algorithms = offsets
-            .iter()
-            .map(|&offset| Algorithm::named(&a.algo, a.bias1.unwrap_or_default(), offset))
-            .collect::<Result<Vec<_>, _>>()
-            .map_err(|e| self.err(format!("{key}.algo"), e.to_string()))?;
-        // Only dual depth has an offset: the others are one algorithm.
-        let algorithms = if a.algo == "dual" { algorithms } else { algorithms[..1].to_vec() };
+        let named = |offset| {
+            Algorithm::named(&a.algo, a.bias1.unwrap_or_default(), offset)
+                .map_err(|e| self.err(format!("{key}.algo"), e.to_string()))
+        };
+        // Only dual depth has an offset axis: any other is one algorithm.
+        let algorithms = if a.algo == "dual" {
+            let offsets = a.offset.as_deref().ok_or_else(|| needs("offset"))?;
+            offsets
+                .iter()
+                .map(|&o| {
+                    RenderConfig::depth("offset", o).map_err(|e| self.err(format!("{key}.offset"), e.to_string()))?;
+                    named(o)
+                })
+                .collect::<Result<Vec<_>, _>>()?
+        } else {
+            vec![named(0.0)?]
+        };
         let mut out = Vec::new();
         for &algorithm in &algorithms {
             for &bias in &biases {
