@@ -212,7 +212,7 @@ fn summary(maps: &RawMaps, c: &Counters, ignored: umbra_sim::world::mesh::Ignore
 fn tile_report(scene: &Scene, maps: &RawMaps, c: &Counters, args: &DepthArgs) -> String {
     let raster = maps.maps.config.raster;
     let mut s = String::new();
-    let _ = writeln!(s, "# Light-pass tiles: {}\n", scene.name);
+    let _ = writeln!(s, "# Light-pass tiles: {}\n", umbra_sim::io::markdown::escape(&scene.name));
     let _ = writeln!(s, "{}, cull {:?}; {}.\n", describe(maps), args.cull, scene.ignored());
     let _ = writeln!(s, "| tile | triangles | fragments | culled | flushes | z1 min | z1 max | z2 min | z2 max |");
     let _ = writeln!(s, "|---|---:|---:|---:|---:|---:|---:|---:|---:|");

@@ -167,13 +167,15 @@ pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
         bail!("the sweep with these flags: {problem}");
     }
     let shard = args.shard.as_deref().map(Shard::parse).transpose()?.unwrap_or(Shard::ALL);
+    // The memory bound, before any folder is made.
+    spec.renders_at_once(rayon::current_num_threads())?;
     let mut folder = OutputFolder::create(&args.out)?;
     let style =
         indicatif::ProgressStyle::with_template("{prefix} [{elapsed_precise}] {wide_bar} {pos}/{len} ETA {eta}")
             .context("progress bar template")?;
     let progress = ProgressBar::new(0).with_style(style).with_prefix("study");
     let start = std::time::Instant::now();
-    let rows = study::run(&spec, shard, &progress);
+    let rows = study::run(&spec, shard, &progress)?;
     progress.finish_and_clear();
     let configs = rows.iter().map(|r| r.config_index).collect::<std::collections::BTreeSet<_>>().len();
     let skipped = rows.iter().filter(|r| r.metrics.is_none()).count();

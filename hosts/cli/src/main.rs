@@ -43,15 +43,56 @@ struct LimitArgs {
     /// Largest camera image side, pixels.
     #[arg(long, global = true, default_value_t = Limits::DEFAULT.max_image_side)]
     max_image_side: u32,
-    /// Most camera image pixels (a render keeps about 100 bytes a pixel).
+    /// Most camera image pixels (a render keeps up to 160 bytes a pixel).
     #[arg(long, global = true, default_value_t = Limits::DEFAULT.max_image_pixels)]
     max_image_pixels: u64,
-    /// Most triangles of a scene, every object together (the reference keeps about 200 bytes a triangle).
-    #[arg(long, global = true, default_value_t = Limits::DEFAULT.max_triangles)]
+    /// Most triangles of a scene, every object together (a render keeps up to 1024 bytes a triangle), at most 2^28.
+    #[arg(long, global = true, default_value_t = Limits::DEFAULT.max_triangles, value_parser = clap::value_parser!(u64).range(1..=1 << 28))]
     max_triangles: u64,
-    /// Largest file read (a scene, an OBJ mesh, a `--matrix` file, study results to merge), bytes.
+    /// Largest file read (an OBJ mesh, a `--matrix` file, study results to merge), bytes.
     #[arg(long, global = true, default_value_t = Limits::DEFAULT.max_file_bytes)]
     max_file_bytes: u64,
+    /// Largest TOML file read (a scene, a sweep, an architecture), bytes (its parse keeps about 96 bytes a byte).
+    #[arg(long, global = true, default_value_t = Limits::DEFAULT.max_text_bytes)]
+    max_text_bytes: u64,
+    /// Most objects of a scene file.
+    #[arg(long, global = true, default_value_t = Limits::DEFAULT.max_objects)]
+    max_objects: u64,
+    /// Most memory a run may take, bytes or with a unit (16GiB): a render, a study's scenes, reference and renders at once, a TOML file's parse, each bounded before it starts.
+    #[arg(long, global = true, default_value = "16GiB", value_parser = memory)]
+    max_memory: u64,
+}
+
+/// A `--max-memory` value: bytes, or a number with B, KiB, MiB, GiB (or KB, MB, GB).
+fn memory(text: &str) -> Result<u64, String> {
+    let t = text.trim();
+    let split = t.find(|c: char| !(c.is_ascii_digit() || c == '.')).unwrap_or(t.len());
+    let (number, unit) = t.split_at(split);
+    let scale: u64 = match unit.trim() {
+        "" | "B" => 1,
+        "KiB" => 1 << 10,
+        "MiB" => 1 << 20,
+        "GiB" => 1 << 30,
+        "TiB" => 1 << 40,
+        "KB" | "kB" => 1_000,
+        "MB" => 1_000_000,
+        "GB" => 1_000_000_000,
+        "TB" => 1_000_000_000_000,
+        u => return Err(format!("unknown unit `{u}`: use B, KiB, MiB, GiB, TiB, KB, MB, GB or TB")),
+    };
+    let n: f64 = number.parse().map_err(|_| format!("`{text}` is not a size such as 16GiB"))?;
+    #[allow(
+        clippy::cast_precision_loss,
+        clippy::cast_possible_truncation,
+        clippy::cast_sign_loss,
+        reason = "checked in range"
+    )]
+    let bytes = n * scale as f64;
+    if !(bytes >= 1.0 && bytes < 2f64.powi(63)) {
+        return Err(format!("`{text}` is not a size from 1 B to 8 EiB"));
+    }
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "checked in range")]
+    Ok(bytes as u64)
 }
 
 impl LimitArgs {
@@ -62,6 +103,9 @@ impl LimitArgs {
             max_image_pixels: self.max_image_pixels,
             max_triangles: self.max_triangles,
             max_file_bytes: self.max_file_bytes,
+            max_text_bytes: self.max_text_bytes,
+            max_objects: self.max_objects,
+            max_memory: self.max_memory,
         }
     }
 }

@@ -111,6 +111,8 @@ pub(super) fn render_config(args: &RenderArgs, limits: &Limits) -> Result<(Scene
     };
     // The flags name what the render checks: --bias, --bias1, --offset.
     let cfg = cfg.checked().map_err(|e| anyhow::anyhow!("--{e}"))?;
+    // The limits, memory included, before any folder is made.
+    cfg.within(&scene, limits)?;
     Ok((scene, cfg))
 }
 

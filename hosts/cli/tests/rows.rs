@@ -73,7 +73,7 @@ fn each_row_of_a_users_sweep_renders_again_from_its_command_line() {
     let spec = SweepFile::open(file.to_str().expect("UTF-8"), &Limits::DEFAULT)
         .and_then(|f| f.spec(&Limits::DEFAULT))
         .expect("the sweep loads");
-    let rows = study::run(&spec, Shard::ALL, &indicatif::ProgressBar::hidden());
+    let rows = study::run(&spec, Shard::ALL, &indicatif::ProgressBar::hidden()).expect("within the limits");
     // 3 filters × 3 variants × 2 architecture points.
     assert_eq!(rows.len(), 18);
     let filters: Vec<String> = rows.iter().map(|r| r.config.filter_name.to_string()).collect();

@@ -28,18 +28,55 @@ pub struct Limits {
     pub max_triangles: u64,
     /// Largest scene or mesh file, bytes.
     pub max_file_bytes: u64,
+    /// Largest TOML file (a scene, a sweep, an architecture), bytes: its
+    /// parse keeps about [`Footprint::PER_TEXT_BYTE`] bytes a byte.
+    pub max_text_bytes: u64,
+    /// Most objects in a scene file, counted before any mesh is built.
+    pub max_objects: u64,
+    /// Most memory a run may take, bytes: every render, study and scene
+    /// file is bounded by its [`Footprint`] before the work starts.
+    pub max_memory: u64,
 }
 
 impl Limits {
     /// The defaults: 8192² maps, 8192-pixel image sides and 2²⁵ pixels (8K
-    /// UHD), 2²² triangles, 256 MiB files.
+    /// UHD), 2²² triangles, 256 MiB files, 8 MiB TOML files of at most 2¹⁶
+    /// objects, and 16 GiB of memory (a 24 GiB machine with room for the
+    /// rest of it). The largest render these allow takes
+    /// [`Footprint::render`] of 2²⁵ pixels, an 8192² map and 2²² triangles:
+    /// at most 10.6 GiB.
     pub const DEFAULT: Self = Self {
         max_map_side: 8192,
         max_image_side: 8192,
         max_image_pixels: 1 << 25,
         max_triangles: 1 << 22,
         max_file_bytes: 256 << 20,
+        max_text_bytes: 8 << 20,
+        max_objects: 1 << 16,
+        max_memory: 16 << 30,
     };
+
+    /// Check the memory a run will take, `footprint` bytes, before it starts.
+    ///
+    /// # Errors
+    /// [`LimitError::Memory`] above [`Limits::max_memory`], naming `what`.
+    pub const fn check_memory(&self, what: &'static str, footprint: u64) -> Result<(), LimitError> {
+        if footprint > self.max_memory {
+            return Err(LimitError::Memory { what, bytes: footprint, max: self.max_memory });
+        }
+        Ok(())
+    }
+
+    /// Check an object count.
+    ///
+    /// # Errors
+    /// [`LimitError::Objects`] above [`Limits::max_objects`].
+    pub const fn check_objects(&self, objects: u64) -> Result<(), LimitError> {
+        if objects > self.max_objects {
+            return Err(LimitError::Objects { objects, max: self.max_objects });
+        }
+        Ok(())
+    }
 
     /// Check a light-map side.
     ///
@@ -90,6 +127,25 @@ impl Limits {
     /// [`FileError::NotAFile`] for a directory, device, socket or pipe,
     /// [`FileError::Limit`] when it is larger than the limit.
     pub fn read_file(&self, path: &Path) -> Result<Vec<u8>, FileError> {
+        Self::read_within(path, self.max_file_bytes, |bytes, max| LimitError::FileBytes { bytes, max })
+    }
+
+    /// [`Limits::read_file`] for a TOML file (a scene, a sweep, an
+    /// architecture): at most [`Limits::max_text_bytes`], since its parse
+    /// takes many times its size.
+    ///
+    /// # Errors
+    /// As [`Limits::read_file`], with [`LimitError::TextBytes`], and
+    /// [`LimitError::Memory`] when its parse would not fit
+    /// [`Limits::max_memory`].
+    pub fn read_text_file(&self, path: &Path) -> Result<Vec<u8>, FileError> {
+        let bytes = Self::read_within(path, self.max_text_bytes, |bytes, max| LimitError::TextBytes { bytes, max })?;
+        let parse = (bytes.len() as u64).saturating_mul(Footprint::PER_TEXT_BYTE).saturating_add(Footprint::BASE);
+        self.check_memory("parsing the TOML file", parse).map_err(FileError::Limit)?;
+        Ok(bytes)
+    }
+
+    fn read_within(path: &Path, max: u64, over: fn(u64, u64) -> LimitError) -> Result<Vec<u8>, FileError> {
         if !std::fs::metadata(path)?.is_file() {
             return Err(FileError::NotAFile);
         }
@@ -102,15 +158,14 @@ impl Limits {
         if !meta.is_file() {
             return Err(FileError::NotAFile);
         }
-        let max = self.max_file_bytes;
         if meta.len() > max {
-            return Err(FileError::Limit(LimitError::FileBytes { bytes: meta.len(), max }));
+            return Err(FileError::Limit(over(meta.len(), max)));
         }
         let mut bytes = Vec::new();
         file.take(max.saturating_add(1)).read_to_end(&mut bytes)?;
         let read = u64::try_from(bytes.len()).unwrap_or(u64::MAX);
         if read > max {
-            return Err(FileError::Limit(LimitError::FileBytes { bytes: read, max }));
+            return Err(FileError::Limit(over(read, max)));
         }
         Ok(bytes)
     }
@@ -183,6 +238,72 @@ pub enum LimitError {
         /// The limit.
         max: u64,
     },
+    /// A TOML file larger than allowed.
+    #[error("TOML file of {bytes} bytes is above the limit of {max} (`max_text_bytes`)")]
+    TextBytes {
+        /// Its size (at least; reading stops past the limit).
+        bytes: u64,
+        /// The limit.
+        max: u64,
+    },
+    /// A scene file of too many objects.
+    #[error("{objects} objects is above the limit of {max} (`max_objects`)")]
+    Objects {
+        /// Objects in the file.
+        objects: u64,
+        /// The limit.
+        max: u64,
+    },
+    /// A run that would take more memory than allowed.
+    #[error(
+        "{what} would take up to {} MiB, above the limit of {} MiB (`max_memory`)",
+        bytes.div_ceil(1 << 20),
+        max / (1 << 20)
+    )]
+    Memory {
+        /// What would take it (`the render`, `the study`).
+        what: &'static str,
+        /// Its [`Footprint`], bytes.
+        bytes: u64,
+        /// The limit.
+        max: u64,
+    },
+}
+
+/// The memory model a run is bounded by: upper bounds, in bytes, of what
+/// the simulator keeps for each pixel, texel, triangle and byte of TOML,
+/// measured as peak resident memory (and held by the tests that run the
+/// `umbra` command under a `--max-memory` equal to its footprint).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Footprint;
+
+impl Footprint {
+    /// The process, its code, thread stacks and small tables.
+    pub const BASE: u64 = 96 << 20;
+    /// A camera pixel: the camera pass's image and bins, its reference,
+    /// the metrics' per-pixel verdicts and the pictures written from them
+    /// (about 70 measured).
+    pub const PER_PIXEL: u64 = 160;
+    /// A light-map texel: two 32-bit z-buffers, the bins (8 bytes a texel
+    /// with 8-texel tiles) and the map's picture (about 14 measured with
+    /// 32-texel tiles).
+    pub const PER_TEXEL: u64 = 24;
+    /// A scene triangle: the mesh, the passes' transformed copies and the
+    /// reference's bounding-volume hierarchy (about 600 measured).
+    pub const PER_TRIANGLE: u64 = 1024;
+    /// A byte of a TOML file while it is parsed.
+    pub const PER_TEXT_BYTE: u64 = 96;
+
+    /// One render (or costing) of `pixels` camera pixels, a map of side
+    /// `map_side` and `triangles`, its reference included.
+    #[must_use]
+    pub const fn render(pixels: u64, map_side: u32, triangles: u64) -> u64 {
+        let texels = map_side as u64 * map_side as u64;
+        Self::BASE
+            .saturating_add(pixels.saturating_mul(Self::PER_PIXEL))
+            .saturating_add(texels.saturating_mul(Self::PER_TEXEL))
+            .saturating_add(triangles.saturating_mul(Self::PER_TRIANGLE))
+    }
 }
 
 /// Why [`Limits::read_file`] failed.

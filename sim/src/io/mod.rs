@@ -4,5 +4,6 @@
 pub mod exact;
 pub mod folder;
 pub mod limits;
+pub mod markdown;
 pub mod output;
 pub mod provenance;

@@ -18,7 +18,7 @@ pub use self::costed::{cost, cost_unshadowed, render_costed};
 use crate::base::counters::Counters;
 use crate::base::maps::{Tiling, with_format};
 use crate::base::probes::Tee;
-use crate::io::limits::{LimitError, Limits};
+use crate::io::limits::{Footprint, LimitError, Limits};
 use crate::pass::PassError;
 use crate::pass::algorithm::MapKind;
 pub use crate::pass::algorithm::{Algorithm, Cull, Culling};
@@ -279,6 +279,17 @@ impl RenderConfig {
         c
     }
 
+    /// Whether a render of `scene` with this configuration is within
+    /// `limits` (the map, the image, the triangles and the memory all
+    /// together, [`Footprint::render`]): the check [`render`] makes before
+    /// it allocates, for a caller to make before it writes anything.
+    ///
+    /// # Errors
+    /// [`RenderError`] naming the first quantity beyond its limit.
+    pub fn within(&self, scene: &Scene, limits: &Limits) -> Result<(), RenderError> {
+        self.check(scene, limits, RasterConfig::DEFAULT_TILE_SIZE).map(|_| ())
+    }
+
     /// Check the map side, the image size and the scene's triangles against
     /// `limits`, before any buffer is allocated, and the targets the passes
     /// will draw, both in `tile`-pixel tiles.
@@ -287,7 +298,10 @@ impl RenderConfig {
         limits.check_map(self.map_size)?;
         limits.check_image(self.width, self.height)?;
         let triangles: usize = scene.objects.iter().map(|o| o.mesh.triangles.len()).sum();
-        limits.check_triangles(u64::try_from(triangles).unwrap_or(u64::MAX))?;
+        let triangles = u64::try_from(triangles).unwrap_or(u64::MAX);
+        limits.check_triangles(triangles)?;
+        let pixels = u64::from(self.width) * u64::from(self.height);
+        limits.check_memory("the render", Footprint::render(pixels, self.map_size, triangles))?;
         let bits = RasterConfig::DEFAULT_SUBPIXEL_BITS;
         let image = RasterConfig::new(self.width, self.height, tile, bits).map_err(RenderError::ImageSize)?;
         // Shadow volumes draw no map: one texel stands for it.

@@ -52,7 +52,7 @@ fn a_corrupted_copy_names_the_file_the_key_and_the_problem() {
         ("bandwidth", "# gone", "dram.bandwidth", |p| matches!(p, Problem::Missing)),
         ("size", "size = \"10000B\"", "map_cache.size", |p| matches!(p, Problem::Range { .. })),
         ("samples_per_clock", "samples_per_clock = 0", "shadow.samples_per_clock", |p| {
-            matches!(p, Problem::Range { .. })
+            matches!(p, Problem::Outside { .. })
         }),
     ];
     for (key, line, named, problem) in cases {

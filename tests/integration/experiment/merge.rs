@@ -37,7 +37,7 @@ fn tiny(hash: &str) -> Spec {
 fn shard(spec: &Spec, tag: &str, i: usize, n: usize) -> PathBuf {
     let d = dir(&format!("{tag}-{i}"));
     let s = Shard { index: i, count: n };
-    let rows = study::run(spec, s, &indicatif::ProgressBar::hidden());
+    let rows = study::run(spec, s, &indicatif::ProgressBar::hidden()).expect("within the limits");
     study::write_run(&d, &rows, &Manifest::new(spec, s, rows.len())).expect("write");
     d
 }

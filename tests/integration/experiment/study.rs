@@ -75,7 +75,7 @@ fn configurations_beyond_the_sweeps_limits_are_skipped_rows_naming_them() {
 
 fn run_on(threads: usize, spec: &Spec, shard: Shard) -> Vec<Row> {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool");
-    pool.install(|| study::run(spec, shard, &indicatif::ProgressBar::hidden()))
+    pool.install(|| study::run(spec, shard, &indicatif::ProgressBar::hidden())).expect("within the limits")
 }
 
 /// Every file of a folder, sorted by name, with its bytes.

@@ -32,7 +32,7 @@ fn sweep(scene: &str, variants: Vec<Variant>, maps: &[u32], filters: Vec<Filter>
         hash: String::new(),
         limits: Limits::DEFAULT,
     };
-    let rows = study::run(&spec, Shard::ALL, &indicatif::ProgressBar::hidden());
+    let rows = study::run(&spec, Shard::ALL, &indicatif::ProgressBar::hidden()).expect("within the limits");
     for r in &rows {
         assert_eq!(r.status, Status::Ok, "{}: {}", r.label(), r.reason);
         let m = m(r);

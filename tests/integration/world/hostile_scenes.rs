@@ -172,10 +172,10 @@ fn limits_on_files_and_images_are_configurable() {
     let dir = scratch("hostile-limits");
     let file = dir.join("scene.toml");
     std::fs::write(&file, GOOD).expect("write");
-    let tiny = Limits { max_file_bytes: 100, ..Limits::DEFAULT };
+    let tiny = Limits { max_text_bytes: 100, ..Limits::DEFAULT };
     let bytes = GOOD.len() as u64;
     let p = problem(Scene::load(&file, &tiny), "(file)");
-    assert!(matches!(p, Problem::Limit(LimitError::FileBytes { bytes: b, max: 100 }) if b == bytes), "{p}");
+    assert!(matches!(p, Problem::Limit(LimitError::TextBytes { bytes: b, max: 100 }) if b == bytes), "{p}");
     // 8192 × 8192 is within the side limit but has 2²⁶ pixels.
     let p = problem(with("image = [64, 48]", "image = [8192, 8192]"), "image");
     assert!(matches!(p, Problem::Limit(LimitError::ImagePixels { width: 8192, height: 8192, .. })), "{p}");

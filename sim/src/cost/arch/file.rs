@@ -242,6 +242,16 @@ pub enum Problem {
         /// What it must be.
         what: &'static str,
     },
+    /// A number outside its key's range ([`Param::range`](super::keys::Param::range)).
+    #[error("{value} is outside {min} ..= {max}")]
+    Outside {
+        /// The value, in the key's unit.
+        value: String,
+        /// The smallest allowed.
+        min: String,
+        /// The largest allowed.
+        max: String,
+    },
     /// An override not of the form `key=value`.
     #[error("expected key=value")]
     Override,
@@ -295,7 +305,7 @@ impl Arch {
         let mut arch = Self::default();
         for p in PARAMS {
             let v = lookup(&table, p.key).ok_or_else(|| err(p.key, Problem::Missing))?;
-            from_toml(p.unit, v).and_then(|v| (p.set)(&mut arch, v)).map_err(|e| err(p.key, e))?;
+            from_toml(p.unit, v).and_then(|v| p.assign(&mut arch, v)).map_err(|e| err(p.key, e))?;
         }
         arch.check().map_err(|(key, problem)| err(key, problem))?;
         Ok(arch)
@@ -309,7 +319,7 @@ impl Arch {
         let name = path.display().to_string();
         let read =
             |problem: String| ArchError { file: name.clone(), key: "(file)".into(), problem: Problem::Read(problem) };
-        let bytes = limits.read_file(path).map_err(|e| read(e.to_string()))?;
+        let bytes = limits.read_text_file(path).map_err(|e| read(e.to_string()))?;
         let text = String::from_utf8(bytes).map_err(|_| read("not UTF-8 text".into()))?;
         Self::parse(&text, &name)
     }
@@ -371,9 +381,19 @@ impl Arch {
         let err = |key: &str, problem| ArchError { file: "--set".into(), key: key.to_owned(), problem };
         let (key, value) = assignment.split_once('=').ok_or_else(|| err(assignment, Problem::Override))?;
         let key = key.trim();
-        let p = PARAMS.iter().find(|p| p.key == key).ok_or_else(|| err(key, Problem::Unknown))?;
-        from_text(p.unit, value).and_then(|v| (p.set)(self, v)).map_err(|e| err(key, e))?;
+        self.assign(key, value).map_err(|problem| err(key, problem))?;
         self.check().map_err(|(key, problem)| err(key, problem))
+    }
+
+    /// Set one key to a value written as `--set` takes it, checked against
+    /// the key's range but not yet against the rest of the machine
+    /// ([`Arch::check`]): the caller names the source in its errors.
+    ///
+    /// # Errors
+    /// The problem: an unknown key, or a value of the wrong unit or range.
+    pub fn assign(&mut self, key: &str, value: &str) -> Result<(), Problem> {
+        let p = PARAMS.iter().find(|p| p.key == key).ok_or(Problem::Unknown)?;
+        from_text(p.unit, value).and_then(|v| p.assign(self, v))
     }
 
     /// The value of one key.

@@ -46,6 +46,11 @@ pub struct Param {
     pub unit: Unit,
     /// What it means.
     pub doc: &'static str,
+    /// The smallest and largest value a number may take, in the unit's
+    /// base (none for text and flags): the model's counters (bytes in
+    /// `u64`, cycles in `f64`) cannot overflow inside these ranges and the
+    /// [`Limits`](crate::io::limits::Limits), and its times stay finite.
+    pub range: Option<(f64, f64)>,
     pub(super) get: fn(&Arch) -> Value,
     pub(super) set: fn(&mut Arch, Value) -> Result<(), Problem>,
 }
@@ -143,61 +148,93 @@ impl Field for u32 {
     }
 }
 
-/// Declares [`PARAMS`] from one list: key, unit, field path, meaning.
+impl Param {
+    /// Set this key of `arch` to `v`, checked against [`Param::range`].
+    ///
+    /// # Errors
+    /// [`Problem::Outside`] out of range, or the field's own problem.
+    pub(super) fn assign(&self, arch: &mut Arch, v: Value) -> Result<(), Problem> {
+        if let (Some((min, max)), Value::Number(x)) = (self.range, &v)
+            && !(min..=max).contains(x)
+        {
+            return Err(Problem::Outside {
+                value: self.unit.write(*x),
+                min: self.unit.write(min),
+                max: self.unit.write(max),
+            });
+        }
+        (self.set)(arch, v)
+    }
+}
+
+/// Declares [`PARAMS`] from one list: key, unit, field path, range (for
+/// numbers), meaning.
 macro_rules! params {
-    ($($key:literal, $unit:ident, $($field:ident).+, $doc:literal;)+) => {
+    ($($key:literal, $unit:ident, $($field:ident).+, $([$min:expr, $max:expr],)? $doc:literal;)+) => {
         /// Every key of an architecture file, in file order.
         pub const PARAMS: &[Param] = &[$(Param {
             key: $key,
             unit: Unit::$unit,
             doc: $doc,
+            range: params!(@range $([$min, $max])?),
             get: |a: &Arch| Field::get(&a.$($field).+),
             set: |a: &mut Arch, v: Value| Field::set(&mut a.$($field).+, v),
         }),+];
     };
+    (@range [$min:expr, $max:expr]) => { Some(($min, $max)) };
+    (@range) => { None };
 }
+
+/// Largest cycle count of one unit event (setup, tile, division), cycles.
+const CYCLES: f64 = 1e6;
+/// Most units or requests working in parallel.
+const PARALLEL: f64 = 65_536.0;
+/// Largest rate, per clock.
+const RATE: f64 = 65_536.0;
+/// Largest record (bin entry, setup record, burst), bytes.
+const RECORD: f64 = 4096.0;
 
 params! {
     "name", Text, name, "name for reports and file names";
     "description", Text, description, "what the file models";
-    "clock", Frequency, clock, "core clock";
-    "front.setup_cycles", Number, front.setup_cycles, "cycles per triangle set up";
+    "clock", Frequency, clock, [1e3, 1e11], "core clock";
+    "front.setup_cycles", Number, front.setup_cycles, [0.0, CYCLES], "cycles per triangle set up";
     "front.overlap", Flag, front.overlap, "setup and binning overlap the tiles";
-    "front.pass_overhead_cycles", Number, front.pass_overhead_cycles, "fixed cycles per pass waiting for the host";
-    "raster.tile", Count, raster.tile, "tile (chunk, region) side in pixels";
-    "raster.fragments_per_clock", Number, raster.fragments_per_clock, "fragments scan-converted per clock (0: evaluator)";
-    "raster.cycles_per_tile", Number, raster.cycles_per_tile, "evaluator cycles per triangle per tile touched";
-    "depth.fragments_per_clock", Number, depth.fragments_per_clock, "fragments depth-tested per clock per buffer (0: bit-serial)";
-    "depth.cycles_per_bit", Number, depth.cycles_per_bit, "bit-serial cycles per depth bit per buffer per triangle per tile";
+    "front.pass_overhead_cycles", Number, front.pass_overhead_cycles, [0.0, 1e9], "fixed cycles per pass waiting for the host";
+    "raster.tile", Count, raster.tile, [8.0, 128.0], "tile (chunk, region) side in pixels";
+    "raster.fragments_per_clock", Number, raster.fragments_per_clock, [0.0, RATE], "fragments scan-converted per clock (0: evaluator)";
+    "raster.cycles_per_tile", Number, raster.cycles_per_tile, [0.0, CYCLES], "evaluator cycles per triangle per tile touched";
+    "depth.fragments_per_clock", Number, depth.fragments_per_clock, [0.0, RATE], "fragments depth-tested per clock per buffer (0: bit-serial)";
+    "depth.cycles_per_bit", Number, depth.cycles_per_bit, [0.0, CYCLES], "bit-serial cycles per depth bit per buffer per triangle per tile";
     "depth.second_depth_pass", Flag, depth.second_depth_pass, "second depth by a second light pass and a combining pass";
     "on_chip.light_depth", Flag, on_chip.light_depth, "light-pass depth buffers on chip";
     "on_chip.camera_depth", Flag, on_chip.camera_depth, "camera visibility depth and ids on chip";
     "on_chip.stencil", Flag, on_chip.stencil, "stencil and volume-tested depth on chip";
     "on_chip.resolve_test_value_only", Flag, on_chip.resolve_test_value_only, "the resolve writes only the value the test reads";
-    "bins.entry_bytes", Count, bins.entry_bytes, "bytes of one bin entry in DRAM";
-    "bins.setup_record_bytes", Count, bins.setup_record_bytes, "bytes of one setup record in DRAM";
-    "shadow.samples_per_clock", Number, shadow.samples_per_clock, "map samples compared per clock";
-    "shadow.divider_cycles", Number, shadow.divider_cycles, "latency of one tangent-plane division";
-    "shadow.dividers", Count, shadow.dividers, "dividers working in parallel";
-    "shadow.cycles_per_lookup", Number, shadow.cycles_per_lookup, "shadow-test cycles per pixel besides the samples";
+    "bins.entry_bytes", Count, bins.entry_bytes, [0.0, RECORD], "bytes of one bin entry in DRAM";
+    "bins.setup_record_bytes", Count, bins.setup_record_bytes, [0.0, RECORD], "bytes of one setup record in DRAM";
+    "shadow.samples_per_clock", Number, shadow.samples_per_clock, [1e-3, RATE], "map samples compared per clock";
+    "shadow.divider_cycles", Number, shadow.divider_cycles, [0.0, CYCLES], "latency of one tangent-plane division";
+    "shadow.dividers", Count, shadow.dividers, [1.0, PARALLEL], "dividers working in parallel";
+    "shadow.cycles_per_lookup", Number, shadow.cycles_per_lookup, [0.0, CYCLES], "shadow-test cycles per pixel besides the samples";
     "shadow.in_shader", Flag, shadow.in_shader, "the shadow test runs in the shading program";
-    "shade.cycles_per_pixel", Number, shade.cycles_per_pixel, "shading cycles per pixel besides the shadow lookup";
-    "dram.bandwidth", Bandwidth, dram.bandwidth, "DRAM bandwidth";
-    "dram.latency", Time, dram.latency, "DRAM latency, request to data";
-    "dram.burst", Bytes, dram.burst, "bytes of one DRAM access";
-    "dram.requests_in_flight", Count, dram.requests_in_flight, "DRAM requests kept in flight";
-    "map_cache.size", Bytes, map_cache.size, "map cache size (0: none)";
-    "map_cache.line", Bytes, map_cache.line, "map cache line";
-    "map_cache.ways", Count, map_cache.ways, "map cache associativity";
-    "map_cache.misses_in_flight", Count, map_cache.misses_in_flight, "map cache misses outstanding";
-    "depth_cache.size", Bytes, depth_cache.size, "off-chip depth and stencil cache size (0: none)";
-    "depth_cache.line", Bytes, depth_cache.line, "depth cache line";
-    "depth_cache.ways", Count, depth_cache.ways, "depth cache associativity";
-    "depth_cache.misses_in_flight", Count, depth_cache.misses_in_flight, "depth cache misses outstanding";
-    "energy.dram_byte", Joules, energy.dram_byte, "energy per DRAM byte";
-    "energy.buffer_access", Joules, energy.buffer_access, "energy per on-chip buffer access";
-    "energy.cache_access", Joules, energy.cache_access, "energy per cache access";
-    "energy.fragment_op", Joules, energy.fragment_op, "energy per fragment operation";
+    "shade.cycles_per_pixel", Number, shade.cycles_per_pixel, [0.0, CYCLES], "shading cycles per pixel besides the shadow lookup";
+    "dram.bandwidth", Bandwidth, dram.bandwidth, [1e6, 1e14], "DRAM bandwidth";
+    "dram.latency", Time, dram.latency, [0.0, 1e-3], "DRAM latency, request to data";
+    "dram.burst", Bytes, dram.burst, [1.0, RECORD], "bytes of one DRAM access";
+    "dram.requests_in_flight", Count, dram.requests_in_flight, [1.0, PARALLEL], "DRAM requests kept in flight";
+    "map_cache.size", Bytes, map_cache.size, [0.0, 67_108_864.0], "map cache size (0: none)";
+    "map_cache.line", Bytes, map_cache.line, [16.0, RECORD], "map cache line";
+    "map_cache.ways", Count, map_cache.ways, [1.0, 64.0], "map cache associativity";
+    "map_cache.misses_in_flight", Count, map_cache.misses_in_flight, [1.0, PARALLEL], "map cache misses outstanding";
+    "depth_cache.size", Bytes, depth_cache.size, [0.0, 67_108_864.0], "off-chip depth and stencil cache size (0: none)";
+    "depth_cache.line", Bytes, depth_cache.line, [16.0, RECORD], "depth cache line";
+    "depth_cache.ways", Count, depth_cache.ways, [1.0, 64.0], "depth cache associativity";
+    "depth_cache.misses_in_flight", Count, depth_cache.misses_in_flight, [1.0, PARALLEL], "depth cache misses outstanding";
+    "energy.dram_byte", Joules, energy.dram_byte, [0.0, 1e-6], "energy per DRAM byte";
+    "energy.buffer_access", Joules, energy.buffer_access, [0.0, 1e-6], "energy per on-chip buffer access";
+    "energy.cache_access", Joules, energy.cache_access, [0.0, 1e-6], "energy per cache access";
+    "energy.fragment_op", Joules, energy.fragment_op, [0.0, 1e-6], "energy per fragment operation";
 }
 
 impl Unit {
@@ -272,7 +309,7 @@ impl Unit {
             }
         }
         let base = self.suffixes().last().map_or("", |s| s.0);
-        format!("{v}{base}")
+        if v != 0.0 && !(1e-3..1e15).contains(&v.abs()) { format!("{v:e}{base}") } else { format!("{v}{base}") }
     }
 }
 

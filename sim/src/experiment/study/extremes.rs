@@ -311,7 +311,7 @@ pub fn precision_series(rows: &[Row]) -> Vec<Series> {
 /// See [`StudyError`].
 pub fn run_all(folder: &mut OutputFolder, limits: &Limits) -> Result<String, StudyError> {
     let spec = Spec { limits: *limits, ..spec(scenes(), 160, 90) };
-    let rows = super::run(&spec, Shard::ALL, &ProgressBar::hidden());
+    let rows = super::run(&spec, Shard::ALL, &ProgressBar::hidden())?;
     folder.write_text("extremes.jsonl", &super::jsonl(&rows))?;
     let md = markdown(&rows);
     folder.write_text("extremes.md", &md)?;

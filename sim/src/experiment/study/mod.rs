@@ -36,7 +36,7 @@ mod sweep_file;
 
 pub use row::{Row, RowConfig, RowCost, RowMetrics, Status};
 use run::sort_rows;
-pub use run::{Truth, load_scenes, render_config, run, run_config, truths};
+pub use run::{Truth, load_scenes, render_config, run, run_config, truth_of};
 use shards::jsonl;
 pub use shards::{Manifest, finish, invalid, merge, read_rows, write_partial, write_run};
 pub use summary::{slug, summary, write_outputs};
@@ -78,6 +78,21 @@ pub(super) fn repeated<T: PartialEq>(items: &[T]) -> Option<(usize, usize)> {
     items.iter().enumerate().find_map(|(k, x)| items[..k].iter().position(|y| y == x).map(|j| (j, k)))
 }
 
+/// Two scenes of one name, if there are: `(earlier, later, problem)`.
+/// Rows, the summary's sections and merged shards tell scenes apart by
+/// name, so two files that both call themselves `table` would be one.
+fn same_names(scenes: &[crate::world::scene::Scene]) -> Option<(usize, usize, String)> {
+    let names: Vec<&str> = scenes.iter().map(|s| s.name.as_str()).collect();
+    repeated(&names).map(|(first, again)| {
+        let (a, b) = (&scenes[first], &scenes[again]);
+        (
+            first,
+            again,
+            format!("`{}` and `{}` are both named `{}`; rename one (its `name` key)", a.source, b.source, a.name),
+        )
+    })
+}
+
 /// The loosest of the error budgets.
 fn loosest(budgets: &[f64]) -> Option<f64> {
     budgets.iter().copied().max_by(f64::total_cmp)
@@ -93,6 +108,9 @@ pub enum StudyError {
     /// A sweep file is unusable.
     #[error(transparent)]
     Sweep(#[from] SweepError),
+    /// The study would take more memory than the limits allow.
+    #[error(transparent)]
+    Limit(#[from] crate::io::limits::LimitError),
     /// A `--shard` argument is not `i/n` with `i < n`.
     #[error("--shard `{0}`: expected i/n with 0 ≤ i < n")]
     Shard(String),

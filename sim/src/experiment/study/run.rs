@@ -33,16 +33,16 @@ pub fn render_config(spec: &Spec, c: &Config) -> RenderConfig {
 /// costing that fails gives skipped rows that say why.
 ///
 /// The render (light pass, camera pass, metrics against the scene's
-/// reference from [`truths`]) also costs the architectures that draw as it
+/// reference `truth` of its scene and image) also costs the architectures that draw as it
 /// does; the others are costed in one run of the passes per tiling
 /// ([`render_costed`]), because a tile size changes the light pass's events
 /// (`PixelFlow`'s 128² regions bin and flush differently from 32² chunks).
 /// The exact reference, the expensive part, is not recomputed.
 #[must_use]
-pub fn run_config(spec: &Spec, c: &Config, truths: &[Truth]) -> Vec<Row> {
+pub fn run_config(spec: &Spec, c: &Config, truth: &Truth) -> Vec<Row> {
     let scene = &spec.scenes[c.scene];
     let cfg = render_config(spec, c);
-    let done = match &truths[c.scene * spec.images.len() + c.image] {
+    let done = match truth {
         Ok(t) => render_costed(scene, &cfg, &spec.limits, TruthSource::Given(t.clone()), &spec.archs)
             .map_err(|e| e.to_string()),
         Err(e) => Err(format!("reference: {e}")),
@@ -76,24 +76,24 @@ pub fn run_config(spec: &Spec, c: &Config, truths: &[Truth]) -> Vec<Row> {
 /// A scene's exact reference at the study's image size, or why there is none.
 pub type Truth = Result<Vec<Option<PixelTruth>>, String>;
 
-/// The exact reference of every scene of `spec` at every image size
-/// (scene-major), built once (in parallel): it depends only on the scene,
-/// the image size and the rays per pixel, not on the configuration.
-#[must_use]
-pub fn truths(spec: &Spec) -> Vec<Truth> {
-    let pairs: Vec<(&Scene, [u32; 2])> =
-        spec.scenes.iter().flat_map(|s| spec.images.iter().map(move |&i| (s, i))).collect();
-    pairs
-        .par_iter()
-        .map(|&(scene, [w, h])| {
-            truth(scene, w, h, spec.reference_rays, &ProgressBar::hidden()).map_err(|e| e.to_string())
-        })
-        .collect()
+/// The exact reference of scene `scene` at image size `image` of `spec`,
+/// built in parallel: it depends only on the scene, the image size and the
+/// rays per pixel, not on the configuration. An image beyond the limits is
+/// refused before anything is built.
+pub fn truth_of(spec: &Spec, scene: usize, image: usize) -> Truth {
+    let [w, h] = spec.images[image];
+    spec.limits.check_image(w, h).map_err(|e| e.to_string())?;
+    truth(&spec.scenes[scene], w, h, spec.reference_rays, &ProgressBar::hidden()).map_err(|e| e.to_string())
 }
 
 /// Run the configurations of `shard` in parallel (on the current rayon pool),
 /// ticking `progress` once per configuration. Rows come back sorted by
 /// configuration and preset.
+///
+/// One scene and image size is run at a time: its reference is built once,
+/// shared by its configurations and dropped before the next, and at most
+/// [`Spec::renders_at_once`] of its configurations render at once, so the
+/// study stays within [`Limits::max_memory`].
 ///
 /// ```
 /// use umbra_sim::{Limits, SweepFile};
@@ -113,27 +113,42 @@ pub fn truths(spec: &Spec) -> Vec<Truth> {
 /// "#;
 /// let file = SweepFile { file: "mine.toml".into(), text: text.to_owned(), bundled: false };
 /// let spec = file.spec(&Limits::DEFAULT)?;
-/// let rows = umbra_sim::study(&spec, umbra_sim::experiment::study::Shard::ALL, &indicatif::ProgressBar::hidden());
+/// let rows = umbra_sim::study(&spec, umbra_sim::experiment::study::Shard::ALL, &indicatif::ProgressBar::hidden())?;
 /// assert_eq!(rows.len(), 4); // 2 formats × 2 filters × 1 architecture
 /// assert!(rows.iter().all(|r| r.complete()));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-#[must_use]
-pub fn run(spec: &Spec, shard: Shard, progress: &ProgressBar) -> Vec<Row> {
-    let truths = truths(spec);
+///
+/// # Errors
+/// [`StudyError::Limit`] when even one render beside the scenes and a
+/// reference would take more than [`Limits::max_memory`].
+pub fn run(spec: &Spec, shard: Shard, progress: &ProgressBar) -> Result<Vec<Row>, StudyError> {
+    let at_once = spec.renders_at_once(rayon::current_num_threads())?;
     let configs: Vec<Config> = spec.configs().into_iter().filter(|c| shard.contains(c.index)).collect();
     progress.set_length(configs.len() as u64);
-    let rows: Vec<Vec<Row>> = configs
-        .par_iter()
-        .map(|c| {
-            let rows = run_config(spec, c, &truths);
-            progress.inc(1);
-            rows
-        })
-        .collect();
-    let mut rows: Vec<Row> = rows.into_iter().flatten().collect();
+    let mut rows = Vec::new();
+    for scene in 0..spec.scenes.len() {
+        for image in 0..spec.images.len() {
+            let group: Vec<&Config> = configs.iter().filter(|c| c.scene == scene && c.image == image).collect();
+            if group.is_empty() {
+                continue;
+            }
+            let truth = truth_of(spec, scene, image);
+            for wave in group.chunks(at_once) {
+                let done: Vec<Vec<Row>> = wave
+                    .par_iter()
+                    .map(|c| {
+                        let rows = run_config(spec, c, &truth);
+                        progress.inc(1);
+                        rows
+                    })
+                    .collect();
+                rows.extend(done.into_iter().flatten());
+            }
+        }
+    }
     sort_rows(&mut rows);
-    rows
+    Ok(rows)
 }
 
 #[allow(clippy::cast_precision_loss, reason = "a ratio of pixel counts")]
@@ -150,5 +165,11 @@ pub(super) fn sort_rows(rows: &mut [Row]) {
 /// # Errors
 /// [`StudyError::Scene`] naming the scene.
 pub fn load_scenes<S: AsRef<str>>(names: &[S], limits: &Limits) -> Result<Vec<Scene>, StudyError> {
-    names.iter().map(|n| Ok(Scene::open(n.as_ref(), limits)?)).collect()
+    let scenes = names.iter().map(|n| Scene::open(n.as_ref(), limits)).collect::<Result<Vec<_>, _>>()?;
+    match super::same_names(&scenes) {
+        Some((_, _, problem)) => {
+            Err(StudyError::Sweep(super::SweepError { file: "--scene".into(), key: "(names)".into(), problem }))
+        }
+        None => Ok(scenes),
+    }
 }

@@ -106,12 +106,14 @@ pub fn write_run(dir: &Path, rows: &[Row], manifest: &Manifest) -> Result<RunMan
 pub fn read_rows(path: &Path, limits: &Limits) -> Result<Vec<Row>, StudyError> {
     let file = if path.is_dir() { path.join("results.jsonl") } else { path.to_owned() };
     let bytes = limits.read_file(&file).map_err(|source| StudyError::Read { path: file.clone(), source })?;
-    let text = String::from_utf8_lossy(&bytes);
-    text.lines()
+    // Line by line as bytes: a line that is not UTF-8 is refused by the
+    // parser, never read with a replacement character as another scene.
+    bytes
+        .split(|&b| b == b'\n')
         .enumerate()
-        .filter(|(_, l)| !l.trim().is_empty())
+        .filter(|(_, l)| !l.trim_ascii().is_empty())
         .map(|(i, l)| {
-            serde_json::from_str(l).map_err(|source| StudyError::Parse { path: file.clone(), line: i + 1, source })
+            serde_json::from_slice(l).map_err(|source| StudyError::Parse { path: file.clone(), line: i + 1, source })
         })
         .collect()
 }

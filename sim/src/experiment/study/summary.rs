@@ -3,6 +3,7 @@
 
 use super::{Manifest, Row, RowCost, StudyError, distinct, jsonl, loosest, plot, sort_rows};
 use crate::io::folder::OutputFolder;
+use crate::io::markdown::escape;
 use std::fmt::Write as _;
 
 /// Write `results.jsonl`, `results.csv`, the Pareto plots per scene and
@@ -137,7 +138,7 @@ pub fn summary(rows: &[Row], manifest: &Manifest) -> String {
     );
     for scene in scenes_of(rows) {
         let mine: Vec<&Row> = rows.iter().filter(|r| r.config.scene == scene).collect();
-        let _ = writeln!(s, "## {scene}\n");
+        let _ = writeln!(s, "## {}\n", escape(&scene));
         scene_summary(&mut s, &mine, &manifest.budgets);
     }
     if !skipped.is_empty() {
@@ -147,9 +148,9 @@ pub fn summary(rows: &[Row], manifest: &Manifest) -> String {
                 s,
                 "| {} | {} {} | {} |",
                 r.config_index,
-                r.config.scene,
+                escape(&r.config.scene),
                 r.label(),
-                r.reason.replace('|', "\\|")
+                escape(&r.reason)
             );
         }
     }

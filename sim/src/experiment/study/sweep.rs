@@ -5,7 +5,7 @@ use umbra_core::shadow::{Filter, Jitter};
 
 use super::StudyError;
 use crate::cost::arch::Arch;
-use crate::io::limits::Limits;
+use crate::io::limits::{Footprint, LimitError, Limits};
 use crate::render::{Algorithm, Culling};
 use crate::world::scene::Scene;
 
@@ -139,6 +139,37 @@ impl Spec {
             return Some(format!("{} architecture points; at most {MAX_ARCHITECTURES}", self.archs.len()));
         }
         None
+    }
+
+    /// How many configurations may render at once on `threads` threads
+    /// within [`Limits::max_memory`]: every scene is held, with one
+    /// reference at the largest image, and each render takes
+    /// [`Footprint::render`] of the largest image and map within the limits
+    /// (larger ones are skipped rows that build nothing).
+    ///
+    /// # Errors
+    /// [`LimitError::Memory`] when not even one render fits.
+    pub fn renders_at_once(&self, threads: usize) -> Result<usize, LimitError> {
+        let pixels = self
+            .images
+            .iter()
+            .filter(|&&[w, h]| self.limits.check_image(w, h).is_ok())
+            .map(|&[w, h]| u64::from(w) * u64::from(h))
+            .max()
+            .unwrap_or(0);
+        let map = self.map_sizes.iter().copied().filter(|&m| self.limits.check_map(m).is_ok()).max().unwrap_or(0);
+        let triangles = |s: &Scene| s.objects.iter().map(|o| o.mesh.triangles.len() as u64).sum::<u64>();
+        let held = self.scenes.iter().map(triangles).fold(0u64, u64::saturating_add);
+        let most = self.scenes.iter().map(triangles).max().unwrap_or(0);
+        let reference = Footprint::render(pixels, 0, most) - Footprint::BASE;
+        let render = Footprint::render(pixels, map, most) - Footprint::BASE;
+        let fixed = Footprint::render(0, 0, held).saturating_add(reference);
+        let room = self.limits.max_memory.saturating_sub(fixed) / render.max(1);
+        if room == 0 {
+            self.limits
+                .check_memory("the study (its scenes, one reference and one render)", fixed.saturating_add(render))?;
+        }
+        Ok(usize::try_from(room).unwrap_or(usize::MAX).clamp(1, threads.max(1)))
     }
 
     /// Every configuration, in the fixed order that numbers them: scene,

@@ -43,6 +43,10 @@ use crate::world::scene_file::BUNDLED;
 pub const BUNDLED_SWEEPS: [(&str, &str); 2] =
     [("quick", include_str!("../../../../sweeps/quick.toml")), ("full", include_str!("../../../../sweeps/full.toml"))];
 
+/// Most values one axis of a sweep may list (an algorithm's variants
+/// together count as one axis).
+pub const MAX_AXIS_VALUES: usize = 4096;
+
 /// What is wrong with a sweep file: the file, the key, the problem.
 #[derive(Debug, thiserror::Error)]
 #[error("{}: {key}: {problem}", file.display())]
@@ -161,7 +165,7 @@ impl SweepFile {
         if !(path.extension().is_some_and(|e| e == "toml") || path.components().count() > 1 || path.is_file()) {
             return Self::bundled(name);
         }
-        let bytes = limits.read_file(path).map_err(|e| SweepError {
+        let bytes = limits.read_text_file(path).map_err(|e| SweepError {
             file: path.to_owned(),
             key: "(file)".into(),
             problem: e.to_string(),
@@ -205,6 +209,7 @@ impl SweepFile {
                 e.span().map_or_else(|| "(syntax)".to_owned(), |s| format!("(line {})", line_of(&self.text, s.start)));
             self.err(key, e.message().to_owned())
         })?;
+        self.lengths(&t)?;
         let mut scenes = Vec::new();
         for (i, s) in t.scenes.iter().enumerate() {
             let bundled = BUNDLED.iter().any(|(n, _)| n == s);
@@ -250,8 +255,10 @@ impl SweepFile {
         // An axis that names one value twice would run every configuration
         // with it twice.
         let names = |v: &[Filter]| v.iter().map(ToString::to_string).collect::<Vec<_>>();
+        if let Some((_, again, problem)) = super::same_names(&scenes) {
+            return Err(self.err(format!("scenes[{again}]"), problem));
+        }
         for (key, twice) in [
-            ("scenes", repeated(&scenes.iter().map(|s| s.name.clone()).collect::<Vec<_>>())),
             ("images", repeated(&t.images)),
             ("formats", repeated(&formats)),
             ("maps", repeated(&t.maps)),
@@ -296,6 +303,52 @@ impl SweepFile {
             Some(problem) => Err(self.err("(axes)", problem)),
             None => Ok(spec),
         }
+    }
+
+    /// Every list's length within [`MAX_AXIS_VALUES`], and the algorithm
+    /// axis (every entry's lists multiplied) within it too: checked before
+    /// anything is loaded, built or compared (the repeat checks compare
+    /// every pair).
+    fn lengths(&self, t: &FileText) -> Result<(), SweepError> {
+        let too_long = |key: String, n: usize| {
+            if n > MAX_AXIS_VALUES {
+                Err(self.err(key, format!("{n} values; an axis has at most {MAX_AXIS_VALUES}")))
+            } else {
+                Ok(())
+            }
+        };
+        for (key, n) in [
+            ("scenes", t.scenes.len()),
+            ("images", t.images.len()),
+            ("formats", t.formats.len()),
+            ("maps", t.maps.len()),
+            ("filters", t.filters.len()),
+            ("archs", t.archs.len()),
+            ("arch_axes", t.arch_axes.len()),
+            ("algorithms", t.algorithms.len()),
+        ] {
+            too_long(key.to_owned(), n)?;
+        }
+        for (i, axis) in t.arch_axes.iter().enumerate() {
+            too_long(format!("arch_axes[{i}].values"), axis.values.len())?;
+        }
+        let mut variants = 0usize;
+        for (i, a) in t.algorithms.iter().enumerate() {
+            let lists = [
+                ("bias", a.bias.as_ref().map_or(1, Vec::len)),
+                ("offset", a.offset.as_ref().map_or(1, Vec::len)),
+                ("virtual_samples", a.virtual_samples.as_ref().map_or(1, Vec::len)),
+                ("cull", a.cull.as_ref().map_or(1, Vec::len)),
+            ];
+            let mut n = 1usize;
+            for (key, len) in lists {
+                too_long(format!("algorithms[{i}].{key}"), len)?;
+                n = n.saturating_mul(len);
+            }
+            variants = variants.saturating_add(n);
+            too_long(format!("algorithms[..={i}] (their variants together)"), variants)?;
+        }
+        Ok(())
     }
 
     fn filter(&self, key: &str, f: &FilterText) -> Result<Filter, SweepError> {
@@ -344,11 +397,26 @@ impl SweepFile {
                     .map_err(|e| self.err(format!("archs[{i}]"), e.to_string()))?,
             );
         }
-        let mut points: Vec<Vec<(usize, &str)>> = vec![Vec::new()];
+        // The points are counted before any is built: nine axes of ten
+        // values would be 10⁹ of them.
+        let mut count = base.len().max(1);
         for (i, axis) in t.arch_axes.iter().enumerate() {
             if axis.values.is_empty() {
                 return Err(self.err(format!("arch_axes[{i}].values"), "the axis is empty"));
             }
+            count = count.saturating_mul(axis.values.len());
+            if count > super::MAX_ARCHITECTURES {
+                return Err(self.err(
+                    format!("arch_axes[{i}]"),
+                    format!(
+                        "the architectures and the axes up to this one make more than {} points",
+                        super::MAX_ARCHITECTURES
+                    ),
+                ));
+            }
+        }
+        let mut points: Vec<Vec<(usize, &str)>> = vec![Vec::new()];
+        for (i, axis) in t.arch_axes.iter().enumerate() {
             points = points
                 .iter()
                 .flat_map(|p| axis.values.iter().map(move |v| [p.clone(), vec![(i, v.as_str())]].concat()))
@@ -362,8 +430,9 @@ impl SweepFile {
                 let mut assignments = Vec::new();
                 for &(i, value) in p {
                     let key = &t.arch_axes[i].key;
-                    arch.set(&format!("{key}={value}"))
-                        .map_err(|e| self.err(format!("arch_axes[{i}]"), format!("on {}: {e}", a.name)))?;
+                    arch.assign(key, value).map_err(|e| {
+                        self.err(format!("arch_axes[{i}]"), format!("{key} = `{value}` on {}: {e}", a.name))
+                    })?;
                     arch.name = format!("{}-{}-{}", arch.name, word(key), word(value));
                     assignments.push(format!("{key}={value}"));
                 }

@@ -73,17 +73,20 @@ pub(super) fn build_mesh(
         MeshFile::Torus { center, major, minor, rings, sides } => Mesh::torus(
             c.vec3(&field("center"), *center)?,
             c.range(&field("major"), *major, 1e-6, 1e6)?,
-            c.range(&field("minor"), *minor, 1e-6, 1e6)?,
+            // A tube wider than the ring's radius passes through itself.
+            c.range(&field("minor"), *minor, 1e-6, major.min(1e6) * 0.999)?,
             c.count(&field("rings"), *rings)?,
             c.count(&field("sides"), *sides)?,
         ),
-        MeshFile::Table { width, depth, height, top, leg } => Mesh::table(
-            c.range(&field("width"), *width, 1e-6, 1e6)?,
-            c.range(&field("depth"), *depth, 1e-6, 1e6)?,
-            c.range(&field("height"), *height, 1e-6, 1e6)?,
-            c.range(&field("top"), *top, 1e-6, 1e6)?,
-            c.range(&field("leg"), *leg, 1e-6, 1e6)?,
-        ),
+        MeshFile::Table { width, depth, height, top, leg } => {
+            let (w, d) = (c.range(&field("width"), *width, 1e-6, 1e6)?, c.range(&field("depth"), *depth, 1e-6, 1e6)?);
+            let h = c.range(&field("height"), *height, 1e-6, 1e6)?;
+            // The top is part of the height, and two legs of a side must
+            // not meet (their centres are a leg in from the edges).
+            let top = c.range(&field("top"), *top, 1e-6, f64::from(h) * 0.999)?;
+            let leg = c.range(&field("leg"), *leg, 1e-6, f64::from(w.min(d)) / 3.0 * 0.999)?;
+            Mesh::table(w, d, h, top, leg)
+        }
         MeshFile::Sheet { center, width, height, bend, nx, ny } => Mesh::sheet(
             c.vec3(&field("center"), *center)?,
             c.range(&field("width"), *width, 1e-6, 1e6)?,

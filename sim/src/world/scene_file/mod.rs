@@ -61,6 +61,11 @@ pub const BUNDLED: [(&str, &str); 10] = [
     ("factory", include_str!("../../../../scenes/factory.toml")),
 ];
 
+/// Largest magnitude of a vertex coordinate once placed (2⁴⁰): the
+/// triangle setup's edge functions multiply three coordinate differences,
+/// which stay finite in f32 below (2·2⁴⁰)³ = 2¹²³.
+pub const MAX_COORDINATE: f32 = 1_099_511_627_776.0;
+
 /// Largest procedural subdivision count.
 pub const MAX_SUBDIVISION: u32 = 1024;
 
@@ -139,6 +144,26 @@ pub enum Problem {
     /// The file, the image or the scene's triangles are beyond the [`Limits`].
     #[error(transparent)]
     Limit(LimitError),
+    /// A vertex, as placed in the scene, beyond [`MAX_COORDINATE`] (or
+    /// not finite): the f32 vertex and setup units would overflow.
+    #[error(
+        "vertex {vertex} is at {position:?} once placed, beyond ±{MAX_COORDINATE:e} (the f32 pipeline's products of coordinates would overflow)"
+    )]
+    Coordinate {
+        /// The vertex, from 0 in the mesh's order.
+        vertex: usize,
+        /// Where it lands, f32.
+        position: [f32; 3],
+    },
+    /// A generated shape with a triangle of no area once placed: its
+    /// sizes are too small for its position in f32.
+    #[error(
+        "triangle {triangle} has no area once placed in f32: the shape's sizes are too small for where it stands (or for the scale)"
+    )]
+    Degenerate {
+        /// The triangle, from 0 in the mesh's order.
+        triangle: usize,
+    },
     /// A scene needs at least one light and one object.
     #[error("a scene needs at least one {0}")]
     Missing(&'static str),
@@ -158,7 +183,7 @@ impl Scene {
     /// [`SceneError`] naming the file, the key and the problem.
     pub fn load(file: &Path, limits: &Limits) -> Result<Self, SceneError> {
         let c = Check { file };
-        let bytes = limits.read_file(file).map_err(|e| {
+        let bytes = limits.read_text_file(file).map_err(|e| {
             c.err(
                 "(file)",
                 match e {
@@ -285,6 +310,8 @@ impl Scene {
         if parsed.objects.is_empty() {
             return Err(c.err("objects", Problem::Missing("object")));
         }
+        let objects = u64::try_from(parsed.objects.len()).unwrap_or(u64::MAX);
+        limits.check_objects(objects).map_err(|l| c.err("objects", Problem::Limit(l)))?;
         // Every generator's triangles, counted before any mesh is built.
         let mut generated = 0u64;
         for (i, o) in parsed.objects.iter().enumerate() {
@@ -310,6 +337,7 @@ impl Scene {
             let s = c.range(&format!("{key}.scale"), o.scale.unwrap_or(1.0), 1e-6, 1e6)?;
             let rotation = Quat::from_euler(EulerRot::XYZ, r.x.to_radians(), r.y.to_radians(), r.z.to_radians());
             let mesh = mesh.transformed(&Mat4::from_scale_rotation_translation(Vec3::splat(s), rotation, t));
+            c.placed(&format!("{key}.mesh"), &mesh, !matches!(o.mesh, MeshFile::Obj(_) | MeshFile::Shared(_)))?;
             let closed = mesh.is_closed();
             let solid = match o.solid {
                 Some(true) if !closed => return Err(c.err(format!("{key}.solid"), Problem::OpenMarkedSolid)),

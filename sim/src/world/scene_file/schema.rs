@@ -117,6 +117,30 @@ impl Check<'_> {
         Ok((p, t))
     }
 
+    /// A mesh as placed in the scene: every vertex finite and within
+    /// [`MAX_COORDINATE`](super::MAX_COORDINATE), and, for a generated
+    /// shape (whose triangles all have area as built), every triangle
+    /// still of some area in f32.
+    pub(super) fn placed(&self, key: &str, mesh: &crate::world::mesh::Mesh, generated: bool) -> Result<(), SceneError> {
+        let max = super::MAX_COORDINATE;
+        if let Some((vertex, p)) =
+            mesh.positions.iter().enumerate().find(|(_, p)| !(p.is_finite() && p.abs().max_element() <= max))
+        {
+            return Err(self.err(key, Problem::Coordinate { vertex, position: p.to_array() }));
+        }
+        if generated {
+            let corner = |i: u32| mesh.positions[i as usize];
+            let flat = mesh
+                .triangles
+                .iter()
+                .position(|&[a, b, c]| (corner(b) - corner(a)).cross(corner(c) - corner(a)).length_squared() == 0.0);
+            if let Some(triangle) = flat {
+                return Err(self.err(key, Problem::Degenerate { triangle }));
+            }
+        }
+        Ok(())
+    }
+
     pub(super) fn view(&self, key: &str, v: &ViewFile) -> Result<Perspective, SceneError> {
         let (near, far) = self.near_far(key, v.near, v.far)?;
         let (position, target) = self.eye(key, v.position, v.target)?;
