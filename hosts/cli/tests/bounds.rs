@@ -285,23 +285,17 @@ fn coordinates_and_shapes_are_checked_in_the_precision_they_are_used_in() {
         ),
         (
             "tall-top",
-            format!(
-                "[[objects]]\nmesh = {{ table = {{ width = 2.0, depth = 1.0, height = 1.0, top = 1.5, leg = 0.1 }} }}\n"
-            ),
+            "[[objects]]\nmesh = { table = { width = 2.0, depth = 1.0, height = 1.0, top = 1.5, leg = 0.1 } }\n".to_owned(),
             "objects[0].mesh.top: 1.5 is outside",
         ),
         (
             "fat-legs",
-            format!(
-                "[[objects]]\nmesh = {{ table = {{ width = 2.0, depth = 1.0, height = 1.0, top = 0.1, leg = 0.5 }} }}\n"
-            ),
+            "[[objects]]\nmesh = { table = { width = 2.0, depth = 1.0, height = 1.0, top = 0.1, leg = 0.5 } }\n".to_owned(),
             "objects[0].mesh.leg",
         ),
         (
             "fat-torus",
-            format!(
-                "[[objects]]\nmesh = {{ torus = {{ center = [0.0, 1.0, 0.0], major = 0.5, minor = 0.8, rings = 8, sides = 8 }} }}\n"
-            ),
+            "[[objects]]\nmesh = { torus = { center = [0.0, 1.0, 0.0], major = 0.5, minor = 0.8, rings = 8, sides = 8 } }\n".to_owned(),
             "objects[0].mesh.minor",
         ),
     ] {
