@@ -12,6 +12,7 @@ use umbra_sim::io::limits::Limits;
 use umbra_sim::io::output::{RawMap, write_preview};
 use umbra_sim::render::pictures::{write_error_image, write_shadow_image, write_shadow_term};
 use umbra_sim::render::{Algorithm, Culling, RenderConfig, TruthSource};
+use umbra_sim::truth::metrics::SHADE_STEP;
 use umbra_sim::world::scene::Scene;
 
 #[derive(clap::Args, Debug)]
@@ -170,11 +171,22 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
         m.mean_abs_error
     );
     say!(
-        "misclassified: {} edge placement, {} acne, {} leaks ({:.3} % artifacts); {} ties at ½; RMS area error {:.4}; boundary displacement {:.2} / {:.2} / {:.2} pixels, {:.2} / {:.2} / {:.2} texels (mean / 95th percentile / max)",
-        m.edge_placement,
+        "artifacts (beyond the edge band, shade off the reference by more than {}): {} acne ({} on terminators; {:.1} px of excess shadow), {} leaks ({:.1} px of missing shadow): {:.3} % artifacts; {} edge placement within the band (median {} / 95th percentile {} px)",
+        SHADE_STEP,
         m.acne,
+        m.terminator_acne,
+        m.acne_area,
         m.leaks,
+        m.leak_area,
         m.artifact_percent,
+        m.edge_placement,
+        m.band[0],
+        m.band[1]
+    );
+    say!(
+        "½ verdict beyond the band: {} false shadow, {} false light; {} ties at ½; RMS area error {:.4}; boundary displacement {:.2} / {:.2} / {:.2} pixels, {:.2} / {:.2} / {:.2} texels (mean / 95th percentile / max)",
+        m.half_acne,
+        m.half_leaks,
         m.ties,
         m.rms_error,
         m.displacement[0],
@@ -184,10 +196,15 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
         m.displacement_texels[1],
         m.displacement_texels[2]
     );
+    let way = |f: [f64; 2]| if f[0] < 1.0 { "magnified" } else { "minified" };
     say!(
-        "map footprint: {:.3} texels per pixel (the map is {} on screen)",
-        m.texels_per_pixel,
-        if m.texels_per_pixel < 1.0 { "magnified" } else { "minified" }
+        "map footprint, texels per pixel (median / 95th percentile): {:.3} / {:.3} along x ({}), {:.3} / {:.3} along y ({})",
+        m.footprint_x[0],
+        m.footprint_x[1],
+        way(m.footprint_x),
+        m.footprint_y[0],
+        m.footprint_y[1],
+        way(m.footprint_y)
     );
     say!(
         "virtual samples for {} pixels, {} trivially decided, {} tangent fallbacks, {} lookups culled, {} map bytes read",

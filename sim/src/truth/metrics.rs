@@ -1,21 +1,69 @@
-//! Error metrics of a render against the exact reference: misclassified
-//! pixels, split into edge placement and artifacts by their distance to the
-//! reference's shadow boundary; area error; and the displacement of the
-//! rendered boundary from the exact one.
+//! Error metrics of a render against the exact reference, in the terms
+//! the papers argue in.
+//!
+//! * **Edge placement** (aliasing) is an error within the map's texel of
+//!   the exact shadow boundary: where a map texel covers `w` pixels on
+//!   screen its staircase reaches up to `w` pixels from the exact edge, and
+//!   which side of it a pixel falls on is the map's resolution at work, not
+//!   a fault of the algorithm. The band is each pixel's own: the screen
+//!   extent of the texel under it, from the light-space point's
+//!   derivatives along both screen axes ([`Metrics::footprint_x`],
+//!   [`Metrics::footprint_y`]), at least one pixel and at most
+//!   [`MAX_BAND`].
+//! * **Acne and leaks** are measured beyond the band on the shade the
+//!   render produced: a pixel whose filtered shadow fraction is darker than
+//!   the reference's area-averaged shadow by more than [`SHADE_STEP`] is
+//!   acne (self-shadowing; Wang & Molnar §2), lighter by more is a leak
+//!   (light through an occluder, a shadow detached from its caster). So a
+//!   stripe that a filter dims below ½ is still acne, with its magnitude.
+//!   Acne on a surface lit within [`GRAZING_COS`] of grazing next to where
+//!   it turns from the light is the terminator's (the occluder's own shadow
+//!   line; Weiskopf & Ertl §3), the rest the receiver's.
+//! * The ½ verdict (shadowed when more than half of the pixel is) is kept
+//!   for the misclassified-pixel counts and the boundary displacement.
+//!
+//! Area error and the displacement of the rendered boundary from the exact
+//! one are reported besides.
 
+use glam::DVec2;
 use serde::Serialize;
 use umbra_core::shade::Shaded;
 use umbra_core::shadow::Shadow;
 
 use crate::truth::reference::PixelTruth;
 
-/// A misclassified pixel this close to the reference's shadow boundary is
-/// edge placement, farther an artifact. The distance is Chebyshev, in
-/// pixels, to the nearest pixel with an 8-neighbour of the other exact
-/// verdict: at 0, the exact boundary passes within a pixel of the pixel's
-/// centre (1½ diagonally), so which side its centre falls on is a coin
-/// toss at the image's resolution, not an error of the algorithm.
-pub const EDGE_DISTANCE: u32 = 0;
+/// The smallest difference between a pixel's filtered shadow fraction and
+/// the reference's area-averaged shadow that counts as an artifact: 0.1.
+///
+/// A step of 0.1 in the shadow fraction changes the shaded pixel's direct
+/// light by a tenth — five times the 2 % contrast a viewer detects on a
+/// uniform surface (Weber's fraction for luminance; Wandell, *Foundations
+/// of Vision*, ch. 7) — so every difference above it is visible on a lit
+/// receiver, while the reference's own quantisation (steps of 1/16 at its
+/// default 4 × 4 rays a pixel) stays below it.
+pub const SHADE_STEP: f64 = 0.1;
+
+/// Acne on a surface whose cosine to the light is below this (within about
+/// 15.5° of grazing) and within [`TERMINATOR_REACH`] of a surface that
+/// faces away from the light is the terminator's: the self-shadowing of
+/// an occluder's own shadow line, where its surface turns from the light
+/// (the sphere's in Wang & Molnar's Figure 4, the L's silhouettes in
+/// Weiskopf & Ertl's Figure 5), rather than a receiver's (a floor lit at
+/// grazing, far from any such line).
+pub const GRAZING_COS: f64 = 0.25;
+
+/// How near, in pixels, terminator acne lies to a surface facing away
+/// from the light.
+pub const TERMINATOR_REACH: u32 = 16;
+
+/// Widest edge band, pixels: a texel seen edge-on is a sliver across the
+/// screen, and a band wider than this would excuse everything.
+pub const MAX_BAND: u32 = 32;
+
+/// Neighbouring pixels whose light-space points are farther apart than
+/// this, in texels, are on different surfaces (or across a depth
+/// discontinuity) and give no derivative.
+const SAME_SURFACE_TEXELS: f64 = 8.0;
 
 /// How a render's shadows compare with the truth, over the pixels whose
 /// surface faces the light (the others are dark by shading whatever the
@@ -24,9 +72,9 @@ pub const EDGE_DISTANCE: u32 = 0;
 pub struct Metrics {
     /// Pixels compared.
     pub evaluated: u64,
-    /// Shadowed by the pipeline, lit in truth (acne, self-shadowing).
+    /// Shadowed by the pipeline (½ verdict), lit in truth.
     pub false_shadow: u64,
-    /// Lit by the pipeline, shadowed in truth (leaks, detached shadows).
+    /// Lit by the pipeline (½ verdict), shadowed in truth.
     pub false_light: u64,
     /// `false_shadow / evaluated`.
     pub false_shadow_rate: f64,
@@ -34,15 +82,31 @@ pub struct Metrics {
     pub false_light_rate: f64,
     /// Both, in percent of the evaluated pixels.
     pub misclassified_percent: f64,
-    /// Misclassified pixels within [`EDGE_DISTANCE`] of the reference's
-    /// shadow boundary.
+    /// Pixels within their edge band that are misclassified or differ from
+    /// the reference by more than [`SHADE_STEP`]: aliasing.
     pub edge_placement: u64,
-    /// False shadows farther from it: acne and self-shadowing.
+    /// Beyond the band, darker than the reference by more than
+    /// [`SHADE_STEP`]: acne and self-shadowing.
     pub acne: u64,
-    /// False light farther from it: leaks and detached shadows.
+    /// Of [`Metrics::acne`], on surfaces within [`GRAZING_COS`] of grazing
+    /// and [`TERMINATOR_REACH`] of a surface facing away: the terminator's.
+    pub terminator_acne: u64,
+    /// Beyond the band, lighter than the reference by more than
+    /// [`SHADE_STEP`]: leaks and detached shadows.
     pub leaks: u64,
-    /// Artifacts (acne and leaks), in percent of the evaluated pixels.
+    /// The acne's summed excess shadow, pixels (a stripe of fraction 0.3
+    /// adds 0.3 a pixel).
+    pub acne_area: f64,
+    /// The leaks' summed missing shadow, pixels.
+    pub leak_area: f64,
+    /// Artifacts (acne and leaks), in percent of the evaluated pixels: the
+    /// measure error budgets apply to.
     pub artifact_percent: f64,
+    /// Beyond the band, shadowed by the ½ verdict and lit in truth (the
+    /// count before the shade was measured).
+    pub half_acne: u64,
+    /// Beyond the band, lit by the ½ verdict and shadowed in truth.
+    pub half_leaks: u64,
     /// Pixels whose filtered shadow fraction is exactly ½: counted as lit.
     pub ties: u64,
     /// Mean |pipeline shadow fraction − true shadowed area fraction|.
@@ -57,12 +121,16 @@ pub struct Metrics {
     /// The same in map texels, between the two pixels' light-space points
     /// (where both have one).
     pub displacement_texels: [f64; 3],
-    /// The map's footprint on screen: the median distance, in map texels,
-    /// between the light-space points of horizontally adjacent evaluated
-    /// pixels on the same surface. Below 1 the map is magnified (a texel
-    /// covers several pixels, the case Sen et al.'s §5 bandwidth argument
-    /// assumes), above 1 minified.
-    pub texels_per_pixel: f64,
+    /// The map's footprint along the screen's x axis: how far, in texels,
+    /// the light-space point moves from one pixel to the next, median and
+    /// 95th percentile over the evaluated pixels. Below 1 the map is
+    /// magnified that way (a texel covers several pixels, the case Sen et
+    /// al.'s §5 assumes), above 1 minified.
+    pub footprint_x: [f64; 2],
+    /// The same along y.
+    pub footprint_y: [f64; 2],
+    /// The edge band, pixels: median and 95th percentile.
+    pub band: [f64; 2],
 }
 
 /// Mean, 95th percentile and largest of `v` (zeros when empty).
@@ -140,13 +208,13 @@ fn boundary(dark: &[Option<bool>], width: usize, lit_side: bool) -> Vec<bool> {
 pub enum Verdict {
     /// Background, or a surface facing away from the light.
     Unevaluated,
-    /// Shadowed or lit as in truth.
+    /// Within [`SHADE_STEP`] of the reference, and on the right side of ½.
     Right,
-    /// Misclassified within [`EDGE_DISTANCE`] of the exact boundary.
+    /// Wrong within the pixel's edge band: aliasing.
     EdgePlacement,
-    /// Shadowed in error away from it.
+    /// Darker than the reference beyond the band.
     Acne,
-    /// Lit in error away from it.
+    /// Lighter than the reference beyond the band.
     Leak,
 }
 
@@ -162,37 +230,116 @@ fn evaluated(t: &Option<PixelTruth>) -> Option<PixelTruth> {
     t.filter(|t| t.faces_light)
 }
 
+/// A pixel's light-space point's derivatives along x and y, texels per pixel.
+type Derivatives = (Option<DVec2>, Option<DVec2>);
+
+/// The map's footprint at each pixel of a `width`-wide render: the
+/// derivatives of the light-space point along x and along y, texels per
+/// pixel (central differences, one-sided at a surface's edge; `None` where
+/// the pixel has no neighbour on its surface that way).
+fn footprint(render: &[Shaded], truth: &[Option<PixelTruth>], width: usize) -> Vec<Derivatives> {
+    let height = render.len().checked_div(width).unwrap_or(0);
+    let at = |k: usize| {
+        let l = render.get(k)?.light?;
+        evaluated(truth.get(k)?)?;
+        Some(DVec2::new(l.x.to_num(), l.y.to_num()))
+    };
+    let derivative = |c: DVec2, before: Option<usize>, after: Option<usize>| {
+        let near = |n: Option<usize>| n.and_then(at).filter(|p| (*p - c).length() <= SAME_SURFACE_TEXELS);
+        match (near(before), near(after)) {
+            (Some(a), Some(b)) => Some((b - a) / 2.0),
+            (Some(a), None) => Some(c - a),
+            (None, Some(b)) => Some(b - c),
+            (None, None) => None,
+        }
+    };
+    (0..render.len())
+        .map(|k| {
+            let Some(c) = at(k) else { return (None, None) };
+            let (x, y) = (k % width, k / width);
+            let n = |dx, dy| neighbour(x, y, dx, dy, width, height);
+            (derivative(c, n(-1, 0), n(1, 0)), derivative(c, n(0, -1), n(0, 1)))
+        })
+        .collect()
+}
+
+/// The screen extent, in pixels, of a map texel under a pixel whose
+/// light-space point moves by `dx` and `dy` texels per pixel: the texel is
+/// the unit square mapped back through the inverse of `[dx dy]`, and its
+/// longest extent is `1/σ_min = σ_max/|det|`. At least 1, at most
+/// [`MAX_BAND`]; 1 where a derivative is unknown.
+fn texel_extent(d: Derivatives) -> u32 {
+    let (Some(dx), Some(dy)) = d else { return 1 };
+    let det = dx.perp_dot(dy).abs();
+    let sum = dx.length_squared() + dy.length_squared();
+    let sigma_max = ((sum + (sum * sum - 4.0 * det * det).max(0.0).sqrt()) / 2.0).sqrt();
+    let extent = if det > 0.0 { sigma_max / det } else { f64::INFINITY };
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "clamped to 1..=MAX_BAND")]
+    let band = extent.ceil().clamp(1.0, f64::from(MAX_BAND)) as u32;
+    band
+}
+
 /// Each pixel's verdict, for a `width`-wide render: the counts
 /// [`compare`] reports, pixel by pixel (the error map draws them).
 #[must_use]
 pub fn verdicts(render: &[Shaded], truth: &[Option<PixelTruth>], width: u32) -> Vec<Verdict> {
+    let width = width as usize;
+    judge(render, truth, width, &footprint(render, truth, width)).into_iter().map(|(v, _)| v).collect()
+}
+
+/// Each pixel's verdict and edge band, given the map's `footprint`.
+fn judge(
+    render: &[Shaded],
+    truth: &[Option<PixelTruth>],
+    width: usize,
+    footprint: &[Derivatives],
+) -> Vec<(Verdict, u32)> {
     let exact: Vec<Option<bool>> = truth.iter().map(|t| evaluated(t).map(|t| !t.lit)).collect();
-    let to_edge = distance(&boundary(&exact, width as usize, false), width as usize);
+    // The exact boundary passes through a pixel whose neighbours' centres
+    // fall on both sides, or whose own area is partly shadowed (a shadow
+    // narrower than a pixel crosses no centre).
+    let mut sites = boundary(&exact, width, false);
+    for (site, t) in sites.iter_mut().zip(truth) {
+        *site |= evaluated(t).is_some_and(|t| t.visibility > 0.0 && t.visibility < 1.0);
+    }
+    let to_edge = distance(&sites, width);
     render
         .iter()
         .zip(truth)
         .enumerate()
         .map(|(k, (s, t))| {
-            let Some(t) = evaluated(t) else { return Verdict::Unevaluated };
-            let (false_shadow, false_light) = (shadowed(s) && t.lit, !shadowed(s) && !t.lit);
-            #[allow(
-                clippy::absurd_extreme_comparisons,
-                reason = "the stated distance is a parameter that may be raised"
-            )]
-            let near = to_edge.get(k).is_some_and(|&(d, _)| d <= EDGE_DISTANCE);
-            match (false_shadow, false_light, near) {
-                (false, false, _) => Verdict::Right,
-                (_, _, true) => Verdict::EdgePlacement,
-                (true, _, false) => Verdict::Acne,
-                (false, true, false) => Verdict::Leak,
-            }
+            let Some(t) = evaluated(t) else { return (Verdict::Unevaluated, 0) };
+            let band = footprint.get(k).map_or(1, |&d| texel_extent(d));
+            let wrong_side = shadowed(s) == t.lit;
+            let excess = excess_shadow(s, &t);
+            let near = to_edge.get(k).is_some_and(|&(d, _)| d < band);
+            let verdict = match (near, wrong_side || excess.abs() > SHADE_STEP) {
+                (_, false) => Verdict::Right,
+                (true, true) => Verdict::EdgePlacement,
+                (false, true) if excess > SHADE_STEP => Verdict::Acne,
+                (false, true) if excess < -SHADE_STEP => Verdict::Leak,
+                (false, true) => Verdict::Right,
+            };
+            (verdict, band)
         })
         .collect()
 }
 
-/// Compare a `width`-wide render with the truth. A pixel counts as shadowed
-/// by the pipeline when more than half of it is ([`Shadow`] above ½; a tie
-/// at exactly ½ counts as lit, and is counted in [`Metrics::ties`]).
+/// How much darker the pipeline shades a pixel than the reference: its
+/// shadow fraction less the reference's shadowed area fraction.
+fn excess_shadow(s: &Shaded, t: &PixelTruth) -> f64 {
+    s.shadow.to_num::<f64>() - (1.0 - t.visibility)
+}
+
+/// The median and 95th percentile of `v` (zeros when empty).
+fn quantiles(mut v: Vec<f64>) -> [f64; 2] {
+    let [_, p95, _] = summary(&mut v);
+    [v.get(v.len() / 2).copied().unwrap_or(0.0), p95]
+}
+
+/// Compare a `width`-wide render with the truth: the ½-verdict counts, the
+/// edge band, the shade-measured artifacts (see the module's rules), area
+/// error, displacement and the map's footprint.
 #[must_use]
 #[allow(
     clippy::cast_precision_loss,
@@ -201,30 +348,50 @@ pub fn verdicts(render: &[Shaded], truth: &[Option<PixelTruth>], width: u32) -> 
     reason = "pixel counts and coordinates"
 )]
 pub fn compare(render: &[Shaded], truth: &[Option<PixelTruth>], width: u32) -> Metrics {
-    let verdicts = verdicts(render, truth, width);
     let width = width as usize;
+    let footprint = footprint(render, truth, width);
+    let judged = judge(render, truth, width, &footprint);
     let exact: Vec<Option<bool>> = truth.iter().map(|t| evaluated(t).map(|t| !t.lit)).collect();
     let rendered: Vec<Option<bool>> =
         render.iter().zip(truth).map(|(s, t)| evaluated(t).map(|_| shadowed(s))).collect();
     let to_lit_edge = distance(&boundary(&exact, width, true), width);
+    let away: Vec<bool> = truth.iter().map(|t| t.is_some_and(|t| !t.faces_light)).collect();
+    let to_away = distance(&away, width);
     let mut m = Metrics::default();
     let (mut abs_error, mut square_error) = (0.0, 0.0);
-    for ((s, t), v) in render.iter().zip(truth).zip(&verdicts) {
+    let mut bands = Vec::new();
+    for (k, ((s, t), &(v, band))) in render.iter().zip(truth).zip(&judged).enumerate() {
         let Some(t) = evaluated(t) else { continue };
         m.evaluated += 1;
+        bands.push(f64::from(band));
         m.ties += u64::from(s.shadow == Shadow::from_bits(1 << 15));
-        m.false_shadow += u64::from(shadowed(s) && t.lit);
-        m.false_light += u64::from(!shadowed(s) && !t.lit);
-        m.edge_placement += u64::from(*v == Verdict::EdgePlacement);
-        m.acne += u64::from(*v == Verdict::Acne);
-        m.leaks += u64::from(*v == Verdict::Leak);
-        let e = s.shadow.to_num::<f64>() - (1.0 - t.visibility);
+        let (false_shadow, false_light) = (shadowed(s) && t.lit, !shadowed(s) && !t.lit);
+        m.false_shadow += u64::from(false_shadow);
+        m.false_light += u64::from(false_light);
+        let e = excess_shadow(s, &t);
+        match v {
+            Verdict::EdgePlacement => m.edge_placement += 1,
+            Verdict::Acne => {
+                m.acne += 1;
+                m.acne_area += e;
+                let turning = to_away.get(k).is_some_and(|&(d, _)| d <= TERMINATOR_REACH);
+                m.terminator_acne += u64::from(t.light_cos < GRAZING_COS && turning);
+            }
+            Verdict::Leak => {
+                m.leaks += 1;
+                m.leak_area -= e;
+            }
+            Verdict::Right | Verdict::Unevaluated => {}
+        }
+        if v != Verdict::EdgePlacement {
+            m.half_acne += u64::from(false_shadow);
+            m.half_leaks += u64::from(false_light);
+        }
         abs_error += e.abs();
         square_error += e * e;
     }
     // The rendered boundary's distance from the exact one, lit side to lit
-    // side.
-    // In map texels: between the two pixels' light-space points.
+    // side; in map texels between the two pixels' light-space points.
     let texel = |k: usize| render.get(k).and_then(|s| s.light).map(|l| (l.x.to_num::<f64>(), l.y.to_num::<f64>()));
     let (mut pixels, mut texels) = (Vec::new(), Vec::new());
     for (k, on) in boundary(&rendered, width, true).iter().enumerate() {
@@ -234,16 +401,9 @@ pub fn compare(render: &[Shaded], truth: &[Option<PixelTruth>], width: u32) -> M
             texels.push((a.0 - b.0).hypot(a.1 - b.1));
         }
     }
-    // The footprint: horizontal neighbours, both evaluated, on one surface
-    // (a jump of more than 8 texels is taken as another surface).
-    let mut steps: Vec<f64> = (1..render.len())
-        .filter(|&k| k % width != 0 && rendered[k].is_some() && rendered[k - 1].is_some())
-        .filter_map(|k| Some((texel(k)?, texel(k - 1)?)))
-        .map(|(a, b)| (a.0 - b.0).hypot(a.1 - b.1))
-        .filter(|d| *d <= 8.0)
-        .collect();
-    steps.sort_by(f64::total_cmp);
-    m.texels_per_pixel = steps.get(steps.len() / 2).copied().unwrap_or(0.0);
+    m.footprint_x = quantiles(footprint.iter().filter_map(|d| d.0).map(DVec2::length).collect());
+    m.footprint_y = quantiles(footprint.iter().filter_map(|d| d.1).map(DVec2::length).collect());
+    m.band = quantiles(bands);
     m.displacement = summary(&mut pixels);
     m.displacement_texels = summary(&mut texels);
     if m.evaluated > 0 {

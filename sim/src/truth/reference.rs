@@ -40,6 +40,10 @@ pub struct PixelTruth {
     pub lit: bool,
     /// Fraction of the pixel's area that sees the light.
     pub visibility: f64,
+    /// The cosine between the surface's geometric normal (the side the
+    /// camera sees) and the direction to the light at the pixel centre:
+    /// near 0 on a terminator, where the surface turns from the light.
+    pub light_cos: f64,
 }
 
 /// The scene as rays see it.
@@ -158,6 +162,7 @@ impl Reference {
                     faces_light: centre.is_some(),
                     lit: centre == Some(true),
                     visibility: f64::from(seen) / f64::from((n * n).max(1)),
+                    light_cos: nrm.normalize_or_zero().dot(light.towards(p).0),
                 })
             })
             .collect()

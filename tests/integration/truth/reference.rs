@@ -69,12 +69,12 @@ fn a_sphere_casts_a_disc_under_a_directional_light() {
 #[test]
 fn metrics_count_what_they_should() {
     let px = |shadow: f64| Shaded { triangle: 0, light: None, normal: Vec3::Y, shadow: Shadow::from_num(shadow) };
-    let truth = |lit: bool, visibility: f64| Some(PixelTruth { faces_light: true, lit, visibility });
+    let truth = |lit: bool, visibility: f64| Some(PixelTruth { faces_light: true, lit, visibility, light_cos: 1.0 });
     let render =
         [Shaded::BACKGROUND, px(1.0), px(0.0), px(1.0), px(0.75), px(0.0), px(0.25), px(1.0), px(0.5), px(0.0)];
     let truths = [
         None,
-        Some(PixelTruth { faces_light: false, lit: false, visibility: 0.0 }),
+        Some(PixelTruth { faces_light: false, lit: false, visibility: 0.0, light_cos: -1.0 }),
         truth(true, 1.0),   // lit, lit
         truth(true, 1.0),   // false shadow: |1 − 0| = 1
         truth(true, 0.5),   // false shadow (0.75 > ½): |0.75 − 0.5| = 0.25

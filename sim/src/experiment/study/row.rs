@@ -116,14 +116,28 @@ pub struct RowMetrics {
     pub false_shadow_rate: f64,
     /// False light per evaluated pixel.
     pub false_light_rate: f64,
-    /// Misclassified at the reference's shadow boundary.
+    /// Wrong within the edge band (the map texel's extent on screen from
+    /// the exact boundary): aliasing.
     pub edge_placement_px: u64,
-    /// False shadows away from it.
+    /// Beyond the band, darker than the reference by more than
+    /// [`SHADE_STEP`](crate::truth::metrics::SHADE_STEP): acne.
     pub acne_px: u64,
-    /// False light away from it.
+    /// Of the acne, on surfaces near grazing to the light: the terminator's.
+    pub terminator_acne_px: u64,
+    /// Beyond the band, lighter than the reference by more than the step:
+    /// leaks and detached shadows.
     pub leaks_px: u64,
-    /// Acne and leaks, percent of the evaluated pixels.
+    /// The acne's summed excess shadow, pixels.
+    pub acne_area_px: f64,
+    /// The leaks' summed missing shadow, pixels.
+    pub leak_area_px: f64,
+    /// Acne and leaks, percent of the evaluated pixels: what error budgets
+    /// apply to.
     pub artifact_percent: f64,
+    /// Beyond the band, false shadows by the ½ verdict.
+    pub half_acne_px: u64,
+    /// Beyond the band, false light by the ½ verdict.
+    pub half_leaks_px: u64,
     /// Mean |shadow fraction − true shadowed area|.
     pub mean_abs_error: f64,
     /// Root mean square of the same.
@@ -132,8 +146,11 @@ pub struct RowMetrics {
     pub displacement_mean_px: f64,
     /// 95th-percentile boundary displacement.
     pub displacement_p95_px: f64,
-    /// The map's footprint on screen (below 1: magnified).
-    pub texels_per_px: f64,
+    /// The map's footprint along x, texels per pixel, median (below 1:
+    /// magnified that way).
+    pub footprint_x_texels_per_px: f64,
+    /// The same along y.
+    pub footprint_y_texels_per_px: f64,
     /// Fraction of lookups with virtual samples.
     pub virtual_sample_fraction: f64,
 }
@@ -209,13 +226,19 @@ impl RowMetrics {
             false_light_rate: m.false_light_rate,
             edge_placement_px: m.edge_placement,
             acne_px: m.acne,
+            terminator_acne_px: m.terminator_acne,
             leaks_px: m.leaks,
+            acne_area_px: m.acne_area,
+            leak_area_px: m.leak_area,
             artifact_percent: m.artifact_percent,
+            half_acne_px: m.half_acne,
+            half_leaks_px: m.half_leaks,
             mean_abs_error: m.mean_abs_error,
             rms_error: m.rms_error,
             displacement_mean_px: m.displacement[0],
             displacement_p95_px: m.displacement[1],
-            texels_per_px: m.texels_per_pixel,
+            footprint_x_texels_per_px: m.footprint_x[0],
+            footprint_y_texels_per_px: m.footprint_y[0],
             virtual_sample_fraction,
         }
     }

@@ -164,15 +164,21 @@ pub fn invalid(r: &Row) -> Option<String> {
         for (name, v) in [
             ("displacement_mean_px", m.displacement_mean_px),
             ("displacement_p95_px", m.displacement_p95_px),
-            ("texels_per_px", m.texels_per_px),
+            ("acne_area_px", m.acne_area_px),
+            ("leak_area_px", m.leak_area_px),
+            ("footprint_x_texels_per_px", m.footprint_x_texels_per_px),
+            ("footprint_y_texels_per_px", m.footprint_y_texels_per_px),
         ] {
             if !(v.is_finite() && v >= 0.0) {
                 return Some(format!("{name} {v} is not a finite non-negative number"));
             }
         }
-        let misclassified = m.edge_placement_px.checked_add(m.acne_px).and_then(|n| n.checked_add(m.leaks_px));
-        if misclassified.is_none_or(|n| n > m.evaluated_px) {
-            return Some("more misclassified pixels than evaluated".into());
+        let wrong = m.edge_placement_px.checked_add(m.acne_px).and_then(|n| n.checked_add(m.leaks_px));
+        if wrong.is_none_or(|n| n > m.evaluated_px) {
+            return Some("more edge-placement, acne and leak pixels than evaluated".into());
+        }
+        if m.terminator_acne_px > m.acne_px {
+            return Some("more terminator acne than acne".into());
         }
     }
     if let Some(c) = &r.cost {

@@ -126,8 +126,9 @@ pub fn summary(rows: &[Row], manifest: &Manifest) -> String {
     let _ = writeln!(
         s,
         "{}; sweep {} ({}). {} rows ({configs} configurations × architectures), {} skipped. Budgets bound \
-         artifacts — acne and leaks, pixels misclassified against the exact reference away from its shadow \
-         boundaries — in percent of the pixels facing the light; edge placement is printed beside them. Cycles: \
+         artifacts — acne and leaks: pixels beyond the edge band (the map texel's extent on screen from the exact \
+         shadow boundary) whose shade is darker or lighter than the area-averaged reference by more than 0.1 — in \
+         percent of the pixels facing the light; edge placement (errors within the band) is printed beside them. Cycles: \
          the frame, light pass then camera pass, in each architecture's per-tile timing model; bytes: all DRAM \
          traffic, map reads as fetched through the map cache; energy: DRAM, buffers, caches and units.\n",
         manifest.umbra_version,
