@@ -12,13 +12,35 @@ use umbra::core::shadow::{Filter, Jitter, MapCoord};
 use umbra::sim::experiment::study::{self, Row, RowMetrics, Shard, Spec, Status, UNLIMITED_OFFSET, Variant};
 use umbra::sim::io::limits::Limits;
 use umbra::sim::render::Algorithm;
-use umbra::sim::world::scene::Scene;
+use umbra::sim::world::scene::{Light, Scene};
 
 /// A metrics-only sweep of one bundled scene at `size` (width, height,
 /// reference rays per pixel side), 24-bit maps.
 fn sweep(scene: &str, variants: Vec<Variant>, maps: &[u32], filters: Vec<Filter>, size: (u32, u32, u32)) -> Vec<Row> {
+    sweep_scene(Scene::bundled(scene).expect("a bundled scene"), variants, maps, filters, size)
+}
+
+/// `scene` with its first light moved to `position` (a variant).
+fn lit_from(mut scene: Scene, position: [f32; 3]) -> Scene {
+    let p = umbra::core::glam::Vec3::from_array(position);
+    match &mut scene.lights[0] {
+        Light::Spot(view) => view.position = p,
+        Light::Directional(view) => view.position = p,
+    }
+    scene.name = format!("{} lit from {position:?}", scene.name);
+    scene
+}
+
+/// [`sweep`] of a scene given whole (a variant of a bundled one).
+fn sweep_scene(
+    scene: Scene,
+    variants: Vec<Variant>,
+    maps: &[u32],
+    filters: Vec<Filter>,
+    size: (u32, u32, u32),
+) -> Vec<Row> {
     let spec = Spec {
-        scenes: vec![Scene::bundled(scene).expect("a bundled scene")],
+        scenes: vec![scene],
         variants,
         formats: vec![DepthFormatKind::D24],
         map_sizes: maps.to_vec(),
@@ -112,26 +134,83 @@ fn wang_molnar_no_first_depth_bias_is_acceptable() {
     }
 }
 
+/// Wang & Molnar §2, Figure 4 on their own set-up (`wang-molnar-4`: the
+/// table on the floor, nothing else, lit from low to the side so that the
+/// floor shadows itself) and on two variants with the light moved (higher,
+/// above the table top, which then shadows itself too; and lower and
+/// nearer), each at their 512² (4a) and 2048² (4b) maps, 512×512,
+/// bilinear, 16 biases from 0 to 0.03, against second depth at bias 0.
+/// Measured (set-up; higher; lower):
+///
+/// * Second depth has no artifact on the set-up and the lower light, 2 on
+///   the higher; asserted ≤ 3.
+/// * A larger map needs a smaller bias (their §2): the acne clears at
+///   0.002, 0.002, 0.003 with 2048² against 0.008, 0.008, 0.012 with 512²;
+///   asserted smaller on each.
+/// * Beyond that bias the shadows move away from the legs: edge placement
+///   and leaks together grow to 0.03 by 1.9×, 1.9×, 1.55× at 512² and 6×,
+///   5.9×, 5× at 2048² (asserted ≥ 1.3× and ≥ 3×); at 2048² 22, 481 and 0
+///   of them are leaks.
+/// * **Not reproduced: "no acceptable bias" at 512².** From the bias that
+///   clears the acne a window of biases leaves at most 1 artifact (to
+///   0.03, except with the higher light, whose leaks reach 15): the
+///   detachment lies within the 512² map's texel on screen (a band of
+///   about 4 pixels), so it counts as edge placement. Asserted: a window of
+///   at least two biases with at most 3 artifacts.
+#[test]
+fn wang_molnar_figure_4_on_their_set_up_and_variants() {
+    let biases =
+        [0.0, 0.0005, 0.001, 0.0015, 0.002, 0.003, 0.004, 0.005, 0.006, 0.008, 0.01, 0.012, 0.015, 0.02, 0.025, 0.03];
+    let set_up = Scene::bundled("wang-molnar-4").expect("bundled");
+    for scene in [set_up.clone(), lit_from(set_up.clone(), [5.5, 1.6, 2.5]), lit_from(set_up, [6.0, 0.5, 1.0])] {
+        let name = scene.name.clone();
+        let mut variants: Vec<Variant> = biases.iter().map(|&b| Variant::new(Algorithm::First, b)).collect();
+        variants.push(Variant::new(Algorithm::Second, 0.0));
+        let rows = sweep_scene(scene, variants, &[512, 2048], filter(Filter::Bilinear), (512, 512, 1));
+        let at = |map: u32| -> Vec<&Row> { rows.iter().filter(|r| r.config.map_side_texels == map).collect() };
+        let first = |map: u32| -> Vec<&Row> { at(map).into_iter().filter(|r| r.config.algorithm == "first").collect() };
+        let clears = |map: u32| first(map).into_iter().find(|r| m(r).acne_px == 0).expect("a bias clears the acne");
+        for map in [512, 2048] {
+            let second = at(map).into_iter().find(|r| r.config.algorithm == "second").expect("second");
+            assert!(artifacts(second) <= 3, "{name}, {map}²: second depth {} artifacts", artifacts(second));
+        }
+        let (small, large) = (clears(512).config.bias, clears(2048).config.bias);
+        assert!(large < small, "{name}: the acne clears at {large} with 2048² against {small} with 512²");
+        for (map, growth) in [(512, 13), (2048, 30)] {
+            let moved = |r: &Row| m(r).edge_placement_px + m(r).leaks_px;
+            let (from, to) = (moved(clears(map)), moved(first(map).last().expect("biases")));
+            assert!(to * 10 >= from * growth, "{name}, {map}²: edge placement and leaks {from} → {to}");
+        }
+        let window: Vec<&Row> =
+            first(512).into_iter().filter(|r| r.config.bias >= small).take_while(|r| artifacts(r) <= 3).collect();
+        assert!(window.len() >= 2, "{name}: a 512² bias window of {} biases", window.len());
+    }
+}
+
 /// Weiskopf & Ertl §3–§4 and Figure 5 on their L (one closed mesh, lit from
-/// the right above so that the upright shadows the base), 512×512, a heavily
-/// undersampled 128² 24-bit map, bilinear.
+/// the right above so that the upright shadows the base), 512×512,
+/// bilinear, at a heavily undersampled 128² map and at 512², and on the
+/// variant a modeller builds: the L as two touching boxes
+/// (`weiskopf-l-boxes`).
 ///
 /// * Back-face culling removes dual depth's self-shadowing at the
-///   silhouettes (Figure 2 (b), 5 (c) against (f)): acne with culling
-///   against acne without.
+///   silhouettes (Figure 2 (b), 5 (c) against (f)). Measured acne with
+///   culling against without: closed L 0 against 808 (128²) and 0 against
+///   547 (512²); asserted ≤ 10 and ≥ 400. On the two boxes culling leaves
+///   57 and 95 acne pixels where the upright stands on the base (each
+///   box's own back faces are in `z2` there, behind the other's top),
+///   against 865 and 642 without: asserted between 20 and a quarter of
+///   the unculled count.
 /// * Midpoint maps with back-face culling self-unshadow near silhouettes
-///   (Figure 4, 5 (e)), dual depth does not: its false light against
-///   midpoint-with-culling's. Self-unshadowing lies next to the shadow
-///   boundary, within the edge band, so it is counted as false light (by
-///   the ½ verdict), not as leaks.
-///
-/// Measured (shade beyond the band): acne 0 (dual) against 808 (dual
-/// without culling), asserted ≤ 60 and ≥ 400; false light 112 pixels (dual) against 142
-/// (midpoint-bfc), asserted at least 15 apart. Not reproduced: Figure 5 (b)'s
-/// self-unshadowing of the midpoint without culling — on the closed L its
-/// false light equals dual depth's (112 and 112), because without culling
-/// `z2` is the L's own back, close behind `z1`, and the midpoint never
-/// passes a receiver (asserted as measured, within 5 pixels).
+///   (Figure 4, 5 (e)), dual depth does not: false light (½ verdict)
+///   +30 pixels at 128² on both Ls (142 against 112, 139 against 109),
+///   +6 at 512² (51 against 45, 50 against 44); asserted at least +15 and
+///   +2. It lies within the edge band, so it is not counted as leaks.
+/// * Not reproduced: Figure 5 (b)'s self-unshadowing of the midpoint
+///   without culling — its false light equals dual depth's on every
+///   variant, because without culling `z2` is the L's own back, close
+///   behind `z1`, and the midpoint never passes a receiver (asserted as
+///   measured, within 5 pixels).
 #[test]
 fn weiskopf_ertl_dual_depth_with_culling() {
     let variants = vec![
@@ -139,25 +218,36 @@ fn weiskopf_ertl_dual_depth_with_culling() {
         Variant::new(Algorithm::Dual { offset: UNLIMITED_OFFSET }, 0.0),
         Variant::new(Algorithm::Midpoint, 0.0),
         Variant::new(Algorithm::Dual { offset: 0.05 }, 0.0).without_culling(),
-        Variant::new(Algorithm::First, 0.02),
     ];
-    let rows = sweep("weiskopf-l", variants, &[128], filter(Filter::Bilinear), (512, 512, 1));
-    // One row per variant, in the variants' order.
-    let get = |name: &str| {
-        let k = ["dual", "midpoint-bfc", "midpoint", "dual-nocull", "first"].iter().position(|n| *n == name);
-        k.and_then(|k| rows.get(k)).expect("row")
-    };
-    let (dual, mid_bfc, nocull) = (get("dual"), get("midpoint-bfc"), get("dual-nocull"));
-    let acne = |r: &Row| m(r).acne_px;
-    assert!(acne(dual) <= 60, "dual depth with culling: {} acne", acne(dual));
-    assert!(acne(nocull) >= 400, "dual depth without culling: {} acne", acne(nocull));
-    assert!(
-        false_light(mid_bfc) >= false_light(dual) + 15,
-        "false light: midpoint-bfc {} against dual {}",
-        false_light(mid_bfc),
-        false_light(dual)
-    );
-    assert!(false_light(get("midpoint")).abs_diff(false_light(dual)) <= 5, "midpoint without culling");
+    for scene in ["weiskopf-l", "weiskopf-l-boxes"] {
+        let rows = sweep(scene, variants.clone(), &[128, 512], filter(Filter::Bilinear), (512, 512, 1));
+        for map in [128, 512] {
+            // One row per variant, in the variants' order.
+            let at: Vec<&Row> = rows.iter().filter(|r| r.config.map_side_texels == map).collect();
+            let (dual, mid_bfc, midpoint, nocull) = (at[0], at[1], at[2], at[3]);
+            let acne = |r: &Row| m(r).acne_px;
+            let here = format!("{scene}, {map}²");
+            assert!(acne(nocull) >= 400, "{here}: dual depth without culling: {} acne", acne(nocull));
+            if scene == "weiskopf-l" {
+                assert!(acne(dual) <= 10, "{here}: dual depth with culling: {} acne", acne(dual));
+            } else {
+                assert!(
+                    acne(dual) >= 20 && acne(dual) * 4 <= acne(nocull),
+                    "{here}: {} against {}",
+                    acne(dual),
+                    acne(nocull)
+                );
+            }
+            let gain = if map == 128 { 15 } else { 2 };
+            assert!(
+                false_light(mid_bfc) >= false_light(dual) + gain,
+                "{here}: false light: midpoint-bfc {} against dual {}",
+                false_light(mid_bfc),
+                false_light(dual)
+            );
+            assert!(false_light(midpoint).abs_diff(false_light(dual)) <= 5, "{here}: midpoint without culling");
+        }
+    }
 }
 
 /// Reeves et al. §4 on their sphere, first depth at bias 0.01, 512² 24-bit,
@@ -235,6 +325,32 @@ fn sen_silhouette_maps_sharpen_magnified_edges() {
     let (acne, terminator) = (m(&wide[1]).acne_px, m(&wide[1]).terminator_acne_px);
     assert!(acne >= 20 && terminator >= 15, "silhouette map, minified: {acne} acne, {terminator} terminator");
     assert!(m(&wide[0]).acne_px <= 5, "shadow map, minified: {} acne", m(&wide[0]).acne_px);
+}
+
+/// Sen et al. §6 on variants of `crowd-zoom`: a 256² map, and the light
+/// lowered from 3 to 1.2 above the floor so that the floor is lit near
+/// grazing, at 512² and 256². Misclassified, shadow map against silhouette
+/// map, measured: 256² 2.589 % against 0.639 % (4.1×); grazing 512²
+/// 1.480 % against 0.252 % (5.9×); asserted at least 3× on both. **Not
+/// on the grazing floor at 256²**: 12.62 % against 11.34 % (1.1×;
+/// asserted below 1.5×): a texel there spans so much of the floor that
+/// one silhouette point per texel cannot place the edge of the figures'
+/// thin, overlapping shadows.
+#[test]
+fn sen_silhouette_maps_on_variants_of_the_zoomed_crowd() {
+    let variants =
+        vec![Variant::new(Algorithm::First, 0.002), Variant::new(Algorithm::Silhouette { packed: false }, 0.002)];
+    let set_up = Scene::bundled("crowd-zoom").expect("bundled");
+    let gain = |rows: &[Row], map: u32| {
+        let at: Vec<&Row> = rows.iter().filter(|r| r.config.map_side_texels == map).collect();
+        m(at[0]).misclassified_percent / m(at[1]).misclassified_percent.max(1e-9)
+    };
+    let zoom = sweep_scene(set_up.clone(), variants.clone(), &[256], filter(Filter::Point), (600, 512, 1));
+    let low =
+        sweep_scene(lit_from(set_up, [0.0, 1.2, 10.0]), variants, &[256, 512], filter(Filter::Point), (600, 512, 1));
+    assert!(gain(&zoom, 256) >= 3.0, "256²: {}×", gain(&zoom, 256));
+    assert!(gain(&low, 512) >= 3.0, "grazing, 512²: {}×", gain(&low, 512));
+    assert!(gain(&low, 256) < 1.5, "grazing, 256²: {}×", gain(&low, 256));
 }
 
 /// Sen et al.'s Table 1 on CROWD zoomed in on the shadow (`crowd-zoom` at

@@ -48,10 +48,12 @@ mod meshes;
 mod schema;
 
 /// The bundled scenes, by name: the papers' set-ups, built procedurally.
-pub const BUNDLED: [(&str, &str); 10] = [
+pub const BUNDLED: [(&str, &str); 12] = [
     ("table", include_str!("../../../../scenes/table.toml")),
+    ("wang-molnar-4", include_str!("../../../../scenes/wang-molnar-4.toml")),
     ("reeves-sphere", include_str!("../../../../scenes/reeves-sphere.toml")),
     ("weiskopf-l", include_str!("../../../../scenes/weiskopf-l.toml")),
+    ("weiskopf-l-boxes", include_str!("../../../../scenes/weiskopf-l-boxes.toml")),
     ("double-torus", include_str!("../../../../scenes/double-torus.toml")),
     ("thin", include_str!("../../../../scenes/thin.toml")),
     ("open-sheet", include_str!("../../../../scenes/open-sheet.toml")),
