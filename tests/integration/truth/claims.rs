@@ -285,6 +285,33 @@ fn reeves_more_samples_less_error() {
     }
 }
 
+/// Reeves et al. §4 on variants of their sphere: the map at 256² and at
+/// 1024², jittered with `ResFactor` 3, 512×512, the 4×4-ray reference.
+/// Mean absolute area error for 1, 4 and 16 samples, measured ×10⁻³:
+///
+/// * 1024²: 2.535, 1.881, 1.779 — a fall of 26 % from 1 to 4 samples
+///   (asserted at least 15 %) and 5 % more to 16 (asserted no rise beyond
+///   0.5 %): the claim holds.
+/// * 256²: 3.142, 3.007, 3.002 — it holds by only 4.3 % (asserted at least
+///   2 %), then flat: the region of 3 texels spans about 6 pixels here, and
+///   its blur past the pixel's own area, which no number of samples
+///   removes, is most of the error.
+#[test]
+fn reeves_more_samples_less_error_on_variants() {
+    let filters: Vec<Filter> = [1u16, 4, 16]
+        .map(|n| Filter::Jittered(Jitter { num_samples: n, res_factor: MapCoord::from_num(3.0), ..Jitter::REEVES }))
+        .to_vec();
+    for map in [256, 1024] {
+        let rows =
+            sweep("reeves-sphere", vec![Variant::new(Algorithm::First, 0.01)], &[map], filters.clone(), (512, 512, 4));
+        let mae: Vec<f64> = rows.iter().map(|r| m(r).mean_abs_error).collect();
+        eprintln!("{map}²: mean absolute error for 1, 4, 16 samples: {mae:?}");
+        let fall = if map == 1024 { 0.85 } else { 0.98 };
+        assert!(mae[1] < fall * mae[0], "{map}², 1 → 4 samples: {mae:?}");
+        assert!(mae[2] <= mae[1] * 1.005, "{map}², 4 → 16 samples: {mae:?}");
+    }
+}
+
 /// Sen, Cammarano & Hanrahan §6 on CROWD, first depth at bias 0.002 under
 /// both, point sampled: the silhouette map's wrong pixels against the
 /// shadow map's with the map magnified on screen (`crowd-zoom`, 600×512,
@@ -327,10 +354,13 @@ fn sen_silhouette_maps_sharpen_magnified_edges() {
     assert!(m(&wide[0]).acne_px <= 5, "shadow map, minified: {} acne", m(&wide[0]).acne_px);
 }
 
-/// Sen et al. §6 on variants of `crowd-zoom`: a 256² map, and the light
-/// lowered from 3 to 1.2 above the floor so that the floor is lit near
-/// grazing, at 512² and 256². Misclassified, shadow map against silhouette
-/// map, measured: 256² 2.589 % against 0.639 % (4.1×); grazing 512²
+/// Sen et al. §6 on the crowd seen from above its shadows
+/// (`crowd-overhead`, the 512² map magnified along both axes, 0.26 and
+/// 0.05 texels a pixel) and on variants of `crowd-zoom`: a 256² map, and
+/// the light lowered from 3 to 1.2 above the floor so that the floor is lit
+/// near grazing, at 512² and 256². Misclassified, shadow map against
+/// silhouette map, measured: overhead 1.781 % against 0.679 % (2.6×;
+/// asserted at least 2×); 256² 2.589 % against 0.639 % (4.1×); grazing 512²
 /// 1.480 % against 0.252 % (5.9×); asserted at least 3× on both. **Not
 /// on the grazing floor at 256²**: 12.62 % against 11.34 % (1.1×;
 /// asserted below 1.5×): a texel there spans so much of the floor that
@@ -348,6 +378,16 @@ fn sen_silhouette_maps_on_variants_of_the_zoomed_crowd() {
     let zoom = sweep_scene(set_up.clone(), variants.clone(), &[256], filter(Filter::Point), (600, 512, 1));
     let low =
         sweep_scene(lit_from(set_up, [0.0, 1.2, 10.0]), variants, &[256, 512], filter(Filter::Point), (600, 512, 1));
+    let overhead = sweep(
+        "crowd-overhead",
+        vec![Variant::new(Algorithm::First, 0.002), Variant::new(Algorithm::Silhouette { packed: false }, 0.002)],
+        &[512],
+        filter(Filter::Point),
+        (512, 512, 1),
+    );
+    let m0 = m(&overhead[0]);
+    assert!(m0.footprint_x_texels_per_px < 1.0 && m0.footprint_y_texels_per_px < 1.0, "magnified both ways");
+    assert!(gain(&overhead, 512) >= 2.0, "overhead: {}×", gain(&overhead, 512));
     assert!(gain(&zoom, 256) >= 3.0, "256²: {}×", gain(&zoom, 256));
     assert!(gain(&low, 512) >= 3.0, "grazing, 512²: {}×", gain(&low, 512));
     assert!(gain(&low, 256) < 1.5, "grazing, 256²: {}×", gain(&low, 256));
@@ -359,7 +399,10 @@ fn sen_silhouette_maps_on_variants_of_the_zoomed_crowd() {
 /// Measured O = 70.6 on `crowd-zoom` against 4.96 on the wide `crowd`
 /// (asserted above 40 and at least 10× the wide view's), P = 9.2 %
 /// (asserted between 5 % and 16 %, Sen's bound for silhouette maps to cost
-/// less than twice a shadow map's bandwidth).
+/// less than twice a shadow map's bandwidth). Zoomed in from above
+/// (`crowd-overhead`), where the volumes are seen end-on, O = 6.4 and
+/// P = 2.7 % (asserted below 10 and 16 %): the overdraw is a property of
+/// looking across the volumes, not of zooming in.
 #[test]
 fn sen_table_one_overdraw_and_silhouette_fill() {
     use umbra::sim::cost::arch::Arch;
@@ -392,4 +435,10 @@ fn sen_table_one_overdraw_and_silhouette_fill() {
         wide.overdraw
     );
     assert!((0.05..0.16).contains(&sil.p_fill), "P = {}", sil.p_fill);
+    // Variants: the crowd seen from above its shadows, where the volumes
+    // are seen end-on rather than across.
+    let over = figures("crowd-overhead", Algorithm::Volumes);
+    let over_sil = figures("crowd-overhead", Algorithm::Silhouette { packed: false });
+    eprintln!("overhead: O = {}, P = {}", over.overdraw, over_sil.p_fill);
+    assert!(over.overdraw < 10.0 && over_sil.p_fill < 0.16, "overhead: O {}, P {}", over.overdraw, over_sil.p_fill);
 }

@@ -48,7 +48,7 @@ mod meshes;
 mod schema;
 
 /// The bundled scenes, by name: the papers' set-ups, built procedurally.
-pub const BUNDLED: [(&str, &str); 12] = [
+pub const BUNDLED: [(&str, &str); 13] = [
     ("table", include_str!("../../../../scenes/table.toml")),
     ("wang-molnar-4", include_str!("../../../../scenes/wang-molnar-4.toml")),
     ("reeves-sphere", include_str!("../../../../scenes/reeves-sphere.toml")),
@@ -59,6 +59,7 @@ pub const BUNDLED: [(&str, &str); 12] = [
     ("open-sheet", include_str!("../../../../scenes/open-sheet.toml")),
     ("crowd", include_str!("../../../../scenes/crowd.toml")),
     ("crowd-zoom", include_str!("../../../../scenes/crowd-zoom.toml")),
+    ("crowd-overhead", include_str!("../../../../scenes/crowd-overhead.toml")),
     ("grazing", include_str!("../../../../scenes/grazing.toml")),
     ("factory", include_str!("../../../../scenes/factory.toml")),
 ];
