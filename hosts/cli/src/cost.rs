@@ -49,13 +49,32 @@ impl ArchArgs {
         }
         Ok(archs)
     }
+}
 
-    /// The one architecture a command needs.
+/// The one architecture of a command that costs on one (`plan`,
+/// `correlate`).
+#[derive(clap::Args, Debug, Default)]
+pub(super) struct OneArchArgs {
+    /// A bundled architecture (pixelflow, talisman, immediate, mobile-tbdr,
+    /// desktop-imr, r300) or an architecture file (TOML, see arch/).
+    #[arg(long = "arch")]
+    pub(super) arch: Option<String>,
+    /// Override a parameter of the architecture: `key=value`, with units
+    /// where the key has one (`dram.bandwidth=25.6GB/s`). Repeat for
+    /// several.
+    #[arg(long = "set")]
+    pub(super) set: Vec<String>,
+}
+
+impl OneArchArgs {
+    /// The architecture with the overrides applied; `default` when `--arch`
+    /// is not given.
     pub(super) fn one(&self, default: &str, limits: &Limits) -> Result<Arch> {
-        let mut archs = self.resolve(&[default], limits)?;
-        if archs.len() != 1 {
-            bail!("this command costs on one architecture; --arch names {}", archs.len());
+        let name = self.arch.as_deref().unwrap_or(default);
+        if name == "all" {
+            bail!("--arch all: this command costs on one architecture; name one");
         }
+        let mut archs = ArchArgs { arch: vec![name.to_owned()], set: self.set.clone() }.resolve(&[default], limits)?;
         Ok(archs.remove(0))
     }
 }
@@ -114,7 +133,7 @@ pub(super) struct CorrelateArgs {
     pub(super) scene: String,
     /// The architecture (default: r300).
     #[command(flatten)]
-    pub(super) archs: ArchArgs,
+    pub(super) archs: OneArchArgs,
     /// Output folder for table1.md and table1.json.
     #[arg(long, default_value = "out/correlate")]
     pub(super) out: std::path::PathBuf,

@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use crate::cost::ArchArgs;
+use crate::cost::{ArchArgs, OneArchArgs};
 use crate::say::say;
 use anyhow::{Context, Result, bail};
 use indicatif::ProgressBar;
@@ -22,7 +22,7 @@ pub(super) struct PlanArgs {
     pub(super) error_budget: String,
     /// The architecture whose cost is minimised (default: talisman).
     #[command(flatten)]
-    pub(super) archs: ArchArgs,
+    pub(super) archs: OneArchArgs,
     /// Output folder for plan.md and plan.json.
     #[arg(long, default_value = "out/plan")]
     pub(super) out: PathBuf,
@@ -101,7 +101,7 @@ pub(super) fn plan(args: &PlanArgs, limits: &Limits) -> Result<()> {
     let md = p.markdown(&scene, budget);
     say!("{}", md.trim_end());
     if !p.meets(budget) {
-        say!("\nThe measured artifacts exceed the budget: no candidate meets it at this image size.");
+        say!("\nNo candidate meets the budget at this image size: all {} were measured.", p.candidates);
     }
     folder.write_text("plan.md", &md)?;
     folder.write_text("plan.json", &serde_json::to_string_pretty(&p)?)?;

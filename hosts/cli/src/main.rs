@@ -10,6 +10,7 @@ use experiment::{MergeArgs, PlanArgs, StudyArgs, plan, study};
 use render::{RenderArgs, render};
 use umbra_sim::io::limits::Limits;
 
+mod arch;
 mod cost;
 mod depth;
 mod experiment;
@@ -135,6 +136,10 @@ enum Command {
     /// Merge the results.jsonl of `study --shard` runs into the whole run's
     /// files.
     Merge(MergeArgs),
+    /// Show an architecture with its derived figures, check it for keys
+    /// that have no effect, or compare two.
+    #[command(subcommand)]
+    Arch(arch::ArchCommand),
     /// The least costly configuration a scene needs for an error budget:
     /// buffers, depth precision, map size and filter, with the reasons, the
     /// predicted and measured error and cost, and the map's storage.
@@ -180,6 +185,7 @@ fn main() -> Result<()> {
         Some(Command::Correlate(args)) => correlate(&args, limits),
         Some(Command::Study(args)) => study(&args, limits),
         Some(Command::Plan(args)) => plan(&args, limits),
+        Some(Command::Arch(command)) => arch::arch(&command, limits),
         Some(Command::Merge(args)) => {
             let n = umbra_sim::experiment::study::merge(&args.inputs, &args.out, limits)?;
             say!("merged {n} rows into {}", args.out.display());

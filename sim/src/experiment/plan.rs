@@ -1,10 +1,13 @@
 //! The planner: the least costly configuration a scene needs for an error
 //! budget, modelling only what the scene requires.
 //!
-//! 1. **Buffers.** A scene of solids gets its second depth from one buffer
-//!    by front-face culling (Wang & Molnar 1994 §3.4). Open surfaces cannot
-//!    be front-face culled (they have no back), so a scene with any gets the
-//!    dual unit and Weiskopf & Ertl's dual test with per-object culling.
+//! 1. **Buffers.** A scene of solids gets second depth: from one buffer by
+//!    front-face culling (Wang & Molnar 1994 §3.4), or from the dual unit's
+//!    `z2`, whichever meets the budget more cheaply (culling the front faces
+//!    is not always the cheaper: it draws the backs, which can shadow more
+//!    and need more virtual samples). Open surfaces cannot be front-face
+//!    culled (they have no back), so a scene with any gets the dual unit
+//!    and Weiskopf & Ertl's dual test with per-object culling.
 //! 2. **Precision.** The dual map of the scene, rendered in the f32 format,
 //!    gives the gap `z2 − z1` between the nearest and second-nearest surface
 //!    at every texel where both exist; the tests place their reference
@@ -12,11 +15,14 @@
 //!    1st percentile, ignoring grazing slivers at silhouettes) span at least
 //!    [`GAP_LSBS`] 16-bit steps. This folds in the depth range: a large
 //!    far/near ratio squeezes distant gaps into few steps.
-//! 3. **Map size and filter.** Each candidate is rendered at a quarter of
-//!    the scene's image (one reference ray per pixel) to predict its error
-//!    and cost; the cheapest predicted to meet the budget is chosen, then
-//!    rendered at full size against the 4×4-ray reference for the measured
-//!    figures.
+//! 3. **Algorithm, map size and filter.** Every candidate (for solids,
+//!    second depth by front-face culling or from the dual unit; × map side
+//!    × filter) is
+//!    costed on the architecture at the scene's image, and the candidates
+//!    are measured against the 4×4-ray reference cheapest first (cycles,
+//!    then DRAM bytes) until one meets the budget: the first that does is
+//!    the cheapest that does. Only when every candidate has been measured
+//!    and missed is the most accurate taken, and the plan says so.
 
 use indicatif::ProgressBar;
 use serde::Serialize;
@@ -53,7 +59,7 @@ pub struct PlanSpec {
     pub filters: Vec<Filter>,
     /// The architecture whose cost is minimised.
     pub arch: Arch,
-    /// Camera image for the measurement (the prediction uses a quarter).
+    /// Camera image the candidates are measured at.
     pub image: [u32; 2],
     /// What each render may ask for.
     pub limits: Limits,
@@ -93,30 +99,50 @@ pub struct Figures {
     pub bytes: u64,
 }
 
+/// One candidate as the planner measured it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Candidate {
+    /// Its algorithm, as `--algo` spells it.
+    pub algorithm: String,
+    /// Map side, texels.
+    pub map_size: u32,
+    /// Filter.
+    #[serde(with = "crate::base::text")]
+    pub filter: Filter,
+    /// Its figures at the image.
+    pub figures: Figures,
+}
+
 /// A chosen configuration and why.
 #[derive(Clone, Debug, Serialize)]
 pub struct Plan {
     /// The configuration, at the measurement's image size.
     pub config: RenderConfig,
+    /// Its algorithm, as `umbra render --algo` spells it.
+    pub algorithm: String,
     /// Its filter.
     #[serde(with = "crate::base::text")]
     pub filter: Filter,
     /// Its depth format's name.
     pub format: String,
+    /// The architecture whose cost was minimised.
+    pub arch: String,
+    /// The `umbra render` command that renders the plan.
+    pub command: String,
     /// The thinnest gap between surfaces (1st percentile), in 16-bit steps.
     pub gap_lsbs: f64,
     /// Whether the scene has open surfaces.
     pub open_surfaces: bool,
-    /// Quarter-size prediction.
-    pub predicted: Figures,
-    /// Full-size measurement.
+    /// The chosen candidate's measurement.
     pub measured: Figures,
     /// The same measured for the full configuration: the same test with
     /// the dual unit and 24-bit depth, the same map size and filter.
     pub full: Figures,
-    /// Whether a candidate was predicted to meet the budget (else the most
-    /// accurate one was taken).
-    pub predicted_to_meet: bool,
+    /// How many candidates there were.
+    pub candidates: usize,
+    /// The candidates measured, cheapest first, up to the one chosen (all
+    /// of them when none meets the budget).
+    pub tried: Vec<Candidate>,
     /// The reasons, one line each.
     pub reasons: Vec<String>,
     /// The chosen map's storage under Reeves et al.'s schemes (Table 2),
@@ -189,18 +215,17 @@ fn figures(m: &Metrics, c: &CostReport) -> Figures {
     }
 }
 
-/// Error (against `truth`, the scene's reference at the configuration's
-/// image and rays) and cost of `cfg` on `scene` under the spec's
-/// architecture and within its limits, and the render.
-fn evaluate(
+/// Error of `cfg` on `scene` against `truth` (the scene's reference at the
+/// configuration's image and rays), with its cost `c`, and the render.
+fn measure(
     scene: &Scene,
     cfg: &RenderConfig,
     spec: &PlanSpec,
     truth: &[Option<PixelTruth>],
+    c: &CostReport,
 ) -> Result<(Figures, Render), PlanError> {
     let r = render(scene, cfg, &spec.limits, TruthSource::Given(truth.to_vec()))?;
-    let c = cost(scene, cfg, &spec.arch, &spec.limits)?;
-    Ok((figures(&r.metrics, &c), r))
+    Ok((figures(&r.metrics, c), r))
 }
 
 /// Plan `scene` within `spec`.
@@ -230,16 +255,19 @@ pub fn plan(scene: &Scene, spec: &PlanSpec) -> Result<Plan, PlanError> {
     }
     let mut reasons = Vec::new();
     let open_surfaces = scene.objects.iter().any(|o| !o.solid);
-    let algorithm = if open_surfaces {
+    let algorithms = if open_surfaces {
         let names: Vec<&str> = scene.objects.iter().filter(|o| !o.solid).map(|o| o.name.as_str()).collect();
         reasons.push(format!(
             "open surfaces ({}) have no back to cull: dual unit (z1, z2), Weiskopf & Ertl's dual test, solids back-face culled",
             names.join(", ")
         ));
-        Algorithm::Dual { offset: DUAL_OFFSET }
+        vec![Algorithm::Dual { offset: DUAL_OFFSET }]
     } else {
-        reasons.push("every object is a closed solid: second depth by front-face culling, one depth buffer".into());
-        Algorithm::SecondFrontCulled
+        reasons.push(
+            "every object is a closed solid: second depth, by front-face culling into one depth buffer or from the dual unit's z2, whichever meets the budget more cheaply"
+                .into(),
+        );
+        vec![Algorithm::SecondFrontCulled, Algorithm::Second]
     };
     let gap_map = spec.map_sizes.iter().copied().max().unwrap_or(512).min(1024);
     let gap_lsbs = thinnest_gap(scene, gap_map)?;
@@ -268,65 +296,83 @@ pub fn plan(scene: &Scene, spec: &PlanSpec) -> Result<Plan, PlanError> {
             culling: Culling::ALGORITHM,
         }
     };
-    let quarter = [(spec.image[0] / 2).max(1), (spec.image[1] / 2).max(1)];
-    // The references, built once: candidates at a quarter of the image with
-    // one ray per pixel, the plan and the full configuration at the image.
-    let hidden = ProgressBar::hidden();
-    let quarter_truth = truth(scene, quarter[0], quarter[1], 1, &hidden)?;
-    let image_truth = truth(scene, spec.image[0], spec.image[1], 4, &hidden)?;
-    let mut best: Option<(Figures, u32, Filter)> = None;
-    let mut most_accurate: Option<(Figures, u32, Filter)> = None;
-    for &map in &spec.map_sizes {
-        for &filter in filters {
-            let (f, _) = evaluate(scene, &at(quarter, map, filter, algorithm, format, 1), spec, &quarter_truth)?;
-            if most_accurate.is_none_or(|(b, ..)| f.artifact_percent < b.artifact_percent) {
-                most_accurate = Some((f, map, filter));
-            }
-            if f.artifact_percent <= spec.budget_percent
-                && best.is_none_or(|(b, ..)| (f.cycles, f.bytes) < (b.cycles, b.bytes))
-            {
-                best = Some((f, map, filter));
+    // Every candidate costed at the image, cheapest first; then measured
+    // in that order until one meets the budget.
+    let image_truth = truth(scene, spec.image[0], spec.image[1], 4, &ProgressBar::hidden())?;
+    let mut costed = Vec::new();
+    for &algorithm in &algorithms {
+        for &map in &spec.map_sizes {
+            for &filter in filters {
+                let cfg = at(spec.image, map, filter, algorithm, format, 4);
+                let c = cost(scene, &cfg, &spec.arch, &spec.limits)?;
+                costed.push((cfg, c));
             }
         }
     }
-    let predicted_to_meet = best.is_some();
-    let Some((predicted, map, filter)) = best.or(most_accurate) else {
+    costed.sort_by(|(_, a), (_, b)| a.cycles.total_cmp(&b.cycles).then(a.bytes.cmp(&b.bytes)));
+    let mut tried = Vec::new();
+    let mut chosen: Option<(Figures, Render, RenderConfig)> = None;
+    let mut most_accurate: Option<(Figures, Render, RenderConfig)> = None;
+    for (cfg, c) in &costed {
+        let (f, r) = measure(scene, cfg, spec, &image_truth, c)?;
+        tried.push(Candidate {
+            algorithm: cfg.algorithm.name().to_owned(),
+            map_size: cfg.map_size,
+            filter: cfg.filter,
+            figures: f,
+        });
+        if f.artifact_percent <= spec.budget_percent {
+            chosen = Some((f, r, *cfg));
+            break;
+        }
+        if most_accurate.as_ref().is_none_or(|(b, ..)| f.artifact_percent < b.artifact_percent) {
+            most_accurate = Some((f, r, *cfg));
+        }
+    }
+    let n = costed.len();
+    let meets = chosen.is_some();
+    let Some((measured, r, config)) = chosen.or(most_accurate) else {
         return Err(PlanError::Spec("no candidate".into()));
     };
-    if predicted_to_meet {
+    let (map, filter) = (config.map_size, config.filter);
+    if meets {
         reasons.push(format!(
-            "{map}² map with the {filter} filter: the cheapest candidate predicted under {}% ({} candidates at {}×{})",
+            "{}, {map}² map with the {filter} filter: the cheapest of {n} candidates (algorithms × map sides × filters) to meet {}% on {}, {} of them measured cheapest first",
+            config.algorithm.name(),
             spec.budget_percent,
-            spec.map_sizes.len() * filters.len(),
-            quarter[0],
-            quarter[1]
+            spec.arch.name,
+            tried.len()
         ));
     } else {
         reasons.push(format!(
-            "no candidate is predicted under {}%: the most accurate, {map}² with the {filter} filter",
-            spec.budget_percent
+            "no candidate meets {}%: all {n} measured; the most accurate, {}, {map}² with the {filter} filter",
+            spec.budget_percent,
+            config.algorithm.name()
         ));
     }
-    let config = at(spec.image, map, filter, algorithm, format, 4);
-    let (measured, r) = evaluate(scene, &config, spec, &image_truth)?;
     let raster = r.maps.maps.config.raster;
     let shape = MapShape::of_format(raster.width(), raster.height(), r.maps.format);
     let storage = storage_bytes(&shape, &r.maps.buffers(), STORAGE_TILE)
         .map_err(|e| PlanError::Spec(format!("map storage: {e}")))?;
     // The same test with everything: the dual unit's own z2 and 24 bits.
-    let full_algorithm = if algorithm == Algorithm::SecondFrontCulled { Algorithm::Second } else { algorithm };
+    let full_algorithm =
+        if config.algorithm == Algorithm::SecondFrontCulled { Algorithm::Second } else { config.algorithm };
     let full_config = at(spec.image, map, filter, full_algorithm, DepthFormatKind::D24, 4);
-    let (full, _) = evaluate(scene, &full_config, spec, &image_truth)?;
+    let full_cost = cost(scene, &full_config, &spec.arch, &spec.limits)?;
+    let (full, _) = measure(scene, &full_config, spec, &image_truth, &full_cost)?;
     Ok(Plan {
         config,
+        algorithm: config.algorithm.name().to_owned(),
         filter,
-        format: format!("{format:?}"),
+        format: format.name().to_owned(),
+        arch: spec.arch.name.clone(),
+        command: config.command(&scene.source),
         gap_lsbs,
         open_surfaces,
-        predicted,
         measured,
         full,
-        predicted_to_meet,
+        candidates: n,
+        tried,
         reasons,
         storage,
     })
@@ -341,13 +387,8 @@ impl Plan {
         let c = &self.config;
         let _ = writeln!(
             s,
-            "## Plan for `{}` (artifact budget {budget_percent}%)\n\n{}, {}, {}² map, {} filter\n\n`{}`\n",
-            scene.name,
-            c.algorithm.name(),
-            c.format.name(),
-            c.map_size,
-            self.filter,
-            c.command(&scene.source)
+            "## Plan for `{}` (artifact budget {budget_percent}%, costed on `{}`)\n\n{}, {}, {}² map, {} filter\n\n`{}`\n",
+            scene.name, self.arch, self.algorithm, self.format, c.map_size, self.filter, self.command
         );
         for r in &self.reasons {
             let _ = writeln!(s, "- {r}");
@@ -356,15 +397,25 @@ impl Plan {
             s,
             "\n| | artifacts % | misclassified % | RMS area error | displacement (px) | cycles | DRAM bytes |\n|---|---:|---:|---:|---:|---:|---:|"
         );
-        for (name, f) in [
-            ("predicted (quarter image)", self.predicted),
-            ("measured", self.measured),
-            ("full: dual unit, 24-bit", self.full),
-        ] {
+        for (name, f) in [("measured", self.measured), ("full: dual unit, 24-bit", self.full)] {
             let _ = writeln!(
                 s,
                 "| {name} | {:.3} | {:.3} | {:.4} | {:.2} | {} | {} |",
                 f.artifact_percent, f.misclassified_percent, f.rms_error, f.displacement, f.cycles, f.bytes
+            );
+        }
+        let _ = writeln!(
+            s,
+            "\nCandidates measured, cheapest first ({} of {}):\n\n| algorithm | map | filter | artifacts % | cycles | DRAM bytes |\n|---|---:|---|---:|---:|---:|",
+            self.tried.len(),
+            self.candidates
+        );
+        for t in &self.tried {
+            let f = t.figures;
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {:.3} | {} | {} |",
+                t.algorithm, t.map_size, t.filter, f.artifact_percent, f.cycles, f.bytes
             );
         }
         let st = &self.storage;

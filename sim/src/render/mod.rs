@@ -33,15 +33,17 @@ use crate::world::scene::Scene;
 /// What to render and how.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct RenderConfig {
-    /// The shadow algorithm.
+    /// The shadow algorithm (written as `--algo` spells it; a dual offset
+    /// or a bias range's end is in the render command).
+    #[serde(serialize_with = "crate::base::text::serialize")]
     pub algorithm: Algorithm,
     /// The map's depth format.
-    #[serde(skip)]
+    #[serde(serialize_with = "crate::base::text::serialize")]
     pub format: DepthFormatKind,
     /// The map's side in texels.
     pub map_size: u32,
     /// The filter.
-    #[serde(skip)]
+    #[serde(serialize_with = "crate::base::text::serialize")]
     pub filter: Filter,
     /// The bias, as a depth in `[0, 1]`.
     pub bias: f64,
@@ -54,6 +56,7 @@ pub struct RenderConfig {
     /// Reference rays per pixel side for the area-averaged visibility.
     pub reference_rays: u32,
     /// The light pass's culling per object class.
+    #[serde(serialize_with = "crate::base::text::serialize")]
     pub culling: Culling,
 }
 

@@ -4,5 +4,6 @@ mod arch;
 mod arch_file;
 mod cache;
 mod correlation;
+mod derived;
 mod shared;
 mod storage;

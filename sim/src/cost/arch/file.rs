@@ -478,13 +478,11 @@ impl Arch {
     pub fn to_toml(&self) -> String {
         let mut s = String::new();
         for p in PARAMS {
-            let value = match (p.get)(self) {
-                Value::Text(t) => toml::Value::String(t).to_string(),
-                Value::Flag(b) => b.to_string(),
-                Value::Number(x) => match p.unit {
-                    Unit::Count | Unit::Number => format!("{x}"),
-                    _ => format!("\"{}\"", p.unit.write(x)),
-                },
+            let w = p.written(self);
+            let value = match p.unit {
+                Unit::Text => toml::Value::String(w).to_string(),
+                Unit::Flag | Unit::Count | Unit::Number => w,
+                _ => format!("\"{w}\""),
             };
             let _ = writeln!(s, "{} = {value}  # {}", p.key, p.doc);
         }

@@ -149,6 +149,20 @@ impl Field for u32 {
 }
 
 impl Param {
+    /// This key's value in `arch` as a file writes it, with its unit
+    /// (`25.6GB/s`, `true`, `4`).
+    #[must_use]
+    pub fn written(&self, arch: &Arch) -> String {
+        match (self.get)(arch) {
+            Value::Text(t) => t,
+            Value::Flag(f) => f.to_string(),
+            Value::Number(x) => match self.unit {
+                Unit::Count | Unit::Number => format!("{x}"),
+                u => u.write(x),
+            },
+        }
+    }
+
     /// Set this key of `arch` to `v`, checked against [`Param::range`].
     ///
     /// # Errors
@@ -300,7 +314,8 @@ impl Unit {
 
     /// Write `v` (in the base) with the largest suffix that reads back to
     /// the same bits.
-    pub(super) fn write(self, v: f64) -> String {
+    #[must_use]
+    pub fn write(self, v: f64) -> String {
         for &(s, scale) in self.suffixes() {
             let scaled = v / scale;
             let text = format!("{scaled}{s}");

@@ -4,6 +4,7 @@
 
 use serde::Serialize;
 
+pub mod derived;
 pub mod file;
 mod keys;
 mod report;

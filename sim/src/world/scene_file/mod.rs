@@ -48,7 +48,7 @@ mod meshes;
 mod schema;
 
 /// The bundled scenes, by name: the papers' set-ups, built procedurally.
-pub const BUNDLED: [(&str, &str); 13] = [
+pub const BUNDLED: [(&str, &str); 14] = [
     ("table", include_str!("../../../../scenes/table.toml")),
     ("wang-molnar-4", include_str!("../../../../scenes/wang-molnar-4.toml")),
     ("reeves-sphere", include_str!("../../../../scenes/reeves-sphere.toml")),
@@ -60,6 +60,7 @@ pub const BUNDLED: [(&str, &str); 13] = [
     ("crowd", include_str!("../../../../scenes/crowd.toml")),
     ("crowd-zoom", include_str!("../../../../scenes/crowd-zoom.toml")),
     ("crowd-overhead", include_str!("../../../../scenes/crowd-overhead.toml")),
+    ("crowd-grazing", include_str!("../../../../scenes/crowd-grazing.toml")),
     ("grazing", include_str!("../../../../scenes/grazing.toml")),
     ("factory", include_str!("../../../../scenes/factory.toml")),
 ];

@@ -1,0 +1,74 @@
+//! `umbra arch show | check | diff`: an architecture file's effective
+//! values and what they imply, its ineffective keys, and two files side by
+//! side.
+
+use anyhow::{Result, bail};
+use clap::Subcommand;
+use umbra_sim::Arch;
+use umbra_sim::cost::arch::derived::diff;
+use umbra_sim::cost::arch::file::PARAMS;
+use umbra_sim::io::limits::Limits;
+
+use crate::cost::OneArchArgs;
+use crate::say::say;
+
+#[derive(Subcommand, Debug)]
+pub(super) enum ArchCommand {
+    /// Every key with its value and unit, then the derived figures (peak
+    /// rates, achievable DRAM bandwidth and its latency ceiling, cache
+    /// geometry, on-chip bytes a tile needs).
+    Show(OneArchArgs),
+    /// The derived ceilings that make a key ineffective, each naming the
+    /// key; exits non-zero when the file is not a machine the model can run.
+    Check(OneArchArgs),
+    /// Two architectures key by key and derived figure by derived figure.
+    Diff {
+        /// The first: a bundled name or an architecture file.
+        a: String,
+        /// The second.
+        b: String,
+    },
+}
+
+/// `umbra arch …`.
+pub(super) fn arch(command: &ArchCommand, limits: &Limits) -> Result<()> {
+    match command {
+        ArchCommand::Show(which) => {
+            let a = which.one("talisman", limits)?;
+            say!("# `{}`: {}\n\n| key | value | meaning |\n|---|---:|---|", a.name, a.description);
+            for p in PARAMS {
+                say!("| `{}` | {} | {} |", p.key, p.written(&a), p.doc);
+            }
+            say!("\n| derived | value | how |\n|---|---:|---|");
+            for f in a.derived() {
+                say!("| {} | {} | {} |", f.name, f.text(), f.how);
+            }
+            Ok(())
+        }
+        ArchCommand::Check(which) => {
+            let a = which.one("talisman", limits)?;
+            let warnings = a.warnings();
+            for (key, w) in &warnings {
+                say!("warning: {}: {key}: {w}", a.name);
+            }
+            say!("{}: a machine the model can run; {} warning(s)", a.name, warnings.len());
+            Ok(())
+        }
+        ArchCommand::Diff { a, b } => {
+            let (a, b) = (Arch::open(a, limits)?, Arch::open(b, limits)?);
+            if a.name == b.name && a == b {
+                bail!("`{}` and `{}` are the same architecture", a.name, b.name);
+            }
+            let (keys, figures) = diff(&a, &b);
+            say!("| key | {} | {} |\n|---|---:|---:|", a.name, b.name);
+            for (k, x, y) in keys {
+                say!("| `{k}` | {x} | {y} |");
+            }
+            say!("\n| derived | {} | {} |\n|---|---:|---:|", a.name, b.name);
+            for (k, x, y) in figures {
+                say!("| {k} | {x} | {y} |");
+            }
+            Ok(())
+        }
+    }
+}
