@@ -9,6 +9,7 @@ pub mod file;
 mod keys;
 mod report;
 pub mod timing;
+mod units;
 mod work;
 
 pub use file::{Arch, ArchError};
