@@ -9,7 +9,7 @@ use super::{Buffer, CullLevel, Event, FlushReason, Probe, RejectReason};
 /// Declares [`Totals`] and its list of named fields from one list, so the
 /// names the firmware prints and the fields cannot drift apart.
 macro_rules! totals {
-    ($($(#[doc = $doc:expr])+ $name:ident,)+) => {
+    ($($(#[doc = $doc:literal])+ $name:ident,)+) => {
         /// Event totals of one pass: every field of every [`Event`], summed.
         #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
         #[cfg_attr(feature = "serde", derive(serde::Serialize))]
@@ -23,6 +23,10 @@ macro_rules! totals {
         impl Totals {
             /// Nothing counted yet (a `const`, for a `static`).
             pub const ZERO: Self = Self { $($name: 0,)+ };
+
+            /// What each field counts (its doc comment), in declaration
+            /// order.
+            pub const DOCS: [&'static str; NAMES.len()] = [$(concat!($($doc),+)),+];
 
             /// Every field with its name, in declaration order (the names
             /// the firmware prints).

@@ -119,7 +119,15 @@ pub(super) fn cost(args: &CostArgs, trace: bool, limits: &Limits) -> Result<()> 
         reports.push(report);
     }
     if !trace {
-        let json = serde_json::json!({ "version": umbra_sim::io::provenance::version(), "command": command, "reports": reports });
+        let comparison = umbra_sim::cost::arch::Comparison::new(&reports);
+        if let Some(c) = &comparison {
+            let md = c.markdown();
+            say!("{md}");
+            folder.write_text("comparison.md", &md)?;
+        }
+        let json = serde_json::json!({
+            "version": umbra_sim::io::provenance::version(), "command": command, "reports": reports, "comparison": comparison,
+        });
         folder.write_text("cost.json", &serde_json::to_string_pretty(&json)?)?;
     }
     let manifest = folder.finish(None)?;

@@ -141,7 +141,7 @@ fn no_stale_output_survives() {
     assert!(study.join("summary.md").exists());
     let o = umbra(&["study", "--sweep", text(&sweep), "--shard", "0/2", "--out", text(&study)]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    assert!(!study.join("summary.md").exists() && !study.join("pareto-table-cycles.png").exists());
+    assert!(!study.join("summary.md").exists() && !study.join("pareto-table-time.png").exists());
     let m = RunManifest::verify(&study, u64::MAX).expect("complete");
     assert_eq!(m.study.and_then(|s| s.get("shard").cloned()), Some(serde_json::json!("0/2")));
     let _ = std::fs::remove_dir_all(&d);
@@ -194,7 +194,7 @@ fn no_name_leaves_the_output_folder() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let files: Vec<String> =
         RunManifest::verify(&out, u64::MAX).expect("complete").files.into_iter().map(|f| f.path).collect();
-    assert!(files.iter().any(|f| f == "pareto-__________ESCAPED-cycles.png"), "{files:?}");
+    assert!(files.iter().any(|f| f == "pareto-__________ESCAPED-time.png"), "{files:?}");
     assert!(files.iter().any(|f| f == "pareto-a_b-bytes.svg"), "{files:?}");
     let mut above: Vec<_> = std::fs::read_dir(&d).expect("dir").map(|e| e.expect("entry").file_name()).collect();
     above.extend(std::fs::read_dir(d.join("a")).expect("dir").map(|e| e.expect("entry").file_name()));

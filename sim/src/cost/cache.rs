@@ -2,6 +2,7 @@
 //! reads: how many bytes the shadow unit really pulls from memory for a
 //! given cache size, line and associativity.
 
+use serde::Serialize;
 use umbra_core::probe::{Buffer, Probe, TexelRead};
 
 /// A cache geometry that cannot be built.
@@ -40,6 +41,40 @@ pub struct Cache {
     pub hits: u64,
     /// Accesses that fetched their line.
     pub misses: u64,
+    /// Dirty lines written back (evicted, or flushed at a pass's end).
+    pub writebacks: u64,
+}
+
+/// A cache's statistics over a pass.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct CacheStats {
+    /// Accesses (reads, and read-modify-writes through a write-back cache).
+    pub accesses: u64,
+    /// Accesses that found their line.
+    pub hits: u64,
+    /// Accesses that fetched their line.
+    pub misses: u64,
+    /// Hits over accesses (0 without accesses).
+    pub hit_rate: f64,
+    /// Bytes fetched from DRAM: a line a miss.
+    pub fetched_bytes: u64,
+    /// Bytes written back to DRAM: a line a dirty eviction or flush.
+    pub written_back_bytes: u64,
+}
+
+impl CacheStats {
+    /// Every count times `k` (a pass run `k` times over the same stream).
+    #[must_use]
+    pub fn times(self, k: u64) -> Self {
+        Self {
+            accesses: self.accesses * k,
+            hits: self.hits * k,
+            misses: self.misses * k,
+            fetched_bytes: self.fetched_bytes * k,
+            written_back_bytes: self.written_back_bytes * k,
+            ..self
+        }
+    }
 }
 
 impl Cache {
@@ -65,6 +100,7 @@ impl Cache {
             clock: 0,
             hits: 0,
             misses: 0,
+            writebacks: 0,
         })
     }
 
@@ -113,6 +149,7 @@ impl Cache {
         // An empty slot, else the least recently used.
         let victim = (0..slots.len()).min_by_key(|&k| slots[k].map_or(0, |(_, used)| used)).unwrap_or(0);
         let writeback = slots[victim].is_some() && dirty[victim];
+        self.writebacks += u64::from(writeback);
         slots[victim] = Some((line, self.clock));
         dirty[victim] = write;
         self.last = Some((line, set * self.ways + victim));
@@ -122,6 +159,7 @@ impl Cache {
     /// Write back every dirty line (the end of a pass); how many.
     pub fn flush(&mut self) -> u64 {
         let n = self.dirty.iter().filter(|&&d| d).count() as u64;
+        self.writebacks += n;
         self.last = None;
         self.dirty.fill(false);
         n
@@ -131,6 +169,22 @@ impl Cache {
     #[must_use]
     pub const fn fetched_bytes(&self) -> u64 {
         self.misses * self.line()
+    }
+
+    /// Its statistics so far.
+    #[must_use]
+    pub fn stats(&self) -> CacheStats {
+        let accesses = self.hits + self.misses;
+        #[allow(clippy::cast_precision_loss, reason = "counts far below 2^53")]
+        let hit_rate = if accesses == 0 { 0.0 } else { self.hits as f64 / accesses as f64 };
+        CacheStats {
+            accesses,
+            hits: self.hits,
+            misses: self.misses,
+            hit_rate,
+            fetched_bytes: self.fetched_bytes(),
+            written_back_bytes: self.writebacks * self.line(),
+        }
     }
 }
 

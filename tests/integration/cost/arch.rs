@@ -5,7 +5,7 @@
 use umbra::core::glam::Vec4;
 use umbra::core::{CullMode, D16, D24, DepthFormat, DepthFormatKind, DepthUnit, LightPassConfig, RasterConfig};
 use umbra::sim::cost::arch::file::BUNDLED;
-use umbra::sim::cost::arch::{Arch, ArchProbe, PassKind, PassTiming, Stage};
+use umbra::sim::cost::arch::{Arch, ArchProbe, Bottleneck, PassKind, PassTiming, Stage};
 use umbra::sim::io::limits::Limits;
 use umbra::sim::render::{Algorithm, Culling, RenderConfig, cost};
 use umbra::sim::world::scene::Scene;
@@ -13,13 +13,13 @@ use umbra::sim::world::scene::Scene;
 use crate::common::{run, triangles};
 
 /// The map-filling quad (two triangles) at depth ½.
-fn quad() -> Vec<[Vec4; 3]> {
+pub(super) fn quad() -> Vec<[Vec4; 3]> {
     let v = |x: f32, y: f32| Vec4::new(x, y, 0.5, 1.0);
     vec![[v(-1.0, -1.0), v(1.0, -1.0), v(1.0, 1.0)], [v(-1.0, -1.0), v(1.0, 1.0), v(-1.0, 1.0)]]
 }
 
 /// A light pass through `arch`'s model, off-chip depth through its depth cache.
-fn pass<F: DepthFormat>(arch: &Arch, unit: DepthUnit, tris: &[[Vec4; 3]], size: u32) -> ArchProbe<true> {
+pub(super) fn pass<F: DepthFormat>(arch: &Arch, unit: DepthUnit, tris: &[[Vec4; 3]], size: u32) -> ArchProbe<true> {
     let raster = RasterConfig::new(size, size, arch.raster.tile, 8).expect("valid");
     let cfg = LightPassConfig { raster, unit, max_z_cull: false };
     let probe = ArchProbe::<true>::new(arch, PassKind::Light, raster, F::KIND, unit.buffers());
@@ -28,11 +28,11 @@ fn pass<F: DepthFormat>(arch: &Arch, unit: DepthUnit, tris: &[[Vec4; 3]], size: 
     probe
 }
 
-fn bundled(name: &str) -> Arch {
+pub(super) fn bundled(name: &str) -> Arch {
     Arch::bundled(name).unwrap_or_else(|e| panic!("{e}"))
 }
 
-fn close(a: f64, b: f64) -> bool {
+pub(super) fn close(a: f64, b: f64) -> bool {
     (a - b).abs() <= 1e-9 * a.abs().max(b.abs()).max(1.0)
 }
 
@@ -87,7 +87,8 @@ fn pixelflow_quad_by_hand_and_depth_bits() {
     // bursts, 20 cycles) share the DRAM: 1960 cycles.
     let memory = (388.0 * 10.0 / 2.0_f64).max((64.0 * 64.0 * 3.0 + 2.0 * 52.0) / 8.0);
     assert!(close(t24.cycles, memory + 20.0), "{}", t24.cycles);
-    assert_eq!(t24.bound[Stage::Memory as usize], 1);
+    assert_eq!(t24.bound[Bottleneck::DramLatency as usize], 1, "the latency, not the bandwidth, binds");
+    assert_eq!(t24.bottleneck, Bottleneck::DramLatency);
 }
 
 /// One small triangle in each 32² tile of a 128² 16-bit map, worked from
@@ -170,19 +171,7 @@ fn one_triangle_per_tile_by_hand_on_every_bundled_file() {
 /// a compute-bound one does not move.
 #[test]
 fn memory_bound_halves_and_compute_bound_stays() {
-    let scene = Scene::bundled("table").expect("bundled");
-    let cfg = RenderConfig {
-        algorithm: Algorithm::Second,
-        format: DepthFormatKind::D24,
-        map_size: 256,
-        filter: umbra::core::shadow::Filter::Bilinear,
-        bias: 0.0,
-        virtual_samples: true,
-        width: 240,
-        height: 135,
-        reference_rays: 1,
-        culling: Culling::ALGORITHM,
-    };
+    let (scene, cfg) = super::bound::small();
     let frame = |arch: &Arch| cost(&scene, &cfg, arch, &Limits::DEFAULT).expect("costs");
     let mut slow = bundled("immediate");
     slow.set("dram.bandwidth=20MB/s").expect("valid");
@@ -191,7 +180,8 @@ fn memory_bound_halves_and_compute_bound_stays() {
     doubled.set("dram.bandwidth=40MB/s").expect("valid");
     let (a, b) = (frame(&slow), frame(&doubled));
     for t in [&a.light, &a.camera] {
-        assert_eq!(t.bound.iter().sum::<u64>(), t.bound[Stage::Memory as usize], "every tile memory-bound");
+        let by_bandwidth = t.bound[Bottleneck::DramBandwidth as usize];
+        assert_eq!(t.bound.iter().sum::<u64>(), by_bandwidth, "every tile bound by the bandwidth (no latency)");
     }
     assert!(close(b.cycles, a.cycles / 2.0), "{} then {}", a.cycles, b.cycles);
 
@@ -201,7 +191,9 @@ fn memory_bound_halves_and_compute_bound_stays() {
     let mut faster = fast.clone();
     faster.set("dram.bandwidth=2TB/s").expect("valid");
     let (c, d) = (frame(&fast), frame(&faster));
-    assert_eq!(c.light.bound[Stage::Memory as usize] + c.camera.bound[Stage::Memory as usize], 0);
+    let memory =
+        |t: &PassTiming| t.bound[Bottleneck::DramBandwidth as usize] + t.bound[Bottleneck::DramLatency as usize];
+    assert_eq!(memory(&c.light) + memory(&c.camera), 0);
     assert!(close(c.cycles, d.cycles), "{} then {}", c.cycles, d.cycles);
     assert!(c.bytes == d.bytes && c.bytes > 0);
 }

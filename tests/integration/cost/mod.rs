@@ -2,6 +2,7 @@
 
 mod arch;
 mod arch_file;
+mod bound;
 mod cache;
 mod correlation;
 mod derived;

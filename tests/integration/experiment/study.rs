@@ -112,7 +112,7 @@ fn same_bytes_on_one_and_two_threads() {
         "results.csv",
         "summary.md",
         "manifest.json",
-        "pareto-table-cycles.png",
+        "pareto-table-time.png",
         "pareto-weiskopf-l-bytes.svg",
     ] {
         assert!(names.contains(&f), "{f} missing from {names:?}");

@@ -4,11 +4,13 @@
 //! image size; the image size at which shadow volumes stop being the
 //! cheapest; the bottleneck an architecture parameter moves.
 
+use umbra::sim::cost::arch::Bottleneck;
 use umbra::sim::experiment::study::{Manifest, Row, RowConfig, RowCost, RowMetrics, Status, summary};
 
 /// A row: `algorithm` of `family` at `image` on `arch` (`params`), with
 /// `artifacts` percent of 10 000 evaluated pixels, and its costs: light and
-/// camera cycles, bytes, energy, and the camera pass's bottleneck.
+/// camera cycles, bytes, energy, and the camera pass's bottleneck; at
+/// 100 MHz.
 #[allow(clippy::too_many_arguments, reason = "a synthetic row")]
 fn row(
     index: usize,
@@ -58,9 +60,12 @@ fn row(
             camera_cycles: camera,
             total_cycles: light + camera,
             total_dram_bytes: bytes,
-            energy_uj,
-            light_bottleneck: "depth".into(),
-            camera_bottleneck: bottleneck.into(),
+            energy_joules: energy_uj * 1e-6,
+            #[allow(clippy::cast_precision_loss, reason = "small counts")]
+            frame_seconds: (light + camera) as f64 / 1e8,
+            clock_hertz: 1e8,
+            light_bottleneck: Bottleneck::Depth,
+            camera_bottleneck: bottleneck.parse().expect("a bottleneck"),
             ..RowCost::default()
         }),
     }
@@ -93,12 +98,12 @@ fn summary_answers_what_wins_where() {
         // At 100×100 (10 000 px): volumes 2 cycles a pixel, 20 000; the map
         // 10 000 + 1 a pixel, 20 000 too: a tie in cycles, broken by order.
         row(0, ("volumes", "shadow volumes"), small, a, 0.0, (0, 20_000), 900, 5.0, "depth"),
-        row(1, ("second-ffc", "second depth"), small, a, 0.05, (10_000, 10_000), 500, 4.0, "memory"),
+        row(1, ("second-ffc", "second depth"), small, a, 0.05, (10_000, 10_000), 500, 4.0, "dram-bandwidth"),
         // First depth: cheapest in energy but 0.5 % artifacts.
-        row(2, ("first", "first depth"), small, a, 0.5, (9_000, 12_000), 700, 1.0, "memory"),
+        row(2, ("first", "first depth"), small, a, 0.5, (9_000, 12_000), 700, 1.0, "dram-bandwidth"),
         // At 200×100: volumes 40 000, the map 30 000.
         row(3, ("volumes", "shadow volumes"), large, a, 0.0, (0, 40_000), 1_800, 9.0, "depth"),
-        row(4, ("second-ffc", "second depth"), large, a, 0.05, (10_000, 20_000), 800, 6.0, "memory"),
+        row(4, ("second-ffc", "second depth"), large, a, 0.05, (10_000, 20_000), 800, 6.0, "dram-bandwidth"),
         // The same map configuration on a faster DRAM: shadow-bound.
         Row {
             arch_index: 1,
@@ -112,16 +117,24 @@ fn summary_answers_what_wins_where() {
     assert!(l.contains("volumes") && l.contains("| 20000 |") && l.contains("2 tie"), "{l}");
     // 1 %: bytes — the map at 500; energy — first depth at 1 µJ.
     assert!(line(&md, "1 %", "DRAM bytes").contains("second-ffc"), "{md}");
-    assert!(line(&md, "1 %", "energy (nJ)").contains("first") && line(&md, "1 %", "energy (nJ)").contains("| 1000 |"));
+    assert!(line(&md, "1 %", "energy (µJ)").contains("first") && line(&md, "1 %", "energy (µJ)").contains("| 1.000 |"));
     // 0.1 %: first depth's 0.5 % no longer meets it: energy goes to the map.
-    assert!(line(&md, "0.1 %", "energy (nJ)").contains("second-ffc"), "{md}");
+    assert!(line(&md, "0.1 %", "energy (µJ)").contains("second-ffc"), "{md}");
     // 0.001 % is below one pixel of 10 000 (0.01 %): flagged, and met only
     // by the volumes' zero.
     let l = line(&md, "0.001 %", "cycles");
     assert!(l.contains("below one pixel") && l.contains("volumes"), "{l}");
     // Per family, in each cost: first depth meets only 1 %, at 1 µJ.
-    assert!(md.contains("Cheapest per algorithm family in energy (nJ):"), "{md}");
-    assert!(md.contains("| first depth | first bias 0, d16, 256², point (1000) | – | – |"), "{md}");
+    // Every architecture runs at 100 MHz: cycles rank, and the summary says so.
+    assert!(md.contains("every architecture runs at 100 MHz, so cycles rank as time does"), "{md}");
+    // Each cell names the architecture point that won.
+    assert!(md.contains("Cheapest per algorithm family in energy (µJ):"), "{md}");
+    assert!(
+        md.contains(
+            "| first depth | first bias 0, d16, 256², point, talisman (dram.bandwidth=1GB/s) (1.000) | – | – |"
+        ),
+        "{md}"
+    );
     // The winner by image size: volumes (first of the tie) at 100×100, the
     // map at 200×100.
     assert!(md.contains("by image size: 100×100: shadow volumes; 200×100: second depth"), "{md}");
@@ -129,11 +142,35 @@ fn summary_answers_what_wins_where() {
     // cross at 10 000 pixels.
     assert!(md.contains("They cross at about 10000 pixels"), "{md}");
     // The DRAM bandwidth moves the map configuration's camera pass from
-    // memory-bound to shadow-bound.
+    // bound by the DRAM's bandwidth to bound by the shadow unit; 30 000
+    // cycles at 100 MHz are 300 µs.
     let ffc = "second-ffc, d16, 256², point";
-    assert!(md.contains(&format!("| {ffc} | talisman | dram.bandwidth=1GB/s | 30000 | depth | memory |")), "{md}");
-    assert!(md.contains(&format!("| {ffc} | talisman | dram.bandwidth=8GB/s | 25000 | depth | shadow |")), "{md}");
+    let at = |params: &str, cycles: u64, us: &str, camera: &str| {
+        format!("| {ffc} | talisman | {params} | {cycles} | {us} | 0.0 | 0.0 | depth | {camera} |")
+    };
+    assert!(md.contains(&at("dram.bandwidth=1GB/s", 30_000, "300.000", "dram-bandwidth")), "{md}");
+    assert!(md.contains(&at("dram.bandwidth=8GB/s", 25_000, "250.000", "shadow")), "{md}");
     assert!(md.contains(&format!("| {ffc}: the parameters move its bottleneck |")), "{md}");
+}
+
+/// Two architectures whose frames take the same cycles at different clocks:
+/// the faster clock wins, ranked by time, and the summary says time ranks.
+/// Cycles would tie (and the tie would go to the first in sweep order).
+#[test]
+fn different_clocks_rank_by_time() {
+    let at = |k: usize, arch: &str, clock: f64| {
+        let r =
+            row(k, ("second-ffc", "second depth"), [100, 100], (arch, ""), 0.05, (10_000, 10_000), 500, 4.0, "depth");
+        let cost = r.cost.clone().map(|c| RowCost { clock_hertz: clock, frame_seconds: 20_000.0 / clock, ..c });
+        Row { arch_index: k, cost, ..r }
+    };
+    // 20 000 cycles: 200 µs at 100 MHz, 100 µs at 200 MHz.
+    let rows = vec![at(0, "slow", 1e8), Row { config_index: 0, ..at(1, "fast", 2e8) }];
+    let md = summary(&rows, &manifest());
+    assert!(md.contains("the architectures' clocks differ, so time ranks, not cycles"), "{md}");
+    let l = line(&md, "1 %", "time (µs)");
+    assert!(l.contains(", fast |") && l.contains("| 100.000 |") && !l.contains("tie"), "{l}");
+    assert!(!md.contains("| cycles |"), "{md}");
 }
 
 /// Scene names become file names only as slugs: a name that climbs out of
@@ -153,13 +190,13 @@ fn scene_names_never_become_paths() {
     let mut names: Vec<String> =
         std::fs::read_dir(&out).expect("out").map(|e| e.expect("entry").file_name().to_string_lossy().into()).collect();
     names.sort();
-    for f in ["pareto-__________ESCAPED-cycles.png", "pareto-table_v2-bytes.svg", "pareto-table_v2-cycles.svg"] {
+    for f in ["pareto-__________ESCAPED-time.png", "pareto-table_v2-bytes.svg", "pareto-table_v2-time.svg"] {
         assert!(names.iter().any(|n| n == f), "{f} not in {names:?}");
     }
     // Nothing beside or above the output folder.
     let above: Vec<_> = std::fs::read_dir(base.join("inside")).expect("dir").collect();
     assert_eq!(above.len(), 1, "only out/ inside {}", base.display());
-    assert!(!base.join("ESCAPED-cycles.png").exists() && std::fs::read_dir(&base).expect("dir").count() == 1);
+    assert!(!base.join("ESCAPED-time.png").exists() && std::fs::read_dir(&base).expect("dir").count() == 1);
     let clash = vec![named("a.b", 0), named("a/b", 1)];
     let e = umbra::sim::experiment::study::write_run(&base.join("clash"), &clash, &manifest()).expect_err("clash");
     assert!(e.to_string().contains("`a.b` and `a/b`"), "{e}");

@@ -54,7 +54,14 @@ impl Arch {
     /// latency ceiling when that is lower.
     #[must_use]
     pub fn achievable_bandwidth(&self) -> f64 {
-        self.dram.bandwidth.min(latency_ceiling(self.dram.requests_in_flight, self.dram.burst, self.dram.latency))
+        self.dram.bandwidth.min(self.dram_latency_ceiling())
+    }
+
+    /// The DRAM bandwidth the requests kept in flight sustain at the
+    /// latency (Little's law): `requests_in_flight × burst / latency`.
+    #[must_use]
+    pub fn dram_latency_ceiling(&self) -> f64 {
+        latency_ceiling(self.dram.requests_in_flight, self.dram.burst, self.dram.latency)
     }
 
     /// Every derived figure, in a fixed order.
@@ -86,7 +93,7 @@ impl Arch {
             Figure { name: "DRAM bandwidth", value: self.dram.bandwidth, unit: Unit::Bandwidth, how: "dram.bandwidth" },
             Figure {
                 name: "DRAM latency ceiling",
-                value: latency_ceiling(self.dram.requests_in_flight, self.dram.burst, self.dram.latency),
+                value: self.dram_latency_ceiling(),
                 unit: Unit::Bandwidth,
                 how: "dram.requests_in_flight × dram.burst / dram.latency (Little's law)",
             },
@@ -132,7 +139,7 @@ impl Arch {
     #[allow(clippy::cast_precision_loss, reason = "sizes and counts below 2^53")]
     pub fn warnings(&self) -> Vec<(&'static str, String)> {
         let mut w = Vec::new();
-        let ceiling = latency_ceiling(self.dram.requests_in_flight, self.dram.burst, self.dram.latency);
+        let ceiling = self.dram_latency_ceiling();
         if ceiling < self.dram.bandwidth {
             let needed = (self.dram.bandwidth * self.dram.latency / self.dram.burst.max(1) as f64).ceil();
             w.push((

@@ -2,7 +2,7 @@
 //! that turns the core's events into cycles per stage, bytes per memory and
 //! energy per unit, tile by tile (see [`timing`]).
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 pub mod derived;
 pub mod file;
@@ -13,8 +13,9 @@ mod units;
 mod work;
 
 pub use file::{Arch, ArchError};
-pub use report::{CostReport, SenFigures};
+pub use report::{Compared, Comparison, CostReport, SenFigures, unit_of};
 pub use timing::{ArchProbe, PassKind, PassTiming};
+pub use work::{MemoryLimit, MemoryTime};
 
 /// The stages a tile's time is the slowest of.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize)]
@@ -54,6 +55,90 @@ impl Stage {
     }
 }
 
+/// What bounds a tile, a pass or a frame: a compute stage, or memory
+/// through its bandwidth (bytes at the peak rate) or its latency (requests
+/// at the latency over those kept in flight, Little's law).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+#[repr(usize)]
+pub enum Bottleneck {
+    /// Triangle setup.
+    #[default]
+    Setup,
+    /// Scan conversion.
+    Raster,
+    /// The depth unit.
+    Depth,
+    /// The shadow unit.
+    Shadow,
+    /// Shading.
+    Shade,
+    /// DRAM, its bytes at the bandwidth.
+    DramBandwidth,
+    /// DRAM, its requests at the latency over those in flight.
+    DramLatency,
+}
+
+impl Bottleneck {
+    /// Every bottleneck, in pipeline order.
+    pub const ALL: [Self; 7] =
+        [Self::Setup, Self::Raster, Self::Depth, Self::Shadow, Self::Shade, Self::DramBandwidth, Self::DramLatency];
+
+    /// The bottleneck of `stage`, memory bound by `memory`.
+    #[must_use]
+    pub const fn of(stage: Stage, memory: MemoryLimit) -> Self {
+        match (stage, memory) {
+            (Stage::Setup, _) => Self::Setup,
+            (Stage::Raster, _) => Self::Raster,
+            (Stage::Depth, _) => Self::Depth,
+            (Stage::Shadow, _) => Self::Shadow,
+            (Stage::Shade, _) => Self::Shade,
+            (Stage::Memory, MemoryLimit::Bandwidth) => Self::DramBandwidth,
+            (Stage::Memory, MemoryLimit::Latency) => Self::DramLatency,
+        }
+    }
+
+    /// The stage it is in.
+    #[must_use]
+    pub const fn stage(self) -> Stage {
+        match self {
+            Self::Setup => Stage::Setup,
+            Self::Raster => Stage::Raster,
+            Self::Depth => Stage::Depth,
+            Self::Shadow => Stage::Shadow,
+            Self::Shade => Stage::Shade,
+            Self::DramBandwidth | Self::DramLatency => Stage::Memory,
+        }
+    }
+
+    /// Its name in reports, rows and files.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::DramBandwidth => "dram-bandwidth",
+            Self::DramLatency => "dram-latency",
+            s => s.stage().name(),
+        }
+    }
+}
+
+impl core::str::FromStr for Bottleneck {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        Self::ALL.into_iter().find(|b| b.name() == s).ok_or_else(|| {
+            let names: Vec<&str> = Self::ALL.iter().map(|b| b.name()).collect();
+            format!("`{s}` is not a bottleneck (one of {})", names.join(", "))
+        })
+    }
+}
+
+impl core::fmt::Display for Bottleneck {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// DRAM traffic per buffer, bytes.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
 pub struct Dram {
@@ -84,6 +169,24 @@ pub struct Dram {
 }
 
 impl Dram {
+    /// Every purpose's bytes with its name, in declaration order.
+    #[must_use]
+    pub const fn fields(&self) -> [(&'static str, u64); 11] {
+        [
+            ("map_writes", self.map_writes),
+            ("map_rmw_reads", self.map_rmw_reads),
+            ("depth_rmw", self.depth_rmw),
+            ("map_reads", self.map_reads),
+            ("map_fetched", self.map_fetched),
+            ("colour", self.colour),
+            ("bins", self.bins),
+            ("silhouette_writes", self.silhouette_writes),
+            ("silhouette_reads", self.silhouette_reads),
+            ("volume_depth_reads", self.volume_depth_reads),
+            ("stencil", self.stencil),
+        ]
+    }
+
     /// Every byte that crossed the DRAM interface: map reads as fetched
     /// through the map cache when there is one.
     #[must_use]

@@ -2,9 +2,55 @@
 //! cycles per stage and DRAM traffic, the accesses that cost energy, and a
 //! pass's time.
 
-use super::Stage;
 use super::file::{Arch, CacheParams};
+use super::{Bottleneck, Stage};
+use crate::cost::cache::CacheStats;
 use serde::Serialize;
+
+/// What limits memory time: the bytes at the bandwidth, or the requests at
+/// the latency over those kept in flight.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MemoryLimit {
+    /// Bytes at the DRAM's bandwidth.
+    #[default]
+    Bandwidth,
+    /// Requests at the latency over those in flight (Little's law).
+    Latency,
+}
+
+/// Memory time, cycles, as each limit would make it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct MemoryTime {
+    /// The bytes at the bandwidth.
+    pub bandwidth_cycles: f64,
+    /// The requests (bursts, scattered accesses, cache misses) at the
+    /// latency over those in flight.
+    pub latency_cycles: f64,
+}
+
+impl MemoryTime {
+    /// The time memory takes: the longer of the two.
+    #[must_use]
+    pub const fn cycles(&self) -> f64 {
+        self.bandwidth_cycles.max(self.latency_cycles)
+    }
+
+    /// Which of the two it is (bandwidth on a tie).
+    #[must_use]
+    pub fn limit(&self) -> MemoryLimit {
+        if self.latency_cycles > self.bandwidth_cycles { MemoryLimit::Latency } else { MemoryLimit::Bandwidth }
+    }
+
+    /// Both added.
+    #[must_use]
+    pub fn plus(&self, o: &Self) -> Self {
+        Self {
+            bandwidth_cycles: self.bandwidth_cycles + o.bandwidth_cycles,
+            latency_cycles: self.latency_cycles + o.latency_cycles,
+        }
+    }
+}
 
 /// What one tile (or the front end) did, in the units the timing charges.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
@@ -37,18 +83,39 @@ impl Work {
         }
     }
 
-    /// Memory cycles: the bytes at the bandwidth, or the requests at the
-    /// latency over those in flight, whichever is longer.
+    /// Memory time: the bytes at the bandwidth, and the requests at the
+    /// latency over those in flight.
     #[must_use]
     #[allow(clippy::cast_precision_loss, reason = "counts far below 2^53")]
-    pub fn memory_cycles(&self, arch: &Arch) -> f64 {
+    pub fn memory(&self, arch: &Arch) -> MemoryTime {
         let lat = arch.latency_cycles();
         let window = |c: &CacheParams| c.misses_in_flight.max(1) as f64;
         let requests = self.streamed.div_ceil(arch.dram.burst.max(1)) + self.requests;
-        let latency_bound = requests as f64 * lat / arch.dram.requests_in_flight.max(1) as f64
-            + self.map_misses as f64 * lat / window(&arch.map_cache)
-            + self.depth_misses as f64 * lat / window(&arch.depth_cache);
-        (self.bytes as f64 / arch.bytes_per_cycle()).max(latency_bound)
+        MemoryTime {
+            bandwidth_cycles: self.bytes as f64 / arch.bytes_per_cycle(),
+            latency_cycles: requests as f64 * lat / arch.dram.requests_in_flight.max(1) as f64
+                + self.map_misses as f64 * lat / window(&arch.map_cache)
+                + self.depth_misses as f64 * lat / window(&arch.depth_cache),
+        }
+    }
+
+    /// Memory cycles: the bytes at the bandwidth, or the requests at the
+    /// latency over those in flight, whichever is longer.
+    #[must_use]
+    pub fn memory_cycles(&self, arch: &Arch) -> f64 {
+        self.memory(arch).cycles()
+    }
+
+    /// What bounds this work: its slowest stage, memory told as bandwidth
+    /// or latency; and that stage's cycles. `None` for no work.
+    #[must_use]
+    pub fn bottleneck(&self, arch: &Arch) -> Option<(Bottleneck, f64)> {
+        let s = self.stages(arch);
+        let slowest = s.iter().copied().fold(0.0, f64::max);
+        (slowest > 0.0).then(|| {
+            let stage = Stage::ALL[s.iter().position(|&c| c == slowest).unwrap_or(0)];
+            (Bottleneck::of(stage, self.memory(arch).limit()), slowest)
+        })
     }
 
     /// Cycles per stage, memory included; a shadow test that runs in the
@@ -112,6 +179,18 @@ impl EnergySplit {
         self.dram + self.buffers + self.caches + self.raster + self.shadow
     }
 
+    /// Every unit's energy with its name.
+    #[must_use]
+    pub const fn fields(&self) -> [(&'static str, f64); 5] {
+        [
+            ("dram", self.dram),
+            ("buffers", self.buffers),
+            ("caches", self.caches),
+            ("raster", self.raster),
+            ("shadow", self.shadow),
+        ]
+    }
+
     /// Both added.
     #[must_use]
     pub fn plus(&self, o: &Self) -> Self {
@@ -130,22 +209,47 @@ impl EnergySplit {
 pub struct PassTiming {
     /// Cycles per stage summed over the tiles (the front end's in setup and
     /// memory), in [`Stage::ALL`] order.
+    #[serde(rename = "stage_cycles", serialize_with = "by_stage")]
     pub stages: [f64; 6],
     /// The front end's cycles (setup and bin writes).
+    #[serde(rename = "front_cycles")]
     pub front: f64,
     /// The tiles' cycles: each tile its slowest stage, summed.
+    #[serde(rename = "tile_cycles")]
     pub tiles: f64,
     /// The pass: front end and tiles as the architecture overlaps them,
     /// plus its fixed overhead.
     pub cycles: f64,
-    /// Tiles with work bound by each stage, in [`Stage::ALL`] order.
-    pub bound: [u64; 6],
-    /// The stage that bounds the most cycles.
-    pub bottleneck: Stage,
+    /// Tiles (draws) with work bound by each bottleneck, in
+    /// [`Bottleneck::ALL`] order.
+    #[serde(rename = "tiles_bound", serialize_with = "by_bottleneck")]
+    pub bound: [u64; 7],
+    /// What bounds the most cycles.
+    pub bottleneck: Bottleneck,
+    /// Memory time summed over the pass, as each limit would make it.
+    pub memory: MemoryTime,
     /// DRAM bytes.
+    #[serde(rename = "dram_bytes")]
     pub bytes: u64,
-    /// Energy by unit.
+    /// DRAM bytes over the pass's time, bytes a second.
+    pub achieved_bytes_per_second: f64,
+    /// The map cache, when the pass reads through one.
+    pub map_cache: Option<CacheStats>,
+    /// The depth cache, when the pass keeps depth off chip through one.
+    pub depth_cache: Option<CacheStats>,
+    /// Energy by unit, joules.
+    #[serde(rename = "energy_joules")]
     pub energy: EnergySplit,
+}
+
+/// Per-stage figures as a map from the stage's name.
+fn by_stage<S: serde::Serializer>(v: &[f64; 6], s: S) -> Result<S::Ok, S::Error> {
+    s.collect_map(Stage::ALL.iter().map(|st| st.name()).zip(v))
+}
+
+/// Per-bottleneck counts as a map from the bottleneck's name.
+fn by_bottleneck<S: serde::Serializer>(v: &[u64; 7], s: S) -> Result<S::Ok, S::Error> {
+    s.collect_map(Bottleneck::ALL.iter().map(|b| b.name()).zip(v))
 }
 
 impl PassTiming {

@@ -7,7 +7,7 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::summary::{KEYS, cheapest};
+use super::summary::{TIME, cheapest};
 use super::{Manifest, Row, RowCost, StudyError, distinct, loosest};
 use crate::io::folder::OutputFolder;
 use crate::io::output::{font, png};
@@ -185,7 +185,7 @@ impl Figure for Pareto<'_> {
         area.fill(&WHITE).map_err(|e| e.to_string())?;
         // The legend beside the chart, never over the data.
         let (plot, legend) = area.split_horizontally(SIZE.0 - 230);
-        let xr = log_range(self.points.iter().map(|p| p.0), 1.0);
+        let xr = log_range(self.points.iter().map(|p| p.0), 1e-3);
         let yr = log_range(self.points.iter().map(|p| p.1).chain(self.budgets.iter().copied()), ERROR_FLOOR);
         let y_desc = format!("artifacts % (acne and leaks; 0 drawn at {ERROR_FLOOR})");
         let (x0, x1) = (xr.start, xr.end);
@@ -251,7 +251,7 @@ impl Figure for Pareto<'_> {
 /// Artifacts against cost for one scene's rows: hollow markers by
 /// algorithm family, coloured by architecture, the Pareto front a
 /// staircase, the budgets dashed lines, the legend beside the chart.
-/// Writes `pareto-<scene>-cycles.{svg,png}` and
+/// Writes `pareto-<scene>-time.{svg,png}` and
 /// `pareto-<scene>-bytes.{svg,png}`.
 ///
 /// # Errors
@@ -264,14 +264,18 @@ pub fn pareto(folder: &mut OutputFolder, scene: &str, rows: &[&Row], manifest: &
     let family_of: Vec<usize> =
         rows.iter().map(|r| FAMILIES.iter().position(|&f| f == r.config.family).unwrap_or(4)).collect();
     for (what, axis, key) in [
-        ("cycles", "cycles (light + camera passes)", (|c: &RowCost| c.total_cycles) as fn(&RowCost) -> u64),
-        ("bytes", "DRAM bytes (both passes)", |c: &RowCost| c.total_dram_bytes),
-    ] {
+        (
+            "time",
+            "frame time, µs (light + camera passes)",
+            (|c: &RowCost| c.frame_seconds * 1e6) as fn(&RowCost) -> f64,
+        ),
         #[allow(clippy::cast_precision_loss, reason = "plot coordinates")]
+        ("bytes", "DRAM bytes (both passes)", |c: &RowCost| c.total_dram_bytes as f64),
+    ] {
         let points: Vec<(f64, f64)> = rows
             .iter()
             .filter_map(|r| Some((r.cost.as_ref()?, r.metrics.as_ref()?)))
-            .map(|(c, m)| ((key(c).max(1)) as f64, m.artifact_percent.max(ERROR_FLOOR)))
+            .map(|(c, m)| (key(c).max(1e-3), m.artifact_percent.max(ERROR_FLOOR)))
             .collect();
         let fig = Pareto {
             title: format!("{scene}: artifacts against {what}"),
@@ -352,12 +356,12 @@ fn provenance(m: &Manifest) -> [String; 2] {
     [m.umbra_version.clone(), format!("sweep {} {}", m.sweep, m.sweep_hash)]
 }
 
-/// The cheapest cycles per algorithm family at each architecture point.
+/// The fastest frame time per algorithm family at each architecture point.
 struct AxisPlot<'a> {
     title: String,
     /// The points' labels, in order (x = 0, 1, …).
     points: Vec<String>,
-    /// Per family: `(point, cycles)`.
+    /// Per family: `(point, µs)`.
     series: Vec<(&'a str, Vec<(f64, f64)>)>,
     provenance: [String; 2],
 }
@@ -368,7 +372,7 @@ impl Figure for AxisPlot<'_> {
         let (plot, legend) = area.split_horizontally(SIZE.0 - 230);
         #[allow(clippy::cast_precision_loss, reason = "a few points")]
         let xr = -0.5..(self.points.len() as f64 - 0.5);
-        let yr = log_range(self.series.iter().flat_map(|s| s.1.iter().map(|p| p.1)), 1.0);
+        let yr = log_range(self.series.iter().flat_map(|s| s.1.iter().map(|p| p.1)), 1e-3);
         let mut chart = ChartBuilder::on(&plot)
             .caption(&self.title, ("sans-serif", 20))
             .margin(12)
@@ -380,7 +384,7 @@ impl Figure for AxisPlot<'_> {
         chart
             .configure_mesh()
             .x_desc("architecture point")
-            .y_desc("cycles of the cheapest configuration")
+            .y_desc("frame time of the fastest configuration, µs")
             .x_labels(self.points.len())
             .x_label_formatter(&move |x| {
                 let k = x.round();
@@ -388,7 +392,7 @@ impl Figure for AxisPlot<'_> {
                 let label = labels.get(k as usize).filter(|_| (x - k).abs() < 1e-6 && k >= 0.0);
                 label.cloned().unwrap_or_default()
             })
-            .y_label_formatter(&|y| format!("{y:.1e}"))
+            .y_label_formatter(&|y| format!("{y:.3}"))
             .label_style(("sans-serif", 12))
             .draw()
             .map_err(|e| e.to_string())?;
@@ -407,8 +411,8 @@ impl Figure for AxisPlot<'_> {
     }
 }
 
-/// For a sweep with architecture-parameter axes: the cycles of the
-/// cheapest configuration of each algorithm family within the loosest
+/// For a sweep with architecture-parameter axes: the frame time of the
+/// fastest configuration of each algorithm family within the loosest
 /// budget, at
 /// every architecture point. Writes `arch-axes-<scene>.{svg,png}`; nothing
 /// when the rows have no parameter axis.
@@ -435,9 +439,9 @@ pub fn arch_axes(folder: &mut OutputFolder, scene: &str, rows: &[&Row], manifest
                         .copied()
                         .filter(|r| r.config.family == f && r.config.arch_point() == point)
                         .collect();
-                    let (best, _) = cheapest(&mine, budget, KEYS[0].1)?;
+                    let (best, _) = cheapest(&mine, budget, TIME)?;
                     #[allow(clippy::cast_precision_loss, reason = "plot coordinates")]
-                    Some((k as f64, best.cost.as_ref()?.total_cycles as f64))
+                    Some((k as f64, best.cost.as_ref()?.frame_seconds * 1e6))
                 })
                 .collect::<Vec<_>>();
             (f.name(), pts)

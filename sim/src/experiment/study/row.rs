@@ -14,7 +14,7 @@ use umbra_core::DepthFormatKind;
 use umbra_core::shadow::Filter;
 
 use super::{Config, Spec};
-use crate::cost::arch::{Arch, CostReport};
+use crate::cost::arch::{Arch, Bottleneck, CostReport};
 use crate::pass::algorithm::{Culling, Family};
 use crate::truth::metrics::Metrics;
 
@@ -161,20 +161,32 @@ pub struct RowMetrics {
 pub struct RowCost {
     /// Light pass cycles (silhouette pass included).
     pub light_cycles: u64,
-    /// Light pass bottleneck stage.
-    pub light_bottleneck: String,
+    /// What bounds the light pass (`dram-bandwidth` or `dram-latency` when
+    /// memory does).
+    pub light_bottleneck: Bottleneck,
     /// Camera pass cycles.
     pub camera_cycles: u64,
     /// Camera pass: shadow-unit cycles summed over tiles.
     pub camera_shadow_cycles: u64,
-    /// Camera pass bottleneck stage.
-    pub camera_bottleneck: String,
+    /// What bounds the camera pass.
+    pub camera_bottleneck: Bottleneck,
     /// The frame: light pass then camera pass.
     pub total_cycles: u64,
-    /// Frames per second at the architecture's clock.
-    pub fps: f64,
+    /// The architecture's clock.
+    pub clock_hertz: f64,
+    /// The frame at the architecture's clock.
+    pub frame_seconds: f64,
+    /// Frames a second at the architecture's clock.
+    pub frames_per_second: f64,
     /// The frame's energy.
-    pub energy_uj: f64,
+    pub energy_joules: f64,
+    /// The frame's DRAM bytes over its time.
+    pub dram_achieved_bytes_per_second: f64,
+    /// The DRAM's peak bandwidth.
+    pub dram_peak_bytes_per_second: f64,
+    /// The bandwidth the requests in flight sustain at the latency
+    /// (Little's law).
+    pub dram_latency_ceiling_bytes_per_second: f64,
     /// Map texels written by the light pass.
     pub dram_map_write_bytes: u64,
     /// Depth read back by the light pass.
@@ -259,13 +271,18 @@ impl RowCost {
         let (l, c) = (&r.light_dram, &r.camera_dram);
         Self {
             light_cycles: round(r.light.cycles),
-            light_bottleneck: r.light.bottleneck.name().to_owned(),
+            light_bottleneck: r.light.bottleneck,
             camera_cycles: round(r.camera.cycles),
             camera_shadow_cycles: round(r.camera.stages[crate::cost::arch::Stage::Shadow as usize]),
-            camera_bottleneck: r.camera.bottleneck.name().to_owned(),
+            camera_bottleneck: r.camera.bottleneck,
             total_cycles: round(r.cycles),
-            fps: r.fps,
-            energy_uj: r.energy.total() * 1e6,
+            clock_hertz: r.arch.clock,
+            frame_seconds: r.seconds,
+            frames_per_second: r.fps,
+            energy_joules: r.energy.total(),
+            dram_achieved_bytes_per_second: r.achieved_bytes_per_second,
+            dram_peak_bytes_per_second: r.dram_peak_bytes_per_second,
+            dram_latency_ceiling_bytes_per_second: r.dram_latency_ceiling_bytes_per_second,
             dram_map_write_bytes: l.map_writes,
             dram_map_readback_bytes: l.map_rmw_reads,
             dram_bin_bytes: l.bins + c.bins,
@@ -343,7 +360,12 @@ impl Row {
     /// The configuration and architecture in words, for tables.
     #[must_use]
     pub fn label(&self) -> String {
-        format!("{}, {}", self.render_label(), self.config.arch)
+        let (arch, params) = self.config.arch_point();
+        if params.is_empty() {
+            format!("{}, {arch}", self.render_label())
+        } else {
+            format!("{}, {arch} ({params})", self.render_label())
+        }
     }
 
     /// The render configuration in words (no architecture).

@@ -182,7 +182,13 @@ pub fn invalid(r: &Row) -> Option<String> {
         }
     }
     if let Some(c) = &r.cost {
-        for (name, v) in [("fps", c.fps), ("energy_uj", c.energy_uj), ("map_bytes_per_px", c.map_bytes_per_px)] {
+        for (name, v) in [
+            ("frame_seconds", c.frame_seconds),
+            ("frames_per_second", c.frames_per_second),
+            ("energy_joules", c.energy_joules),
+            ("dram_achieved_bytes_per_second", c.dram_achieved_bytes_per_second),
+            ("map_bytes_per_px", c.map_bytes_per_px),
+        ] {
             if !(v.is_finite() && v >= 0.0) {
                 return Some(format!("{name} {v} is not a finite non-negative number"));
             }

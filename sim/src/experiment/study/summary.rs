@@ -22,7 +22,7 @@ pub fn write_outputs(folder: &mut OutputFolder, rows: &[Row], manifest: &Manifes
     for (k, s) in slugs.iter().enumerate() {
         if let Some(j) = slugs[..k].iter().position(|t| t == s) {
             return Err(StudyError::Plot {
-                path: folder.dir().join(format!("pareto-{s}-cycles.svg")),
+                path: folder.dir().join(format!("pareto-{s}-time.svg")),
                 problem: format!("scenes `{}` and `{}` would share this file name", scenes[j], scenes[k]),
             });
         }
@@ -86,29 +86,58 @@ fn scenes_of(rows: &[Row]) -> Vec<String> {
     distinct(rows.iter().map(|r| r.config.scene.clone()))
 }
 
-/// A cost of a row: cycles, DRAM bytes or energy (nJ, rounded).
-pub(super) type Key = fn(&RowCost) -> u64;
+/// A cost the summary ranks by: its name with its unit, its value, and
+/// the value as the table writes it.
+#[derive(Clone, Copy)]
+pub(super) struct Key {
+    /// The name, with the unit the table writes.
+    pub name: &'static str,
+    /// The value of a row's cost.
+    pub value: fn(&RowCost) -> f64,
+    /// The value as written.
+    pub show: fn(f64) -> String,
+}
 
-/// The costs the summary ranks by.
-pub(super) const KEYS: [(&str, Key); 3] = [
-    ("cycles", |c| c.total_cycles),
-    ("DRAM bytes", |c| c.total_dram_bytes),
-    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "nanojoules, rounded")]
-    ("energy (nJ)", |c| (c.energy_uj * 1e3).round() as u64),
-];
+/// The frame's time in seconds (written in microseconds): the cost common
+/// to architectures of different clocks.
+pub(super) const TIME: Key =
+    Key { name: "time (µs)", value: |c| c.frame_seconds, show: |v| format!("{:.3}", v * 1e6) };
+
+/// The frame's cycles: ranks as time does where every architecture
+/// shares one clock.
+#[allow(clippy::cast_precision_loss, reason = "cycle counts far below 2^53")]
+pub(super) const CYCLES: Key = Key { name: "cycles", value: |c| c.total_cycles as f64, show: |v| format!("{v:.0}") };
+
+/// The costs the summary ranks by: time (cycles when every row's
+/// architecture runs at one clock), DRAM bytes, energy.
+pub(super) fn keys(rows: &[&Row]) -> [Key; 3] {
+    #[allow(clippy::cast_precision_loss, reason = "byte counts far below 2^53")]
+    let bytes = Key { name: "DRAM bytes", value: |c| c.total_dram_bytes as f64, show: |v| format!("{v:.0}") };
+    let energy = Key { name: "energy (µJ)", value: |c| c.energy_joules, show: |v| format!("{:.3}", v * 1e6) };
+    [if one_clock(rows).is_some() { CYCLES } else { TIME }, bytes, energy]
+}
+
+/// The clock every costed row's architecture runs at, if they share one.
+pub(super) fn one_clock(rows: &[&Row]) -> Option<f64> {
+    let clocks = distinct(rows.iter().filter_map(|r| r.cost.as_ref()).map(|c| c.clock_hertz.to_bits()));
+    match clocks[..] {
+        [one] => Some(f64::from_bits(one)),
+        _ => None,
+    }
+}
 
 /// The complete rows whose artifacts are within `budget` percent, the
 /// cheapest by `key`, and how many tie with it (ties are broken by sweep
 /// order: the first configuration, then the first architecture).
 pub(super) fn cheapest<'a>(rows: &[&'a Row], budget: f64, key: Key) -> Option<(&'a Row, usize)> {
-    let ok: Vec<(&Row, u64)> = rows
+    let ok: Vec<(&Row, f64)> = rows
         .iter()
         .copied()
         .filter(|r| r.complete() && r.metrics.is_some_and(|m| m.artifact_percent <= budget))
-        .filter_map(|r| Some((r, key(r.cost.as_ref()?))))
+        .filter_map(|r| Some((r, (key.value)(r.cost.as_ref()?))))
         .collect();
-    let best = ok.iter().map(|(_, k)| *k).min()?;
-    let ties: Vec<&Row> = ok.iter().filter(|(_, k)| *k == best).map(|(r, _)| *r).collect();
+    let best = ok.iter().map(|(_, k)| *k).min_by(f64::total_cmp)?;
+    let ties: Vec<&Row> = ok.iter().filter(|(_, k)| k.total_cmp(&best).is_eq()).map(|(r, _)| *r).collect();
     ties.iter().min_by_key(|r| (r.config_index, r.arch_index)).map(|r| (*r, ties.len()))
 }
 
@@ -128,14 +157,19 @@ pub fn summary(rows: &[Row], manifest: &Manifest) -> String {
         "{}; sweep {} ({}). {} rows ({configs} configurations × architectures), {} skipped. Budgets bound \
          artifacts — acne and leaks: pixels beyond the edge band (the map texel's extent on screen from the exact \
          shadow boundary) whose shade is darker or lighter than the area-averaged reference by more than 0.1 — in \
-         percent of the pixels facing the light; edge placement (errors within the band) is printed beside them. Cycles: \
-         the frame, light pass then camera pass, in each architecture's per-tile timing model; bytes: all DRAM \
-         traffic, map reads as fetched through the map cache; energy: DRAM, buffers, caches and units.\n",
+         percent of the pixels facing the light; edge placement (errors within the band) is printed beside them. Time: \
+         the frame, light pass then camera pass, in each architecture's per-tile timing model at its clock; {}; \
+         bytes: all DRAM traffic, map reads as fetched through the map cache; energy: DRAM, buffers, caches and \
+         units. Each cell names the architecture point that won.\n",
         manifest.umbra_version,
         manifest.sweep,
         manifest.sweep_hash,
         rows.len(),
-        skipped.len()
+        skipped.len(),
+        match one_clock(&rows.iter().collect::<Vec<_>>()) {
+            Some(clock) => format!("every architecture runs at {} MHz, so cycles rank as time does", clock / 1e6),
+            None => "the architectures' clocks differ, so time ranks, not cycles".to_owned(),
+        }
     );
     for scene in scenes_of(rows) {
         let mine: Vec<&Row> = rows.iter().filter(|r| r.config.scene == scene).collect();
@@ -169,7 +203,7 @@ fn scene_summary(s: &mut String, rows: &[&Row], budgets: &[f64]) {
     let _ = writeln!(s, "|---:|---|---|---:|---:|---:|");
     for &budget in budgets {
         let flag = if pixel.is_some_and(|p| budget < p) { " (below one pixel)" } else { "" };
-        for (name, key) in KEYS {
+        for key in keys(rows) {
             let cell = match cheapest(rows, budget, key) {
                 Some((r, ties)) => {
                     let m = r.metrics.unwrap_or_default();
@@ -177,14 +211,14 @@ fn scene_summary(s: &mut String, rows: &[&Row], budgets: &[f64]) {
                     format!(
                         "{}{tie} | {} | {:.4} | {:.4}",
                         r.label(),
-                        r.cost.as_ref().map_or(0, key),
+                        r.cost.as_ref().map_or_else(String::new, |c| (key.show)((key.value)(c))),
                         m.artifact_percent,
                         m.misclassified_percent
                     )
                 }
                 None => "none meets it | – | – | –".to_owned(),
             };
-            let _ = writeln!(s, "| {budget} %{flag} | {name} | {cell} |");
+            let _ = writeln!(s, "| {budget} %{flag} | {} | {cell} |", key.name);
         }
     }
     if let Some(p) = pixel {
@@ -195,8 +229,8 @@ fn scene_summary(s: &mut String, rows: &[&Row], budgets: &[f64]) {
         );
     }
     let families = distinct(rows.iter().map(|r| r.config.family));
-    for (name, key) in KEYS {
-        let _ = write!(s, "Cheapest per algorithm family in {name}:\n\n| family |");
+    for key in keys(rows) {
+        let _ = write!(s, "Cheapest per algorithm family in {}:\n\n| family |", key.name);
         for b in budgets {
             let _ = write!(s, " {b} % |");
         }
@@ -207,7 +241,10 @@ fn scene_summary(s: &mut String, rows: &[&Row], budgets: &[f64]) {
             for &b in budgets {
                 let cell = cheapest(&fam, b, key).map_or_else(
                     || "–".to_owned(),
-                    |(r, _)| format!("{} ({})", r.render_label(), r.cost.as_ref().map_or(0, key)),
+                    |(r, _)| {
+                        let cost = r.cost.as_ref().map_or_else(String::new, |c| (key.show)((key.value)(c)));
+                        format!("{} ({cost})", r.label())
+                    },
                 );
                 let _ = write!(s, " {cell} |");
             }
@@ -219,7 +256,7 @@ fn scene_summary(s: &mut String, rows: &[&Row], budgets: &[f64]) {
     bottlenecks(s, rows, budgets);
 }
 
-/// Where the winner (cheapest in cycles under the loosest budget) changes
+/// Where the winner (the fastest under the loosest budget) changes
 /// with image size and map size, as measured; and, from the winner's and
 /// the cheapest shadow-volume configuration's split of cycles into a light
 /// pass (fixed) and a camera pass (per pixel), the image size at which
@@ -234,7 +271,7 @@ fn crossovers(s: &mut String, rows: &[&Row], budgets: &[f64]) {
         let mut out = format!("Winner within {loose} % by {axis}:");
         for v in &values {
             let sub: Vec<&Row> = rows.iter().copied().filter(|r| value(r) == *v).collect();
-            let w = cheapest(&sub, loose, KEYS[0].1)
+            let w = cheapest(&sub, loose, keys(rows)[0])
                 .map_or_else(|| "none".to_owned(), |(r, _)| r.config.family.to_string());
             let _ = write!(out, " {v}: {w};");
         }
@@ -245,20 +282,25 @@ fn crossovers(s: &mut String, rows: &[&Row], budgets: &[f64]) {
     s.push_str(&by("map side", &|r| format!("{}²", r.config.map_side_texels)));
     let volumes: Vec<&Row> = rows.iter().copied().filter(|r| r.config.algorithm == "volumes").collect();
     let maps: Vec<&Row> = rows.iter().copied().filter(|r| r.config.algorithm != "volumes").collect();
-    if let (Some((v, _)), Some((m, _))) = (cheapest(&volumes, loose, KEYS[0].1), cheapest(&maps, loose, KEYS[0].1)) {
+    if let (Some((v, _)), Some((m, _))) =
+        (cheapest(&volumes, loose, keys(rows)[0]), cheapest(&maps, loose, keys(rows)[0]))
+    {
         let (Some(vc), Some(mc)) = (&v.cost, &m.cost) else { return };
-        #[allow(clippy::cast_precision_loss, reason = "cycle and pixel counts")]
-        let (pixels, v_px, m_px, m_fixed) = {
-            let px = f64::from(v.config.image_width_px) * f64::from(v.config.image_height_px);
-            (px, vc.total_cycles as f64 / px, mc.camera_cycles as f64 / px, mc.light_cycles as f64)
-        };
+        // Cycles where one clock runs every row, else nanoseconds.
+        let one = one_clock(rows).is_some();
+        #[allow(clippy::cast_precision_loss, reason = "cycle counts far below 2^53")]
+        let time = |c: &RowCost, cycles: u64| if one { cycles as f64 } else { cycles as f64 / c.clock_hertz * 1e9 };
+        let unit = if one { "cycles" } else { "ns" };
+        let px = f64::from(v.config.image_width_px) * f64::from(v.config.image_height_px);
+        let (pixels, v_px, m_px, m_fixed) =
+            (px, time(vc, vc.total_cycles) / px, time(mc, mc.camera_cycles) / px, time(mc, mc.light_cycles));
         let _ = write!(
             s,
-            "Shadow volumes against maps within {loose} %: the cheapest volumes take {:.2} cycles a pixel \
+            "Shadow volumes against maps within {loose} %: the cheapest volumes take {:.2} {unit} a pixel \
              (overdraw × stencil work), the cheapest map configuration ({}) {:.2} a pixel plus {:.0} for its light \
              pass. ",
             v_px,
-            m.render_label(),
+            m.label(),
             m_px,
             m_fixed
         );
@@ -279,7 +321,7 @@ fn crossovers(s: &mut String, rows: &[&Row], budgets: &[f64]) {
     }
 }
 
-/// For each configuration that wins (the cheapest in cycles within the
+/// For each configuration that wins (the fastest within the
 /// loosest budget) at some architecture parameter point, its bottlenecks
 /// at every point: where a parameter moves one, this shows it.
 fn bottlenecks(s: &mut String, rows: &[&Row], budgets: &[f64]) {
@@ -292,7 +334,7 @@ fn bottlenecks(s: &mut String, rows: &[&Row], budgets: &[f64]) {
     let mut winners: Vec<usize> = Vec::new();
     for &p in &points {
         let sub: Vec<&Row> = rows.iter().copied().filter(|r| at(r, p)).collect();
-        if let Some((w, _)) = cheapest(&sub, loose, KEYS[0].1)
+        if let Some((w, _)) = cheapest(&sub, loose, keys(rows)[0])
             && !winners.contains(&w.config_index)
         {
             winners.push(w.config_index);
@@ -301,32 +343,35 @@ fn bottlenecks(s: &mut String, rows: &[&Row], budgets: &[f64]) {
     let _ = writeln!(
         s,
         "Bottlenecks (light pass / camera pass) of each configuration that wins within {loose} % at some \
-         architecture point, at every point:\n\n| configuration | architecture | parameters | cycles | light pass | camera pass |\n|---|---|---|---:|---|---|"
+         architecture point, at every point:\n\n| configuration | architecture | parameters | cycles | time (µs) | DRAM achieved (GB/s) | DRAM latency ceiling (GB/s) | light pass | camera pass |\n|---|---|---|---:|---:|---:|---:|---|---|"
     );
     for w in winners {
         let mine: Vec<&Row> = rows.iter().copied().filter(|r| r.config_index == w).collect();
-        let mut seen: Vec<(String, String)> = Vec::new();
+        let mut seen = Vec::new();
         for &p in &points {
             if let Some(c) = mine.iter().find(|r| at(r, p)).and_then(|r| Some((r, r.cost.as_ref()?))) {
                 let (r, c) = c;
                 let _ = writeln!(
                     s,
-                    "| {} | {} | {} | {} | {} | {} |",
+                    "| {} | {} | {} | {} | {:.3} | {:.1} | {:.1} | {} | {} |",
                     r.render_label(),
                     p.0,
                     p.1,
                     c.total_cycles,
+                    c.frame_seconds * 1e6,
+                    c.dram_achieved_bytes_per_second / 1e9,
+                    c.dram_latency_ceiling_bytes_per_second / 1e9,
                     c.light_bottleneck,
                     c.camera_bottleneck
                 );
-                seen.push((c.light_bottleneck.clone(), c.camera_bottleneck.clone()));
+                seen.push((c.light_bottleneck, c.camera_bottleneck));
             }
         }
         seen.dedup();
         if seen.len() > 1
             && let Some(r) = mine.first()
         {
-            let _ = writeln!(s, "| {}: the parameters move its bottleneck | | | | | |", r.render_label());
+            let _ = writeln!(s, "| {}: the parameters move its bottleneck | | | | | | | | |", r.render_label());
         }
     }
     let _ = writeln!(s);

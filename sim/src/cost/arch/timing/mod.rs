@@ -13,8 +13,9 @@
 mod events;
 
 use super::file::{Arch, CacheParams};
+use super::work::MemoryLimit;
 pub use super::work::{Accesses, EnergySplit, PassTiming, Work};
-use super::{Dram, Stage};
+use super::{Bottleneck, Dram, Stage};
 use crate::cost::cache::{Cache, MapCache};
 use serde::Serialize;
 use umbra_core::probe::Totals;
@@ -255,33 +256,40 @@ impl<const D: bool> ArchProbe<D> {
     pub fn timing(&self) -> PassTiming {
         let a = &self.arch;
         let mut t = PassTiming::default();
-        let mut per_stage_bound = [0.0f64; 6];
+        // Cycles of the tiles each bottleneck bounds; memory cycles of the
+        // work each memory limit bounds.
+        let mut per_bound = [0.0f64; 7];
+        let mut by_limit = [0.0f64; 2];
+        let add = |t: &mut PassTiming, by_limit: &mut [f64; 2], w: &Work| {
+            let s = w.stages(a);
+            for (acc, c) in t.stages.iter_mut().zip(s) {
+                *acc += c;
+            }
+            let m = w.memory(a);
+            t.memory = t.memory.plus(&m);
+            by_limit[m.limit() as usize] += m.cycles();
+            t.bytes += w.bytes;
+            s
+        };
         let mut tile_memory = 0.0;
         for w in &self.tiles {
             let mut w = *w;
             w.scale(self.passes);
-            let s = w.stages(a);
-            let slowest = s.iter().copied().fold(0.0, f64::max);
-            if slowest > 0.0 {
-                let stage = s.iter().position(|&c| c == slowest).unwrap_or(0);
-                t.bound[stage] += 1;
-                per_stage_bound[stage] += slowest;
-            }
-            for (acc, c) in t.stages.iter_mut().zip(s) {
-                *acc += c;
+            let s = add(&mut t, &mut by_limit, &w);
+            if let Some((b, slowest)) = w.bottleneck(a) {
+                t.bound[b as usize] += 1;
+                per_bound[b as usize] += slowest;
+                t.tiles += slowest;
             }
             tile_memory += s[Stage::Memory as usize];
-            t.tiles += slowest;
-            t.bytes += w.bytes;
         }
         let mut front = self.front;
         front.scale(self.passes);
-        let fs = front.stages(a);
+        let fs = add(&mut t, &mut by_limit, &front);
         t.front = fs.iter().copied().fold(0.0, f64::max);
-        for (acc, c) in t.stages.iter_mut().zip(fs) {
-            *acc += c;
-        }
-        t.bytes += front.bytes;
+        // Overlapped, the front end and the tiles share the DRAM: what
+        // limits it is what limits the most of their memory cycles.
+        let shared_limit = if by_limit[1] > by_limit[0] { MemoryLimit::Latency } else { MemoryLimit::Bandwidth };
         // A second depth by a second pass ends with a pass combining the two
         // maps: two reads and a write per texel, one fragment per texel.
         let mut combine = Work::default();
@@ -291,42 +299,36 @@ impl<const D: bool> ArchProbe<D> {
             combine.streamed = combine.bytes;
             combine.cycles[Stage::Raster as usize] = Self::per(texels, a.raster.fragments_per_clock.max(1.0));
         }
-        let cs = combine.stages(a);
-        let combine_cycles = cs.iter().copied().fold(0.0, f64::max);
-        for (acc, c) in t.stages.iter_mut().zip(cs) {
-            *acc += c;
-        }
-        t.bytes += combine.bytes;
-        // The silhouette pass and the depth cache's write-back follow the
-        // tiles, each with its own stages.
+        // It, the silhouette pass and the depth cache's write-back follow
+        // the tiles, each with its own stages.
         let mut after = 0.0;
-        for w in [&self.silhouette, &self.drain] {
-            let ws = w.stages(a);
+        for w in [&combine, &self.silhouette, &self.drain] {
+            let ws = add(&mut t, &mut [0.0; 2], w);
             after += ws.iter().copied().fold(0.0, f64::max);
-            for (acc, c) in t.stages.iter_mut().zip(ws) {
-                *acc += c;
-            }
-            t.bytes += w.bytes;
         }
         // A pass that drew nothing (no light pass for shadow volumes, none
         // at all without shadows) waits for no host.
         #[allow(clippy::cast_precision_loss, reason = "1 or 2")]
         let overhead = if self.events.submitted > 0 { a.front.pass_overhead_cycles * self.passes as f64 } else { 0.0 };
-        // Overlapped, the front end and the tiles still share the DRAM.
         let shared = fs[Stage::Memory as usize] + tile_memory;
         let body = if a.front.overlap { t.front.max(t.tiles).max(shared) } else { t.front + t.tiles };
-        t.cycles = overhead + body + combine_cycles + after;
+        t.cycles = overhead + body + after;
         t.bottleneck = if a.front.overlap && shared > t.tiles.max(t.front) {
-            Stage::Memory
+            Bottleneck::of(Stage::Memory, shared_limit)
         } else if a.front.overlap && t.front > t.tiles {
-            if fs[Stage::Memory as usize] > fs[Stage::Setup as usize] { Stage::Memory } else { Stage::Setup }
+            front.bottleneck(a).map_or(Bottleneck::Setup, |b| b.0)
         } else {
-            Stage::ALL
+            Bottleneck::ALL
                 .iter()
-                .zip(per_stage_bound)
-                .fold((Stage::Setup, -1.0), |b, (&s, c)| if c > b.1 { (s, c) } else { b })
+                .zip(per_bound)
+                .fold((Bottleneck::Setup, -1.0), |b, (&s, c)| if c > b.1 { (s, c) } else { b })
                 .0
         };
+        #[allow(clippy::cast_precision_loss, reason = "bytes far below 2^53")]
+        let achieved = if t.cycles > 0.0 { t.bytes as f64 / (t.cycles / a.clock) } else { 0.0 };
+        t.achieved_bytes_per_second = achieved;
+        t.map_cache = self.map_cache.as_ref().filter(|_| self.lookups).map(|m| m.cache.stats());
+        t.depth_cache = self.depth_cache.as_ref().map(|c| c.stats().times(self.passes));
         t.energy = self.energy(t.bytes);
         t
     }

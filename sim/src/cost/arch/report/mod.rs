@@ -1,11 +1,21 @@
 //! The cost report: time, bytes and energy of a render on one
-//! architecture, with Sen et al.'s bandwidth figures, written as Markdown,
-//! as a gem5-style stats file and as a timeline.
+//! architecture, what bounds each pass (memory told as bandwidth or
+//! latency), its caches, and Sen et al.'s bandwidth figures; written as
+//! Markdown, as a gem5-style stats file ([`stats`]) and as a timeline
+//! ([`trace`]).
+
+mod compare;
+mod stats;
+mod trace;
+
+pub use compare::{Compared, Comparison};
+pub use stats::unit_of;
 
 use std::fmt::Write as _;
 
 use super::timing::{EnergySplit, PassTiming, Work};
-use super::{Arch, ArchProbe, Dram, Stage};
+use super::{Arch, ArchProbe, Bottleneck, Dram};
+use crate::cost::cache::CacheStats;
 use serde::Serialize;
 use umbra_core::probe::Totals;
 
@@ -70,15 +80,29 @@ pub struct CostReport {
     /// The frame's time at the clock, seconds.
     pub seconds: f64,
     /// Frames per second.
+    #[serde(rename = "frames_per_second")]
     pub fps: f64,
+    /// What bounds the frame: the bottleneck of the pass that takes longer.
+    pub bottleneck: Bottleneck,
     /// The frame's energy by unit, joules.
+    #[serde(rename = "energy_joules")]
     pub energy: EnergySplit,
-    /// Light-pass DRAM traffic.
+    /// Light-pass DRAM traffic, bytes by purpose.
+    #[serde(rename = "light_dram_bytes")]
     pub light_dram: Dram,
-    /// Camera-pass DRAM traffic.
+    /// Camera-pass DRAM traffic, bytes by purpose.
+    #[serde(rename = "camera_dram_bytes")]
     pub camera_dram: Dram,
     /// Every DRAM byte of the frame.
+    #[serde(rename = "dram_bytes")]
     pub bytes: u64,
+    /// The frame's DRAM bytes over its time, bytes a second.
+    pub achieved_bytes_per_second: f64,
+    /// The DRAM's peak bandwidth, bytes a second.
+    pub dram_peak_bytes_per_second: f64,
+    /// The bandwidth the requests in flight sustain at the latency
+    /// (Little's law), bytes a second.
+    pub dram_latency_ceiling_bytes_per_second: f64,
     /// On-chip depth storage of the light pass, bytes.
     pub on_chip_bytes: u64,
     /// Triangle-tile pairs and blocks skipped by max-z culling, as a
@@ -138,6 +162,10 @@ impl CostReport {
         let fill = ce.fragments;
         let cycles = lt.cycles + ct.cycles;
         let seconds = cycles / arch.clock;
+        let bottleneck = if lt.cycles > ct.cycles { lt.bottleneck } else { ct.bottleneck };
+        let bytes = lt.bytes + ct.bytes;
+        #[allow(clippy::cast_precision_loss, reason = "bytes far below 2^53")]
+        let achieved = if seconds > 0.0 { bytes as f64 / seconds } else { 0.0 };
         let p_lookup = ratio(camera.reconstructed_pixels, pixels);
         let overdraw = ratio(ce.volume_fragments, fill);
         let map = if cached { camera.dram.map_fetched } else { camera.dram.map_reads };
@@ -166,8 +194,12 @@ impl CostReport {
             cycles,
             seconds,
             fps: if seconds > 0.0 { 1.0 / seconds } else { 0.0 },
+            bottleneck,
             energy: lt.energy.plus(&ct.energy),
-            bytes: lt.bytes + ct.bytes,
+            bytes,
+            achieved_bytes_per_second: achieved,
+            dram_peak_bytes_per_second: arch.dram.bandwidth,
+            dram_latency_ceiling_bytes_per_second: arch.dram_latency_ceiling(),
             light_dram: light.dram,
             camera_dram: camera.dram,
             on_chip_bytes: light.on_chip_bytes(),
@@ -196,49 +228,70 @@ impl CostReport {
     pub fn markdown(&self) -> String {
         let mut s = String::new();
         let a = &self.arch;
+        let gb = |bytes_per_second: f64| format!("{:.1} GB/s", bytes_per_second / 1e9);
         let _ = writeln!(s, "### {} — {}\n", a.name, a.description);
         let _ = writeln!(
             s,
-            "Frame: {:.0} cycles, {:.3} ms at {} MHz ({:.1} frames/s), {} DRAM bytes, {:.3} mJ.\n",
+            "Frame: {:.0} cycles, {:.3} ms at {} MHz ({:.1} frames/s), {} DRAM bytes, {:.3} mJ; bound by {}.\n",
             self.cycles,
             self.seconds * 1e3,
             a.clock / 1e6,
             self.fps,
             self.bytes,
-            self.energy.total() * 1e3
+            self.energy.total() * 1e3,
+            self.bottleneck
         );
+        let unit = if a.immediate() { "draws" } else { "tiles" };
         let _ = writeln!(
             s,
-            "| pass | setup | raster | depth | shadow | shade | memory | pass cycles | bottleneck | {} bound (setup/raster/depth/shadow/shade/memory) |",
-            if a.immediate() { "draws" } else { "tiles" }
+            "| pass | setup | raster | depth | shadow | shade | memory | memory at bandwidth / latency | pass cycles | bottleneck | DRAM achieved | {unit} bound (setup/raster/depth/shadow/shade/dram-bandwidth/dram-latency) |"
         );
-        let _ = writeln!(s, "|---|---:|---:|---:|---:|---:|---:|---:|---|---|");
+        let _ = writeln!(s, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---|");
         for (name, t) in [("light", &self.light), ("camera", &self.camera)] {
             let c = t.stages;
-            let b = t.bound;
+            let b = t.bound.map(|n| n.to_string()).join("/");
             let _ = writeln!(
                 s,
-                "| {name} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {} | {}/{}/{}/{}/{}/{} |",
+                "| {name} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} / {:.0} | {:.0} | {} | {} | {b} |",
                 c[0],
                 c[1],
                 c[2],
                 c[3],
                 c[4],
                 c[5],
+                t.memory.bandwidth_cycles,
+                t.memory.latency_cycles,
                 t.cycles,
-                t.bottleneck.name(),
-                b[0],
-                b[1],
-                b[2],
-                b[3],
-                b[4],
-                b[5]
+                t.bottleneck,
+                gb(t.achieved_bytes_per_second),
+            );
+        }
+        let _ = writeln!(
+            s,
+            "\nDRAM: achieved {} over the frame, against a peak of {} and a latency ceiling of {} ({} requests in flight × {} B / {:.1} ns).",
+            gb(self.achieved_bytes_per_second),
+            gb(self.dram_peak_bytes_per_second),
+            gb(self.dram_latency_ceiling_bytes_per_second),
+            a.dram.requests_in_flight,
+            a.dram.burst,
+            a.dram.latency * 1e9
+        );
+        for (pass, name, c) in self.caches() {
+            let _ = writeln!(
+                s,
+                "{name} ({pass} pass): {} accesses, {} hits, {} misses ({:.2} % hits), {} bytes fetched, {} bytes written back.",
+                c.accesses,
+                c.hits,
+                c.misses,
+                100.0 * c.hit_rate,
+                c.fetched_bytes,
+                c.written_back_bytes
             );
         }
         let e = &self.energy;
         let _ = writeln!(
             s,
-            "\nEnergy (µJ): DRAM {:.1}, on-chip buffers {:.1}, caches {:.1}, raster and depth {:.1}, shadow unit {:.1}.",
+            "Energy (µJ): DRAM {:.1}, on-chip buffers {:.1}, caches {:.1}, raster and depth {:.1}, shadow unit {:.1}.",
             e.dram * 1e6,
             e.buffers * 1e6,
             e.caches * 1e6,
@@ -292,169 +345,18 @@ impl CostReport {
         s
     }
 
-    /// The report as a gem5-style stats file: one `name value # description
-    /// (unit)` line per figure, headed by the scene, the configuration, the
-    /// version and the effective architecture.
+    /// Every cache a pass used: the pass, the cache's name (capitalised, as
+    /// a line begins), its statistics.
     #[must_use]
-    pub fn stats(&self, command: &str) -> String {
-        let mut s = String::new();
-        let _ = writeln!(s, "---------- Begin Simulation Statistics ----------");
-        let _ = writeln!(s, "# umbra {} — {command}", self.version);
-        let _ = writeln!(s, "# scene: {}; configuration: {}", self.scene, self.config);
-        for line in self.arch.to_toml().lines() {
-            let _ = writeln!(s, "# arch.{line}");
-        }
-        let mut stat = |name: &str, value: String, doc: &str, unit: &str| {
-            let _ = writeln!(s, "{name:<44} {value:>20} # {doc} ({unit})");
-        };
-        stat("frame.cycles", format!("{:.0}", self.cycles), "light pass then camera pass", "cycles");
-        stat("frame.seconds", format!("{:.9}", self.seconds), "the frame at the clock", "s");
-        stat("frame.fps", format!("{:.3}", self.fps), "frames per second", "1/s");
-        stat("frame.dram_bytes", self.bytes.to_string(), "DRAM traffic of the frame", "bytes");
-        for (unit, e) in [
-            ("dram", self.energy.dram),
-            ("buffers", self.energy.buffers),
-            ("caches", self.energy.caches),
-            ("raster", self.energy.raster),
-            ("shadow", self.energy.shadow),
-        ] {
-            stat(&format!("frame.energy.{unit}"), format!("{e:.6e}"), "energy of the unit", "J");
-        }
-        stat("frame.energy.total", format!("{:.6e}", self.energy.total()), "sum over units", "J");
+    pub fn caches(&self) -> Vec<(&'static str, &'static str, CacheStats)> {
+        let mut out = Vec::new();
         for (pass, t) in [("light", &self.light), ("camera", &self.camera)] {
-            stat(&format!("{pass}.cycles"), format!("{:.0}", t.cycles), "the pass", "cycles");
-            stat(&format!("{pass}.front_cycles"), format!("{:.0}", t.front), "setup and bin writes", "cycles");
-            stat(
-                &format!("{pass}.tile_cycles"),
-                format!("{:.0}", t.tiles),
-                "each tile (draw, on an immediate-mode machine) its slowest stage, summed",
-                "cycles",
-            );
-            stat(&format!("{pass}.bottleneck"), t.bottleneck.name().to_owned(), "stage bounding most cycles", "stage");
-            for (k, stage) in Stage::ALL.iter().enumerate() {
-                stat(
-                    &format!("{pass}.stage.{}", stage.name()),
-                    format!("{:.0}", t.stages[k]),
-                    "stage cycles summed over tiles",
-                    "cycles",
-                );
-                stat(
-                    &format!("{pass}.bound.{}", stage.name()),
-                    t.bound[k].to_string(),
-                    "tiles (draws) bound by the stage",
-                    "tiles or draws",
-                );
-            }
-            stat(&format!("{pass}.dram_bytes"), t.bytes.to_string(), "DRAM traffic of the pass", "bytes");
-        }
-        let n = &self.sen;
-        for (name, v, doc) in [
-            ("sen.triangles", n.triangles, "scene triangles (Table 1)"),
-            ("sen.silhouette_edges", n.silhouette_edges, "silhouette edges under the light (Table 1)"),
-            ("sen.scene_fill", n.scene_fill, "camera visibility fragments (Table 1)"),
-            ("sen.volume_fill", n.volume_fill, "shadow-volume fragments (Table 1)"),
-            ("sen.silhouette_fill", n.silhouette_fill, "silhouette-pass fragments (Table 1)"),
-        ] {
-            stat(name, v.to_string(), doc, "count");
-        }
-        for (name, v, doc, unit) in [
-            ("sen.p_fill", n.p_fill, "silhouette fill over scene fill (Table 1)", "ratio"),
-            ("sen.p_lookup", n.p_lookup, "covered pixels reconstructed (bandwidth model)", "ratio"),
-            ("sen.overdraw", n.overdraw, "volume fragments over scene fill", "ratio"),
-            ("sen.map_bytes", n.map_bytes_per_pixel, "simulated map bytes", "bytes/covered pixel"),
-            ("sen.model_map_bytes", n.model_map_bytes_per_pixel, "4 B x samples", "bytes/covered pixel"),
-            ("sen.silhouette_bytes", n.silhouette_bytes_per_pixel, "simulated point bytes", "bytes/covered pixel"),
-            ("sen.model_silhouette_bytes", n.model_silhouette_bytes_per_pixel, "24 P", "bytes/covered pixel"),
-            ("sen.volume_bytes", n.volume_bytes_per_fill, "simulated volume bytes", "bytes/scene-fill fragment"),
-            ("sen.model_volume_bytes", n.model_volume_bytes_per_fill, "5.5 O", "bytes/scene-fill fragment"),
-        ] {
-            stat(name, format!("{v:.6}"), doc, unit);
-        }
-        for (pass, t) in [("light", &self.light_events), ("camera", &self.camera_events)] {
-            for (name, v) in t.fields() {
-                stat(&format!("{pass}.events.{name}"), v.to_string(), "event total", "count");
-            }
-        }
-        s.push_str("---------- End Simulation Statistics   ----------\n");
-        s
-    }
-
-    /// The frame's timeline in Chrome trace-event JSON (opens in Perfetto):
-    /// both passes one after the other; a front-end track (setup and bin
-    /// writes, beside the tiles when the architecture overlaps them); a
-    /// track with each tile's whole time, and one per stage with that
-    /// tile's cycles in it; slices carry the tile's triangles, fragments,
-    /// pixels and bytes; a DRAM-bandwidth counter track. Times in
-    /// microseconds at the architecture's clock.
-    #[must_use]
-    pub fn trace(&self) -> serde_json::Value {
-        let a = &self.arch;
-        let us = |cycles: f64| cycles / a.clock * 1e6;
-        let mut events = vec![serde_json::json!({
-            "name": "process_name", "ph": "M", "pid": 1, "args": { "name": format!("{} on {}", self.scene, a.name) }
-        })];
-        let stages = &Stage::ALL[1..];
-        let names = ["front end", "tiles"].into_iter().chain(stages.iter().map(|s| s.name()));
-        for (tid, name) in names.enumerate() {
-            events.push(
-                serde_json::json!({ "name": "thread_name", "ph": "M", "pid": 1, "tid": tid, "args": { "name": name } }),
-            );
-        }
-        // One slice of `w` on track `tid` at `t`, its stages on their own
-        // tracks when `staged`; the DRAM rate over it. Returns its cycles.
-        let mut slice = |pass: &str, label: String, w: &Work, t: f64, tid: usize, staged: bool| {
-            let cycles = w.stages(a);
-            let dur = cycles.iter().copied().fold(0.0, f64::max);
-            if dur <= 0.0 {
-                return 0.0;
-            }
-            let args = serde_json::json!({
-                "triangles": w.triangles, "fragments": w.fragments, "pixels": w.pixels, "bytes": w.bytes,
-                "cycles": dur, "setup cycles": cycles[Stage::Setup as usize],
-            });
-            events.push(serde_json::json!({
-                "name": label, "cat": pass, "ph": "X", "ts": us(t), "dur": us(dur), "pid": 1, "tid": tid, "args": args
-            }));
-            if staged {
-                for (k, stage) in stages.iter().enumerate() {
-                    let c = cycles[*stage as usize];
-                    if c > 0.0 {
-                        events.push(serde_json::json!({
-                            "name": format!("{pass} {}", stage.name()), "cat": pass, "ph": "X",
-                            "ts": us(t), "dur": us(c), "pid": 1, "tid": k + 2,
-                        }));
-                    }
+            for (name, c) in [("Map cache", t.map_cache), ("Depth cache", t.depth_cache)] {
+                if let Some(c) = c {
+                    out.push((pass, name, c));
                 }
-                #[allow(clippy::cast_precision_loss, reason = "bytes far below 2^53")]
-                let rate = w.bytes as f64 / (dur / a.clock) / 1e9;
-                events.push(serde_json::json!({ "name": "DRAM GB/s", "ph": "C", "ts": us(t), "pid": 1, "args": { "GB/s": rate } }));
             }
-            dur
-        };
-        let mut t = 0.0f64;
-        for (p, pass) in ["light", "camera"].iter().enumerate() {
-            let timing = if p == 0 { &self.light } else { &self.camera };
-            let start = t;
-            let front = slice(pass, format!("{pass} front end"), &self.front[p], t, 0, false);
-            // Overlapped, the tiles start with the front end.
-            if !a.front.overlap {
-                t += front;
-            }
-            let unit = if a.immediate() { "draw" } else { "tile" };
-            for (i, w) in self.tiles[p].iter().enumerate() {
-                t += slice(pass, format!("{pass} {unit} {i}"), w, t, 1, true);
-            }
-            if p == 0 {
-                t += slice(pass, "silhouette pass".to_owned(), &self.silhouette, t, 1, true);
-            }
-            t = t.max(start + timing.cycles);
         }
-        events.push(
-            serde_json::json!({ "name": "DRAM GB/s", "ph": "C", "ts": us(t), "pid": 1, "args": { "GB/s": 0.0 } }),
-        );
-        let metadata = serde_json::json!({
-            "umbra": self.version, "scene": self.scene, "configuration": self.config, "arch": self.arch,
-        });
-        serde_json::json!({ "traceEvents": events, "displayTimeUnit": "ns", "metadata": metadata })
+        out
     }
 }

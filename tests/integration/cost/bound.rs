@@ -1,0 +1,227 @@
+//! What binds, told apart: memory bound by its bandwidth or by its latency
+//! (worked by hand), cache statistics of a hand-worked stream, time as the
+//! cost common to architectures of different clocks, and the stats file's
+//! one convention.
+
+use std::collections::HashMap;
+
+use umbra::core::shadow::Filter;
+use umbra::core::{D24, DepthFormatKind, DepthUnit};
+use umbra::sim::cost::arch::{Arch, Bottleneck, Comparison, CostReport};
+use umbra::sim::cost::cache::Cache;
+use umbra::sim::io::limits::Limits;
+use umbra::sim::render::{Algorithm, Culling, RenderConfig, cost};
+use umbra::sim::world::scene::Scene;
+
+use super::arch::{bundled, close, pass, quad};
+
+/// Talisman with fast compute (64 fragments a clock: 16 raster and 16
+/// depth cycles a chunk) and `in_flight` DRAM requests, read back from its
+/// own file text.
+fn talisman_file(in_flight: u32) -> Arch {
+    let mut a = bundled("talisman");
+    for s in ["raster.fragments_per_clock=64", "depth.fragments_per_clock=64"] {
+        a.set(s).expect("valid");
+    }
+    a.set(&format!("dram.requests_in_flight={in_flight}")).expect("valid");
+    Arch::parse(&a.to_toml(), "slow-dram.toml").expect("its own text parses")
+}
+
+/// Talisman's quad (`arch.rs`): four 32² chunks of a 64² 24-bit map,
+/// 1.2 GB/s = 16 bytes a cycle at 75 MHz, 50 ns = 3.75 cycles, 32-byte
+/// bursts. The two diagonal chunks stream 3208 bytes (101 bursts), the
+/// other two 3140 (99 bursts); the front end writes 152 bytes of bins
+/// (5 bursts), overlapped with the chunks, sharing the DRAM.
+///
+/// * One request in flight: the latency ceiling is 32 B / 50 ns =
+///   640 MB/s, below the 1.2 GB/s: a chunk's memory is its bursts at the
+///   latency, 101 × 3.75 = 378.75 or 99 × 3.75 = 371.25 cycles (its bytes
+///   at the bandwidth only 200.5 or 196.25), and the pass is the shared
+///   DRAM, 2 × 378.75 + 2 × 371.25 + 5 × 3.75 = 1518.75 cycles, bound by
+///   the latency in every chunk. `arch check` warns about the bandwidth.
+/// * Two in flight (1.28 GB/s of ceiling): the latency halves below the
+///   bytes at the bandwidth (189.375 < 200.5), so every byte moves at the
+///   bandwidth: (2 × 3208 + 2 × 3140 + 152) / 16 = 803 cycles, 10.7067 µs,
+///   and the achieved rate is the peak, 1.2 GB/s.
+#[test]
+fn latency_bound_then_bandwidth_bound_by_hand() {
+    let slow = talisman_file(1);
+    assert!(slow.warnings().iter().any(|(key, _)| *key == "dram.bandwidth"), "{:?}", slow.warnings());
+    let t = pass::<D24>(&slow, DepthUnit::Single, &quad(), 64).timing();
+    assert!(close(t.cycles, 1518.75), "{}", t.cycles);
+    assert_eq!(t.bottleneck, Bottleneck::DramLatency);
+    assert_eq!(t.bound[Bottleneck::DramLatency as usize], 4, "{:?}", t.bound);
+    assert!(close(t.memory.latency_cycles, 2.0 * 378.75 + 2.0 * 371.25 + 5.0 * 3.75), "{:?}", t.memory);
+    assert!(close(t.memory.bandwidth_cycles, 803.0), "{:?}", t.memory);
+
+    let doubled = talisman_file(2);
+    assert!(doubled.warnings().iter().all(|(key, _)| *key != "dram.bandwidth"), "{:?}", doubled.warnings());
+    let t = pass::<D24>(&doubled, DepthUnit::Single, &quad(), 64).timing();
+    assert!(close(t.cycles, 803.0), "{}", t.cycles);
+    assert_eq!(t.bottleneck, Bottleneck::DramBandwidth);
+    assert_eq!(t.bound[Bottleneck::DramBandwidth as usize], 4, "{:?}", t.bound);
+    assert!(close(t.cycles / doubled.clock, 803.0 / 75e6));
+    assert!(close(t.achieved_bytes_per_second, 1.2e9), "{}", t.achieved_bytes_per_second);
+}
+
+/// Two sets of two 32-byte ways (lines 0, 2 and 4 in set 0, line 1 in
+/// set 1), written (w) and read (r):
+/// w0 miss · r8 hit · r64 miss · w32 miss · r128 miss, evicting dirty
+/// line 0 (a write-back) · r0 miss, evicting clean line 2 · w72 miss,
+/// evicting clean line 4 · r40 hit; the flush writes back lines 1 and 2.
+/// 8 accesses, 2 hits, 6 misses (192 bytes fetched), 3 write-backs (96
+/// bytes).
+#[test]
+fn cache_statistics_of_a_stream_by_hand() {
+    let mut c = Cache::new(128, 32, 2).expect("valid");
+    let stream = [(0u64, true), (8, false), (64, false), (32, true), (128, false), (0, false), (72, true), (40, false)];
+    let hits: Vec<bool> = stream
+        .iter()
+        .map(|&(address, write)| if write { c.access_write(address).0 } else { c.access(address) })
+        .collect();
+    assert_eq!(hits, [false, true, false, false, false, false, false, true]);
+    assert_eq!(c.stats().written_back_bytes, 32, "only line 0 is dirty when evicted");
+    assert_eq!(c.flush(), 2);
+    let s = c.stats();
+    assert_eq!((s.accesses, s.hits, s.misses), (8, 2, 6));
+    assert!(close(s.hit_rate, 0.25));
+    assert_eq!((s.fetched_bytes, s.written_back_bytes), (192, 96));
+}
+
+/// The bundled table, second depth, 24-bit, 256², bilinear, at 240×135.
+pub(super) fn small() -> (Scene, RenderConfig) {
+    let cfg = RenderConfig {
+        algorithm: Algorithm::Second,
+        format: DepthFormatKind::D24,
+        map_size: 256,
+        filter: Filter::Bilinear,
+        bias: 0.0,
+        virtual_samples: true,
+        width: 240,
+        height: 135,
+        reference_rays: 1,
+        culling: Culling::ALGORITHM,
+    };
+    (Scene::bundled("table").expect("bundled"), cfg)
+}
+
+fn report(arch: &Arch) -> CostReport {
+    let (scene, cfg) = small();
+    cost(&scene, &cfg, arch, &Limits::DEFAULT).expect("costs")
+}
+
+/// Talisman, then Talisman at twice the clock with twice the bandwidth and
+/// half the latency (the same cycles, every rate a cycle alike), then
+/// Talisman with DRAM bytes at twice the energy. By hand: the second takes
+/// −50 % of the time with the same bytes and energy and ranks first; the
+/// third takes the same time (ranked second with the first) and its energy
+/// grows by the first's DRAM energy over its total.
+#[test]
+fn time_ranks_architectures_of_different_clocks() {
+    let a = bundled("talisman");
+    let mut b = a.clone();
+    for s in ["name=talisman-2x", "clock=150MHz", "dram.bandwidth=2.4GB/s", "dram.latency=25ns"] {
+        b.set(s).expect("valid");
+    }
+    let mut c = a.clone();
+    c.set("name=talisman-hot").expect("valid");
+    c.set(&format!("energy.dram_byte={}J", 2.0 * a.energy.dram_byte)).expect("valid");
+    let reports: Vec<CostReport> = [&a, &b, &c].into_iter().map(report).collect();
+    assert!(close(reports[0].cycles, reports[1].cycles), "equal cycles: {} {}", reports[0].cycles, reports[1].cycles);
+    let cmp = Comparison::new(&reports).expect("three reports");
+    assert!(!cmp.one_clock);
+    let [first, fast, hot] = [&cmp.archs[0], &cmp.archs[1], &cmp.archs[2]];
+    assert_eq!((first.rank, fast.rank, hot.rank), (2, 1, 2));
+    assert!(close(fast.seconds_change, -0.5), "{}", fast.seconds_change);
+    assert!(fast.dram_bytes_change == 0.0 && close(fast.energy_change, 0.0), "{fast:?}");
+    let e = &reports[0].energy;
+    assert!(close(hot.energy_change, e.dram / e.total()), "{} against {}", hot.energy_change, e.dram / e.total());
+    assert!(close(hot.seconds_change, 0.0) && hot.dram_bytes_change == 0.0);
+    let md = cmp.markdown();
+    assert!(md.contains("the clocks differ, so time ranks, not cycles"), "{md}");
+    assert!(md.lines().any(|l| l.starts_with("| 1 | talisman-2x | 150 |") && l.contains("| -50.0 % |")), "{md}");
+    assert!(Comparison::new(&reports[..1]).is_none(), "one architecture compares with nothing");
+}
+
+/// The unit each kind of figure must carry, by the end of its name.
+const UNITS: [(&str, &str); 21] = [
+    ("frame.cycles", "cycles"),
+    ("frame.seconds", "s"),
+    ("frame.frames_per_second", "1/s"),
+    ("frame.dram_bytes", "B"),
+    ("frame.dram.achieved_bytes_per_second", "B/s"),
+    ("frame.dram.peak_bytes_per_second", "B/s"),
+    ("frame.dram.latency_ceiling_bytes_per_second", "B/s"),
+    ("frame.energy.dram_joules", "J"),
+    ("frame.energy.total_joules", "J"),
+    ("light.memory.latency_cycles", "cycles"),
+    ("light.bound.dram_latency", "count"),
+    ("light.depth_cache.hits", "count"),
+    ("light.depth_cache.hit_rate", "ratio"),
+    ("light.depth_cache.written_back_bytes", "B"),
+    ("camera.map_cache.fetched_bytes", "B"),
+    ("camera.stage.memory_cycles", "cycles"),
+    ("light.events.tile_load_bytes", "B"),
+    ("light.events.submitted", "count"),
+    ("sen.map_bytes_per_pixel", "B/pixel"),
+    ("sen.volume_bytes_per_fragment", "B/fragment"),
+    ("sen.p_fill_ratio", "ratio"),
+];
+
+/// The stats file of a render on a machine with both caches: every value
+/// line `name value # description (unit)` with a number; units as the
+/// table says; no name twice; the caches' statistics consistent with the
+/// DRAM bytes by purpose; the bottlenecks enumerated names in their own
+/// section.
+#[test]
+fn the_stats_file_has_one_convention() {
+    let r = report(&bundled("desktop-imr"));
+    let text = r.stats("umbra cost --arch desktop-imr");
+    let (stats, rest) = text.split_once("---------- End Simulation Statistics").expect("the stats section ends");
+    let mut values: HashMap<&str, (f64, &str)> = HashMap::new();
+    for line in stats.lines().skip(1).filter(|l| !l.starts_with('#')) {
+        let (figure, comment) = line.split_once(" # ").unwrap_or_else(|| panic!("no description: {line}"));
+        let mut words = figure.split_whitespace();
+        let (name, value) = (words.next().expect("a name"), words.next().expect("a value"));
+        assert!(words.next().is_none(), "{line}");
+        let value: f64 = value.parse().unwrap_or_else(|_| panic!("not a number: {line}"));
+        let unit = comment.rsplit_once(" (").and_then(|(_, u)| u.strip_suffix(')')).expect("a unit");
+        assert!(values.insert(name, (value, unit)).is_none(), "{name} twice");
+        for (word, want) in [("bytes", "B"), ("joules", "J"), ("seconds", "s"), ("cycles", "cycles")] {
+            if name.rsplit('.').next().is_some_and(|last| last.ends_with(word)) {
+                assert!(unit.starts_with(want) || unit.ends_with(&format!("/{want}")), "{line}");
+            }
+        }
+    }
+    for (name, unit) in UNITS {
+        let got = values.get(name).unwrap_or_else(|| panic!("{name} missing"));
+        assert_eq!(got.1, unit, "{name}");
+    }
+    let v = |name: &str| values[name].0;
+    assert!(close(v("frame.dram_bytes"), v("light.dram_bytes") + v("camera.dram_bytes")));
+    for pass in ["light", "camera"] {
+        let c = |k: &str| v(&format!("{pass}.depth_cache.{k}"));
+        // Rates are written to 7 significant digits.
+        let rate = c("hits") / c("accesses");
+        assert!(close(c("accesses"), c("hits") + c("misses")) && (c("hit_rate") - rate).abs() < 1e-6 * rate);
+        let rmw = v(&format!("{pass}.dram.depth_rmw_bytes"));
+        assert!(
+            close(c("fetched_bytes") + c("written_back_bytes"), rmw),
+            "{pass}: the depth cache's lines are its DRAM bytes"
+        );
+    }
+    assert!(close(v("camera.map_cache.fetched_bytes"), v("camera.dram.map_fetched_bytes")));
+    assert!(!values.contains_key("light.map_cache.accesses"), "the light pass reads no map");
+    let bottlenecks: Vec<(&str, Bottleneck)> = rest
+        .lines()
+        .filter(|l| l.contains(".bottleneck"))
+        .map(|l| {
+            let mut w = l.split_whitespace();
+            (w.next().expect("a name"), w.next().expect("a value").parse().expect("an enumerated bottleneck"))
+        })
+        .collect();
+    let names: Vec<&str> = bottlenecks.iter().map(|b| b.0).collect();
+    assert_eq!(names, ["frame.bottleneck", "light.bottleneck", "camera.bottleneck"]);
+    assert!(bottlenecks[0].1 == bottlenecks[1].1 || bottlenecks[0].1 == bottlenecks[2].1);
+    assert_eq!((bottlenecks[1].1, bottlenecks[2].1), (r.light.bottleneck, r.camera.bottleneck));
+}
