@@ -6,7 +6,7 @@ use umbra::sim::{Algorithm, Arch, Limits, RenderConfig, Scene, TruthSource};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
-    let scene = args.next().unwrap_or_else(|| "table".to_owned());
+    let scene = args.next().unwrap_or_else(|| "table-and-sphere".to_owned());
     let arch = args.next().unwrap_or_else(|| "arch/mobile-tbdr.toml".to_owned());
     let limits = Limits::DEFAULT;
     let scene = Scene::open(&scene, &limits)?;

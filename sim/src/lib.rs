@@ -12,7 +12,7 @@
 //! use umbra_sim::{Algorithm, Arch, Limits, RenderConfig, Scene, TruthSource};
 //!
 //! let limits = Limits::DEFAULT;
-//! let scene = Scene::open("table", &limits)?;
+//! let scene = Scene::open("table-and-sphere", &limits)?;
 //! let arch = Arch::open("mobile-tbdr", &limits)?;
 //! // First depth at bias 0.002, on a small image and map to keep this quick.
 //! let config = RenderConfig {

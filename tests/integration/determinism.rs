@@ -78,7 +78,7 @@ fn light_maps_are_the_same_on_any_thread_count() {
 /// threads and twice on one: every output equal to the bit.
 #[test]
 fn a_render_is_the_same_on_any_thread_count() {
-    let scene = Scene::bundled("table").expect("bundled");
+    let scene = Scene::bundled("table-and-sphere").expect("bundled");
     let cfg = RenderConfig {
         algorithm: Algorithm::Second,
         format: DepthFormatKind::D24,
@@ -154,7 +154,7 @@ fn banded_and_per_draw_light_passes_equal_the_whole_pass() {
         assert!(tile_bounds(&flushed) == tile_bounds(&whole), "{}: tile bounds differ per draw", scene.name);
         assert!(counted.flushes_draw > 0, "{}: flushed per draw", scene.name);
     }
-    for name in ["table", "weiskopf-l", "crowd"] {
+    for name in ["table-and-sphere", "weiskopf-l", "crowd"] {
         let scene = Scene::bundled(name).expect("bundled");
         check::<D16>(&scene, 200, 16, DepthUnit::Single);
         check::<D24>(&scene, 256, 32, DepthUnit::Dual);
@@ -210,7 +210,12 @@ fn a_reused_camera_frame_draws_what_a_new_one_does() {
     use crate::common::camera_image;
     let shadow = ShadowConfig::new(DepthTest::Second, Bias::ZERO, Filter::Box { size: 3 }, true).expect("valid");
     let mut frame = CameraFrame::default();
-    for (name, (w, h)) in [("table", (96, 64)), ("double-torus", (40, 30)), ("table", (96, 64)), ("table", (33, 71))] {
+    for (name, (w, h)) in [
+        ("table-and-sphere", (96, 64)),
+        ("double-torus", (40, 30)),
+        ("table-and-sphere", (96, 64)),
+        ("table-and-sphere", (33, 71)),
+    ] {
         let scene = Scene::bundled(name).expect("bundled");
         let raster = RasterConfig::new(128, 128, 32, 8).expect("valid");
         let config = LightPassConfig { raster, unit: DepthUnit::Dual, max_z_cull: true };
@@ -236,7 +241,7 @@ fn a_reused_light_frame_draws_what_new_buffers_do() {
     use umbra::sim::pass::light::{LightFrame, LightMaps, LightOptions, render};
     let mut frame16: LightFrame<u16> = LightFrame::new();
     let mut frame24: LightFrame<u32> = LightFrame::new();
-    let passes = [("table", 128, DepthUnit::Dual, true), ("double-torus", 96, DepthUnit::Single, false)];
+    let passes = [("table-and-sphere", 128, DepthUnit::Dual, true), ("double-torus", 96, DepthUnit::Single, false)];
     for (name, side, unit, cull) in passes.into_iter().cycle().take(5) {
         let scene = Scene::bundled(name).expect("bundled");
         let raster = RasterConfig::new(side, side + 32, 32, 8).expect("valid");

@@ -14,7 +14,7 @@ use umbra_sim::world::scene::Scene;
 #[derive(clap::Args, Debug)]
 pub(super) struct PlanArgs {
     /// A bundled scene by name or a scene file.
-    #[arg(default_value = "table")]
+    #[arg(default_value = "table-and-sphere")]
     pub(super) scene: String,
     /// Artifacts allowed (acne and leaks away from the exact shadow
     /// boundary), e.g. `0.1%` (percent of the pixels facing the light).

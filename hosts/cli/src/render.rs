@@ -20,7 +20,7 @@ pub(super) struct RenderArgs {
     /// A bundled scene by name (table, reeves-sphere, weiskopf-l,
     /// double-torus, thin, open-sheet, crowd, crowd-zoom, grazing, factory) or a
     /// scene file.
-    #[arg(default_value = "table")]
+    #[arg(default_value = "table-and-sphere")]
     pub(super) scene: String,
     /// Shadow algorithm: first (Williams, use --bias), bias-range (Reeves:
     /// per sample from [--bias, --bias1]), second (Wang & Molnar, dual
@@ -76,7 +76,7 @@ pub(super) struct RenderArgs {
 impl Default for RenderArgs {
     fn default() -> Self {
         Self {
-            scene: "table".into(),
+            scene: "table-and-sphere".into(),
             algo: "second".into(),
             depth: DepthFormatKind::D24,
             map: 1024,

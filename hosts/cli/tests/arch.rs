@@ -16,7 +16,7 @@ fn a_bad_architecture_names_its_file_and_key_and_writes_nothing() {
     let out = dir("out");
     let o = umbra(&[
         "cost",
-        "table",
+        "table-and-sphere",
         "--width",
         "64",
         "--height",
@@ -30,7 +30,7 @@ fn a_bad_architecture_names_its_file_and_key_and_writes_nothing() {
     assert!(!o.status.success() && err.contains("bad.toml: raster.tile: 48"), "{err}");
     let o = umbra(&[
         "cost",
-        "table",
+        "table-and-sphere",
         "--arch",
         "talisman",
         "--set",
@@ -46,7 +46,7 @@ fn a_bad_architecture_names_its_file_and_key_and_writes_nothing() {
     std::fs::write(&good, talisman.replacen("name = \"talisman\"", "name = \"mine\"", 1)).expect("write");
     let o = umbra(&[
         "cost",
-        "table",
+        "table-and-sphere",
         "--width",
         "64",
         "--height",

@@ -75,12 +75,12 @@ fn a_render_stays_within_its_stated_memory() {
         "sheet",
         "[[objects]]\nmesh = { sheet = { center = [0.0, 0.0, 0.0], width = 4.0, height = 4.0, bend = 0.5, nx = 1024, ny = 512 } }\n",
     );
-    let table = umbra_sim::Scene::bundled("table").expect("bundled").triangles().len() as u64;
+    let table = umbra_sim::Scene::bundled("table-and-sphere").expect("bundled").triangles().len() as u64;
     for (what, scene, triangles, w, h, map) in [
-        ("pixels", "table", table, 768u32, 768u32, 256u32),
-        ("texels", "table", table, 96, 64, 4096),
+        ("pixels", "table-and-sphere", table, 768u32, 768u32, 256u32),
+        ("texels", "table-and-sphere", table, 96, 64, 4096),
         ("triangles", text(&sheet), 1024 * 512 * 2, 64, 48, 256),
-        ("all", "table", table, 512, 384, 2048),
+        ("all", "table-and-sphere", table, 512, 384, 2048),
     ] {
         let bound = Footprint::render(u64::from(w) * u64::from(h), map, triangles);
         let out = d.join(what);
@@ -152,7 +152,7 @@ fn an_image_beyond_the_limits_is_skipped_before_its_reference() {
 fn write_sweep(d: &Path, images: &str, extra: &str) -> PathBuf {
     let path = d.join("sweep.toml");
     let text = format!(
-        "name = \"bounds\"\nscenes = [\"table\"]\n{images}\nreference_rays = 1\nformats = [\"d24\"]\n\
+        "name = \"bounds\"\nscenes = [\"table-and-sphere\"]\n{images}\nreference_rays = 1\nformats = [\"d24\"]\n\
          maps = [64]\nfilters = [\"point\"]\nbudgets = [1.0]\n{extra}\n[[algorithms]]\nalgo = \"second\"\n"
     );
     std::fs::write(&path, text).expect("sweep");
@@ -172,7 +172,7 @@ fn sweep_sizes_are_counted_before_anything_is_built() {
     std::fs::write(
         &long,
         format!(
-            "name = \"long\"\nscenes = [\"table\"]\nimages = [[64, 36]]\nreference_rays = 1\nformats = [\"d24\"]\n\
+            "name = \"long\"\nscenes = [\"table-and-sphere\"]\nimages = [[64, 36]]\nreference_rays = 1\nformats = [\"d24\"]\n\
              maps = [64]\nfilters = [\"point\"]\nbudgets = [1.0]\n[[algorithms]]\nalgo = \"first\"\nbias = [{biases}]\n"
         ),
     )
@@ -328,8 +328,8 @@ fn scene_names_are_distinct_and_escaped() {
     let d = dir("scene-names");
     let floor = "[[objects]]\nmesh = { quad = { corner = [-2.0, 0.0, 2.0], u = [4.0, 0.0, 0.0], v = [0.0, 0.0, -4.0] } }\n\
                  [[objects]]\nmesh = { box = { min = [-0.5, 0.0, -0.5], max = [0.5, 1.0, 0.5] } }\n";
-    named_scene(&d, "a", Some("table"), floor);
-    named_scene(&d, "b", Some("table"), floor);
+    named_scene(&d, "a", Some("table-and-sphere"), floor);
+    named_scene(&d, "b", Some("table-and-sphere"), floor);
     let sweep = d.join("sweep.toml");
     let sweep_text = |scenes: &str| {
         format!(
@@ -340,7 +340,7 @@ fn scene_names_are_distinct_and_escaped() {
     std::fs::write(&sweep, sweep_text(r#"["a.toml", "b.toml"]"#)).expect("sweep");
     refused(
         &["study", "--sweep", text(&sweep), "--out", text(&d.join("o"))],
-        &["scenes[1]", "a.toml", "b.toml", "table"],
+        &["scenes[1]", "a.toml", "b.toml", "table-and-sphere"],
     );
     named_scene(&d, "a", Some(r"a|b\n## c"), floor);
     std::fs::write(&sweep, sweep_text(r#"["a.toml"]"#)).expect("sweep");

@@ -135,13 +135,13 @@ fn no_stale_output_survives() {
     assert!(!out.join("z2.png").exists() && !out.join("z2.npy").exists(), "stale z2");
     assert!(out.join("notes.txt").exists(), "a file Umbra did not write was removed");
     RunManifest::verify(&out, u64::MAX).expect("complete");
-    let sweep = tiny_sweep(&d, r#"["table", "weiskopf-l"]"#);
+    let sweep = tiny_sweep(&d, r#"["table-and-sphere", "weiskopf-l"]"#);
     let study = d.join("study");
     assert!(umbra(&["study", "--sweep", text(&sweep), "--out", text(&study)]).status.success());
     assert!(study.join("summary.md").exists());
     let o = umbra(&["study", "--sweep", text(&sweep), "--shard", "0/2", "--out", text(&study)]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    assert!(!study.join("summary.md").exists() && !study.join("pareto-table-time.png").exists());
+    assert!(!study.join("summary.md").exists() && !study.join("pareto-table-and-sphere-time.png").exists());
     let m = RunManifest::verify(&study, u64::MAX).expect("complete");
     assert_eq!(m.study.and_then(|s| s.get("shard").cloned()), Some(serde_json::json!("0/2")));
     let _ = std::fs::remove_dir_all(&d);
@@ -153,7 +153,7 @@ fn no_stale_output_survives() {
 fn a_killed_run_does_not_look_complete() {
     let d = dir("killed");
     let out = d.join("out");
-    let sweep = tiny_sweep(&d, r#"["table"]"#);
+    let sweep = tiny_sweep(&d, r#"["table-and-sphere"]"#);
     assert!(umbra(&["study", "--sweep", text(&sweep), "--out", text(&out)]).status.success());
     RunManifest::verify(&out, u64::MAX).expect("the first run is complete");
     // The quick sweep runs for minutes here: it is killed at its start.
@@ -180,7 +180,7 @@ fn no_name_leaves_the_output_folder() {
     let d = dir("names");
     let base = d.join("a").join("b");
     std::fs::create_dir_all(&base).expect("dir");
-    let table = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/table.toml"))
+    let table = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/table-and-sphere.toml"))
         .expect("the bundled table");
     let named = |file: &str, name: &str| {
         let body = table.lines().filter(|l| !l.starts_with("name =")).collect::<Vec<_>>().join("\n");
@@ -275,7 +275,7 @@ fn polylines_are_reported_not_drawn() {
 fn render_cost_and_trace_keep_each_others_outputs() {
     let d = dir("defaults");
     std::fs::create_dir_all(&d).expect("dir");
-    let small = ["table", "--width", "96", "--height", "54", "--map", "128", "--reference-rays", "1"];
+    let small = ["table-and-sphere", "--width", "96", "--height", "54", "--map", "128", "--reference-rays", "1"];
     for sub in ["render", "cost", "trace"] {
         let o = command(&[&[sub][..], &small[..]].concat()).current_dir(&d).output().expect("runs");
         assert!(o.status.success(), "{sub}: {}", String::from_utf8_lossy(&o.stderr));
@@ -292,7 +292,7 @@ fn render_cost_and_trace_keep_each_others_outputs() {
 #[test]
 fn merge_refuses_an_input_as_its_output() {
     let d = dir("merge-into-input");
-    let sweep = tiny_sweep(&d, r#"["table"]"#);
+    let sweep = tiny_sweep(&d, r#"["table-and-sphere"]"#);
     let shard = d.join("s0");
     let o = umbra(&["study", "--sweep", text(&sweep), "--shard", "0/1", "--out", text(&shard)]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));

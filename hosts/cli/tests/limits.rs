@@ -67,11 +67,11 @@ fn a_mesh_beyond_the_triangle_or_file_limit_is_refused_before_it_is_built() {
 fn a_scene_beyond_the_image_or_triangle_limit_is_refused_when_it_is_read() {
     let out = dir("scene");
     // The bundled table: a 960×540 image of 2280 triangles.
-    let o = umbra(&["render", "table", "--max-image-pixels", "518399", "--out", text(&out)]);
+    let o = umbra(&["render", "table-and-sphere", "--max-image-pixels", "518399", "--out", text(&out)]);
     fails_saying(&o, &["image", "960x540", "max_image_pixels"]);
-    let o = umbra(&["cost", "table", "--max-image-side", "959", "--out", text(&out)]);
+    let o = umbra(&["cost", "table-and-sphere", "--max-image-side", "959", "--out", text(&out)]);
     fails_saying(&o, &["image side 960", "max_image_side"]);
-    let o = umbra(&["plan", "table", "--max-triangles", "2279", "--out", text(&out)]);
+    let o = umbra(&["plan", "table-and-sphere", "--max-triangles", "2279", "--out", text(&out)]);
     fails_saying(&o, &["2280 triangles", "max_triangles"]);
     let o = umbra(&["study", "--quick", "--maps", "64", "--max-map-side", "32", "--out", text(&out)]);
     fails_saying(&o, &["--maps 64", "max_map_side"]);

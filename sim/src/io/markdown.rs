@@ -10,7 +10,7 @@
 ///
 /// ```
 /// use umbra_sim::io::markdown::escape;
-/// assert_eq!(escape("table"), "table");
+/// assert_eq!(escape("table-and-sphere"), "table-and-sphere");
 /// assert_eq!(escape("a|b\nc"), r"a\|b\u{a}c");
 /// ```
 #[must_use]

@@ -162,13 +162,13 @@ pub struct Scene {
 impl Scene {
     /// The bundled default: Wang & Molnar's table on a floor (legs touching
     /// the floor, the case no bias fixes), with a sphere beside it, lit by a
-    /// spot light from above (`scenes/table.toml`).
+    /// spot light from above (`scenes/table-and-sphere.toml`).
     ///
     /// # Panics
     /// Never: the bundled scenes are validated by the tests.
     #[must_use]
     pub fn default_scene() -> Self {
-        Self::bundled("table").expect("the bundled table scene is valid")
+        Self::bundled("table-and-sphere").expect("the bundled table-and-sphere scene is valid")
     }
 
     /// The light whose shadows the pipeline renders: the first.

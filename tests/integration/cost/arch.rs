@@ -202,7 +202,7 @@ fn memory_bound_halves_and_compute_bound_stays() {
 /// totals and the file's energy per access.
 #[test]
 fn energy_is_the_sum_over_units_recomputed_from_the_events() {
-    let scene = Scene::bundled("table").expect("bundled");
+    let scene = Scene::bundled("table-and-sphere").expect("bundled");
     let cfg = RenderConfig {
         algorithm: Algorithm::Second,
         format: DepthFormatKind::D16,
@@ -257,7 +257,7 @@ proptest::proptest! {
 /// depth to DRAM, on an immediate-mode machine they do.
 #[test]
 fn shadow_volume_cost_follows_overdraw_and_stays_on_chip_on_a_tiler() {
-    let scene = Scene::bundled("table").expect("bundled");
+    let scene = Scene::bundled("table-and-sphere").expect("bundled");
     let cfg = |w: u32, h: u32| RenderConfig {
         algorithm: Algorithm::Volumes,
         format: DepthFormatKind::D24,
@@ -329,7 +329,7 @@ fn sens_p_both_ways() {
 /// and the file records its architecture.
 #[test]
 fn the_timeline_is_the_timing_model() {
-    let scene = Scene::bundled("table").expect("bundled");
+    let scene = Scene::bundled("table-and-sphere").expect("bundled");
     let cfg = RenderConfig {
         algorithm: Algorithm::Second,
         format: DepthFormatKind::D24,

@@ -102,7 +102,7 @@ pub(super) fn small() -> (Scene, RenderConfig) {
         reference_rays: 1,
         culling: Culling::ALGORITHM,
     };
-    (Scene::bundled("table").expect("bundled"), cfg)
+    (Scene::bundled("table-and-sphere").expect("bundled"), cfg)
 }
 
 fn report(arch: &Arch) -> CostReport {

@@ -39,7 +39,7 @@ impl Probe for Reads {
 
 #[test]
 fn a_one_line_cache_and_a_whole_map_cache_bound_the_traffic() {
-    let scene = Scene::bundled("table").expect("bundled");
+    let scene = Scene::bundled("table-and-sphere").expect("bundled");
     let raster = RasterConfig::new(256, 256, 32, 8).expect("valid");
     let config = LightPassConfig { raster, unit: DepthUnit::Dual, max_z_cull: true };
     let (maps, _) = LightMaps::draw::<D24, _>(

@@ -22,7 +22,7 @@ fn a_shared_pass_costs_each_architecture_as_alone() {
     }
     let limits = Limits::DEFAULT;
     for (scene, algorithm, filter) in [
-        ("table", Algorithm::Second, Filter::Bilinear),
+        ("table-and-sphere", Algorithm::Second, Filter::Bilinear),
         ("crowd", Algorithm::Silhouette { packed: false }, Filter::Point),
         ("weiskopf-l", Algorithm::Volumes, Filter::Point),
     ] {

@@ -125,7 +125,7 @@ fn scene_maps(name: &str, size: u32) -> umbra::sim::pass::light::RawMaps {
 
 #[test]
 fn sparse_tiles_read_back_rendered_scenes() {
-    for name in ["table", "crowd"] {
+    for name in ["table-and-sphere", "crowd"] {
         let maps = scene_maps(name, 200);
         let shape = MapShape::of_format(200, 200, DepthFormatKind::D24);
         assert_eq!(shape.texel_bytes, 3);

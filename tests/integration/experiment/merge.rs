@@ -20,7 +20,7 @@ fn dir(name: &str) -> PathBuf {
 /// A tiny sweep: one scene, two algorithms, one format, map, filter and
 /// architecture, 48×27.
 fn tiny(hash: &str) -> Spec {
-    let scenes = study::load_scenes(&["table"], &Limits::DEFAULT).expect("bundled");
+    let scenes = study::load_scenes(&["table-and-sphere"], &Limits::DEFAULT).expect("bundled");
     let mut spec = Spec::quick(scenes);
     spec.variants = vec![Variant::new(Algorithm::First, 0.002), Variant::new(Algorithm::Second, 0.0)];
     spec.formats.truncate(1);

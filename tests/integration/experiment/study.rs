@@ -26,7 +26,7 @@ fn dir(name: &str) -> PathBuf {
 /// A small sweep with every preset: two scenes, two algorithms, two
 /// formats, two filters, 64×36 images.
 fn small() -> Spec {
-    let scenes = study::load_scenes(&["table", "weiskopf-l"], &Limits::DEFAULT).expect("bundled");
+    let scenes = study::load_scenes(&["table-and-sphere", "weiskopf-l"], &Limits::DEFAULT).expect("bundled");
     let mut spec = Spec::quick(scenes);
     spec.variants = vec![Variant::new(Algorithm::First, 0.002), Variant::new(Algorithm::Dual { offset: 0.005 }, 0.0)];
     spec.map_sizes = vec![128];
@@ -68,9 +68,9 @@ fn configurations_beyond_the_sweeps_limits_are_skipped_rows_naming_them() {
     }
     // The scenes are loaded within limits too: the table has 2280 triangles.
     let few = Limits { max_triangles: 2279, ..Limits::DEFAULT };
-    let err = study::load_scenes(&["table"], &few).expect_err("above the limit").to_string();
+    let err = study::load_scenes(&["table-and-sphere"], &few).expect_err("above the limit").to_string();
     assert!(err.contains("2280 triangles") && err.contains("max_triangles"), "{err}");
-    assert!(study::load_scenes(&["table"], &Limits { max_triangles: 2280, ..few }).is_ok());
+    assert!(study::load_scenes(&["table-and-sphere"], &Limits { max_triangles: 2280, ..few }).is_ok());
 }
 
 fn run_on(threads: usize, spec: &Spec, shard: Shard) -> Vec<Row> {
@@ -112,7 +112,7 @@ fn same_bytes_on_one_and_two_threads() {
         "results.csv",
         "summary.md",
         "manifest.json",
-        "pareto-table-time.png",
+        "pareto-table-and-sphere-time.png",
         "pareto-weiskopf-l-bytes.svg",
     ] {
         assert!(names.contains(&f), "{f} missing from {names:?}");

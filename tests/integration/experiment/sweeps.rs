@@ -50,7 +50,7 @@ fn a_users_sweep_file_with_an_architecture_axis() {
     .expect("write");
     let text = r#"
 name = "mine"
-scenes = ["plate.toml", "table"]
+scenes = ["plate.toml", "table-and-sphere"]
 images = [[64, 36], [128, 72]]
 reference_rays = 1
 formats = ["d16"]
@@ -88,7 +88,7 @@ cull = ["algorithm", "solids=none"]
 #[test]
 fn a_bad_sweep_file_names_its_key() {
     let d = dir("bad");
-    let base = "name = \"b\"\nscenes = [\"table\"]\nimages = [[64, 36]]\nreference_rays = 1\nformats = [\"d16\"]\n\
+    let base = "name = \"b\"\nscenes = [\"table-and-sphere\"]\nimages = [[64, 36]]\nreference_rays = 1\nformats = [\"d16\"]\n\
                 maps = [128]\nfilters = [\"point\"]\narchs = [\"talisman\"]\nbudgets = [1.0]\n";
     let sides = (1..=2048).map(|k| (8 * k).to_string()).collect::<Vec<_>>().join(", ");
     let maps = format!("maps = [{sides}]");
@@ -103,7 +103,7 @@ fn a_bad_sweep_file_names_its_key() {
         ("[[algorithms]]\nalgo = \"first\"\n", Some(("maps = [128]", "maps = [0]")), "maps[0]"),
         ("[[algorithms]]\nalgo = \"first\"\n", Some(("\"point\"", "\"blur\"")), "filters[0]"),
         ("[[algorithms]]\nalgo = \"first\"\n", Some(("\"talisman\"", "\"cray\"")), "archs[0]"),
-        ("[[algorithms]]\nalgo = \"first\"\n", Some(("[\"table\"]", "[\"nowhere\"]")), "scenes[0]"),
+        ("[[algorithms]]\nalgo = \"first\"\n", Some(("[\"table-and-sphere\"]", "[\"nowhere\"]")), "scenes[0]"),
         ("[[algorithms]]\nalgo = \"first\"\n", Some(("budgets = [1.0]", "budgets = [-1.0]")), "budgets[0]"),
         (
             "[[algorithms]]\nalgo = \"first\"\n[[arch_axes]]\nkey = \"clock\"\nvalues = [\"fast\"]\n",
@@ -113,7 +113,7 @@ fn a_bad_sweep_file_names_its_key() {
         ("[[algorithms]]\nalgo = \"first\"\nspeed = 3\n", None, "(line"),
         // Repeats would run every configuration twice; sizes are whole.
         ("[[algorithms]]\nalgo = \"first\"\n", Some(("maps = [128]", "maps = [128, 128]")), "maps[1]"),
-        ("[[algorithms]]\nalgo = \"first\"\n", Some(("[\"table\"]", "[\"table\", \"table\"]")), "scenes[1]"),
+        ("[[algorithms]]\nalgo = \"first\"\n", Some(("[\"table-and-sphere\"]", "[\"table-and-sphere\", \"table-and-sphere\"]")), "scenes[1]"),
         ("[[algorithms]]\nalgo = \"first\"\n", Some(("budgets = [1.0]", "budgets = [1.0, 1.0]")), "budgets[1]"),
         ("[[algorithms]]\nalgo = \"first\"\nbias = [0.0, 0.0]\n", None, "algorithms"),
         ("[[algorithms]]\nalgo = \"first\"\n", Some(("[[64, 36]]", "[[64, 36, 2]]")), "(line"),

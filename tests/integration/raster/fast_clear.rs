@@ -154,7 +154,7 @@ fn the_kept_camera_frame_equals_a_new_one() {
         virtual_samples: true,
         tiling: Tiling { tile, ..Tiling::DEFAULT },
     };
-    let scenes = ["table", "crowd", "thin"].map(|n| Scene::bundled(n).expect("bundled"));
+    let scenes = ["table-and-sphere", "crowd", "thin"].map(|n| Scene::bundled(n).expect("bundled"));
     let runs =
         [(0, options(160, 96, 16)), (1, options(160, 96, 16)), (2, options(96, 160, 16)), (0, options(96, 160, 32))];
     let mut frame = CameraFrame::default();

@@ -40,7 +40,7 @@ fn both<F: DepthFormat, U: ShadowUnit<F>>(
 #[test]
 fn blocks_give_the_pixel_units_fractions() {
     let mut shadowed = 0;
-    for name in ["table", "crowd", "grazing", "thin", "weiskopf-l", "factory"] {
+    for name in ["table-and-sphere", "crowd", "grazing", "thin", "weiskopf-l", "factory"] {
         let scene = Scene::bundled(name).expect("bundled");
         for (test, bias) in [
             (DepthTest::Second, Bias::ZERO),

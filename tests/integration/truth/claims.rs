@@ -121,7 +121,7 @@ fn wang_molnar_no_first_depth_bias_is_acceptable() {
     let biases: Vec<f64> = (0..=30).map(|k| f64::from(k) * 0.001).collect();
     let mut variants: Vec<Variant> = biases.iter().map(|&b| Variant::new(Algorithm::First, b)).collect();
     variants.push(Variant::new(Algorithm::Second, 0.0));
-    let rows = sweep("table", variants, &[512], filter(Filter::Bilinear), (512, 512, 1));
+    let rows = sweep("table-and-sphere", variants, &[512], filter(Filter::Bilinear), (512, 512, 1));
     let second = rows.iter().find(|r| r.config.algorithm == "second").expect("second");
     let first: Vec<&Row> = rows.iter().filter(|r| r.config.algorithm == "first").collect();
     let best = first.iter().map(|r| artifacts(r)).min().expect("biases");

@@ -205,7 +205,7 @@ fn render_config(map_size: u32, width: u32, height: u32) -> RenderConfig {
 /// past the limits.
 #[test]
 fn huge_maps_and_images_are_refused_before_allocating() {
-    let scene = Scene::bundled("table").expect("bundled");
+    let scene = Scene::bundled("table-and-sphere").expect("bundled");
     let hidden = indicatif::ProgressBar::hidden();
     for side in [65_536u32, 16_384] {
         let err = render(&scene, &render_config(side, 64, 48), &Limits::DEFAULT, TruthSource::Build(&hidden))

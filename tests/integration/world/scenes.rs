@@ -158,8 +158,8 @@ fn each_bad_input_has_its_own_error() {
     let e = Scene::open("nosuch", &Limits::DEFAULT).expect_err("no such scene");
     assert!(e.to_string().contains("no bundled scene `nosuch`"), "{e}");
     assert_eq!(
-        Scene::open("table", &Limits::DEFAULT).expect("bundled").name,
-        Scene::bundled("table").expect("bundled").name
+        Scene::open("table-and-sphere", &Limits::DEFAULT).expect("bundled").name,
+        Scene::bundled("table-and-sphere").expect("bundled").name
     );
 }
 

@@ -38,7 +38,7 @@ pub const GRAZING_DEGREES: [f64; 2] = [0.1, 0.02];
 /// named `near-far-<ratio>`.
 ///
 /// # Panics
-/// Never: the bundled table scene is valid.
+/// Never: the bundled table-and-sphere scene is valid.
 #[must_use]
 pub fn near_far_scene(ratio: f64) -> Scene {
     let mut s = Scene::default_scene();
@@ -227,7 +227,7 @@ pub fn markdown(rows: &[Row]) -> String {
         rows.first().map_or(0, |r| r.config.image_width_px),
         rows.first().map_or(0, |r| r.config.image_height_px)
     );
-    let _ = writeln!(s, "## Light near/far ratio (table scene, spot light)\n");
+    let _ = writeln!(s, "## Light near/far ratio (table-and-sphere scene, spot light)\n");
     let _ = write!(s, "| algorithm | format |");
     for r in RATIOS {
         let _ = write!(s, " {r:.0e} |");

@@ -3,7 +3,7 @@
 //!
 //! ```toml
 //! name = "mine"
-//! scenes = ["table", "my-scene.toml"]      # bundled names or files (relative to this file)
+//! scenes = ["table-and-sphere", "my-scene.toml"]      # bundled names or files (relative to this file)
 //! images = [[640, 360], [1920, 1080]]     # an axis: width × height
 //! reference_rays = 2                       # rays per pixel side for the area reference
 //! formats = ["d16", "d24"]

@@ -49,7 +49,7 @@ mod schema;
 
 /// The bundled scenes, by name: the papers' set-ups, built procedurally.
 pub const BUNDLED: [(&str, &str); 14] = [
-    ("table", include_str!("../../../../scenes/table.toml")),
+    ("table-and-sphere", include_str!("../../../../scenes/table-and-sphere.toml")),
     ("wang-molnar-4", include_str!("../../../../scenes/wang-molnar-4.toml")),
     ("reeves-sphere", include_str!("../../../../scenes/reeves-sphere.toml")),
     ("weiskopf-l", include_str!("../../../../scenes/weiskopf-l.toml")),
@@ -223,7 +223,7 @@ impl Scene {
     ///
     /// ```
     /// use umbra_sim::{Limits, Scene};
-    /// let table = Scene::open("table", &Limits::DEFAULT)?;
+    /// let table = Scene::open("table-and-sphere", &Limits::DEFAULT)?;
     /// assert_eq!(table.image, [960, 540]);
     /// let err = Scene::open("no-such-scene.toml", &Limits::DEFAULT).unwrap_err();
     /// assert!(err.to_string().contains("no-such-scene.toml"));
