@@ -104,21 +104,21 @@ pub(super) fn cost(args: &CostArgs, trace: bool, limits: &Limits) -> Result<()> 
     for arch in &archs {
         let report = umbra_sim::render::cost(&scene, &cfg, arch, limits)?;
         let name = &arch.name;
-        if trace {
-            folder.write_text(&format!("trace-{name}.json"), &serde_json::to_string(&report.trace())?)?;
-            say!(
-                "trace-{name}.json: {:.3} ms of {name} in {} tiles",
-                report.seconds * 1e3,
-                report.tiles[0].len() + report.tiles[1].len()
-            );
-        } else {
+        if !trace {
             say!("{}", report.markdown());
             folder.write_text(&format!("stats-{name}.txt"), &report.stats(&command))?;
         }
         folder.write_text(&format!("arch-{name}.toml"), &arch.to_toml())?;
         reports.push(report);
     }
-    if !trace {
+    if trace {
+        let (json, slices) = umbra_sim::cost::arch::trace(&reports);
+        folder.write_text("trace.json", &serde_json::to_string(&json)?)?;
+        for (r, n) in reports.iter().zip(slices) {
+            let unit = if r.arch.immediate() { "draw" } else { "tile" };
+            say!("trace.json: {} ({:.3} ms): {n} {unit} slices", r.arch.name, r.seconds * 1e3);
+        }
+    } else {
         let comparison = umbra_sim::cost::arch::Comparison::new(&reports);
         if let Some(c) = &comparison {
             let md = c.markdown();

@@ -344,18 +344,71 @@ fn the_timeline_is_the_timing_model() {
     };
     let arch = bundled("talisman");
     let r = cost(&scene, &cfg, &arch, &Limits::DEFAULT).expect("costs");
-    let trace = r.trace();
+    let (trace, slices) = umbra::sim::cost::arch::trace(std::slice::from_ref(&r));
     let events = trace["traceEvents"].as_array().expect("events");
     let names: Vec<&str> =
         events.iter().filter(|e| e["name"] == "thread_name").filter_map(|e| e["args"]["name"].as_str()).collect();
-    assert_eq!(names, ["front end", "tiles", "raster", "depth", "shadow", "shade", "memory"]);
+    assert_eq!(names, ["passes", "front end", "tiles", "raster", "depth", "shadow", "shade", "memory"]);
     let light_tiles: f64 = events
         .iter()
-        .filter(|e| e["ph"] == "X" && e["tid"] == 1 && e["cat"] == "light")
+        .filter(|e| e["ph"] == "X" && e["cat"] == "light" && e["name"].as_str().is_some_and(|n| n.contains(" tile (")))
         .filter_map(|e| e["dur"].as_f64())
         .sum();
     let expected = r.light.tiles / arch.clock * 1e6;
     assert!((light_tiles - expected).abs() < 1e-6 * expected, "{light_tiles} µs against {expected}");
     assert!(events.iter().any(|e| e["ph"] == "C" && e["name"] == "DRAM GB/s"));
-    assert_eq!(trace["metadata"]["arch"]["name"], "talisman");
+    assert_eq!(trace["metadata"][0]["arch"]["name"], "talisman");
+    assert_timeline(events, 1, &r, slices[0]);
+}
+
+/// The timeline of process `pid` against its report: the passes one after
+/// the other, lasting what the timing model says; every other slice inside
+/// its pass; as many tile (draw) slices as said; the last slice ending
+/// with the frame.
+fn assert_timeline(events: &[serde_json::Value], pid: usize, r: &umbra::sim::cost::arch::CostReport, said: usize) {
+    let us = |cycles: f64| cycles / r.arch.clock * 1e6;
+    let mine: Vec<&serde_json::Value> = events.iter().filter(|e| e["ph"] == "X" && e["pid"] == pid).collect();
+    let span = |e: &serde_json::Value| {
+        let ts = e["ts"].as_f64().expect("ts");
+        (ts, ts + e["dur"].as_f64().expect("dur"))
+    };
+    let passes: Vec<(f64, f64)> = mine.iter().filter(|e| e["tid"] == 0).map(|e| span(e)).collect();
+    let frame = us(r.cycles);
+    let light_end = us(r.light.cycles);
+    assert_eq!(passes.len(), 2);
+    assert!(passes[0].0 == 0.0 && close(passes[0].1, light_end) && close(passes[1].0, light_end));
+    assert!(close(passes[1].1, frame), "{passes:?} against {frame}");
+    let mut last = 0.0f64;
+    for e in mine.iter().filter(|e| e["tid"] != 0) {
+        let (a, b) = span(e);
+        let pass = if e["cat"] == "light" { passes[0] } else { passes[1] };
+        let slack = 1e-9 * frame;
+        assert!(a >= pass.0 - slack && b <= pass.1 + slack, "{} outside its pass: {a}..{b} of {pass:?}", e["name"]);
+        last = last.max(b);
+    }
+    assert!(close(last, frame), "the last slice ends at {last} µs, the frame at {frame}");
+    let unit = if r.arch.immediate() { " draw " } else { " tile (" };
+    let tiles = mine.iter().filter(|e| e["name"].as_str().is_some_and(|n| n.contains(unit))).count();
+    assert_eq!(tiles, said);
+}
+
+/// Every bundled architecture's timeline of a render whose light pass has a
+/// silhouette pass and, off chip, a depth-cache write-back: one process
+/// each, all held to their reports.
+#[test]
+fn every_architecture_s_timeline_nests_in_its_passes() {
+    let (scene, mut cfg) = super::bound::small();
+    cfg.algorithm = Algorithm::Silhouette { packed: false };
+    let reports: Vec<_> = umbra::sim::cost::arch::file::BUNDLED
+        .iter()
+        .map(|(name, _)| cost(&scene, &cfg, &bundled(name), &Limits::DEFAULT).expect("costs"))
+        .collect();
+    let (trace, slices) = umbra::sim::cost::arch::trace(&reports);
+    let events = trace["traceEvents"].as_array().expect("events");
+    for (k, r) in reports.iter().enumerate() {
+        let named = events.iter().filter(|e| e["name"] == "process_name" && e["pid"] == k + 1).count();
+        assert_eq!(named, 1);
+        assert_timeline(events, k + 1, r, slices[k]);
+        assert!(slices[k] > 0);
+    }
 }

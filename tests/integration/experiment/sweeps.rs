@@ -113,7 +113,11 @@ fn a_bad_sweep_file_names_its_key() {
         ("[[algorithms]]\nalgo = \"first\"\nspeed = 3\n", None, "(line"),
         // Repeats would run every configuration twice; sizes are whole.
         ("[[algorithms]]\nalgo = \"first\"\n", Some(("maps = [128]", "maps = [128, 128]")), "maps[1]"),
-        ("[[algorithms]]\nalgo = \"first\"\n", Some(("[\"table-and-sphere\"]", "[\"table-and-sphere\", \"table-and-sphere\"]")), "scenes[1]"),
+        (
+            "[[algorithms]]\nalgo = \"first\"\n",
+            Some(("[\"table-and-sphere\"]", "[\"table-and-sphere\", \"table-and-sphere\"]")),
+            "scenes[1]",
+        ),
         ("[[algorithms]]\nalgo = \"first\"\n", Some(("budgets = [1.0]", "budgets = [1.0, 1.0]")), "budgets[1]"),
         ("[[algorithms]]\nalgo = \"first\"\nbias = [0.0, 0.0]\n", None, "algorithms"),
         ("[[algorithms]]\nalgo = \"first\"\n", Some(("[[64, 36]]", "[[64, 36, 2]]")), "(line"),

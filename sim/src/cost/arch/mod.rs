@@ -13,7 +13,7 @@ mod units;
 mod work;
 
 pub use file::{Arch, ArchError};
-pub use report::{Compared, Comparison, CostReport, SenFigures, unit_of};
+pub use report::{Compared, Comparison, CostReport, SenFigures, trace, unit_of};
 pub use timing::{ArchProbe, PassKind, PassTiming};
 pub use work::{MemoryLimit, MemoryTime};
 

@@ -220,6 +220,9 @@ pub struct PassTiming {
     /// The pass: front end and tiles as the architecture overlaps them,
     /// plus its fixed overhead.
     pub cycles: f64,
+    /// The fixed overhead: cycles waiting for the host.
+    #[serde(rename = "overhead_cycles")]
+    pub overhead: f64,
     /// Tiles (draws) with work bound by each bottleneck, in
     /// [`Bottleneck::ALL`] order.
     #[serde(rename = "tiles_bound", serialize_with = "by_bottleneck")]

@@ -10,6 +10,7 @@ mod trace;
 
 pub use compare::{Compared, Comparison};
 pub use stats::unit_of;
+pub use trace::trace;
 
 use std::fmt::Write as _;
 
@@ -125,9 +126,14 @@ pub struct CostReport {
     /// Per tile of each pass (light, camera), for the timeline.
     #[serde(skip)]
     pub tiles: [Vec<Work>; 2],
-    /// The silhouette pass's work, for the timeline.
+    /// The units after each pass's tiles (light, camera), named, for the
+    /// timeline.
     #[serde(skip)]
-    pub silhouette: Work,
+    pub tail: [[(&'static str, Work); 3]; 2],
+    /// Tiles a row of each pass's target (light, camera); `None` for a
+    /// pass timed per draw. For the timeline.
+    #[serde(skip)]
+    pub tiles_across: [Option<usize>; 2],
     /// The front ends' work (light, camera), for the timeline.
     #[serde(skip)]
     pub front: [Work; 2],
@@ -215,7 +221,8 @@ impl CostReport {
             light_events: le,
             camera_events: ce,
             tiles: [light.tiles.clone(), camera.tiles.clone()],
-            silhouette: light.silhouette,
+            tail: [light.tail(), camera.tail()],
+            tiles_across: [light.tiles_across(), camera.tiles_across()],
             front: [light.front, camera.front],
             light: lt,
             camera: ct,

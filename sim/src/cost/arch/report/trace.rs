@@ -1,94 +1,136 @@
-//! The frame's timeline in Chrome trace-event JSON.
+//! The frame's timeline in Chrome trace-event JSON, as Perfetto shows it:
+//! one process per architecture; a slice per pass enclosing everything the
+//! pass does; the host's wait, the front end, the tiles (or draws) and
+//! what follows them; one track per stage.
+
+use serde_json::{Value, json};
 
 use super::CostReport;
 use crate::cost::arch::Stage;
 use crate::cost::arch::timing::Work;
 
+/// Tracks of a process: passes, the front end, the tiles, then one per
+/// stage after setup.
+const TRACKS: [&str; 8] = ["passes", "front end", "tiles", "raster", "depth", "shadow", "shade", "memory"];
+/// The track of the tiles.
+const TILES: usize = 2;
+
+/// The timelines of one render's reports: a process per architecture, each
+/// starting at 0. Returns the trace and, per report, the tile (draw)
+/// slices it holds.
+#[must_use]
+pub fn trace(reports: &[CostReport]) -> (Value, Vec<usize>) {
+    let mut events = Vec::new();
+    let mut counts = Vec::new();
+    for (k, r) in reports.iter().enumerate() {
+        counts.push(r.timeline(k + 1, &mut events));
+    }
+    let metadata: Vec<Value> = reports
+        .iter()
+        .map(|r| {
+            json!({
+                "umbra": r.version, "scene": r.scene, "configuration": r.config, "arch": r.arch,
+                "dram_peak_gb_per_second": r.dram_peak_bytes_per_second / 1e9,
+                "dram_latency_ceiling_gb_per_second": r.dram_latency_ceiling_bytes_per_second / 1e9,
+            })
+        })
+        .collect();
+    (json!({ "traceEvents": events, "displayTimeUnit": "ns", "metadata": metadata }), counts)
+}
+
 impl CostReport {
-    /// The frame's timeline in Chrome trace-event JSON (opens in Perfetto):
-    /// both passes one after the other; a front-end track (setup and bin
-    /// writes, beside the tiles when the architecture overlaps them); a
-    /// track with each tile's whole time, and one per stage with that
-    /// tile's cycles in it; slices carry the tile's triangles, fragments,
-    /// pixels and bytes, what bound it (memory told as bandwidth or
-    /// latency) and its memory time by each limit; a DRAM-bandwidth counter
-    /// track, with the peak and the latency ceiling in the metadata. Times
-    /// in microseconds at the architecture's clock.
-    #[must_use]
-    pub fn trace(&self) -> serde_json::Value {
+    /// The frame's timeline as process `pid`, pushed onto `events`; the
+    /// number of tile (draw) slices. Both passes one after the other, each
+    /// a slice on the passes track enclosing: the wait for the host; the
+    /// front end (setup and bin writes, beside the tiles when the
+    /// architecture overlaps them); each tile, named by its position (each
+    /// draw, by its order), with its stages on their own tracks and its
+    /// triangles, fragments, pixels, bytes and bound (memory told as
+    /// bandwidth or latency) in its arguments; the DRAM shared by the front
+    /// end and the tiles, when it outlasts them; and the units after the
+    /// tiles. A DRAM-bandwidth counter. Times in microseconds at the clock.
+    pub fn timeline(&self, pid: usize, events: &mut Vec<Value>) -> usize {
         let a = &self.arch;
         let us = |cycles: f64| cycles / a.clock * 1e6;
-        let mut events = vec![serde_json::json!({
-            "name": "process_name", "ph": "M", "pid": 1, "args": { "name": format!("{} on {}", self.scene, a.name) }
-        })];
-        let stages = &Stage::ALL[1..];
-        let names = ["front end", "tiles"].into_iter().chain(stages.iter().map(|s| s.name()));
-        for (tid, name) in names.enumerate() {
-            events.push(
-                serde_json::json!({ "name": "thread_name", "ph": "M", "pid": 1, "tid": tid, "args": { "name": name } }),
-            );
+        events.push(json!({ "name": "process_name", "ph": "M", "pid": pid, "args": { "name": format!("{} on {}", self.scene, a.name) } }));
+        for (tid, name) in TRACKS.iter().enumerate() {
+            events.push(json!({ "name": "thread_name", "ph": "M", "pid": pid, "tid": tid, "args": { "name": name } }));
+            events.push(json!({ "name": "thread_sort_index", "ph": "M", "pid": pid, "tid": tid, "args": { "sort_index": tid } }));
         }
-        // One slice of `w` on track `tid` at `t`, its stages on their own
-        // tracks when `staged`; the DRAM rate over it. Returns its cycles.
-        let mut slice = |pass: &str, label: String, w: &Work, t: f64, tid: usize, staged: bool| {
+        // One slice of `w` named `label` on track `tid` at `t`, its stages
+        // on their tracks and the DRAM rate over it when `staged`; its
+        // cycles (none for no work).
+        let slice = |events: &mut Vec<Value>, cat: &str, label: String, w: &Work, t: f64, tid: usize, staged: bool| {
             let cycles = w.stages(a);
-            let dur = cycles.iter().copied().fold(0.0, f64::max);
-            if dur <= 0.0 {
-                return 0.0;
-            }
+            let Some((bound, dur)) = w.bottleneck(a) else { return 0.0 };
             let memory = w.memory(a);
-            let args = serde_json::json!({
+            let args = json!({
                 "triangles": w.triangles, "fragments": w.fragments, "pixels": w.pixels, "bytes": w.bytes,
-                "cycles": dur, "setup cycles": cycles[Stage::Setup as usize],
-                "bound by": w.bottleneck(a).map_or("", |b| b.0.name()),
+                "cycles": dur, "bound by": bound.name(), "setup cycles": cycles[Stage::Setup as usize],
                 "memory cycles at the bandwidth": memory.bandwidth_cycles,
                 "memory cycles at the latency": memory.latency_cycles,
             });
-            events.push(serde_json::json!({
-                "name": label, "cat": pass, "ph": "X", "ts": us(t), "dur": us(dur), "pid": 1, "tid": tid, "args": args
-            }));
+            events.push(json!({ "name": label, "cat": cat, "ph": "X", "ts": us(t), "dur": us(dur), "pid": pid, "tid": tid, "args": args }));
             if staged {
-                for (k, stage) in stages.iter().enumerate() {
+                for (k, stage) in Stage::ALL[1..].iter().enumerate() {
                     let c = cycles[*stage as usize];
                     if c > 0.0 {
-                        events.push(serde_json::json!({
-                            "name": format!("{pass} {}", stage.name()), "cat": pass, "ph": "X",
-                            "ts": us(t), "dur": us(c), "pid": 1, "tid": k + 2,
+                        events.push(json!({
+                            "name": format!("{cat} {}", stage.name()), "cat": cat, "ph": "X",
+                            "ts": us(t), "dur": us(c), "pid": pid, "tid": k + TILES + 1,
                         }));
                     }
                 }
                 #[allow(clippy::cast_precision_loss, reason = "bytes far below 2^53")]
                 let rate = w.bytes as f64 / (dur / a.clock) / 1e9;
-                events.push(serde_json::json!({ "name": "DRAM GB/s", "ph": "C", "ts": us(t), "pid": 1, "args": { "GB/s": rate } }));
+                events
+                    .push(json!({ "name": "DRAM GB/s", "ph": "C", "ts": us(t), "pid": pid, "args": { "GB/s": rate } }));
             }
             dur
         };
-        let mut t = 0.0f64;
-        for (p, pass) in ["light", "camera"].iter().enumerate() {
+        let mut start = 0.0f64;
+        let mut tiles = 0;
+        for (p, pass) in ["light", "camera"].into_iter().enumerate() {
             let timing = if p == 0 { &self.light } else { &self.camera };
-            let start = t;
-            let front = slice(pass, format!("{pass} front end"), &self.front[p], t, 0, false);
-            // Overlapped, the tiles start with the front end.
-            if !a.front.overlap {
-                t += front;
+            let args = json!({
+                "cycles": timing.cycles, "bottleneck": timing.bottleneck.name(), "bytes": timing.bytes,
+                "achieved GB/s": timing.achieved_bytes_per_second / 1e9,
+            });
+            let name = format!("{pass} pass");
+            events.push(json!({ "name": name, "cat": pass, "ph": "X", "ts": us(start), "dur": us(timing.cycles), "pid": pid, "tid": 0, "args": args }));
+            if timing.overhead > 0.0 {
+                let label = format!("{pass}: waiting for the host");
+                events.push(json!({ "name": label, "cat": pass, "ph": "X", "ts": us(start), "dur": us(timing.overhead), "pid": pid, "tid": 1 }));
             }
-            let unit = if a.immediate() { "draw" } else { "tile" };
+            let body_start = start + timing.overhead;
+            let front = slice(events, pass, format!("{pass} front end"), &self.front[p], body_start, 1, false);
+            let mut t = body_start + if a.front.overlap { 0.0 } else { front };
             for (i, w) in self.tiles[p].iter().enumerate() {
-                t += slice(pass, format!("{pass} {unit} {i}"), w, t, 1, true);
+                let label = match self.tiles_across[p] {
+                    Some(across) => format!("{pass} tile ({}, {})", i % across.max(1), i / across.max(1)),
+                    None => format!("{pass} draw {i}"),
+                };
+                let dur = slice(events, pass, label, w, t, TILES, true);
+                tiles += usize::from(dur > 0.0);
+                t += dur;
             }
-            if p == 0 {
-                t += slice(pass, "silhouette pass".to_owned(), &self.silhouette, t, 1, true);
+            // The units after the tiles end the pass.
+            let tail: Vec<(String, f64)> = self.tail[p]
+                .iter()
+                .map(|(name, w)| (format!("{pass}: {name}"), w.bottleneck(a).map_or(0.0, |b| b.1)))
+                .collect();
+            let body_end = start + timing.cycles - tail.iter().map(|u| u.1).sum::<f64>();
+            if body_end > t * (1.0 + 1e-12) && body_end > body_start + front {
+                let label = format!("{pass}: DRAM shared by the front end and the tiles");
+                events.push(json!({ "name": label, "cat": pass, "ph": "X", "ts": us(t), "dur": us(body_end - t), "pid": pid, "tid": TILES }));
             }
-            t = t.max(start + timing.cycles);
+            t = body_end;
+            for ((label, _), (_, w)) in tail.into_iter().zip(&self.tail[p]) {
+                t += slice(events, pass, label, w, t, TILES, true);
+            }
+            start += timing.cycles;
         }
-        events.push(
-            serde_json::json!({ "name": "DRAM GB/s", "ph": "C", "ts": us(t), "pid": 1, "args": { "GB/s": 0.0 } }),
-        );
-        let metadata = serde_json::json!({
-            "umbra": self.version, "scene": self.scene, "configuration": self.config, "arch": self.arch,
-            "dram_peak_gb_per_second": self.dram_peak_bytes_per_second / 1e9,
-            "dram_latency_ceiling_gb_per_second": self.dram_latency_ceiling_bytes_per_second / 1e9,
-        });
-        serde_json::json!({ "traceEvents": events, "displayTimeUnit": "ns", "metadata": metadata })
+        events.push(json!({ "name": "DRAM GB/s", "ph": "C", "ts": us(start), "pid": pid, "args": { "GB/s": 0.0 } }));
+        tiles
     }
 }

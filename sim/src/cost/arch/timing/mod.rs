@@ -290,19 +290,9 @@ impl<const D: bool> ArchProbe<D> {
         // Overlapped, the front end and the tiles share the DRAM: what
         // limits it is what limits the most of their memory cycles.
         let shared_limit = if by_limit[1] > by_limit[0] { MemoryLimit::Latency } else { MemoryLimit::Bandwidth };
-        // A second depth by a second pass ends with a pass combining the two
-        // maps: two reads and a write per texel, one fragment per texel.
-        let mut combine = Work::default();
-        if self.passes > 1 {
-            let texels = self.raster.texel_count() as u64;
-            combine.bytes = 3 * texels * u64::from(self.format.bytes());
-            combine.streamed = combine.bytes;
-            combine.cycles[Stage::Raster as usize] = Self::per(texels, a.raster.fragments_per_clock.max(1.0));
-        }
-        // It, the silhouette pass and the depth cache's write-back follow
-        // the tiles, each with its own stages.
+        // The units after the tiles, each with its own stages.
         let mut after = 0.0;
-        for w in [&combine, &self.silhouette, &self.drain] {
+        for (_, w) in &self.tail() {
             let ws = add(&mut t, &mut [0.0; 2], w);
             after += ws.iter().copied().fold(0.0, f64::max);
         }
@@ -313,6 +303,7 @@ impl<const D: bool> ArchProbe<D> {
         let shared = fs[Stage::Memory as usize] + tile_memory;
         let body = if a.front.overlap { t.front.max(t.tiles).max(shared) } else { t.front + t.tiles };
         t.cycles = overhead + body + after;
+        t.overhead = overhead;
         t.bottleneck = if a.front.overlap && shared > t.tiles.max(t.front) {
             Bottleneck::of(Stage::Memory, shared_limit)
         } else if a.front.overlap && t.front > t.tiles {
@@ -344,6 +335,29 @@ impl<const D: bool> ArchProbe<D> {
             raster: self.accesses.raster_ops as f64 * e.fragment_op * k,
             shadow: self.accesses.shadow_ops as f64 * e.fragment_op,
         }
+    }
+
+    /// The units that follow the tiles, in order, each with its name: the
+    /// pass combining two maps (a second depth by a second pass: two reads
+    /// and a write a texel, one fragment a texel), the silhouette pass,
+    /// and the depth cache's final write-back.
+    #[must_use]
+    pub fn tail(&self) -> [(&'static str, Work); 3] {
+        let mut combine = Work::default();
+        if self.passes > 1 {
+            let texels = self.raster.texel_count() as u64;
+            combine.bytes = 3 * texels * u64::from(self.format.bytes());
+            combine.streamed = combine.bytes;
+            combine.cycles[Stage::Raster as usize] = Self::per(texels, self.arch.raster.fragments_per_clock.max(1.0));
+        }
+        [("combining the maps", combine), ("silhouette pass", self.silhouette), ("depth cache write-back", self.drain)]
+    }
+
+    /// Tiles a row of the pass's target, when it is timed per tile (row
+    /// major); `None` when it is timed per draw.
+    #[must_use]
+    pub const fn tiles_across(&self) -> Option<usize> {
+        if self.per_draw { None } else { Some(self.across) }
     }
 
     /// Bytes of on-chip depth storage the pass needs: the tile buffers, or
