@@ -43,8 +43,8 @@ fn bits(r: &Render) -> (RawMaps, Vec<u64>, Vec<u64>, Vec<u64>, [Totals; 2]) {
         m.evaluated,
         m.false_shadow,
         m.false_light,
-        m.false_shadow_rate.to_bits(),
-        m.false_light_rate.to_bits(),
+        m.false_shadow_percent.to_bits(),
+        m.false_light_percent.to_bits(),
         m.misclassified_percent.to_bits(),
         m.mean_abs_error.to_bits(),
     ];

@@ -124,7 +124,7 @@ pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
     }
     if !args.archs.arch.is_empty() {
         spec.archs = args.archs.resolve(&[], limits)?;
-        spec.arch_params.clear();
+        spec.arch_points.clear();
     } else {
         for arch in &mut spec.archs {
             for s in &args.archs.set {

@@ -123,7 +123,8 @@ enum Command {
     /// (a table, cost.json, gem5-style stats and the effective architecture).
     Cost(CostArgs),
     /// The frame's timeline from the timing model in Chrome trace-event
-    /// JSON (open it in Perfetto): a track per stage, DRAM bandwidth.
+    /// JSON (open it in Perfetto): a process per architecture, a slice per
+    /// pass enclosing its tiles, a track per stage, DRAM bandwidth.
     Trace(CostArgs),
     /// The timing model against published hardware: Weiskopf & Ertl's
     /// Table 1 frame-rate ratios (Radeon 9700) beside the model's for the
@@ -136,6 +137,10 @@ enum Command {
     /// Merge the results.jsonl of `study --shard` runs into the whole run's
     /// files.
     Merge(MergeArgs),
+    /// The columns of a study's rows (results.csv, results.jsonl): name,
+    /// type, unit and meaning, as each study writes them to schema.csv
+    /// (architecture axes add one column each, `arch_<key>_<unit>`).
+    Schema,
     /// Show an architecture with its derived figures, check it for keys
     /// that have no effect, or compare two.
     #[command(subcommand)]
@@ -186,6 +191,10 @@ fn main() -> Result<()> {
         Some(Command::Study(args)) => study(&args, limits),
         Some(Command::Plan(args)) => plan(&args, limits),
         Some(Command::Arch(command)) => arch::arch(&command, limits),
+        Some(Command::Schema) => {
+            say!("{}", umbra_sim::experiment::study::schema::markdown().trim_end());
+            Ok(())
+        }
         Some(Command::Merge(args)) => {
             let n = umbra_sim::experiment::study::merge(&args.inputs, &args.out, limits)?;
             say!("merged {n} rows into {}", args.out.display());

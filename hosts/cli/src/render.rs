@@ -146,11 +146,12 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
             ("umbra_version", umbra_sim::io::provenance::version()),
             ("command", umbra_sim::io::provenance::command_line()),
             ("scene", scene.source.clone()),
-            ("configuration", cfg.describe()),
+            ("configuration_text", cfg.describe()),
             ("render_again", r.command.clone()),
         ] {
             fields.insert(k.to_owned(), serde_json::Value::String(v));
         }
+        fields.insert("configuration".to_owned(), serde_json::to_value(cfg)?);
     }
     folder.write_text("metrics.json", &serde_json::to_string_pretty(&record)?)?;
     let manifest = folder.finish(None)?;
@@ -165,8 +166,8 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
     say!(
         "| {} | {:.3} % | {:.3} % | {:.3} % | {:.4} |",
         m.evaluated,
-        100.0 * m.false_shadow_rate,
-        100.0 * m.false_light_rate,
+        m.false_shadow_percent,
+        m.false_light_percent,
         m.misclassified_percent,
         m.mean_abs_error
     );

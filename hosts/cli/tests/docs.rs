@@ -42,7 +42,8 @@ fn pages() -> Vec<PathBuf> {
     pages
 }
 
-/// One figure block: the command and the text between its fences.
+/// One figure block: the command and the text between its fences (or, for
+/// Markdown a command prints, between its markers).
 struct Figure {
     command: String,
     /// Byte range of the text inside the fences.
@@ -58,12 +59,15 @@ fn figures(text: &str, page: &Path) -> Vec<Figure> {
     while let Some(start) = text[at..].find(OPEN).map(|k| k + at) {
         let line_end = text[start..].find("-->").map(|k| k + start).expect("a figure marker ends with -->");
         let command = text[start + OPEN.len()..line_end].trim().to_owned();
-        let fence = text[line_end..].find("```text\n").map(|k| k + line_end + "```text\n".len());
         let close = text[line_end..].find(CLOSE).map(|k| k + line_end);
-        let (Some(body_start), Some(close)) = (fence, close) else {
-            panic!("{}: the figure `{command}` has no ```text block and {CLOSE}", page.display())
+        let Some(close) = close else { panic!("{}: the figure `{command}` has no {CLOSE}", page.display()) };
+        // In a ```text block, or (Markdown the command prints, a table)
+        // as it is between the markers.
+        let fence = text[line_end..close].find("```text\n").map(|k| k + line_end + "```text\n".len());
+        let (body_start, body_end) = match fence {
+            Some(start) => (start, text[..close].rfind("```").expect("a closing fence")),
+            None => (line_end + "-->\n".len(), close),
         };
-        let body_end = text[..close].rfind("```").expect("a closing fence");
         assert!(body_start <= body_end, "{}: the figure `{command}` is malformed", page.display());
         out.push(Figure { command, body: body_start..body_end });
         at = close + CLOSE.len();

@@ -57,10 +57,10 @@ fn render_again(command: &str, name: &str) -> serde_json::Value {
 /// The metrics a command printed are the row's, exactly.
 fn assert_same(m: &serde_json::Value, row: &Row) {
     let (field, want, c) = (|name: &str| m[name].as_u64(), row.metrics.expect("measured"), &row.config.command);
-    assert_eq!(field("evaluated"), Some(want.evaluated_px), "{c}");
-    assert_eq!(field("edge_placement"), Some(want.edge_placement_px), "{c}");
-    assert_eq!(field("acne"), Some(want.acne_px), "{c}");
-    assert_eq!(field("leaks"), Some(want.leaks_px), "{c}");
+    assert_eq!(field("evaluated_px"), Some(want.evaluated_px), "{c}");
+    assert_eq!(field("edge_placement_px"), Some(want.edge_placement_px), "{c}");
+    assert_eq!(field("acne_px"), Some(want.acne_px), "{c}");
+    assert_eq!(field("leaks_px"), Some(want.leaks_px), "{c}");
     assert_eq!(m["mean_abs_error"].as_f64(), Some(want.mean_abs_error), "{c}");
 }
 
@@ -138,7 +138,7 @@ fn every_bundled_sweep_spells_commands_the_cli_reads() {
                 TruthSource::Build(&indicatif::ProgressBar::hidden()),
             );
             match want {
-                Ok(r) => assert_eq!(m["acne"].as_u64(), Some(r.metrics.acne), "{command}"),
+                Ok(r) => assert_eq!(m["acne_px"].as_u64(), Some(r.metrics.acne), "{command}"),
                 Err(e) => panic!("{command}: {e}"),
             }
         }
@@ -155,4 +155,89 @@ fn a_culling_the_command_cannot_read_is_refused() {
         assert!(!r.status.success() && err.contains(named) && err.contains("--cull"), "{bad}: {err}");
     }
     assert!(!out.exists(), "nothing is written");
+}
+
+/// A sweep with a numeric architecture axis, first and second depth:
+/// `results.csv` carries the axis as a number column in SI units equal to
+/// the swept values, the base architecture, null where a field does not
+/// apply (first depth's virtual samples), frame time in seconds; and
+/// `schema.csv` lists every column, each with a type, a unit and a
+/// meaning.
+#[test]
+fn rows_a_script_reads_as_they_are() {
+    let folder = dir("script-rows");
+    std::fs::create_dir_all(&folder).expect("folder");
+    let file = folder.join("axis.toml");
+    std::fs::write(
+        &file,
+        r#"
+name = "axis"
+scenes = ["weiskopf-l"]
+images = [[64, 48]]
+reference_rays = 1
+formats = ["d16"]
+maps = [64]
+filters = ["point"]
+archs = ["talisman"]
+budgets = [1.0]
+
+[[arch_axes]]
+key = "dram.bandwidth"
+values = ["1.2GB/s", "2400MB/s"]
+
+[[algorithms]]
+algo = "first"
+bias = [0.01]
+
+[[algorithms]]
+algo = "second"
+"#,
+    )
+    .expect("written");
+    let out = folder.join("out");
+    let o = umbra(&["study", "--sweep", file.to_str().expect("UTF-8"), "--out", out.to_str().expect("UTF-8")]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let mut reader = csv::Reader::from_path(out.join("results.csv")).expect("results.csv");
+    let header: Vec<String> = reader.headers().expect("a header").iter().map(str::to_owned).collect();
+    let column = |name: &str| header.iter().position(|h| h == name).unwrap_or_else(|| panic!("{name} in {header:?}"));
+    let (axis, base, vs, algo, seconds, cycles, clock) = (
+        column("arch_dram_bandwidth_bytes_per_second"),
+        column("base_arch"),
+        column("virtual_samples"),
+        column("algorithm"),
+        column("frame_seconds"),
+        column("total_cycles"),
+        column("clock_hertz"),
+    );
+    let rows: Vec<csv::StringRecord> = reader.records().map(|r| r.expect("a record")).collect();
+    assert_eq!(rows.len(), 4, "2 algorithms × 2 bandwidths");
+    let mut bandwidths: Vec<f64> = rows.iter().map(|r| r[axis].parse().expect("a number")).collect();
+    bandwidths.sort_by(f64::total_cmp);
+    assert_eq!(bandwidths, [1.2e9, 1.2e9, 2.4e9, 2.4e9]);
+    for r in &rows {
+        assert_eq!(&r[base], "talisman");
+        assert_eq!(&r[vs], if &r[algo] == "first" { "" } else { "true" }, "{r:?}");
+        let (s, c, hz): (f64, f64, f64) =
+            (r[seconds].parse().expect("s"), r[cycles].parse().expect("cycles"), r[clock].parse().expect("Hz"));
+        // The cycles column is rounded to a whole cycle.
+        assert!((s * hz - c).abs() <= 0.5, "{s} s against {c} cycles at {hz} Hz");
+    }
+    let mut schema = csv::Reader::from_path(out.join("schema.csv")).expect("schema.csv");
+    assert_eq!(schema.headers().expect("header").iter().collect::<Vec<_>>(), ["column", "type", "unit", "meaning"]);
+    let described: Vec<csv::StringRecord> = schema.records().map(|r| r.expect("a record")).collect();
+    assert_eq!(described.iter().map(|r| r[0].to_owned()).collect::<Vec<_>>(), header, "one line a column, in order");
+    for r in &described {
+        assert!(
+            ["integer", "number", "text", "boolean"].contains(&&r[1]) && !r[2].is_empty() && !r[3].is_empty(),
+            "{r:?}"
+        );
+    }
+    let unit = |name: &str| described.iter().find(|r| &r[0] == name).map(|r| r[2].to_owned()).expect("described");
+    assert_eq!(unit("arch_dram_bandwidth_bytes_per_second"), "B/s");
+    assert_eq!((unit("frame_seconds"), unit("total_dram_bytes")), ("s".to_owned(), "B".to_owned()));
+    // The JSON rows hold the axis as a dict of numbers.
+    let jsonl = std::fs::read_to_string(out.join("results.jsonl")).expect("results.jsonl");
+    let first: serde_json::Value = serde_json::from_str(jsonl.lines().next().expect("a row")).expect("JSON");
+    assert!(first["config"]["arch_axes"]["arch_dram_bandwidth_bytes_per_second"].is_f64(), "{first}");
+    let _ = std::fs::remove_dir_all(&folder);
 }

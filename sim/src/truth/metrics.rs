@@ -71,43 +71,55 @@ const SAME_SURFACE_TEXELS: f64 = 8.0;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct Metrics {
     /// Pixels compared.
+    #[serde(rename = "evaluated_px")]
     pub evaluated: u64,
     /// Shadowed by the pipeline (½ verdict), lit in truth.
+    #[serde(rename = "false_shadow_px")]
     pub false_shadow: u64,
     /// Lit by the pipeline (½ verdict), shadowed in truth.
+    #[serde(rename = "false_light_px")]
     pub false_light: u64,
-    /// `false_shadow / evaluated`.
-    pub false_shadow_rate: f64,
-    /// `false_light / evaluated`.
-    pub false_light_rate: f64,
+    /// `false_shadow / evaluated`, percent.
+    pub false_shadow_percent: f64,
+    /// `false_light / evaluated`, percent.
+    pub false_light_percent: f64,
     /// Both, in percent of the evaluated pixels.
     pub misclassified_percent: f64,
     /// Pixels within their edge band that are misclassified or differ from
     /// the reference by more than [`SHADE_STEP`]: aliasing.
+    #[serde(rename = "edge_placement_px")]
     pub edge_placement: u64,
     /// Beyond the band, darker than the reference by more than
     /// [`SHADE_STEP`]: acne and self-shadowing.
+    #[serde(rename = "acne_px")]
     pub acne: u64,
     /// Of [`Metrics::acne`], on surfaces within [`GRAZING_COS`] of grazing
     /// and [`TERMINATOR_REACH`] of a surface facing away: the terminator's.
+    #[serde(rename = "terminator_acne_px")]
     pub terminator_acne: u64,
     /// Beyond the band, lighter than the reference by more than
     /// [`SHADE_STEP`]: leaks and detached shadows.
+    #[serde(rename = "leaks_px")]
     pub leaks: u64,
     /// The acne's summed excess shadow, pixels (a stripe of fraction 0.3
     /// adds 0.3 a pixel).
+    #[serde(rename = "acne_area_px")]
     pub acne_area: f64,
     /// The leaks' summed missing shadow, pixels.
+    #[serde(rename = "leak_area_px")]
     pub leak_area: f64,
     /// Artifacts (acne and leaks), in percent of the evaluated pixels: the
     /// measure error budgets apply to.
     pub artifact_percent: f64,
     /// Beyond the band, shadowed by the ½ verdict and lit in truth (the
     /// count before the shade was measured).
+    #[serde(rename = "half_acne_px")]
     pub half_acne: u64,
     /// Beyond the band, lit by the ½ verdict and shadowed in truth.
+    #[serde(rename = "half_leaks_px")]
     pub half_leaks: u64,
     /// Pixels whose filtered shadow fraction is exactly ½: counted as lit.
+    #[serde(rename = "ties_px")]
     pub ties: u64,
     /// Mean |pipeline shadow fraction − true shadowed area fraction|.
     pub mean_abs_error: f64,
@@ -117,20 +129,35 @@ pub struct Metrics {
     /// 95th percentile and largest, over the lit pixels on the rendered
     /// boundary (an evaluated 8-neighbour rendered shadowed), each to the
     /// nearest lit pixel on the exact boundary.
+    #[serde(rename = "displacement_px", serialize_with = "mean_p95_max")]
     pub displacement: [f64; 3],
     /// The same in map texels, between the two pixels' light-space points
     /// (where both have one).
+    #[serde(serialize_with = "mean_p95_max")]
     pub displacement_texels: [f64; 3],
     /// The map's footprint along the screen's x axis: how far, in texels,
     /// the light-space point moves from one pixel to the next, median and
     /// 95th percentile over the evaluated pixels. Below 1 the map is
     /// magnified that way (a texel covers several pixels, the case Sen et
     /// al.'s §5 assumes), above 1 minified.
+    #[serde(rename = "footprint_x_texels_per_px", serialize_with = "median_p95")]
     pub footprint_x: [f64; 2],
     /// The same along y.
+    #[serde(rename = "footprint_y_texels_per_px", serialize_with = "median_p95")]
     pub footprint_y: [f64; 2],
     /// The edge band, pixels: median and 95th percentile.
+    #[serde(rename = "band_px", serialize_with = "median_p95")]
     pub band: [f64; 2],
+}
+
+/// Mean, 95th percentile and largest, named.
+fn mean_p95_max<S: serde::Serializer>(v: &[f64; 3], s: S) -> Result<S::Ok, S::Error> {
+    s.collect_map([("mean", v[0]), ("p95", v[1]), ("max", v[2])])
+}
+
+/// Median and 95th percentile, named.
+fn median_p95<S: serde::Serializer>(v: &[f64; 2], s: S) -> Result<S::Ok, S::Error> {
+    s.collect_map([("median", v[0]), ("p95", v[1])])
 }
 
 /// Mean, 95th percentile and largest of `v` (zeros when empty).
@@ -409,8 +436,8 @@ pub fn compare(render: &[Shaded], truth: &[Option<PixelTruth>], width: u32) -> M
     if m.evaluated > 0 {
         let n = m.evaluated as f64;
         let (fs, fl) = (m.false_shadow as f64, m.false_light as f64);
-        m.false_shadow_rate = fs / n;
-        m.false_light_rate = fl / n;
+        m.false_shadow_percent = 100.0 * fs / n;
+        m.false_light_percent = 100.0 * fl / n;
         m.misclassified_percent = 100.0 * (fs + fl) / n;
         m.artifact_percent = 100.0 * (m.acne + m.leaks) as f64 / n;
         m.mean_abs_error = abs_error / n;

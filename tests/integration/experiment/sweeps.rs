@@ -80,7 +80,9 @@ cull = ["algorithm", "solids=none"]
     assert_eq!(spec.variants.len(), 4);
     assert_eq!(spec.variants[1].culling, "solids=none".parse::<Culling>().expect("valid"));
     assert_eq!(spec.archs.len(), 2);
-    assert_eq!(spec.arch_params, vec!["map_cache.size=0B".to_owned(), "map_cache.size=16KiB".to_owned()]);
+    let params: Vec<String> = spec.arch_points.iter().map(umbra::sim::experiment::study::ArchPoint::params).collect();
+    assert_eq!(params, ["map_cache.size=0B", "map_cache.size=16KiB"]);
+    assert!(spec.arch_points.iter().all(|p| p.base == "talisman"), "{:?}", spec.arch_points);
     assert_eq!(spec.archs[1].map_cache.size, 16 * 1024);
     assert_eq!(spec.configs().len(), 2 * 2 * 4 * 2);
 }

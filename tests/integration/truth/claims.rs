@@ -46,7 +46,7 @@ fn sweep_scene(
         map_sizes: maps.to_vec(),
         filters,
         archs: Vec::new(),
-        arch_params: Vec::new(),
+        arch_points: Vec::new(),
         images: vec![[size.0, size.1]],
         reference_rays: size.2,
         budgets: Vec::new(),
@@ -59,7 +59,7 @@ fn sweep_scene(
         assert_eq!(r.status, Status::Ok, "{}: {}", r.label(), r.reason);
         let m = m(r);
         eprintln!(
-            "{} {} map {}² {}: misclassified {:.4} % (edge {}, acne {} ({} terminator), leaks {}; ½ verdict beyond the band {} / {}), false light {:.4} %, MAE {:.5}, displacement {}/{} px, {}×{} texels/px",
+            "{} {} map {}² {}: misclassified {:.4} % (edge {}, acne {} ({} terminator), leaks {}; ½ verdict beyond the band {} / {}), false light {} px, MAE {:.5}, displacement {}/{} px, {}×{} texels/px",
             r.config.scene,
             r.label(),
             r.config.map_side_texels,
@@ -71,7 +71,7 @@ fn sweep_scene(
             m.leaks_px,
             m.half_acne_px,
             m.half_leaks_px,
-            100.0 * m.false_light_rate,
+            m.false_light_px,
             m.mean_abs_error,
             m.displacement_mean_px,
             m.displacement_p95_px,
@@ -96,9 +96,8 @@ fn artifacts(r: &Row) -> u64 {
 }
 
 /// Pixels of false light.
-#[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "a rate of a pixel count")]
 fn false_light(r: &Row) -> u64 {
-    (m(r).false_light_rate * m(r).evaluated_px as f64).round() as u64
+    m(r).false_light_px
 }
 
 /// Wang & Molnar §2 and Figure 4: on their table, lit from low to the side,

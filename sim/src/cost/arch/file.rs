@@ -13,7 +13,7 @@ use serde::Serialize;
 
 use crate::io::limits::Limits;
 
-pub use super::keys::{PARAMS, Param, Unit, Value};
+pub use super::keys::{PARAMS, Param, Unit, Value, column};
 use super::keys::{from_text, from_toml};
 pub use super::units::{Bins, CacheParams, DepthRates, DramParams, Energy, Front, OnChip, Raster, Shade, ShadowRates};
 

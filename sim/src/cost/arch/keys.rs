@@ -27,6 +27,33 @@ pub enum Unit {
     Joules,
 }
 
+impl Unit {
+    /// The SI base unit a value is held in, as a column's name ends
+    /// (`bytes`, `bytes_per_second`, `hertz`, `seconds`, `joules`); empty
+    /// for counts, numbers, flags and text.
+    #[must_use]
+    pub const fn si_name(self) -> &'static str {
+        match self {
+            Self::Text | Self::Flag | Self::Count | Self::Number => "",
+            Self::Bytes => "bytes",
+            Self::Bandwidth => "bytes_per_second",
+            Self::Frequency => "hertz",
+            Self::Time => "seconds",
+            Self::Joules => "joules",
+        }
+    }
+}
+
+/// The column a key's values take in a table of rows: `arch_`, the key
+/// with `_` for `.`, and its SI unit (`dram.bandwidth` is
+/// `arch_dram_bandwidth_bytes_per_second`).
+#[must_use]
+pub fn column(key: &str) -> String {
+    let unit = PARAMS.iter().find(|p| p.key == key).map_or("", |p| p.unit.si_name());
+    let base = format!("arch_{}", key.replace('.', "_"));
+    if unit.is_empty() { base } else { format!("{base}_{unit}") }
+}
+
 /// A key's value, read or to be written.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Value {

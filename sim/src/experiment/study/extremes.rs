@@ -170,7 +170,7 @@ pub fn spec(scenes: Vec<Scene>, width: u32, height: u32) -> Spec {
         map_sizes: vec![512],
         filters: vec![umbra_core::shadow::Filter::Bilinear],
         archs: Vec::new(),
-        arch_params: Vec::new(),
+        arch_points: Vec::new(),
         images: vec![[width, height]],
         reference_rays: 1,
         budgets: Vec::new(),

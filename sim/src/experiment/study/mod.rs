@@ -29,6 +29,7 @@ pub mod plot;
 
 mod row;
 mod run;
+pub mod schema;
 mod shards;
 mod summary;
 mod sweep;
@@ -40,7 +41,9 @@ pub use run::{Truth, load_scenes, render_config, run, run_config, truth_of};
 use shards::jsonl;
 pub use shards::{Manifest, finish, invalid, merge, read_rows, write_partial, write_run};
 pub use summary::{slug, summary, write_outputs};
-pub use sweep::{Config, MAX_ARCHITECTURES, MAX_CONFIGURATIONS, Shard, Spec, UNLIMITED_OFFSET, Variant, jittered};
+pub use sweep::{
+    ArchPoint, Config, MAX_ARCHITECTURES, MAX_CONFIGURATIONS, Shard, Spec, UNLIMITED_OFFSET, Variant, jittered,
+};
 pub use sweep_file::{BUNDLED_SWEEPS, SweepError, SweepFile};
 
 /// The distinct `values`, in order of first appearance (scenes, families,

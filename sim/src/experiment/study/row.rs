@@ -6,6 +6,7 @@
 //! `_texels`) and none is a pandas `DataFrame` attribute (`index`, `map`,
 //! `filter`).
 
+use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
 use serde::{Deserialize, Serialize};
@@ -68,8 +69,9 @@ pub struct RowConfig {
     pub bias1: Option<f64>,
     /// Weiskopf & Ertl's offset, for dual depth.
     pub offset: Option<f64>,
-    /// Wang & Molnar's virtual samples on.
-    pub virtual_samples: bool,
+    /// Wang & Molnar's virtual samples on (null where they do not apply:
+    /// every algorithm but second depth's).
+    pub virtual_samples: Option<bool>,
     /// The light pass's culling per object class (`algorithm`, or
     /// `solids=…,open=…` as `umbra render --cull` takes it).
     #[serde(with = "crate::base::text")]
@@ -86,9 +88,15 @@ pub struct RowConfig {
     /// Architecture name (`-` when the sweep has none; with its
     /// parameter-axis values when the sweep has such axes).
     pub arch: String,
+    /// The architecture it was made from (`-` when the sweep has none).
+    pub base_arch: String,
     /// The architecture's parameter-axis assignments (`key=value,…`;
     /// empty for none).
     pub arch_params: String,
+    /// The same, one value per axis under its column's name
+    /// ([`column`](crate::cost::arch::file::column): `arch_`, the key, its
+    /// SI unit), numbers in SI base units.
+    pub arch_axes: BTreeMap<String, serde_json::Value>,
     /// Camera image width.
     pub image_width_px: u32,
     /// Camera image height.
@@ -112,10 +120,10 @@ pub struct RowMetrics {
     pub evaluated_px: u64,
     /// Misclassified, percent of the evaluated pixels.
     pub misclassified_percent: f64,
-    /// False shadows per evaluated pixel.
-    pub false_shadow_rate: f64,
-    /// False light per evaluated pixel.
-    pub false_light_rate: f64,
+    /// Shadowed by the ½ verdict, lit in truth.
+    pub false_shadow_px: u64,
+    /// Lit by the ½ verdict, shadowed in truth.
+    pub false_light_px: u64,
     /// Wrong within the edge band (the map texel's extent on screen from
     /// the exact boundary): aliasing.
     pub edge_placement_px: u64,
@@ -151,8 +159,8 @@ pub struct RowMetrics {
     pub footprint_x_texels_per_px: f64,
     /// The same along y.
     pub footprint_y_texels_per_px: f64,
-    /// Fraction of lookups with virtual samples.
-    pub virtual_sample_fraction: f64,
+    /// Lookups with virtual samples, percent.
+    pub virtual_sample_percent: f64,
 }
 
 /// A row's cost on its architecture ([`CostReport`]).
@@ -209,10 +217,10 @@ pub struct RowCost {
     pub total_dram_bytes: u64,
     /// On-chip depth storage.
     pub on_chip_bytes: u64,
-    /// Light-pass max-z cull rate.
-    pub light_cull_rate: f64,
-    /// Camera visibility max-z cull rate.
-    pub camera_cull_rate: f64,
+    /// Light-pass triangle-tile pairs and blocks max-z culled, percent.
+    pub light_culled_percent: f64,
+    /// The same of the camera's visibility, percent.
+    pub camera_culled_percent: f64,
     /// Shadow lookups culled per covered pixel.
     pub lookups_culled_per_px: f64,
     /// Camera-pass map bytes per covered pixel.
@@ -230,12 +238,12 @@ impl RowConfig {
 impl RowMetrics {
     /// The metrics of a render, with its fraction of virtual-sampled lookups.
     #[must_use]
-    pub const fn new(m: &Metrics, virtual_sample_fraction: f64) -> Self {
+    pub fn new(m: &Metrics, virtual_sample_fraction: f64) -> Self {
         Self {
             evaluated_px: m.evaluated,
             misclassified_percent: m.misclassified_percent,
-            false_shadow_rate: m.false_shadow_rate,
-            false_light_rate: m.false_light_rate,
+            false_shadow_px: m.false_shadow,
+            false_light_px: m.false_light,
             edge_placement_px: m.edge_placement,
             acne_px: m.acne,
             terminator_acne_px: m.terminator_acne,
@@ -251,7 +259,7 @@ impl RowMetrics {
             displacement_p95_px: m.displacement[1],
             footprint_x_texels_per_px: m.footprint_x[0],
             footprint_y_texels_per_px: m.footprint_y[0],
-            virtual_sample_fraction,
+            virtual_sample_percent: 100.0 * virtual_sample_fraction,
         }
     }
 
@@ -294,12 +302,31 @@ impl RowCost {
             dram_stencil_bytes: c.stencil,
             total_dram_bytes: r.bytes,
             on_chip_bytes: r.on_chip_bytes,
-            light_cull_rate: r.max_z_cull_rate[0],
-            camera_cull_rate: r.max_z_cull_rate[1],
+            light_culled_percent: 100.0 * r.max_z_cull_rate[0],
+            camera_culled_percent: 100.0 * r.max_z_cull_rate[1],
             lookups_culled_per_px: r.lookups_culled_per_pixel,
             map_bytes_per_px: r.sen.map_bytes_per_pixel,
         }
     }
+}
+
+/// An architecture point's axis values on `arch`, each under its column's
+/// name: numbers in SI base units, flags and text as they are.
+fn axes(arch: &Arch, point: &super::ArchPoint) -> BTreeMap<String, serde_json::Value> {
+    use crate::cost::arch::file::{Value, column};
+    point
+        .assignments
+        .iter()
+        .map(|(key, _)| {
+            let value = match arch.get(key) {
+                Some(Value::Number(x)) => serde_json::json!(x),
+                Some(Value::Flag(b)) => serde_json::json!(b),
+                Some(Value::Text(t)) => serde_json::json!(t),
+                None => serde_json::Value::Null,
+            };
+            (column(key), value)
+        })
+        .collect()
 }
 
 impl Row {
@@ -307,6 +334,7 @@ impl Row {
     pub(super) fn new(spec: &Spec, c: &Config, arch: Option<(usize, &Arch)>) -> Self {
         let v = &spec.variants[c.variant];
         let cfg = super::render_config(spec, c);
+        let point = arch.and_then(|a| spec.arch_points.get(a.0));
         Self {
             config_index: c.index,
             arch_index: arch.map_or(0, |a| a.0),
@@ -317,13 +345,16 @@ impl Row {
                 bias: v.bias,
                 bias1: v.algorithm.bias_hi(),
                 offset: v.algorithm.offset(),
-                virtual_samples: v.virtual_samples,
+                virtual_samples: (v.algorithm.family() == Family::SecondDepth).then_some(v.virtual_samples),
                 culling: v.culling,
                 depth_format: c.format,
                 map_side_texels: c.map_size,
                 filter_name: spec.filters[c.filter],
                 arch: arch.map_or_else(|| "-".to_owned(), |a| a.1.name.clone()),
-                arch_params: arch.and_then(|a| spec.arch_params.get(a.0)).cloned().unwrap_or_default(),
+                base_arch: point
+                    .map_or_else(|| arch.map_or_else(|| "-".to_owned(), |a| a.1.name.clone()), |p| p.base.clone()),
+                arch_params: point.map(super::ArchPoint::params).unwrap_or_default(),
+                arch_axes: arch.zip(point).map(|(a, p)| axes(a.1, p)).unwrap_or_default(),
                 image_width_px: cfg.width,
                 image_height_px: cfg.height,
                 reference_rays: cfg.reference_rays,
@@ -381,7 +412,7 @@ impl Row {
         if let Some(o) = c.offset {
             let _ = write!(s, " offset {o}");
         }
-        if !c.virtual_samples && c.family == Family::SecondDepth {
+        if c.virtual_samples == Some(false) {
             s.push_str(" no virtual samples");
         }
         if c.culling != Culling::ALGORITHM {

@@ -151,11 +151,9 @@ pub fn invalid(r: &Row) -> Option<String> {
         for (name, v, hi) in [
             ("misclassified_percent", m.misclassified_percent, 100.0),
             ("artifact_percent", m.artifact_percent, 100.0),
-            ("false_shadow_rate", m.false_shadow_rate, 1.0),
-            ("false_light_rate", m.false_light_rate, 1.0),
             ("mean_abs_error", m.mean_abs_error, 1.0),
             ("rms_error", m.rms_error, 1.0),
-            ("virtual_sample_fraction", m.virtual_sample_fraction, 1.0),
+            ("virtual_sample_percent", m.virtual_sample_percent, 100.0),
         ] {
             if !(v.is_finite() && (0.0..=hi).contains(&v)) {
                 return Some(format!("{name} {v} is outside 0…{hi}"));
@@ -172,6 +170,9 @@ pub fn invalid(r: &Row) -> Option<String> {
             if !(v.is_finite() && v >= 0.0) {
                 return Some(format!("{name} {v} is not a finite non-negative number"));
             }
+        }
+        if m.false_shadow_px.checked_add(m.false_light_px).is_none_or(|n| n > m.evaluated_px) {
+            return Some("more misclassified pixels than evaluated".into());
         }
         let wrong = m.edge_placement_px.checked_add(m.acne_px).and_then(|n| n.checked_add(m.leaks_px));
         if wrong.is_none_or(|n| n > m.evaluated_px) {

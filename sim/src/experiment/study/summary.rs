@@ -16,7 +16,9 @@ pub fn write_outputs(folder: &mut OutputFolder, rows: &[Row], manifest: &Manifes
     let mut rows = rows.to_vec();
     sort_rows(&mut rows);
     folder.write_text("results.jsonl", &jsonl(&rows))?;
-    folder.write_text("results.csv", &csv(&rows)?)?;
+    let (table, header) = csv(&rows)?;
+    folder.write_text("results.csv", &table)?;
+    folder.write_text("schema.csv", &super::schema::schema_csv(&header))?;
     let scenes = scenes_of(&rows);
     let slugs: Vec<String> = scenes.iter().map(|s| slug(s)).collect();
     for (k, s) in slugs.iter().enumerate() {
@@ -49,7 +51,7 @@ fn leaves(v: &serde_json::Value, key: &str, out: &mut Vec<(String, String)>) {
 
 /// The rows flat, one column per field of a row with every block (a
 /// skipped row's metric and cost columns empty).
-fn csv(rows: &[Row]) -> Result<String, StudyError> {
+fn csv(rows: &[Row]) -> Result<(String, Vec<String>), StudyError> {
     let flat = |r: &Row| {
         let mut cells = Vec::new();
         // A Row holds only strings, numbers, booleans and options: it always serialises.
@@ -57,18 +59,20 @@ fn csv(rows: &[Row]) -> Result<String, StudyError> {
         cells
     };
     let mut w = csv::Writer::from_writer(Vec::new());
+    let mut columns = Vec::new();
     if let Some(first) = rows.first() {
         let template =
             Row { metrics: Some(super::RowMetrics::default()), cost: Some(RowCost::default()), ..first.clone() };
         let header: Vec<String> = flat(&template).into_iter().map(|c| c.0).collect();
         w.write_record(&header)?;
+        columns.clone_from(&header);
         for r in rows {
             let cells = flat(r);
             w.write_record(header.iter().map(|h| cells.iter().find(|c| &c.0 == h).map_or("", |c| c.1.as_str())))?;
         }
     }
     let bytes = w.into_inner().map_err(|e| StudyError::Csv(e.into_error().into()))?;
-    Ok(String::from_utf8_lossy(&bytes).into_owned())
+    Ok((String::from_utf8_lossy(&bytes).into_owned(), columns))
 }
 
 /// A scene name as it may appear in a file name: letters, digits, `-` and

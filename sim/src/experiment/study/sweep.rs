@@ -78,9 +78,9 @@ pub struct Spec {
     pub filters: Vec<Filter>,
     /// Architectures; none: metrics only, one row per configuration.
     pub archs: Vec<Arch>,
-    /// Each architecture's parameter-axis assignments (`key=value,…`;
-    /// empty, or missing, for none).
-    pub arch_params: Vec<String>,
+    /// Each architecture's base and parameter-axis assignments (missing
+    /// for an architecture without axes).
+    pub arch_points: Vec<ArchPoint>,
     /// Camera image sizes, width × height: an axis, so that the summary
     /// can say where a winner changes with the image.
     pub images: Vec<[u32; 2]>,
@@ -245,5 +245,23 @@ impl Shard {
     #[must_use]
     pub const fn contains(self, index: usize) -> bool {
         index % self.count == self.index
+    }
+}
+
+/// An architecture point of a sweep: the architecture it was made from and
+/// the axis values assigned to it, as the sweep file spells them.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct ArchPoint {
+    /// The base architecture's name.
+    pub base: String,
+    /// `(key, value)` per architecture axis, in the file's order.
+    pub assignments: Vec<(String, String)>,
+}
+
+impl ArchPoint {
+    /// The assignments as `key=value,…` (empty for none).
+    #[must_use]
+    pub fn params(&self) -> String {
+        self.assignments.iter().map(|(k, v)| format!("{k}={v}")).collect::<Vec<_>>().join(",")
     }
 }

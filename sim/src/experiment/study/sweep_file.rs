@@ -244,7 +244,7 @@ impl SweepFile {
             .enumerate()
             .map(|(i, f)| self.filter(&format!("filters[{i}]"), f))
             .collect::<Result<Vec<_>, _>>()?;
-        let (archs, arch_params) = self.archs(&t, limits)?;
+        let (archs, arch_points) = self.archs(&t, limits)?;
         if let Some((i, problem)) = super::budgets_problem(&t.budgets) {
             return Err(self.err(format!("budgets[{i}]"), problem));
         }
@@ -291,7 +291,7 @@ impl SweepFile {
             map_sizes: t.maps,
             filters,
             archs,
-            arch_params,
+            arch_points,
             images: t.images.iter().map(|i| i.0).collect(),
             reference_rays: t.reference_rays,
             budgets: t.budgets,
@@ -388,7 +388,7 @@ impl SweepFile {
 
     /// The architectures, each crossed with every point of the parameter
     /// axes (named `<arch>-<key>-<value>…`), with each point's assignments.
-    fn archs(&self, t: &FileText, limits: &Limits) -> Result<(Vec<Arch>, Vec<String>), SweepError> {
+    fn archs(&self, t: &FileText, limits: &Limits) -> Result<(Vec<Arch>, Vec<super::ArchPoint>), SweepError> {
         let mut base = Vec::new();
         for (i, a) in t.archs.iter().enumerate() {
             let bundled = crate::cost::arch::file::BUNDLED.iter().any(|(n, _)| n == a);
@@ -434,11 +434,11 @@ impl SweepFile {
                         self.err(format!("arch_axes[{i}]"), format!("{key} = `{value}` on {}: {e}", a.name))
                     })?;
                     arch.name = format!("{}-{}-{}", arch.name, word(key), word(value));
-                    assignments.push(format!("{key}={value}"));
+                    assignments.push((key.clone(), value.to_owned()));
                 }
                 arch.check().map_err(|(k, e)| self.err(format!("arch_axes ({k})"), e.to_string()))?;
                 archs.push(arch);
-                params.push(assignments.join(","));
+                params.push(super::ArchPoint { base: a.name.clone(), assignments });
             }
         }
         Ok((archs, params))
