@@ -65,10 +65,15 @@ pub fn write_shadow_term(folder: &mut OutputFolder, name: &str, image: &CameraIm
 /// The error map's colours: edge placement, acne, leaks.
 pub const ERROR_COLOURS: [[u8; 3]; 3] = [[235, 170, 0], [220, 30, 30], [30, 100, 235]];
 
+/// Acne and leak pixels ringed on the error map when there are at most
+/// this many.
+pub const RINGS: usize = 2000;
+
 /// Write the error map: every pixel's [`Verdict`](crate::truth::metrics::Verdict) over a faint shading of
 /// the scene (light greys, lit surfaces lighter, so the geometry stays
-/// readable), edge placement amber, acne red, leaks blue, with a legend
-/// band below the image giving each colour's meaning and count.
+/// readable), edge placement amber, acne red, leaks blue, each acne and
+/// leak pixel ringed in its colour (up to [`RINGS`] of them), with a
+/// legend band below the image giving each colour's meaning and count.
 ///
 /// # Errors
 /// [`OutputError::Image`] or [`OutputError::Io`] naming the file.
@@ -106,6 +111,24 @@ pub fn write_error_image(
     font().map_err(|problem| OutputError::Font { path: path.clone(), problem })?;
     let drawn = {
         let root = BitMapBackend::with_buffer(&mut rgb, (w, h + band)).into_drawing_area();
+        // A ring round each acne and leak pixel, so that a few on a large
+        // image show at a glance; past RINGS of them they show unaided.
+        let rings: Vec<(usize, [u8; 3])> = verdicts
+            .iter()
+            .enumerate()
+            .filter_map(|(k, v)| match v {
+                Verdict::Acne => Some((k, ERROR_COLOURS[1])),
+                Verdict::Leak => Some((k, ERROR_COLOURS[2])),
+                _ => None,
+            })
+            .collect();
+        if rings.len() <= RINGS {
+            for (k, [r, g, b]) in &rings {
+                let (x, y) = (k % w as usize, k / w as usize);
+                let at = (i32::try_from(x).unwrap_or(i32::MAX), i32::try_from(y).unwrap_or(i32::MAX));
+                let _ = root.draw(&Circle::new(at, 7, RGBColor(*r, *g, *b).stroke_width(2)));
+            }
+        }
         let legend = [
             ("edge placement", count(Verdict::EdgePlacement), ERROR_COLOURS[0]),
             ("acne", count(Verdict::Acne), ERROR_COLOURS[1]),

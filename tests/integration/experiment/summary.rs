@@ -204,3 +204,74 @@ fn scene_names_never_become_paths() {
     assert!(e.to_string().contains("`a.b` and `a/b`"), "{e}");
     let _ = std::fs::remove_dir_all(&base);
 }
+
+/// Two base architectures swept over three DRAM bandwidths: the
+/// architecture-axes plot draws one line of three points for each on a
+/// numeric axis whose ticks are bandwidths (read from the SVG's polylines
+/// and text), and the palette keeps twelve architectures apart.
+#[test]
+fn the_arch_axes_plot_is_numeric_with_a_line_per_base() {
+    use umbra::sim::experiment::study::plot::{colour, log_ticks, tick_label};
+    let base = std::env::temp_dir().join(format!("umbra-axes-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&base);
+    let mut rows = Vec::new();
+    for (b, arch) in ["talisman", "immediate"].iter().enumerate() {
+        for (k, gb) in [1u32, 2, 4].iter().enumerate() {
+            let params = format!("dram.bandwidth={gb}GB/s");
+            let name = format!("{arch}-dram_bandwidth-{gb}GB_s");
+            let r = row(
+                0,
+                ("second-ffc", "second depth"),
+                [100, 100],
+                (&name, &params),
+                0.05,
+                (10_000, 10_000 / u64::from(*gb)),
+                1,
+                1.0,
+                "depth",
+            );
+            let mut axes = std::collections::BTreeMap::new();
+            axes.insert("arch_dram_bandwidth_bytes_per_second".to_owned(), serde_json::json!(f64::from(*gb) * 1e9));
+            let config = RowConfig { base_arch: (*arch).to_owned(), arch_axes: axes, ..r.config };
+            rows.push(Row { arch_index: 3 * b + k, config, ..r });
+        }
+    }
+    umbra::sim::experiment::study::write_run(&base, &rows, &manifest()).expect("written");
+    let svg = std::fs::read_to_string(base.join("arch-axes-synthetic.svg")).expect("the plot");
+    // Each base's line: three points, in its colour.
+    for k in 0..2 {
+        let c = colour(k, 2);
+        let stroke = format!("stroke=\"#{:02X}{:02X}{:02X}\"", c.0, c.1, c.2);
+        let lines: Vec<&str> = svg
+            .split("<polyline")
+            .skip(1)
+            .filter(|p| p.contains(&stroke))
+            .filter_map(|p| p.split("points=\"").nth(1)?.split('"').next())
+            .filter(|pts| pts.split_whitespace().count() == 3)
+            .collect();
+        assert_eq!(lines.len(), 1, "base {k}: {lines:?}");
+    }
+    let texts: Vec<&str> =
+        svg.split("<text").skip(1).filter_map(|t| Some(t.split('>').nth(1)?.split('<').next()?.trim())).collect();
+    for tick in ["1G", "2G", "3G", "4G"] {
+        assert!(texts.contains(&tick), "{tick} not among {texts:?}");
+    }
+    assert!(texts.iter().any(|t| t.contains("dram.bandwidth (B/s)")), "{texts:?}");
+    let _ = std::fs::remove_dir_all(&base);
+    // Twelve colours, no two alike (each channel apart by more than a
+    // rounding, summed over the channels).
+    let twelve: Vec<_> = (0..12).map(|k| colour(k, 12)).collect();
+    for (i, a) in twelve.iter().enumerate() {
+        for b in &twelve[i + 1..] {
+            let d = (i32::from(a.0) - i32::from(b.0)).abs()
+                + (i32::from(a.1) - i32::from(b.1)).abs()
+                + (i32::from(a.2) - i32::from(b.2)).abs();
+            assert!(d > 40, "{a:?} and {b:?} are too close");
+        }
+    }
+    // A log axis within one decade still has labelled ticks.
+    let (bold, light) = log_ticks(&(8e5..3e6));
+    assert_eq!(bold, [1e6, 2e6]);
+    assert!(light.len() > bold.len());
+    assert_eq!(bold.iter().map(|&v| tick_label(v)).collect::<Vec<_>>(), ["1e6", "2e6"]);
+}

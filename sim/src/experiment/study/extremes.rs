@@ -318,8 +318,8 @@ pub fn run_all(folder: &mut OutputFolder, limits: &Limits) -> Result<String, Stu
     plot::lines(
         folder,
         "precision",
-        "Depth precision against the light's near/far ratio (table; f32 = d24)",
-        "light far / near",
+        "Depth precision against the light's far/near (table-and-sphere)",
+        "light far / near (f32 lies on d24)",
         "misclassified % (0 drawn at 1e-3)",
         &precision_series(&rows),
     )?;

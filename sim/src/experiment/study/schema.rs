@@ -98,7 +98,7 @@ pub const COLUMNS: &[Column] = &[
 ];
 
 /// The unit an architecture axis's column ends in, as the schema writes it.
-fn axis_unit(column: &str) -> &'static str {
+pub(crate) fn axis_unit(column: &str) -> &'static str {
     [("bytes_per_second", "B/s"), ("bytes", "B"), ("hertz", "Hz"), ("seconds", "s"), ("joules", "J")]
         .iter()
         .find(|(suffix, _)| column.ends_with(suffix))

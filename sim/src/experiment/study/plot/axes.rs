@@ -1,0 +1,202 @@
+//! Frame time against architecture axes: the swept key on a numeric x
+//! axis, one line per base architecture and algorithm family (the fastest
+//! configuration within the loosest budget at each value), one panel per
+//! value of the other axes.
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+use super::{FAMILIES, Figure, Legend, SIZE, both, colour, footnote, marker, provenance};
+use crate::cost::arch::file::column;
+use crate::experiment::study::schema::axis_unit;
+use crate::experiment::study::summary::{TIME, cheapest};
+use crate::experiment::study::{Manifest, Row, StudyError, distinct, loosest};
+use crate::io::folder::OutputFolder;
+
+/// One panel: its label, and per series (index into the series names)
+/// its `(x, µs)` points.
+type Panel = (String, Vec<(usize, Vec<(f64, f64)>)>);
+
+/// The panels of the plot.
+struct AxisPlot {
+    title: String,
+    x_desc: String,
+    /// Series names: base architecture and family.
+    names: Vec<String>,
+    /// Each series' family (an index into [`FAMILIES`]), for its marker.
+    family_of: Vec<usize>,
+    panels: Vec<Panel>,
+    provenance: [String; 2],
+}
+
+/// `v` with an SI prefix (`25.6G`, `225n`), three significant digits.
+#[must_use]
+pub fn si(v: f64) -> String {
+    const PREFIXES: [(f64, &str); 8] =
+        [(1e12, "T"), (1e9, "G"), (1e6, "M"), (1e3, "k"), (1.0, ""), (1e-3, "m"), (1e-6, "µ"), (1e-9, "n")];
+    if v == 0.0 {
+        return "0".to_owned();
+    }
+    let (scale, p) = PREFIXES.iter().find(|(s, _)| v.abs() >= *s).copied().unwrap_or((1e-12, "p"));
+    let s = format!("{:.3}", v / scale);
+    format!("{}{p}", s.trim_end_matches('0').trim_end_matches('.'))
+}
+
+/// A padded range over `values`.
+fn range(values: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
+    let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    if !lo.is_finite() {
+        return 0.0..1.0;
+    }
+    let pad = if hi > lo { (hi - lo) * 0.08 } else { lo.abs().max(1.0) * 0.1 };
+    (lo - pad)..(hi + pad)
+}
+
+impl Figure for AxisPlot {
+    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        area.fill(&WHITE).map_err(|e| e.to_string())?;
+        let (plot, legend_area) = area.split_horizontally(SIZE.0 - 250);
+        let plot = plot.titled(&self.title, ("sans-serif", 18)).map_err(|e| e.to_string())?;
+        #[allow(
+            clippy::cast_possible_truncation,
+            clippy::cast_sign_loss,
+            clippy::cast_precision_loss,
+            reason = "a few panels"
+        )]
+        let across = (self.panels.len() as f64).sqrt().ceil().max(1.0) as usize;
+        let down = self.panels.len().div_ceil(across).max(1);
+        let cells = plot.split_evenly((down, across));
+        let n = self.names.len();
+        for ((label, series), cell) in self.panels.iter().zip(&cells) {
+            let xs = series.iter().flat_map(|s| s.1.iter().map(|p| p.0));
+            let ys = series.iter().flat_map(|s| s.1.iter().map(|p| p.1));
+            let mut builder = ChartBuilder::on(cell);
+            if !label.is_empty() {
+                builder.caption(label, ("sans-serif", 13));
+            }
+            let mut chart = builder
+                .margin(10)
+                .x_label_area_size(40)
+                .y_label_area_size(60)
+                .build_cartesian_2d(range(xs), range(ys))
+                .map_err(|e| e.to_string())?;
+            chart
+                .configure_mesh()
+                .x_desc(&self.x_desc)
+                .y_desc("frame time, µs")
+                .x_labels(8)
+                .y_labels(6)
+                .x_label_formatter(&|x| si(*x))
+                .y_label_formatter(&|y| format!("{y:.1}"))
+                .label_style(("sans-serif", 12))
+                .draw()
+                .map_err(|e| e.to_string())?;
+            for (k, pts) in series {
+                let style = colour(*k, n).stroke_width(2);
+                chart.draw_series(LineSeries::new(pts.iter().copied(), style)).map_err(|e| e.to_string())?;
+                for p in pts {
+                    marker(area, chart.backend_coord(p), self.family_of[*k], 4, style)?;
+                }
+            }
+        }
+        let mut legend = Legend::new(&legend_area, &self.names);
+        for (k, name) in self.names.iter().enumerate() {
+            let style = colour(k, n).stroke_width(2);
+            let f = self.family_of[k];
+            legend.entry(name, &|l, (x, y)| {
+                l.draw(&PathElement::new(vec![(x - 10, y), (x + 10, y)], style)).map_err(|e| e.to_string())?;
+                marker(l, (x, y), f, 4, style)
+            })?;
+        }
+        footnote(&legend_area, &self.provenance)
+    }
+}
+
+/// The axis keys of rows, in the sweep file's order (from `arch_params`).
+fn axis_keys(rows: &[&Row]) -> Vec<String> {
+    let params = rows.iter().map(|r| r.config.arch_params.as_str()).find(|p| !p.is_empty()).unwrap_or("");
+    params.split(',').filter_map(|kv| kv.split_once('=')).map(|(k, _)| k.to_owned()).collect()
+}
+
+/// A row's value on the axis whose column is `col`: the number, or (a flag
+/// or text) its position among `values`.
+fn value(r: &Row, col: &str, values: &[String]) -> Option<f64> {
+    let v = r.config.arch_axes.get(col)?;
+    #[allow(clippy::cast_precision_loss, reason = "a few values")]
+    let text = v.to_string();
+    v.as_f64().or_else(|| values.iter().position(|s| *s == text).map(|k| k as f64))
+}
+
+/// For a sweep with architecture-parameter axes: the frame time of the
+/// fastest configuration of each base architecture and algorithm family
+/// within the loosest budget, against the first axis's value, one panel
+/// per value of the others. Writes `arch-axes-<scene>.{svg,png}`; nothing
+/// when the rows have no parameter axis.
+///
+/// # Errors
+/// [`StudyError::Plot`] or [`StudyError::Output`].
+pub fn arch_axes(folder: &mut OutputFolder, scene: &str, rows: &[&Row], manifest: &Manifest) -> Result<(), StudyError> {
+    let Some(budget) = loosest(&manifest.budgets) else { return Ok(()) };
+    let keys = axis_keys(rows);
+    let Some(first) = keys.first() else { return Ok(()) };
+    let x_col = column(first);
+    let texts = distinct(rows.iter().filter_map(|r| r.config.arch_axes.get(&x_col)).map(ToString::to_string));
+    // The panels: every combination of the other axes' values.
+    let panel_of = |r: &Row| {
+        keys[1..]
+            .iter()
+            .map(|k| {
+                format!(
+                    "{k} = {}",
+                    r.config.arch_axes.get(&column(k)).map_or_else(String::new, ToString::to_string).trim_matches('"')
+                )
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let panel_names = distinct(rows.iter().map(|r| panel_of(r)));
+    let series = distinct(rows.iter().map(|r| (r.config.base_arch.clone(), r.config.family)));
+    let names: Vec<String> = series.iter().map(|(b, f)| format!("{b}, {f}")).collect();
+    let family_of = series.iter().map(|(_, f)| FAMILIES.iter().position(|g| g == f).unwrap_or(0)).collect();
+    let panels = panel_names
+        .iter()
+        .map(|p| {
+            let lines = series
+                .iter()
+                .enumerate()
+                .map(|(k, (base, family))| {
+                    let mine: Vec<&Row> = rows
+                        .iter()
+                        .copied()
+                        .filter(|r| &r.config.base_arch == base && r.config.family == *family && panel_of(r) == *p)
+                        .collect();
+                    let mut pts: Vec<(f64, f64)> =
+                        distinct(mine.iter().filter_map(|r| value(r, &x_col, &texts)).map(f64::to_bits))
+                            .into_iter()
+                            .filter_map(|bits| {
+                                let x = f64::from_bits(bits);
+                                let at: Vec<&Row> =
+                                    mine.iter().copied().filter(|r| value(r, &x_col, &texts) == Some(x)).collect();
+                                let (best, _) = cheapest(&at, budget, TIME)?;
+                                Some((x, best.cost.as_ref()?.frame_seconds * 1e6))
+                            })
+                            .collect();
+                    pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+                    (k, pts)
+                })
+                .filter(|(_, pts)| !pts.is_empty())
+                .collect();
+            (p.clone(), lines)
+        })
+        .collect();
+    let unit = axis_unit(&x_col);
+    let fig = AxisPlot {
+        title: format!("{scene}: fastest within {budget} % against {first}"),
+        x_desc: if unit == "-" { first.clone() } else { format!("{first} ({unit})") },
+        names,
+        family_of,
+        panels,
+        provenance: provenance(manifest),
+    };
+    both(folder, &format!("arch-axes-{scene}"), &fig)
+}

@@ -1,0 +1,91 @@
+//! Lines of a measure against a swept parameter on log axes, each series
+//! told apart by colour, line style and marker, and labelled at its end.
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+use super::{ERROR_FLOOR, Figure, Legend, SIZE, both, colour, log_log_chart, log_range, marker};
+use crate::experiment::study::StudyError;
+use crate::io::folder::OutputFolder;
+
+/// One named series of `(x, y)` points.
+pub type Series = (String, Vec<(f64, f64)>);
+
+/// Lines on log axes.
+struct Lines<'a> {
+    title: &'a str,
+    x_desc: &'a str,
+    y_desc: &'a str,
+    series: &'a [Series],
+}
+
+impl Figure for Lines<'_> {
+    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        area.fill(&WHITE).map_err(|e| e.to_string())?;
+        // The legend beside the chart, never over the data.
+        let (plot, legend_area) = area.split_horizontally(SIZE.0 - 300);
+        let xr = log_range(self.series.iter().flat_map(|s| s.1.iter().map(|p| p.0)), 1e-12);
+        let yr = log_range(self.series.iter().flat_map(|s| s.1.iter().map(|p| p.1)), ERROR_FLOOR);
+        let mut chart = log_log_chart(&plot, self.title, xr, yr, self.x_desc, self.y_desc)?;
+        let n = self.series.len();
+        let labels: Vec<String> = self.series.iter().map(|s| s.0.clone()).collect();
+        let mut legend = Legend::new(&legend_area, &labels);
+        let mut ends = Vec::new();
+        for (k, (name, pts)) in self.series.iter().enumerate() {
+            let color = colour(k, n);
+            let style = color.stroke_width(2);
+            let pts: Vec<(f64, f64)> = pts.iter().map(|&(x, y)| (x, y.max(ERROR_FLOOR))).collect();
+            // Every other series dashed, each its own hollow marker: two
+            // series on one line still show both.
+            let dashed = k % 2 == 1;
+            if dashed {
+                chart
+                    .draw_series(DashedLineSeries::new(pts.iter().copied(), 8, 5, style))
+                    .map_err(|e| e.to_string())?;
+            } else {
+                chart.draw_series(LineSeries::new(pts.iter().copied(), style)).map_err(|e| e.to_string())?;
+            }
+            for p in &pts {
+                marker(area, chart.backend_coord(p), k % 5, 4 + 2 * i32::from(dashed), style)?;
+            }
+            // The series' short name at its last point, unless another's
+            // is there already (the legend names them all).
+            let end = pts.last().map(|last| chart.backend_coord(last));
+            if let Some((x, y)) = end
+                .filter(|&(x, y)| !ends.iter().any(|&(ex, ey): &(i32, i32)| (ex - x).abs() < 60 && (ey - y).abs() < 12))
+            {
+                ends.push((x, y));
+                let short = name.split(':').next().unwrap_or(name).to_owned();
+                area.draw(&Text::new(short, (x + 8, y - 6), ("sans-serif", 11).into_font().color(&color)))
+                    .map_err(|e| e.to_string())?;
+            }
+            legend.entry(name, &|l, (x, y)| {
+                let line = vec![(x - 10, y), (x + 10, y)];
+                if dashed {
+                    l.draw(&PathElement::new(vec![(x - 10, y), (x - 3, y)], style)).map_err(|e| e.to_string())?;
+                    l.draw(&PathElement::new(vec![(x + 3, y), (x + 10, y)], style)).map_err(|e| e.to_string())?;
+                } else {
+                    l.draw(&PathElement::new(line, style)).map_err(|e| e.to_string())?;
+                }
+                marker(l, (x, y), k % 5, 4, style)
+            })?;
+        }
+        Ok(())
+    }
+}
+
+/// Lines of `y` against `x` on log axes (`y` floored at [`ERROR_FLOOR`]),
+/// one per series, into `base.svg` and `base.png`.
+///
+/// # Errors
+/// [`StudyError::Plot`] or [`StudyError::Output`].
+pub fn lines(
+    folder: &mut OutputFolder,
+    base: &str,
+    title: &str,
+    x_desc: &str,
+    y_desc: &str,
+    series: &[Series],
+) -> Result<(), StudyError> {
+    both(folder, base, &Lines { title, x_desc, y_desc, series })
+}

@@ -1,0 +1,144 @@
+//! Artifacts against cost, with the Pareto front as a staircase.
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+use super::{
+    ERROR_FLOOR, FAMILIES, Figure, Legend, SIZE, both, colour, footnote, log_log_chart, log_range, marker,
+    pareto_front, provenance,
+};
+use crate::experiment::study::{Manifest, Row, RowCost, StudyError, distinct};
+use crate::io::folder::OutputFolder;
+
+/// Artifacts against cost, with the Pareto front as a staircase.
+struct Pareto<'a> {
+    title: String,
+    axis: &'a str,
+    /// `(cost, artifacts %)` per row.
+    points: Vec<(f64, f64)>,
+    /// Each row's architecture and family (indices into `archs`, [`FAMILIES`]).
+    arch_of: Vec<usize>,
+    family_of: Vec<usize>,
+    /// Each architecture's label (its base and axis values).
+    archs: Vec<String>,
+    budgets: &'a [f64],
+    /// What made it: the version, the sweep and its hash.
+    provenance: [String; 2],
+}
+
+impl Figure for Pareto<'_> {
+    fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        area.fill(&WHITE).map_err(|e| e.to_string())?;
+        // The legend beside the chart, never over the data.
+        let (plot, legend_area) = area.split_horizontally(SIZE.0 - 230);
+        let xr = log_range(self.points.iter().map(|p| p.0), 1e-3);
+        let yr = log_range(self.points.iter().map(|p| p.1).chain(self.budgets.iter().copied()), ERROR_FLOOR);
+        let y_desc = format!("artifacts % (acne and leaks; 0 drawn at {ERROR_FLOOR})");
+        let (x0, x1) = (xr.start, xr.end);
+        let mut chart = log_log_chart(&plot, &self.title, xr, yr, self.axis, &y_desc)?;
+        for &b in self.budgets {
+            chart
+                .draw_series(DashedLineSeries::new([(x0, b), (x1, b)], 6, 4, BLACK.mix(0.5).stroke_width(1)))
+                .map_err(|e| e.to_string())?;
+            chart
+                .draw_series(std::iter::once(Text::new(format!("{b} %"), (x0 * 1.05, b), ("sans-serif", 12))))
+                .map_err(|e| e.to_string())?;
+        }
+        // Hollow markers of one size, each architecture its colour.
+        let n = self.archs.len();
+        for k in 0..n {
+            let color = colour(k, n);
+            for ((p, a), f) in self.points.iter().zip(&self.arch_of).zip(&self.family_of) {
+                if *a == k {
+                    marker(area, chart.backend_coord(p), *f, 5, color.stroke_width(2))?;
+                }
+            }
+        }
+        let front: Vec<(f64, f64)> = pareto_front(&self.points).iter().map(|&i| self.points[i]).collect();
+        let mut stairs = Vec::new();
+        for (i, &(x, y)) in front.iter().enumerate() {
+            if i > 0 {
+                stairs.push((x, front[i - 1].1));
+            }
+            stairs.push((x, y));
+        }
+        if let Some(&(_, y)) = front.last() {
+            stairs.push((x1, y));
+        }
+        chart.draw_series(LineSeries::new(stairs, BLACK.stroke_width(2))).map_err(|e| e.to_string())?;
+        // The legend: architectures by colour, the families drawn by marker.
+        let families: Vec<usize> = (0..FAMILIES.len()).filter(|f| self.family_of.contains(f)).collect();
+        let mut labels = self.archs.clone();
+        labels.extend(["Pareto front".to_owned(), "budget".to_owned()]);
+        labels.extend(families.iter().map(|&f| FAMILIES[f].name().to_owned()));
+        let mut legend = Legend::new(&legend_area, &labels);
+        for (k, arch) in self.archs.iter().enumerate() {
+            let color = colour(k, n);
+            legend.entry(arch, &|l, c| l.draw(&Circle::new(c, 5, color.filled())).map_err(|e| e.to_string()))?;
+        }
+        legend.entry("Pareto front", &|l, (x, y)| {
+            l.draw(&PathElement::new(vec![(x - 9, y), (x + 9, y)], BLACK.stroke_width(2))).map_err(|e| e.to_string())
+        })?;
+        legend.entry("budget", &|l, (x, y)| {
+            l.draw(&PathElement::new(vec![(x - 9, y), (x + 9, y)], BLACK.mix(0.5))).map_err(|e| e.to_string())
+        })?;
+        for f in families {
+            legend.entry(FAMILIES[f].name(), &|l, c| marker(l, c, f, 5, BLACK.stroke_width(2)))?;
+        }
+        footnote(&legend_area, &self.provenance)
+    }
+}
+
+/// Artifacts against cost for one scene's rows: hollow markers by
+/// algorithm family, coloured by architecture, the Pareto front a
+/// staircase, the budgets dashed lines, the legend beside the chart.
+/// Writes `pareto-<scene>-time.{svg,png}` and
+/// `pareto-<scene>-bytes.{svg,png}`.
+///
+/// # Errors
+/// [`StudyError::Plot`] or [`StudyError::Output`].
+pub fn pareto(folder: &mut OutputFolder, scene: &str, rows: &[&Row], manifest: &Manifest) -> Result<(), StudyError> {
+    let rows: Vec<&Row> = rows.iter().copied().filter(|r| r.complete()).collect();
+    let names = distinct(rows.iter().map(|r| r.config.arch.as_str()));
+    let arch_of: Vec<usize> =
+        rows.iter().map(|r| names.iter().position(|a| *a == r.config.arch).unwrap_or(0)).collect();
+    let archs: Vec<String> = names
+        .iter()
+        .map(|name| {
+            let r = rows.iter().find(|r| r.config.arch == *name).map(|r| &r.config);
+            match r {
+                Some(c) if !c.arch_params.is_empty() => format!("{}: {}", c.base_arch, c.arch_params),
+                _ => (*name).to_owned(),
+            }
+        })
+        .collect();
+    let family_of: Vec<usize> =
+        rows.iter().map(|r| FAMILIES.iter().position(|&f| f == r.config.family).unwrap_or(4)).collect();
+    for (what, axis, key) in [
+        (
+            "time",
+            "frame time, µs (light + camera passes)",
+            (|c: &RowCost| c.frame_seconds * 1e6) as fn(&RowCost) -> f64,
+        ),
+        #[allow(clippy::cast_precision_loss, reason = "plot coordinates")]
+        ("bytes", "DRAM bytes (both passes)", |c: &RowCost| c.total_dram_bytes as f64),
+    ] {
+        let points: Vec<(f64, f64)> = rows
+            .iter()
+            .filter_map(|r| Some((r.cost.as_ref()?, r.metrics.as_ref()?)))
+            .map(|(c, m)| (key(c).max(1e-3), m.artifact_percent.max(ERROR_FLOOR)))
+            .collect();
+        let fig = Pareto {
+            title: format!("{scene}: artifacts against {what}"),
+            axis,
+            points,
+            arch_of: arch_of.clone(),
+            family_of: family_of.clone(),
+            archs: archs.clone(),
+            budgets: &manifest.budgets,
+            provenance: provenance(manifest),
+        };
+        both(folder, &format!("pareto-{scene}-{what}"), &fig)?;
+    }
+    Ok(())
+}
