@@ -56,7 +56,7 @@ impl MemoryTime {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct Work {
     /// Compute cycles per stage, in [`Stage::ALL`] order (memory's slot is
-    /// filled by [`Work::memory_cycles`]).
+    /// filled by [`Work::memory`]).
     pub cycles: [f64; 6],
     /// DRAM bytes.
     pub bytes: u64,
@@ -99,22 +99,16 @@ impl Work {
         }
     }
 
-    /// Memory cycles: the bytes at the bandwidth, or the requests at the
-    /// latency over those in flight, whichever is longer.
-    #[must_use]
-    pub fn memory_cycles(&self, arch: &Arch) -> f64 {
-        self.memory(arch).cycles()
-    }
-
     /// What bounds this work: its slowest stage, memory told as bandwidth
     /// or latency; and that stage's cycles. `None` for no work.
     #[must_use]
     pub fn bottleneck(&self, arch: &Arch) -> Option<(Bottleneck, f64)> {
-        let s = self.stages(arch);
+        let memory = self.memory(arch);
+        let s = self.stages_with(arch, memory);
         let slowest = s.iter().copied().fold(0.0, f64::max);
         (slowest > 0.0).then(|| {
             let stage = Stage::ALL[s.iter().position(|&c| c == slowest).unwrap_or(0)];
-            (Bottleneck::of(stage, self.memory(arch).limit()), slowest)
+            (Bottleneck::of(stage, memory.limit()), slowest)
         })
     }
 
@@ -122,8 +116,13 @@ impl Work {
     /// shading program adds to the shading.
     #[must_use]
     pub fn stages(&self, arch: &Arch) -> [f64; 6] {
+        self.stages_with(arch, self.memory(arch))
+    }
+
+    /// [`Work::stages`] with the memory time already worked out.
+    fn stages_with(&self, arch: &Arch, memory: MemoryTime) -> [f64; 6] {
         let mut c = self.cycles;
-        c[Stage::Memory as usize] = self.memory_cycles(arch);
+        c[Stage::Memory as usize] = memory.cycles();
         if arch.shadow.in_shader {
             c[Stage::Shade as usize] += c[Stage::Shadow as usize];
             c[Stage::Shadow as usize] = 0.0;

@@ -335,6 +335,8 @@ impl Row {
         let v = &spec.variants[c.variant];
         let cfg = super::render_config(spec, c);
         let point = arch.and_then(|a| spec.arch_points.get(a.0));
+        let name = arch.map_or_else(|| "-".to_owned(), |a| a.1.name.clone());
+        let base_arch = point.map_or_else(|| name.clone(), |p| p.base.clone());
         Self {
             config_index: c.index,
             arch_index: arch.map_or(0, |a| a.0),
@@ -350,9 +352,8 @@ impl Row {
                 depth_format: c.format,
                 map_side_texels: c.map_size,
                 filter_name: spec.filters[c.filter],
-                arch: arch.map_or_else(|| "-".to_owned(), |a| a.1.name.clone()),
-                base_arch: point
-                    .map_or_else(|| arch.map_or_else(|| "-".to_owned(), |a| a.1.name.clone()), |p| p.base.clone()),
+                arch: name,
+                base_arch,
                 arch_params: point.map(super::ArchPoint::params).unwrap_or_default(),
                 arch_axes: arch.zip(point).map(|(a, p)| axes(a.1, p)).unwrap_or_default(),
                 image_width_px: cfg.width,

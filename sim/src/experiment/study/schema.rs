@@ -5,6 +5,8 @@
 
 use std::fmt::Write as _;
 
+use crate::cost::arch::unit_of;
+
 /// One column: name, type (`integer`, `number`, `text`, `boolean`), unit
 /// (`-` for none) and meaning. An empty cell is a value that does not apply
 /// to the row (or a skipped row's measurement).
@@ -97,12 +99,13 @@ pub const COLUMNS: &[Column] = &[
     ("map_bytes_per_px", "number", "B/px", "camera-pass map bytes a covered pixel"),
 ];
 
-/// The unit an architecture axis's column ends in, as the schema writes it.
+/// The unit an architecture axis's column ends in, as the stats file
+/// names it ([`unit_of`]); `-` for a key without one.
 pub(crate) fn axis_unit(column: &str) -> &'static str {
-    [("bytes_per_second", "B/s"), ("bytes", "B"), ("hertz", "Hz"), ("seconds", "s"), ("joules", "J")]
-        .iter()
-        .find(|(suffix, _)| column.ends_with(suffix))
-        .map_or("-", |u| u.1)
+    match unit_of(column) {
+        "count" => "-",
+        unit => unit,
+    }
 }
 
 /// The schema of rows whose columns are `header`, as `schema.csv`

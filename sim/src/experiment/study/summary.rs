@@ -203,11 +203,12 @@ fn scene_summary(s: &mut String, rows: &[&Row], budgets: &[f64]) {
         let p = 100.0 / n as f64;
         p
     });
+    let keys = keys(rows);
     let _ = writeln!(s, "| artifact budget | cost | cheapest | cost | artifacts % | misclassified % |");
     let _ = writeln!(s, "|---:|---|---|---:|---:|---:|");
     for &budget in budgets {
         let flag = if pixel.is_some_and(|p| budget < p) { " (below one pixel)" } else { "" };
-        for key in keys(rows) {
+        for key in keys {
             let cell = match cheapest(rows, budget, key) {
                 Some((r, ties)) => {
                     let m = r.metrics.unwrap_or_default();
@@ -233,7 +234,7 @@ fn scene_summary(s: &mut String, rows: &[&Row], budgets: &[f64]) {
         );
     }
     let families = distinct(rows.iter().map(|r| r.config.family));
-    for key in keys(rows) {
+    for key in keys {
         let _ = write!(s, "Cheapest per algorithm family in {}:\n\n| family |", key.name);
         for b in budgets {
             let _ = write!(s, " {b} % |");
@@ -267,6 +268,7 @@ fn scene_summary(s: &mut String, rows: &[&Row], budgets: &[f64]) {
 /// they cross.
 fn crossovers(s: &mut String, rows: &[&Row], budgets: &[f64]) {
     let Some(loose) = loosest(budgets) else { return };
+    let fastest = keys(rows)[0];
     let by = |axis: &str, value: &dyn Fn(&Row) -> String| {
         let values = distinct(rows.iter().map(|r| value(r)));
         if values.len() < 2 {
@@ -275,8 +277,8 @@ fn crossovers(s: &mut String, rows: &[&Row], budgets: &[f64]) {
         let mut out = format!("Winner within {loose} % by {axis}:");
         for v in &values {
             let sub: Vec<&Row> = rows.iter().copied().filter(|r| value(r) == *v).collect();
-            let w = cheapest(&sub, loose, keys(rows)[0])
-                .map_or_else(|| "none".to_owned(), |(r, _)| r.config.family.to_string());
+            let w =
+                cheapest(&sub, loose, fastest).map_or_else(|| "none".to_owned(), |(r, _)| r.config.family.to_string());
             let _ = write!(out, " {v}: {w};");
         }
         out.pop();
@@ -286,9 +288,7 @@ fn crossovers(s: &mut String, rows: &[&Row], budgets: &[f64]) {
     s.push_str(&by("map side", &|r| format!("{}²", r.config.map_side_texels)));
     let volumes: Vec<&Row> = rows.iter().copied().filter(|r| r.config.algorithm == "volumes").collect();
     let maps: Vec<&Row> = rows.iter().copied().filter(|r| r.config.algorithm != "volumes").collect();
-    if let (Some((v, _)), Some((m, _))) =
-        (cheapest(&volumes, loose, keys(rows)[0]), cheapest(&maps, loose, keys(rows)[0]))
-    {
+    if let (Some((v, _)), Some((m, _))) = (cheapest(&volumes, loose, fastest), cheapest(&maps, loose, fastest)) {
         let (Some(vc), Some(mc)) = (&v.cost, &m.cost) else { return };
         // Cycles where one clock runs every row, else nanoseconds.
         let one = one_clock(rows).is_some();
@@ -330,6 +330,7 @@ fn crossovers(s: &mut String, rows: &[&Row], budgets: &[f64]) {
 /// at every point: where a parameter moves one, this shows it.
 fn bottlenecks(s: &mut String, rows: &[&Row], budgets: &[f64]) {
     let Some(loose) = loosest(budgets) else { return };
+    let fastest = keys(rows)[0];
     let points = distinct(rows.iter().map(|r| r.config.arch_point()));
     if points.iter().all(|a| a.1.is_empty()) {
         return;
@@ -338,7 +339,7 @@ fn bottlenecks(s: &mut String, rows: &[&Row], budgets: &[f64]) {
     let mut winners: Vec<usize> = Vec::new();
     for &p in &points {
         let sub: Vec<&Row> = rows.iter().copied().filter(|r| at(r, p)).collect();
-        if let Some((w, _)) = cheapest(&sub, loose, keys(rows)[0])
+        if let Some((w, _)) = cheapest(&sub, loose, fastest)
             && !winners.contains(&w.config_index)
         {
             winners.push(w.config_index);

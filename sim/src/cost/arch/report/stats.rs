@@ -13,7 +13,7 @@ use umbra_core::probe::Totals;
 /// that names and units follow.
 #[must_use]
 pub fn unit_of(name: &str) -> &'static str {
-    const SUFFIXES: [(&str, &str); 10] = [
+    const SUFFIXES: [(&str, &str); 11] = [
         ("bytes_per_second", "B/s"),
         ("per_second", "1/s"),
         ("bytes_per_pixel", "B/pixel"),
@@ -22,6 +22,7 @@ pub fn unit_of(name: &str) -> &'static str {
         ("cycles", "cycles"),
         ("bytes", "B"),
         ("joules", "J"),
+        ("hertz", "Hz"),
         ("rate", "ratio"),
         ("ratio", "ratio"),
     ];
