@@ -136,35 +136,69 @@ pub(super) fn cost(args: &CostArgs, trace: bool, limits: &Limits) -> Result<()> 
 
 #[derive(clap::Args, Debug)]
 pub(super) struct CorrelateArgs {
-    /// The scene (default: the bundled stand-in for their factory).
-    #[arg(default_value = "factory")]
-    pub(super) scene: String,
-    /// The architecture (default: r300).
-    #[command(flatten)]
-    pub(super) archs: OneArchArgs,
-    /// Output folder for table1.md and table1.json.
+    /// A bundled dataset (weiskopf-ertl-2003, peak-rates, arm-render-passes,
+    /// sen-cammarano-hanrahan-2003) or a dataset file (TOML, see
+    /// data/correlation/). Repeat for several; default: every bundled one.
+    #[arg(long = "dataset")]
+    pub(super) datasets: Vec<String>,
+    /// An architecture file standing in for the bundled architecture of
+    /// its name wherever a dataset names it. Repeat for several.
+    #[arg(long = "arch")]
+    pub(super) archs: Vec<String>,
+    /// Override a parameter of every point's architecture: `key=value`,
+    /// with units where the key has one. Repeat for several.
+    #[arg(long = "set")]
+    pub(super) set: Vec<String>,
+    /// Output folder.
     #[arg(long, default_value = "out/correlate")]
     pub(super) out: std::path::PathBuf,
 }
 
-/// `umbra correlate`.
+/// `umbra correlate`: every dataset's points simulated against their
+/// measurements, the statistics, the tables and the plots.
 pub(super) fn correlate(args: &CorrelateArgs, limits: &Limits) -> Result<()> {
-    let scene = umbra_sim::world::scene::Scene::open(&args.scene, limits)?;
-    let arch = args.archs.one("r300", limits)?;
+    use umbra_sim::experiment::correlation::{self, BUNDLED as DATASETS, Dataset};
+    let names: Vec<&str> = if args.datasets.is_empty() {
+        DATASETS.iter().map(|d| d.0).collect()
+    } else {
+        args.datasets.iter().map(String::as_str).collect()
+    };
+    crate::no_repeats("--dataset", names.iter().copied())?;
+    let datasets = names.iter().map(|n| Dataset::open(n, limits)).collect::<Result<Vec<_>, _>>()?;
+    let files =
+        args.archs.iter().map(|f| Arch::load(std::path::Path::new(f), limits)).collect::<Result<Vec<_>, _>>()?;
+    crate::no_repeats("--arch", files.iter().map(|a| a.name.as_str()))?;
+    crate::no_repeats("--set", args.set.iter().map(|s| s.split_once('=').map_or(s.as_str(), |(k, _)| k.trim())))?;
+    let resolve = |name: &str, set: &[String]| -> std::result::Result<Arch, String> {
+        let mut arch = match files.iter().find(|a| a.name == name) {
+            Some(a) => a.clone(),
+            None => Arch::open(name, limits).map_err(|e| e.to_string())?,
+        };
+        for s in set.iter().chain(&args.set) {
+            arch.set(s).map_err(|e| e.to_string())?;
+        }
+        Ok(arch)
+    };
     let mut folder = OutputFolder::create(&args.out)?;
-    let c = umbra_sim::experiment::correlation::run(&scene, &arch, limits)?;
+    let c = correlation::run(&datasets, &resolve, limits).map_err(anyhow::Error::msg)?;
     let md = c.markdown();
     say!("{}", md.trim_end());
-    folder.write_text("table1.md", &md)?;
+    folder.write_text("correlation.md", &md)?;
     let json = serde_json::json!({
         "version": umbra_sim::io::provenance::version(),
         "command": command_line(),
-        "scene": scene.name,
-        "arch": arch,
         "correlation": c,
     });
-    folder.write_text("table1.json", &serde_json::to_string_pretty(&json)?)?;
-    folder.write_text(&format!("arch-{}.toml", arch.name), &arch.to_toml())?;
+    folder.write_text("correlation.json", &serde_json::to_string_pretty(&json)?)?;
+    correlation::plot(&mut folder, &c.datasets)?;
+    let mut used: Vec<String> =
+        datasets.iter().flat_map(|d| d.points.iter().filter_map(|p| p.arch.clone()).chain(d.arch.clone())).collect();
+    used.sort();
+    used.dedup();
+    for name in used {
+        let arch = resolve(&name, &[]).map_err(anyhow::Error::msg)?;
+        folder.write_text(&format!("arch-{name}.toml"), &arch.to_toml())?;
+    }
     let manifest = folder.finish(None)?;
     crate::say::wrote(&args.out, &manifest)
 }

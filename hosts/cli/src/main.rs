@@ -126,9 +126,10 @@ enum Command {
     /// JSON (open it in Perfetto): a process per architecture, a slice per
     /// pass enclosing its tiles, a track per stage, DRAM bandwidth.
     Trace(CostArgs),
-    /// The timing model against published hardware: Weiskopf & Ertl's
-    /// Table 1 frame-rate ratios (Radeon 9700) beside the model's for the
-    /// bundled r300 architecture and factory scene.
+    /// The timing model against published hardware: each dataset's
+    /// measurements (Weiskopf & Ertl's Radeon 9700 frame rates, published
+    /// peak rates, Arm's attachment bandwidths) beside the model's, the
+    /// statistics, and predicted-against-measured plots.
     Correlate(CorrelateArgs),
     /// The speed/accuracy trade study: scene × algorithm × depth format ×
     /// map size × filter × architecture; results.jsonl/.csv, Pareto plots

@@ -17,9 +17,10 @@ use umbra_sim::world::scene::Scene;
 
 #[derive(clap::Args, Debug)]
 pub(super) struct RenderArgs {
-    /// A bundled scene by name (table, reeves-sphere, weiskopf-l,
-    /// double-torus, thin, open-sheet, crowd, crowd-zoom, grazing, factory) or a
-    /// scene file.
+    /// A bundled scene by name (table-and-sphere, wang-molnar-4,
+    /// reeves-sphere, weiskopf-l, weiskopf-l-boxes, double-torus, thin,
+    /// open-sheet, crowd, crowd-zoom, crowd-overhead, crowd-grazing, grazing,
+    /// factory, quad) or a scene file.
     #[arg(default_value = "table-and-sphere")]
     pub(super) scene: String,
     /// Shadow algorithm: first (Williams, use --bias), bias-range (Reeves:

@@ -71,7 +71,12 @@ fn probes<F: DepthFormat, const L: bool, const C: bool>(
         .map(|a| {
             let p = ArchProbe::<C>::new(a, PassKind::Camera, checked.image, DepthFormatKind::D24, 1);
             if shadowed && units.map != MapKind::Volumes {
-                p.reading(units.unit.buffers(), cfg.format.bytes(), sil)
+                p.reading(
+                    units.unit.buffers(),
+                    cfg.format.bytes(),
+                    sil,
+                    (samples(cfg.filter), cfg.filter == Filter::Bilinear),
+                )
             } else {
                 p
             }

@@ -68,6 +68,19 @@ pub struct Arch {
     pub depth_cache: CacheParams,
     /// Energy per access.
     pub energy: Energy,
+    /// The parameters set from a measurement, each with the point of a
+    /// correlation dataset it came from (`[calibration]`, key = point):
+    /// that point then validates nothing.
+    pub calibration: Vec<Calibration>,
+}
+
+/// A parameter fitted to a measurement.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct Calibration {
+    /// The dotted key of the parameter.
+    pub key: String,
+    /// The dataset point it was set from, `dataset/point`.
+    pub point: String,
 }
 
 /// What is wrong with an architecture file or an override.
@@ -148,6 +161,29 @@ fn lookup<'t>(table: &'t toml::Table, key: &str) -> Option<&'t toml::Value> {
     Some(value)
 }
 
+/// The `[calibration]` table: each key a parameter, each value the
+/// `dataset/point` it was set from.
+fn calibration(table: Option<toml::Value>) -> Result<Vec<Calibration>, (String, Problem)> {
+    let Some(value) = table else { return Ok(Vec::new()) };
+    let toml::Value::Table(t) = value else { return Err(("calibration".into(), Problem::Type("a table"))) };
+    t.into_iter()
+        .map(|(key, point)| {
+            let name = format!("calibration.{key}");
+            if !PARAMS.iter().any(|p| p.key == key && p.unit != Unit::Text) {
+                return Err((name, Problem::Unknown));
+            }
+            match point {
+                toml::Value::String(point)
+                    if point.split_once('/').is_some_and(|(d, p)| !d.is_empty() && !p.is_empty()) =>
+                {
+                    Ok(Calibration { key, point })
+                }
+                _ => Err((name, Problem::Type("a dataset point, `dataset/point`"))),
+            }
+        })
+        .collect()
+}
+
 /// Every leaf key of a table, dotted.
 fn leaves(table: &toml::Table, prefix: &str, out: &mut Vec<String>) {
     for (k, v) in table {
@@ -168,16 +204,17 @@ impl Arch {
     /// machine that cannot be modelled (see [`Arch::check`]).
     pub fn parse(text: &str, file: &str) -> Result<Self, ArchError> {
         let err = |key: &str, problem| ArchError { file: file.to_owned(), key: key.to_owned(), problem };
-        let table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
+        let mut table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
             let line = e.span().map_or(0, |s| text[..s.start.min(text.len())].lines().count().max(1));
             err(&format!("line {line}"), Problem::Syntax(e.message().to_owned()))
         })?;
+        let calibration = calibration(table.remove("calibration")).map_err(|(key, problem)| err(&key, problem))?;
         let mut keys = Vec::new();
         leaves(&table, "", &mut keys);
         if let Some(unknown) = keys.iter().find(|k| !PARAMS.iter().any(|p| p.key == k.as_str())) {
             return Err(err(unknown, Problem::Unknown));
         }
-        let mut arch = Self::default();
+        let mut arch = Self { calibration, ..Self::default() };
         for p in PARAMS {
             let v = lookup(&table, p.key).ok_or_else(|| err(p.key, Problem::Missing))?;
             from_toml(p.unit, v).and_then(|v| p.assign(&mut arch, v)).map_err(|e| err(p.key, e))?;
@@ -360,6 +397,9 @@ impl Arch {
                 _ => format!("\"{w}\""),
             };
             let _ = writeln!(s, "{} = {value}  # {}", p.key, p.doc);
+        }
+        for c in &self.calibration {
+            let _ = writeln!(s, "calibration.\"{}\" = \"{}\"  # fitted to this point", c.key, c.point);
         }
         s
     }

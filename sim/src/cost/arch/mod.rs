@@ -12,7 +12,7 @@ pub mod timing;
 mod units;
 mod work;
 
-pub use file::{Arch, ArchError};
+pub use file::{Arch, ArchError, Calibration};
 pub use report::{Compared, Comparison, CostReport, SenFigures, trace, unit_of};
 pub use timing::{ArchProbe, PassKind, PassTiming};
 pub use work::{MemoryLimit, MemoryTime};

@@ -14,6 +14,9 @@ pub struct Front {
     pub overlap: bool,
     /// Fixed cycles per pass spent waiting for the host.
     pub pass_overhead_cycles: f64,
+    /// Fixed cycles per frame spent in the host and the driver (a frame
+    /// that draws anything).
+    pub frame_overhead_cycles: f64,
 }
 
 /// Scan conversion.
@@ -40,6 +43,15 @@ pub struct DepthRates {
     /// two maps (a machine with one depth buffer per fragment), instead of
     /// a second buffer updated per fragment.
     pub second_depth_pass: bool,
+    /// Cycles per light-pass fragment that passes the depth test of a
+    /// fragment program writing the map (a colour target on a machine
+    /// without depth textures); 0 for a fixed-function depth unit.
+    pub program_cycles: f64,
+    /// The second light pass's further cycles per such fragment: reading
+    /// the first map and discarding what it holds.
+    pub peel_cycles: f64,
+    /// Cycles per texel of the pass combining the two maps' program.
+    pub combine_cycles: f64,
 }
 
 /// Which buffers live on chip.
@@ -78,6 +90,12 @@ pub struct ShadowRates {
     /// Cycles per pixel looked up besides the samples: a programmable
     /// shadow test's own instructions (0 for fixed function).
     pub cycles_per_lookup: f64,
+    /// Cycles per sample besides its fetch: a programmable filter's
+    /// offset, compare and accumulate (0 for fixed function).
+    pub cycles_per_sample: f64,
+    /// Cycles per bilinear lookup computing its weights from the
+    /// fractional texel coordinates (0 for fixed function).
+    pub cycles_per_weights: f64,
     /// The shadow test runs in the shading program on the same units: its
     /// cycles add to the shading's instead of overlapping them.
     pub in_shader: bool,
@@ -88,6 +106,10 @@ pub struct ShadowRates {
 pub struct Shade {
     /// Cycles per shaded pixel (throughput, whole chip; 0 for fixed function).
     pub cycles_per_pixel: f64,
+    /// Shading runs for every camera fragment that passes the depth test
+    /// as it arrives (an immediate-mode machine without deferred shading),
+    /// not once per covered pixel.
+    pub per_fragment: bool,
 }
 
 /// DRAM.

@@ -48,7 +48,7 @@ mod meshes;
 mod schema;
 
 /// The bundled scenes, by name: the papers' set-ups, built procedurally.
-pub const BUNDLED: [(&str, &str); 14] = [
+pub const BUNDLED: [(&str, &str); 15] = [
     ("table-and-sphere", include_str!("../../../../scenes/table-and-sphere.toml")),
     ("wang-molnar-4", include_str!("../../../../scenes/wang-molnar-4.toml")),
     ("reeves-sphere", include_str!("../../../../scenes/reeves-sphere.toml")),
@@ -63,6 +63,7 @@ pub const BUNDLED: [(&str, &str); 14] = [
     ("crowd-grazing", include_str!("../../../../scenes/crowd-grazing.toml")),
     ("grazing", include_str!("../../../../scenes/grazing.toml")),
     ("factory", include_str!("../../../../scenes/factory.toml")),
+    ("quad", include_str!("../../../../scenes/quad.toml")),
 ];
 
 /// Largest magnitude of a vertex coordinate once placed (2⁴⁰): the

@@ -76,7 +76,10 @@ pub struct CostReport {
     pub light: PassTiming,
     /// The camera pass.
     pub camera: PassTiming,
-    /// The frame: light pass, then camera pass.
+    /// The host and driver's fixed time of the frame, cycles (before the
+    /// passes; none for a frame that draws nothing).
+    pub host_cycles: f64,
+    /// The frame: the host's time, the light pass, then the camera pass.
     pub cycles: f64,
     /// The frame's time at the clock, seconds.
     pub seconds: f64,
@@ -166,7 +169,9 @@ impl CostReport {
         let cached = arch.map_cache.size > 0;
         let pixels = ce.pixels_shaded;
         let fill = ce.fragments;
-        let cycles = lt.cycles + ct.cycles;
+        let drew = le.submitted + ce.submitted > 0;
+        let host_cycles = if drew { arch.front.frame_overhead_cycles } else { 0.0 };
+        let cycles = host_cycles + lt.cycles + ct.cycles;
         let seconds = cycles / arch.clock;
         let bottleneck = if lt.cycles > ct.cycles { lt.bottleneck } else { ct.bottleneck };
         let bytes = lt.bytes + ct.bytes;
@@ -197,6 +202,7 @@ impl CostReport {
             scene: scene.to_owned(),
             config,
             version: env!("CARGO_PKG_VERSION"),
+            host_cycles,
             cycles,
             seconds,
             fps: if seconds > 0.0 { 1.0 / seconds } else { 0.0 },
@@ -239,8 +245,13 @@ impl CostReport {
         let _ = writeln!(s, "### {} — {}\n", a.name, a.description);
         let _ = writeln!(
             s,
-            "Frame: {:.0} cycles, {:.3} ms at {} MHz ({:.1} frames/s), {} DRAM bytes, {:.3} mJ; bound by {}.\n",
+            "Frame: {:.0} cycles{}, {:.3} ms at {} MHz ({:.1} frames/s), {} DRAM bytes, {:.3} mJ; bound by {}.\n",
             self.cycles,
+            if self.host_cycles > 0.0 {
+                format!(" ({:.0} in the host and driver)", self.host_cycles)
+            } else {
+                String::new()
+            },
             self.seconds * 1e3,
             a.clock / 1e6,
             self.fps,

@@ -85,6 +85,7 @@ impl<const D: bool> Probe for ArchProbe<D> {
                 }
             }
             Event::DepthWrite { buffer, texels, bytes: b } => {
+                self.programs(buffer, n(texels));
                 if on_chip {
                     self.accesses.buffer += n(texels);
                 } else if !cached && (buffer != Buffer::Id || self.kind == PassKind::Camera) {
@@ -137,10 +138,9 @@ impl<const D: bool> Probe for ArchProbe<D> {
                 let s = self.raster.tile_shift();
                 #[allow(clippy::cast_possible_truncation, reason = "at most 2^14 / 8 tiles per side")]
                 self.select(TileId { x: (x >> s) as u16, y: (y >> s) as u16 });
-                let c = self.arch.shade.cycles_per_pixel;
-                let lookup = if self.lookups { self.arch.shadow.cycles_per_lookup } else { 0.0 };
+                let (shade, lookup) = if self.arch.shade.per_fragment { (0.0, 0.0) } else { self.program() };
                 let w = self.work();
-                w.charge(Stage::Shade, c);
+                w.charge(Stage::Shade, shade);
                 w.charge(Stage::Shadow, lookup);
                 w.pixels += 1;
                 self.dram.colour += COLOUR_BYTES;
@@ -222,6 +222,36 @@ impl<const D: bool> Probe for ArchProbe<D> {
             let w = self.work();
             w.bytes += line;
             w.map_misses += 1;
+        }
+    }
+}
+
+impl<const D: bool> ArchProbe<D> {
+    /// The fragment programs run for `texels` fragments that passed the
+    /// depth test and wrote `buffer`: the map-writing program of a light
+    /// pass (and, on a second light pass, its peeling: half a pass's
+    /// worth here, as the light pass's work is counted twice), and the
+    /// shading of a camera pass on a machine shading per fragment.
+    fn programs(&mut self, buffer: Buffer, texels: u64) {
+        if buffer != Buffer::Z1 {
+            return;
+        }
+        #[allow(clippy::cast_precision_loss, reason = "counts far below 2^53")]
+        let k = texels as f64;
+        let d = &self.arch.depth;
+        match self.kind {
+            PassKind::Light => {
+                let peel = if self.passes > 1 { d.peel_cycles / 2.0 } else { 0.0 };
+                let cycles = k * (d.program_cycles + peel);
+                self.work().charge(Stage::Shade, cycles);
+            }
+            PassKind::Camera if self.arch.shade.per_fragment => {
+                let (shade, lookup) = self.program();
+                let w = self.work();
+                w.charge(Stage::Shade, k * shade);
+                w.charge(Stage::Shadow, k * lookup);
+            }
+            PassKind::Camera => {}
         }
     }
 }

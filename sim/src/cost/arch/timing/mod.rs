@@ -80,6 +80,9 @@ pub struct ArchProbe<const FRAGMENT_DETAIL: bool = false> {
     phase: Phase,
     /// Each shaded pixel looks the map up (a shadowed camera pass).
     lookups: bool,
+    /// Depth samples a lookup takes, and whether it weighs them bilinearly
+    /// (what a programmable filter's instructions depend on).
+    filter: (u64, bool),
     /// Covered pixels whose lookup read silhouette points (Sen et al.'s
     /// bandwidth-model `P`, times the covered pixels).
     pub reconstructed_pixels: u64,
@@ -129,6 +132,7 @@ impl<const D: bool> ArchProbe<D> {
             phase: Phase::Front,
             current: 0,
             lookups: false,
+            filter: (1, false),
             reconstructed_pixels: 0,
             reconstructed: false,
             across: raster.tiles().0 as usize,
@@ -144,10 +148,12 @@ impl<const D: bool> ArchProbe<D> {
 
     /// A camera pass whose every shaded pixel looks up a map of `buffers`
     /// depth buffers (1 or 2) of `bytes`-byte texels and silhouette points
-    /// of `silhouette_bytes`, through the map cache.
+    /// of `silhouette_bytes`, through the map cache, with a filter of
+    /// `filter.0` samples (bilinearly weighted when `filter.1`).
     #[must_use]
-    pub fn reading(mut self, buffers: u32, bytes: u32, silhouette_bytes: u32) -> Self {
+    pub fn reading(mut self, buffers: u32, bytes: u32, silhouette_bytes: u32, filter: (u64, bool)) -> Self {
         self.lookups = true;
+        self.filter = filter;
         self.map_cache =
             self.map_cache.map(|m| MapCache::new(m.cache, buffers, bytes).with_silhouette(silhouette_bytes));
         self
@@ -197,6 +203,24 @@ impl<const D: bool> ArchProbe<D> {
     #[allow(clippy::cast_precision_loss, reason = "counts far below 2^53")]
     fn per(count: u64, rate: f64) -> f64 {
         if rate > 0.0 { count as f64 / rate } else { 0.0 }
+    }
+
+    /// The shading program's cycles for one shaded pixel (or fragment):
+    /// the shading, and the shadow test's own instructions when it looks
+    /// up — per lookup, per sample and for bilinear weights — and, on a
+    /// machine shading per fragment, its samples' fetches too (charged per
+    /// texel read otherwise). Returns (shade, shadow) cycles.
+    fn program(&self) -> (f64, f64) {
+        let a = &self.arch;
+        if !self.lookups {
+            return (a.shade.cycles_per_pixel, 0.0);
+        }
+        let (samples, weighted) = self.filter;
+        #[allow(clippy::cast_precision_loss, reason = "at most 256 samples")]
+        let samples = samples as f64;
+        let fetch = if a.shade.per_fragment { samples / a.shadow.samples_per_clock } else { 0.0 };
+        let weights = if weighted { a.shadow.cycles_per_weights } else { 0.0 };
+        (a.shade.cycles_per_pixel, a.shadow.cycles_per_lookup + samples * a.shadow.cycles_per_sample + weights + fetch)
     }
 
     /// Raster and depth cycles of `count` fragments of one triangle in one
@@ -297,9 +321,11 @@ impl<const D: bool> ArchProbe<D> {
             after += ws.iter().copied().fold(0.0, f64::max);
         }
         // A pass that drew nothing (no light pass for shadow volumes, none
-        // at all without shadows) waits for no host.
-        #[allow(clippy::cast_precision_loss, reason = "1 or 2")]
-        let overhead = if self.events.submitted > 0 { a.front.pass_overhead_cycles * self.passes as f64 } else { 0.0 };
+        // at all without shadows) waits for no host; a second depth by
+        // passes waits for both light passes and the combining pass.
+        let waits = if self.passes > 1 { self.passes + 1 } else { self.passes };
+        #[allow(clippy::cast_precision_loss, reason = "1 to 3")]
+        let overhead = if self.events.submitted > 0 { a.front.pass_overhead_cycles * waits as f64 } else { 0.0 };
         let shared = fs[Stage::Memory as usize] + tile_memory;
         let body = if a.front.overlap { t.front.max(t.tiles).max(shared) } else { t.front + t.tiles };
         t.cycles = overhead + body + after;
@@ -349,6 +375,9 @@ impl<const D: bool> ArchProbe<D> {
             combine.bytes = 3 * texels * u64::from(self.format.bytes());
             combine.streamed = combine.bytes;
             combine.cycles[Stage::Raster as usize] = Self::per(texels, self.arch.raster.fragments_per_clock.max(1.0));
+            #[allow(clippy::cast_precision_loss, reason = "texels far below 2^53")]
+            let program = texels as f64 * self.arch.depth.combine_cycles;
+            combine.cycles[Stage::Shade as usize] = program;
         }
         [("combining the maps", combine), ("silhouette pass", self.silhouette), ("depth cache write-back", self.drain)]
     }
@@ -375,8 +404,11 @@ impl<const D: bool> ArchProbe<D> {
 
     fn map_read(&mut self, texels: u64, bytes: u64) {
         self.accesses.shadow_ops += texels;
-        let spc = self.arch.shadow.samples_per_clock;
-        self.work().charge(Stage::Shadow, Self::per(texels, spc));
+        if !self.arch.shade.per_fragment {
+            // A machine shading per fragment fetches in its program.
+            let spc = self.arch.shadow.samples_per_clock;
+            self.work().charge(Stage::Shadow, Self::per(texels, spc));
+        }
         if self.map_cache.is_none() {
             self.stream(bytes);
         }

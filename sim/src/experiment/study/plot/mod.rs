@@ -26,7 +26,7 @@ use crate::io::output::{font, png};
 use crate::pass::algorithm::Family;
 
 /// Plot size in pixels.
-const SIZE: (u32, u32) = (900, 600);
+pub(crate) const SIZE: (u32, u32) = (900, 600);
 
 /// The indices of the Pareto-optimal points (no other point is at most as
 /// costly and strictly more accurate, or cheaper and as accurate), by
@@ -47,12 +47,12 @@ pub fn pareto_front(points: &[(f64, f64)]) -> Vec<usize> {
 }
 
 /// Something drawn the same way on any backend.
-trait Figure {
+pub(crate) trait Figure {
     fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<(), String>;
 }
 
 /// Draw `f` into `base.svg` and `base.png` in `folder`.
-fn both(folder: &mut OutputFolder, base: &str, f: &impl Figure) -> Result<(), StudyError> {
+pub(crate) fn both(folder: &mut OutputFolder, base: &str, f: &impl Figure) -> Result<(), StudyError> {
     let err = |path: &std::path::Path, problem: String| StudyError::Plot { path: path.to_owned(), problem };
     let (svg_name, png_name) = (format!("{base}.svg"), format!("{base}.png"));
     let svg_path = folder.dir().join(&svg_name);
@@ -109,7 +109,7 @@ pub fn colour(k: usize, n: usize) -> RGBColor {
 pub const ERROR_FLOOR: f64 = 1e-3;
 
 /// A log range covering `values` with some margin.
-fn log_range(values: impl Iterator<Item = f64>, floor: f64) -> std::ops::Range<f64> {
+pub(crate) fn log_range(values: impl Iterator<Item = f64>, floor: f64) -> std::ops::Range<f64> {
     let (lo, hi) = values.fold((f64::INFINITY, 0.0f64), |(lo, hi), v| (lo.min(v.max(floor)), hi.max(v)));
     if lo.is_finite() && hi > 0.0 { (lo / 1.5)..(hi.max(lo) * 1.5) } else { floor..floor * 10.0 }
 }
@@ -166,12 +166,12 @@ fn log_axis(range: std::ops::Range<f64>) -> WithKeyPoints<LogCoord<f64>> {
 }
 
 /// A chart on log–log axes.
-type LogLogChart<'a, DB> =
+pub(crate) type LogLogChart<'a, DB> =
     ChartContext<'a, DB, Cartesian2d<WithKeyPoints<LogCoord<f64>>, WithKeyPoints<LogCoord<f64>>>>;
 
 /// A white area with a titled chart on log–log axes over `x` and `y`,
 /// its mesh and labels drawn.
-fn log_log_chart<'a, DB: DrawingBackend>(
+pub(crate) fn log_log_chart<'a, DB: DrawingBackend>(
     area: &'a DrawingArea<DB, Shift>,
     title: &str,
     x: std::ops::Range<f64>,
@@ -283,7 +283,7 @@ impl<'a, DB: DrawingBackend> Legend<'a, DB> {
 }
 
 /// `lines` at the foot of a legend area.
-fn footnote<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, lines: &[String]) -> Result<(), String> {
+pub(crate) fn footnote<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, lines: &[String]) -> Result<(), String> {
     #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap, reason = "a few lines on a small plot")]
     let top = SIZE.1 as i32 - 20 * lines.len() as i32 - 10;
     for (k, l) in lines.iter().enumerate() {
