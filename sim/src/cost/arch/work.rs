@@ -258,12 +258,12 @@ impl PassTiming {
     /// The pass-level bound: the slowest stage summed over the whole pass.
     #[must_use]
     pub fn pass_bound(&self) -> f64 {
-        self.stages.iter().copied().fold(0.0, f64::max)
+        self.overhead + self.stages.iter().copied().fold(0.0, f64::max)
     }
 
     /// Every stage's cycles added, as if nothing overlapped.
     #[must_use]
     pub fn serial(&self) -> f64 {
-        self.stages.iter().sum()
+        self.overhead + self.stages.iter().sum::<f64>()
     }
 }

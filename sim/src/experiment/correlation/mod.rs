@@ -352,11 +352,7 @@ pub type ArchResolver<'a> = dyn Fn(&str, &[String]) -> Result<Arch, String> + Sy
 /// # Errors
 /// A dataset's scene or architecture that cannot be opened, or a render
 /// that fails, as text naming the point.
-pub fn run(
-    datasets: &[Dataset],
-    arch: &ArchResolver<'_>,
-    limits: &Limits,
-) -> Result<Correlation, String> {
+pub fn run(datasets: &[Dataset], arch: &ArchResolver<'_>, limits: &Limits) -> Result<Correlation, String> {
     let mut out = Vec::new();
     for d in datasets {
         let scene = match &d.scene {

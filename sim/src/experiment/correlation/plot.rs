@@ -4,6 +4,7 @@
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::{DatasetResult, Role};
 use crate::experiment::study::StudyError;
@@ -43,12 +44,15 @@ impl Figure for Correlated<'_> {
         }
         for (k, (role, _)) in ROLES.iter().enumerate() {
             let color = colour(k, ROLES.len());
-            for c in self.d.points.iter().filter(|c| c.role == *role) {
+            for (i, c) in self.d.points.iter().enumerate().filter(|(_, c)| c.role == *role) {
                 let at = (c.measured, c.predicted);
-                // The label beside its marker, not over it.
+                // The label beside its marker, not over it: right of it
+                // and left of it in turn, so that neighbours part.
+                let (dx, h) = if i % 2 == 0 { (8, HPos::Left) } else { (-8, HPos::Right) };
+                let font = TextStyle::from(("sans-serif", 11).into_font()).pos(Pos::new(h, VPos::Center));
                 let mark = EmptyElement::at(at)
                     + Circle::new((0, 0), 5, color.stroke_width(2))
-                    + Text::new(c.id.clone(), (8, -4), ("sans-serif", 11));
+                    + Text::new(c.id.clone(), (dx, 0), font);
                 chart.draw_series(std::iter::once(mark)).map_err(|e| e.to_string())?;
             }
         }

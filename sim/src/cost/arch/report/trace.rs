@@ -88,7 +88,12 @@ impl CostReport {
             }
             dur
         };
-        let mut start = 0.0f64;
+        // The host and driver's time of the frame, before its passes.
+        if self.host_cycles > 0.0 {
+            let args = json!({ "cycles": self.host_cycles });
+            events.push(json!({ "name": "host and driver", "cat": "host", "ph": "X", "ts": 0.0, "dur": us(self.host_cycles), "pid": pid, "tid": 0, "args": args }));
+        }
+        let mut start = self.host_cycles;
         let mut tiles = 0;
         for (p, pass) in ["light", "camera"].into_iter().enumerate() {
             let timing = if p == 0 { &self.light } else { &self.camera };
