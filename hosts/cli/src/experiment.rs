@@ -73,6 +73,13 @@ pub(super) struct StudyArgs {
 }
 
 #[derive(clap::Args, Debug)]
+pub(super) struct StatusArgs {
+    /// Shard output folders (`shards/*/`).
+    #[arg(required = true)]
+    pub(super) inputs: Vec<PathBuf>,
+}
+
+#[derive(clap::Args, Debug)]
 pub(super) struct MergeArgs {
     /// Shard output folders or results.jsonl files.
     #[arg(required = true)]
@@ -169,10 +176,22 @@ pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
     let shard = args.shard.as_deref().map(Shard::parse).transpose()?.unwrap_or(Shard::ALL);
     // The memory bound, before any folder is made.
     spec.renders_at_once(rayon::current_num_threads())?;
+    // A shard already complete and verified, of this sweep and version,
+    // would be written again byte for byte: a rerun task skips it.
+    let expected = Manifest::new(&spec, shard, 0);
+    if shard != Shard::ALL && study::already_complete(&args.out, &expected, limits) {
+        say!(
+            "study: shard {} in {} is already complete and verified: not recomputed",
+            expected.shard,
+            args.out.display()
+        );
+        return Ok(());
+    }
     let mut folder = OutputFolder::create(&args.out)?;
-    let style =
-        indicatif::ProgressStyle::with_template("{prefix} [{elapsed_precise}] {wide_bar} {pos}/{len} ETA {eta}")
-            .context("progress bar template")?;
+    let style = indicatif::ProgressStyle::with_template(
+        "{prefix} [{elapsed_precise}] {wide_bar} {pos}/{len} configurations, {per_sec}, {eta} left",
+    )
+    .context("progress bar template")?;
     let progress = ProgressBar::new(0).with_style(style).with_prefix("study");
     let start = std::time::Instant::now();
     let rows = study::run(&spec, shard, &progress)?;

@@ -6,7 +6,7 @@ use anyhow::Result;
 use clap::{Parser, Subcommand};
 use cost::{CorrelateArgs, CostArgs, correlate, cost};
 use depth::{DepthArgs, depth};
-use experiment::{MergeArgs, PlanArgs, StudyArgs, plan, study};
+use experiment::{MergeArgs, PlanArgs, StatusArgs, StudyArgs, plan, study};
 use render::{RenderArgs, render};
 use umbra_sim::io::limits::Limits;
 
@@ -30,6 +30,12 @@ struct Cli {
     command: Option<Command>,
     #[command(flatten)]
     limits: LimitArgs,
+    /// Worker threads of the commands that run in parallel (a study, a
+    /// correlation), from 1 to 256; default: one a core (or
+    /// `RAYON_NUM_THREADS`). The results do not depend on it. On Slurm,
+    /// `--threads $SLURM_CPUS_PER_TASK`.
+    #[arg(long, global = true, value_parser = clap::value_parser!(u16).range(1..=256))]
+    threads: Option<u16>,
 }
 
 /// What the simulator accepts, each checked before anything of that size is
@@ -138,6 +144,11 @@ enum Command {
     /// Merge the results.jsonl of `study --shard` runs into the whole run's
     /// files.
     Merge(MergeArgs),
+    /// The state of a sharded study's folders: which shards are complete,
+    /// missing, running or abandoned (a pending manifest), or corrupt
+    /// (files differing from their manifest). Fails unless every shard is
+    /// complete.
+    Status(StatusArgs),
     /// The columns of a study's rows (results.csv, results.jsonl): name,
     /// type, unit and meaning, as each study writes them to schema.csv
     /// (architecture axes add one column each, `arch_<key>_<unit>`).
@@ -181,6 +192,10 @@ fn clamp_threads() {
 
 fn main() -> Result<()> {
     let cli = Cli::parse();
+    if let Some(n) = cli.threads {
+        // Only fails if a pool was built already, and none is before this.
+        let _ = rayon::ThreadPoolBuilder::new().num_threads(usize::from(n)).build_global();
+    }
     clamp_threads();
     let limits = &cli.limits.limits();
     match cli.command {
@@ -194,6 +209,14 @@ fn main() -> Result<()> {
         Some(Command::Arch(command)) => arch::arch(&command, limits),
         Some(Command::Schema) => {
             say!("{}", umbra_sim::experiment::study::schema::markdown().trim_end());
+            Ok(())
+        }
+        Some(Command::Status(args)) => {
+            let s = umbra_sim::experiment::study::status(&args.inputs, limits);
+            say!("{}", s.markdown().trim_end());
+            if !s.complete() {
+                anyhow::bail!("not every shard is complete");
+            }
             Ok(())
         }
         Some(Command::Merge(args)) => {

@@ -100,3 +100,50 @@ fn merge_refuses_what_would_lie() {
     refused(&[s[0].clone(), foreign.clone()], &foreign.join("results.jsonl"), "of sweep cccc");
     assert!(matches!(study::merge(&[], &dir("none"), &Limits::DEFAULT), Err(StudyError::Merge { .. })));
 }
+
+/// `status` tells each shard folder's state from what its run left — a
+/// manifest its files match (complete), a pending manifest with the lock
+/// held (running) or free (abandoned), files that differ (corrupt) — and
+/// the shards no complete folder holds; `merge` refuses an unfinished
+/// shard by its folder; a complete shard is recognised for a rerun to skip.
+#[test]
+fn status_tells_every_shards_state_and_merge_refuses_the_unfinished() {
+    use umbra::sim::io::folder::OutputFolder;
+    let spec = tiny("status");
+    let limits = Limits::DEFAULT;
+    let done: Vec<PathBuf> = (0..2).map(|i| shard(&spec, "status", i, 4)).collect();
+    // Shard 2 killed mid-run: its folder opened, never finished.
+    let abandoned = dir("status-2");
+    drop(OutputFolder::create(&abandoned).expect("opened"));
+    // Shard 3 under way: a run holds its folder.
+    let running = dir("status-3");
+    let held = OutputFolder::create(&running).expect("opened");
+    // A complete folder whose results were edited since.
+    let corrupt = shard(&spec, "status-edited", 1, 4);
+    std::fs::write(corrupt.join("results.jsonl"), "{}\n").expect("edit");
+    let inputs = vec![done[0].clone(), done[1].clone(), abandoned.clone(), running.clone(), corrupt.clone()];
+    let s = study::status(&inputs, &limits);
+    let states: Vec<study::ShardState> = s.folders.iter().map(|f| f.state.clone()).collect();
+    use study::ShardState::{Abandoned, Complete, Corrupt, Running};
+    assert_eq!(states, [Complete, Complete, Abandoned, Running, Corrupt]);
+    assert_eq!((s.count, s.missing.clone(), s.complete()), (Some(4), vec![2, 3], false));
+    let md = s.markdown();
+    assert!(md.contains("2 of 4 shards complete; not complete: 2/4, 3/4"), "{md}");
+    refused(
+        &[done[0].clone(), abandoned.clone()],
+        &abandoned,
+        "not a finished shard: its run stopped before finishing",
+    );
+    refused(&[done[0].clone(), running.clone()], &running, "not a finished shard: its run is under way");
+    drop(held);
+    // The rerun's check: shard 0's folder holds shard 0 of this sweep and
+    // version; not shard 1's, nor another sweep's, nor an edited one.
+    let m = |i: usize, spec: &Spec| Manifest::new(spec, Shard { index: i, count: 4 }, 0);
+    assert!(study::already_complete(&done[0], &m(0, &spec), &limits));
+    assert!(!study::already_complete(&done[0], &m(1, &spec), &limits));
+    assert!(!study::already_complete(&done[0], &m(0, &tiny("other")), &limits));
+    assert!(!study::already_complete(&corrupt, &m(1, &spec), &limits));
+    for d in done.into_iter().chain([abandoned, running, corrupt]) {
+        let _ = std::fs::remove_dir_all(d);
+    }
+}

@@ -39,7 +39,10 @@ pub use row::{Row, RowConfig, RowCost, RowMetrics, Status};
 use run::sort_rows;
 pub use run::{Truth, load_scenes, render_config, run, run_config, truth_of};
 use shards::jsonl;
-pub use shards::{Manifest, finish, invalid, merge, read_rows, write_partial, write_run};
+pub use shards::{
+    Manifest, ShardFolder, ShardState, ShardStatus, already_complete, finish, invalid, merge, read_rows, status,
+    write_partial, write_run,
+};
 pub use summary::{slug, summary, write_outputs};
 pub use sweep::{
     ArchPoint, Config, MAX_ARCHITECTURES, MAX_CONFIGURATIONS, Shard, Spec, UNLIMITED_OFFSET, Variant, jittered,

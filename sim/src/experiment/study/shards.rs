@@ -88,13 +88,42 @@ pub fn finish(folder: OutputFolder, manifest: &Manifest) -> Result<RunManifest, 
 /// # Errors
 /// See [`StudyError`].
 pub fn write_run(dir: &Path, rows: &[Row], manifest: &Manifest) -> Result<RunManifest, StudyError> {
+    write_run_with(dir, rows, manifest, &[])
+}
+
+/// [`write_run`], then `extra` files (name, bytes) after the outputs.
+fn write_run_with(
+    dir: &Path,
+    rows: &[Row],
+    manifest: &Manifest,
+    extra: &[(String, Vec<u8>)],
+) -> Result<RunManifest, StudyError> {
     let mut folder = OutputFolder::create(dir)?;
     if manifest.shard == "0/1" {
         write_outputs(&mut folder, rows, manifest)?;
     } else {
         write_partial(&mut folder, rows)?;
     }
+    for (name, bytes) in extra {
+        folder.write(name, bytes)?;
+    }
     finish(folder, manifest)
+}
+
+/// The files a study's command writes beside its rows — the sweep file and
+/// the effective architectures, the same in every shard of a sweep — read
+/// from a verified shard folder in the order its manifest lists them.
+fn beside_rows(dir: &Path, limits: &Limits) -> Result<Vec<(String, Vec<u8>)>, StudyError> {
+    let run = RunManifest::verify(dir, limits.max_file_bytes)?;
+    run.files
+        .iter()
+        .filter(|f| f.path == "sweep.toml" || (f.path.starts_with("arch-") && f.path.ends_with(".toml")))
+        .map(|f| {
+            let path = dir.join(&f.path);
+            let bytes = limits.read_file(&path).map_err(|source| StudyError::Read { path, source })?;
+            Ok((f.path.clone(), bytes))
+        })
+        .collect()
 }
 
 /// Read the rows of a `results.jsonl` (or of the one in a folder), a file
@@ -222,6 +251,22 @@ pub fn merge(inputs: &[PathBuf], out: &Path, limits: &Limits) -> Result<usize, S
     let mut first: Option<Manifest> = None;
     let mut seen: Vec<usize> = Vec::new();
     for input in inputs {
+        use crate::io::folder::FolderState;
+        if input.is_dir() {
+            let unfinished = match FolderState::of(input, 0) {
+                FolderState::Running => Some("its run is under way"),
+                FolderState::Abandoned => Some("its run stopped before finishing (killed or lost)"),
+                _ => None,
+            };
+            if let Some(why) = unfinished {
+                return Err(refuse(
+                    input,
+                    format!(
+                        "is not a finished shard: {why}; `umbra status` lists every shard's state, then rerun this one"
+                    ),
+                ));
+            }
+        }
         let mine = read_rows(input, limits)?;
         let (file, m) = read_manifest(input, limits)?;
         let shard = Shard::parse(&m.shard).map_err(|_| refuse(&file, format!("shard `{}` is not i/n", m.shard)))?;
@@ -288,6 +333,154 @@ pub fn merge(inputs: &[PathBuf], out: &Path, limits: &Limits) -> Result<usize, S
         return Err(refuse(out, format!("{} rows merged where the sweep has {expected}", rows.len())));
     }
     let whole = Manifest { shard: "0/1".into(), rows: rows.len(), command: crate::io::provenance::command_line(), ..m };
-    write_run(out, &rows, &whole)?;
+    // The sweep file and architectures the shards' command wrote, as the
+    // unsharded run writes them.
+    let extra = match inputs.iter().find(|i| i.is_dir()) {
+        Some(dir) => beside_rows(dir, limits)?,
+        None => Vec::new(),
+    };
+    write_run_with(out, &rows, &whole, &extra)?;
     Ok(rows.len())
+}
+
+/// A shard folder's state for [`status`].
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ShardState {
+    /// Finished, every file matching its manifest.
+    Complete,
+    /// Its run is under way (a pending manifest, the lock held).
+    Running,
+    /// Its run stopped before finishing (a pending manifest, no lock held).
+    Abandoned,
+    /// Files differ from its manifest, or the manifest is not a shard's.
+    Corrupt,
+    /// No run wrote it.
+    Absent,
+}
+
+/// One folder given to [`status`].
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct ShardFolder {
+    /// The folder.
+    pub folder: PathBuf,
+    /// What its run left.
+    pub state: ShardState,
+    /// Its shard, `i/n`, when its manifest says.
+    pub shard: Option<String>,
+    /// Rows, when complete.
+    pub rows: Option<usize>,
+    /// What is wrong, or which sweep it is of.
+    pub detail: String,
+}
+
+/// The state of a sharded run: each folder's, and the shards no complete
+/// folder holds (Accel-Sim's job status, for a study's shards).
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct ShardStatus {
+    /// Each folder, as given.
+    pub folders: Vec<ShardFolder>,
+    /// Shards the run was split into, as the complete ones say.
+    pub count: Option<usize>,
+    /// Shard indices no complete folder holds.
+    pub missing: Vec<usize>,
+}
+
+impl ShardStatus {
+    /// Every shard complete, and nothing else given.
+    #[must_use]
+    pub fn complete(&self) -> bool {
+        self.count.is_some() && self.missing.is_empty() && self.folders.iter().all(|f| f.state == ShardState::Complete)
+    }
+
+    /// A Markdown table of the folders and a line of what is missing.
+    #[must_use]
+    pub fn markdown(&self) -> String {
+        use std::fmt::Write as _;
+        let mut s = String::from("| folder | state | shard | rows | detail |\n|---|---|---|---:|---|\n");
+        for f in &self.folders {
+            let state = serde_json::to_value(&f.state).ok().and_then(|v| v.as_str().map(str::to_owned));
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} | {} |",
+                f.folder.display(),
+                state.unwrap_or_default(),
+                f.shard.as_deref().unwrap_or("—"),
+                f.rows.map_or_else(|| "—".to_owned(), |r| r.to_string()),
+                f.detail.replace('|', "\\|")
+            );
+        }
+        let done = self.folders.iter().filter(|f| f.state == ShardState::Complete).count();
+        match self.count {
+            Some(n) if self.missing.is_empty() => {
+                let _ = writeln!(s, "\n{done} of {n} shards complete: ready to merge.");
+            }
+            Some(n) => {
+                let list: Vec<String> = self.missing.iter().map(|i| format!("{i}/{n}")).collect();
+                let _ = writeln!(
+                    s,
+                    "\n{} of {n} shards complete; not complete: {} (rerun each, e.g. `sbatch --array={}`).",
+                    n - self.missing.len(),
+                    list.join(", "),
+                    self.missing.iter().map(usize::to_string).collect::<Vec<_>>().join(",")
+                );
+            }
+            None => {
+                let _ = writeln!(s, "\nNo complete shard: the count of shards is not known yet.");
+            }
+        }
+        s
+    }
+}
+
+/// The state of each shard folder in `inputs`, and the shards none of the
+/// complete ones holds.
+#[must_use]
+pub fn status(inputs: &[PathBuf], limits: &Limits) -> ShardStatus {
+    use crate::io::folder::FolderState;
+    let mut folders = Vec::new();
+    let mut held: Vec<usize> = Vec::new();
+    let mut count: Option<usize> = None;
+    for input in inputs {
+        let (state, shard, rows, detail) = match FolderState::of(input, limits.max_file_bytes) {
+            FolderState::Complete(_) => match read_manifest(input, limits) {
+                Ok((_, m)) => match Shard::parse(&m.shard) {
+                    Ok(s) => {
+                        held.push(s.index);
+                        count.get_or_insert(s.count);
+                        let detail = format!("sweep {} {}", m.sweep, m.sweep_hash);
+                        (ShardState::Complete, Some(m.shard), Some(m.rows), detail)
+                    }
+                    Err(_) => (ShardState::Corrupt, None, None, format!("shard `{}` is not i/n", m.shard)),
+                },
+                Err(e) => (ShardState::Corrupt, None, None, e.to_string()),
+            },
+            FolderState::Running => (ShardState::Running, None, None, "under way (its lock is held)".into()),
+            FolderState::Abandoned => {
+                (ShardState::Abandoned, None, None, "stopped before finishing (a pending manifest, no lock)".into())
+            }
+            FolderState::Corrupt(e) => (ShardState::Corrupt, None, None, e),
+            FolderState::Absent => (ShardState::Absent, None, None, "no run wrote it".into()),
+        };
+        folders.push(ShardFolder { folder: input.clone(), state, shard, rows, detail });
+    }
+    let missing = count.map_or_else(Vec::new, |n| (0..n).filter(|i| !held.contains(i)).collect());
+    ShardStatus { folders, count, missing }
+}
+
+/// A shard folder `dir` that already holds `manifest`'s shard, complete
+/// and verified, of the same sweep and version: running it again would
+/// write the same bytes.
+#[must_use]
+pub fn already_complete(dir: &Path, manifest: &Manifest, limits: &Limits) -> bool {
+    read_manifest(dir, limits).is_ok_and(|(_, m)| {
+        (m.sweep_hash.as_str(), m.umbra_version.as_str(), m.shard.as_str(), m.configurations, m.architectures)
+            == (
+                manifest.sweep_hash.as_str(),
+                manifest.umbra_version.as_str(),
+                manifest.shard.as_str(),
+                manifest.configurations,
+                manifest.architectures,
+            )
+    })
 }
