@@ -82,7 +82,10 @@ impl Figure for Correlated<'_> {
 /// [`StudyError::Plot`] or [`StudyError::Output`].
 pub fn plot(folder: &mut OutputFolder, datasets: &[DatasetResult]) -> Result<(), StudyError> {
     for d in datasets.iter().filter(|d| !d.points.is_empty()) {
-        let fig = Correlated { d, version: crate::io::provenance::version() };
+        // The release, not the revision: the picture a page shows must not
+        // change with every commit (correlation.json and the manifest carry
+        // the revision).
+        let fig = Correlated { d, version: format!("umbra {} correlate", env!("CARGO_PKG_VERSION")) };
         both(folder, &format!("correlation-{}", d.dataset.name), &fig)?;
     }
     Ok(())
