@@ -163,7 +163,7 @@ pub enum TruthSource<'p> {
 
 /// A render configuration checked once: its map and camera targets.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Checked {
+pub(crate) struct Checked {
     /// The light pass's target (the map).
     pub(super) map: RasterConfig,
     /// The camera pass's target (the image).
@@ -296,7 +296,7 @@ impl RenderConfig {
     /// Check the map side, the image size and the scene's triangles against
     /// `limits`, before any buffer is allocated, and the targets the passes
     /// will draw, both in `tile`-pixel tiles.
-    pub(super) fn check(&self, scene: &Scene, limits: &Limits, tile: u32) -> Result<Checked, RenderError> {
+    pub(crate) fn check(&self, scene: &Scene, limits: &Limits, tile: u32) -> Result<Checked, RenderError> {
         self.checked()?;
         limits.check_map(self.map_size)?;
         limits.check_image(self.width, self.height)?;

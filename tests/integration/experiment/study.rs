@@ -294,3 +294,32 @@ fn extremes_keep_to_their_limits() {
     assert!(md.contains("not measured") && !md.contains("never"), "{md}");
     assert!(out.join("extremes.md").is_file() && out.join("precision.png").is_file());
 }
+
+/// Configurations that render alike are rendered once: shadow volumes draw
+/// no map, so their rows for every map format, side and filter come from
+/// one render. Every file the run writes is byte for byte the unshared
+/// run's, a map beyond the limits still its own skipped row.
+#[test]
+fn configurations_that_render_alike_write_the_unshared_files() {
+    let mut spec = small();
+    spec.scenes.truncate(1);
+    spec.variants = vec![Variant::new(Algorithm::First, 0.002), Variant::new(Algorithm::Volumes, 0.0)];
+    spec.map_sizes = vec![64, 128, 256];
+    spec.limits = Limits { max_map_side: 128, ..Limits::DEFAULT };
+    let hidden = indicatif::ProgressBar::hidden();
+    let shared = study::run(&spec, Shard::ALL, &hidden).expect("runs");
+    let unshared = study::run_unshared(&spec, Shard::ALL, &hidden).expect("runs");
+    assert_eq!(shared.len(), unshared.len());
+    let volumes: Vec<&Row> = shared.iter().filter(|r| r.config.algorithm == "volumes").collect();
+    // 2 formats × 3 sides × 2 filters, on each preset; the 256² ones
+    // beyond the limit.
+    assert_eq!(volumes.len(), 12 * Arch::era_presets().len());
+    assert!(volumes.iter().any(|r| r.status == Status::Skipped && r.reason.contains("max_map_side")));
+    let (a, b) = (dir("alike-shared"), dir("alike-unshared"));
+    study::write_run(&a, &shared, &whole(&spec, &shared)).expect("write");
+    study::write_run(&b, &unshared, &whole(&spec, &unshared)).expect("write");
+    assert_eq!(outputs(&a), outputs(&b));
+    for d in [a, b] {
+        let _ = std::fs::remove_dir_all(d);
+    }
+}

@@ -37,7 +37,7 @@ mod sweep_file;
 
 pub use row::{Row, RowConfig, RowCost, RowMetrics, Status};
 use run::sort_rows;
-pub use run::{Truth, load_scenes, render_config, run, run_config, truth_of};
+pub use run::{Truth, load_scenes, render_config, run, run_config, run_unshared, truth_of};
 use shards::jsonl;
 pub use shards::{
     Manifest, ShardFolder, ShardState, ShardStatus, already_complete, finish, invalid, merge, read_rows, status,

@@ -6,9 +6,11 @@ use rayon::prelude::*;
 use super::{Config, Row, RowCost, RowMetrics, Shard, Spec, StudyError};
 use crate::cost::arch::Arch;
 use crate::io::limits::Limits;
-use crate::render::{RenderConfig, TruthSource, render_costed, truth};
+use crate::render::{Algorithm, RenderConfig, TruthSource, render_costed, truth};
 use crate::truth::reference::PixelTruth;
 use crate::world::scene::Scene;
+use umbra_core::DepthFormatKind;
+use umbra_core::shadow::Filter;
 
 /// The render configuration of `c`.
 #[must_use]
@@ -123,6 +125,52 @@ pub fn truth_of(spec: &Spec, scene: usize, image: usize) -> Truth {
 /// [`StudyError::Limit`] when even one render beside the scenes and a
 /// reference would take more than [`Limits::max_memory`].
 pub fn run(spec: &Spec, shard: Shard, progress: &ProgressBar) -> Result<Vec<Row>, StudyError> {
+    run_with(spec, shard, progress, true)
+}
+
+/// [`run`] rendering every configuration, even those that render alike
+/// ([`alike`]): the reference the shared path is held to.
+///
+/// # Errors
+/// As [`run`].
+pub fn run_unshared(spec: &Spec, shard: Shard, progress: &ProgressBar) -> Result<Vec<Row>, StudyError> {
+    run_with(spec, shard, progress, false)
+}
+
+/// What configuration `c` renders as, for those whose algorithm reads only
+/// some of the axes: shadow volumes draw no map, so neither the map's
+/// format, its side nor the filter changes their render or its cost. Only
+/// a configuration within every limit on its own is shared, so that one
+/// beyond a limit keeps its own skipped row.
+fn alike(spec: &Spec, c: &Config) -> Option<RenderConfig> {
+    let cfg = render_config(spec, c);
+    let scene = &spec.scenes[c.scene];
+    let tile = umbra_core::RasterConfig::DEFAULT_TILE_SIZE;
+    (cfg.algorithm == Algorithm::Volumes && cfg.check(scene, &spec.limits, tile).is_ok()).then_some(RenderConfig {
+        format: DepthFormatKind::D24,
+        map_size: 1,
+        filter: Filter::Point,
+        ..cfg
+    })
+}
+
+/// The rows of `c`, rendered alike to the configuration whose rows are
+/// `like`: its own configuration, their numbers.
+fn rows_like(spec: &Spec, c: &Config, like: &[Row]) -> Vec<Row> {
+    like.iter()
+        .map(|r| {
+            let arch = spec.archs.get(r.arch_index).map(|a| (r.arch_index, a));
+            let mut row = Row::new(spec, c, arch);
+            row.status = r.status;
+            row.reason.clone_from(&r.reason);
+            row.metrics = r.metrics;
+            row.cost.clone_from(&r.cost);
+            row
+        })
+        .collect()
+}
+
+fn run_with(spec: &Spec, shard: Shard, progress: &ProgressBar, share: bool) -> Result<Vec<Row>, StudyError> {
     let at_once = spec.renders_at_once(rayon::current_num_threads())?;
     let configs: Vec<Config> = spec.configs().into_iter().filter(|c| shard.contains(c.index)).collect();
     progress.set_length(configs.len() as u64);
@@ -134,17 +182,30 @@ pub fn run(spec: &Spec, shard: Shard, progress: &ProgressBar) -> Result<Vec<Row>
                 continue;
             }
             let truth = truth_of(spec, scene, image);
-            for wave in group.chunks(at_once) {
-                let done: Vec<Vec<Row>> = wave
-                    .par_iter()
-                    .map(|c| {
-                        let rows = run_config(spec, c, &truth);
-                        progress.inc(1);
-                        rows
-                    })
-                    .collect();
-                rows.extend(done.into_iter().flatten());
+            // Each configuration's first of its kind, rendered; the others
+            // reported from it.
+            let keys: Vec<Option<RenderConfig>> =
+                group.iter().map(|c| if share { alike(spec, c) } else { None }).collect();
+            let first: Vec<usize> = (0..group.len())
+                .map(|i| keys[i].map_or(i, |k| keys.iter().position(|o| *o == Some(k)).unwrap_or(i)))
+                .collect();
+            let rendered: Vec<&Config> = (0..group.len()).filter(|&i| first[i] == i).map(|i| group[i]).collect();
+            let mut done: Vec<Vec<Row>> = Vec::with_capacity(rendered.len());
+            for wave in rendered.chunks(at_once) {
+                done.par_extend(wave.par_iter().map(|c| {
+                    let rows = run_config(spec, c, &truth);
+                    progress.inc(1);
+                    rows
+                }));
             }
+            for (i, c) in group.iter().enumerate() {
+                if first[i] != i {
+                    let at = rendered.iter().position(|r| r.index == group[first[i]].index).unwrap_or(0);
+                    rows.extend(rows_like(spec, c, &done[at]));
+                    progress.inc(1);
+                }
+            }
+            rows.extend(done.into_iter().flatten());
         }
     }
     sort_rows(&mut rows);

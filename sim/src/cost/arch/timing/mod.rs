@@ -393,6 +393,11 @@ impl<const D: bool> ArchProbe<D> {
     /// on an off-chip machine the per-tile max-z bounds.
     #[must_use]
     pub fn on_chip_bytes(&self) -> u64 {
+        // A pass that drew nothing (no light pass for shadow volumes)
+        // stores nothing.
+        if self.events.submitted == 0 {
+            return 0;
+        }
         let bytes = u64::from(self.format.bytes());
         if self.on_chip_depth() {
             let side = u64::from(self.arch.raster.tile);
