@@ -186,27 +186,50 @@ fn summary(v: &mut [f64]) -> [f64; 3] {
 fn distance(sites: &[bool], width: usize) -> Vec<(u32, usize)> {
     let mut d: Vec<(u32, usize)> = sites.iter().enumerate().map(|(k, &s)| (if s { 0 } else { u32::MAX }, k)).collect();
     let height = d.len().checked_div(width).unwrap_or(0);
-    // Take the nearer of a pixel's own site and its neighbours' (at `steps`) plus one.
-    let mut relax = |x: usize, y: usize, steps: [(isize, isize); 4]| {
-        let mut best = d[y * width + x];
-        for (dx, dy) in steps {
-            if let Some(k) = neighbour(x, y, dx, dy, width, height) {
-                let (nd, site) = d[k];
-                if nd.saturating_add(1) < best.0 {
-                    best = (nd + 1, site);
-                }
-            }
+    // Take the nearer of a pixel's own site and a neighbour's plus one, the
+    // neighbours in a fixed order (the first nearer one wins a tie).
+    let relax = |d: &mut [(u32, usize)], k: usize, n: usize| {
+        let (nd, site) = d[n];
+        if nd.saturating_add(1) < d[k].0 {
+            d[k] = (nd + 1, site);
         }
-        d[y * width + x] = best;
     };
+    // Forward: the row above (left, middle, right), then the left.
     for y in 0..height {
         for x in 0..width {
-            relax(x, y, [(-1, -1), (0, -1), (1, -1), (-1, 0)]);
+            let k = y * width + x;
+            if y > 0 {
+                let up = k - width;
+                if x > 0 {
+                    relax(&mut d, k, up - 1);
+                }
+                relax(&mut d, k, up);
+                if x + 1 < width {
+                    relax(&mut d, k, up + 1);
+                }
+            }
+            if x > 0 {
+                relax(&mut d, k, k - 1);
+            }
         }
     }
+    // Backward: the row below (right, middle, left), then the right.
     for y in (0..height).rev() {
         for x in (0..width).rev() {
-            relax(x, y, [(1, 1), (0, 1), (-1, 1), (1, 0)]);
+            let k = y * width + x;
+            if y + 1 < height {
+                let down = k + width;
+                if x + 1 < width {
+                    relax(&mut d, k, down + 1);
+                }
+                relax(&mut d, k, down);
+                if x > 0 {
+                    relax(&mut d, k, down - 1);
+                }
+            }
+            if x + 1 < width {
+                relax(&mut d, k, k + 1);
+            }
         }
     }
     d
