@@ -216,13 +216,37 @@ pub fn render_into<F: DepthFormat, U: ShadowUnit<F>, R: PixelResult, P: Probe>(
     out: &mut Vec<R>,
 ) -> Result<(), PassError> {
     let Visibility { camera, .. } = visibility(frame, scene, (options.width, options.height), options.tiling, probe)?;
+    let CameraFrame { ids, shade_setups, .. } = frame;
+    shade(scene, (ids, camera), view, unit, options, probe, out, shade_setups)
+}
+
+/// The shading unit alone over a visibility pass's `ids` seen through
+/// `camera` (a [`visibility`] pass drawn before, for any number of
+/// shadings: its ids do not depend on the tiling), against `view` with
+/// shadow unit `unit`, into `out` (row-major) with the setup store
+/// `setups`, reporting every event to `probe`. Its events are those the
+/// shading of [`render_into`] reports, in the same order.
+///
+/// # Errors
+/// As [`render`].
+#[allow(clippy::too_many_arguments, reason = "the unit's inputs, its store and its probe")]
+pub fn shade<F: DepthFormat, U: ShadowUnit<F>, R: PixelResult, P: Probe>(
+    scene: &Scene,
+    (ids, camera): (&[u32], Mat4),
+    view: &MapView<'_, F>,
+    unit: &U,
+    options: &CameraOptions,
+    probe: &mut P,
+    out: &mut Vec<R>,
+    setups: &mut Vec<ShadeSetup>,
+) -> Result<(), PassError> {
     let cfg = shade_config(scene, camera, options);
     let triangles = scene.triangles();
     let source = |id: u32| triangles.get(id as usize).copied();
     // Every pixel is written: the fill only sizes a new frame.
-    out.resize(frame.ids.len(), R::BACKGROUND);
-    frame.shade_setups.resize(SHADE_SETUPS, ShadeSetup::EMPTY);
-    shade_with(&cfg, &frame.ids, view, &source, out, unit, &mut frame.shade_setups, probe)?;
+    out.resize(ids.len(), R::BACKGROUND);
+    setups.resize(SHADE_SETUPS, ShadeSetup::EMPTY);
+    shade_with(&cfg, ids, view, &source, out, unit, setups, probe)?;
     Ok(())
 }
 

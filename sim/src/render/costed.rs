@@ -17,7 +17,7 @@ use crate::base::maps::{Tiling, with_format};
 use crate::base::probes::Fan;
 use crate::cost::arch::{Arch, ArchProbe, CostReport, PassKind};
 use crate::io::limits::Limits;
-use crate::pass::algorithm::MapKind;
+use crate::pass::algorithm::{MapKind, Units};
 use crate::pass::camera::{CameraFrame, visibility};
 use crate::pass::light::LightFrame;
 use crate::world::occluders::Occluders;
@@ -28,13 +28,13 @@ use crate::world::scene::Scene;
 /// depth cache in front of off-chip depth). Architectures with the same
 /// shape are costed from one run of the passes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct Shape {
-    tiling: Tiling,
-    light_addresses: bool,
-    camera_addresses: bool,
+pub(super) struct Shape {
+    pub(super) tiling: Tiling,
+    pub(super) light_addresses: bool,
+    pub(super) camera_addresses: bool,
 }
 
-fn shape(arch: &Arch) -> Shape {
+pub(super) fn shape(arch: &Arch) -> Shape {
     let cached = arch.depth_cache.size > 0;
     Shape {
         tiling: arch.tiling(),
@@ -53,6 +53,33 @@ const fn samples(filter: Filter) -> u64 {
     }
 }
 
+/// The camera pass's probe of `arch` for `cfg` on `image`: one that reads
+/// the map through the map cache when the pass is `shadowed` by one.
+fn camera_probe<const C: bool>(
+    arch: &Arch,
+    cfg: &RenderConfig,
+    image: RasterConfig,
+    units: &Units,
+    shadowed: bool,
+) -> ArchProbe<C> {
+    reading(ArchProbe::<C>::new(arch, PassKind::Camera, image, DepthFormatKind::D24, 1), cfg, units, shadowed)
+}
+
+/// `probe` reading the map `cfg` and `units` draw, when the pass is `shadowed` by one.
+pub(super) fn reading<const C: bool>(
+    probe: ArchProbe<C>,
+    cfg: &RenderConfig,
+    units: &Units,
+    shadowed: bool,
+) -> ArchProbe<C> {
+    if !shadowed || units.map == MapKind::Volumes {
+        return probe;
+    }
+    let sil = if units.map == (MapKind::Silhouette { packed: true }) { Packed::BYTES } else { SilPoint::BYTES };
+    let filter = (samples(cfg.filter), cfg.filter == Filter::Bilinear);
+    probe.reading(units.unit.buffers(), cfg.format.bytes(), sil, filter)
+}
+
 /// The two passes' probes of `archs` for `cfg` on `checked`.
 fn probes<F: DepthFormat, const L: bool, const C: bool>(
     cfg: &RenderConfig,
@@ -61,28 +88,44 @@ fn probes<F: DepthFormat, const L: bool, const C: bool>(
     shadowed: bool,
 ) -> (Fan<ArchProbe<L>>, Fan<ArchProbe<C>>) {
     let units = cfg.algorithm.units::<F>(cfg.bias);
-    let sil = if units.map == (MapKind::Silhouette { packed: true }) { Packed::BYTES } else { SilPoint::BYTES };
     let light = archs
         .iter()
         .map(|a| ArchProbe::<L>::new(a, PassKind::Light, checked.map, cfg.format, units.unit.buffers()))
         .collect();
-    let camera = archs
-        .iter()
-        .map(|a| {
-            let p = ArchProbe::<C>::new(a, PassKind::Camera, checked.image, DepthFormatKind::D24, 1);
-            if shadowed && units.map != MapKind::Volumes {
-                p.reading(
-                    units.unit.buffers(),
-                    cfg.format.bytes(),
-                    sil,
-                    (samples(cfg.filter), cfg.filter == Filter::Bilinear),
-                )
-            } else {
-                p
-            }
-        })
-        .collect();
+    let camera = archs.iter().map(|a| camera_probe::<C>(a, cfg, checked.image, &units, shadowed)).collect();
     (Fan(light), Fan(camera))
+}
+
+/// What a cost report says of the scene beside its passes: its triangles
+/// and its occluders' silhouette edges (Sen et al.'s bandwidth model).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct SceneCounts {
+    triangles: u64,
+    silhouette_edges: u64,
+}
+
+impl SceneCounts {
+    pub(super) fn of(scene: &Scene) -> Self {
+        let triangles: usize = scene.objects.iter().map(|o| o.mesh.triangles.len()).sum();
+        let edges = Occluders::new(scene).silhouette_edges().len();
+        Self { triangles: triangles as u64, silhouette_edges: edges as u64 }
+    }
+}
+
+/// The report of one architecture's two probes, once the passes have run.
+pub(super) fn report<const L: bool, const C: bool>(
+    (scene, counts): (&str, SceneCounts),
+    cfg: &RenderConfig,
+    config: &str,
+    mut light: ArchProbe<L>,
+    mut camera: ArchProbe<C>,
+) -> CostReport {
+    light.finish();
+    camera.finish();
+    let mut r = CostReport::new((scene, config.to_owned()), &light, &camera, samples(cfg.filter));
+    r.sen.triangles = counts.triangles;
+    r.sen.silhouette_edges = counts.silhouette_edges;
+    r
 }
 
 /// The reports of the probes, once the passes have run.
@@ -93,20 +136,11 @@ fn reports<const L: bool, const C: bool>(
     Fan(light): Fan<ArchProbe<L>>,
     Fan(camera): Fan<ArchProbe<C>>,
 ) -> Vec<CostReport> {
-    let triangles: usize = scene.objects.iter().map(|o| o.mesh.triangles.len()).sum();
-    let edges = if light.is_empty() { 0 } else { Occluders::new(scene).silhouette_edges().len() };
-    light
-        .into_iter()
-        .zip(camera)
-        .map(|(mut l, mut c)| {
-            l.finish();
-            c.finish();
-            let mut r = CostReport::new((&scene.name, config.to_owned()), &l, &c, samples(cfg.filter));
-            r.sen.triangles = triangles as u64;
-            r.sen.silhouette_edges = edges as u64;
-            r
-        })
-        .collect()
+    if light.is_empty() {
+        return Vec::new();
+    }
+    let counts = SceneCounts::of(scene);
+    light.into_iter().zip(camera).map(|(l, c)| report((&scene.name, counts), cfg, config, l, c)).collect()
 }
 
 /// The cost of a render of `scene` on an architecture, within `limits`
@@ -237,8 +271,23 @@ pub fn render_costed(
     let mut out: Vec<Option<Result<CostReport, RenderError>>> =
         archs.iter().map(|a| if shape(a) == own { costed.next().map(Ok) } else { None }).collect();
     // The other tilings, each group in one run.
+    cost_others(scene, cfg, limits, archs, &mut out);
+    Ok((render, out.into_iter().map(|r| r.unwrap_or_else(|| Err(RenderError::Cost("not costed".into())))).collect()))
+}
+
+/// The cost on each of `archs` that `out` does not hold yet, each shape's
+/// architectures from one run of the passes (as [`render_costed`] costs
+/// those that do not draw as the render does). A costing that fails is
+/// that architecture's error.
+pub fn cost_others(
+    scene: &Scene,
+    cfg: &RenderConfig,
+    limits: &Limits,
+    archs: &[Arch],
+    out: &mut [Option<Result<CostReport, RenderError>>],
+) {
     let mut groups: Vec<(Shape, Vec<usize>)> = Vec::new();
-    for (k, a) in archs.iter().enumerate().filter(|(_, a)| shape(a) != own) {
+    for (k, a) in archs.iter().enumerate().filter(|&(k, _)| out[k].is_none()) {
         match groups.iter_mut().find(|g| g.0 == shape(a)) {
             Some(g) => g.1.push(k),
             None => groups.push((shape(a), vec![k])),
@@ -254,6 +303,4 @@ pub fn render_costed(
             }
         }
     }
-    let out = out.into_iter().map(|r| r.unwrap_or_else(|| Err(RenderError::Cost("not costed".into())))).collect();
-    Ok((render, out))
 }

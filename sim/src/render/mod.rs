@@ -5,6 +5,7 @@
 
 pub mod costed;
 pub mod pictures;
+pub mod shared;
 
 use indicatif::ProgressBar;
 use serde::Serialize;
@@ -14,7 +15,7 @@ use umbra_core::shadow::{Filter, MapView, ShadowConfig, ShadowConfigError};
 use umbra_core::silhouette::{Packed, SilPoint, SilStore, SilhouetteMap};
 use umbra_core::{DepthFormat, DepthFormatKind, DepthUnit, LightPassConfig, Probe, RasterConfig, TileState};
 
-pub use self::costed::{cost, cost_unshadowed, render_costed};
+pub use self::costed::{cost, cost_others, cost_unshadowed, render_costed};
 use crate::base::counters::Counters;
 use crate::base::maps::{Tiling, with_format};
 use crate::base::probes::Tee;

@@ -338,26 +338,56 @@ fn texel_extent(d: Derivatives) -> u32 {
 /// [`compare`] reports, pixel by pixel (the error map draws them).
 #[must_use]
 pub fn verdicts(render: &[Shaded], truth: &[Option<PixelTruth>], width: u32) -> Vec<Verdict> {
-    let width = width as usize;
-    judge(render, truth, width, &footprint(render, truth, width)).into_iter().map(|(v, _)| v).collect()
+    let fields = Fields::new(truth, width);
+    judge(render, truth, &fields, &footprint(render, truth, fields.width)).into_iter().map(|(v, _)| v).collect()
 }
 
-/// Each pixel's verdict and edge band, given the map's `footprint`.
+/// What the metrics need of the reference alone, worked out once for
+/// every render measured against it (a study measures many): which side
+/// of the exact boundary each pixel is on, and three distance fields —
+/// to the exact boundary (the edge band's test), to its lit side (the
+/// displacement's, with the site found) and to the surfaces facing away
+/// from the light (the terminator's reach).
+#[derive(Clone, Debug)]
+pub struct Fields {
+    width: usize,
+    to_edge: Vec<u32>,
+    to_lit_edge: Vec<(u32, usize)>,
+    to_away: Vec<u32>,
+}
+
+impl Fields {
+    /// The fields of a `width`-wide reference.
+    #[must_use]
+    pub fn new(truth: &[Option<PixelTruth>], width: u32) -> Self {
+        let width = width as usize;
+        let exact: Vec<Option<bool>> = truth.iter().map(|t| evaluated(t).map(|t| !t.lit)).collect();
+        // The exact boundary passes through a pixel whose neighbours' centres
+        // fall on both sides, or whose own area is partly shadowed (a shadow
+        // narrower than a pixel crosses no centre).
+        let mut sites = boundary(&exact, width, false);
+        for (site, t) in sites.iter_mut().zip(truth) {
+            *site |= evaluated(t).is_some_and(|t| t.visibility > 0.0 && t.visibility < 1.0);
+        }
+        let distances = |d: Vec<(u32, usize)>| d.into_iter().map(|(d, _)| d).collect();
+        let away: Vec<bool> = truth.iter().map(|t| t.is_some_and(|t| !t.faces_light)).collect();
+        Self {
+            width,
+            to_edge: distances(distance(&sites, width)),
+            to_lit_edge: distance(&boundary(&exact, width, true), width),
+            to_away: distances(distance(&away, width)),
+        }
+    }
+}
+
+/// Each pixel's verdict and edge band, given the reference's `fields` and
+/// the map's `footprint`.
 fn judge(
     render: &[Shaded],
     truth: &[Option<PixelTruth>],
-    width: usize,
+    fields: &Fields,
     footprint: &[Derivatives],
 ) -> Vec<(Verdict, u32)> {
-    let exact: Vec<Option<bool>> = truth.iter().map(|t| evaluated(t).map(|t| !t.lit)).collect();
-    // The exact boundary passes through a pixel whose neighbours' centres
-    // fall on both sides, or whose own area is partly shadowed (a shadow
-    // narrower than a pixel crosses no centre).
-    let mut sites = boundary(&exact, width, false);
-    for (site, t) in sites.iter_mut().zip(truth) {
-        *site |= evaluated(t).is_some_and(|t| t.visibility > 0.0 && t.visibility < 1.0);
-    }
-    let to_edge = distance(&sites, width);
     render
         .iter()
         .zip(truth)
@@ -367,7 +397,7 @@ fn judge(
             let band = footprint.get(k).map_or(1, |&d| texel_extent(d));
             let wrong_side = shadowed(s) == t.lit;
             let excess = excess_shadow(s, &t);
-            let near = to_edge.get(k).is_some_and(|&(d, _)| d < band);
+            let near = fields.to_edge.get(k).is_some_and(|&d| d < band);
             let verdict = match (near, wrong_side || excess.abs() > SHADE_STEP) {
                 (_, false) => Verdict::Right,
                 (true, true) => Verdict::EdgePlacement,
@@ -398,22 +428,25 @@ fn quantiles(mut v: Vec<f64>) -> [f64; 2] {
 /// edge band, the shade-measured artifacts (see the module's rules), area
 /// error, displacement and the map's footprint.
 #[must_use]
+pub fn compare(render: &[Shaded], truth: &[Option<PixelTruth>], width: u32) -> Metrics {
+    compare_with(render, truth, &Fields::new(truth, width))
+}
+
+/// [`compare`] with the reference's [`Fields`] worked out before: the
+/// same metrics, bit for bit.
+#[must_use]
 #[allow(
     clippy::cast_precision_loss,
     clippy::cast_possible_wrap,
     clippy::cast_sign_loss,
     reason = "pixel counts and coordinates"
 )]
-pub fn compare(render: &[Shaded], truth: &[Option<PixelTruth>], width: u32) -> Metrics {
-    let width = width as usize;
+pub fn compare_with(render: &[Shaded], truth: &[Option<PixelTruth>], fields: &Fields) -> Metrics {
+    let width = fields.width;
     let footprint = footprint(render, truth, width);
-    let judged = judge(render, truth, width, &footprint);
-    let exact: Vec<Option<bool>> = truth.iter().map(|t| evaluated(t).map(|t| !t.lit)).collect();
+    let judged = judge(render, truth, fields, &footprint);
     let rendered: Vec<Option<bool>> =
         render.iter().zip(truth).map(|(s, t)| evaluated(t).map(|_| shadowed(s))).collect();
-    let to_lit_edge = distance(&boundary(&exact, width, true), width);
-    let away: Vec<bool> = truth.iter().map(|t| t.is_some_and(|t| !t.faces_light)).collect();
-    let to_away = distance(&away, width);
     let mut m = Metrics::default();
     let (mut abs_error, mut square_error) = (0.0, 0.0);
     let mut bands = Vec::new();
@@ -431,7 +464,7 @@ pub fn compare(render: &[Shaded], truth: &[Option<PixelTruth>], width: u32) -> M
             Verdict::Acne => {
                 m.acne += 1;
                 m.acne_area += e;
-                let turning = to_away.get(k).is_some_and(|&(d, _)| d <= TERMINATOR_REACH);
+                let turning = fields.to_away.get(k).is_some_and(|&d| d <= TERMINATOR_REACH);
                 m.terminator_acne += u64::from(t.light_cos < GRAZING_COS && turning);
             }
             Verdict::Leak => {
@@ -452,7 +485,7 @@ pub fn compare(render: &[Shaded], truth: &[Option<PixelTruth>], width: u32) -> M
     let texel = |k: usize| render.get(k).and_then(|s| s.light).map(|l| (l.x.to_num::<f64>(), l.y.to_num::<f64>()));
     let (mut pixels, mut texels) = (Vec::new(), Vec::new());
     for (k, on) in boundary(&rendered, width, true).iter().enumerate() {
-        let Some(&(d, site)) = to_lit_edge.get(k).filter(|(d, _)| *on && *d != u32::MAX) else { continue };
+        let Some(&(d, site)) = fields.to_lit_edge.get(k).filter(|(d, _)| *on && *d != u32::MAX) else { continue };
         pixels.push(f64::from(d));
         if let (Some(a), Some(b)) = (texel(k), texel(site)) {
             texels.push((a.0 - b.0).hypot(a.1 - b.1));

@@ -3,14 +3,18 @@
 use indicatif::ProgressBar;
 use rayon::prelude::*;
 
+use std::sync::Mutex;
+
 use super::{Config, Row, RowCost, RowMetrics, Shard, Spec, StudyError};
-use crate::cost::arch::Arch;
+use crate::base::maps::with_format;
+use crate::cost::arch::{Arch, CostReport};
 use crate::io::limits::Limits;
-use crate::render::{Algorithm, RenderConfig, TruthSource, render_costed, truth};
+use crate::render::shared::{ImageShare, LightKey, LightShare, Scratch, render_shared};
+use crate::render::{Algorithm, RenderConfig, RenderError, TruthSource, cost_others, render_costed, truth};
 use crate::truth::reference::PixelTruth;
 use crate::world::scene::Scene;
-use umbra_core::DepthFormatKind;
 use umbra_core::shadow::Filter;
+use umbra_core::{DepthFormat, DepthFormatKind};
 
 /// The render configuration of `c`.
 #[must_use]
@@ -53,13 +57,27 @@ pub fn run_config(spec: &Spec, c: &Config, truth: &Truth) -> Vec<Row> {
         let t = &r.camera_events.totals;
         (RowMetrics::new(&r.metrics, ratio(t.tangent_setups, t.tangent_setups + t.trivial_pixels())), costs)
     });
+    rows_of(spec, c, &done)
+}
+
+/// What a configuration's render measured: its metrics and its cost on
+/// each architecture.
+type Measured = (RowMetrics, Vec<Result<CostReport, RenderError>>);
+
+/// The rows of `c` given what its render `done` measured (or why it
+/// failed): one per architecture (one when the sweep has none).
+fn rows_of(
+    spec: &Spec,
+    c: &Config,
+    done: &Result<Measured, String>,
+) -> Vec<Row> {
     let arch_rows: Vec<Option<(usize, &Arch)>> =
         if spec.archs.is_empty() { vec![None] } else { spec.archs.iter().enumerate().map(Some).collect() };
     arch_rows
         .into_iter()
         .map(|arch| {
             let mut row = Row::new(spec, c, arch);
-            match &done {
+            match done {
                 Ok((m, costs)) => {
                     row.metrics = Some(*m);
                     match arch.map(|(i, a)| (a, &costs[i])) {
@@ -73,6 +91,23 @@ pub fn run_config(spec: &Spec, c: &Config, truth: &Truth) -> Vec<Row> {
             row
         })
         .collect()
+}
+
+/// The rows of `c` rendered from what it shares with the configurations
+/// of its scene, image and light pass ([`crate::render::shared`]): those
+/// of [`run_config`], bit for bit, or `None` for it to render on its own.
+fn run_shared<F: DepthFormat>(
+    spec: &Spec,
+    c: &Config,
+    image: &ImageShare<'_>,
+    light: &LightShare<F::Texel>,
+    scratch: &mut Scratch,
+) -> Option<Vec<Row>> {
+    let cfg = render_config(spec, c);
+    let (metrics, tangent, mut costs) = render_shared::<F>(image, light, &cfg, scratch)?;
+    cost_others(&spec.scenes[c.scene], &cfg, &spec.limits, &spec.archs, &mut costs);
+    let costs = costs.into_iter().map(|r| r.unwrap_or_else(|| Err(RenderError::Cost("not costed".into()))));
+    Some(rows_of(spec, c, &Ok((RowMetrics::new(&metrics, tangent), costs.collect()))))
 }
 
 /// A scene's exact reference at the study's image size, or why there is none.
@@ -175,6 +210,7 @@ fn run_with(spec: &Spec, shard: Shard, progress: &ProgressBar, share: bool) -> R
     let configs: Vec<Config> = spec.configs().into_iter().filter(|c| shard.contains(c.index)).collect();
     progress.set_length(configs.len() as u64);
     let mut rows = Vec::new();
+    let scratch = Mutex::new(Vec::<Scratch>::new());
     for scene in 0..spec.scenes.len() {
         for image in 0..spec.images.len() {
             let group: Vec<&Config> = configs.iter().filter(|c| c.scene == scene && c.image == image).collect();
@@ -190,17 +226,50 @@ fn run_with(spec: &Spec, shard: Shard, progress: &ProgressBar, share: bool) -> R
                 .map(|i| keys[i].map_or(i, |k| keys.iter().position(|o| *o == Some(k)).unwrap_or(i)))
                 .collect();
             let rendered: Vec<&Config> = (0..group.len()).filter(|&i| first[i] == i).map(|i| group[i]).collect();
+            let [w, h] = spec.images[image];
+            let shared = match &truth {
+                Ok(t) if share => ImageShare::new(&spec.scenes[scene], (w, h), t, &spec.archs, &spec.limits),
+                _ => None,
+            };
             let mut done: Vec<Vec<Row>> = Vec::with_capacity(rendered.len());
-            for wave in rendered.chunks(at_once) {
-                done.par_extend(wave.par_iter().map(|c| {
-                    let rows = run_config(spec, c, &truth);
-                    progress.inc(1);
-                    rows
-                }));
+            // The configurations of each light pass together, in the order
+            // their first comes; shadow volumes (no light pass) alone.
+            let mut passes: Vec<(Option<LightKey>, Vec<&Config>)> = Vec::new();
+            for &c in &rendered {
+                let key = shared.as_ref().and(LightKey::of(&render_config(spec, c)));
+                match passes.iter_mut().find(|p| key.is_some() && p.0 == key) {
+                    Some(p) => p.1.push(c),
+                    None => passes.push((key, vec![c])),
+                }
             }
+            for (key, members) in passes {
+                let image_share = shared.as_ref().filter(|_| key.is_some());
+                let mut wave_rows = match (image_share, members.first()) {
+                    (Some(image_share), Some(c0)) => with_format!(c0.format, F => {
+                        let light = LightShare::new::<F>(image_share, &render_config(spec, c0));
+                        run_waves(&members, at_once, progress, |c| {
+                            let mut mine = scratch.lock().map(|mut s| s.pop()).ok().flatten().unwrap_or_default();
+                            let rows = light
+                                .as_ref()
+                                .and_then(|l| run_shared::<F>(spec, c, image_share, l, &mut mine))
+                                .unwrap_or_else(|| run_config(spec, c, &truth));
+                            if let Ok(mut s) = scratch.lock() {
+                                s.push(mine);
+                            }
+                            rows
+                        })
+                    }),
+                    _ => run_waves(&members, at_once, progress, |c| run_config(spec, c, &truth)),
+                };
+                done.append(&mut wave_rows);
+            }
+            done.sort_by_key(|r| r.first().map(|r| r.config_index));
             for (i, c) in group.iter().enumerate() {
                 if first[i] != i {
-                    let at = rendered.iter().position(|r| r.index == group[first[i]].index).unwrap_or(0);
+                    let at = done
+                        .iter()
+                        .position(|r| r.first().map(|r| r.config_index) == Some(group[first[i]].index))
+                        .unwrap_or(0);
                     rows.extend(rows_like(spec, c, &done[at]));
                     progress.inc(1);
                 }
@@ -210,6 +279,25 @@ fn run_with(spec: &Spec, shard: Shard, progress: &ProgressBar, share: bool) -> R
     }
     sort_rows(&mut rows);
     Ok(rows)
+}
+
+/// `each` over `configs` in parallel, at most `at_once` at a time, ticking
+/// `progress` once a configuration: their rows, in order.
+fn run_waves(
+    configs: &[&Config],
+    at_once: usize,
+    progress: &ProgressBar,
+    each: impl Fn(&Config) -> Vec<Row> + Sync,
+) -> Vec<Vec<Row>> {
+    let mut done = Vec::with_capacity(configs.len());
+    for wave in configs.chunks(at_once) {
+        done.par_extend(wave.par_iter().map(|c| {
+            let rows = each(c);
+            progress.inc(1);
+            rows
+        }));
+    }
+    done
 }
 
 #[allow(clippy::cast_precision_loss, reason = "a ratio of pixel counts")]

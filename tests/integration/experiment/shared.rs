@@ -1,0 +1,172 @@
+//! Renders that share what does not change (`render::shared`) are the
+//! renders of their own passes, bit for bit: for every algorithm, depth
+//! format, map side and filter, on every bundled architecture, and a whole
+//! study's files either way.
+
+use std::path::{Path, PathBuf};
+
+use umbra::core::DepthFormatKind;
+use umbra::core::shadow::Filter;
+use umbra::sim::cost::arch::Arch;
+use umbra::sim::experiment::study::{self, Manifest, Shard, Spec, Variant, jittered};
+use umbra::sim::io::limits::Limits;
+use umbra::sim::render::shared::{ImageShare, LightKey, LightShare, Scratch, render_shared, shares};
+use umbra::sim::render::{Algorithm, RenderConfig, TruthSource, render_costed, truth};
+use umbra::sim::world::scene::Scene;
+
+/// `$body` with `$F` the depth-format type `$kind` names.
+macro_rules! with_format {
+    ($kind:expr, $F:ident => $body:expr) => {
+        match $kind {
+            DepthFormatKind::D16 => {
+                type $F = umbra::core::D16;
+                $body
+            }
+            DepthFormatKind::D24 => {
+                type $F = umbra::core::D24;
+                $body
+            }
+            DepthFormatKind::F32 => {
+                type $F = umbra::core::F32;
+                $body
+            }
+        }
+    };
+}
+
+/// Every algorithm of the full sweep, one parameter each, and the
+/// variants that change only the shading (virtual samples off) or only
+/// the light pass (culling off).
+fn variants() -> Vec<Variant> {
+    vec![
+        Variant::new(Algorithm::First, 0.002),
+        Variant::new(Algorithm::First, 0.0),
+        Variant::new(Algorithm::BiasRange { hi: 0.005 }, 0.001),
+        Variant::new(Algorithm::Second, 0.0),
+        Variant::new(Algorithm::Second, 0.0).without_virtual_samples(),
+        Variant::new(Algorithm::SecondFrontCulled, 0.0),
+        Variant::new(Algorithm::Midpoint, 0.0),
+        Variant::new(Algorithm::Dual { offset: 0.005 }, 0.0),
+        Variant::new(Algorithm::Dual { offset: 0.001 }, 0.0).without_culling(),
+        Variant::new(Algorithm::Silhouette { packed: false }, 0.002),
+        Variant::new(Algorithm::Silhouette { packed: true }, 0.002),
+        Variant::new(Algorithm::Volumes, 0.0),
+    ]
+}
+
+/// Each configuration rendered from its shares gives, on every bundled
+/// architecture that shares (all but the R300, which shades per fragment),
+/// the metrics and the cost report of a render of its own passes; the
+/// R300 is left to be costed on its own. If a share handed a probe the
+/// wrong events (a map of the wrong tiling, a camera probe that had not
+/// seen the visibility, the wrong filter's reading), a report would differ.
+#[test]
+fn a_shared_render_is_its_own_render() {
+    let limits = Limits::DEFAULT;
+    let scene = Scene::open("table-and-sphere", &limits).expect("bundled");
+    let archs = Arch::presets().expect("bundled");
+    assert!(archs.iter().any(|a| !shares(a)), "an architecture that keeps passes of its own");
+    let (w, h) = (80, 45);
+    let t = truth(&scene, w, h, 2, &indicatif::ProgressBar::hidden()).expect("a reference");
+    let image = ImageShare::new(&scene, (w, h), &t, &archs, &limits).expect("the scene faces the light");
+    let mut scratch = Scratch::default();
+    let mut compared = 0;
+    for v in variants() {
+        for format in [DepthFormatKind::D16, DepthFormatKind::D24, DepthFormatKind::F32] {
+            for (map_size, filter) in [(64, Filter::Point), (128, Filter::Bilinear), (128, jittered(4))] {
+                let cfg = RenderConfig {
+                    algorithm: v.algorithm,
+                    format,
+                    map_size,
+                    filter,
+                    bias: v.bias,
+                    virtual_samples: v.virtual_samples,
+                    width: w,
+                    height: h,
+                    reference_rays: 2,
+                    culling: v.culling,
+                };
+                let (own, own_costs) =
+                    render_costed(&scene, &cfg, &limits, TruthSource::Given(t.clone()), &archs).expect("renders");
+                let Some(_) = LightKey::of(&cfg) else {
+                    assert_eq!(v.algorithm, Algorithm::Volumes, "only shadow volumes draw no map");
+                    continue;
+                };
+                let (metrics, _, costs) = with_format!(format, F => {
+                    let light = LightShare::new::<F>(&image, &cfg).expect("the light pass runs");
+                    render_shared::<F>(&image, &light, &cfg, &mut scratch).expect("a shared render")
+                });
+                assert_eq!(metrics, own.metrics, "{}", cfg.describe());
+                for ((a, shared), own) in archs.iter().zip(&costs).zip(&own_costs) {
+                    let own = serde_json::to_string(own.as_ref().expect("costed")).expect("serialises");
+                    match shared {
+                        Some(r) => {
+                            let r = serde_json::to_string(r.as_ref().expect("costed")).expect("serialises");
+                            assert_eq!(r, own, "{} on {}", cfg.describe(), a.name);
+                            compared += 1;
+                        }
+                        None => assert!(!shares(a), "{} shares but was not costed", a.name),
+                    }
+                }
+            }
+        }
+    }
+    // 11 algorithms with maps × 3 formats × 3 maps, on the five that share.
+    assert_eq!(compared, 11 * 3 * 3 * 5);
+}
+
+/// A folder of this test process for `name`, emptied.
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("umbra-shared-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).expect("temp dir");
+    d
+}
+
+/// Every file of `d` but the manifest (which names the command), by name.
+fn outputs(d: &Path) -> Vec<(String, Vec<u8>)> {
+    let mut out: Vec<(String, Vec<u8>)> = std::fs::read_dir(d)
+        .expect("written")
+        .map(|e| e.expect("entry").path())
+        .filter(|p| p.file_name().is_some_and(|n| n != "manifest.json"))
+        .map(|p| (p.file_name().expect("named").to_string_lossy().into_owned(), std::fs::read(&p).expect("read")))
+        .collect();
+    out.sort();
+    out
+}
+
+/// A study run from its shares writes every file byte for byte as the run
+/// that renders each configuration on its own passes: every algorithm,
+/// two formats, two map sides (one beyond the limits: its own skipped
+/// row), two filters, every bundled architecture.
+#[test]
+fn a_shared_study_writes_the_unshared_files() {
+    let limits = Limits::DEFAULT;
+    let scenes = study::load_scenes(&["weiskopf-l"], &limits).expect("bundled");
+    let mut spec = Spec::quick(scenes);
+    spec.variants = variants();
+    spec.formats = vec![DepthFormatKind::D16, DepthFormatKind::F32];
+    spec.map_sizes = vec![64, 256];
+    spec.filters = vec![Filter::Bilinear, Filter::Box { size: 3 }];
+    spec.images = vec![[64, 36]];
+    spec.reference_rays = 1;
+    spec.archs = Arch::presets().expect("bundled");
+    spec.arch_points = vec![Default::default(); spec.archs.len()];
+    spec.limits = Limits { max_map_side: 128, ..limits };
+    let hidden = indicatif::ProgressBar::hidden();
+    let shared = study::run(&spec, Shard::ALL, &hidden).expect("runs");
+    let unshared = study::run_unshared(&spec, Shard::ALL, &hidden).expect("runs");
+    assert_eq!(shared.len(), 12 * 2 * 2 * 2 * spec.archs.len());
+    assert!(shared.iter().any(|r| r.reason.contains("max_map_side")), "a map beyond the limits is skipped");
+    let (a, b) = (dir("shared"), dir("unshared"));
+    study::write_run(&a, &shared, &Manifest::new(&spec, Shard::ALL, shared.len())).expect("write");
+    study::write_run(&b, &unshared, &Manifest::new(&spec, Shard::ALL, unshared.len())).expect("write");
+    let (x, y) = (outputs(&a), outputs(&b));
+    assert_eq!(x.iter().map(|f| &f.0).collect::<Vec<_>>(), y.iter().map(|f| &f.0).collect::<Vec<_>>());
+    for (f, g) in x.iter().zip(&y) {
+        assert!(f.1 == g.1, "{} differs", f.0);
+    }
+    for d in [a, b] {
+        let _ = std::fs::remove_dir_all(d);
+    }
+}
