@@ -29,6 +29,9 @@ pub struct Cache {
     line_shift: u32,
     ways: usize,
     sets: u64,
+    /// `sets − 1` when the sets are a power of two: a line's set is then
+    /// its low bits, no division.
+    set_mask: Option<u64>,
     /// Per set, `ways` slots of (tag, last use).
     slots: Vec<Option<(u64, u64)>>,
     /// Per slot, whether the line was written since it was fetched.
@@ -94,6 +97,7 @@ impl Cache {
             line_shift: line.trailing_zeros(),
             ways: ways as usize,
             sets,
+            set_mask: sets.is_power_of_two().then(|| sets - 1),
             slots: vec![None; slots],
             dirty: vec![false; slots],
             last: None,
@@ -134,7 +138,7 @@ impl Cache {
             self.hits += 1;
             return (true, false);
         }
-        let set = usize::try_from(line % self.sets).unwrap_or(0);
+        let set = usize::try_from(self.set_mask.map_or_else(|| line % self.sets, |m| line & m)).unwrap_or(0);
         let range = set * self.ways..(set + 1) * self.ways;
         let slots = &mut self.slots[range.clone()];
         let dirty = &mut self.dirty[range];
@@ -209,17 +213,27 @@ pub struct MapCache {
 /// Where the silhouette map starts (above any map's depths).
 const SILHOUETTE_BASE: u64 = 1 << 40;
 
+/// Each byte's bits spread to the even positions of 16.
+const SPREAD: [u16; 256] = {
+    let mut table = [0u16; 256];
+    let mut b = 0;
+    while b < 256 {
+        let mut bit = 0;
+        while bit < 8 {
+            table[b] |= (((b >> bit) & 1) as u16) << (2 * bit);
+            bit += 1;
+        }
+        b += 1;
+    }
+    table
+};
+
 /// Interleave the bits of `x` (even positions) and `y` (odd positions).
 #[must_use]
 pub fn morton(x: u32, y: u32) -> u64 {
-    let spread = |v: u32| {
-        let mut v = u64::from(v);
-        v = (v | (v << 16)) & 0x0000_ffff_0000_ffff;
-        v = (v | (v << 8)) & 0x00ff_00ff_00ff_00ff;
-        v = (v | (v << 4)) & 0x0f0f_0f0f_0f0f_0f0f;
-        v = (v | (v << 2)) & 0x3333_3333_3333_3333;
-        (v | (v << 1)) & 0x5555_5555_5555_5555
-    };
+    // A byte at a time, by table.
+    let spread =
+        |v: u32| v.to_le_bytes().iter().rev().fold(0u64, |acc, &b| (acc << 16) | u64::from(SPREAD[usize::from(b)]));
     spread(x) | (spread(y) << 1)
 }
 

@@ -27,6 +27,7 @@
 //! own ([`shares`]).
 
 use glam::Mat4;
+use rayon::prelude::*;
 use umbra_core::probe::Totals;
 use umbra_core::shade::{MapUnit, ShadeSetup, Shaded, ShadowUnit, SilhouetteUnit};
 use umbra_core::shadow::{MapView, ShadowConfig};
@@ -165,26 +166,37 @@ impl<'s> ImageShare<'s> {
                 })
             }));
         }
+        // Each tiling's pass, in parallel.
+        let drawn: Vec<Option<(CameraFrame, Mat4, Totals, Vec<(usize, Kept)>)>> = tilings
+            .par_iter()
+            .enumerate()
+            .map(|(k, &tiling)| {
+                let raster =
+                    RasterConfig::new(size.0, size.1, tiling.tile, RasterConfig::DEFAULT_SUBPIXEL_BITS).ok()?;
+                let mut probes = Probes::default();
+                for (i, a) in archs.iter().enumerate().filter(|&(i, _)| seen_by[i] == Some(k)) {
+                    let format = umbra_core::DepthFormatKind::D24;
+                    probes.push(
+                        i,
+                        if shape(a).camera_addresses {
+                            Kept::Detail(ArchProbe::new(a, PassKind::Camera, raster, format, 1))
+                        } else {
+                            Kept::Plain(ArchProbe::new(a, PassKind::Camera, raster, format, 1))
+                        },
+                    );
+                }
+                let mut frame = CameraFrame::default();
+                let mut totals = Totals::default();
+                let vis =
+                    probes.run(|fan| visibility(&mut frame, scene, size, tiling, &mut Tee(&mut totals, fan))).ok()?;
+                Some((frame, vis.camera, totals, probes.into_kept()))
+            })
+            .collect();
         let mut seen: Vec<Seen> = Vec::with_capacity(tilings.len());
-        for (k, &tiling) in tilings.iter().enumerate() {
-            let raster = RasterConfig::new(size.0, size.1, tiling.tile, RasterConfig::DEFAULT_SUBPIXEL_BITS).ok()?;
-            let mut probes = Probes::default();
-            for (i, a) in archs.iter().enumerate().filter(|&(i, _)| seen_by[i] == Some(k)) {
-                let format = umbra_core::DepthFormatKind::D24;
-                probes.push(
-                    i,
-                    if shape(a).camera_addresses {
-                        Kept::Detail(ArchProbe::new(a, PassKind::Camera, raster, format, 1))
-                    } else {
-                        Kept::Plain(ArchProbe::new(a, PassKind::Camera, raster, format, 1))
-                    },
-                );
-            }
-            let mut frame = CameraFrame::default();
-            let mut totals = Totals::default();
-            let vis = probes.run(|fan| visibility(&mut frame, scene, size, tiling, &mut Tee(&mut totals, fan))).ok()?;
+        for (k, pass) in drawn.into_iter().enumerate() {
+            let (frame, camera, totals, probes) = pass?;
             let class = seen.iter().position(|s| s.frame.ids() == frame.ids()).unwrap_or(k);
-            seen.push(Seen { class, frame, camera: vis.camera, totals, probes: probes.into_kept() });
+            seen.push(Seen { class, frame, camera, totals, probes });
         }
         Some(Self {
             scene,

@@ -294,11 +294,17 @@ type Derivatives = (Option<DVec2>, Option<DVec2>);
 /// the pixel has no neighbour on its surface that way).
 fn footprint(render: &[Shaded], truth: &[Option<PixelTruth>], width: usize) -> Vec<Derivatives> {
     let height = render.len().checked_div(width).unwrap_or(0);
-    let at = |k: usize| {
-        let l = render.get(k)?.light?;
-        evaluated(truth.get(k)?)?;
-        Some(DVec2::new(l.x.to_num(), l.y.to_num()))
-    };
+    // Each evaluated pixel's light-space point, converted once.
+    let points: Vec<Option<DVec2>> = render
+        .iter()
+        .zip(truth)
+        .map(|(s, t)| {
+            let l = s.light?;
+            evaluated(t)?;
+            Some(DVec2::new(l.x.to_num(), l.y.to_num()))
+        })
+        .collect();
+    let at = |k: usize| points.get(k).copied().flatten();
     let derivative = |c: DVec2, before: Option<usize>, after: Option<usize>| {
         let near = |n: Option<usize>| n.and_then(at).filter(|p| (*p - c).length() <= SAME_SURFACE_TEXELS);
         match (near(before), near(after)) {
@@ -424,6 +430,35 @@ fn quantiles(mut v: Vec<f64>) -> [f64; 2] {
     [median, p95]
 }
 
+/// [`quantiles`] of values given by their counts (`counts[v]` of the
+/// value `v`): the same two order statistics, by a walk up the counts
+/// rather than a selection.
+#[allow(
+    clippy::cast_precision_loss,
+    clippy::cast_possible_truncation,
+    clippy::cast_sign_loss,
+    reason = "counts and ranks"
+)]
+fn counted_quantiles(counts: &[u64]) -> [f64; 2] {
+    let n: u64 = counts.iter().sum();
+    if n == 0 {
+        return [0.0; 2];
+    }
+    // The value of rank `r` (from 0) in sorted order.
+    let ranked = |r: u64| {
+        let mut below = 0;
+        for (v, &c) in counts.iter().enumerate() {
+            below += c;
+            if below > r {
+                return v as f64;
+            }
+        }
+        0.0
+    };
+    let p95 = ((n - 1) as f64 * 0.95).round() as u64;
+    [ranked(n / 2), ranked(p95)]
+}
+
 /// Compare a `width`-wide render with the truth: the ½-verdict counts, the
 /// edge band, the shade-measured artifacts (see the module's rules), area
 /// error, displacement and the map's footprint.
@@ -449,11 +484,12 @@ pub fn compare_with(render: &[Shaded], truth: &[Option<PixelTruth>], fields: &Fi
         render.iter().zip(truth).map(|(s, t)| evaluated(t).map(|_| shadowed(s))).collect();
     let mut m = Metrics::default();
     let (mut abs_error, mut square_error) = (0.0, 0.0);
-    let mut bands = Vec::new();
+    // Each band's pixels: the bands are whole pixels, 1 to MAX_BAND.
+    let mut bands = [0u64; MAX_BAND as usize + 1];
     for (k, ((s, t), &(v, band))) in render.iter().zip(truth).zip(&judged).enumerate() {
         let Some(t) = evaluated(t) else { continue };
         m.evaluated += 1;
-        bands.push(f64::from(band));
+        bands[band.min(MAX_BAND) as usize] += 1;
         m.ties += u64::from(s.shadow == Shadow::from_bits(1 << 15));
         let (false_shadow, false_light) = (shadowed(s) && t.lit, !shadowed(s) && !t.lit);
         m.false_shadow += u64::from(false_shadow);
@@ -493,7 +529,7 @@ pub fn compare_with(render: &[Shaded], truth: &[Option<PixelTruth>], fields: &Fi
     }
     m.footprint_x = quantiles(footprint.iter().filter_map(|d| d.0).map(DVec2::length).collect());
     m.footprint_y = quantiles(footprint.iter().filter_map(|d| d.1).map(DVec2::length).collect());
-    m.band = quantiles(bands);
+    m.band = counted_quantiles(&bands);
     m.displacement = summary(&mut pixels);
     m.displacement_texels = summary(&mut texels);
     if m.evaluated > 0 {

@@ -80,6 +80,13 @@ fn maps_are_swizzled_with_both_depths_side_by_side() {
     use umbra::sim::cost::cache::morton;
     assert_eq!(morton(3, 5), 39);
     assert_eq!(morton(0xFFFF, 0), 0x5555_5555);
+    // Every byte of both coordinates, against the interleave bit by bit.
+    let by_bits = |x: u32, y: u32| {
+        (0..32).fold(0u64, |m, b| m | u64::from(x >> b & 1) << (2 * b) | u64::from(y >> b & 1) << (2 * b + 1))
+    };
+    for (x, y) in [(u32::MAX, 0), (0, u32::MAX), (0x8040_2010, 0x0102_0408), (0xdead_beef, 0x1234_5678), (8191, 4097)] {
+        assert_eq!(morton(x, y), by_bits(x, y), "({x:#x}, {y:#x})");
+    }
     let m = MapCache::new(Cache::new(64, 64, 1).expect("valid"), 2, 2);
     assert_eq!(m.address(TexelRead { buffer: Buffer::Z2, x: 3, y: 5 }), 158);
     assert_eq!(m.address(TexelRead { buffer: Buffer::Z1, x: 3, y: 5 }), 156);

@@ -139,7 +139,15 @@ pub fn shards(spec: &Spec, tag: &str) -> Vec<PathBuf> {
             let d = dir(&format!("{tag}-shard-{i}"));
             let shard = Shard::parse(&format!("{i}/3")).expect("valid");
             let rows = run_on(2, spec, shard);
-            assert!(rows.iter().all(|r| r.config_index % 3 == i));
+            // Blocks of one scene, image, format and map side, numbered
+            // scene-major, dealt out: block b to shard b mod 3.
+            let block = |r: &Row| {
+                let scene = spec.scenes.iter().position(|s| s.name == r.config.scene).expect("a scene of the sweep");
+                let format = spec.formats.iter().position(|&f| f == r.config.depth_format).expect("a format");
+                let map = spec.map_sizes.iter().position(|&m| m == r.config.map_side_texels).expect("a side");
+                (scene * spec.formats.len() + format) * spec.map_sizes.len() + map
+            };
+            assert!(!rows.is_empty() && rows.iter().all(|r| block(r) % 3 == i), "shard {i}");
             study::write_run(&d, &rows, &Manifest::new(spec, shard, rows.len())).expect("write");
             d
         })
@@ -321,5 +329,46 @@ fn configurations_that_render_alike_write_the_unshared_files() {
     assert_eq!(outputs(&a), outputs(&b));
     for d in [a, b] {
         let _ = std::fs::remove_dir_all(d);
+    }
+}
+
+/// Shards partition any sweep, keep its blocks whole while there are no
+/// more shards than blocks (so each draws a block's passes once), give
+/// every shard work when there are more, and stay within a block's size
+/// of one another.
+#[test]
+fn shards_partition_by_whole_blocks() {
+    use umbra::sim::experiment::study::Layout;
+    for (scenes, variants, formats, maps, filters) in
+        [(9, 22, 3, 6, 5), (3, 14, 2, 2, 2), (1, 3, 1, 1, 4), (2, 5, 3, 2, 1)]
+    {
+        let configurations = scenes * variants * formats * maps * filters;
+        let layout = Layout { configurations, variants, formats, maps, filters };
+        let blocks = scenes * formats * maps;
+        for count in [1, 2, 3, 8, 64, blocks, blocks + 1, 3 * blocks + 2] {
+            let mut sizes = vec![0usize; count];
+            let mut held: Vec<Vec<usize>> = vec![Vec::new(); count];
+            for c in 0..configurations {
+                let mine: Vec<usize> = (0..count).filter(|&i| Shard { index: i, count }.contains(&layout, c)).collect();
+                assert_eq!(mine.len(), 1, "configuration {c} of {count} shards");
+                sizes[mine[0]] += 1;
+                // The block by hand: scene, format and map of the index.
+                let (map, format) = ((c / filters) % maps, (c / filters / maps) % formats);
+                let scene = c / filters / maps / formats / variants;
+                let block = (scene * formats + format) * maps + map;
+                if !held[mine[0]].contains(&block) {
+                    held[mine[0]].push(block);
+                }
+            }
+            let (least, most) = (sizes.iter().min().copied(), sizes.iter().max().copied());
+            let block = variants * filters;
+            assert!(most.zip(least).is_some_and(|(m, l)| m - l <= block), "{count} shards: {sizes:?}");
+            if count <= blocks {
+                // Whole blocks: a shard holds at most its share of them.
+                assert!(held.iter().all(|h| h.len() <= blocks.div_ceil(count)), "{count} shards: {held:?}");
+            } else if configurations >= count {
+                assert!(sizes.iter().all(|&n| n > 0), "{count} shards, one without work: {sizes:?}");
+            }
+        }
     }
 }

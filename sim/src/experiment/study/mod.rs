@@ -14,7 +14,8 @@
 //!
 //! Rows are sorted by configuration index and preset, whatever the thread
 //! count or timing, so the output bytes are a function of the sweep alone.
-//! `--shard i/n` runs the configurations whose index is `i` modulo `n`;
+//! `--shard i/n` runs every `n`-th block of configurations that share
+//! their passes ([`Layout`], [`Shard`]);
 //! [`merge`] reads shard outputs back and writes exactly the files of the
 //! whole run.
 
@@ -45,7 +46,7 @@ pub use shards::{
 };
 pub use summary::{slug, summary, write_outputs};
 pub use sweep::{
-    ArchPoint, Config, MAX_ARCHITECTURES, MAX_CONFIGURATIONS, Shard, Spec, UNLIMITED_OFFSET, Variant, jittered,
+    ArchPoint, Config, Layout, MAX_ARCHITECTURES, MAX_CONFIGURATIONS, Shard, Spec, UNLIMITED_OFFSET, Variant, jittered,
 };
 pub use sweep_file::{BUNDLED_SWEEPS, SweepError, SweepFile};
 

@@ -66,11 +66,7 @@ type Measured = (RowMetrics, Vec<Result<CostReport, RenderError>>);
 
 /// The rows of `c` given what its render `done` measured (or why it
 /// failed): one per architecture (one when the sweep has none).
-fn rows_of(
-    spec: &Spec,
-    c: &Config,
-    done: &Result<Measured, String>,
-) -> Vec<Row> {
+fn rows_of(spec: &Spec, c: &Config, done: &Result<Measured, String>) -> Vec<Row> {
     let arch_rows: Vec<Option<(usize, &Arch)>> =
         if spec.archs.is_empty() { vec![None] } else { spec.archs.iter().enumerate().map(Some).collect() };
     arch_rows
@@ -207,7 +203,8 @@ fn rows_like(spec: &Spec, c: &Config, like: &[Row]) -> Vec<Row> {
 
 fn run_with(spec: &Spec, shard: Shard, progress: &ProgressBar, share: bool) -> Result<Vec<Row>, StudyError> {
     let at_once = spec.renders_at_once(rayon::current_num_threads())?;
-    let configs: Vec<Config> = spec.configs().into_iter().filter(|c| shard.contains(c.index)).collect();
+    let layout = super::Layout::of(spec);
+    let configs: Vec<Config> = spec.configs().into_iter().filter(|c| shard.contains(&layout, c.index)).collect();
     progress.set_length(configs.len() as u64);
     let mut rows = Vec::new();
     let scratch = Mutex::new(Vec::<Scratch>::new());
@@ -232,26 +229,28 @@ fn run_with(spec: &Spec, shard: Shard, progress: &ProgressBar, share: bool) -> R
                 _ => None,
             };
             let mut done: Vec<Vec<Row>> = Vec::with_capacity(rendered.len());
-            // The configurations of each light pass together, in the order
-            // their first comes; shadow volumes (no light pass) alone.
-            let mut passes: Vec<(Option<LightKey>, Vec<&Config>)> = Vec::new();
+            // Blocks of one format and map side, in the order their first
+            // comes: each block's light passes drawn at once, in parallel,
+            // then every configuration of the block in parallel.
+            let mut blocks: Vec<((DepthFormatKind, u32), Vec<&Config>)> = Vec::new();
             for &c in &rendered {
-                let key = shared.as_ref().and(LightKey::of(&render_config(spec, c)));
-                match passes.iter_mut().find(|p| key.is_some() && p.0 == key) {
-                    Some(p) => p.1.push(c),
-                    None => passes.push((key, vec![c])),
+                match blocks.iter_mut().find(|b| b.0 == (c.format, c.map_size)) {
+                    Some(b) => b.1.push(c),
+                    None => blocks.push(((c.format, c.map_size), vec![c])),
                 }
             }
-            for (key, members) in passes {
-                let image_share = shared.as_ref().filter(|_| key.is_some());
-                let mut wave_rows = match (image_share, members.first()) {
-                    (Some(image_share), Some(c0)) => with_format!(c0.format, F => {
-                        let light = LightShare::new::<F>(image_share, &render_config(spec, c0));
+            for ((format, _), members) in blocks {
+                let mut rows = match &shared {
+                    Some(image) => with_format!(format, F => {
+                        let lights = light_shares::<F>(spec, image, &members);
                         run_waves(&members, at_once, progress, |c| {
+                            let cfg = render_config(spec, c);
+                            let light = LightKey::of(&cfg)
+                                .and_then(|k| lights.iter().find(|l| l.0 == k))
+                                .and_then(|l| l.1.as_ref());
                             let mut mine = scratch.lock().map(|mut s| s.pop()).ok().flatten().unwrap_or_default();
                             let rows = light
-                                .as_ref()
-                                .and_then(|l| run_shared::<F>(spec, c, image_share, l, &mut mine))
+                                .and_then(|l| run_shared::<F>(spec, c, image, l, &mut mine))
                                 .unwrap_or_else(|| run_config(spec, c, &truth));
                             if let Ok(mut s) = scratch.lock() {
                                 s.push(mine);
@@ -259,9 +258,9 @@ fn run_with(spec: &Spec, shard: Shard, progress: &ProgressBar, share: bool) -> R
                             rows
                         })
                     }),
-                    _ => run_waves(&members, at_once, progress, |c| run_config(spec, c, &truth)),
+                    None => run_waves(&members, at_once, progress, |c| run_config(spec, c, &truth)),
                 };
-                done.append(&mut wave_rows);
+                done.append(&mut rows);
             }
             done.sort_by_key(|r| r.first().map(|r| r.config_index));
             for (i, c) in group.iter().enumerate() {
@@ -281,8 +280,27 @@ fn run_with(spec: &Spec, shard: Shard, progress: &ProgressBar, share: bool) -> R
     Ok(rows)
 }
 
-/// `each` over `configs` in parallel, at most `at_once` at a time, ticking
-/// `progress` once a configuration: their rows, in order.
+/// The light passes of `configs` (of one format `F` and map side), one
+/// share per [`LightKey`], drawn in parallel: `None` for a key whose pass
+/// cannot run (its configurations render on their own).
+fn light_shares<F: DepthFormat>(
+    spec: &Spec,
+    image: &ImageShare<'_>,
+    configs: &[&Config],
+) -> Vec<(LightKey, Option<LightShare<F::Texel>>)> {
+    let mut keys: Vec<(LightKey, RenderConfig)> = Vec::new();
+    for c in configs {
+        let cfg = render_config(spec, c);
+        if let Some(k) = LightKey::of(&cfg).filter(|k| !keys.iter().any(|(o, _)| o == k)) {
+            keys.push((k, cfg));
+        }
+    }
+    keys.into_par_iter().map(|(k, cfg)| (k, LightShare::new::<F>(image, &cfg))).collect()
+}
+
+/// `each` over `configs` in parallel, at most `at_once` at a time (all at
+/// once on as many threads as the pool has when memory allows that many),
+/// ticking `progress` once a configuration: their rows, in order.
 fn run_waves(
     configs: &[&Config],
     at_once: usize,
@@ -290,7 +308,10 @@ fn run_waves(
     each: impl Fn(&Config) -> Vec<Row> + Sync,
 ) -> Vec<Vec<Row>> {
     let mut done = Vec::with_capacity(configs.len());
-    for wave in configs.chunks(at_once) {
+    // A pool runs one configuration a thread: with room for one a thread,
+    // one wave takes them all, and no thread waits for a wave's slowest.
+    let wave = if at_once >= rayon::current_num_threads() { configs.len().max(1) } else { at_once };
+    for wave in configs.chunks(wave) {
         done.par_extend(wave.par_iter().map(|c| {
             let rows = each(c);
             progress.inc(1);

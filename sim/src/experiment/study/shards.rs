@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::{Row, Shard, Spec, Status, StudyError, sort_rows, write_outputs};
+use super::{Layout, Row, Shard, Spec, Status, StudyError, sort_rows, write_outputs};
 use crate::io::folder::{OutputFolder, RunManifest};
 use crate::io::limits::Limits;
 
@@ -24,6 +24,8 @@ pub struct Manifest {
     pub shard: String,
     /// Configurations in the whole sweep.
     pub configurations: usize,
+    /// How they fall into the blocks shards keep whole.
+    pub layout: Layout,
     /// Architectures each configuration is costed on (1 when none).
     pub architectures: usize,
     /// Rows in this run's `results.jsonl`.
@@ -44,6 +46,7 @@ impl Manifest {
             umbra_version: crate::io::provenance::version(),
             shard: format!("{}/{}", shard.index, shard.count),
             configurations: spec.configs().len(),
+            layout: Layout::of(spec),
             architectures: spec.archs.len().max(1),
             rows,
             budgets: spec.budgets.clone(),
@@ -290,6 +293,9 @@ pub fn merge(inputs: &[PathBuf], out: &Path, limits: &Limits) -> Result<usize, S
                 ));
             }
         }
+        if m.layout.configurations != m.configurations || first.as_ref().is_some_and(|f| f.layout != m.layout) {
+            return Err(refuse(&file, "its layout of configurations is not the sweep's".to_owned()));
+        }
         if seen.contains(&shard.index) {
             return Err(refuse(&file, format!("shard {} is given twice", m.shard)));
         }
@@ -300,7 +306,7 @@ pub fn merge(inputs: &[PathBuf], out: &Path, limits: &Limits) -> Result<usize, S
         }
         for r in &mine {
             let at = format!("row {} ({})", r.config_index, r.config.arch);
-            if !shard.contains(r.config_index) {
+            if !shard.contains(&m.layout, r.config_index) {
                 return Err(refuse(&rows_file, format!("{at} is not in shard {}", m.shard)));
             }
             if r.config.sweep_hash != m.sweep_hash {

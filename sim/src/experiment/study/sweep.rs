@@ -163,7 +163,15 @@ impl Spec {
         let most = self.scenes.iter().map(triangles).max().unwrap_or(0);
         let reference = Footprint::render(pixels, 0, most) - Footprint::BASE;
         let render = Footprint::render(pixels, map, most) - Footprint::BASE;
-        let fixed = Footprint::render(0, 0, held).saturating_add(reference);
+        // What the configurations of a scene and image share: its
+        // visibility in each tiling, and a block's light passes (one a
+        // point on the algorithm axis at most).
+        let tilings = crate::render::shared::tilings(&self.archs) as u64;
+        let texels = u64::from(map) * u64::from(map);
+        let shares = crate::render::shared::image_bytes(pixels, tilings).saturating_add(
+            crate::render::shared::light_bytes(texels, tilings).saturating_mul(self.variants.len() as u64),
+        );
+        let fixed = Footprint::render(0, 0, held).saturating_add(reference).saturating_add(shares);
         let room = self.limits.max_memory.saturating_sub(fixed) / render.max(1);
         if room == 0 {
             self.limits
@@ -213,8 +221,70 @@ pub struct Config {
     pub filter: usize,
 }
 
-/// A deterministic partition of the configurations: shard `index` of
-/// `count` runs those whose index is `index` modulo `count`.
+/// How a sweep's configurations fall into blocks that share their passes:
+/// a block is every configuration of one scene, image size, depth format
+/// and map side (every algorithm and filter of them), so it draws the
+/// scene's visibility and each light pass once. Only the axis lengths
+/// matter, so a merge can check a shard's rows from its manifest alone.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Layout {
+    /// Configurations in the sweep.
+    pub configurations: usize,
+    /// Points on the algorithm axis.
+    pub variants: usize,
+    /// Depth formats.
+    pub formats: usize,
+    /// Map sides.
+    pub maps: usize,
+    /// Filters.
+    pub filters: usize,
+}
+
+impl Layout {
+    /// The layout of `spec`'s configurations ([`Spec::configs`]).
+    #[must_use]
+    pub fn of(spec: &Spec) -> Self {
+        let configurations = spec.configs().len();
+        let (variants, formats, maps, filters) =
+            (spec.variants.len(), spec.formats.len(), spec.map_sizes.len(), spec.filters.len());
+        Self { configurations, variants, formats, maps, filters }
+    }
+
+    /// Configurations a block holds: every algorithm and filter.
+    #[must_use]
+    pub const fn block_size(&self) -> usize {
+        self.variants.saturating_mul(self.filters)
+    }
+
+    /// Blocks in the sweep.
+    #[must_use]
+    pub const fn blocks(&self) -> usize {
+        match self.configurations.checked_div(self.block_size()) {
+            Some(b) => b,
+            None => 0,
+        }
+    }
+
+    /// The block of configuration `index`, and its place in the block
+    /// (algorithm-major, as [`Spec::configs`] numbers them).
+    #[must_use]
+    pub fn block_of(&self, index: usize) -> (usize, usize) {
+        let axis = |n: usize, of: usize| if of == 0 { (0, 0) } else { (n % of, n / of) };
+        let (filter, rest) = axis(index, self.filters);
+        let (map, rest) = axis(rest, self.maps);
+        let (format, rest) = axis(rest, self.formats);
+        let (variant, scene_image) = axis(rest, self.variants);
+        ((scene_image * self.formats + format) * self.maps + map, variant * self.filters + filter)
+    }
+}
+
+/// A deterministic partition of the configurations into `count` shards
+/// that keep blocks whole ([`Layout`]): with no more shards than blocks,
+/// shard `index` runs the blocks whose number is `index` modulo `count`
+/// (so every shard mixes scenes, formats and map sides as the sweep does);
+/// with more, each block is cut into as many equal runs as it takes to
+/// give every shard work, and the runs are dealt the same way.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Shard {
     /// This shard, `0..count`.
@@ -241,10 +311,30 @@ impl Shard {
         Ok(Self { index, count })
     }
 
-    /// Whether this shard runs configuration `index`.
+    /// Whether this shard runs configuration `index` of a sweep laid out
+    /// as `layout`.
+    ///
+    /// ```
+    /// use umbra_sim::experiment::study::{Layout, Shard};
+    /// // 2 scenes × 2 formats × 1 map side: 4 blocks of 3 algorithms × 2 filters.
+    /// let layout = Layout { configurations: 24, variants: 3, formats: 2, maps: 1, filters: 2 };
+    /// let shard = |i, n, c| Shard { index: i, count: n }.contains(&layout, c);
+    /// // Two shards: blocks 0 and 2 in the first, 1 and 3 in the second.
+    /// assert!(shard(0, 2, 0) && shard(0, 2, 5) && shard(1, 2, 2) && shard(0, 2, 12));
+    /// // Eight shards: each block cut in two runs of 3 configurations.
+    /// let mine: Vec<usize> = (0..24).filter(|&c| shard(0, 8, c)).collect();
+    /// assert_eq!(mine.len(), 3);
+    /// ```
     #[must_use]
-    pub const fn contains(self, index: usize) -> bool {
-        index % self.count == self.index
+    pub fn contains(self, layout: &Layout, index: usize) -> bool {
+        let (block, at) = layout.block_of(index);
+        let blocks = layout.blocks();
+        let size = layout.block_size();
+        // Runs a block is cut into: enough for every shard to have one.
+        let runs = if blocks == 0 || size == 0 { 1 } else { self.count.div_ceil(blocks) };
+        let runs = if runs > size { size } else { runs };
+        let run = if size == 0 { 0 } else { at * runs / size };
+        (block * runs + run) % self.count == self.index
     }
 }
 
