@@ -220,7 +220,9 @@ const SPREAD: [u16; 256] = {
     while b < 256 {
         let mut bit = 0;
         while bit < 8 {
-            table[b] |= (((b >> bit) & 1) as u16) << (2 * bit);
+            #[allow(clippy::cast_possible_truncation, reason = "one bit")]
+            let one = ((b >> bit) & 1) as u16;
+            table[b] |= one << (2 * bit);
             bit += 1;
         }
         b += 1;

@@ -120,6 +120,9 @@ struct Seen {
     probes: Vec<(usize, Kept)>,
 }
 
+/// A visibility pass's frame, camera, event totals and probes.
+type Drawn = (CameraFrame, Mat4, Totals, Vec<(usize, Kept)>);
+
 /// What the renders of one scene at one image size share: the reference
 /// with its [`Fields`], a visibility pass per tiling, the scene's counts.
 #[derive(Debug)]
@@ -167,7 +170,7 @@ impl<'s> ImageShare<'s> {
             }));
         }
         // Each tiling's pass, in parallel.
-        let drawn: Vec<Option<(CameraFrame, Mat4, Totals, Vec<(usize, Kept)>)>> = tilings
+        let drawn: Vec<Option<Drawn>> = tilings
             .par_iter()
             .enumerate()
             .map(|(k, &tiling)| {

@@ -288,40 +288,62 @@ fn evaluated(t: &Option<PixelTruth>) -> Option<PixelTruth> {
 /// A pixel's light-space point's derivatives along x and y, texels per pixel.
 type Derivatives = (Option<DVec2>, Option<DVec2>);
 
-/// The map's footprint at each pixel of a `width`-wide render: the
-/// derivatives of the light-space point along x and along y, texels per
-/// pixel (central differences, one-sided at a surface's edge; `None` where
-/// the pixel has no neighbour on its surface that way).
-fn footprint(render: &[Shaded], truth: &[Option<PixelTruth>], width: usize) -> Vec<Derivatives> {
-    let height = render.len().checked_div(width).unwrap_or(0);
-    // Each evaluated pixel's light-space point, converted once.
-    let points: Vec<Option<DVec2>> = render
-        .iter()
-        .zip(truth)
-        .map(|(s, t)| {
+/// Each evaluated pixel's light-space point of a `width`-wide render,
+/// converted once, from which the map's footprint at any pixel follows.
+struct Points {
+    points: Vec<Option<DVec2>>,
+    width: usize,
+    height: usize,
+}
+
+std::thread_local! {
+    /// The last measure's points on this thread, for the next to fill
+    /// without fresh pages.
+    static SPARE_POINTS: core::cell::RefCell<Vec<Option<DVec2>>> = const { core::cell::RefCell::new(Vec::new()) };
+}
+
+impl Points {
+    fn new(render: &[Shaded], truth: &[Option<PixelTruth>], width: usize) -> Self {
+        let mut points = SPARE_POINTS.with(|p| p.take());
+        points.clear();
+        points.extend(render.iter().zip(truth).map(|(s, t)| {
             let l = s.light?;
             evaluated(t)?;
             Some(DVec2::new(l.x.to_num(), l.y.to_num()))
-        })
-        .collect();
-    let at = |k: usize| points.get(k).copied().flatten();
-    let derivative = |c: DVec2, before: Option<usize>, after: Option<usize>| {
-        let near = |n: Option<usize>| n.and_then(at).filter(|p| (*p - c).length() <= SAME_SURFACE_TEXELS);
-        match (near(before), near(after)) {
-            (Some(a), Some(b)) => Some((b - a) / 2.0),
-            (Some(a), None) => Some(c - a),
-            (None, Some(b)) => Some(b - c),
-            (None, None) => None,
-        }
-    };
-    (0..render.len())
-        .map(|k| {
-            let Some(c) = at(k) else { return (None, None) };
-            let (x, y) = (k % width, k / width);
-            let n = |dx, dy| neighbour(x, y, dx, dy, width, height);
-            (derivative(c, n(-1, 0), n(1, 0)), derivative(c, n(0, -1), n(0, 1)))
-        })
-        .collect()
+        }));
+        let height = render.len().checked_div(width).unwrap_or(0);
+        Self { points, width, height }
+    }
+
+    /// Give the buffer back for the next measure on this thread.
+    fn recycle(self) {
+        SPARE_POINTS.with(|p| p.replace(self.points));
+    }
+
+    fn at(&self, k: usize) -> Option<DVec2> {
+        self.points.get(k).copied().flatten()
+    }
+
+    /// The map's footprint at pixel `k`: the derivatives of the light-space
+    /// point along x and along y, texels per pixel (central differences,
+    /// one-sided at a surface's edge; `None` where the pixel has no
+    /// neighbour on its surface that way).
+    fn footprint(&self, k: usize) -> Derivatives {
+        let Some(c) = self.at(k) else { return (None, None) };
+        let derivative = |before: Option<usize>, after: Option<usize>| {
+            let near =
+                |n: Option<usize>| n.and_then(|n| self.at(n)).filter(|p| (*p - c).length() <= SAME_SURFACE_TEXELS);
+            match (near(before), near(after)) {
+                (Some(a), Some(b)) => Some((b - a) / 2.0),
+                (Some(a), None) => Some(c - a),
+                (None, Some(b)) => Some(b - c),
+                (None, None) => None,
+            }
+        };
+        let (x, y) = (k % self.width, k / self.width);
+        let n = |dx, dy| neighbour(x, y, dx, dy, self.width, self.height);
+        (derivative(n(-1, 0), n(1, 0)), derivative(n(0, -1), n(0, 1)))
+    }
 }
 
 /// The screen extent, in pixels, of a map texel under a pixel whose
@@ -345,7 +367,16 @@ fn texel_extent(d: Derivatives) -> u32 {
 #[must_use]
 pub fn verdicts(render: &[Shaded], truth: &[Option<PixelTruth>], width: u32) -> Vec<Verdict> {
     let fields = Fields::new(truth, width);
-    judge(render, truth, &fields, &footprint(render, truth, fields.width)).into_iter().map(|(v, _)| v).collect()
+    let points = Points::new(render, truth, fields.width);
+    render
+        .iter()
+        .zip(truth)
+        .enumerate()
+        .map(|(k, (s, t))| match evaluated(t) {
+            Some(t) => verdict(s, &t, texel_extent(points.footprint(k)), &fields, k),
+            None => Verdict::Unevaluated,
+        })
+        .collect()
 }
 
 /// What the metrics need of the reference alone, worked out once for
@@ -386,34 +417,19 @@ impl Fields {
     }
 }
 
-/// Each pixel's verdict and edge band, given the reference's `fields` and
-/// the map's `footprint`.
-fn judge(
-    render: &[Shaded],
-    truth: &[Option<PixelTruth>],
-    fields: &Fields,
-    footprint: &[Derivatives],
-) -> Vec<(Verdict, u32)> {
-    render
-        .iter()
-        .zip(truth)
-        .enumerate()
-        .map(|(k, (s, t))| {
-            let Some(t) = evaluated(t) else { return (Verdict::Unevaluated, 0) };
-            let band = footprint.get(k).map_or(1, |&d| texel_extent(d));
-            let wrong_side = shadowed(s) == t.lit;
-            let excess = excess_shadow(s, &t);
-            let near = fields.to_edge.get(k).is_some_and(|&d| d < band);
-            let verdict = match (near, wrong_side || excess.abs() > SHADE_STEP) {
-                (_, false) => Verdict::Right,
-                (true, true) => Verdict::EdgePlacement,
-                (false, true) if excess > SHADE_STEP => Verdict::Acne,
-                (false, true) if excess < -SHADE_STEP => Verdict::Leak,
-                (false, true) => Verdict::Right,
-            };
-            (verdict, band)
-        })
-        .collect()
+/// The verdict of evaluated pixel `k`, shaded `s` where the reference
+/// says `t`, with an edge band of `band` pixels.
+fn verdict(s: &Shaded, t: &PixelTruth, band: u32, fields: &Fields, k: usize) -> Verdict {
+    let wrong_side = shadowed(s) == t.lit;
+    let excess = excess_shadow(s, t);
+    let near = fields.to_edge.get(k).is_some_and(|&d| d < band);
+    match (near, wrong_side || excess.abs() > SHADE_STEP) {
+        (_, false) => Verdict::Right,
+        (true, true) => Verdict::EdgePlacement,
+        (false, true) if excess > SHADE_STEP => Verdict::Acne,
+        (false, true) if excess < -SHADE_STEP => Verdict::Leak,
+        (false, true) => Verdict::Right,
+    }
 }
 
 /// How much darker the pipeline shades a pixel than the reference: its
@@ -478,16 +494,21 @@ pub fn compare(render: &[Shaded], truth: &[Option<PixelTruth>], width: u32) -> M
 )]
 pub fn compare_with(render: &[Shaded], truth: &[Option<PixelTruth>], fields: &Fields) -> Metrics {
     let width = fields.width;
-    let footprint = footprint(render, truth, width);
-    let judged = judge(render, truth, fields, &footprint);
+    let points = Points::new(render, truth, width);
     let rendered: Vec<Option<bool>> =
         render.iter().zip(truth).map(|(s, t)| evaluated(t).map(|_| shadowed(s))).collect();
     let mut m = Metrics::default();
     let (mut abs_error, mut square_error) = (0.0, 0.0);
     // Each band's pixels: the bands are whole pixels, 1 to MAX_BAND.
     let mut bands = [0u64; MAX_BAND as usize + 1];
-    for (k, ((s, t), &(v, band))) in render.iter().zip(truth).zip(&judged).enumerate() {
+    let (mut along_x, mut along_y) = (Vec::new(), Vec::new());
+    for (k, (s, t)) in render.iter().zip(truth).enumerate() {
         let Some(t) = evaluated(t) else { continue };
+        let footprint = points.footprint(k);
+        along_x.extend(footprint.0.map(DVec2::length));
+        along_y.extend(footprint.1.map(DVec2::length));
+        let band = texel_extent(footprint);
+        let v = verdict(s, &t, band, fields, k);
         m.evaluated += 1;
         bands[band.min(MAX_BAND) as usize] += 1;
         m.ties += u64::from(s.shadow == Shadow::from_bits(1 << 15));
@@ -527,8 +548,9 @@ pub fn compare_with(render: &[Shaded], truth: &[Option<PixelTruth>], fields: &Fi
             texels.push((a.0 - b.0).hypot(a.1 - b.1));
         }
     }
-    m.footprint_x = quantiles(footprint.iter().filter_map(|d| d.0).map(DVec2::length).collect());
-    m.footprint_y = quantiles(footprint.iter().filter_map(|d| d.1).map(DVec2::length).collect());
+    points.recycle();
+    m.footprint_x = quantiles(along_x);
+    m.footprint_y = quantiles(along_y);
     m.band = counted_quantiles(&bands);
     m.displacement = summary(&mut pixels);
     m.displacement_texels = summary(&mut texels);

@@ -80,6 +80,13 @@ fn manifest() -> Manifest {
         umbra_version: "test".into(),
         shard: "0/1".into(),
         configurations: 5,
+        layout: umbra::sim::experiment::study::Layout {
+            configurations: 5,
+            variants: 5,
+            formats: 1,
+            maps: 1,
+            filters: 1,
+        },
         architectures: 1,
         rows: 6,
         budgets: vec![1.0, 0.1, 0.001],

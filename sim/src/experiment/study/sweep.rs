@@ -333,7 +333,7 @@ impl Shard {
         // Runs a block is cut into: enough for every shard to have one.
         let runs = if blocks == 0 || size == 0 { 1 } else { self.count.div_ceil(blocks) };
         let runs = if runs > size { size } else { runs };
-        let run = if size == 0 { 0 } else { at * runs / size };
+        let run = (at * runs).checked_div(size).unwrap_or(0);
         (block * runs + run) % self.count == self.index
     }
 }
