@@ -51,8 +51,10 @@ pub(super) struct StudyArgs {
     /// (`--budgets 1,0.1`).
     #[arg(long, value_delimiter = ',')]
     pub(super) budgets: Vec<f64>,
-    /// Run only shard i of n (configurations whose index is i mod n) and
-    /// write a partial results.jsonl; `umbra merge` joins the shards.
+    /// Run only shard i of n (every n-th block of configurations that share
+    /// a scene, image, format and map side, so each block's passes are
+    /// drawn once) and write a partial results.jsonl; `umbra merge` joins
+    /// the shards.
     #[arg(long)]
     pub(super) shard: Option<String>,
     /// Also run the numerical extremes (near/far ratio, grazing light,
