@@ -13,6 +13,7 @@ use crate::render::shared::{ImageShare, LightKey, LightShare, Scratch, render_sh
 use crate::render::{Algorithm, RenderConfig, RenderError, TruthSource, cost_others, render_costed, truth};
 use crate::truth::reference::PixelTruth;
 use crate::world::scene::Scene;
+use umbra_core::probe::Totals;
 use umbra_core::shadow::Filter;
 use umbra_core::{DepthFormat, DepthFormatKind};
 
@@ -53,10 +54,7 @@ pub fn run_config(spec: &Spec, c: &Config, truth: &Truth) -> Vec<Row> {
             .map_err(|e| e.to_string()),
         Err(e) => Err(format!("reference: {e}")),
     };
-    let done = done.map(|(r, costs)| {
-        let t = &r.camera_events.totals;
-        (RowMetrics::new(&r.metrics, ratio(t.tangent_setups, t.tangent_setups + t.trivial_pixels())), costs)
-    });
+    let done = done.map(|(r, costs)| (RowMetrics::new(&r.metrics, tangent_share(&r.camera_events.totals)), costs));
     rows_of(spec, c, &done)
 }
 
@@ -100,10 +98,10 @@ fn run_shared<F: DepthFormat>(
     scratch: &mut Scratch,
 ) -> Option<Vec<Row>> {
     let cfg = render_config(spec, c);
-    let (metrics, tangent, mut costs) = render_shared::<F>(image, light, &cfg, scratch)?;
+    let (metrics, camera, mut costs) = render_shared::<F>(image, light, &cfg, scratch)?;
     cost_others(&spec.scenes[c.scene], &cfg, &spec.limits, &spec.archs, &mut costs);
     let costs = costs.into_iter().map(|r| r.unwrap_or_else(|| Err(RenderError::Cost("not costed".into()))));
-    Some(rows_of(spec, c, &Ok((RowMetrics::new(&metrics, tangent), costs.collect()))))
+    Some(rows_of(spec, c, &Ok((RowMetrics::new(&metrics, tangent_share(&camera)), costs.collect()))))
 }
 
 /// A scene's exact reference at the study's image size, or why there is none.
@@ -321,8 +319,11 @@ fn run_waves(
     done
 }
 
+/// The share of a camera pass's decided pixels that needed a tangent
+/// plane (Wang & Molnar's virtual samples), from its event totals.
 #[allow(clippy::cast_precision_loss, reason = "a ratio of pixel counts")]
-fn ratio(a: u64, b: u64) -> f64 {
+fn tangent_share(t: &Totals) -> f64 {
+    let (a, b) = (t.tangent_setups, t.tangent_setups + t.trivial_pixels());
     if b == 0 { 0.0 } else { a as f64 / b as f64 }
 }
 

@@ -32,6 +32,13 @@ use umbra_core::shadow::Shadow;
 
 use crate::truth::reference::PixelTruth;
 
+mod fields;
+mod footprint;
+
+pub use self::fields::Fields;
+use self::fields::boundary;
+use self::footprint::{Points, texel_extent};
+
 /// The smallest difference between a pixel's filtered shadow fraction and
 /// the reference's area-averaged shadow that counts as an artifact: 0.1.
 ///
@@ -59,11 +66,6 @@ pub const TERMINATOR_REACH: u32 = 16;
 /// Widest edge band, pixels: a texel seen edge-on is a sliver across the
 /// screen, and a band wider than this would excuse everything.
 pub const MAX_BAND: u32 = 32;
-
-/// Neighbouring pixels whose light-space points are farther apart than
-/// this, in texels, are on different surfaces (or across a depth
-/// discontinuity) and give no derivative.
-const SAME_SURFACE_TEXELS: f64 = 8.0;
 
 /// How a render's shadows compare with the truth, over the pixels whose
 /// surface faces the light (the others are dark by shading whatever the
@@ -180,84 +182,6 @@ fn summary(v: &mut [f64]) -> [f64; 3] {
     [mean, p95, max]
 }
 
-/// Chebyshev distance, in pixels, from every pixel of a `width`-wide image
-/// to the nearest pixel marked in `sites` (`u32::MAX` when there is none),
-/// and which site that is: two chamfer passes, exact for this metric.
-fn distance(sites: &[bool], width: usize) -> Vec<(u32, usize)> {
-    let mut d: Vec<(u32, usize)> = sites.iter().enumerate().map(|(k, &s)| (if s { 0 } else { u32::MAX }, k)).collect();
-    let height = d.len().checked_div(width).unwrap_or(0);
-    // Take the nearer of a pixel's own site and a neighbour's plus one, the
-    // neighbours in a fixed order (the first nearer one wins a tie).
-    let relax = |d: &mut [(u32, usize)], k: usize, n: usize| {
-        let (nd, site) = d[n];
-        if nd.saturating_add(1) < d[k].0 {
-            d[k] = (nd + 1, site);
-        }
-    };
-    // Forward: the row above (left, middle, right), then the left.
-    for y in 0..height {
-        for x in 0..width {
-            let k = y * width + x;
-            if y > 0 {
-                let up = k - width;
-                if x > 0 {
-                    relax(&mut d, k, up - 1);
-                }
-                relax(&mut d, k, up);
-                if x + 1 < width {
-                    relax(&mut d, k, up + 1);
-                }
-            }
-            if x > 0 {
-                relax(&mut d, k, k - 1);
-            }
-        }
-    }
-    // Backward: the row below (right, middle, left), then the right.
-    for y in (0..height).rev() {
-        for x in (0..width).rev() {
-            let k = y * width + x;
-            if y + 1 < height {
-                let down = k + width;
-                if x + 1 < width {
-                    relax(&mut d, k, down + 1);
-                }
-                relax(&mut d, k, down);
-                if x > 0 {
-                    relax(&mut d, k, down - 1);
-                }
-            }
-            if x + 1 < width {
-                relax(&mut d, k, k + 1);
-            }
-        }
-    }
-    d
-}
-
-/// The index of the pixel `(dx, dy)` from `(x, y)`, if it is inside.
-fn neighbour(x: usize, y: usize, dx: isize, dy: isize, width: usize, height: usize) -> Option<usize> {
-    let (nx, ny) = (x.checked_add_signed(dx)?, y.checked_add_signed(dy)?);
-    (nx < width && ny < height).then(|| ny * width + nx)
-}
-
-/// Pixels on a boundary of `dark` (`None`: not evaluated): evaluated, with
-/// an evaluated 8-neighbour of the other verdict; only the lit ones when
-/// `lit_side` (so that a boundary is one pixel thick and a shift by k
-/// pixels moves it by k).
-fn boundary(dark: &[Option<bool>], width: usize, lit_side: bool) -> Vec<bool> {
-    let height = dark.len().checked_div(width).unwrap_or(0);
-    (0..dark.len())
-        .map(|k| {
-            let Some(v) = dark[k].filter(|&v| !(lit_side && v)) else { return false };
-            let (x, y) = (k % width, k / width);
-            (-1..=1).any(|dy| {
-                (-1..=1).any(|dx| neighbour(x, y, dx, dy, width, height).and_then(|n| dark[n]).is_some_and(|n| n != v))
-            })
-        })
-        .collect()
-}
-
 /// One pixel's verdict against the truth.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Verdict {
@@ -281,85 +205,8 @@ fn shadowed(s: &Shaded) -> bool {
 
 /// The pixels whose surface faces the light (the others are dark by
 /// shading whatever the shadow test says).
-fn evaluated(t: &Option<PixelTruth>) -> Option<PixelTruth> {
+pub(super) fn evaluated(t: &Option<PixelTruth>) -> Option<PixelTruth> {
     t.filter(|t| t.faces_light)
-}
-
-/// A pixel's light-space point's derivatives along x and y, texels per pixel.
-type Derivatives = (Option<DVec2>, Option<DVec2>);
-
-/// Each evaluated pixel's light-space point of a `width`-wide render,
-/// converted once, from which the map's footprint at any pixel follows.
-struct Points {
-    points: Vec<Option<DVec2>>,
-    width: usize,
-    height: usize,
-}
-
-std::thread_local! {
-    /// The last measure's points on this thread, for the next to fill
-    /// without fresh pages.
-    static SPARE_POINTS: core::cell::RefCell<Vec<Option<DVec2>>> = const { core::cell::RefCell::new(Vec::new()) };
-}
-
-impl Points {
-    fn new(render: &[Shaded], truth: &[Option<PixelTruth>], width: usize) -> Self {
-        let mut points = SPARE_POINTS.with(|p| p.take());
-        points.clear();
-        points.extend(render.iter().zip(truth).map(|(s, t)| {
-            let l = s.light?;
-            evaluated(t)?;
-            Some(DVec2::new(l.x.to_num(), l.y.to_num()))
-        }));
-        let height = render.len().checked_div(width).unwrap_or(0);
-        Self { points, width, height }
-    }
-
-    /// Give the buffer back for the next measure on this thread.
-    fn recycle(self) {
-        SPARE_POINTS.with(|p| p.replace(self.points));
-    }
-
-    fn at(&self, k: usize) -> Option<DVec2> {
-        self.points.get(k).copied().flatten()
-    }
-
-    /// The map's footprint at pixel `k`: the derivatives of the light-space
-    /// point along x and along y, texels per pixel (central differences,
-    /// one-sided at a surface's edge; `None` where the pixel has no
-    /// neighbour on its surface that way).
-    fn footprint(&self, k: usize) -> Derivatives {
-        let Some(c) = self.at(k) else { return (None, None) };
-        let derivative = |before: Option<usize>, after: Option<usize>| {
-            let near =
-                |n: Option<usize>| n.and_then(|n| self.at(n)).filter(|p| (*p - c).length() <= SAME_SURFACE_TEXELS);
-            match (near(before), near(after)) {
-                (Some(a), Some(b)) => Some((b - a) / 2.0),
-                (Some(a), None) => Some(c - a),
-                (None, Some(b)) => Some(b - c),
-                (None, None) => None,
-            }
-        };
-        let (x, y) = (k % self.width, k / self.width);
-        let n = |dx, dy| neighbour(x, y, dx, dy, self.width, self.height);
-        (derivative(n(-1, 0), n(1, 0)), derivative(n(0, -1), n(0, 1)))
-    }
-}
-
-/// The screen extent, in pixels, of a map texel under a pixel whose
-/// light-space point moves by `dx` and `dy` texels per pixel: the texel is
-/// the unit square mapped back through the inverse of `[dx dy]`, and its
-/// longest extent is `1/σ_min = σ_max/|det|`. At least 1, at most
-/// [`MAX_BAND`]; 1 where a derivative is unknown.
-fn texel_extent(d: Derivatives) -> u32 {
-    let (Some(dx), Some(dy)) = d else { return 1 };
-    let det = dx.perp_dot(dy).abs();
-    let sum = dx.length_squared() + dy.length_squared();
-    let sigma_max = ((sum + (sum * sum - 4.0 * det * det).max(0.0).sqrt()) / 2.0).sqrt();
-    let extent = if det > 0.0 { sigma_max / det } else { f64::INFINITY };
-    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "clamped to 1..=MAX_BAND")]
-    let band = extent.ceil().clamp(1.0, f64::from(MAX_BAND)) as u32;
-    band
 }
 
 /// Each pixel's verdict, for a `width`-wide render: the counts
@@ -377,44 +224,6 @@ pub fn verdicts(render: &[Shaded], truth: &[Option<PixelTruth>], width: u32) -> 
             None => Verdict::Unevaluated,
         })
         .collect()
-}
-
-/// What the metrics need of the reference alone, worked out once for
-/// every render measured against it (a study measures many): which side
-/// of the exact boundary each pixel is on, and three distance fields —
-/// to the exact boundary (the edge band's test), to its lit side (the
-/// displacement's, with the site found) and to the surfaces facing away
-/// from the light (the terminator's reach).
-#[derive(Clone, Debug)]
-pub struct Fields {
-    width: usize,
-    to_edge: Vec<u32>,
-    to_lit_edge: Vec<(u32, usize)>,
-    to_away: Vec<u32>,
-}
-
-impl Fields {
-    /// The fields of a `width`-wide reference.
-    #[must_use]
-    pub fn new(truth: &[Option<PixelTruth>], width: u32) -> Self {
-        let width = width as usize;
-        let exact: Vec<Option<bool>> = truth.iter().map(|t| evaluated(t).map(|t| !t.lit)).collect();
-        // The exact boundary passes through a pixel whose neighbours' centres
-        // fall on both sides, or whose own area is partly shadowed (a shadow
-        // narrower than a pixel crosses no centre).
-        let mut sites = boundary(&exact, width, false);
-        for (site, t) in sites.iter_mut().zip(truth) {
-            *site |= evaluated(t).is_some_and(|t| t.visibility > 0.0 && t.visibility < 1.0);
-        }
-        let distances = |d: Vec<(u32, usize)>| d.into_iter().map(|(d, _)| d).collect();
-        let away: Vec<bool> = truth.iter().map(|t| t.is_some_and(|t| !t.faces_light)).collect();
-        Self {
-            width,
-            to_edge: distances(distance(&sites, width)),
-            to_lit_edge: distance(&boundary(&exact, width, true), width),
-            to_away: distances(distance(&away, width)),
-        }
-    }
 }
 
 /// The verdict of evaluated pixel `k`, shaded `s` where the reference

@@ -1,0 +1,121 @@
+//! Architectures' probes as a shared pass leaves them: kept, copied and
+//! fanned out to the next pass.
+
+use umbra_core::probe::Probe;
+use umbra_core::{DepthFormatKind, RasterConfig};
+
+use super::super::costed::{SceneCounts, reading, report};
+use crate::base::probes::{Fan, Tee};
+use crate::cost::arch::{Arch, ArchProbe, CostReport, PassKind};
+use crate::pass::algorithm::Units;
+use crate::render::RenderConfig;
+
+/// A probe kept as a pass left it, of either kind of architecture: one
+/// that needs each fragment's address (a depth cache in front of off-chip
+/// depth) or one that does not.
+#[derive(Clone, Debug)]
+pub(super) enum Kept {
+    Plain(ArchProbe<false>),
+    Detail(ArchProbe<true>),
+}
+
+impl Kept {
+    /// A new probe of `arch` for a pass of `kind` over `raster` with
+    /// `buffers` depth buffers of `format`, fed each fragment's address
+    /// when `detail`.
+    pub(super) fn new(
+        arch: &Arch,
+        (kind, raster): (PassKind, RasterConfig),
+        (format, buffers): (DepthFormatKind, u32),
+        detail: bool,
+    ) -> Self {
+        if detail {
+            Self::Detail(ArchProbe::new(arch, kind, raster, format, buffers))
+        } else {
+            Self::Plain(ArchProbe::new(arch, kind, raster, format, buffers))
+        }
+    }
+
+    /// The camera probe reading the map `cfg` and `units` draw.
+    pub(super) fn reading(self, cfg: &RenderConfig, units: &Units) -> Self {
+        match self {
+            Self::Plain(p) => Self::Plain(reading(p, cfg, units, true)),
+            Self::Detail(p) => Self::Detail(reading(p, cfg, units, true)),
+        }
+    }
+
+    /// The report of a `light` and a `camera` probe, once the passes have run.
+    pub(super) fn report(
+        names: (&str, SceneCounts),
+        cfg: &RenderConfig,
+        config: &str,
+        light: Self,
+        camera: Self,
+    ) -> CostReport {
+        match (light, camera) {
+            (Self::Plain(l), Self::Plain(c)) => report(names, cfg, config, l, c),
+            (Self::Plain(l), Self::Detail(c)) => report(names, cfg, config, l, c),
+            (Self::Detail(l), Self::Plain(c)) => report(names, cfg, config, l, c),
+            (Self::Detail(l), Self::Detail(c)) => report(names, cfg, config, l, c),
+        }
+    }
+}
+
+/// A pass that reports to a probe of any type: [`Probes::run`] gives it
+/// the fan-out of the probes it holds.
+pub(super) trait Reporting {
+    /// What the pass gives.
+    type Out;
+    /// Run the pass, every event to `probe`.
+    fn run<P: Probe>(self, probe: &mut P) -> Self::Out;
+}
+
+/// Probes of several architectures, split by kind so each kind is one
+/// [`Fan`]: `(architecture index, probe)`.
+#[derive(Debug, Default)]
+pub(super) struct Probes {
+    plain: Vec<(usize, ArchProbe<false>)>,
+    detail: Vec<(usize, ArchProbe<true>)>,
+}
+
+impl Probes {
+    pub(super) fn push(&mut self, arch: usize, p: Kept) {
+        match p {
+            Kept::Plain(p) => self.plain.push((arch, p)),
+            Kept::Detail(p) => self.detail.push((arch, p)),
+        }
+    }
+
+    /// Run `pass` with every probe fanned out (each kind in its order),
+    /// then put them back. Without a probe that needs fragments, the pass
+    /// reports none.
+    pub(super) fn run<T: Reporting>(&mut self, pass: T) -> T::Out {
+        let (a, plain): (Vec<usize>, Vec<_>) = std::mem::take(&mut self.plain).into_iter().unzip();
+        let (b, detail): (Vec<usize>, Vec<_>) = std::mem::take(&mut self.detail).into_iter().unzip();
+        let (out, plain, detail) = if detail.is_empty() {
+            let mut fan = Fan(plain);
+            (pass.run(&mut fan), fan.0, detail)
+        } else {
+            let mut fan = Tee(Fan(plain), Fan(detail));
+            let out = pass.run(&mut fan);
+            let Tee(Fan(plain), Fan(detail)) = fan;
+            (out, plain, detail)
+        };
+        self.plain = a.into_iter().zip(plain).collect();
+        self.detail = b.into_iter().zip(detail).collect();
+        out
+    }
+
+    /// The probes, by architecture.
+    pub(super) fn into_kept(self) -> Vec<(usize, Kept)> {
+        let mut all: Vec<(usize, Kept)> = self.plain.into_iter().map(|(i, p)| (i, Kept::Plain(p))).collect();
+        all.extend(self.detail.into_iter().map(|(i, p)| (i, Kept::Detail(p))));
+        all.sort_by_key(|(i, _)| *i);
+        all
+    }
+}
+
+/// Probe `i`'s kept copy among `list`.
+pub(super) fn copy_of(list: &[(usize, Kept)], i: usize) -> Option<Kept> {
+    list.iter().find(|(j, _)| *j == i).map(|(_, p)| p.clone())
+}

@@ -1,0 +1,128 @@
+//! The camera's visibility, drawn once per tiling for every configuration
+//! of a scene and image.
+
+use glam::Mat4;
+use rayon::prelude::*;
+use umbra_core::probe::{Probe, Totals};
+use umbra_core::{DepthFormatKind, RasterConfig};
+
+use super::assign;
+use super::probes::{Kept, Probes, Reporting};
+use crate::base::maps::Tiling;
+use crate::base::probes::Tee;
+use crate::cost::arch::{Arch, PassKind};
+use crate::io::limits::Limits;
+use crate::pass::PassError;
+use crate::pass::camera::{CameraFrame, Visibility, visibility};
+use crate::render::costed::{SceneCounts, shape};
+use crate::truth::metrics::Fields;
+use crate::truth::reference::PixelTruth;
+use crate::world::occluders::Occluders;
+use crate::world::scene::Scene;
+
+/// One visibility pass, in one tiling, and what it left.
+#[derive(Debug)]
+pub(super) struct Seen {
+    /// The first pass (this one or an earlier) with the same visible ids:
+    /// passes with the same ids shade alike.
+    pub(super) class: usize,
+    pub(super) frame: CameraFrame,
+    pub(super) camera: Mat4,
+    /// The pass's events, totalled.
+    pub(super) totals: Totals,
+    /// The camera probes of the architectures drawn in this tiling, as the
+    /// pass left them (they read no map yet).
+    pub(super) probes: Vec<(usize, Kept)>,
+}
+
+/// What the renders of one scene at one image size share: the reference
+/// with its [`Fields`], a visibility pass per tiling, the scene's counts.
+#[derive(Debug)]
+pub struct ImageShare<'s> {
+    pub(super) scene: &'s Scene,
+    pub(super) size: (u32, u32),
+    pub(super) truth: &'s [Option<PixelTruth>],
+    pub(super) fields: Fields,
+    pub(super) archs: &'s [Arch],
+    pub(super) limits: Limits,
+    /// The default tiling's first, then each architecture's.
+    pub(super) seen: Vec<Seen>,
+    /// For each architecture that [`shares`](super::shares), its entry in `seen`.
+    pub(super) seen_by: Vec<Option<usize>>,
+    pub(super) counts: SceneCounts,
+    pub(super) occluders: Occluders,
+}
+
+/// The visibility unit over a scene into a frame, as [`Reporting`].
+struct Draw<'a> {
+    frame: &'a mut CameraFrame,
+    scene: &'a Scene,
+    size: (u32, u32),
+    tiling: Tiling,
+    totals: &'a mut Totals,
+}
+
+impl Reporting for Draw<'_> {
+    type Out = Result<Visibility, PassError>;
+
+    fn run<P: Probe>(self, probe: &mut P) -> Self::Out {
+        visibility(self.frame, self.scene, self.size, self.tiling, &mut Tee(self.totals, probe))
+    }
+}
+
+impl<'s> ImageShare<'s> {
+    /// The visibility of `scene` at `size` in the default tiling and in
+    /// each tiling of `archs`, and the reference `truth`'s fields: `None`
+    /// when the reference has no pixel to measure or a pass cannot run, for
+    /// each configuration to render (and fail) on its own.
+    #[must_use]
+    pub fn new(
+        scene: &'s Scene,
+        size: (u32, u32),
+        truth: &'s [Option<PixelTruth>],
+        archs: &'s [Arch],
+        limits: &Limits,
+    ) -> Option<Self> {
+        let pixels = u64::from(size.0) * u64::from(size.1);
+        if truth.len() as u64 != pixels || !truth.iter().flatten().any(|t| t.faces_light) {
+            return None;
+        }
+        let (tilings, seen_by) = assign(archs, Tiling::DEFAULT, Arch::tiling);
+        // Each tiling's pass, in parallel.
+        let drawn: Vec<Option<Seen>> = tilings
+            .par_iter()
+            .enumerate()
+            .map(|(k, &tiling)| {
+                let raster =
+                    RasterConfig::new(size.0, size.1, tiling.tile, RasterConfig::DEFAULT_SUBPIXEL_BITS).ok()?;
+                let mut probes = Probes::default();
+                for (i, a) in archs.iter().enumerate().filter(|&(i, _)| seen_by[i] == Some(k)) {
+                    let detail = shape(a).camera_addresses;
+                    probes.push(i, Kept::new(a, (PassKind::Camera, raster), (DepthFormatKind::D24, 1), detail));
+                }
+                let (mut frame, mut totals) = (CameraFrame::default(), Totals::default());
+                let draw = Draw { frame: &mut frame, scene, size, tiling, totals: &mut totals };
+                let camera = probes.run(draw).ok()?.camera;
+                Some(Seen { class: k, frame, camera, totals, probes: probes.into_kept() })
+            })
+            .collect();
+        let mut seen: Vec<Seen> = Vec::with_capacity(tilings.len());
+        for pass in drawn {
+            let mut pass = pass?;
+            pass.class = seen.iter().position(|s| s.frame.ids() == pass.frame.ids()).unwrap_or(pass.class);
+            seen.push(pass);
+        }
+        Some(Self {
+            scene,
+            size,
+            truth,
+            fields: Fields::new(truth, size.0),
+            archs,
+            limits: *limits,
+            seen,
+            seen_by,
+            counts: SceneCounts::of(scene),
+            occluders: Occluders::new(scene),
+        })
+    }
+}

@@ -1,0 +1,178 @@
+//! One configuration rendered from its shares: a shading for each distinct
+//! pair of visibility and map, fanned out to the architectures that drew
+//! it, then the metrics and every architecture's report.
+
+use glam::Mat4;
+use umbra_core::probe::{Probe, Totals};
+use umbra_core::shade::{MapUnit, ShadeSetup, Shaded, ShadowUnit, SilhouetteUnit};
+use umbra_core::shadow::{MapView, ShadowConfig};
+use umbra_core::silhouette::{Packed, SilPoint, SilStore, SilhouetteMap};
+use umbra_core::{DepthFormat, RasterConfig};
+
+use super::probes::{Kept, Probes, Reporting, copy_of};
+use super::{ImageShare, LightShare, shares};
+use crate::base::maps::Tiling;
+use crate::base::probes::Tee;
+use crate::cost::arch::CostReport;
+use crate::pass::PassError;
+use crate::pass::algorithm::MapKind;
+use crate::pass::camera::{CameraOptions, map_view, shade};
+use crate::pass::occluders::silhouette_map;
+use crate::render::{RenderConfig, RenderError};
+use crate::truth::metrics::{Metrics, compare_with};
+
+/// Buffers a configuration's shading reuses from the last one a thread
+/// rendered: the results and the shading unit's setup store.
+#[derive(Debug, Default)]
+pub struct Scratch {
+    pixels: Vec<Shaded>,
+    others: Vec<Shaded>,
+    setups: Vec<ShadeSetup>,
+}
+
+/// What one configuration's shared render gives: its metrics, the event
+/// totals of its camera pass, and for each architecture that [`shares`]
+/// its cost (`None` for the others, costed on their own).
+pub type SharedRender = (Metrics, Totals, Vec<Option<Result<CostReport, RenderError>>>);
+
+/// Render `cfg` (of `light`'s key) from what it shares, in format `F`,
+/// with `scratch`'s buffers: `None` when anything fails, for the
+/// configuration to render on its own and report why.
+#[must_use]
+pub fn render_shared<F: DepthFormat>(
+    image: &ImageShare<'_>,
+    light: &LightShare<F::Texel>,
+    cfg: &RenderConfig,
+    scratch: &mut Scratch,
+) -> Option<SharedRender> {
+    let scene = image.scene;
+    let checked = cfg.check(scene, &image.limits, RasterConfig::DEFAULT_TILE_SIZE).ok()?;
+    for a in image.archs.iter().filter(|a| shares(a)) {
+        cfg.check(scene, &image.limits, a.tiling().tile).ok()?;
+    }
+    if (checked.image.width(), checked.image.height()) != image.size || light.setups == 0 {
+        return None;
+    }
+    let units = cfg.algorithm.units::<F>(cfg.bias);
+    let options = CameraOptions {
+        width: image.size.0,
+        height: image.size.1,
+        shadow: ShadowConfig::new(units.test, units.bias, cfg.filter, true).ok()?,
+        virtual_samples: units.virtual_samples(cfg.virtual_samples),
+        tiling: Tiling::DEFAULT,
+    };
+    // The shading classes, the functional render's first: each a pair of
+    // visibility and map classes, and the architectures that drew it.
+    let class_of = |i: usize| Some((image.seen[image.seen_by[i]?].class, light.lit[light.lit_by[i]?].class));
+    let mut classes: Vec<((usize, usize), Vec<usize>)> = vec![((image.seen[0].class, light.lit[0].class), vec![])];
+    for i in 0..image.archs.len() {
+        let Some(key) = class_of(i) else { continue };
+        match classes.iter_mut().find(|c| c.0 == key) {
+            Some(c) => c.1.push(i),
+            None => classes.push((key, vec![i])),
+        }
+    }
+    let mut costs: Vec<Option<Result<CostReport, RenderError>>> = (0..image.archs.len()).map(|_| None).collect();
+    let mut camera_totals = image.seen[0].totals;
+    let config = cfg.describe();
+    let Scratch { pixels, others, setups } = scratch;
+    for (k, ((seen, lit), members)) in classes.into_iter().enumerate() {
+        let (mut lights, mut cameras) = (Probes::default(), Probes::default());
+        for &i in &members {
+            lights.push(i, copy_of(&light.probes, i)?);
+            cameras.push(i, copy_of(&image.seen[image.seen_by[i]?].probes, i)?.reading(cfg, &units));
+        }
+        let view = map_view::<F>(&light.lit[lit].maps, units.front_culled).ok()?;
+        let seen = &image.seen[seen];
+        let out = if k == 0 { &mut *pixels } else { &mut *others };
+        let pass =
+            Shading { image, view: &view, options: &options, seen: (seen.frame.ids(), seen.camera), out, setups };
+        let done = if k == 0 {
+            pass.run(units.map, &mut lights, &mut cameras, &mut camera_totals)
+        } else {
+            pass.run(units.map, &mut lights, &mut cameras, &mut umbra_core::NoProbe)
+        };
+        done.ok()?;
+        let names = (image.scene.name.as_str(), image.counts);
+        for ((i, l), (_, c)) in lights.into_kept().into_iter().zip(cameras.into_kept()) {
+            costs[i] = Some(Ok(Kept::report(names, cfg, &config, l, c)));
+        }
+    }
+    Some((compare_with(pixels, image.truth, &image.fields), camera_totals, costs))
+}
+
+/// One shading of a configuration: the map it reads, the visibility it
+/// shades and the buffers it writes.
+struct Shading<'p, 'v, F: DepthFormat> {
+    image: &'p ImageShare<'p>,
+    view: &'p MapView<'v, F>,
+    options: &'p CameraOptions,
+    seen: (&'p [u32], Mat4),
+    out: &'p mut Vec<Shaded>,
+    setups: &'p mut Vec<ShadeSetup>,
+}
+
+impl<F: DepthFormat> Shading<'_, '_, F> {
+    /// The silhouette pass, when the algorithm has one (its events to the
+    /// light probes), then the shading (its events to the camera probes and
+    /// to `also`).
+    fn run<P: Probe>(
+        self,
+        map: MapKind,
+        lights: &mut Probes,
+        cameras: &mut Probes,
+        also: &mut P,
+    ) -> Result<(), RenderError> {
+        match map {
+            MapKind::Silhouette { packed: true } => self.silhouette::<Packed, P>(lights, cameras, also),
+            MapKind::Silhouette { packed: false } => self.silhouette::<SilPoint, P>(lights, cameras, also),
+            MapKind::Depth | MapKind::Volumes => cameras.run(Unit { shading: self, unit: &MapUnit, also }),
+        }
+    }
+
+    fn silhouette<S: SilStore, P: Probe>(
+        self,
+        lights: &mut Probes,
+        cameras: &mut Probes,
+        also: &mut P,
+    ) -> Result<(), RenderError> {
+        let texels = lights.run(Silhouettes::<S, F> { shading: &self, store: core::marker::PhantomData })?;
+        let raster = self.view.raster();
+        let sil = SilhouetteMap::view(raster.width(), raster.height(), &texels).map_err(PassError::from)?;
+        cameras.run(Unit { shading: self, unit: &SilhouetteUnit(&sil), also })
+    }
+}
+
+/// The silhouette pass over a shading's map, as [`Reporting`].
+struct Silhouettes<'s, 'p, 'v, S, F: DepthFormat> {
+    shading: &'s Shading<'p, 'v, F>,
+    store: core::marker::PhantomData<S>,
+}
+
+impl<S: SilStore, F: DepthFormat> Reporting for Silhouettes<'_, '_, '_, S, F> {
+    type Out = Result<Vec<S>, RenderError>;
+
+    fn run<P: Probe>(self, probe: &mut P) -> Self::Out {
+        let Shading { image, view, options, .. } = self.shading;
+        let light = image.scene.light().view_projection();
+        Ok(silhouette_map::<S, F, _>(&image.occluders, &light, view, options.shadow, probe).map_err(PassError::from)?)
+    }
+}
+
+/// The shading with a shadow unit, its events to the probes and to `also`,
+/// as [`Reporting`].
+struct Unit<'s, 'p, 'v, F: DepthFormat, U, A> {
+    shading: Shading<'p, 'v, F>,
+    unit: &'s U,
+    also: &'s mut A,
+}
+
+impl<F: DepthFormat, U: ShadowUnit<F>, A: Probe> Reporting for Unit<'_, '_, '_, F, U, A> {
+    type Out = Result<(), RenderError>;
+
+    fn run<P: Probe>(self, probe: &mut P) -> Self::Out {
+        let Shading { image, view, options, seen, out, setups } = self.shading;
+        shade(image.scene, seen, view, self.unit, options, &mut Tee(self.also, probe), out, setups)?;
+        Ok(())
+    }
+}

@@ -1,0 +1,121 @@
+//! What the metrics need of the reference alone: which pixels lie on the
+//! exact shadow boundary, and the distance fields from them.
+
+use super::evaluated;
+use crate::truth::reference::PixelTruth;
+
+/// What the metrics need of the reference alone, worked out once for
+/// every render measured against it (a study measures many): which side
+/// of the exact boundary each pixel is on, and three distance fields —
+/// to the exact boundary (the edge band's test), to its lit side (the
+/// displacement's, with the site found) and to the surfaces facing away
+/// from the light (the terminator's reach).
+#[derive(Clone, Debug)]
+pub struct Fields {
+    pub(super) width: usize,
+    pub(super) to_edge: Vec<u32>,
+    pub(super) to_lit_edge: Vec<(u32, usize)>,
+    pub(super) to_away: Vec<u32>,
+}
+
+impl Fields {
+    /// The fields of a `width`-wide reference.
+    #[must_use]
+    pub fn new(truth: &[Option<PixelTruth>], width: u32) -> Self {
+        let width = width as usize;
+        let exact: Vec<Option<bool>> = truth.iter().map(|t| evaluated(t).map(|t| !t.lit)).collect();
+        // The exact boundary passes through a pixel whose neighbours' centres
+        // fall on both sides, or whose own area is partly shadowed (a shadow
+        // narrower than a pixel crosses no centre).
+        let mut sites = boundary(&exact, width, false);
+        for (site, t) in sites.iter_mut().zip(truth) {
+            *site |= evaluated(t).is_some_and(|t| t.visibility > 0.0 && t.visibility < 1.0);
+        }
+        let distances = |d: Vec<(u32, usize)>| d.into_iter().map(|(d, _)| d).collect();
+        let away: Vec<bool> = truth.iter().map(|t| t.is_some_and(|t| !t.faces_light)).collect();
+        Self {
+            width,
+            to_edge: distances(distance(&sites, width)),
+            to_lit_edge: distance(&boundary(&exact, width, true), width),
+            to_away: distances(distance(&away, width)),
+        }
+    }
+}
+
+/// Chebyshev distance, in pixels, from every pixel of a `width`-wide image
+/// to the nearest pixel marked in `sites` (`u32::MAX` when there is none),
+/// and which site that is: two chamfer passes, exact for this metric.
+fn distance(sites: &[bool], width: usize) -> Vec<(u32, usize)> {
+    let mut d: Vec<(u32, usize)> = sites.iter().enumerate().map(|(k, &s)| (if s { 0 } else { u32::MAX }, k)).collect();
+    let height = d.len().checked_div(width).unwrap_or(0);
+    // Take the nearer of a pixel's own site and a neighbour's plus one, the
+    // neighbours in a fixed order (the first nearer one wins a tie).
+    let relax = |d: &mut [(u32, usize)], k: usize, n: usize| {
+        let (nd, site) = d[n];
+        if nd.saturating_add(1) < d[k].0 {
+            d[k] = (nd + 1, site);
+        }
+    };
+    // Forward: the row above (left, middle, right), then the left.
+    for y in 0..height {
+        for x in 0..width {
+            let k = y * width + x;
+            if y > 0 {
+                let up = k - width;
+                if x > 0 {
+                    relax(&mut d, k, up - 1);
+                }
+                relax(&mut d, k, up);
+                if x + 1 < width {
+                    relax(&mut d, k, up + 1);
+                }
+            }
+            if x > 0 {
+                relax(&mut d, k, k - 1);
+            }
+        }
+    }
+    // Backward: the row below (right, middle, left), then the right.
+    for y in (0..height).rev() {
+        for x in (0..width).rev() {
+            let k = y * width + x;
+            if y + 1 < height {
+                let down = k + width;
+                if x + 1 < width {
+                    relax(&mut d, k, down + 1);
+                }
+                relax(&mut d, k, down);
+                if x > 0 {
+                    relax(&mut d, k, down - 1);
+                }
+            }
+            if x + 1 < width {
+                relax(&mut d, k, k + 1);
+            }
+        }
+    }
+    d
+}
+
+/// The index of the pixel `(dx, dy)` from `(x, y)`, if it is inside.
+pub(super) fn neighbour(x: usize, y: usize, dx: isize, dy: isize, width: usize, height: usize) -> Option<usize> {
+    let (nx, ny) = (x.checked_add_signed(dx)?, y.checked_add_signed(dy)?);
+    (nx < width && ny < height).then(|| ny * width + nx)
+}
+
+/// Pixels on a boundary of `dark` (`None`: not evaluated): evaluated, with
+/// an evaluated 8-neighbour of the other verdict; only the lit ones when
+/// `lit_side` (so that a boundary is one pixel thick and a shift by k
+/// pixels moves it by k).
+pub(super) fn boundary(dark: &[Option<bool>], width: usize, lit_side: bool) -> Vec<bool> {
+    let height = dark.len().checked_div(width).unwrap_or(0);
+    (0..dark.len())
+        .map(|k| {
+            let Some(v) = dark[k].filter(|&v| !(lit_side && v)) else { return false };
+            let (x, y) = (k % width, k / width);
+            (-1..=1).any(|dy| {
+                (-1..=1).any(|dx| neighbour(x, y, dx, dy, width, height).and_then(|n| dark[n]).is_some_and(|n| n != v))
+            })
+        })
+        .collect()
+}
