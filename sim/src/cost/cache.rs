@@ -23,6 +23,9 @@ pub enum CacheError {
     },
 }
 
+/// The tag of a slot that holds no line: no byte address shifts to it.
+const EMPTY: u64 = u64::MAX;
+
 /// A set-associative, least-recently-used cache over byte addresses.
 #[derive(Clone, Debug)]
 pub struct Cache {
@@ -32,8 +35,10 @@ pub struct Cache {
     /// `sets − 1` when the sets are a power of two: a line's set is then
     /// its low bits, no division.
     set_mask: Option<u64>,
-    /// Per set, `ways` slots of (tag, last use).
-    slots: Vec<Option<(u64, u64)>>,
+    /// Per set, `ways` slots' line tags ([`EMPTY`] for none) and, beside
+    /// them, each slot's last use (0 for none).
+    tags: Vec<u64>,
+    used: Vec<u64>,
     /// Per slot, whether the line was written since it was fetched.
     dirty: Vec<bool>,
     /// The line of the last access and its slot: a run of accesses to one
@@ -98,7 +103,8 @@ impl Cache {
             ways: ways as usize,
             sets,
             set_mask: sets.is_power_of_two().then(|| sets - 1),
-            slots: vec![None; slots],
+            tags: vec![EMPTY; slots],
+            used: vec![0; slots],
             dirty: vec![false; slots],
             last: None,
             clock: 0,
@@ -131,30 +137,31 @@ impl Cache {
         let line = address >> self.line_shift;
         if let Some((last, k)) = self.last
             && last == line
-            && let (Some(slot), Some(dirty)) = (self.slots.get_mut(k), self.dirty.get_mut(k))
+            && let (Some(used), Some(dirty)) = (self.used.get_mut(k), self.dirty.get_mut(k))
         {
-            *slot = Some((line, self.clock));
+            *used = self.clock;
             *dirty |= write;
             self.hits += 1;
             return (true, false);
         }
         let set = usize::try_from(self.set_mask.map_or_else(|| line % self.sets, |m| line & m)).unwrap_or(0);
         let range = set * self.ways..(set + 1) * self.ways;
-        let slots = &mut self.slots[range.clone()];
-        let dirty = &mut self.dirty[range];
-        if let Some(k) = slots.iter().position(|s| s.is_some_and(|(tag, _)| tag == line)) {
-            slots[k] = Some((line, self.clock));
+        let (tags, used, dirty) =
+            (&mut self.tags[range.clone()], &mut self.used[range.clone()], &mut self.dirty[range]);
+        if let Some(k) = tags.iter().position(|&tag| tag == line) {
+            used[k] = self.clock;
             dirty[k] |= write;
             self.hits += 1;
             self.last = Some((line, set * self.ways + k));
             return (true, false);
         }
         self.misses += 1;
-        // An empty slot, else the least recently used.
-        let victim = (0..slots.len()).min_by_key(|&k| slots[k].map_or(0, |(_, used)| used)).unwrap_or(0);
-        let writeback = slots[victim].is_some() && dirty[victim];
+        // An empty slot (last used at 0), else the least recently used.
+        let victim = (0..used.len()).min_by_key(|&k| used[k]).unwrap_or(0);
+        let writeback = tags[victim] != EMPTY && dirty[victim];
         self.writebacks += u64::from(writeback);
-        slots[victim] = Some((line, self.clock));
+        tags[victim] = line;
+        used[victim] = self.clock;
         dirty[victim] = write;
         self.last = Some((line, set * self.ways + victim));
         (false, writeback)

@@ -4,8 +4,8 @@
 
 use glam::Mat4;
 use umbra_core::probe::{Probe, Totals};
-use umbra_core::shade::{MapUnit, ShadeSetup, Shaded, ShadowUnit, SilhouetteUnit};
-use umbra_core::shadow::{MapView, ShadowConfig};
+use umbra_core::shade::{MapUnit, PixelResult, ShadeSetup, Shaded, ShadowUnit, SilhouetteUnit};
+use umbra_core::shadow::{MapView, Shadow, ShadowConfig};
 use umbra_core::silhouette::{Packed, SilPoint, SilStore, SilhouetteMap};
 use umbra_core::{DepthFormat, RasterConfig};
 
@@ -22,11 +22,13 @@ use crate::render::{RenderConfig, RenderError};
 use crate::truth::metrics::{Metrics, compare_with};
 
 /// Buffers a configuration's shading reuses from the last one a thread
-/// rendered: the results and the shading unit's setup store.
+/// rendered: the results (whole for the metrics; for the other shadings
+/// only the shadow, which reports the same events) and the shading unit's
+/// setup store.
 #[derive(Debug, Default)]
 pub struct Scratch {
     pixels: Vec<Shaded>,
-    others: Vec<Shaded>,
+    others: Vec<Shadow>,
     setups: Vec<ShadeSetup>,
 }
 
@@ -84,12 +86,12 @@ pub fn render_shared<F: DepthFormat>(
         }
         let view = map_view::<F>(&light.lit[lit].maps, units.front_culled).ok()?;
         let seen = &image.seen[seen];
-        let out = if k == 0 { &mut *pixels } else { &mut *others };
-        let pass =
-            Shading { image, view: &view, options: &options, seen: (seen.frame.ids(), seen.camera), out, setups };
+        let seen = (seen.frame.ids(), seen.camera);
         let done = if k == 0 {
+            let pass = Shading { image, view: &view, options: &options, seen, out: &mut *pixels, setups };
             pass.run(units.map, &mut lights, &mut cameras, &mut camera_totals)
         } else {
+            let pass = Shading { image, view: &view, options: &options, seen, out: &mut *others, setups };
             pass.run(units.map, &mut lights, &mut cameras, &mut umbra_core::NoProbe)
         };
         done.ok()?;
@@ -103,16 +105,16 @@ pub fn render_shared<F: DepthFormat>(
 
 /// One shading of a configuration: the map it reads, the visibility it
 /// shades and the buffers it writes.
-struct Shading<'p, 'v, F: DepthFormat> {
+struct Shading<'p, 'v, F: DepthFormat, R> {
     image: &'p ImageShare<'p>,
     view: &'p MapView<'v, F>,
     options: &'p CameraOptions,
     seen: (&'p [u32], Mat4),
-    out: &'p mut Vec<Shaded>,
+    out: &'p mut Vec<R>,
     setups: &'p mut Vec<ShadeSetup>,
 }
 
-impl<F: DepthFormat> Shading<'_, '_, F> {
+impl<F: DepthFormat, R: PixelResult> Shading<'_, '_, F, R> {
     /// The silhouette pass, when the algorithm has one (its events to the
     /// light probes), then the shading (its events to the camera probes and
     /// to `also`).
@@ -136,7 +138,7 @@ impl<F: DepthFormat> Shading<'_, '_, F> {
         cameras: &mut Probes,
         also: &mut P,
     ) -> Result<(), RenderError> {
-        let texels = lights.run(Silhouettes::<S, F> { shading: &self, store: core::marker::PhantomData })?;
+        let texels = lights.run(Silhouettes::<S, F, R> { shading: &self, store: core::marker::PhantomData })?;
         let raster = self.view.raster();
         let sil = SilhouetteMap::view(raster.width(), raster.height(), &texels).map_err(PassError::from)?;
         cameras.run(Unit { shading: self, unit: &SilhouetteUnit(&sil), also })
@@ -144,12 +146,12 @@ impl<F: DepthFormat> Shading<'_, '_, F> {
 }
 
 /// The silhouette pass over a shading's map, as [`Reporting`].
-struct Silhouettes<'s, 'p, 'v, S, F: DepthFormat> {
-    shading: &'s Shading<'p, 'v, F>,
+struct Silhouettes<'s, 'p, 'v, S, F: DepthFormat, R> {
+    shading: &'s Shading<'p, 'v, F, R>,
     store: core::marker::PhantomData<S>,
 }
 
-impl<S: SilStore, F: DepthFormat> Reporting for Silhouettes<'_, '_, '_, S, F> {
+impl<S: SilStore, F: DepthFormat, R> Reporting for Silhouettes<'_, '_, '_, S, F, R> {
     type Out = Result<Vec<S>, RenderError>;
 
     fn run<P: Probe>(self, probe: &mut P) -> Self::Out {
@@ -161,13 +163,13 @@ impl<S: SilStore, F: DepthFormat> Reporting for Silhouettes<'_, '_, '_, S, F> {
 
 /// The shading with a shadow unit, its events to the probes and to `also`,
 /// as [`Reporting`].
-struct Unit<'s, 'p, 'v, F: DepthFormat, U, A> {
-    shading: Shading<'p, 'v, F>,
+struct Unit<'s, 'p, 'v, F: DepthFormat, R, U, A> {
+    shading: Shading<'p, 'v, F, R>,
     unit: &'s U,
     also: &'s mut A,
 }
 
-impl<F: DepthFormat, U: ShadowUnit<F>, A: Probe> Reporting for Unit<'_, '_, '_, F, U, A> {
+impl<F: DepthFormat, R: PixelResult, U: ShadowUnit<F>, A: Probe> Reporting for Unit<'_, '_, '_, F, R, U, A> {
     type Out = Result<(), RenderError>;
 
     fn run<P: Probe>(self, probe: &mut P) -> Self::Out {
