@@ -157,12 +157,21 @@ pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
         spec.budgets.clone_from(&args.budgets);
     }
     // Flags change the sweep: its hash covers them, so shards run with
-    // different flags do not merge.
-    let overrides = format!(
-        "{:?}{:?}{:?}{:?}{:?}{:?}{:?}",
-        args.scenes, args.archs.arch, args.archs.set, args.images, args.reference_rays, args.budgets, args.maps
-    );
-    spec.hash = umbra_sim::io::provenance::hash(format!("{}{overrides}", file.text).as_bytes());
+    // different flags do not merge. Without flags it is the file's own.
+    let flagged = !(args.scenes.is_empty()
+        && args.archs.arch.is_empty()
+        && args.archs.set.is_empty()
+        && args.images.is_empty()
+        && args.reference_rays.is_none()
+        && args.budgets.is_empty()
+        && args.maps.is_empty());
+    if flagged {
+        let overrides = format!(
+            "{:?}{:?}{:?}{:?}{:?}{:?}{:?}",
+            args.scenes, args.archs.arch, args.archs.set, args.images, args.reference_rays, args.budgets, args.maps
+        );
+        spec.hash = umbra_sim::io::provenance::hash(format!("{}{overrides}", file.text).as_bytes());
+    }
     spec.limits = *limits;
     if !args.maps.is_empty() {
         for &side in &args.maps {

@@ -9,7 +9,8 @@ use umbra_core::DepthFormatKind;
 use umbra_core::shadow::Filter;
 use umbra_sim::io::folder::OutputFolder;
 use umbra_sim::io::limits::Limits;
-use umbra_sim::io::output::{RawMap, write_preview};
+use umbra_sim::io::output::{RawMap, write_array, write_npy, write_preview};
+use umbra_sim::render::arrays::PixelArrays;
 use umbra_sim::render::pictures::{write_error_image, write_shadow_image, write_shadow_term};
 use umbra_sim::render::{Algorithm, Culling, RenderConfig, TruthSource};
 use umbra_sim::truth::metrics::SHADE_STEP;
@@ -46,10 +47,10 @@ pub(super) struct RenderArgs {
     #[arg(long, default_value_t = 0.0)]
     pub(super) bias: f64,
     /// `Bias1` of Reeves' bias range (--algo bias-range), as a depth in [0, 1].
-    #[arg(long, default_value_t = 0.005)]
+    #[arg(long, default_value_t = Algorithm::DEFAULT_BIAS1)]
     pub(super) bias1: f64,
     /// The dual-depth offset, as a depth in [0, 1].
-    #[arg(long, default_value_t = 0.01)]
+    #[arg(long, default_value_t = Algorithm::DEFAULT_OFFSET)]
     pub(super) offset: f64,
     /// The light pass's culling per object class: `algorithm` (solids as
     /// the algorithm culls them, open surfaces never), or
@@ -83,8 +84,8 @@ impl Default for RenderArgs {
             map: 1024,
             filter: Filter::Bilinear,
             bias: 0.0,
-            bias1: 0.005,
-            offset: 0.01,
+            bias1: Algorithm::DEFAULT_BIAS1,
+            offset: Algorithm::DEFAULT_OFFSET,
             no_virtual_samples: false,
             cull: Culling::ALGORITHM,
             width: None,
@@ -131,15 +132,17 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
     write_shadow_image(f, "shaded.png", &r.image, scene.light().direction())?;
     write_shadow_term(f, "shadow.png", &r.image)?;
     write_error_image(f, "error.png", &r.image, &r.truth, scene.light().direction())?;
-    for (name, data) in [("z1", &r.maps.maps.z1), ("z2", &r.maps.maps.z2)] {
-        if !data.is_empty() {
-            write_preview(
-                f,
-                &format!("{name}.png"),
-                &RawMap { format: r.maps.format, width: w, height: h, raw: data },
-            )?;
-        }
+    for (name, data) in r.maps.stored() {
+        let map = RawMap { format: r.maps.format, width: w, height: h, raw: data };
+        write_npy(f, &format!("{name}.npy"), &map)?;
+        write_preview(f, &format!("{name}.png"), &map)?;
     }
+    // Pixel by pixel, for scripts: the shadow term, the reference and the verdicts.
+    let arrays = PixelArrays::of(&r);
+    let size = (arrays.width, arrays.height);
+    write_array(f, "shadow.npy", size, &arrays.shadow)?;
+    write_array(f, "reference.npy", size, &arrays.reference)?;
+    write_array(f, "verdict.npy", size, &arrays.verdict)?;
     // The metrics, with what made them.
     let mut record = serde_json::to_value(r.metrics)?;
     if let Some(fields) = record.as_object_mut() {

@@ -118,6 +118,23 @@ pub fn write_npy(folder: &mut OutputFolder, name: &str, map: &RawMap<'_>) -> Res
     folder.write(name, &bytes)
 }
 
+/// Write a `height × width` array of `values` (row-major) as a C-order
+/// `.npy` file named `name` in `folder`: `<f4` for `f32`, `|u1` for `u8`.
+///
+/// # Errors
+/// [`OutputError::Io`] naming the file.
+pub fn write_array<T: npyz::AutoSerialize + Copy>(
+    folder: &mut OutputFolder,
+    name: &str,
+    (width, height): (u32, u32),
+    values: &[T],
+) -> Result<PathBuf, OutputError> {
+    let mut bytes = Vec::new();
+    npy_body(&mut bytes, &[u64::from(height), u64::from(width)], values.iter().copied())
+        .map_err(io(&folder.dir().join(name)))?;
+    folder.write(name, &bytes)
+}
+
 fn npy_body<T: npyz::AutoSerialize>(
     w: &mut impl Write,
     shape: &[u64],

@@ -310,6 +310,12 @@ impl Algorithm {
         ]
     }
 
+    /// Reeves' `Bias1` when none is given (`umbra render --bias1`).
+    pub const DEFAULT_BIAS1: f64 = 0.005;
+
+    /// The dual-depth offset when none is given (`umbra render --offset`).
+    pub const DEFAULT_OFFSET: f64 = 0.01;
+
     /// The algorithm named `name` ([`Algorithm::name`]), with Reeves'
     /// `Bias1` for a bias range and the offset for dual depth (the others
     /// take neither).

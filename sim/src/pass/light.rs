@@ -398,6 +398,21 @@ impl RawMaps {
     pub fn buffers(&self) -> Vec<&[u32]> {
         [&self.maps.z1[..], &self.maps.z2[..]].into_iter().filter(|b| !b.is_empty()).collect()
     }
+
+    /// The maps stored, by name: `z1`, and `z2` when the unit is dual, each
+    /// of the raster's `width × height` texels; none when the pass stored
+    /// no tile: shadow volumes draw no map (their one far texel stands for
+    /// it), and a light pass that drew anything stores the tiles it drew.
+    #[must_use]
+    pub fn stored(&self) -> Vec<(&'static str, &[u32])> {
+        let r = self.maps.config.raster;
+        let texels = u64::from(r.width()) * u64::from(r.height());
+        let drawn = self.maps.tiles.iter().any(|t| t.stores > 0);
+        [("z1", &self.maps.z1[..]), ("z2", &self.maps.z2[..])]
+            .into_iter()
+            .filter(|(_, b)| drawn && !b.is_empty() && b.len() as u64 == texels)
+            .collect()
+    }
 }
 
 /// The same maps with every texel widened to its raw `u32` bits.

@@ -3,6 +3,7 @@
 //! architectures ([`costed`]); its pictures ([`pictures`]). This layer sits
 //! above the passes, the cost model and the truth, and joins them.
 
+pub mod arrays;
 pub mod costed;
 pub mod pictures;
 pub mod shared;

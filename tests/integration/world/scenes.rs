@@ -175,3 +175,41 @@ fn shared_meshes_by_name() {
     assert_eq!(s.objects[0].mesh.triangles.len(), 3674);
     assert!(s.objects[0].solid, "the bunny is closed");
 }
+
+/// A mesh written out as `arrays` (positions and triangles) is the mesh a
+/// generator builds, and is placed, checked and classed (closed, so solid)
+/// as that mesh is; a triangle naming a vertex it does not have is refused
+/// with its key.
+#[test]
+fn a_mesh_given_as_arrays_is_the_generated_mesh() {
+    let generated = parse(GOOD).unwrap_or_else(|e| panic!("{e}"));
+    let mesh = &generated.objects[0].mesh;
+    let list = |rows: Vec<String>| format!("[{}]", rows.join(", "));
+    // Each f32 coordinate written as the f64 it widens to: exact.
+    let positions = list(
+        mesh.positions
+            .iter()
+            .map(|p| format!("[{:?}, {:?}, {:?}]", f64::from(p.x), f64::from(p.y), f64::from(p.z)))
+            .collect(),
+    );
+    let triangles = list(mesh.triangles.iter().map(|t| format!("[{}, {}, {}]", t[0], t[1], t[2])).collect());
+    let line = "mesh = { sphere = { center = [0.0, 1.0, 0.0], radius = 0.5, stacks = 8, slices = 16 } }";
+    let text = |triangles: &str| {
+        GOOD.replace(line, &format!("mesh = {{ arrays = {{ positions = {positions}, triangles = {triangles} }} }}"))
+    };
+    let given = parse(&text(&triangles)).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(given.objects[0].mesh.positions, mesh.positions);
+    assert_eq!(given.objects[0].mesh.triangles, mesh.triangles);
+    assert!(given.objects[0].solid && generated.objects[0].solid, "a closed mesh is solid either way");
+    let n = mesh.positions.len();
+    let bad = triangles.replacen("[0, ", &format!("[{n}, "), 1);
+    let at = mesh.triangles.iter().position(|t| t[0] == 0).expect("a triangle starts at vertex 0");
+    let e = parse(&text(&bad)).expect_err("an index past the vertices");
+    assert_eq!(e.key, format!("objects[0].mesh.arrays.triangles[{at}]"));
+    assert!(
+        matches!(e.problem, Problem::BadIndex { vertex, vertices, .. } if vertex as usize == n && vertices == n),
+        "{e}"
+    );
+    let e = parse(&text("[]")).expect_err("no triangles");
+    assert_eq!(e.key, "objects[0].mesh.arrays.triangles");
+}

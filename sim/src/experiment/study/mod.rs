@@ -44,7 +44,7 @@ pub use shards::{
     Manifest, ShardFolder, ShardState, ShardStatus, already_complete, finish, invalid, merge, read_rows, status,
     write_partial, write_run,
 };
-pub use summary::{slug, summary, write_outputs};
+pub use summary::{slug, summary, table, write_outputs};
 pub use sweep::{
     ArchPoint, Config, Layout, MAX_ARCHITECTURES, MAX_CONFIGURATIONS, Shard, Spec, UNLIMITED_OFFSET, Variant, jittered,
 };

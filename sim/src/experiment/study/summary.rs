@@ -16,7 +16,7 @@ pub fn write_outputs(folder: &mut OutputFolder, rows: &[Row], manifest: &Manifes
     let mut rows = rows.to_vec();
     sort_rows(&mut rows);
     folder.write_text("results.jsonl", &jsonl(&rows))?;
-    let (table, header) = csv(&rows)?;
+    let (table, header) = table(&rows)?;
     folder.write_text("results.csv", &table)?;
     folder.write_text("schema.csv", &super::schema::schema_csv(&header))?;
     let scenes = scenes_of(&rows);
@@ -49,9 +49,13 @@ fn leaves(v: &serde_json::Value, key: &str, out: &mut Vec<(String, String)>) {
     }
 }
 
-/// The rows flat, one column per field of a row with every block (a
-/// skipped row's metric and cost columns empty).
-fn csv(rows: &[Row]) -> Result<(String, Vec<String>), StudyError> {
+/// The rows flat as `results.csv` holds them, and the header: one column
+/// per field of a row with every block (a skipped row's metric and cost
+/// columns empty).
+///
+/// # Errors
+/// [`StudyError::Csv`], which writing to memory does not give.
+pub fn table(rows: &[Row]) -> Result<(String, Vec<String>), StudyError> {
     let flat = |r: &Row| {
         let mut cells = Vec::new();
         // A Row holds only strings, numbers, booleans and options: it always serialises.

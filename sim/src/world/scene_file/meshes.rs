@@ -3,6 +3,7 @@
 use std::path::Path;
 
 use super::{Check, MeshFile, Problem, SceneError, shared_meshes};
+use crate::io::exact::Exact;
 use crate::io::limits::Limits;
 use crate::world::mesh::Mesh;
 
@@ -16,6 +17,7 @@ pub(super) fn generated_triangles(c: &Check<'_>, key: &str, m: &MeshFile) -> Res
     let count = |f: &str, v: u32| c.count(&field(f), v).map(u64::from);
     Ok(match m {
         MeshFile::Obj(_) | MeshFile::Shared(_) => 0,
+        MeshFile::Arrays { triangles, .. } => u64::try_from(triangles.len()).unwrap_or(u64::MAX),
         MeshFile::Quad { .. } => 2,
         MeshFile::Box { .. } => 12,
         MeshFile::Table { .. } => 5 * 12,
@@ -31,6 +33,34 @@ pub(super) fn generated_triangles(c: &Check<'_>, key: &str, m: &MeshFile) -> Res
         MeshFile::Torus { rings, sides, .. } => 2 * count("rings", *rings)?.max(3) * count("sides", *sides)?.max(3),
         MeshFile::Sheet { nx, ny, .. } => 2 * count("nx", *nx)? * count("ny", *ny)?,
     })
+}
+
+impl MeshFile {
+    /// A mesh read from a file or given as arrays, not generated: its
+    /// triangles are taken as they are (one of no area draws nothing).
+    pub(super) const fn loaded(&self) -> bool {
+        matches!(self, Self::Obj(_) | Self::Shared(_) | Self::Arrays { .. })
+    }
+}
+
+/// A mesh given as vertex positions and triangles of vertex indices
+/// (counter-clockwise seen from outside), each index checked.
+fn arrays(c: &Check<'_>, key: &str, positions: &[Exact<3>], triangles: &[Exact<3, u32>]) -> Result<Mesh, SceneError> {
+    if triangles.is_empty() {
+        return Err(c.err(format!("{key}.triangles"), Problem::Missing("triangle")));
+    }
+    let positions = positions
+        .iter()
+        .enumerate()
+        .map(|(i, &p)| c.vec3(&format!("{key}.positions[{i}]"), p))
+        .collect::<Result<Vec<_>, _>>()?;
+    let vertices = positions.len();
+    for (triangle, Exact(t)) in triangles.iter().enumerate() {
+        if let Some(&vertex) = t.iter().find(|&&v| v as usize >= vertices) {
+            return Err(c.err(format!("{key}.triangles[{triangle}]"), Problem::BadIndex { triangle, vertex, vertices }));
+        }
+    }
+    Ok(Mesh { positions, triangles: triangles.iter().map(|t| t.0).collect(), ..Mesh::default() })
 }
 
 pub(super) fn build_mesh(
@@ -51,6 +81,7 @@ pub(super) fn build_mesh(
             }
             Mesh::load_obj(&path, limits).map_err(|e| c.err(key, Problem::Mesh(e)))?
         }
+        MeshFile::Arrays { positions, triangles } => arrays(c, &field("arrays"), positions, triangles)?,
         MeshFile::Box { min, max } => {
             let (lo, hi) = (c.vec3(&field("min"), *min)?, c.vec3(&field("max"), *max)?);
             if !(lo.cmplt(hi).all()) {

@@ -169,6 +169,16 @@ pub enum Problem {
         /// The triangle, from 0 in the mesh's order.
         triangle: usize,
     },
+    /// An `arrays` mesh's triangle names a vertex it does not have.
+    #[error("triangle {triangle} names vertex {vertex}, but the mesh has {vertices} vertices")]
+    BadIndex {
+        /// The triangle, from 0.
+        triangle: usize,
+        /// The vertex it names.
+        vertex: u32,
+        /// The vertices there are.
+        vertices: usize,
+    },
     /// A scene needs at least one light and one object.
     #[error("a scene needs at least one {0}")]
     Missing(&'static str),
@@ -334,7 +344,7 @@ impl Scene {
                 ..*limits
             };
             let mesh = build_mesh(&c, &format!("{key}.mesh"), &o.mesh, dir, &left)?;
-            if matches!(o.mesh, MeshFile::Obj(_) | MeshFile::Shared(_)) {
+            if o.mesh.loaded() {
                 loaded += u64::try_from(mesh.triangles.len()).unwrap_or(u64::MAX);
             }
             let t = c.vec3(&format!("{key}.translate"), o.translate.unwrap_or(Exact([0.0; 3])))?;
@@ -342,7 +352,7 @@ impl Scene {
             let s = c.range(&format!("{key}.scale"), o.scale.unwrap_or(1.0), 1e-6, 1e6)?;
             let rotation = Quat::from_euler(EulerRot::XYZ, r.x.to_radians(), r.y.to_radians(), r.z.to_radians());
             let mesh = mesh.transformed(&Mat4::from_scale_rotation_translation(Vec3::splat(s), rotation, t));
-            c.placed(&format!("{key}.mesh"), &mesh, !matches!(o.mesh, MeshFile::Obj(_) | MeshFile::Shared(_)))?;
+            c.placed(&format!("{key}.mesh"), &mesh, !o.mesh.loaded())?;
             let closed = mesh.is_closed();
             let solid = match o.solid {
                 Some(true) if !closed => return Err(c.err(format!("{key}.solid"), Problem::OpenMarkedSolid)),

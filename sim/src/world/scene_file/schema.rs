@@ -61,6 +61,7 @@ pub(super) enum MeshFile {
     Sheet { center: Exact<3>, width: f64, height: f64, bend: f64, nx: u32, ny: u32 },
     Figure { feet: Exact<3>, height: f64, head: Option<u32> },
     Ell { min: Exact<3>, max: Exact<3>, thickness: f64 },
+    Arrays { positions: Vec<Exact<3>>, triangles: Vec<Exact<3, u32>> },
 }
 
 /// Checks with the file and the key at hand.

@@ -1,0 +1,217 @@
+//! What runs: a render configuration checked once, and the render, the
+//! cost, the study and the plan, each with the interpreter released.
+
+use std::path::PathBuf;
+
+use indicatif::ProgressBar;
+use numpy::{PyArray1, PyArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use umbra_core::DepthFormatKind;
+use umbra_core::shadow::Filter;
+use umbra_sim::experiment::plan::PlanSpec;
+use umbra_sim::experiment::study::{Shard, SweepFile, schema::schema_csv, table};
+use umbra_sim::io::limits::Limits;
+use umbra_sim::render::arrays::PixelArrays;
+use umbra_sim::render::{Algorithm, Culling, RenderConfig, TruthSource};
+
+use crate::arch::Arch;
+use crate::scene::Scene;
+use crate::{UmbraError, error, progress};
+
+/// A render configuration, checked against its scene and the limits:
+/// what `umbra render`'s flags name.
+#[pyclass(frozen, module = "umbra._umbra")]
+pub struct Config {
+    inner: RenderConfig,
+}
+
+#[pymethods]
+impl Config {
+    /// The configuration in one line.
+    fn describe(&self) -> String {
+        self.inner.describe()
+    }
+
+    /// Its fields as JSON text.
+    fn to_json(&self) -> PyResult<String> {
+        serde_json::to_string(&self.inner).map_err(|e| error(&e))
+    }
+
+    fn __repr__(&self) -> String {
+        format!("Config({})", self.inner.describe())
+    }
+}
+
+/// `name: value` as an [`UmbraError`], for a value the argument `name` cannot take.
+fn bad(name: &str, e: impl std::fmt::Display) -> PyErr {
+    UmbraError::new_err(format!("{name}: {e}"))
+}
+
+/// The configuration of a render of `scene`, each argument as `umbra
+/// render`'s flag of the same name takes it, `None` for its default;
+/// width and height default to the scene's image.
+#[pyfunction]
+#[pyo3(signature = (scene, algo=None, depth=None, map=None, filter=None, bias=None, bias1=None, offset=None,
+                    culling=None, virtual_samples=None, width=None, height=None, rays=None))]
+#[allow(clippy::too_many_arguments, reason = "one keyword argument a flag of umbra render")]
+pub fn config(
+    scene: &Scene,
+    algo: Option<&str>,
+    depth: Option<&str>,
+    map: Option<u32>,
+    filter: Option<&str>,
+    bias: Option<f64>,
+    bias1: Option<f64>,
+    offset: Option<f64>,
+    culling: Option<&str>,
+    virtual_samples: Option<bool>,
+    width: Option<u32>,
+    height: Option<u32>,
+    rays: Option<u32>,
+) -> PyResult<Config> {
+    let d = RenderConfig::DEFAULT;
+    let [w, h] = scene.inner.image;
+    let algorithm = match algo {
+        Some(name) => Algorithm::named(
+            name,
+            bias1.unwrap_or(Algorithm::DEFAULT_BIAS1),
+            offset.unwrap_or(Algorithm::DEFAULT_OFFSET),
+        )
+        .map_err(|e| bad("algo", e))?,
+        None => d.algorithm,
+    };
+    let cfg = RenderConfig {
+        algorithm,
+        format: depth.map_or(Ok(d.format), str::parse::<DepthFormatKind>).map_err(|e| bad("depth", e))?,
+        map_size: map.unwrap_or(d.map_size),
+        filter: filter.map_or(Ok(d.filter), str::parse::<Filter>).map_err(|e| bad("filter", e))?,
+        bias: bias.unwrap_or(d.bias),
+        virtual_samples: virtual_samples.unwrap_or(d.virtual_samples),
+        width: width.unwrap_or(w),
+        height: height.unwrap_or(h),
+        reference_rays: rays.unwrap_or(d.reference_rays),
+        culling: culling.map_or(Ok(d.culling), str::parse::<Culling>).map_err(|e| bad("culling", e))?,
+    };
+    if !RenderConfig::REFERENCE_RAYS.contains(&cfg.reference_rays) {
+        return Err(bad("rays", format!("{} is outside 1..=16", cfg.reference_rays)));
+    }
+    let cfg = cfg.checked().map_err(|e| UmbraError::new_err(e.to_string()))?;
+    cfg.within(&scene.inner, &Limits::DEFAULT).map_err(|e| error(&e))?;
+    Ok(Config { inner: cfg })
+}
+
+/// Render `scene` with `config` against the exact reference: the metrics
+/// as JSON text, and the arrays (`z1`, `z2` as stored integers, `shadow`,
+/// `reference` and `verdict`), with the `umbra render` command that
+/// renders it again.
+#[pyfunction]
+#[pyo3(signature = (scene, config, progress=None, threads=None))]
+pub fn render<'py>(
+    py: Python<'py>,
+    scene: &Scene,
+    config: &Config,
+    progress: Option<&Bound<'py, PyAny>>,
+    threads: Option<usize>,
+) -> PyResult<(String, Bound<'py, PyDict>)> {
+    let bar = ProgressBar::hidden();
+    bar.set_length(u64::from(config.inner.height));
+    let r = progress::run(py, &bar, progress, threads, || {
+        umbra_sim::render(&scene.inner, &config.inner, &Limits::DEFAULT, TruthSource::Build(&bar))
+    })?
+    .map_err(|e| error(&e))?;
+    let metrics = serde_json::to_string(&r.metrics).map_err(|e| error(&e))?;
+    let arrays = PixelArrays::of(&r);
+    let out = PyDict::new(py);
+    let (w, h) = (arrays.width as usize, arrays.height as usize);
+    out.set_item("shadow", PyArray1::from_vec(py, arrays.shadow).reshape([h, w])?)?;
+    out.set_item("reference", PyArray1::from_vec(py, arrays.reference).reshape([h, w])?)?;
+    out.set_item("verdict", PyArray1::from_vec(py, arrays.verdict).reshape([h, w])?)?;
+    let raster = r.maps.maps.config.raster;
+    let side = [raster.height() as usize, raster.width() as usize];
+    for name in ["z1", "z2"] {
+        out.set_item(name, py.None())?;
+    }
+    for (name, raw) in r.maps.stored() {
+        match r.maps.format {
+            DepthFormatKind::D16 => {
+                let v: Vec<u16> = raw.iter().map(|&t| u16::try_from(t).unwrap_or(u16::MAX)).collect();
+                out.set_item(name, PyArray1::from_vec(py, v).reshape(side)?)?;
+            }
+            DepthFormatKind::D24 | DepthFormatKind::F32 => {
+                out.set_item(name, PyArray1::from_slice(py, raw).reshape(side)?)?;
+            }
+        }
+    }
+    out.set_item("render_again", &r.command)?;
+    out.set_item("configuration_text", config.inner.describe())?;
+    Ok((metrics, out))
+}
+
+/// The cost of `config` on `scene` on `arch`, as the JSON text of
+/// `cost.json`'s report.
+#[pyfunction]
+pub fn cost(py: Python<'_>, scene: &Scene, config: &Config, arch: &Arch) -> PyResult<String> {
+    let report = py
+        .detach(|| umbra_sim::cost(&scene.inner, &config.inner, &arch.inner, &Limits::DEFAULT))
+        .map_err(|e| error(&e))?;
+    serde_json::to_string(&report).map_err(|e| error(&e))
+}
+
+/// Run a sweep: the bundled sweep or sweep file `name`, or the sweep
+/// file's `text` named `file` in errors; shard `index` of `count`. The
+/// rows as `results.csv` holds them, and `schema.csv`.
+#[pyfunction]
+#[pyo3(signature = (name=None, text=None, file="(sweep dict)", shard=(0, 1), progress=None, threads=None))]
+pub fn study(
+    py: Python<'_>,
+    name: Option<&str>,
+    text: Option<String>,
+    file: &str,
+    shard: (usize, usize),
+    progress: Option<&Bound<'_, PyAny>>,
+    threads: Option<usize>,
+) -> PyResult<(String, String)> {
+    let limits = Limits::DEFAULT;
+    let sweep = match (name, text) {
+        (Some(name), None) => SweepFile::open(name, &limits).map_err(|e| error(&e))?,
+        (None, Some(text)) => SweepFile { file: PathBuf::from(file), text, bundled: false },
+        _ => return Err(UmbraError::new_err("study: give a sweep's name or file, or its text, not both")),
+    };
+    let spec = sweep.spec(&limits).map_err(|e| error(&e))?;
+    let (index, count) = shard;
+    if count == 0 || index >= count {
+        return Err(bad("shard", format!("{index}/{count} is not a shard: want i/n with i < n")));
+    }
+    if let Some(problem) = spec.size_problem() {
+        return Err(UmbraError::new_err(format!("the sweep: {problem}")));
+    }
+    let bar = ProgressBar::hidden();
+    let rows = progress::run(py, &bar, progress, threads, || umbra_sim::study(&spec, Shard { index, count }, &bar))?
+        .map_err(|e| error(&e))?;
+    let (csv, header) = table(&rows).map_err(|e| error(&e))?;
+    Ok((csv, schema_csv(&header)))
+}
+
+/// The cheapest configuration of `scene` on `arch` whose artifacts stay
+/// within `budget` percent, as the JSON text of `plan.json`.
+#[pyfunction]
+#[pyo3(signature = (scene, budget, arch, progress=None, threads=None))]
+pub fn plan(
+    py: Python<'_>,
+    scene: &Scene,
+    budget: f64,
+    arch: &Arch,
+    progress: Option<&Bound<'_, PyAny>>,
+    threads: Option<usize>,
+) -> PyResult<String> {
+    if !budget.is_finite() || !(0.0..=100.0).contains(&budget) {
+        return Err(bad("budget", format!("{budget}% is outside 0…100%")));
+    }
+    let mut spec = PlanSpec::new(&scene.inner, budget);
+    spec.arch = arch.inner.clone();
+    let bar = ProgressBar::hidden();
+    let p =
+        progress::run(py, &bar, progress, threads, || umbra_sim::plan(&scene.inner, &spec))?.map_err(|e| error(&e))?;
+    serde_json::to_string(&p).map_err(|e| error(&e))
+}
