@@ -43,13 +43,18 @@ pub(super) fn shape(arch: &Arch) -> Shape {
     }
 }
 
-/// The depth samples a lookup of `filter` takes (Sen et al.'s figure).
-const fn samples(filter: Filter) -> u64 {
-    match filter {
-        Filter::Point => 1,
-        Filter::Bilinear => 4,
-        Filter::Box { size } => size as u64 * size as u64,
-        Filter::Jittered(j) => j.num_samples as u64,
+/// The depth samples a lookup of `cfg` takes, and whether it weighs them
+/// bilinearly: its filter's (Sen et al.'s figure), or for a silhouette
+/// map the four at its texel's corners whatever the filter (Sen et al.
+/// §3.2: the fragment's depth against "the four closest shadow depth
+/// samples", then the silhouette points).
+const fn lookup_samples(cfg: &RenderConfig) -> (u64, bool) {
+    match (cfg.algorithm, cfg.filter) {
+        (Algorithm::Silhouette { .. }, _) => (4, false),
+        (_, Filter::Point) => (1, false),
+        (_, Filter::Bilinear) => (4, true),
+        (_, Filter::Box { size }) => (size as u64 * size as u64, false),
+        (_, Filter::Jittered(j)) => (j.num_samples as u64, false),
     }
 }
 
@@ -76,8 +81,7 @@ pub(super) fn reading<const C: bool>(
         return probe;
     }
     let sil = if units.map == (MapKind::Silhouette { packed: true }) { Packed::BYTES } else { SilPoint::BYTES };
-    let filter = (samples(cfg.filter), cfg.filter == Filter::Bilinear);
-    probe.reading(units.unit.buffers(), cfg.format.bytes(), sil, filter)
+    probe.reading(units.unit.buffers(), cfg.format.bytes(), sil, lookup_samples(cfg))
 }
 
 /// The two passes' probes of `archs` for `cfg` on `checked`.
@@ -122,7 +126,7 @@ pub(super) fn report<const L: bool, const C: bool>(
 ) -> CostReport {
     light.finish();
     camera.finish();
-    let mut r = CostReport::new((scene, config.to_owned()), &light, &camera, samples(cfg.filter));
+    let mut r = CostReport::new((scene, config.to_owned()), &light, &camera, lookup_samples(cfg).0);
     r.sen.triangles = counts.triangles;
     r.sen.silhouette_edges = counts.silhouette_edges;
     r

@@ -329,6 +329,47 @@ fn sens_p_both_ways() {
     assert!(small.p_lookup > 0.0 && (0.9..1.1).contains(&lookup), "the model's P moves {lookup:.3}×");
 }
 
+/// A silhouette map's test reads the four depth samples at its texel's
+/// corners whatever the filter (Sen et al. §3.2), so on the R300, whose
+/// shadow program costs cycles per sample (0.34375) and for bilinear
+/// weights (0.625), its cost is the same under every filter, and its
+/// bandwidth model charges 4 B × 4 samples a pixel; a first-depth test's
+/// program grows with its filter's samples.
+#[test]
+fn a_silhouette_map_costs_its_four_corner_samples_whatever_the_filter() {
+    use umbra::core::shadow::Filter;
+    let scene = Scene::bundled("weiskopf-l").expect("bundled");
+    let r300 = bundled("r300");
+    let report = |algorithm, filter| {
+        let cfg = RenderConfig {
+            algorithm,
+            format: DepthFormatKind::D24,
+            map_size: 256,
+            filter,
+            bias: 0.002,
+            virtual_samples: false,
+            width: 160,
+            height: 90,
+            reference_rays: 1,
+            culling: Culling::ALGORITHM,
+        };
+        cost(&scene, &cfg, &r300, &Limits::DEFAULT).expect("costs")
+    };
+    let silhouette = Algorithm::Silhouette { packed: false };
+    let point = report(silhouette, Filter::Point);
+    let json = |r: &umbra::sim::cost::arch::CostReport| {
+        let mut v = serde_json::to_value(r).expect("serialises");
+        v["config"] = serde_json::Value::Null;
+        v
+    };
+    for filter in [Filter::Bilinear, Filter::Box { size: 5 }] {
+        assert_eq!(json(&report(silhouette, filter)), json(&point), "{filter}");
+    }
+    assert!((point.sen.model_map_bytes_per_pixel - 16.0).abs() < 1e-12, "{}", point.sen.model_map_bytes_per_pixel);
+    let (a, b) = (report(Algorithm::First, Filter::Point), report(Algorithm::First, Filter::Box { size: 5 }));
+    assert!(b.camera.cycles > a.camera.cycles, "25 samples cost more than 1");
+}
+
 /// The timeline comes from the same model: the light pass's tile slices
 /// add up to its tiles' cycles at the clock, the stage tracks are named,
 /// and the file records its architecture.

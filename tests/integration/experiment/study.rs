@@ -305,13 +305,18 @@ fn extremes_keep_to_their_limits() {
 
 /// Configurations that render alike are rendered once: shadow volumes draw
 /// no map, so their rows for every map format, side and filter come from
-/// one render. Every file the run writes is byte for byte the unshared
-/// run's, a map beyond the limits still its own skipped row.
+/// one render, and a silhouette map's rows for every filter. Every file
+/// the run writes is byte for byte the unshared run's, a map beyond the
+/// limits still its own skipped row.
 #[test]
 fn configurations_that_render_alike_write_the_unshared_files() {
     let mut spec = small();
     spec.scenes.truncate(1);
-    spec.variants = vec![Variant::new(Algorithm::First, 0.002), Variant::new(Algorithm::Volumes, 0.0)];
+    spec.variants = vec![
+        Variant::new(Algorithm::First, 0.002),
+        Variant::new(Algorithm::Volumes, 0.0),
+        Variant::new(Algorithm::Silhouette { packed: true }, 0.002),
+    ];
     spec.map_sizes = vec![64, 128, 256];
     spec.limits = Limits { max_map_side: 128, ..Limits::DEFAULT };
     let hidden = indicatif::ProgressBar::hidden();
@@ -323,6 +328,18 @@ fn configurations_that_render_alike_write_the_unshared_files() {
     // beyond the limit.
     assert_eq!(volumes.len(), 12 * Arch::era_presets().len());
     assert!(volumes.iter().any(|r| r.status == Status::Skipped && r.reason.contains("max_map_side")));
+    // A silhouette map's two filters give the same numbers (one render).
+    let silhouettes: Vec<&Row> =
+        shared.iter().filter(|r| r.config.algorithm == "silhouette-packed" && r.complete()).collect();
+    assert_eq!(silhouettes.len(), 8 * Arch::era_presets().len());
+    for r in &silhouettes {
+        let twin = silhouettes.iter().find(|o| {
+            let key = |x: &Row| (x.config.depth_format, x.config.map_side_texels, x.arch_index);
+            o.config.filter_name != r.config.filter_name && key(o) == key(r)
+        });
+        let twin = twin.expect("the other filter's row");
+        assert_eq!((r.metrics, &r.cost), (twin.metrics, &twin.cost), "{:?}", r.config);
+    }
     let (a, b) = (dir("alike-shared"), dir("alike-unshared"));
     study::write_run(&a, &shared, &whole(&spec, &shared)).expect("write");
     study::write_run(&b, &unshared, &whole(&spec, &unshared)).expect("write");

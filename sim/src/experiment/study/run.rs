@@ -14,7 +14,7 @@ use crate::render::{Algorithm, RenderConfig, RenderError, TruthSource, cost_othe
 use crate::truth::reference::PixelTruth;
 use crate::world::scene::Scene;
 use umbra_core::probe::Totals;
-use umbra_core::shadow::Filter;
+use umbra_core::shadow::{Filter, ShadowConfig};
 use umbra_core::{DepthFormat, DepthFormatKind};
 
 /// The render configuration of `c`.
@@ -168,19 +168,24 @@ pub fn run_unshared(spec: &Spec, shard: Shard, progress: &ProgressBar) -> Result
 
 /// What configuration `c` renders as, for those whose algorithm reads only
 /// some of the axes: shadow volumes draw no map, so neither the map's
-/// format, its side nor the filter changes their render or its cost. Only
-/// a configuration within every limit on its own is shared, so that one
-/// beyond a limit keeps its own skipped row.
+/// format, its side nor the filter changes their render or its cost; a
+/// silhouette map's test reads the four depth samples at its texel's
+/// corners whatever the filter (Sen et al. §3.2), so the filter changes
+/// neither. Only a configuration within every limit and valid on its own
+/// is shared, so that one beyond a limit keeps its own skipped row.
 fn alike(spec: &Spec, c: &Config) -> Option<RenderConfig> {
     let cfg = render_config(spec, c);
     let scene = &spec.scenes[c.scene];
     let tile = umbra_core::RasterConfig::DEFAULT_TILE_SIZE;
-    (cfg.algorithm == Algorithm::Volumes && cfg.check(scene, &spec.limits, tile).is_ok()).then_some(RenderConfig {
-        format: DepthFormatKind::D24,
-        map_size: 1,
-        filter: Filter::Point,
-        ..cfg
-    })
+    let units = cfg.algorithm.units::<umbra_core::D24>(cfg.bias);
+    let valid = cfg.check(scene, &spec.limits, tile).is_ok()
+        && ShadowConfig::new(units.test, units.bias, cfg.filter, true).is_ok();
+    let like = match cfg.algorithm {
+        Algorithm::Volumes => RenderConfig { format: DepthFormatKind::D24, map_size: 1, filter: Filter::Point, ..cfg },
+        Algorithm::Silhouette { .. } => RenderConfig { filter: Filter::Point, ..cfg },
+        _ => return None,
+    };
+    valid.then_some(like)
 }
 
 /// The rows of `c`, rendered alike to the configuration whose rows are
