@@ -249,13 +249,21 @@ impl FolderState {
                 Err(e) => Self::Corrupt(e.to_string()),
             };
         }
-        if !dir.join(PENDING).exists() {
-            return Self::Absent;
+        Self::unfinished(dir).unwrap_or(Self::Absent)
+    }
+
+    /// [`Self::Running`] or [`Self::Abandoned`] when `dir` holds an
+    /// unfinished run's record (a pending record, no manifest); `None`
+    /// otherwise, without reading any other file.
+    #[must_use]
+    pub fn unfinished(dir: &Path) -> Option<Self> {
+        if dir.join(MANIFEST).exists() || !dir.join(PENDING).exists() {
+            return None;
         }
         let held = std::fs::File::open(dir.join(LOCK))
             .map(|f| matches!(f.try_lock_shared(), Err(std::fs::TryLockError::WouldBlock)))
             .unwrap_or(false);
-        if held { Self::Running } else { Self::Abandoned }
+        Some(if held { Self::Running } else { Self::Abandoned })
     }
 }
 

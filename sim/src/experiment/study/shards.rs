@@ -256,9 +256,9 @@ pub fn merge(inputs: &[PathBuf], out: &Path, limits: &Limits) -> Result<usize, S
     for input in inputs {
         use crate::io::folder::FolderState;
         if input.is_dir() {
-            let unfinished = match FolderState::of(input, 0) {
-                FolderState::Running => Some("its run is under way"),
-                FolderState::Abandoned => Some("its run stopped before finishing (killed or lost)"),
+            let unfinished = match FolderState::unfinished(input) {
+                Some(FolderState::Running) => Some("its run is under way"),
+                Some(FolderState::Abandoned) => Some("its run stopped before finishing (killed or lost)"),
                 _ => None,
             };
             if let Some(why) = unfinished {
