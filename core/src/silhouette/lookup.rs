@@ -6,9 +6,14 @@ use crate::depth::{DepthFormat, PlaneZ};
 use crate::probe::{Buffer, Event, Probe, TexelRead};
 use crate::shadow::{MapCoord, MapView, Shadow, ShadowConfig};
 
+/// The depth samples a silhouette test reads, whatever the filter: one at
+/// each corner of its silhouette texel (Sen et al. 2003 §3.2, "the four
+/// closest shadow depth samples").
+pub const DEPTH_SAMPLES: usize = 4;
+
 /// The depth texels at the corners of silhouette texel `(i, j)`: top-left,
 /// top-right, bottom-left, bottom-right.
-pub(super) const fn corners(i: i64, j: i64) -> [(i64, i64); 4] {
+pub(super) const fn corners(i: i64, j: i64) -> [(i64, i64); DEPTH_SAMPLES] {
     [(i - 1, j - 1), (i, j - 1), (i - 1, j), (i, j)]
 }
 

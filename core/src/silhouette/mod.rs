@@ -38,7 +38,7 @@ mod map;
 mod pass;
 
 use lookup::corners;
-pub use lookup::{quadrant, shadow};
+pub use lookup::{DEPTH_SAMPLES, quadrant, shadow};
 pub use map::{CORNER_SLACK, Packed, SilPoint, SilStore, SilhouetteMap};
 use map::{dual, index};
 pub use pass::{Segment, SilhouettePass, project, select_point};

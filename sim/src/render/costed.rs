@@ -45,12 +45,11 @@ pub(super) fn shape(arch: &Arch) -> Shape {
 
 /// The depth samples a lookup of `cfg` takes, and whether it weighs them
 /// bilinearly: its filter's (Sen et al.'s figure), or for a silhouette
-/// map the four at its texel's corners whatever the filter (Sen et al.
-/// §3.2: the fragment's depth against "the four closest shadow depth
-/// samples", then the silhouette points).
+/// map the four at its texel's corners whatever the filter
+/// ([`umbra_core::silhouette::DEPTH_SAMPLES`]).
 const fn lookup_samples(cfg: &RenderConfig) -> (u64, bool) {
     match (cfg.algorithm, cfg.filter) {
-        (Algorithm::Silhouette { .. }, _) => (4, false),
+        (Algorithm::Silhouette { .. }, _) => (umbra_core::silhouette::DEPTH_SAMPLES as u64, false),
         (_, Filter::Point) => (1, false),
         (_, Filter::Bilinear) => (4, true),
         (_, Filter::Box { size }) => (size as u64 * size as u64, false),

@@ -175,17 +175,19 @@ pub fn run_unshared(spec: &Spec, shard: Shard, progress: &ProgressBar) -> Result
 /// is shared, so that one beyond a limit keeps its own skipped row.
 fn alike(spec: &Spec, c: &Config) -> Option<RenderConfig> {
     let cfg = render_config(spec, c);
-    let scene = &spec.scenes[c.scene];
-    let tile = umbra_core::RasterConfig::DEFAULT_TILE_SIZE;
-    let units = cfg.algorithm.units::<umbra_core::D24>(cfg.bias);
-    let valid = cfg.check(scene, &spec.limits, tile).is_ok()
-        && ShadowConfig::new(units.test, units.bias, cfg.filter, true).is_ok();
     let like = match cfg.algorithm {
         Algorithm::Volumes => RenderConfig { format: DepthFormatKind::D24, map_size: 1, filter: Filter::Point, ..cfg },
-        Algorithm::Silhouette { .. } => RenderConfig { filter: Filter::Point, ..cfg },
+        // Its own filter must be one the shadow unit takes, or its row is
+        // its own failure.
+        Algorithm::Silhouette { .. } => {
+            let units = cfg.algorithm.units::<umbra_core::D24>(cfg.bias);
+            ShadowConfig::new(units.test, units.bias, cfg.filter, true).ok()?;
+            RenderConfig { filter: Filter::Point, ..cfg }
+        }
         _ => return None,
     };
-    valid.then_some(like)
+    let tile = umbra_core::RasterConfig::DEFAULT_TILE_SIZE;
+    cfg.check(&spec.scenes[c.scene], &spec.limits, tile).is_ok().then_some(like)
 }
 
 /// The rows of `c`, rendered alike to the configuration whose rows are

@@ -1,0 +1,217 @@
+//! What a render is asked for ([`RenderConfig`]), checked against the
+//! limits and turned into the passes' targets before anything is
+//! allocated.
+
+use serde::Serialize;
+use umbra_core::shadow::Filter;
+use umbra_core::{DepthFormatKind, RasterConfig};
+
+use super::{Algorithm, Culling, RenderError};
+use crate::io::limits::{Footprint, Limits};
+use crate::world::scene::Scene;
+
+/// What to render and how.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct RenderConfig {
+    /// The shadow algorithm (written as `--algo` spells it; a dual offset
+    /// or a bias range's end is in the render command).
+    #[serde(serialize_with = "crate::base::text::serialize")]
+    pub algorithm: Algorithm,
+    /// The map's depth format.
+    #[serde(serialize_with = "crate::base::text::serialize")]
+    pub format: DepthFormatKind,
+    /// The map's side in texels.
+    pub map_size: u32,
+    /// The filter.
+    #[serde(serialize_with = "crate::base::text::serialize")]
+    pub filter: Filter,
+    /// The bias, as a depth in `[0, 1]`.
+    pub bias: f64,
+    /// Wang & Molnar's virtual samples (second-depth algorithms).
+    pub virtual_samples: bool,
+    /// Camera image width.
+    pub width: u32,
+    /// Camera image height.
+    pub height: u32,
+    /// Reference rays per pixel side for the area-averaged visibility.
+    pub reference_rays: u32,
+    /// The light pass's culling per object class.
+    #[serde(serialize_with = "crate::base::text::serialize")]
+    pub culling: Culling,
+}
+
+/// A render configuration no render takes, naming the quantity and the value.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum RenderConfigError {
+    /// A bias, `Bias1` or dual offset outside `[0, 1]` (or not a number).
+    #[error("{quantity} {value} is not a depth in [0, 1]")]
+    Depth {
+        /// `bias`, `bias1` or `offset`.
+        quantity: &'static str,
+        /// The value given.
+        value: f64,
+    },
+    /// Reference rays per pixel side outside `1..=16`.
+    #[error("reference_rays {0} is outside 1..=16")]
+    ReferenceRays(u32),
+    /// A map side or image side of zero.
+    #[error("{quantity} is 0: it must be at least 1")]
+    Zero {
+        /// `map_size`, `width` or `height`.
+        quantity: &'static str,
+    },
+}
+
+/// A render configuration checked once: its map and camera targets.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Checked {
+    /// The light pass's target (the map).
+    pub(super) map: RasterConfig,
+    /// The camera pass's target (the image).
+    pub(super) image: RasterConfig,
+}
+
+impl RenderConfig {
+    /// The default render (`umbra render`'s): Wang & Molnar's second depth
+    /// with virtual samples, a 24-bit 1024² map, bilinear filtering, no
+    /// bias, the algorithm's culling, 960×540 against 4² reference rays a
+    /// pixel. Change fields with struct update syntax, then [`checked`](Self::checked).
+    pub const DEFAULT: Self = Self {
+        algorithm: Algorithm::Second,
+        format: DepthFormatKind::D24,
+        map_size: 1024,
+        filter: Filter::Bilinear,
+        bias: 0.0,
+        virtual_samples: true,
+        width: 960,
+        height: 540,
+        reference_rays: 4,
+        culling: Culling::ALGORITHM,
+    };
+
+    /// Reference rays per pixel side a render takes.
+    pub const REFERENCE_RAYS: std::ops::RangeInclusive<u32> = 1..=16;
+
+    /// `value` if it is a depth in `[0, 1]`, for the quantity named.
+    ///
+    /// # Errors
+    /// [`RenderConfigError::Depth`].
+    pub fn depth(quantity: &'static str, value: f64) -> Result<f64, RenderConfigError> {
+        if value.is_finite() && (0.0..=1.0).contains(&value) {
+            Ok(value)
+        } else {
+            Err(RenderConfigError::Depth { quantity, value })
+        }
+    }
+
+    /// The configuration, if a render takes it: every bias and offset a
+    /// depth in `[0, 1]`, 1 to 16 reference rays a side, no side of zero.
+    /// (Sizes against a machine's [`Limits`] and the filter against the
+    /// shadow unit are checked when the render starts.) Every render
+    /// checks this first; the command line and sweep files call it to
+    /// report a mistake before anything runs.
+    ///
+    /// ```
+    /// use umbra_sim::render::{Algorithm, RenderConfig, RenderConfigError};
+    /// let first = RenderConfig { algorithm: Algorithm::First, bias: 0.002, ..RenderConfig::DEFAULT };
+    /// assert!(first.checked().is_ok());
+    /// let bad = RenderConfig { bias: 1.5, ..first };
+    /// assert_eq!(bad.checked(), Err(RenderConfigError::Depth { quantity: "bias", value: 1.5 }));
+    /// ```
+    ///
+    /// # Errors
+    /// [`RenderConfigError`] naming the first quantity out of range.
+    pub fn checked(self) -> Result<Self, RenderConfigError> {
+        Self::depth("bias", self.bias)?;
+        if let Some(hi) = self.algorithm.bias_hi() {
+            Self::depth("bias1", hi)?;
+        }
+        if let Some(offset) = self.algorithm.offset() {
+            Self::depth("offset", offset)?;
+        }
+        if !Self::REFERENCE_RAYS.contains(&self.reference_rays) {
+            return Err(RenderConfigError::ReferenceRays(self.reference_rays));
+        }
+        for (quantity, side) in [("map_size", self.map_size), ("width", self.width), ("height", self.height)] {
+            if side == 0 {
+                return Err(RenderConfigError::Zero { quantity });
+            }
+        }
+        Ok(self)
+    }
+
+    /// The configuration in words, every field (for the records outputs carry).
+    #[must_use]
+    pub fn describe(&self) -> String {
+        format!(
+            "{}, {}, map {}², filter {}, bias {}, virtual samples {}, culling {}, image {}x{}, {}² reference rays",
+            self.algorithm.flags().trim_start_matches("--algo "),
+            self.format.name(),
+            self.map_size,
+            self.filter,
+            self.bias,
+            self.virtual_samples,
+            self.culling,
+            self.width,
+            self.height,
+            self.reference_rays
+        )
+    }
+
+    /// The `umbra render` command line that renders this configuration of
+    /// the scene `source` (a bundled name or a file) again, bit for bit.
+    #[must_use]
+    pub fn command(&self, source: &str) -> String {
+        let quoted = crate::io::provenance::shell_word(source);
+        let mut c = format!(
+            "umbra render {quoted} {} --depth {} --map {} --filter {} --bias {} --width {} --height {} --reference-rays {}",
+            self.algorithm.flags(),
+            self.format.name(),
+            self.map_size,
+            self.filter,
+            self.bias,
+            self.width,
+            self.height,
+            self.reference_rays
+        );
+        if !self.virtual_samples {
+            c.push_str(" --no-virtual-samples");
+        }
+        if self.culling != Culling::ALGORITHM {
+            c.push_str(&format!(" --cull {}", self.culling));
+        }
+        c
+    }
+
+    /// Whether a render of `scene` with this configuration is within
+    /// `limits` (the map, the image, the triangles and the memory all
+    /// together, [`Footprint::render`]): the check [`render()`](super::render()) makes before
+    /// it allocates, for a caller to make before it writes anything.
+    ///
+    /// # Errors
+    /// [`RenderError`] naming the first quantity beyond its limit.
+    pub fn within(&self, scene: &Scene, limits: &Limits) -> Result<(), RenderError> {
+        self.check(scene, limits, RasterConfig::DEFAULT_TILE_SIZE).map(|_| ())
+    }
+
+    /// Check the map side, the image size and the scene's triangles against
+    /// `limits`, before any buffer is allocated, and the targets the passes
+    /// will draw, both in `tile`-pixel tiles.
+    pub(crate) fn check(&self, scene: &Scene, limits: &Limits, tile: u32) -> Result<Checked, RenderError> {
+        self.checked()?;
+        limits.check_map(self.map_size)?;
+        limits.check_image(self.width, self.height)?;
+        let triangles: usize = scene.objects.iter().map(|o| o.mesh.triangles.len()).sum();
+        let triangles = u64::try_from(triangles).unwrap_or(u64::MAX);
+        limits.check_triangles(triangles)?;
+        let pixels = u64::from(self.width) * u64::from(self.height);
+        limits.check_memory("the render", Footprint::render(pixels, self.map_size, triangles))?;
+        let bits = RasterConfig::DEFAULT_SUBPIXEL_BITS;
+        let image = RasterConfig::new(self.width, self.height, tile, bits).map_err(RenderError::ImageSize)?;
+        // Shadow volumes draw no map: one texel stands for it.
+        let side = if self.algorithm == Algorithm::Volumes { 1 } else { self.map_size };
+        let map = RasterConfig::new(side, side, tile, bits).map_err(RenderError::MapSize)?;
+        Ok(Checked { map, image })
+    }
+}
