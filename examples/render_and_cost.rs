@@ -18,8 +18,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let m = &render.metrics;
     println!("{}: {}", scene.name, config.describe());
     println!(
-        "  {:.3} % misclassified: {} acne, {} leaks, {} at edges",
-        m.misclassified_percent, m.acne, m.leaks, m.edge_placement
+        "  {:.3} % misclassified: {} acne, {} detachment, {} leaks; {} aliasing, {} penumbra",
+        m.misclassified_percent, m.acne, m.detachment, m.leaks, m.aliasing, m.penumbra
     );
 
     let cost = umbra::sim::cost(&scene, &config, &arch, &limits)?;

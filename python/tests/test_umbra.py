@@ -58,7 +58,9 @@ def test_render_arrays_are_the_cli_npy_files_bit_for_bit(tmp_path):
         # The verdict codes count what the metrics count.
         assert int((r["verdict"] == 3).sum()) == r["acne_px"]
         assert int((r["verdict"] == 4).sum()) == r["leaks_px"]
-        assert int((r["verdict"] == 2).sum()) == r["edge_placement_px"]
+        assert int((r["verdict"] == 2).sum()) == r["aliasing_px"]
+        assert int((r["verdict"] == 5).sum()) == r["detachment_px"]
+        assert int((r["verdict"] == 6).sum()) == r["penumbra_px"]
 
 
 def test_maps_are_the_stored_integers():

@@ -145,13 +145,15 @@ def render(
 ) -> dict[str, Any]:
     """Render a scene against its exact reference, as ``umbra render`` does.
 
-    Returns the metrics (``misclassified_percent``, ``acne``, ``leaks``,
-    ``edge_placement``, ...) and the arrays, all ``height × width`` but the
+    Returns the metrics (``misclassified_percent``, ``acne_px``,
+    ``detachment_px``, ``leaks_px``, ``aliasing_px``, ``penumbra_px``, ...)
+    and the arrays, all ``height × width`` but the
     maps: ``z1`` and ``z2`` (the stored integers, ``map × map``; ``None``
     where the algorithm keeps none), ``shadow`` (float32, 0 lit to 1
     shadowed, NaN for the background), ``reference`` (the exact shadowed
-    area fraction) and ``verdict`` (uint8: 0 unevaluated, 1 right, 2 edge
-    placement, 3 acne, 4 leak); and ``render_again``, the command line
+    area fraction) and ``verdict`` (uint8: 0 unevaluated, 1 right, 2
+    aliasing, 3 acne, 4 leak, 5 detachment, 6 penumbra); and
+    ``render_again``, the command line
     that renders it again.
     """
     s = _as_scene(scene)

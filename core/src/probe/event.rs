@@ -247,6 +247,39 @@ pub struct Fragment {
     pub triangle: u32,
 }
 
+/// One sample the shadow unit compared: where, the receiver's depth and
+/// bias, the depth it was compared against and the outcome — what a
+/// judge of the unit's errors needs to say *why* a pixel came out wrong
+/// (acne: the reference is the receiver's own surface; detachment: only
+/// the bias moved the receiver past an occluder the map holds; a leak:
+/// the reference lies behind the receiver under a first-layer occluder).
+/// Reported only to probes that set [`Probe::TAPS`](crate::Probe::TAPS).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Tap {
+    /// Column of the texel (outside the map for a sample off it).
+    pub x: i64,
+    /// Row of the texel.
+    pub y: i64,
+    /// The receiver's depth at this sample before the bias, rounded to
+    /// the map's format ([`PlaneZ`](crate::depth::PlaneZ) bits): the
+    /// point's depth, or its tangent plane at the texel's centre.
+    pub receiver: i64,
+    /// The bias subtracted from the receiver for this sample (`PlaneZ` bits).
+    pub bias: i64,
+    /// The depth the test compared against (`PlaneZ` bits): `z1`, `z2`,
+    /// their midpoint or the dual depth; `None` off the map (lit).
+    pub reference: Option<i64>,
+    /// The map's first layer, `z1`, at the texel (`PlaneZ` bits); `None`
+    /// off the map or for a map without one (front-face culled).
+    pub first: Option<i64>,
+    /// Whether the sample came out shadowed.
+    pub shadowed: bool,
+    /// The sample's weight in the filter (the filter's own units: 1 for
+    /// point, box, jittered and silhouette samples; the fixed-point
+    /// bilinear weight, out of 2³², for bilinear ones).
+    pub weight: u64,
+}
+
 /// One texel of the map read by the shadow unit, for probes that model
 /// memory (caches, address streams).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -13,7 +13,7 @@
 mod event;
 mod totals;
 
-pub use event::{Buffer, CullLevel, Event, FlushReason, Fragment, RejectReason, TexelRead};
+pub use event::{Buffer, CullLevel, Event, FlushReason, Fragment, RejectReason, Tap, TexelRead};
 pub use totals::Totals;
 
 /// Receives unit events. Every method has an empty default.
@@ -24,6 +24,12 @@ pub trait Probe {
 
     /// Whether [`Probe::texel_read`] is called (off by default, compiled out).
     const TEXELS: bool = false;
+
+    /// Whether [`Probe::tap`] is called (off by default, compiled out). A
+    /// probe that watches taps sees every sample of every lookup: the
+    /// shadow unit's shortcuts (the tile-bounds cull, the uniform box)
+    /// are skipped for it, which gives the same result.
+    const TAPS: bool = false;
 
     /// Whether the probe looks at [`Probe::event`] (on by default). A driver
     /// may size the stores and bins of a pass no one watches for its own
@@ -47,6 +53,12 @@ pub trait Probe {
     fn texel_read(&mut self, read: TexelRead) {
         let _ = read;
     }
+
+    /// A sample the shadow unit compared (only when [`Probe::TAPS`] is set).
+    #[inline(always)]
+    fn tap(&mut self, tap: Tap) {
+        let _ = tap;
+    }
 }
 
 /// The probe that does nothing and costs nothing.
@@ -60,6 +72,7 @@ impl Probe for NoProbe {
 impl<P: Probe + ?Sized> Probe for &mut P {
     const FRAGMENTS: bool = P::FRAGMENTS;
     const TEXELS: bool = P::TEXELS;
+    const TAPS: bool = P::TAPS;
     const EVENTS: bool = P::EVENTS;
 
     #[inline(always)]
@@ -75,5 +88,10 @@ impl<P: Probe + ?Sized> Probe for &mut P {
     #[inline(always)]
     fn texel_read(&mut self, read: TexelRead) {
         (**self).texel_read(read);
+    }
+
+    #[inline(always)]
+    fn tap(&mut self, tap: Tap) {
+        (**self).tap(tap);
     }
 }

@@ -42,7 +42,8 @@ pub(crate) fn lookup<F: DepthFormat, P: Probe, K: Built>(
         probe.event(Event::LookupCulled { texels: footprint.count() });
         return Shadow::ZERO;
     };
-    if cfg.cull_lookups {
+    // A probe that watches taps sees every sample: the cull's result is theirs.
+    if cfg.cull_lookups && !P::TAPS {
         let (bias_lo, bias_hi) = cfg.bias.bounds();
         // The receiver's depth range over the footprint: a plane takes its
         // extremes at the corners (a receiver without a slope is one depth).
@@ -68,7 +69,9 @@ pub(crate) fn lookup<F: DepthFormat, P: Probe, K: Built>(
             return Shadow::ONE;
         }
     }
-    if let (Filter::Box { .. }, true, None, Bias::Constant(b), true) = (cfg.filter, whole, slope, cfg.bias, K::BOX) {
+    if let (Filter::Box { .. }, true, None, Bias::Constant(b), true, false) =
+        (cfg.filter, whole, slope, cfg.bias, K::BOX, P::TAPS)
+    {
         return uniform_box(
             map,
             cfg.test,
@@ -135,20 +138,20 @@ fn filter<F: DepthFormat, P: Probe, K: Built>(
 ) -> Shadow {
     let mut rng = oorandom::Rand32::new(l.seed);
     let mut reads = 0u32;
-    let mut sample = |x: i32, y: i32, z: i64, rng: &mut oorandom::Rand32| -> bool {
+    let mut sample = |x: i32, y: i32, z: i64, weight: u64, rng: &mut oorandom::Rand32| -> bool {
         let bias = match cfg.bias {
             Bias::Constant(b) => b.to_bits(),
             Bias::Range { lo, hi } if K::BIAS_RANGE => lerp_bits(lo.to_bits(), hi.to_bits(), rng.rand_u32()),
             Bias::Range { .. } => 0,
         };
-        let shadowed = map.sample(cfg.test, (x.into(), y.into()), z, bias, probe);
+        let shadowed = map.sample(cfg.test, (x.into(), y.into()), z, bias, weight, probe);
         reads += u32::from(shadowed.is_some());
         shadowed.unwrap_or(false)
     };
     let result = match (cfg.filter, grid) {
         (Filter::Point, _) if K::POINT => {
             let (x, y) = (footprint.x0, footprint.y0);
-            Shadow::from_num(u8::from(sample(x, y, l.depth_at(x, y), &mut rng)))
+            Shadow::from_num(u8::from(sample(x, y, l.depth_at(x, y), 1, &mut rng)))
         }
         (Filter::Bilinear, _) if K::BILINEAR => {
             // Weights from the fractional position, 16 bits each: they sum to 2³² exactly.
@@ -167,7 +170,7 @@ fn filter<F: DepthFormat, P: Probe, K: Built>(
                 .zip(z)
                 .map(
                     |((&(dx, dy), wgt), z)| {
-                        if sample(footprint.x0 + dx, footprint.y0 + dy, z, &mut rng) { wgt } else { 0 }
+                        if sample(footprint.x0 + dx, footprint.y0 + dy, z, wgt, &mut rng) { wgt } else { 0 }
                     },
                 )
                 .sum();
@@ -181,7 +184,7 @@ fn filter<F: DepthFormat, P: Probe, K: Built>(
             for y in footprint.y0..=footprint.y1 {
                 let mut z = l.depth_at(footprint.x0, y);
                 for x in footprint.x0..=footprint.x1 {
-                    count += u64::from(sample(x, y, z, &mut rng));
+                    count += u64::from(sample(x, y, z, 1, &mut rng));
                     z = z.saturating_add(du);
                 }
             }
@@ -204,7 +207,7 @@ fn filter<F: DepthFormat, P: Probe, K: Built>(
                     let jv = jitter(dt / 2, rng.rand_u32());
                     // Jittered texels are irregular: the plane is evaluated directly.
                     let (u, v) = (floor(s.saturating_add(ju)), floor(t.saturating_add(jv)));
-                    count += u64::from(sample(u, v, l.depth_at(u, v), &mut rng));
+                    count += u64::from(sample(u, v, l.depth_at(u, v), 1, &mut rng));
                 }
             }
             fraction(count, u64::from(ns * nt))

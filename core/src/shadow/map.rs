@@ -5,7 +5,7 @@ use crate::config::RasterConfig;
 use crate::depth::DepthFormat;
 use crate::depth::{Texel, TileState};
 use crate::grid::TileRect;
-use crate::probe::{Buffer, Probe, TexelRead};
+use crate::probe::{Buffer, Probe, Tap, TexelRead};
 
 /// A light pass's maps, as the shadow unit reads them.
 #[derive(Clone, Copy, Debug)]
@@ -78,6 +78,8 @@ impl<'a, F: DepthFormat> MapView<'a, F> {
     /// bits), rounded to the map's format, lies behind the test's reference
     /// at texel `(x, y)`, the texels read reported to probes that ask;
     /// `None` outside the map (lit, nothing read).
+    /// A probe that watches taps ([`Probe::TAPS`]) is told the sample, with
+    /// its `weight` in the filter.
     #[inline]
     pub(crate) fn sample<P: Probe>(
         &self,
@@ -85,13 +87,28 @@ impl<'a, F: DepthFormat> MapView<'a, F> {
         (x, y): (i64, i64),
         z: i64,
         bias: i64,
+        weight: u64,
         probe: &mut P,
     ) -> Option<bool> {
-        let (x, y) = (u32::try_from(x).ok()?, u32::try_from(y).ok()?);
-        if x >= self.raster.width() || y >= self.raster.height() {
-            return None;
+        let inside = match (u32::try_from(x), u32::try_from(y)) {
+            (Ok(u), Ok(v)) if u < self.raster.width() && v < self.raster.height() => Some((u, v)),
+            _ => None,
+        };
+        let shadowed = inside.map(|(u, v)| self.compare(test, u, v, at_format::<F>(z.saturating_sub(bias)), probe));
+        if P::TAPS {
+            let first = inside.filter(|_| !self.second_in_z1).map(|(u, v)| self.texel(self.z1, u, v));
+            probe.tap(Tap {
+                x,
+                y,
+                receiver: at_format::<F>(z),
+                bias,
+                reference: inside.map(|(u, v)| self.reference(test, u, v)),
+                first,
+                shadowed: shadowed.unwrap_or(false),
+                weight,
+            });
         }
-        Some(self.compare(test, x, y, at_format::<F>(z.saturating_sub(bias)), probe))
+        shadowed
     }
 
     /// The sample of texel `(x, y)`, inside the map, for a receiver already

@@ -39,7 +39,7 @@ pub fn shadow<S: SilStore, F: DepthFormat, P: Probe>(
     }
     let bias = cfg.bias().bounds().0;
     let mut reads = 0u32;
-    let verdicts = corners(i, j).map(|c| match map.sample(cfg.test(), c, z.to_bits(), bias, probe) {
+    let verdicts = corners(i, j).map(|c| match map.sample(cfg.test(), c, z.to_bits(), bias, 1, probe) {
         Some(s) => {
             reads += 1;
             s

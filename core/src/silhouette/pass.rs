@@ -232,6 +232,6 @@ impl<'m, S: SilStore, F: DepthFormat> SilhouettePass<'m, S, F> {
     fn hidden(&self, i: i64, j: i64, z: i64) -> bool {
         let bias = self.cfg.bias().bounds().0;
         let test = self.cfg.test();
-        corners(i, j).into_iter().all(|c| self.map.sample(test, c, z, bias, &mut NoProbe) == Some(true))
+        corners(i, j).into_iter().all(|c| self.map.sample(test, c, z, bias, 1, &mut NoProbe) == Some(true))
     }
 }

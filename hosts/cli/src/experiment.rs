@@ -16,8 +16,8 @@ pub(super) struct PlanArgs {
     /// A bundled scene by name or a scene file.
     #[arg(default_value = "table-and-sphere")]
     pub(super) scene: String,
-    /// Artifacts allowed (acne and leaks away from the exact shadow
-    /// boundary), e.g. `0.1%` (percent of the pixels facing the light).
+    /// Artifacts allowed (acne, detachment and leaks, judged by their
+    /// cause), e.g. `0.1%` (percent of the pixels facing the light).
     #[arg(long, default_value = "0.1%")]
     pub(super) error_budget: String,
     /// The architecture whose cost is minimised (default: talisman).

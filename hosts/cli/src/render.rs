@@ -129,9 +129,9 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
     progress.finish_and_clear();
     let (w, h) = (r.maps.maps.config.raster.width(), r.maps.maps.config.raster.height());
     let f = &mut folder;
-    write_shadow_image(f, "shaded.png", &r.image, scene.light().direction())?;
+    write_shadow_image(f, "shaded.png", &r.image, &r.truth)?;
     write_shadow_term(f, "shadow.png", &r.image)?;
-    write_error_image(f, "error.png", &r.image, &r.truth, scene.light().direction())?;
+    write_error_image(f, "error.png", &r.image, &r.verdicts, scene.light().direction())?;
     for (name, data) in r.maps.stored() {
         let map = RawMap { format: r.maps.format, width: w, height: h, raw: data };
         write_npy(f, &format!("{name}.npy"), &map)?;
@@ -176,22 +176,25 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
         m.mean_abs_error
     );
     say!(
-        "artifacts (beyond the edge band, shade off the reference by more than {}): {} acne ({} on terminators; {:.1} px of excess shadow), {} leaks ({:.1} px of missing shadow): {:.3} % artifacts; {} edge placement within the band (median {} / 95th percentile {} px)",
+        "artifacts (wrong by their cause, shade off the reference by more than {} or on the wrong side of ½): {} acne ({} on terminators; {:.1} px of excess shadow), {} detachment ({:.1} px of missing shadow), {} leaks ({:.1} px of missing shadow): {:.3} % artifacts",
         SHADE_STEP,
         m.acne,
         m.terminator_acne,
         m.acne_area,
+        m.detachment,
+        m.detachment_area,
         m.leaks,
         m.leak_area,
         m.artifact_percent,
-        m.edge_placement,
-        m.band[0],
-        m.band[1]
     );
     say!(
-        "½ verdict beyond the band: {} false shadow, {} false light; {} ties at ½; RMS area error {:.4}; boundary displacement {:.2} / {:.2} / {:.2} pixels, {:.2} / {:.2} / {:.2} texels (mean / 95th percentile / max)",
-        m.half_acne,
-        m.half_leaks,
+        "not artifacts: {} aliasing ({:.1} px), {} penumbra ({:.1} px; within {} / {} px of the exact edge, median / 95th percentile); {} ties at ½; RMS area error {:.4}; boundary displacement {:.2} / {:.2} / {:.2} pixels, {:.2} / {:.2} / {:.2} texels (mean / 95th percentile / max)",
+        m.aliasing,
+        m.aliasing_area,
+        m.penumbra,
+        m.penumbra_area,
+        m.penumbra_width[0],
+        m.penumbra_width[1],
         m.ties,
         m.rms_error,
         m.displacement[0],

@@ -58,8 +58,10 @@ fn render_again(command: &str, name: &str) -> serde_json::Value {
 fn assert_same(m: &serde_json::Value, row: &Row) {
     let (field, want, c) = (|name: &str| m[name].as_u64(), row.metrics.expect("measured"), &row.config.command);
     assert_eq!(field("evaluated_px"), Some(want.evaluated_px), "{c}");
-    assert_eq!(field("edge_placement_px"), Some(want.edge_placement_px), "{c}");
+    assert_eq!(field("aliasing_px"), Some(want.aliasing_px), "{c}");
+    assert_eq!(field("penumbra_px"), Some(want.penumbra_px), "{c}");
     assert_eq!(field("acne_px"), Some(want.acne_px), "{c}");
+    assert_eq!(field("detachment_px"), Some(want.detachment_px), "{c}");
     assert_eq!(field("leaks_px"), Some(want.leaks_px), "{c}");
     assert_eq!(m["mean_abs_error"].as_f64(), Some(want.mean_abs_error), "{c}");
 }

@@ -1,7 +1,7 @@
 //! Probes that pass the core's events on: to two probes ([`Tee`]) or to
 //! each of several ([`Fan`]).
 
-use umbra_core::probe::{Event, Fragment, Probe, TexelRead};
+use umbra_core::probe::{Event, Fragment, Probe, Tap, TexelRead};
 
 /// Forwards every event, fragment and texel read to two probes.
 #[derive(Clone, Debug, Default)]
@@ -10,6 +10,7 @@ pub struct Tee<A, B>(pub A, pub B);
 impl<A: Probe, B: Probe> Probe for Tee<A, B> {
     const FRAGMENTS: bool = A::FRAGMENTS || B::FRAGMENTS;
     const TEXELS: bool = A::TEXELS || B::TEXELS;
+    const TAPS: bool = A::TAPS || B::TAPS;
     const EVENTS: bool = A::EVENTS || B::EVENTS;
 
     #[inline]
@@ -29,6 +30,12 @@ impl<A: Probe, B: Probe> Probe for Tee<A, B> {
         self.0.texel_read(r);
         self.1.texel_read(r);
     }
+
+    #[inline]
+    fn tap(&mut self, t: Tap) {
+        self.0.tap(t);
+        self.1.tap(t);
+    }
 }
 
 /// Every event to each of several probes, in order.
@@ -38,6 +45,7 @@ pub struct Fan<P>(pub Vec<P>);
 impl<P: Probe> Probe for Fan<P> {
     const FRAGMENTS: bool = P::FRAGMENTS;
     const TEXELS: bool = P::TEXELS;
+    const TAPS: bool = P::TAPS;
     const EVENTS: bool = P::EVENTS;
 
     #[inline]
@@ -53,5 +61,10 @@ impl<P: Probe> Probe for Fan<P> {
     #[inline]
     fn texel_read(&mut self, r: TexelRead) {
         self.0.iter_mut().for_each(|p| p.texel_read(r));
+    }
+
+    #[inline]
+    fn tap(&mut self, t: Tap) {
+        self.0.iter_mut().for_each(|p| p.tap(t));
     }
 }

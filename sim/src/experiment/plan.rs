@@ -84,10 +84,10 @@ impl PlanSpec {
 /// Error and cost of one configuration.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Figures {
-    /// Artifacts (acne and leaks away from the shadow boundary), percent
+    /// Artifacts (acne, detachment and leaks, by their cause), percent
     /// of the evaluated pixels: what the budget bounds.
     pub artifact_percent: f64,
-    /// Every misclassified pixel, edge placement included, percent.
+    /// Every misclassified pixel, aliasing included, percent.
     pub misclassified_percent: f64,
     /// RMS area error.
     pub rms_error: f64,

@@ -109,7 +109,7 @@ fn camera_matrix(scene: &Scene, width: u32, height: u32) -> Mat4 {
 
 /// The shading unit's configuration for `options`, seen through `camera`,
 /// against the scene's light: flat tangent planes, the fixed seed.
-fn shade_config(scene: &Scene, camera: Mat4, options: &CameraOptions) -> ShadeConfig {
+pub(crate) fn shade_config(scene: &Scene, camera: Mat4, options: &CameraOptions) -> ShadeConfig {
     ShadeConfig {
         camera,
         light: scene.light().view_projection(),

@@ -2,7 +2,8 @@
 //! writes as `.npy` files beside its pictures, and what a script reads.
 
 use super::Render;
-use crate::truth::metrics::{Verdict, verdicts};
+use crate::truth::cause::Cause;
+use crate::truth::metrics::Verdict;
 
 /// A render's per-pixel arrays, each `height × width` in row-major order
 /// (the camera image's first row first).
@@ -21,30 +22,35 @@ pub struct PixelArrays {
     /// background.
     pub reference: Vec<f32>,
     /// Each pixel's verdict as a code ([`Verdict::code`]): 0 unevaluated,
-    /// 1 right, 2 edge placement, 3 acne, 4 leak.
+    /// 1 right, 2 aliasing, 3 acne, 4 leak, 5 detachment, 6 penumbra.
     pub verdict: Vec<u8>,
 }
 
 impl Verdict {
     /// Every verdict in code order ([`Verdict::code`]), with its name.
-    pub const NAMES: [(Self, &'static str); 5] = [
+    pub const NAMES: [(Self, &'static str); 7] = [
         (Self::Unevaluated, "unevaluated"),
         (Self::Right, "right"),
-        (Self::EdgePlacement, "edge placement"),
-        (Self::Acne, "acne"),
-        (Self::Leak, "leak"),
+        (Self::Wrong(Cause::Aliasing), "aliasing"),
+        (Self::Wrong(Cause::Acne), "acne"),
+        (Self::Wrong(Cause::Leak), "leak"),
+        (Self::Wrong(Cause::Detachment), "detachment"),
+        (Self::Wrong(Cause::Penumbra), "penumbra"),
     ];
 
     /// The verdict's code in [`PixelArrays::verdict`]: its place in
-    /// [`Verdict::NAMES`].
+    /// [`Verdict::NAMES`] (the codes of earlier releases kept: 2 was edge
+    /// placement, now aliasing).
     #[must_use]
     pub const fn code(self) -> u8 {
         match self {
             Self::Unevaluated => 0,
             Self::Right => 1,
-            Self::EdgePlacement => 2,
-            Self::Acne => 3,
-            Self::Leak => 4,
+            Self::Wrong(Cause::Aliasing) => 2,
+            Self::Wrong(Cause::Acne) => 3,
+            Self::Wrong(Cause::Leak) => 4,
+            Self::Wrong(Cause::Detachment) => 5,
+            Self::Wrong(Cause::Penumbra) => 6,
         }
     }
 }
@@ -74,7 +80,7 @@ impl PixelArrays {
             .map(|p| if p.triangle == umbra_core::NO_TRIANGLE { f32::NAN } else { p.shadow.to_num::<f32>() })
             .collect();
         let reference = render.truth.iter().map(|t| t.map_or(f32::NAN, |t| (1.0 - t.visibility) as f32)).collect();
-        let verdict = verdicts(&image.pixels, &render.truth, image.width).into_iter().map(Verdict::code).collect();
+        let verdict = render.verdicts.iter().copied().map(Verdict::code).collect();
         Self { width: image.width, height: image.height, shadow, reference, verdict }
     }
 }

@@ -8,6 +8,7 @@ pub mod arrays;
 mod config;
 pub mod costed;
 pub mod pictures;
+pub mod replay;
 pub mod shared;
 
 use indicatif::ProgressBar;
@@ -20,6 +21,7 @@ use umbra_core::{DepthFormat, DepthUnit, LightPassConfig, Probe, RasterConfig, T
 pub(crate) use self::config::Checked;
 pub use self::config::{RenderConfig, RenderConfigError};
 pub use self::costed::{cost, cost_others, cost_unshadowed, render_costed};
+use self::replay::{PassInputs, judged};
 use crate::base::counters::Counters;
 use crate::base::maps::{Tiling, with_format};
 use crate::base::probes::Tee;
@@ -30,10 +32,10 @@ pub use crate::pass::algorithm::{Algorithm, Cull, Culling};
 use crate::pass::camera::{self, CameraFrame, CameraImage, CameraOptions, map_view, visibility, volumes};
 use crate::pass::light::{self, DEFAULT_BIN_CAPACITY, LightFrame, LightMaps, LightOptions, RawMaps};
 use crate::pass::occluders::silhouette_map;
-use crate::truth::metrics::{Metrics, compare};
+use crate::truth::metrics::{Fields, Metrics, Verdict};
 use crate::truth::reference::{PixelTruth, Reference, ReferenceError};
 use crate::world::occluders::Occluders;
-use crate::world::scene::Scene;
+use crate::world::scene::{LightSource, Scene};
 
 /// Why a render failed.
 #[derive(Debug, thiserror::Error)]
@@ -94,6 +96,8 @@ pub struct Render {
     pub truth: Vec<Option<PixelTruth>>,
     /// The render against the reference.
     pub metrics: Metrics,
+    /// Each pixel's verdict, wrong ones by their cause.
+    pub verdicts: Vec<Verdict>,
     /// Events of the light pass.
     pub light_events: Counters,
     /// Events of the camera pass.
@@ -123,7 +127,7 @@ pub enum TruthSource<'p> {
 /// let r = umbra_sim::render(&scene, &cfg, &Limits::DEFAULT, TruthSource::Quiet)?;
 /// let m = &r.metrics;
 /// assert_eq!(m.evaluated as usize, r.truth.iter().flatten().filter(|t| t.faces_light).count());
-/// assert!(m.edge_placement + m.acne + m.leaks <= m.evaluated);
+/// assert!(m.aliasing + m.penumbra + m.acne + m.detachment + m.leaks <= m.evaluated);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 ///
@@ -144,20 +148,18 @@ pub fn render(
 /// configuration's image size: one built is cast through the triangles the
 /// render's own camera pass saw (the visibility of [`truth`], bit for bit).
 fn truth_of(
-    scene: &Scene,
     cfg: &RenderConfig,
     truth_from: TruthSource<'_>,
     image: &CameraImage,
+    (reference, light): (&Reference, &LightSource),
 ) -> Result<Vec<Option<PixelTruth>>, RenderError> {
-    let build = |progress: &ProgressBar| -> Result<_, RenderError> {
+    let build = |progress: &ProgressBar| {
         let ids: Vec<u32> = image.pixels.iter().map(|p| p.triangle).collect();
-        let light = scene.light().source();
-        let reference = Reference::new(&scene.triangles())?;
-        Ok(reference.image(&ids, &image.camera, cfg.width, cfg.height, &light, cfg.reference_rays, progress))
+        reference.image(&ids, &image.camera, cfg.width, cfg.height, light, cfg.reference_rays, progress)
     };
     let truth = match truth_from {
-        TruthSource::Quiet => build(&ProgressBar::hidden())?,
-        TruthSource::Build(progress) => build(progress)?,
+        TruthSource::Quiet => build(&ProgressBar::hidden()),
+        TruthSource::Build(progress) => build(progress),
         TruthSource::Given(t) => t,
     };
     if truth.len() as u64 != u64::from(cfg.width) * u64::from(cfg.height) {
@@ -184,7 +186,7 @@ pub fn truth(
 ) -> Result<Vec<Option<PixelTruth>>, RenderError> {
     let mut frame = CameraFrame::default();
     let vis = visibility(&mut frame, scene, (width, height), Tiling::DEFAULT, &mut umbra_core::NoProbe)?;
-    let reference = Reference::new(&scene.triangles())?;
+    let reference = Reference::with_objects(&scene.triangles(), &scene.triangle_objects())?;
     let light = scene.light().source();
     Ok(reference.image(frame.ids(), &vis.camera, width, height, &light, samples, progress))
 }
@@ -281,8 +283,22 @@ pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
     if frame.maps().is_some() && light_events.totals.setups == 0 {
         return Err(RenderError::EmptyMap);
     }
-    let truth = truth_of(scene, cfg, truth_from, &image)?;
-    let metrics = compare(&image.pixels, &truth, image.width);
+    let reference = Reference::with_objects(&scene.triangles(), &scene.triangle_objects())?;
+    let truth = truth_of(cfg, truth_from, &image, (&reference, &scene.light().source()))?;
+    let fields = Fields::new(&truth, image.width);
+    let units = cfg.algorithm.units::<F>(cfg.bias);
+    let options = CameraOptions {
+        width: image.width,
+        height: image.height,
+        shadow: ShadowConfig::new(units.test, units.bias, cfg.filter, true)?,
+        virtual_samples: units.virtual_samples(cfg.virtual_samples),
+        tiling: Tiling::DEFAULT,
+    };
+    let ids: Vec<u32> = image.pixels.iter().map(|p| p.triangle).collect();
+    let view = frame.maps().map(|maps| map_view::<F>(maps, units.front_culled)).transpose()?;
+    let inputs =
+        PassInputs { scene, seen: (&ids, image.camera), view: view.as_ref(), options: &options, kind: units.map };
+    let (metrics, verdicts) = judged(&inputs, &image.pixels, (&truth, &fields, &reference))?;
     let maps = frame.maps().map_or_else(
         // Shadow volumes draw no map: one far texel stands for it.
         || LightMaps {
@@ -294,5 +310,5 @@ pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
         light::widen,
     );
     let maps = RawMaps { format: cfg.format, maps };
-    Ok((Render { image, maps, truth, metrics, light_events, camera_events, command }, light_also))
+    Ok((Render { image, maps, truth, metrics, verdicts, light_events, camera_events, command }, light_also))
 }

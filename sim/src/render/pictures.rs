@@ -7,13 +7,18 @@ use std::path::PathBuf;
 use crate::io::folder::OutputFolder;
 use crate::io::output::{OutputError, font, save};
 use crate::pass::camera::CameraImage;
-use crate::truth::metrics::{Verdict, verdicts};
+use crate::truth::cause::Cause;
+use crate::truth::metrics::Verdict;
 use crate::truth::reference::PixelTruth;
 
 /// Write the camera pass as a picture a person can read: surfaces grey by
-/// their facing to the light (`light_dir`, from the light into the scene;
-/// faces turned away are dark), shadowed parts dark in proportion to the
-/// shadow fraction, the background black.
+/// their facing to the light (the cosine to the light at each pixel's
+/// surface point, from the exact reference `truth`; faces turned away are
+/// dark), shadowed parts dark in proportion to the shadow fraction, the
+/// background black. The picture is exposed so that
+/// the brightest tenth of the surfaces facing the light is white: a scene
+/// lit at grazing (every surface's cosine a few hundredths) still shows
+/// its lit surfaces apart from its shadows.
 ///
 /// # Errors
 /// [`OutputError::Image`].
@@ -21,20 +26,28 @@ pub fn write_shadow_image(
     folder: &mut OutputFolder,
     name: &str,
     image: &CameraImage,
-    light_dir: umbra_core::glam::Vec3,
+    truth: &[Option<PixelTruth>],
 ) -> Result<PathBuf, OutputError> {
-    let to_light = -light_dir.normalize_or_zero();
+    let lambert = |k: usize| truth.get(k).copied().flatten().map_or(0.0, |t| t.light_cos.max(0.0));
+    let mut facing: Vec<f64> = (0..image.pixels.len()).map(lambert).filter(|&l| l > 0.0).collect();
+    let brightest = if facing.is_empty() {
+        1.0
+    } else {
+        let at = facing.len() * 9 / 10;
+        *facing.select_nth_unstable_by(at, f64::total_cmp).1
+    };
+    let exposure = 1.0 / brightest.clamp(0.02, 1.0);
     let pixels: Vec<u8> = image
         .pixels
         .iter()
-        .map(|p| {
+        .enumerate()
+        .map(|(k, p)| {
             if p.triangle == umbra_core::NO_TRIANGLE {
                 return 0;
             }
-            let lambert = f64::from(p.normal.normalize_or_zero().dot(to_light).max(0.0));
             let lit = 1.0 - p.shadow.to_num::<f64>();
             #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "clamped to 40..=255")]
-            let g = (40.0 + 215.0 * lit * lambert).round().clamp(40.0, 255.0) as u8;
+            let g = (40.0 + 215.0 * (lit * lambert(k) * exposure).min(1.0)).round().clamp(40.0, 255.0) as u8;
             g
         })
         .collect();
@@ -62,18 +75,30 @@ pub fn write_shadow_term(folder: &mut OutputFolder, name: &str, image: &CameraIm
     save(folder, name, &pixels, image.width, image.height, image::ColorType::L8)
 }
 
-/// The error map's colours: edge placement, acne, leaks.
-pub const ERROR_COLOURS: [[u8; 3]; 3] = [[235, 170, 0], [220, 30, 30], [30, 100, 235]];
+/// The error map's classes in legend order, each with its colour: the
+/// two that are the map and the filter at work, then the three artifacts.
+pub const ERROR_COLOURS: [(Cause, &str, [u8; 3]); 5] = [
+    (Cause::Aliasing, "aliasing", [235, 170, 0]),
+    (Cause::Penumbra, "penumbra", [150, 205, 220]),
+    (Cause::Acne, "acne", [220, 30, 30]),
+    (Cause::Detachment, "detachment", [150, 40, 190]),
+    (Cause::Leak, "leaks", [30, 100, 235]),
+];
 
-/// Acne and leak pixels ringed on the error map when there are at most
-/// this many.
+/// The colour of a class on the error map.
+fn colour_of(cause: Cause) -> [u8; 3] {
+    ERROR_COLOURS.iter().find(|(c, _, _)| *c == cause).map_or([0; 3], |&(_, _, rgb)| rgb)
+}
+
+/// Artifact pixels (acne, detachment, leaks) ringed on the error map when
+/// there are at most this many.
 pub const RINGS: usize = 2000;
 
-/// Write the error map: every pixel's [`Verdict`](crate::truth::metrics::Verdict) over a faint shading of
+/// Write the error map: every pixel's [`Verdict`] over a faint shading of
 /// the scene (light greys, lit surfaces lighter, so the geometry stays
-/// readable), edge placement amber, acne red, leaks blue, each acne and
-/// leak pixel ringed in its colour (up to [`RINGS`] of them), with a
-/// legend band below the image giving each colour's meaning and count.
+/// readable), each wrong pixel in its class's colour ([`ERROR_COLOURS`]),
+/// each artifact pixel ringed in its colour (up to [`RINGS`] of them),
+/// with a legend band below the image giving each class and its count.
 ///
 /// # Errors
 /// [`OutputError::Image`] or [`OutputError::Io`] naming the file.
@@ -81,21 +106,38 @@ pub fn write_error_image(
     folder: &mut OutputFolder,
     name: &str,
     image: &CameraImage,
-    truth: &[Option<PixelTruth>],
+    verdicts: &[Verdict],
     light_dir: umbra_core::glam::Vec3,
 ) -> Result<PathBuf, OutputError> {
     use plotters::prelude::*;
     let to_light = -light_dir.normalize_or_zero();
-    let verdicts = verdicts(&image.pixels, truth, image.width);
     let count = |v: Verdict| verdicts.iter().filter(|&&x| x == v).count();
     let (w, h) = (image.width, image.height);
-    let band = 30;
+    // The legend's entries, placed in rows that wrap at the image's width.
+    let legend: Vec<(String, [u8; 3], (i32, i32))> = {
+        let (mut x, mut row) = (6, 0);
+        let width = i32::try_from(w).unwrap_or(i32::MAX);
+        ERROR_COLOURS
+            .iter()
+            .map(|&(cause, name, rgb)| {
+                let text = format!("{name} {}", count(Verdict::Wrong(cause)));
+                #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap, reason = "a short label")]
+                let advance = 8 * text.len() as i32 + 34;
+                if x > 6 && x + advance > width {
+                    (x, row) = (6, row + 1);
+                }
+                let at = (x, row);
+                x += advance;
+                (text, rgb, at)
+            })
+            .collect()
+    };
+    let rows = legend.last().map_or(1, |l| l.2.1 + 1);
+    let band = 30 * u32::try_from(rows).unwrap_or(1);
     let mut rgb = vec![255u8; (w as usize) * (h as usize + band as usize) * 3];
-    for (k, (p, v)) in image.pixels.iter().zip(&verdicts).enumerate() {
+    for (k, (p, v)) in image.pixels.iter().zip(verdicts).enumerate() {
         let colour = match v {
-            Verdict::EdgePlacement => ERROR_COLOURS[0],
-            Verdict::Acne => ERROR_COLOURS[1],
-            Verdict::Leak => ERROR_COLOURS[2],
+            Verdict::Wrong(cause) => colour_of(*cause),
             _ if p.triangle == umbra_core::NO_TRIANGLE => [255, 255, 255],
             _ => {
                 let lambert = f64::from(p.normal.normalize_or_zero().dot(to_light).max(0.0));
@@ -111,14 +153,13 @@ pub fn write_error_image(
     font().map_err(|problem| OutputError::Font { path: path.clone(), problem })?;
     let drawn = {
         let root = BitMapBackend::with_buffer(&mut rgb, (w, h + band)).into_drawing_area();
-        // A ring round each acne and leak pixel, so that a few on a large
-        // image show at a glance; past RINGS of them they show unaided.
+        // A ring round each artifact pixel, so that a few on a large image
+        // show at a glance; past RINGS of them they show unaided.
         let rings: Vec<(usize, [u8; 3])> = verdicts
             .iter()
             .enumerate()
             .filter_map(|(k, v)| match v {
-                Verdict::Acne => Some((k, ERROR_COLOURS[1])),
-                Verdict::Leak => Some((k, ERROR_COLOURS[2])),
+                Verdict::Wrong(cause) if cause.is_artifact() => Some((k, colour_of(*cause))),
                 _ => None,
             })
             .collect();
@@ -129,23 +170,14 @@ pub fn write_error_image(
                 let _ = root.draw(&Circle::new(at, 7, RGBColor(*r, *g, *b).stroke_width(2)));
             }
         }
-        let legend = [
-            ("edge placement", count(Verdict::EdgePlacement), ERROR_COLOURS[0]),
-            ("acne", count(Verdict::Acne), ERROR_COLOURS[1]),
-            ("leaks", count(Verdict::Leak), ERROR_COLOURS[2]),
-        ];
         let style = ("sans-serif", 14).into_font().color(&BLACK);
-        let y = i32::try_from(h).unwrap_or(i32::MAX).saturating_add(8);
-        let mut x = 6;
+        let top = i32::try_from(h).unwrap_or(i32::MAX).saturating_add(8);
         legend
             .iter()
-            .try_for_each(|(name, n, [r, g, b])| {
+            .try_for_each(|(text, [r, g, b], (x, row))| {
+                let (x, y) = (*x, top + 30 * row);
                 root.draw(&Rectangle::new([(x, y), (x + 14, y + 14)], RGBColor(*r, *g, *b).filled()))?;
-                let text = format!("{name} {n}");
                 root.draw(&Text::new(text.clone(), (x + 20, y), style.clone()))?;
-                #[allow(clippy::cast_possible_truncation, clippy::cast_possible_wrap, reason = "a short label")]
-                let advance = 8 * text.len() as i32 + 34;
-                x += advance;
                 Ok::<(), DrawingAreaErrorKind<_>>(())
             })
             .and_then(|()| root.present())

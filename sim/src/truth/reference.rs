@@ -50,7 +50,16 @@ pub struct PixelTruth {
 pub struct Reference {
     mesh: TriMesh,
     triangles: Vec<[DVec3; 3]>,
+    /// The object of each triangle of the ray-casting mesh (which leaves
+    /// out degenerate triangles).
+    objects: Vec<u32>,
     epsilon: f64,
+}
+
+impl core::fmt::Debug for Reference {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("Reference").field("triangles", &self.triangles.len()).finish_non_exhaustive()
+    }
 }
 
 impl Reference {
@@ -60,29 +69,69 @@ impl Reference {
     /// # Errors
     /// [`ReferenceError`] for an empty or unusable scene.
     pub fn new(scene: &[SceneTriangle]) -> Result<Self, ReferenceError> {
+        Self::with_objects(scene, &[])
+    }
+
+    /// [`Reference::new`] with the object each triangle belongs to
+    /// ([`Scene::triangle_objects`](crate::world::scene::Scene::triangle_objects);
+    /// a triangle beyond `objects` is object 0): occluders are then told
+    /// apart by object.
+    ///
+    /// # Errors
+    /// [`ReferenceError`] for an empty or unusable scene.
+    pub fn with_objects(scene: &[SceneTriangle], objects: &[u32]) -> Result<Self, ReferenceError> {
         let triangles: Vec<[DVec3; 3]> = scene.iter().map(|t| t.positions.map(|p| p.as_dvec3())).collect();
-        let usable: Vec<&[DVec3; 3]> = triangles
+        let usable: Vec<(usize, &[DVec3; 3])> = triangles
             .iter()
-            .filter(|t| t.iter().all(|p| p.is_finite()) && (t[1] - t[0]).cross(t[2] - t[0]).length() > 0.0)
+            .enumerate()
+            .filter(|(_, t)| t.iter().all(|p| p.is_finite()) && (t[1] - t[0]).cross(t[2] - t[0]).length() > 0.0)
             .collect();
         if usable.is_empty() {
             return Err(ReferenceError::Empty);
         }
         let mut vertices = Vec::with_capacity(usable.len() * 3);
         let mut indices = Vec::with_capacity(usable.len());
-        for (i, t) in usable.iter().enumerate() {
+        for (i, (_, t)) in usable.iter().enumerate() {
             vertices.extend(t.iter().map(|p| Vector::new(p.x, p.y, p.z)));
             let base = u32::try_from(3 * i).map_err(|e| ReferenceError::Mesh(e.to_string()))?;
             indices.push([base, base + 1, base + 2]);
         }
         let (lo, hi) = usable
             .iter()
-            .flat_map(|t| t.iter())
+            .flat_map(|(_, t)| t.iter())
             .fold((DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)), |(lo, hi), p| {
                 (lo.min(*p), hi.max(*p))
             });
+        let objects = usable.iter().map(|&(k, _)| objects.get(k).copied().unwrap_or(0)).collect();
         let mesh = TriMesh::new(vertices, indices).map_err(|e| ReferenceError::Mesh(format!("{e:?}")))?;
-        Ok(Self { mesh, triangles, epsilon: 1e-9 * (hi - lo).length().max(1.0) })
+        Ok(Self { mesh, triangles, objects, epsilon: 1e-9 * (hi - lo).length().max(1.0) })
+    }
+
+    /// The object of the first surface on the segment from `from` to just
+    /// short of `to` (by the reference's own tolerance): an occluder in
+    /// front of a receiver at `to`, seen from `from`; `None` when nothing
+    /// lies there.
+    #[must_use]
+    pub fn first_on(&self, from: DVec3, to: DVec3) -> Option<u32> {
+        let d = to - from;
+        let length = d.length();
+        if !(length.is_finite() && length > self.epsilon * 64.0) {
+            return None;
+        }
+        let dir = d / length;
+        let ray = Ray::new(Vector::new(from.x, from.y, from.z), Vector::new(dir.x, dir.y, dir.z));
+        let hit = self.mesh.cast_local_ray_and_get_normal(&ray, length - self.epsilon * 32.0, false)?;
+        Some(usize::try_from(hit.subshape).ok().and_then(|t| self.objects.get(t)).copied().unwrap_or(0))
+    }
+
+    /// The object that hides point `p` from the light (`None` when the
+    /// point sees it, or its surface faces away).
+    #[must_use]
+    pub fn occluder_of(&self, p: DVec3, light: &LightSource) -> Option<u32> {
+        let (to_light, distance) = light.towards(p);
+        let origin = p + to_light * self.epsilon * 16.0;
+        let reach = if distance.is_finite() { distance } else { self.epsilon.recip() };
+        self.first_on(origin, origin + to_light * reach)
     }
 
     /// Whether the point `p` of a surface with normal `n` sees the light.
@@ -97,6 +146,13 @@ impl Reference {
         let ray = Ray::new(Vector::new(origin.x, origin.y, origin.z), Vector::new(to_light.x, to_light.y, to_light.z));
         let max = if distance.is_finite() { distance - self.epsilon * 32.0 } else { f64::MAX };
         Some(self.mesh.cast_local_ray(&ray, max.max(0.0), false).is_none())
+    }
+
+    /// Whether a surface lies on the segment from `from` to just short of
+    /// `to` ([`Reference::first_on`]).
+    #[must_use]
+    pub fn blocked(&self, from: DVec3, to: DVec3) -> bool {
+        self.first_on(from, to).is_some()
     }
 
     /// The truth for every camera pixel, given the ids the visibility unit
@@ -129,42 +185,81 @@ impl Reference {
             .map(|(i, id)| {
                 let tri = self.triangles.get(usize::try_from(id).ok()?).filter(|_| id != NO_TRIANGLE)?;
                 let (px, py) = ((i % width as usize) as f64, (i / width as usize) as f64);
-                let point = |sx: f64, sy: f64| -> Option<(DVec3, DVec3)> {
-                    let ndc = |z: f64| {
-                        let v = inverse * DVec4::new(2.0 * sx / w - 1.0, 1.0 - 2.0 * sy / h, z, 1.0);
-                        v.truncate() / v.w
-                    };
-                    let (near, far) = (ndc(0.0), ndc(1.0));
-                    let dir = far - near;
-                    let normal = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
-                    let denom = normal.dot(dir);
-                    if denom == 0.0 || !denom.is_finite() {
-                        return None;
-                    }
-                    let t = normal.dot(tri[0] - near) / denom;
-                    let p = near + dir * t;
-                    // The side the camera sees.
-                    let n = if normal.dot(near - p) < 0.0 { -normal } else { normal };
-                    p.is_finite().then_some((p, n))
-                };
+                let near_of = |sx: f64, sy: f64| camera_ray(&inverse, (sx, sy), (w, h)).0;
+                let point = |sx: f64, sy: f64| surface_point(&inverse, (sx, sy), (w, h), tri);
                 let (p, nrm) = point(px + 0.5, py + 0.5)?;
                 let centre = self.sees_light(p, nrm, light);
-                let mut seen = 0u32;
-                for j in 0..n {
-                    for k in 0..n {
-                        let s = (px + (f64::from(k) + 0.5) / f64::from(n), py + (f64::from(j) + 0.5) / f64::from(n));
-                        if let Some((q, m)) = point(s.0, s.1) {
-                            seen += u32::from(self.sees_light(q, m, light) == Some(true));
-                        }
-                    }
-                }
+                // Each point of the pixel's area on the triangle's plane:
+                // whether it sees the light, and the camera ray's start.
+                let samples: Vec<(bool, DVec3, Option<DVec3>)> = (0..n * n)
+                    .map(|i| {
+                        let s = (
+                            px + (f64::from(i % n) + 0.5) / f64::from(n),
+                            py + (f64::from(i / n) + 0.5) / f64::from(n),
+                        );
+                        let q = point(s.0, s.1);
+                        let sees = q.is_some_and(|(q, m)| self.sees_light(q, m, light) == Some(true));
+                        (sees, near_of(s.0, s.1), q.map(|(q, _)| q))
+                    })
+                    .collect();
+                // Where the points disagree, the pixel straddles an edge:
+                // a point the camera does not see on this plane (the plane
+                // continued behind another surface at a crease) is left out.
+                let mixed = samples.iter().any(|s| s.0 != samples[0].0);
+                let counted: Vec<bool> = samples
+                    .iter()
+                    .filter(|(_, near, q)| !mixed || q.is_some_and(|q| !self.blocked(*near, q)))
+                    .map(|s| s.0)
+                    .collect();
+                let seen = counted.iter().filter(|&&s| s).count();
+                #[allow(clippy::cast_precision_loss, reason = "at most 256 points")]
+                let visibility = if counted.is_empty() {
+                    f64::from(u8::from(centre == Some(true)))
+                } else {
+                    seen as f64 / counted.len() as f64
+                };
                 Some(PixelTruth {
                     faces_light: centre.is_some(),
                     lit: centre == Some(true),
-                    visibility: f64::from(seen) / f64::from((n * n).max(1)),
+                    visibility,
                     light_cos: nrm.normalize_or_zero().dot(light.towards(p).0),
                 })
             })
             .collect()
     }
+}
+
+/// The camera ray through screen point `(sx, sy)` of a `(w, h)` image seen
+/// through the inverse of the camera's view-projection: its points on the
+/// near and far planes.
+fn camera_ray(inverse: &DMat4, (sx, sy): (f64, f64), (w, h): (f64, f64)) -> (DVec3, DVec3) {
+    let ndc = |z: f64| {
+        let v = *inverse * DVec4::new(2.0 * sx / w - 1.0, 1.0 - 2.0 * sy / h, z, 1.0);
+        v.truncate() / v.w
+    };
+    (ndc(0.0), ndc(1.0))
+}
+
+/// Where the camera ray through screen point `(sx, sy)` meets the plane of
+/// triangle `tri`, and the plane's normal on the side the camera sees;
+/// `None` for a ray along the plane.
+#[must_use]
+pub fn surface_point(
+    inverse: &DMat4,
+    (sx, sy): (f64, f64),
+    (w, h): (f64, f64),
+    tri: &[DVec3; 3],
+) -> Option<(DVec3, DVec3)> {
+    let (near, far) = camera_ray(inverse, (sx, sy), (w, h));
+    let dir = far - near;
+    let normal = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
+    let denom = normal.dot(dir);
+    if denom == 0.0 || !denom.is_finite() {
+        return None;
+    }
+    let t = normal.dot(tri[0] - near) / denom;
+    let p = near + dir * t;
+    // The side the camera sees.
+    let n = if normal.dot(near - p) < 0.0 { -normal } else { normal };
+    p.is_finite().then_some((p, n))
 }

@@ -209,6 +209,12 @@ impl Scene {
             .collect()
     }
 
+    /// The object each of [`Scene::triangles`] belongs to, by index.
+    #[must_use]
+    pub fn triangle_objects(&self) -> Vec<u32> {
+        (0u32..).zip(&self.objects).flat_map(|(k, o)| core::iter::repeat_n(k, o.mesh.triangles.len())).collect()
+    }
+
     /// One draw call per object under `transform`, all with cull mode `cull`.
     #[must_use]
     pub fn draws(&self, transform: Mat4, cull: CullMode) -> Vec<Draw<'_>> {

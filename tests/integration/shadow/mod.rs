@@ -1,4 +1,4 @@
 //! The shadow unit: filters, tests, bias and lookup culling against direct evaluation.
 
 mod settle;
-mod shadow_unit;
+pub(crate) mod shadow_unit;

@@ -13,7 +13,7 @@ use umbra::core::{CullMode, D16, D24, DepthFormat, DepthUnit, NoProbe, RasterCon
 use crate::common::{config, run, triangles};
 
 /// A map from rows of depths in `[0, 1]`, with exact tile bounds.
-pub(super) struct Map<F: DepthFormat> {
+pub(crate) struct Map<F: DepthFormat> {
     raster: RasterConfig,
     z1: Vec<F::Texel>,
     z2: Vec<F::Texel>,
@@ -21,7 +21,7 @@ pub(super) struct Map<F: DepthFormat> {
 }
 
 impl<F: DepthFormat> Map<F> {
-    pub(super) fn new(w: u32, h: u32, z1: &[f32], z2: &[f32]) -> Self {
+    pub(crate) fn new(w: u32, h: u32, z1: &[f32], z2: &[f32]) -> Self {
         let raster = RasterConfig::new(w, h, 8, 8).expect("valid");
         let q = |v: &[f32]| v.iter().map(|&z| F::quantize(z)).collect::<Vec<_>>();
         let (z1, z2) = (q(z1), q(z2));
@@ -43,7 +43,7 @@ impl<F: DepthFormat> Map<F> {
         Self { raster, z1, z2, tiles }
     }
 
-    pub(super) fn view(&self) -> MapView<'_, F> {
+    pub(crate) fn view(&self) -> MapView<'_, F> {
         MapView::new(self.raster, &self.z1, &self.z2, &self.tiles).expect("sized")
     }
 }

@@ -59,18 +59,18 @@ fn sweep_scene(
         assert_eq!(r.status, Status::Ok, "{}: {}", r.label(), r.reason);
         let m = m(r);
         eprintln!(
-            "{} {} map {}² {}: misclassified {:.4} % (edge {}, acne {} ({} terminator), leaks {}; ½ verdict beyond the band {} / {}), false light {} px, MAE {:.5}, displacement {}/{} px, {}×{} texels/px",
+            "{} {} map {}² {}: misclassified {:.4} % (aliasing {}, penumbra {}, acne {} ({} terminator), detachment {}, leaks {}), false light {} px, MAE {:.5}, displacement {}/{} px, {}×{} texels/px",
             r.config.scene,
             r.label(),
             r.config.map_side_texels,
             r.config.filter_name,
             m.misclassified_percent,
-            m.edge_placement_px,
+            m.aliasing_px,
+            m.penumbra_px,
             m.acne_px,
             m.terminator_acne_px,
+            m.detachment_px,
             m.leaks_px,
-            m.half_acne_px,
-            m.half_leaks_px,
             m.false_light_px,
             m.mean_abs_error,
             m.displacement_mean_px,
@@ -103,13 +103,14 @@ fn false_light(r: &Row) -> u64 {
 /// Wang & Molnar §2 and Figure 4: on their table, lit from low to the side,
 /// no first-depth bias is acceptable — a dense sweep of 31 biases from 0 to
 /// 0.03 at 512×512 with a 512² 24-bit map (bilinear) leaves every bias with
-/// acne or leaks, while second depth at bias 0 has none. Artifacts are
-/// measured on the shade beyond each pixel's edge band.
+/// acne or detachment, while second depth at bias 0 has almost none.
+/// Artifacts are wrong pixels judged by their cause.
 ///
-/// * Second depth: measured 0 artifacts; asserted ≤ 5.
-/// * First depth's best biases (0.022 to 0.030): 15 artifacts, all leaks
-///   (the legs' shadows detached); asserted ≥ 10. Every bias leaves at
-///   least 15 (asserted ≥ 10).
+/// * Second depth: measured 5 artifacts (4 acne, 1 leak); asserted ≤ 15.
+/// * First depth's best bias (0.015): 257 artifacts, 72 acne on the
+///   sphere's terminator and 185 detachment at the legs; every bias leaves
+///   at least that many (asserted ≥ 150). Acne falls and detachment rises
+///   with the bias: no bias clears both.
 /// * Below 0.022 acne dominates, and on the bundled table it is the
 ///   sphere's terminator, not the floor: from bias 0.005 on, at least 99 %
 ///   of the acne lies on a surface turning from the light (measured 738 of
@@ -125,8 +126,8 @@ fn wang_molnar_no_first_depth_bias_is_acceptable() {
     let first: Vec<&Row> = rows.iter().filter(|r| r.config.algorithm == "first").collect();
     let best = first.iter().map(|r| artifacts(r)).min().expect("biases");
     eprintln!("second depth: {} artifacts; first depth's best bias: {best}", artifacts(second));
-    assert!(artifacts(second) <= 5, "second depth: {} artifacts", artifacts(second));
-    assert!(best >= 10, "a first-depth bias leaves only {best} artifacts");
+    assert!(artifacts(second) <= 15, "second depth: {} artifacts", artifacts(second));
+    assert!(best >= 150, "a first-depth bias leaves only {best} artifacts");
     for r in first.iter().filter(|r| r.config.bias >= 0.005) {
         let (acne, terminator) = (m(r).acne_px, m(r).terminator_acne_px);
         assert!(terminator * 10 >= acne * 9, "bias {}: {terminator} of {acne} acne on terminators", r.config.bias);
@@ -141,21 +142,21 @@ fn wang_molnar_no_first_depth_bias_is_acceptable() {
 /// bilinear, 16 biases from 0 to 0.03, against second depth at bias 0.
 /// Measured (set-up; higher; lower):
 ///
-/// * Second depth has no artifact on the set-up and the lower light, 2 on
-///   the higher; asserted ≤ 3.
+/// * Second depth: 7, 13 and 30 artifacts at 512² (acne on the legs'
+///   terminators, a leak under a foot); asserted ≤ 45.
 /// * A larger map needs a smaller bias (their §2): the acne clears at
-///   0.002, 0.002, 0.003 with 2048² against 0.008, 0.008, 0.012 with 512²;
-///   asserted smaller on each.
-/// * Beyond that bias the shadows move away from the legs: edge placement
-///   and leaks together grow to 0.03 by 1.9×, 1.9×, 1.55× at 512² and 6×,
-///   5.9×, 5× at 2048² (asserted ≥ 1.3× and ≥ 3×); at 2048² 22, 481 and 0
-///   of them are leaks.
-/// * **Not reproduced: "no acceptable bias" at 512².** From the bias that
-///   clears the acne a window of biases leaves at most 1 artifact (to
-///   0.03, except with the higher light, whose leaks reach 15): the
-///   detachment lies within the 512² map's texel on screen (a band of
-///   about 4 pixels), so it counts as edge placement. Asserted: a window of
-///   at least two biases with at most 3 artifacts.
+///   0.002, 0.002, 0.004 with 2048² against 0.008, 0.008, 0.012 with 512²;
+///   asserted smaller at 2048² on each.
+/// * **No acceptable bias at 512²** (Figure 4a): the bias that clears the
+///   floor's acne detaches the legs' shadows — 123, 144 and 273 pixels of
+///   detachment there (asserted at least 80) — and no bias leaves fewer
+///   artifacts than that (asserted at least 80, and at least 4× second
+///   depth's). (With the edge band this release replaced, the detachment
+///   lay within the texel's band and counted as edge placement: at most
+///   1 artifact, and the claim did not reproduce.)
+/// * Beyond that bias the shadows move further from the legs: aliasing,
+///   detachment and leaks together grow to 0.03 by 1.9×, 1.9×, 1.55× at
+///   512² and 6.1×, 5.9×, 5× at 2048² (asserted ≥ 1.3× and ≥ 3×).
 #[test]
 fn wang_molnar_figure_4_on_their_set_up_and_variants() {
     let biases =
@@ -169,20 +170,23 @@ fn wang_molnar_figure_4_on_their_set_up_and_variants() {
         let at = |map: u32| -> Vec<&Row> { rows.iter().filter(|r| r.config.map_side_texels == map).collect() };
         let first = |map: u32| -> Vec<&Row> { at(map).into_iter().filter(|r| r.config.algorithm == "first").collect() };
         let clears = |map: u32| first(map).into_iter().find(|r| m(r).acne_px == 0).expect("a bias clears the acne");
-        for map in [512, 2048] {
-            let second = at(map).into_iter().find(|r| r.config.algorithm == "second").expect("second");
-            assert!(artifacts(second) <= 3, "{name}, {map}²: second depth {} artifacts", artifacts(second));
-        }
+        let second = |map: u32| at(map).into_iter().find(|r| r.config.algorithm == "second").expect("second");
         let (small, large) = (clears(512).config.bias, clears(2048).config.bias);
+        let detached = m(clears(512)).detachment_px;
+        let best = first(512).iter().map(|r| artifacts(r)).min().expect("biases");
+        let moved = |r: &Row| m(r).aliasing_px + m(r).detachment_px + m(r).leaks_px;
+        let growth = |map: u32| moved(first(map).last().expect("biases")) as f64 / moved(clears(map)).max(1) as f64;
+        eprintln!(
+            "{name}: second depth {} artifacts; the acne clears at {small} (512²) and {large} (2048²); {detached} detached there; best 512² bias {best} artifacts; growth {:.2}× and {:.2}×",
+            artifacts(second(512)),
+            growth(512),
+            growth(2048)
+        );
+        assert!(artifacts(second(512)) <= 45, "{name}: second depth {} artifacts", artifacts(second(512)));
         assert!(large < small, "{name}: the acne clears at {large} with 2048² against {small} with 512²");
-        for (map, growth) in [(512, 13), (2048, 30)] {
-            let moved = |r: &Row| m(r).edge_placement_px + m(r).leaks_px;
-            let (from, to) = (moved(clears(map)), moved(first(map).last().expect("biases")));
-            assert!(to * 10 >= from * growth, "{name}, {map}²: edge placement and leaks {from} → {to}");
-        }
-        let window: Vec<&Row> =
-            first(512).into_iter().filter(|r| r.config.bias >= small).take_while(|r| artifacts(r) <= 3).collect();
-        assert!(window.len() >= 2, "{name}: a 512² bias window of {} biases", window.len());
+        assert!(detached >= 80, "{name}: {detached} detached at the bias that clears the acne");
+        assert!(best >= 80 && best >= 4 * artifacts(second(512)), "{name}: best first-depth bias {best} artifacts");
+        assert!(growth(512) >= 1.3 && growth(2048) >= 3.0, "{name}: growth {} and {}", growth(512), growth(2048));
     }
 }
 
@@ -194,17 +198,20 @@ fn wang_molnar_figure_4_on_their_set_up_and_variants() {
 ///
 /// * Back-face culling removes dual depth's self-shadowing at the
 ///   silhouettes (Figure 2 (b), 5 (c) against (f)). Measured acne with
-///   culling against without: closed L 0 against 808 (128²) and 0 against
-///   547 (512²); asserted ≤ 10 and ≥ 400. On the two boxes culling leaves
-///   57 and 95 acne pixels where the upright stands on the base (each
-///   box's own back faces are in `z2` there, behind the other's top),
-///   against 865 and 642 without: asserted between 20 and a quarter of
-///   the unculled count.
+///   culling against without: closed L 77 against 2213 (128²) and 5
+///   against 645 (512²); asserted at least 15× fewer. On the two boxes
+///   culling leaves 545 and 132 acne pixels where the upright stands on
+///   the base (each box's own back faces are in `z2` there, behind the
+///   other's top, within the receiver's span), against 2673 and 771
+///   without: asserted at least 300 and 50, and at most a third and a half
+///   of the unculled count. (The edge band this release replaced counted
+///   57 and 95 of them.)
 /// * Midpoint maps with back-face culling self-unshadow near silhouettes
-///   (Figure 4, 5 (e)), dual depth does not: false light (½ verdict)
-///   +30 pixels at 128² on both Ls (142 against 112, 139 against 109),
-///   +6 at 512² (51 against 45, 50 against 44); asserted at least +15 and
-///   +2. It lies within the edge band, so it is not counted as leaks.
+///   (Figure 4, 5 (e)), dual depth does not: leaks 117 against 0 at 128²
+///   and 29 against 0 at 512² on the closed L (111 and 27 on the boxes);
+///   asserted at least +60 and +15. The ½ verdict's false light shows it
+///   too: 142 against 112 and 51 against 45 (asserted at least +15 and
+///   +2). (With the edge band these leaks lay within it and counted none.)
 /// * Not reproduced: Figure 5 (b)'s self-unshadowing of the midpoint
 ///   without culling — its false light equals dual depth's on every
 ///   variant, because without culling `z2` is the L's own back, close
@@ -225,18 +232,34 @@ fn weiskopf_ertl_dual_depth_with_culling() {
             let at: Vec<&Row> = rows.iter().filter(|r| r.config.map_side_texels == map).collect();
             let (dual, mid_bfc, midpoint, nocull) = (at[0], at[1], at[2], at[3]);
             let acne = |r: &Row| m(r).acne_px;
+            let leaks = |r: &Row| m(r).leaks_px;
             let here = format!("{scene}, {map}²");
+            eprintln!(
+                "{here}: acne with culling {} against {} without; leaks midpoint-bfc {} against dual {}",
+                acne(dual),
+                acne(nocull),
+                leaks(mid_bfc),
+                leaks(dual)
+            );
             assert!(acne(nocull) >= 400, "{here}: dual depth without culling: {} acne", acne(nocull));
             if scene == "weiskopf-l" {
-                assert!(acne(dual) <= 10, "{here}: dual depth with culling: {} acne", acne(dual));
+                assert!(acne(dual) * 15 <= acne(nocull), "{here}: dual depth with culling: {} acne", acne(dual));
             } else {
+                let (lo, hi) = if map == 128 { (300, 3) } else { (50, 2) };
                 assert!(
-                    acne(dual) >= 20 && acne(dual) * 4 <= acne(nocull),
+                    acne(dual) >= lo && acne(dual) * hi <= acne(nocull),
                     "{here}: {} against {}",
                     acne(dual),
                     acne(nocull)
                 );
             }
+            let unshadowed = if map == 128 { 60 } else { 15 };
+            assert!(
+                leaks(mid_bfc) >= leaks(dual) + unshadowed,
+                "{here}: leaks: midpoint-bfc {} against dual {}",
+                leaks(mid_bfc),
+                leaks(dual)
+            );
             let gain = if map == 128 { 15 } else { 2 };
             assert!(
                 false_light(mid_bfc) >= false_light(dual) + gain,
@@ -321,14 +344,16 @@ fn reeves_more_samples_less_error_on_variants() {
 ///   measured 0.061 % misclassified against 1.452 % (24×; asserted at least
 ///   10×), 48 edge-placement pixels against 1141 (asserted at least 10×
 ///   fewer), mean boundary displacement 0.009 against 0.405 pixels
-///   (asserted below 0.1 and above 0.2). Neither has an artifact beyond
-///   the band (a magnified texel's staircase is aliasing, not acne):
-///   measured 0 and 0, asserted ≤ 5.
+///   (asserted below 0.1 and above 0.2). Neither has an artifact (a
+///   magnified texel's staircase is aliasing, not acne): measured 0 and
+///   0, asserted ≤ 5.
 /// * Minified, the gain shrinks to 1.7× (0.063 % against 0.106 %; asserted
 ///   below 3×): a texel is smaller than a pixel, so the shadow map's
 ///   staircase is already under a pixel. At the same bias the silhouette
-///   map adds acne on the figures' terminators: measured 35 (29 of them
-///   terminator) against 1, asserted ≥ 20 (≥ 15 terminator) against ≤ 5.
+///   map adds acne on the figures' terminators: measured 95 (84 of them
+///   terminator) against the shadow map's 22, asserted ≥ 60 (≥ 50
+///   terminator) and at least twice the shadow map's. (The edge band this
+///   release replaced excused most of both: 35 against 1.)
 #[test]
 fn sen_silhouette_maps_sharpen_magnified_edges() {
     let variants =
@@ -342,15 +367,15 @@ fn sen_silhouette_maps_sharpen_magnified_edges() {
         "magnified, then minified"
     );
     assert!(err(sil) * 10.0 < err(map), "magnified: silhouette {} % against {} %", err(sil), err(map));
-    let edge = |r: &Row| m(r).edge_placement_px;
+    let edge = |r: &Row| m(r).aliasing_px;
     assert!(edge(sil) * 10 < edge(map), "edge placement {} against {}", edge(sil), edge(map));
     assert!(artifacts(sil) <= 5 && artifacts(map) <= 5, "artifacts {} and {}", artifacts(sil), artifacts(map));
     let shift = |r: &Row| m(r).displacement_mean_px;
     assert!(shift(sil) < 0.1 && shift(map) > 0.2, "displacement {} against {}", shift(sil), shift(map));
     assert!(err(&wide[1]) * 3.0 > err(&wide[0]), "minified: {} % against {} %", err(&wide[1]), err(&wide[0]));
     let (acne, terminator) = (m(&wide[1]).acne_px, m(&wide[1]).terminator_acne_px);
-    assert!(acne >= 20 && terminator >= 15, "silhouette map, minified: {acne} acne, {terminator} terminator");
-    assert!(m(&wide[0]).acne_px <= 5, "shadow map, minified: {} acne", m(&wide[0]).acne_px);
+    assert!(acne >= 60 && terminator >= 50, "silhouette map, minified: {acne} acne, {terminator} terminator");
+    assert!(m(&wide[0]).acne_px * 2 <= acne, "shadow map, minified: {} acne against {acne}", m(&wide[0]).acne_px);
 }
 
 /// Sen et al. §6 on the crowd seen from above its shadows

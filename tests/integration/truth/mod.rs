@@ -1,5 +1,6 @@
 //! The exact reference and the papers' claims measured against it.
 
+mod cause;
 mod claims;
 mod metrics;
 mod reference;

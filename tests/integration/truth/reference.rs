@@ -6,7 +6,8 @@ use umbra::core::glam::{DVec3, Vec3};
 use umbra::core::shade::Shaded;
 use umbra::core::shadow::Shadow;
 use umbra::sim::pass::camera::{CameraFrame, visibility};
-use umbra::sim::truth::metrics::compare;
+use umbra::sim::truth::cause::Cause;
+use umbra::sim::truth::metrics::{Fields, compare};
 use umbra::sim::truth::reference::{PixelTruth, Reference};
 use umbra::sim::world::mesh::Mesh;
 use umbra::sim::world::scene::LightSource;
@@ -84,7 +85,8 @@ fn metrics_count_what_they_should() {
         truth(true, 0.5),   // ½ is not above ½: lit, lit
         truth(true, 1.0),   // lit, lit
     ];
-    let m = compare(&render, &truths, 10);
+    let fields = Fields::new(&truths, 10);
+    let (m, _) = compare(&render, &truths, &fields, &mut |_, _: &_, _| Cause::Aliasing);
     assert_eq!(render[0].triangle, NO_TRIANGLE);
     assert_eq!((m.evaluated, m.false_shadow, m.false_light), (8, 2, 2));
     assert!((m.misclassified_percent - 50.0).abs() < 1e-12);

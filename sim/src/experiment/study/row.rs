@@ -124,28 +124,37 @@ pub struct RowMetrics {
     pub false_shadow_px: u64,
     /// Lit by the ½ verdict, shadowed in truth.
     pub false_light_px: u64,
-    /// Wrong within the edge band (the map texel's extent on screen from
-    /// the exact boundary): aliasing.
-    pub edge_placement_px: u64,
-    /// Beyond the band, darker than the reference by more than
-    /// [`SHADE_STEP`](crate::truth::metrics::SHADE_STEP): acne.
+    /// Wrong because the taps straddle a true edge or miss the occluder:
+    /// aliasing (edge placement).
+    pub aliasing_px: u64,
+    /// A filter's own partial shade across a true edge: penumbra.
+    pub penumbra_px: u64,
+    /// Too dark from the receiver's own surface: acne.
     pub acne_px: u64,
     /// Of the acne, on surfaces near grazing to the light: the terminator's.
     pub terminator_acne_px: u64,
-    /// Beyond the band, lighter than the reference by more than the step:
-    /// leaks and detached shadows.
+    /// Too light because only the bias moved the test past an occluder
+    /// the map holds: detached shadows.
+    pub detachment_px: u64,
+    /// Too light because the depth compared lies behind the receiver
+    /// under a first-layer occluder: leaks.
     pub leaks_px: u64,
+    /// The aliasing's summed shade difference, pixels.
+    pub aliasing_area_px: f64,
+    /// The penumbra's summed shade difference, pixels.
+    pub penumbra_area_px: f64,
     /// The acne's summed excess shadow, pixels.
     pub acne_area_px: f64,
+    /// The detachment's summed missing shadow, pixels.
+    pub detachment_area_px: f64,
     /// The leaks' summed missing shadow, pixels.
     pub leak_area_px: f64,
-    /// Acne and leaks, percent of the evaluated pixels: what error budgets
-    /// apply to.
+    /// Acne, detachment and leaks, percent of the evaluated pixels: what
+    /// error budgets apply to.
     pub artifact_percent: f64,
-    /// Beyond the band, false shadows by the ½ verdict.
-    pub half_acne_px: u64,
-    /// Beyond the band, false light by the ½ verdict.
-    pub half_leaks_px: u64,
+    /// The penumbra pixels' distance from the exact boundary, 95th
+    /// percentile: the filter's soft edge's width to each side.
+    pub penumbra_width_p95_px: f64,
     /// Mean |shadow fraction − true shadowed area|.
     pub mean_abs_error: f64,
     /// Root mean square of the same.
@@ -244,15 +253,19 @@ impl RowMetrics {
             misclassified_percent: m.misclassified_percent,
             false_shadow_px: m.false_shadow,
             false_light_px: m.false_light,
-            edge_placement_px: m.edge_placement,
+            aliasing_px: m.aliasing,
+            penumbra_px: m.penumbra,
             acne_px: m.acne,
             terminator_acne_px: m.terminator_acne,
+            detachment_px: m.detachment,
             leaks_px: m.leaks,
+            aliasing_area_px: m.aliasing_area,
+            penumbra_area_px: m.penumbra_area,
             acne_area_px: m.acne_area,
+            detachment_area_px: m.detachment_area,
             leak_area_px: m.leak_area,
             artifact_percent: m.artifact_percent,
-            half_acne_px: m.half_acne,
-            half_leaks_px: m.half_leaks,
+            penumbra_width_p95_px: m.penumbra_width[1],
             mean_abs_error: m.mean_abs_error,
             rms_error: m.rms_error,
             displacement_mean_px: m.displacement[0],
@@ -263,10 +276,10 @@ impl RowMetrics {
         }
     }
 
-    /// Acne and leaks, pixels.
+    /// Acne, detachment and leaks, pixels.
     #[must_use]
     pub const fn artifacts_px(&self) -> u64 {
-        self.acne_px + self.leaks_px
+        self.acne_px + self.detachment_px + self.leaks_px
     }
 }
 

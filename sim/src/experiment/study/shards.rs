@@ -194,8 +194,12 @@ pub fn invalid(r: &Row) -> Option<String> {
         for (name, v) in [
             ("displacement_mean_px", m.displacement_mean_px),
             ("displacement_p95_px", m.displacement_p95_px),
+            ("aliasing_area_px", m.aliasing_area_px),
+            ("penumbra_area_px", m.penumbra_area_px),
             ("acne_area_px", m.acne_area_px),
+            ("detachment_area_px", m.detachment_area_px),
             ("leak_area_px", m.leak_area_px),
+            ("penumbra_width_p95_px", m.penumbra_width_p95_px),
             ("footprint_x_texels_per_px", m.footprint_x_texels_per_px),
             ("footprint_y_texels_per_px", m.footprint_y_texels_per_px),
         ] {
@@ -206,9 +210,10 @@ pub fn invalid(r: &Row) -> Option<String> {
         if m.false_shadow_px.checked_add(m.false_light_px).is_none_or(|n| n > m.evaluated_px) {
             return Some("more misclassified pixels than evaluated".into());
         }
-        let wrong = m.edge_placement_px.checked_add(m.acne_px).and_then(|n| n.checked_add(m.leaks_px));
+        let classes = [m.aliasing_px, m.penumbra_px, m.acne_px, m.detachment_px, m.leaks_px];
+        let wrong = classes.iter().try_fold(0u64, |a, &n| a.checked_add(n));
         if wrong.is_none_or(|n| n > m.evaluated_px) {
-            return Some("more edge-placement, acne and leak pixels than evaluated".into());
+            return Some("more wrong pixels (aliasing, penumbra, acne, detachment, leaks) than evaluated".into());
         }
         if m.terminator_acne_px > m.acne_px {
             return Some("more terminator acne than acne".into());

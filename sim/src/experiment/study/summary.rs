@@ -163,9 +163,9 @@ pub fn summary(rows: &[Row], manifest: &Manifest) -> String {
     let _ = writeln!(
         s,
         "{}; sweep {} ({}). {} rows ({configs} configurations × architectures), {} skipped. Budgets bound \
-         artifacts — acne and leaks: pixels beyond the edge band (the map texel's extent on screen from the exact \
-         shadow boundary) whose shade is darker or lighter than the area-averaged reference by more than 0.1 — in \
-         percent of the pixels facing the light; edge placement (errors within the band) is printed beside them. Time: \
+         artifacts — acne, detachment and leaks: wrong pixels (shade off the area-averaged reference by more than \
+         0.1, or on the wrong side of ½) judged by what the shadow unit compared — in percent of the pixels facing \
+         the light; aliasing and a filter's penumbra are not artifacts. Time: \
          the frame, light pass then camera pass, in each architecture's per-tile timing model at its clock; {}; \
          bytes: all DRAM traffic, map reads as fetched through the map cache; energy: DRAM, buffers, caches and \
          units. Each cell names the architecture point that won.\n",

@@ -16,7 +16,7 @@ use crate::pass::PassError;
 use crate::pass::camera::{CameraFrame, Visibility, visibility};
 use crate::render::costed::{SceneCounts, shape};
 use crate::truth::metrics::Fields;
-use crate::truth::reference::PixelTruth;
+use crate::truth::reference::{PixelTruth, Reference};
 use crate::world::occluders::Occluders;
 use crate::world::scene::Scene;
 
@@ -43,6 +43,8 @@ pub struct ImageShare<'s> {
     pub(super) size: (u32, u32),
     pub(super) truth: &'s [Option<PixelTruth>],
     pub(super) fields: Fields,
+    /// The exact reference's rays, for judging wrong pixels by cause.
+    pub(super) reference: Reference,
     pub(super) archs: &'s [Arch],
     pub(super) limits: Limits,
     /// The default tiling's first, then each architecture's.
@@ -117,6 +119,7 @@ impl<'s> ImageShare<'s> {
             size,
             truth,
             fields: Fields::new(truth, size.0),
+            reference: Reference::with_objects(&scene.triangles(), &scene.triangle_objects()).ok()?,
             archs,
             limits: *limits,
             seen,

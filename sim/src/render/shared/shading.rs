@@ -18,8 +18,9 @@ use crate::pass::PassError;
 use crate::pass::algorithm::MapKind;
 use crate::pass::camera::{CameraOptions, map_view, shade};
 use crate::pass::occluders::silhouette_map;
+use crate::render::replay::{PassInputs, judged};
 use crate::render::{RenderConfig, RenderError};
-use crate::truth::metrics::{Metrics, compare_with};
+use crate::truth::metrics::Metrics;
 
 /// Buffers a configuration's shading reuses from the last one a thread
 /// rendered: the results (whole for the metrics; for the other shadings
@@ -78,6 +79,7 @@ pub fn render_shared<F: DepthFormat>(
     let mut camera_totals = image.seen[0].totals;
     let config = cfg.describe();
     let Scratch { pixels, others, setups } = scratch;
+    let mut metrics = None;
     for (k, ((seen, lit), members)) in classes.into_iter().enumerate() {
         let (mut lights, mut cameras) = (Probes::default(), Probes::default());
         for &i in &members {
@@ -95,12 +97,19 @@ pub fn render_shared<F: DepthFormat>(
             pass.run(units.map, &mut lights, &mut cameras, &mut umbra_core::NoProbe)
         };
         done.ok()?;
+        if k == 0 {
+            // The functional render's metrics, each wrong pixel judged by
+            // replaying it.
+            let view = (units.map != MapKind::Volumes).then_some(&view);
+            let inputs = PassInputs { scene, seen, view, options: &options, kind: units.map };
+            metrics = Some(judged(&inputs, pixels, (image.truth, &image.fields, &image.reference)).ok()?.0);
+        }
         let names = (image.scene.name.as_str(), image.counts);
         for ((i, l), (_, c)) in lights.into_kept().into_iter().zip(cameras.into_kept()) {
             costs[i] = Some(Ok(Kept::report(names, cfg, &config, l, c)));
         }
     }
-    Some((compare_with(pixels, image.truth, &image.fields), camera_totals, costs))
+    Some((metrics?, camera_totals, costs))
 }
 
 /// One shading of a configuration: the map it reads, the visibility it

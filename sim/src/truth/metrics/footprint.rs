@@ -1,12 +1,11 @@
 //! The map's footprint on screen: how far the light-space point moves
-//! from one pixel to the next, and the screen extent of a texel — each
-//! pixel's edge band.
+//! from one pixel to the next.
 
 use glam::DVec2;
 use umbra_core::shade::Shaded;
 
+use super::evaluated;
 use super::fields::neighbour;
-use super::{MAX_BAND, evaluated};
 use crate::truth::reference::PixelTruth;
 
 /// Neighbouring pixels whose light-space points are farther apart than
@@ -73,20 +72,4 @@ impl Points {
         let n = |dx, dy| neighbour(x, y, dx, dy, self.width, self.height);
         (derivative(n(-1, 0), n(1, 0)), derivative(n(0, -1), n(0, 1)))
     }
-}
-
-/// The screen extent, in pixels, of a map texel under a pixel whose
-/// light-space point moves by `dx` and `dy` texels per pixel: the texel is
-/// the unit square mapped back through the inverse of `[dx dy]`, and its
-/// longest extent is `1/σ_min = σ_max/|det|`. At least 1, at most
-/// [`MAX_BAND`]; 1 where a derivative is unknown.
-pub(super) fn texel_extent(d: Derivatives) -> u32 {
-    let (Some(dx), Some(dy)) = d else { return 1 };
-    let det = dx.perp_dot(dy).abs();
-    let sum = dx.length_squared() + dy.length_squared();
-    let sigma_max = ((sum + (sum * sum - 4.0 * det * det).max(0.0).sqrt()) / 2.0).sqrt();
-    let extent = if det > 0.0 { sigma_max / det } else { f64::INFINITY };
-    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "clamped to 1..=MAX_BAND")]
-    let band = extent.ceil().clamp(1.0, f64::from(MAX_BAND)) as u32;
-    band
 }

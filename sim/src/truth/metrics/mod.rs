@@ -1,35 +1,35 @@
 //! Error metrics of a render against the exact reference, in the terms
 //! the papers argue in.
 //!
-//! * **Edge placement** (aliasing) is an error within the map's texel of
-//!   the exact shadow boundary: where a map texel covers `w` pixels on
-//!   screen its staircase reaches up to `w` pixels from the exact edge, and
-//!   which side of it a pixel falls on is the map's resolution at work, not
-//!   a fault of the algorithm. The band is each pixel's own: the screen
-//!   extent of the texel under it, from the light-space point's
-//!   derivatives along both screen axes ([`Metrics::footprint_x`],
-//!   [`Metrics::footprint_y`]), at least one pixel and at most
-//!   [`MAX_BAND`].
-//! * **Acne and leaks** are measured beyond the band on the shade the
-//!   render produced: a pixel whose filtered shadow fraction is darker than
-//!   the reference's area-averaged shadow by more than [`SHADE_STEP`] is
-//!   acne (self-shadowing; Wang & Molnar §2), lighter by more is a leak
-//!   (light through an occluder, a shadow detached from its caster). So a
-//!   stripe that a filter dims below ½ is still acne, with its magnitude.
-//!   Acne on a surface lit within [`GRAZING_COS`] of grazing next to where
-//!   it turns from the light is the terminator's (the occluder's own shadow
-//!   line; Weiskopf & Ertl §3), the rest the receiver's.
-//! * The ½ verdict (shadowed when more than half of the pixel is) is kept
-//!   for the misclassified-pixel counts and the boundary displacement.
+//! A pixel is **wrong** when the ½ verdict (shadowed when more than half
+//! of it is) disagrees with the reference's at its centre, or when its
+//! filtered shade differs from the reference's area-averaged shadow by
+//! more than [`SHADE_STEP`]. Every wrong pixel gets exactly one class,
+//! decided by its cause — what the shadow unit compared
+//! ([`crate::truth::cause`]), never a distance to an edge:
 //!
-//! Area error and the displacement of the rendered boundary from the exact
-//! one are reported besides.
+//! * **acne** (too dark from the receiver's own surface; Wang & Molnar
+//!   §2), **detachment** (too light because only the bias moved the test
+//!   past an occluder the map holds; their Figure 4) and **leaks** (too
+//!   light because the depth compared lies behind the receiver under a
+//!   first-layer occluder) are the artifacts;
+//! * **aliasing** (the taps straddle a true edge or miss the occluder:
+//!   edge placement) and **penumbra** (a filter's own partial shade
+//!   across a true edge; Reeves et al.) are the map's resolution and the
+//!   filter at work.
+//!
+//! Acne on a surface lit within [`GRAZING_COS`] of grazing next to where
+//! it turns from the light is the terminator's (the occluder's own shadow
+//! line; Weiskopf & Ertl §3), the rest the receiver's. Area error and the
+//! displacement of the rendered boundary from the exact one are reported
+//! besides.
 
 use glam::DVec2;
 use serde::Serialize;
 use umbra_core::shade::Shaded;
 use umbra_core::shadow::Shadow;
 
+use crate::truth::cause::Cause;
 use crate::truth::reference::PixelTruth;
 
 mod fields;
@@ -37,7 +37,7 @@ mod footprint;
 
 pub use self::fields::Fields;
 use self::fields::boundary;
-use self::footprint::{Points, texel_extent};
+use self::footprint::Points;
 
 /// The smallest difference between a pixel's filtered shadow fraction and
 /// the reference's area-averaged shadow that counts as an artifact: 0.1.
@@ -63,10 +63,6 @@ pub const GRAZING_COS: f64 = 0.25;
 /// from the light.
 pub const TERMINATOR_REACH: u32 = 16;
 
-/// Widest edge band, pixels: a texel seen edge-on is a sliver across the
-/// screen, and a band wider than this would excuse everything.
-pub const MAX_BAND: u32 = 32;
-
 /// How a render's shadows compare with the truth, over the pixels whose
 /// surface faces the light (the others are dark by shading whatever the
 /// shadow test says).
@@ -87,39 +83,53 @@ pub struct Metrics {
     pub false_light_percent: f64,
     /// Both, in percent of the evaluated pixels.
     pub misclassified_percent: f64,
-    /// Pixels within their edge band that are misclassified or differ from
-    /// the reference by more than [`SHADE_STEP`]: aliasing.
-    #[serde(rename = "edge_placement_px")]
-    pub edge_placement: u64,
-    /// Beyond the band, darker than the reference by more than
-    /// [`SHADE_STEP`]: acne and self-shadowing.
+    /// Wrong pixels whose taps straddle a true edge or miss the occluder:
+    /// aliasing (edge placement), not an artifact.
+    #[serde(rename = "aliasing_px")]
+    pub aliasing: u64,
+    /// Their summed shade difference from the reference, pixels.
+    #[serde(rename = "aliasing_area_px")]
+    pub aliasing_area: f64,
+    /// Too dark from the receiver's own surface: acne.
     #[serde(rename = "acne_px")]
     pub acne: u64,
     /// Of [`Metrics::acne`], on surfaces within [`GRAZING_COS`] of grazing
     /// and [`TERMINATOR_REACH`] of a surface facing away: the terminator's.
     #[serde(rename = "terminator_acne_px")]
     pub terminator_acne: u64,
-    /// Beyond the band, lighter than the reference by more than
-    /// [`SHADE_STEP`]: leaks and detached shadows.
-    #[serde(rename = "leaks_px")]
-    pub leaks: u64,
     /// The acne's summed excess shadow, pixels (a stripe of fraction 0.3
     /// adds 0.3 a pixel).
     #[serde(rename = "acne_area_px")]
     pub acne_area: f64,
+    /// Too light because only the bias or offset moved the test past an
+    /// occluder the map holds: detached shadows.
+    #[serde(rename = "detachment_px")]
+    pub detachment: u64,
+    /// The detachment's summed missing shadow, pixels.
+    #[serde(rename = "detachment_area_px")]
+    pub detachment_area: f64,
+    /// Too light because the depth compared lies behind the receiver under
+    /// a first-layer occluder: leaks.
+    #[serde(rename = "leaks_px")]
+    pub leaks: u64,
     /// The leaks' summed missing shadow, pixels.
     #[serde(rename = "leak_area_px")]
     pub leak_area: f64,
-    /// Artifacts (acne and leaks), in percent of the evaluated pixels: the
-    /// measure error budgets apply to.
+    /// A filter's own partial shade across a true edge: penumbra, not an
+    /// artifact.
+    #[serde(rename = "penumbra_px")]
+    pub penumbra: u64,
+    /// Their summed shade difference from the reference, pixels.
+    #[serde(rename = "penumbra_area_px")]
+    pub penumbra_area: f64,
+    /// How far the penumbra pixels lie from the exact boundary (Chebyshev
+    /// pixels, 0 on it): median and 95th percentile — the filter's soft
+    /// edge's width on each side.
+    #[serde(rename = "penumbra_width_px", serialize_with = "median_p95")]
+    pub penumbra_width: [f64; 2],
+    /// Artifacts (acne, detachment and leaks), in percent of the evaluated
+    /// pixels: the measure error budgets apply to.
     pub artifact_percent: f64,
-    /// Beyond the band, shadowed by the ½ verdict and lit in truth (the
-    /// count before the shade was measured).
-    #[serde(rename = "half_acne_px")]
-    pub half_acne: u64,
-    /// Beyond the band, lit by the ½ verdict and shadowed in truth.
-    #[serde(rename = "half_leaks_px")]
-    pub half_leaks: u64,
     /// Pixels whose filtered shadow fraction is exactly ½: counted as lit.
     #[serde(rename = "ties_px")]
     pub ties: u64,
@@ -147,9 +157,6 @@ pub struct Metrics {
     /// The same along y.
     #[serde(rename = "footprint_y_texels_per_px", serialize_with = "median_p95")]
     pub footprint_y: [f64; 2],
-    /// The edge band, pixels: median and 95th percentile.
-    #[serde(rename = "band_px", serialize_with = "median_p95")]
-    pub band: [f64; 2],
 }
 
 /// Mean, 95th percentile and largest, named.
@@ -189,12 +196,22 @@ pub enum Verdict {
     Unevaluated,
     /// Within [`SHADE_STEP`] of the reference, and on the right side of ½.
     Right,
-    /// Wrong within the pixel's edge band: aliasing.
-    EdgePlacement,
-    /// Darker than the reference beyond the band.
-    Acne,
-    /// Lighter than the reference beyond the band.
-    Leak,
+    /// Wrong, for one [`Cause`].
+    Wrong(Cause),
+}
+
+/// Says why a wrong pixel is wrong: [`crate::truth::cause`] replays the
+/// pixel through the shadow unit and reads its taps.
+pub trait Attribution {
+    /// The cause of evaluated pixel `k`'s error, shaded `s`: too dark
+    /// than the reference when `dark`, else too light.
+    fn cause(&mut self, k: usize, s: &Shaded, dark: bool) -> Cause;
+}
+
+impl<F: FnMut(usize, &Shaded, bool) -> Cause> Attribution for F {
+    fn cause(&mut self, k: usize, s: &Shaded, dark: bool) -> Cause {
+        self(k, s, dark)
+    }
 }
 
 /// Whether the pipeline shadows a pixel: more than half of it is ([`Shadow`]
@@ -209,36 +226,28 @@ pub(super) fn evaluated(t: &Option<PixelTruth>) -> Option<PixelTruth> {
     t.filter(|t| t.faces_light)
 }
 
-/// Each pixel's verdict, for a `width`-wide render: the counts
-/// [`compare`] reports, pixel by pixel (the error map draws them).
+/// Whether evaluated pixel `s` is wrong against `t`, and which way:
+/// `Some(true)` too dark, `Some(false)` too light, `None` right. A shade
+/// off by more than [`SHADE_STEP`] goes its own way; a pixel wrong only
+/// by the ½ verdict goes the way of its verdict.
+fn wrong(s: &Shaded, t: &PixelTruth) -> Option<bool> {
+    let excess = excess_shadow(s, t);
+    if excess.abs() > SHADE_STEP { Some(excess > 0.0) } else { (shadowed(s) == t.lit).then_some(t.lit) }
+}
+
+/// Each pixel's verdict: right, unevaluated, or wrong for the cause
+/// `causes` gives.
 #[must_use]
-pub fn verdicts(render: &[Shaded], truth: &[Option<PixelTruth>], width: u32) -> Vec<Verdict> {
-    let fields = Fields::new(truth, width);
-    let points = Points::new(render, truth, fields.width);
+pub fn verdicts(render: &[Shaded], truth: &[Option<PixelTruth>], causes: &mut impl Attribution) -> Vec<Verdict> {
     render
         .iter()
         .zip(truth)
         .enumerate()
         .map(|(k, (s, t))| match evaluated(t) {
-            Some(t) => verdict(s, &t, texel_extent(points.footprint(k)), &fields, k),
             None => Verdict::Unevaluated,
+            Some(t) => wrong(s, &t).map_or(Verdict::Right, |dark| Verdict::Wrong(causes.cause(k, s, dark))),
         })
         .collect()
-}
-
-/// The verdict of evaluated pixel `k`, shaded `s` where the reference
-/// says `t`, with an edge band of `band` pixels.
-fn verdict(s: &Shaded, t: &PixelTruth, band: u32, fields: &Fields, k: usize) -> Verdict {
-    let wrong_side = shadowed(s) == t.lit;
-    let excess = excess_shadow(s, t);
-    let near = fields.to_edge.get(k).is_some_and(|&d| d < band);
-    match (near, wrong_side || excess.abs() > SHADE_STEP) {
-        (_, false) => Verdict::Right,
-        (true, true) => Verdict::EdgePlacement,
-        (false, true) if excess > SHADE_STEP => Verdict::Acne,
-        (false, true) if excess < -SHADE_STEP => Verdict::Leak,
-        (false, true) => Verdict::Right,
-    }
 }
 
 /// How much darker the pipeline shades a pixel than the reference: its
@@ -255,45 +264,20 @@ fn quantiles(mut v: Vec<f64>) -> [f64; 2] {
     [median, p95]
 }
 
-/// [`quantiles`] of values given by their counts (`counts[v]` of the
-/// value `v`): the same two order statistics, by a walk up the counts
-/// rather than a selection.
-#[allow(
-    clippy::cast_precision_loss,
-    clippy::cast_possible_truncation,
-    clippy::cast_sign_loss,
-    reason = "counts and ranks"
-)]
-fn counted_quantiles(counts: &[u64]) -> [f64; 2] {
-    let n: u64 = counts.iter().sum();
-    if n == 0 {
-        return [0.0; 2];
-    }
-    // The value of rank `r` (from 0) in sorted order.
-    let ranked = |r: u64| {
-        let mut below = 0;
-        for (v, &c) in counts.iter().enumerate() {
-            below += c;
-            if below > r {
-                return v as f64;
-            }
-        }
-        0.0
-    };
-    let p95 = ((n - 1) as f64 * 0.95).round() as u64;
-    [ranked(n / 2), ranked(p95)]
-}
-
-/// Compare a `width`-wide render with the truth: the ½-verdict counts, the
-/// edge band, the shade-measured artifacts (see the module's rules), area
-/// error, displacement and the map's footprint.
+/// Compare a render with the truth, each wrong pixel judged by `causes`:
+/// the metrics and each pixel's verdict.
 #[must_use]
-pub fn compare(render: &[Shaded], truth: &[Option<PixelTruth>], width: u32) -> Metrics {
-    compare_with(render, truth, &Fields::new(truth, width))
+pub fn compare(
+    render: &[Shaded],
+    truth: &[Option<PixelTruth>],
+    fields: &Fields,
+    causes: &mut impl Attribution,
+) -> (Metrics, Vec<Verdict>) {
+    let verdicts = verdicts(render, truth, causes);
+    (measure(render, truth, fields, &verdicts), verdicts)
 }
 
-/// [`compare`] with the reference's [`Fields`] worked out before: the
-/// same metrics, bit for bit.
+/// The metrics of a render whose pixels' verdicts are known.
 #[must_use]
 #[allow(
     clippy::cast_precision_loss,
@@ -301,47 +285,49 @@ pub fn compare(render: &[Shaded], truth: &[Option<PixelTruth>], width: u32) -> M
     clippy::cast_sign_loss,
     reason = "pixel counts and coordinates"
 )]
-pub fn compare_with(render: &[Shaded], truth: &[Option<PixelTruth>], fields: &Fields) -> Metrics {
+pub fn measure(render: &[Shaded], truth: &[Option<PixelTruth>], fields: &Fields, verdicts: &[Verdict]) -> Metrics {
     let width = fields.width;
     let points = Points::new(render, truth, width);
     let rendered: Vec<Option<bool>> =
         render.iter().zip(truth).map(|(s, t)| evaluated(t).map(|_| shadowed(s))).collect();
     let mut m = Metrics::default();
     let (mut abs_error, mut square_error) = (0.0, 0.0);
-    // Each band's pixels: the bands are whole pixels, 1 to MAX_BAND.
-    let mut bands = [0u64; MAX_BAND as usize + 1];
-    let (mut along_x, mut along_y) = (Vec::new(), Vec::new());
-    for (k, (s, t)) in render.iter().zip(truth).enumerate() {
+    let (mut along_x, mut along_y, mut penumbra_width) = (Vec::new(), Vec::new(), Vec::new());
+    for (k, ((s, t), v)) in render.iter().zip(truth).zip(verdicts).enumerate() {
         let Some(t) = evaluated(t) else { continue };
         let footprint = points.footprint(k);
         along_x.extend(footprint.0.map(DVec2::length));
         along_y.extend(footprint.1.map(DVec2::length));
-        let band = texel_extent(footprint);
-        let v = verdict(s, &t, band, fields, k);
         m.evaluated += 1;
-        bands[band.min(MAX_BAND) as usize] += 1;
         m.ties += u64::from(s.shadow == Shadow::from_bits(1 << 15));
-        let (false_shadow, false_light) = (shadowed(s) && t.lit, !shadowed(s) && !t.lit);
-        m.false_shadow += u64::from(false_shadow);
-        m.false_light += u64::from(false_light);
+        m.false_shadow += u64::from(shadowed(s) && t.lit);
+        m.false_light += u64::from(!shadowed(s) && !t.lit);
         let e = excess_shadow(s, &t);
         match v {
-            Verdict::EdgePlacement => m.edge_placement += 1,
-            Verdict::Acne => {
+            Verdict::Wrong(Cause::Aliasing) => {
+                m.aliasing += 1;
+                m.aliasing_area += e.abs();
+            }
+            Verdict::Wrong(Cause::Penumbra) => {
+                m.penumbra += 1;
+                m.penumbra_area += e.abs();
+                penumbra_width.push(f64::from(fields.to_edge.get(k).copied().unwrap_or(u32::MAX)));
+            }
+            Verdict::Wrong(Cause::Acne) => {
                 m.acne += 1;
-                m.acne_area += e;
+                m.acne_area += e.abs();
                 let turning = fields.to_away.get(k).is_some_and(|&d| d <= TERMINATOR_REACH);
                 m.terminator_acne += u64::from(t.light_cos < GRAZING_COS && turning);
             }
-            Verdict::Leak => {
+            Verdict::Wrong(Cause::Detachment) => {
+                m.detachment += 1;
+                m.detachment_area += e.abs();
+            }
+            Verdict::Wrong(Cause::Leak) => {
                 m.leaks += 1;
-                m.leak_area -= e;
+                m.leak_area += e.abs();
             }
             Verdict::Right | Verdict::Unevaluated => {}
-        }
-        if v != Verdict::EdgePlacement {
-            m.half_acne += u64::from(false_shadow);
-            m.half_leaks += u64::from(false_light);
         }
         abs_error += e.abs();
         square_error += e * e;
@@ -360,7 +346,7 @@ pub fn compare_with(render: &[Shaded], truth: &[Option<PixelTruth>], fields: &Fi
     points.recycle();
     m.footprint_x = quantiles(along_x);
     m.footprint_y = quantiles(along_y);
-    m.band = counted_quantiles(&bands);
+    m.penumbra_width = quantiles(penumbra_width);
     m.displacement = summary(&mut pixels);
     m.displacement_texels = summary(&mut texels);
     if m.evaluated > 0 {
@@ -369,7 +355,7 @@ pub fn compare_with(render: &[Shaded], truth: &[Option<PixelTruth>], fields: &Fi
         m.false_shadow_percent = 100.0 * fs / n;
         m.false_light_percent = 100.0 * fl / n;
         m.misclassified_percent = 100.0 * (fs + fl) / n;
-        m.artifact_percent = 100.0 * (m.acne + m.leaks) as f64 / n;
+        m.artifact_percent = 100.0 * (m.acne + m.detachment + m.leaks) as f64 / n;
         m.mean_abs_error = abs_error / n;
         m.rms_error = (square_error / n).sqrt();
     }

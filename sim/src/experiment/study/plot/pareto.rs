@@ -33,7 +33,7 @@ impl Figure for Pareto<'_> {
         let (plot, legend_area) = area.split_horizontally(SIZE.0 - 230);
         let xr = log_range(self.points.iter().map(|p| p.0), 1e-3);
         let yr = log_range(self.points.iter().map(|p| p.1).chain(self.budgets.iter().copied()), ERROR_FLOOR);
-        let y_desc = format!("artifacts % (acne and leaks; 0 drawn at {ERROR_FLOOR})");
+        let y_desc = format!("artifacts % (acne, detachment, leaks; 0 drawn at {ERROR_FLOOR})");
         let (x0, x1) = (xr.start, xr.end);
         let mut chart = log_log_chart(&plot, &self.title, xr, yr, self.axis, &y_desc)?;
         for &b in self.budgets {
