@@ -213,11 +213,11 @@ fn a_pixel_the_bias_alone_makes_too_light_is_detachment() {
     let floor_alone = rendered(&alone(&scene, floor), point(0.0), 512, size);
     let wrong_light = |v: Verdict| matches!(v, Verdict::Wrong(Cause::Detachment | Cause::Leak | Cause::Aliasing));
     let mut checked = 0;
-    for k in 0..biased.verdicts.len() {
+    for (k, object) in of.iter().enumerate() {
         let t = biased.truth[k].filter(|t| t.faces_light);
         let too_light = t.is_some_and(|t| biased.image.pixels[k].shadow.to_num::<f64>() < 1.0 - t.visibility - 0.1);
         let right_at_zero = unbiased.verdicts[k] == Verdict::Right;
-        let floor_lit = of[k] == Some(floor) && floor_alone.image.pixels[k].shadow == Shadow::ZERO;
+        let floor_lit = *object == Some(floor) && floor_alone.image.pixels[k].shadow == Shadow::ZERO;
         if too_light && right_at_zero && floor_lit {
             checked += 1;
             assert!(wrong_light(biased.verdicts[k]), "pixel {k} is wrong the light way");
