@@ -78,9 +78,9 @@ fn silhouettes<S: SilStore, F: DepthFormat>(
     Ok(compare(pixels, truth, fields, &mut Replay::new(what, view, &SilhouetteUnit(&sil), reference)))
 }
 
-/// A wrong pixel's judge: shades the one pixel again through `unit` with
-/// a probe recording its taps, then reads them against the receiver's
-/// plane and the exact rays.
+/// The wrong pixels' judge: shades each run of them along a row again
+/// through `unit` with a probe recording their taps, then reads each
+/// pixel's taps against its receiver's plane and the exact rays.
 struct Replay<'a, F: DepthFormat, U> {
     cfg: ShadeConfig,
     ids: &'a [u32],
@@ -92,7 +92,8 @@ struct Replay<'a, F: DepthFormat, U> {
     camera_inverse: DMat4,
     rays: Rays<'a>,
     taps: Taps,
-    setups: [ShadeSetup; 1],
+    setups: Vec<ShadeSetup>,
+    out: Vec<Shaded>,
 }
 
 impl<'a, F: DepthFormat, U: ShadowUnit<F>> Replay<'a, F, U> {
@@ -112,59 +113,110 @@ impl<'a, F: DepthFormat, U: ShadowUnit<F>> Replay<'a, F, U> {
             camera_inverse: cfg.camera.as_dmat4().inverse(),
             rays: Rays::new(reference, &light, size),
             taps: Taps::default(),
-            setups: [ShadeSetup::EMPTY],
+            setups: vec![ShadeSetup::EMPTY; 16],
+            out: Vec::new(),
         }
     }
-}
 
-impl<F: DepthFormat, U: ShadowUnit<F>> Attribution for Replay<'_, F, U> {
-    fn cause(&mut self, k: usize, s: &Shaded, dark: bool) -> Cause {
-        let shadow = self.cfg.shadow;
-        let judge = Judge { test: shadow.test(), shade: s.shadow, dark, soft: Judge::softens(shadow.filter()) };
+    /// Shade the pixels `k0..k1` of one row again, their taps recorded.
+    fn replay(&mut self, k0: usize, k1: usize) {
         let width = self.cfg.width as usize;
-        let (Some(id), Some(light)) = (self.ids.get(k), s.light) else {
-            return judge.cause(&[], &Receiver::flat::<F>(0), |_| false);
+        #[allow(clippy::cast_possible_truncation, reason = "pixels of the image")]
+        let rect = TileRect {
+            x0: (k0 % width) as u32,
+            y0: (k0 / width) as u32,
+            x1: (k1 - k0 + k0 % width) as u32,
+            y1: (k0 / width) as u32 + 1,
         };
-        #[allow(clippy::cast_possible_truncation, reason = "a pixel of the image")]
-        let (x, y) = ((k % width) as u32, (k / width) as u32);
+        let triangles = &self.triangles;
         let source = |i: u32| -> Option<SceneTriangle> {
-            let p = *self.triangles.get(i as usize)?;
-            let f = p.map(|v| v.as_vec3());
+            let f = triangles.get(i as usize)?.map(|v| v.as_vec3());
             let n = (f[1] - f[0]).cross(f[2] - f[0]).normalize_or_zero();
             Some(SceneTriangle { positions: f, normals: [n; 3] })
         };
         self.taps.clear();
-        let mut out = [Shaded::BACKGROUND];
-        let rect = TileRect { x0: x, y0: y, x1: x + 1, y1: y + 1 };
+        self.out.clear();
+        self.out.resize(k1 - k0, Shaded::BACKGROUND);
+        let ids = self.ids.get(k0..k1).unwrap_or_default();
         let replayed = shade_rect(
             &self.cfg,
             rect,
-            core::slice::from_ref(id),
+            ids,
             self.view,
             &source,
-            &mut out,
+            &mut self.out,
             self.unit,
             &mut self.setups,
             &mut self.taps,
         );
-        debug_assert!(replayed.is_ok() && out[0].shadow == s.shadow, "the replay shades pixel {k} as the pass did");
-        let raster = self.view.raster();
-        let triangle = self.triangles.get(*id as usize).copied();
-        let receiver = triangle
-            .and_then(|t| Receiver::of::<F>(&t, &self.light, (raster.width(), raster.height())))
-            .unwrap_or_else(|| Receiver::flat::<F>(light.z.to_bits()));
-        // The object that hides the pixel's own centre from the light: a
-        // tap's occluder must be it (a tap across a crease onto another
-        // surface touching the receiver is not), unless the centre is lit.
-        let own = triangle.and_then(|tri| {
-            let size = (f64::from(self.cfg.width), f64::from(self.cfg.height));
-            let (p, _) = surface_point(&self.camera_inverse, (f64::from(x) + 0.5, f64::from(y) + 0.5), size, &tri)?;
-            self.rays.reference().occluder_of(p, &self.light_source)
-        });
-        let rays = &self.rays;
-        judge.cause(self.taps.taps(), &receiver, |t| {
+        debug_assert!(replayed.is_ok(), "the replay of pixels {k0}..{k1} runs as the pass did");
+    }
+
+    /// The cause of pixel `k`, shaded `s`, too dark when `dark`, from its
+    /// taps of the last replay.
+    fn judge(&self, k: usize, s: &Shaded, dark: bool, receiver: &mut Option<(u32, Receiver)>) -> Cause {
+        let shadow = self.cfg.shadow;
+        let judge = Judge { test: shadow.test(), shade: s.shadow, dark, soft: Judge::softens(shadow.filter()) };
+        let width = self.cfg.width as usize;
+        #[allow(clippy::cast_possible_truncation, reason = "a pixel of the image")]
+        let (x, y) = ((k % width) as u32, (k / width) as u32);
+        let (Some(&id), Some(light)) = (self.ids.get(k), s.light) else {
+            return judge.cause(&[], &Receiver::flat::<F>(0), |_| false);
+        };
+        let triangle = self.triangles.get(id as usize).copied();
+        // The receiver's plane, kept while the pixels stay on its triangle.
+        let plane = match *receiver {
+            Some((of, plane)) if of == id => plane,
+            _ => {
+                let raster = self.view.raster();
+                let plane = triangle
+                    .and_then(|t| Receiver::of::<F>(&t, &self.light, (raster.width(), raster.height())))
+                    .unwrap_or_else(|| Receiver::flat::<F>(light.z.to_bits()));
+                *receiver = Some((id, plane));
+                plane
+            }
+        };
+        // The object that hides the pixel's own centre from the light,
+        // found when a lit tap asks: a tap's occluder must be it (a tap
+        // across a crease onto another surface touching the receiver is
+        // not), unless the centre is lit.
+        let mut own: Option<Option<u32>> = None;
+        let size = (f64::from(self.cfg.width), f64::from(self.cfg.height));
+        judge.cause(self.taps.of_column(x), &plane, |t| {
             let Some(tri) = triangle else { return false };
-            rays.occluder(t.x, t.y, &tri).is_some_and(|o| own.is_none_or(|p| p == o))
+            let Some(occluder) = self.rays.occluder(t.x, t.y, &tri) else { return false };
+            let own = *own.get_or_insert_with(|| {
+                let centre = (f64::from(x) + 0.5, f64::from(y) + 0.5);
+                let (p, _) = surface_point(&self.camera_inverse, centre, size, &tri)?;
+                self.rays.reference().occluder_of(p, &self.light_source)
+            });
+            own.is_none_or(|o| o == occluder)
         })
+    }
+}
+
+impl<F: DepthFormat, U: ShadowUnit<F>> Attribution for Replay<'_, F, U> {
+    fn causes(&mut self, wrong: &[(usize, bool)], render: &[Shaded]) -> Vec<Cause> {
+        let width = (self.cfg.width as usize).max(1);
+        let mut causes = Vec::with_capacity(wrong.len());
+        let mut receiver = None;
+        // Runs of wrong pixels next to each other along a row, each shaded
+        // again at once.
+        let mut at = 0;
+        while at < wrong.len() {
+            let k0 = wrong[at].0;
+            let mut end = at + 1;
+            while end < wrong.len() && wrong[end].0 == wrong[end - 1].0 + 1 && !wrong[end].0.is_multiple_of(width) {
+                end += 1;
+            }
+            self.replay(k0, wrong[end - 1].0 + 1);
+            for &(k, dark) in &wrong[at..end] {
+                let s = render.get(k).copied().unwrap_or(Shaded::BACKGROUND);
+                debug_assert_eq!(self.out.get(k - k0).map(|o| o.shadow), Some(s.shadow), "pixel {k} replayed");
+                causes.push(self.judge(k, &s, dark, &mut receiver));
+            }
+            at = end;
+        }
+        causes
     }
 }

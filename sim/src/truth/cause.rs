@@ -54,27 +54,46 @@ impl Cause {
     }
 }
 
-/// A probe that records the taps of one pixel's decision. Wang & Molnar's
-/// virtual samples decide a pixel in up to two lookups: when the tangent
-/// plane is set up the taps of the lookup that decides start afresh, and
-/// when it falls back the ordinary lookup's taps are put back.
+/// A probe that records the taps of the pixels a shading unit decides,
+/// each pixel's apart (from the unit's `PixelShaded` event on). Wang &
+/// Molnar's virtual samples decide a pixel in up to two lookups: when the
+/// tangent plane is set up the taps of the lookup that decides start
+/// afresh, and when it falls back the ordinary lookup's taps are put back.
 #[derive(Clone, Debug, Default)]
 pub struct Taps {
     taps: Vec<Tap>,
+    /// Each shaded pixel's column and where its taps start.
+    pixels: Vec<(u32, usize)>,
     ordinary: Vec<Tap>,
 }
 
 impl Taps {
-    /// Forget the last pixel's taps.
+    /// Forget every pixel's taps.
     pub fn clear(&mut self) {
         self.taps.clear();
+        self.pixels.clear();
         self.ordinary.clear();
     }
 
-    /// The taps that decided the last pixel.
+    /// Every tap recorded since the last [`Taps::clear`] (a lookup made
+    /// directly, outside a shading pass, is one pixel's).
     #[must_use]
     pub fn taps(&self) -> &[Tap] {
         &self.taps
+    }
+
+    /// The taps that decided the pixel of column `x` in the row shaded
+    /// since the last [`Taps::clear`]; empty when it was not shaded.
+    #[must_use]
+    pub fn of_column(&self, x: u32) -> &[Tap] {
+        let Some(at) = self.pixels.iter().position(|&(c, _)| c == x) else { return &[] };
+        let end = self.pixels.get(at + 1).map_or(self.taps.len(), |p| p.1);
+        self.taps.get(self.pixels[at].1..end).unwrap_or_default()
+    }
+
+    /// Where the current pixel's taps start.
+    fn start(&self) -> usize {
+        self.pixels.last().map_or(0, |p| p.1)
     }
 }
 
@@ -83,8 +102,16 @@ impl Probe for Taps {
 
     fn event(&mut self, event: Event) {
         match event {
-            Event::TangentSetup => self.ordinary = core::mem::take(&mut self.taps),
-            Event::TangentFallback => self.taps = core::mem::take(&mut self.ordinary),
+            Event::PixelShaded { x, .. } => self.pixels.push((x, self.taps.len())),
+            Event::TangentSetup => {
+                let start = self.start();
+                self.ordinary.clear();
+                self.ordinary.extend(self.taps.drain(start..));
+            }
+            Event::TangentFallback => {
+                self.taps.truncate(self.start());
+                self.taps.append(&mut self.ordinary);
+            }
             _ => {}
         }
     }

@@ -200,17 +200,18 @@ pub enum Verdict {
     Wrong(Cause),
 }
 
-/// Says why a wrong pixel is wrong: [`crate::truth::cause`] replays the
-/// pixel through the shadow unit and reads its taps.
+/// Says why wrong pixels are wrong: [`crate::truth::cause`] replays them
+/// through the shadow unit and reads their taps.
 pub trait Attribution {
-    /// The cause of evaluated pixel `k`'s error, shaded `s`: too dark
-    /// than the reference when `dark`, else too light.
-    fn cause(&mut self, k: usize, s: &Shaded, dark: bool) -> Cause;
+    /// The cause of each wrong pixel `(k, dark)` of `render` (in
+    /// increasing `k`; too dark than the reference when `dark`, else too
+    /// light), one each, in the same order.
+    fn causes(&mut self, wrong: &[(usize, bool)], render: &[Shaded]) -> Vec<Cause>;
 }
 
 impl<F: FnMut(usize, &Shaded, bool) -> Cause> Attribution for F {
-    fn cause(&mut self, k: usize, s: &Shaded, dark: bool) -> Cause {
-        self(k, s, dark)
+    fn causes(&mut self, wrong: &[(usize, bool)], render: &[Shaded]) -> Vec<Cause> {
+        wrong.iter().map(|&(k, dark)| self(k, &render[k], dark)).collect()
     }
 }
 
@@ -239,15 +240,25 @@ fn wrong(s: &Shaded, t: &PixelTruth) -> Option<bool> {
 /// `causes` gives.
 #[must_use]
 pub fn verdicts(render: &[Shaded], truth: &[Option<PixelTruth>], causes: &mut impl Attribution) -> Vec<Verdict> {
-    render
-        .iter()
-        .zip(truth)
-        .enumerate()
-        .map(|(k, (s, t))| match evaluated(t) {
+    let mut verdicts: Vec<Verdict> = Vec::with_capacity(render.len());
+    let mut wrongs = Vec::new();
+    for (k, (s, t)) in render.iter().zip(truth).enumerate() {
+        verdicts.push(match evaluated(t) {
             None => Verdict::Unevaluated,
-            Some(t) => wrong(s, &t).map_or(Verdict::Right, |dark| Verdict::Wrong(causes.cause(k, s, dark))),
-        })
-        .collect()
+            Some(t) => match wrong(s, &t) {
+                None => Verdict::Right,
+                Some(dark) => {
+                    wrongs.push((k, dark));
+                    // Judged below.
+                    Verdict::Wrong(Cause::Aliasing)
+                }
+            },
+        });
+    }
+    for (&(k, _), cause) in wrongs.iter().zip(causes.causes(&wrongs, render)) {
+        verdicts[k] = Verdict::Wrong(cause);
+    }
+    verdicts
 }
 
 /// How much darker the pipeline shades a pixel than the reference: its
