@@ -131,7 +131,7 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
     let f = &mut folder;
     write_shadow_image(f, "shaded.png", &r.image, &r.truth)?;
     write_shadow_term(f, "shadow.png", &r.image)?;
-    write_error_image(f, "error.png", &r.image, &r.verdicts, scene.light().direction())?;
+    write_error_image(f, "error.png", &r.image, &r.verdicts, &r.truth)?;
     for (name, data) in r.maps.stored() {
         let map = RawMap { format: r.maps.format, width: w, height: h, raw: data };
         write_npy(f, &format!("{name}.npy"), &map)?;

@@ -95,8 +95,8 @@ fn colour_of(cause: Cause) -> [u8; 3] {
 pub const RINGS: usize = 2000;
 
 /// Write the error map: every pixel's [`Verdict`] over a faint shading of
-/// the scene (light greys, lit surfaces lighter, so the geometry stays
-/// readable), each wrong pixel in its class's colour ([`ERROR_COLOURS`]),
+/// the scene (light greys, lit surfaces lighter by their exact cosine to
+/// the light from `truth`, so the geometry stays readable), each wrong pixel in its class's colour ([`ERROR_COLOURS`]),
 /// each artifact pixel ringed in its colour (up to [`RINGS`] of them),
 /// with a legend band below the image giving each class and its count.
 ///
@@ -107,10 +107,9 @@ pub fn write_error_image(
     name: &str,
     image: &CameraImage,
     verdicts: &[Verdict],
-    light_dir: umbra_core::glam::Vec3,
+    truth: &[Option<PixelTruth>],
 ) -> Result<PathBuf, OutputError> {
     use plotters::prelude::*;
-    let to_light = -light_dir.normalize_or_zero();
     let count = |v: Verdict| verdicts.iter().filter(|&&x| x == v).count();
     let (w, h) = (image.width, image.height);
     // The legend's entries, placed in rows that wrap at the image's width.
@@ -140,7 +139,7 @@ pub fn write_error_image(
             Verdict::Wrong(cause) => colour_of(*cause),
             _ if p.triangle == umbra_core::NO_TRIANGLE => [255, 255, 255],
             _ => {
-                let lambert = f64::from(p.normal.normalize_or_zero().dot(to_light).max(0.0));
+                let lambert = truth.get(k).copied().flatten().map_or(0.0, |t| t.light_cos.max(0.0));
                 let lit = if *v == Verdict::Right { 1.0 - p.shadow.to_num::<f64>() } else { 0.0 };
                 #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "within 170..=240")]
                 let g = (170.0 + 70.0 * lit * lambert).round() as u8;

@@ -267,3 +267,39 @@ fn a_receivers_span_is_its_slope_across_a_texel_and_one_step() {
     assert!((r.span() - (slope + umbra::core::budget::PLANE_ONE)).abs() < 1e-6 * unit, "{}", r.span());
     assert!((r.at(0, 50) - (0.2 + 0.002) * unit).abs() < 1e-6 * unit, "{}", r.at(0, 50));
 }
+
+/// The error map paints each wrong pixel in its class's colour: Wang &
+/// Molnar's table at the bias that clears the floor's acne, decoded. The
+/// detachment at the legs' feet shows in its colour (rings add to it, so
+/// at least as many pixels as the metrics count), and a pixel judged
+/// right stays grey unless a ring round an artifact within 8 pixels
+/// covers it.
+#[test]
+fn the_error_map_paints_each_class_its_colour() {
+    use umbra::sim::render::pictures::{ERROR_COLOURS, write_error_image};
+    let scene = Scene::bundled("wang-molnar-4").expect("bundled");
+    let r = rendered(&scene, (Algorithm::First, 0.03, "point"), 512, (256, 256));
+    let dir = std::env::temp_dir().join(format!("umbra-error-map-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let mut folder = umbra::sim::io::folder::OutputFolder::create(&dir).expect("folder");
+    let path = write_error_image(&mut folder, "error.png", &r.image, &r.verdicts, &r.truth).expect("written");
+    let png = image::open(&path).expect("a PNG").to_rgb8();
+    let _ = std::fs::remove_dir_all(&dir);
+    let (w, h) = (r.image.width, r.image.height);
+    assert!(png.width() == w && png.height() > h, "the legend lies below the image");
+    let colour = |c: Cause| ERROR_COLOURS.iter().find(|e| e.0 == c).expect("a colour").2;
+    let detached = colour(Cause::Detachment);
+    let painted = (0..w * h).filter(|k| png.get_pixel(k % w, k / w).0 == detached).count() as u64;
+    assert!(r.metrics.detachment >= 100, "{} detachment", r.metrics.detachment);
+    assert!(painted >= r.metrics.detachment, "{painted} purple pixels for {} detachment", r.metrics.detachment);
+    let artifacts: Vec<(i64, i64)> = (0..w * h)
+        .filter(|&k| matches!(r.verdicts[k as usize], Verdict::Wrong(c) if c.is_artifact()))
+        .map(|k| (i64::from(k % w), i64::from(k / w)))
+        .collect();
+    for k in (0..w * h).filter(|&k| r.verdicts[k as usize] == Verdict::Right) {
+        let (x, y) = (i64::from(k % w), i64::from(k / w));
+        let [red, green, blue] = png.get_pixel(k % w, k / w).0;
+        let ringed = artifacts.iter().any(|&(ax, ay)| (ax - x).abs() <= 8 && (ay - y).abs() <= 8);
+        assert!(ringed || (red == green && green == blue), "pixel ({x}, {y}) judged right is coloured");
+    }
+}
