@@ -254,3 +254,89 @@ fn the_check_sees_an_upward_import() {
     let code: String = "// crate::render::x".split("//").next().unwrap_or_default().to_owned();
     assert!(imports(&pass, &code).is_empty());
 }
+
+/// Every `.rs` file under `root`'s folders `within` (their `src/` folders
+/// when `src`), relative to `root`.
+fn rust_files(root: &Path, within: &[&str], src: bool) -> Vec<PathBuf> {
+    fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
+        let Ok(entries) = std::fs::read_dir(dir) else { return };
+        for e in entries.flatten() {
+            let p = e.path();
+            if p.is_dir() && !p.ends_with("target") {
+                walk(&p, out);
+            } else if p.extension().is_some_and(|x| x == "rs") {
+                out.push(p);
+            }
+        }
+    }
+    let mut out = Vec::new();
+    for folder in within {
+        walk(&if src { root.join(folder).join("src") } else { root.join(folder) }, &mut out);
+    }
+    out.iter().filter_map(|p| p.strip_prefix(root).ok().map(Path::to_path_buf)).collect()
+}
+
+/// Whether `doc` names source file `file`: by its file name, or — a
+/// module's `mod.rs`, a crate's `lib.rs` or `main.rs` — by its folder
+/// (`probe/`; a crate's root by the crate's, `hosts/demo/`).
+fn names(doc: &str, file: &Path) -> bool {
+    let name = file.file_name().and_then(|n| n.to_str()).unwrap_or_default();
+    let word = |w: &str| {
+        doc.match_indices(w).any(|(i, _)| {
+            let before = doc[..i].chars().next_back();
+            !before.is_some_and(|c| c.is_alphanumeric() || c == '_')
+        })
+    };
+    if ["mod.rs", "lib.rs", "main.rs"].contains(&name) {
+        let folder = file.parent().unwrap_or(Path::new(""));
+        let last = folder.file_name().and_then(|n| n.to_str()).unwrap_or_default();
+        // A crate's root by the crate's folder (`hosts/demo/`), a module's by its own.
+        let named = if last == "src" { folder.parent().unwrap_or(folder) } else { folder };
+        let short = named.file_name().and_then(|n| n.to_str()).unwrap_or_default();
+        return word(&format!("{}/", named.to_string_lossy())) || (last != "src" && word(&format!("{short}/")));
+    }
+    word(name)
+}
+
+/// The `.rs` files `doc` names that no crate's source holds.
+fn stale(doc: &str, files: &[PathBuf]) -> Vec<String> {
+    let held: std::collections::BTreeSet<String> =
+        files.iter().filter_map(|f| f.file_name().and_then(|n| n.to_str()).map(str::to_owned)).collect();
+    let mut named: Vec<String> = doc
+        .split(|c: char| !(c.is_alphanumeric() || c == '_' || c == '.'))
+        .filter(|w| w.ends_with(".rs") && w.len() > 3)
+        .map(str::to_owned)
+        .filter(|w| !held.contains(w))
+        .collect();
+    named.dedup();
+    named
+}
+
+/// `ARCHITECTURE.md` names every source file of every crate (a module's
+/// folder for its `mod.rs`), and no file that does not exist.
+#[test]
+fn the_architecture_page_names_every_source_file_and_no_other() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let doc = std::fs::read_to_string(root.join("ARCHITECTURE.md")).expect("ARCHITECTURE.md");
+    let crates = ["core", "sim", "hosts/cli", "hosts/demo", "hosts/llvmpipe", "hosts/cortex-m", "python"];
+    let files = rust_files(root, &crates, true);
+    assert!(files.len() > 120, "found {} source files: the walk is not reading the crates", files.len());
+    let missing: Vec<String> =
+        files.iter().filter(|f| !names(&doc, f)).map(|f| f.to_string_lossy().into_owned()).collect();
+    assert_eq!(missing, Vec::<String>::new(), "source files ARCHITECTURE.md does not name");
+    // Tests, benches and examples may be named too.
+    let all = [files, rust_files(root, &["tests", "benches", "examples", "fuzz", "hosts/cli/tests"], false)].concat();
+    assert_eq!(stale(&doc, &all), Vec::<String>::new(), "files ARCHITECTURE.md names that do not exist");
+}
+
+/// The check itself: a page without a file's name misses it, and a name
+/// of no file is stale.
+#[test]
+fn the_architecture_check_sees_a_missing_and_a_stale_file() {
+    let files = [PathBuf::from("sim/src/render/replay.rs"), PathBuf::from("core/src/probe/mod.rs")];
+    assert!(!names("render/ holds pictures.rs", &files[0]));
+    assert!(names("render/ holds replay.rs", &files[0]));
+    assert!(!names("the unreplay.rs file", &files[0]));
+    assert!(names("probe/ (events)", &files[1]));
+    assert_eq!(stale("see report.rs and replay.rs", &files), ["report.rs"]);
+}

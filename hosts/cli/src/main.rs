@@ -8,6 +8,7 @@ use cost::{CorrelateArgs, CostArgs, correlate, cost};
 use depth::{DepthArgs, depth};
 use experiment::{MergeArgs, PlanArgs, StatusArgs, StudyArgs, plan, study};
 use render::{RenderArgs, render};
+use umbra_sim::cost::arch::Unit;
 use umbra_sim::io::limits::Limits;
 
 mod arch;
@@ -70,31 +71,13 @@ struct LimitArgs {
     max_memory: u64,
 }
 
-/// A `--max-memory` value: bytes, or a number with B, KiB, MiB, GiB (or KB, MB, GB).
+/// A `--max-memory` value: bytes, or a size as architecture files write
+/// one (`16GiB`, `512MB`, `1TiB`: the one reader of sizes, [`Unit::Bytes`]).
 fn memory(text: &str) -> Result<u64, String> {
-    let t = text.trim();
-    let split = t.find(|c: char| !(c.is_ascii_digit() || c == '.')).unwrap_or(t.len());
-    let (number, unit) = t.split_at(split);
-    let scale: u64 = match unit.trim() {
-        "" | "B" => 1,
-        "KiB" => 1 << 10,
-        "MiB" => 1 << 20,
-        "GiB" => 1 << 30,
-        "TiB" => 1 << 40,
-        "KB" | "kB" => 1_000,
-        "MB" => 1_000_000,
-        "GB" => 1_000_000_000,
-        "TB" => 1_000_000_000_000,
-        u => return Err(format!("unknown unit `{u}`: use B, KiB, MiB, GiB, TiB, KB, MB, GB or TB")),
+    let bytes = match text.trim().parse::<f64>() {
+        Ok(plain) => plain,
+        Err(_) => Unit::Bytes.parse(text).map_err(|e| e.to_string())?,
     };
-    let n: f64 = number.parse().map_err(|_| format!("`{text}` is not a size such as 16GiB"))?;
-    #[allow(
-        clippy::cast_precision_loss,
-        clippy::cast_possible_truncation,
-        clippy::cast_sign_loss,
-        reason = "checked in range"
-    )]
-    let bytes = n * scale as f64;
     if !(bytes >= 1.0 && bytes < 2f64.powi(63)) {
         return Err(format!("`{text}` is not a size from 1 B to 8 EiB"));
     }

@@ -5,7 +5,6 @@
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
 
 use umbra_sim::io::limits::{Footprint, Limits};
 
@@ -16,15 +15,13 @@ fn text(p: &Path) -> &str {
     p.to_str().expect("a UTF-8 temp path")
 }
 
-/// `umbra` failed within the time limit, and its message holds each of `needles`.
+/// `umbra` failed with an error (not a panic), and its message holds each
+/// of `needles`.
 fn refused(args: &[&str], needles: &[&str]) {
-    let start = Instant::now();
     let o = umbra(args);
-    let took = start.elapsed();
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success(), "{args:?} succeeded: {}", String::from_utf8_lossy(&o.stdout));
     assert_eq!(o.status.code(), Some(1), "{args:?}: an error, not a panic: {err}");
-    assert!(took < Duration::from_secs(60), "{args:?} took {took:?}");
     for n in needles {
         assert!(err.contains(n), "{args:?}: `{n}` missing from: {err}");
     }
@@ -131,18 +128,20 @@ fn a_study_beyond_the_memory_limit_is_refused_before_it_starts() {
 }
 
 /// A sweep over sizes beyond the limits: each image beyond them is a
-/// skipped row naming the limit, found before its reference is built (an
-/// 8192² reference would take minutes and gigabytes).
+/// skipped row naming the limit, found before its reference is built: the
+/// run's peak memory stays under 256 MiB (measured 13 MiB), where an
+/// 8192² reference alone would hold 67 million pixels' truth, some 2 GiB.
+#[cfg(target_os = "linux")]
 #[test]
 fn an_image_beyond_the_limits_is_skipped_before_its_reference() {
     let d = dir("skip-image");
     std::fs::create_dir_all(&d).expect("dir");
     let sweep = write_sweep(&d, "images = [[64, 36], [8192, 8192]]", "");
     let out = d.join("out");
-    let start = Instant::now();
-    let o = umbra(&["study", "--sweep", text(&sweep), "--out", text(&out)]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    assert!(start.elapsed() < Duration::from_secs(60));
+    let (ok, err, bytes) = peak(&["study", "--sweep", text(&sweep), "--out", text(&out)], &d);
+    assert!(ok, "{err}");
+    eprintln!("peak {} MiB", bytes >> 20);
+    assert!(bytes < 256 << 20, "peak {} MiB: the skipped image's reference was built", bytes >> 20);
     let summary = std::fs::read_to_string(out.join("summary.md")).expect("summary");
     assert!(summary.contains("max_image_pixels"), "{summary}");
     let _ = std::fs::remove_dir_all(&d);

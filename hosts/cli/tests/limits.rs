@@ -101,3 +101,23 @@ fn every_file_the_command_reads_is_a_regular_file_within_the_file_limit() {
     assert!(!merged.exists(), "nothing is written");
     let _ = std::fs::remove_dir_all(&out);
 }
+
+/// `--max-memory` reads sizes as architecture files do (one reader of
+/// sizes): `1TiB`, `2 GiB`, `512MB` and plain bytes are taken; a size in
+/// an unknown unit is refused with the reader's own words, the same an
+/// architecture key of bytes gives (a cache's `size = "16 furlongs"`).
+#[test]
+fn the_memory_bound_reads_sizes_as_architecture_files_do() {
+    for size in ["1TiB", "2 GiB", "512MB", "17179869184"] {
+        let o = umbra(&["arch", "show", "--arch", "talisman", "--max-memory", size]);
+        succeeds(&o);
+    }
+    let flag = umbra(&["arch", "show", "--arch", "talisman", "--max-memory", "16 furlongs"]);
+    fails_saying(&flag, &["`16 furlongs` is not a size such as 64B, 16KiB, 2MB or 1TiB"]);
+    let (d, arch) =
+        input("sizes", "mine.toml", &std::fs::read_to_string("../../arch/talisman.toml").expect("talisman"));
+    let file = std::fs::read_to_string(&arch).expect("read");
+    std::fs::write(&arch, file.replacen("size = \"16KiB\"", "size = \"16 furlongs\"", 1)).expect("write");
+    fails_saying(&umbra(&["arch", "show", "--arch", text(&arch)]), &["`16 furlongs` is not a size such as 64B"]);
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -62,12 +62,10 @@ fn mesh_errors_name_the_file_and_the_problem() {
 /// Every real mesh renders in every format: fragments land, `z1 ≤ z2`, and
 /// the coarser format never claims more precision than the finer one.
 #[test]
+#[ignore = "needs the shared meshes in ../shared/meshes: run with `cargo test --test integration -- --ignored`"]
 fn shared_meshes_all_render() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/meshes");
-    if !dir.is_dir() {
-        eprintln!("skipping: {} not present", dir.display());
-        return;
-    }
+    assert!(dir.is_dir(), "{} is not present", dir.display());
     let mut paths: Vec<PathBuf> = std::fs::read_dir(&dir)
         .expect("readable")
         .filter_map(|e| e.ok().map(|e| e.path()))

@@ -15,7 +15,7 @@ pub enum Unit {
     Count,
     /// A non-negative number (cycles, rates).
     Number,
-    /// Bytes: `B`, `KB`, `KiB`, `MB`, `MiB`, `GB`, `GiB`.
+    /// Bytes: `B`, `KB`, `KiB`, `MB`, `MiB`, `GB`, `GiB`, `TB`, `TiB`.
     Bytes,
     /// Bytes per second: `GB/s`, `MB/s`, `GiB/s`, ...
     Bandwidth,
@@ -293,7 +293,7 @@ impl Unit {
             Self::Flag => "true or false",
             Self::Count => "a whole number",
             Self::Number => "a number",
-            Self::Bytes => "a size such as 64B, 16KiB or 2MB",
+            Self::Bytes => "a size such as 64B, 16KiB, 2MB or 1TiB",
             Self::Bandwidth => "a bandwidth such as 25.6GB/s",
             Self::Frequency => "a frequency such as 800MHz",
             Self::Time => "a time such as 2ns",
@@ -306,9 +306,11 @@ impl Unit {
     const fn suffixes(self) -> &'static [(&'static str, f64)] {
         match self {
             Self::Bytes => &[
+                ("TiB", 1_099_511_627_776.0),
                 ("GiB", 1_073_741_824.0),
                 ("MiB", 1_048_576.0),
                 ("KiB", 1024.0),
+                ("TB", 1e12),
                 ("GB", 1e9),
                 ("MB", 1e6),
                 ("KB", 1e3),
@@ -332,8 +334,13 @@ impl Unit {
         }
     }
 
-    /// Read `text` (a number and a suffix) in this unit, to its base.
-    fn parse(self, text: &str) -> Result<f64, Problem> {
+    /// Read `text` (a number and a suffix) in this unit, to its base: the
+    /// one reader of sizes, rates, frequencies, times and energies, for
+    /// architecture files and command-line flags alike.
+    ///
+    /// # Errors
+    /// [`Problem::Unit`] naming the text and what the unit expects.
+    pub fn parse(self, text: &str) -> Result<f64, Problem> {
         let bad = || Problem::Unit { value: text.to_owned(), unit: self.expected() };
         let t = text.trim();
         let (number, scale) = self

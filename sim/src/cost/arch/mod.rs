@@ -12,7 +12,8 @@ pub mod timing;
 mod units;
 mod work;
 
-pub use file::{Arch, ArchError, Calibration};
+pub use file::{Arch, ArchError, Calibration, Problem};
+pub use keys::Unit;
 pub use report::{Compared, Comparison, CostReport, SenFigures, trace, unit_of};
 pub use timing::{ArchProbe, PassKind, PassTiming};
 pub use work::{MemoryLimit, MemoryTime};
