@@ -94,7 +94,7 @@ pub fn config(
         culling: culling.map_or(Ok(d.culling), str::parse::<Culling>).map_err(|e| bad("culling", e))?,
     };
     if !RenderConfig::REFERENCE_RAYS.contains(&cfg.reference_rays) {
-        return Err(bad("rays", format!("{} is outside 1..=16", cfg.reference_rays)));
+        return Err(bad("rays", format!("{} is outside {:?}", cfg.reference_rays, RenderConfig::REFERENCE_RAYS)));
     }
     let cfg = cfg.checked().map_err(|e| UmbraError::new_err(e.to_string()))?;
     cfg.within(&scene.inner, &Limits::DEFAULT).map_err(|e| error(&e))?;

@@ -9,6 +9,7 @@ use indicatif::ProgressBar;
 use umbra_core::RasterConfig;
 use umbra_sim::io::folder::OutputFolder;
 use umbra_sim::io::limits::Limits;
+use umbra_sim::render::RenderConfig;
 use umbra_sim::world::scene::Scene;
 
 #[derive(clap::Args, Debug)]
@@ -45,7 +46,7 @@ pub(super) struct StudyArgs {
     #[arg(long = "image")]
     pub(super) images: Vec<String>,
     /// Reference rays per pixel side, in place of the sweep's.
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=16))]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(RenderConfig::reference_rays_flag()))]
     pub(super) reference_rays: Option<u32>,
     /// Error budgets, percent artifacts, in place of the sweep's
     /// (`--budgets 1,0.1`).
@@ -144,10 +145,8 @@ pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
     if !args.images.is_empty() {
         spec.images = args.images.iter().map(|i| image_size(i, limits)).collect::<Result<_>>()?;
     }
+    // Within its bound already: the flag's parser reads it.
     if let Some(n) = args.reference_rays {
-        if !(1..=16).contains(&n) {
-            bail!("--reference-rays {n} is outside 1..=16");
-        }
         spec.reference_rays = n;
     }
     if !args.budgets.is_empty() {

@@ -67,7 +67,12 @@ pub(super) struct RenderArgs {
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     pub(super) height: Option<u32>,
     /// Reference rays per pixel side for the area-averaged visibility.
-    #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=16), alias = "reference-samples")]
+    #[arg(
+        long,
+        default_value_t = RenderConfig::DEFAULT.reference_rays,
+        value_parser = clap::value_parser!(u32).range(RenderConfig::reference_rays_flag()),
+        alias = "reference-samples"
+    )]
     pub(super) reference_rays: u32,
     /// Output folder (default: the command's own, out/render, out/cost or
     /// out/trace, so that one command's run never replaces another's).

@@ -121,3 +121,32 @@ fn the_memory_bound_reads_sizes_as_architecture_files_do() {
     fails_saying(&umbra(&["arch", "show", "--arch", text(&arch)]), &["`16 furlongs` is not a size such as 64B"]);
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// The reference-ray bound is stated once: `umbra render`, `umbra study`
+/// and a sweep file refuse 17 rays a side, each naming the bound `1..=16`
+/// (or the flag's range), and take 16.
+#[test]
+fn the_reference_ray_bound_is_one_for_every_door() {
+    let d = dir("rays");
+    std::fs::create_dir_all(&d).expect("dir");
+    let o = |name: &str| d.join(name).to_string_lossy().into_owned();
+    fails_saying(&umbra(&["render", "--reference-rays", "17", "--out", &o("r")]), &["--reference-rays", "1..=16"]);
+    let small = ["--width", "16", "--height", "9", "--map", "16", "--reference-rays", "16"];
+    succeeds(&umbra(&[&["render"][..], &small, &["--out", &o("r16")]].concat()));
+    fails_saying(&umbra(&["study", "--quick", "--reference-rays", "17", "--out", &o("s")]), &["1..=16"]);
+    let sweep = |rays: u32| {
+        let path = d.join(format!("rays-{rays}.toml"));
+        let text = format!(
+            "name = \"rays\"\nscenes = [\"quad\"]\nimages = [[16, 9]]\nreference_rays = {rays}\nformats = [\"d24\"]\n\
+             maps = [16]\nfilters = [\"point\"]\nbudgets = [1.0]\n[[algorithms]]\nalgo = \"second\"\n"
+        );
+        std::fs::write(&path, text).expect("sweep");
+        path.to_string_lossy().into_owned()
+    };
+    fails_saying(
+        &umbra(&["study", "--sweep", &sweep(17), "--out", &o("w17")]),
+        &["reference_rays", "17 is outside 1..=16"],
+    );
+    succeeds(&umbra(&["study", "--sweep", &sweep(16), "--out", &o("w16")]));
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -52,8 +52,8 @@ pub enum RenderConfigError {
         /// The value given.
         value: f64,
     },
-    /// Reference rays per pixel side outside `1..=16`.
-    #[error("reference_rays {0} is outside 1..=16")]
+    /// Reference rays per pixel side outside [`RenderConfig::REFERENCE_RAYS`].
+    #[error("reference_rays {0} is outside {range:?}", range = RenderConfig::REFERENCE_RAYS)]
     ReferenceRays(u32),
     /// A map side or image side of zero.
     #[error("{quantity} is 0: it must be at least 1")]
@@ -90,8 +90,15 @@ impl RenderConfig {
         culling: Culling::ALGORITHM,
     };
 
-    /// Reference rays per pixel side a render takes.
+    /// Reference rays per pixel side a render takes: the one statement of
+    /// the bound, which the command line, Python and sweep files read.
     pub const REFERENCE_RAYS: std::ops::RangeInclusive<u32> = 1..=16;
+
+    /// [`RenderConfig::REFERENCE_RAYS`] as a command-line parser's range.
+    #[must_use]
+    pub fn reference_rays_flag() -> std::ops::RangeInclusive<i64> {
+        i64::from(*Self::REFERENCE_RAYS.start())..=i64::from(*Self::REFERENCE_RAYS.end())
+    }
 
     /// `value` if it is a depth in `[0, 1]`, for the quantity named.
     ///

@@ -223,8 +223,9 @@ impl SweepFile {
             RasterConfig::new(w, h, RasterConfig::DEFAULT_TILE_SIZE, RasterConfig::DEFAULT_SUBPIXEL_BITS)
                 .map_err(|e| self.err(format!("images[{i}]"), e.to_string()))?;
         }
-        if !(1..=16).contains(&t.reference_rays) {
-            return Err(self.err("reference_rays", format!("{} is outside 1..=16", t.reference_rays)));
+        let rays = crate::render::RenderConfig::REFERENCE_RAYS;
+        if !rays.contains(&t.reference_rays) {
+            return Err(self.err("reference_rays", format!("{} is outside {rays:?}", t.reference_rays)));
         }
         let formats = t
             .formats
