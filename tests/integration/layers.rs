@@ -308,6 +308,7 @@ fn stale(doc: &str, files: &[PathBuf]) -> Vec<String> {
         .map(str::to_owned)
         .filter(|w| !held.contains(w))
         .collect();
+    named.sort();
     named.dedup();
     named
 }

@@ -150,12 +150,11 @@ pub fn render(
 fn truth_of(
     cfg: &RenderConfig,
     truth_from: TruthSource<'_>,
-    image: &CameraImage,
+    (ids, camera): (&[u32], umbra_core::glam::Mat4),
     (reference, light): (&Reference, &LightSource),
 ) -> Result<Vec<Option<PixelTruth>>, RenderError> {
     let build = |progress: &ProgressBar| {
-        let ids: Vec<u32> = image.pixels.iter().map(|p| p.triangle).collect();
-        reference.image(&ids, &image.camera, cfg.width, cfg.height, light, cfg.reference_rays, progress)
+        reference.image(ids, &camera, cfg.width, cfg.height, light, cfg.reference_rays, progress)
     };
     let truth = match truth_from {
         TruthSource::Quiet => build(&ProgressBar::hidden()),
@@ -186,9 +185,29 @@ pub fn truth(
 ) -> Result<Vec<Option<PixelTruth>>, RenderError> {
     let mut frame = CameraFrame::default();
     let vis = visibility(&mut frame, scene, (width, height), Tiling::DEFAULT, &mut umbra_core::NoProbe)?;
-    let reference = Reference::with_objects(&scene.triangles(), &scene.triangle_objects())?;
+    let reference = Reference::of(scene)?;
     let light = scene.light().source();
     Ok(reference.image(frame.ids(), &vis.camera, width, height, &light, samples, progress))
+}
+
+/// The camera pass's options for `cfg`, whose algorithm uses `units`, at
+/// `size` in `tiling`.
+///
+/// # Errors
+/// [`RenderError::Shadow`] for a shadow configuration the unit refuses.
+pub(crate) fn camera_options(
+    cfg: &RenderConfig,
+    units: &crate::pass::algorithm::Units,
+    (width, height): (u32, u32),
+    tiling: Tiling,
+) -> Result<CameraOptions, RenderError> {
+    Ok(CameraOptions {
+        width,
+        height,
+        shadow: ShadowConfig::new(units.test, units.bias, cfg.filter, true)?,
+        virtual_samples: units.virtual_samples(cfg.virtual_samples),
+        tiling,
+    })
 }
 
 /// The light pass and the camera pass of a render, reporting to the two
@@ -218,13 +237,7 @@ pub(super) fn passes<F: DepthFormat, L: Probe, C: Probe>(
         LightOptions { per_draw: tiling.per_draw, ..LightOptions::default() },
         light_probe,
     )?;
-    let options = CameraOptions {
-        width: size.0,
-        height: size.1,
-        shadow: ShadowConfig::new(units.test, units.bias, cfg.filter, true)?,
-        virtual_samples: units.virtual_samples(cfg.virtual_samples),
-        tiling,
-    };
+    let options = camera_options(cfg, &units, size, tiling)?;
     let view = map_view::<F>(maps, units.front_culled)?;
     match units.map {
         MapKind::Silhouette { packed: true } => {
@@ -283,18 +296,12 @@ pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
     if frame.maps().is_some() && light_events.totals.setups == 0 {
         return Err(RenderError::EmptyMap);
     }
-    let reference = Reference::with_objects(&scene.triangles(), &scene.triangle_objects())?;
-    let truth = truth_of(cfg, truth_from, &image, (&reference, &scene.light().source()))?;
+    let reference = Reference::of(scene)?;
+    let ids: Vec<u32> = image.pixels.iter().map(|p| p.triangle).collect();
+    let truth = truth_of(cfg, truth_from, (&ids, image.camera), (&reference, &scene.light().source()))?;
     let fields = Fields::new(&truth, image.width);
     let units = cfg.algorithm.units::<F>(cfg.bias);
-    let options = CameraOptions {
-        width: image.width,
-        height: image.height,
-        shadow: ShadowConfig::new(units.test, units.bias, cfg.filter, true)?,
-        virtual_samples: units.virtual_samples(cfg.virtual_samples),
-        tiling: Tiling::DEFAULT,
-    };
-    let ids: Vec<u32> = image.pixels.iter().map(|p| p.triangle).collect();
+    let options = camera_options(cfg, &units, (image.width, image.height), Tiling::DEFAULT)?;
     let view = frame.maps().map(|maps| map_view::<F>(maps, units.front_culled)).transpose()?;
     let inputs =
         PassInputs { scene, seen: (&ids, image.camera), view: view.as_ref(), options: &options, kind: units.map };

@@ -11,6 +11,12 @@ use crate::truth::cause::Cause;
 use crate::truth::metrics::Verdict;
 use crate::truth::reference::PixelTruth;
 
+/// Pixel `k`'s cosine to the light from the exact reference, 0 for the
+/// background and for surfaces facing away.
+fn lambert(truth: &[Option<PixelTruth>], k: usize) -> f64 {
+    truth.get(k).copied().flatten().map_or(0.0, |t| t.light_cos.max(0.0))
+}
+
 /// Write the camera pass as a picture a person can read: surfaces grey by
 /// their facing to the light (the cosine to the light at each pixel's
 /// surface point, from the exact reference `truth`; faces turned away are
@@ -28,7 +34,7 @@ pub fn write_shadow_image(
     image: &CameraImage,
     truth: &[Option<PixelTruth>],
 ) -> Result<PathBuf, OutputError> {
-    let lambert = |k: usize| truth.get(k).copied().flatten().map_or(0.0, |t| t.light_cos.max(0.0));
+    let lambert = |k: usize| lambert(truth, k);
     let mut facing: Vec<f64> = (0..image.pixels.len()).map(lambert).filter(|&l| l > 0.0).collect();
     let brightest = if facing.is_empty() {
         1.0
@@ -139,7 +145,7 @@ pub fn write_error_image(
             Verdict::Wrong(cause) => colour_of(*cause),
             _ if p.triangle == umbra_core::NO_TRIANGLE => [255, 255, 255],
             _ => {
-                let lambert = truth.get(k).copied().flatten().map_or(0.0, |t| t.light_cos.max(0.0));
+                let lambert = lambert(truth, k);
                 let lit = if *v == Verdict::Right { 1.0 - p.shadow.to_num::<f64>() } else { 0.0 };
                 #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "within 170..=240")]
                 let g = (170.0 + 70.0 * lit * lambert).round() as u8;

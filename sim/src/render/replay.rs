@@ -2,7 +2,7 @@
 //! shaded it, its taps recorded, and judged by their cause
 //! ([`crate::truth::cause`]).
 
-use glam::{DMat4, DVec3, Mat4};
+use glam::{DMat4, Mat4};
 use umbra_core::shade::{
     MapUnit, SceneTriangle, ShadeConfig, ShadeSetup, Shaded, ShadowUnit, SilhouetteUnit, shade_rect,
 };
@@ -86,7 +86,8 @@ struct Replay<'a, F: DepthFormat, U> {
     ids: &'a [u32],
     view: &'a MapView<'a, F>,
     unit: &'a U,
-    triangles: Vec<[DVec3; 3]>,
+    triangles: Vec<SceneTriangle>,
+    reference: &'a Reference,
     light: DMat4,
     light_source: LightSource,
     camera_inverse: DMat4,
@@ -107,7 +108,8 @@ impl<'a, F: DepthFormat, U: ShadowUnit<F>> Replay<'a, F, U> {
             ids: what.seen.0,
             view,
             unit,
-            triangles: what.scene.triangles().iter().map(|t| t.positions.map(|p| p.as_dvec3())).collect(),
+            triangles: what.scene.triangles(),
+            reference,
             light,
             light_source: what.scene.light().source(),
             camera_inverse: cfg.camera.as_dmat4().inverse(),
@@ -129,11 +131,7 @@ impl<'a, F: DepthFormat, U: ShadowUnit<F>> Replay<'a, F, U> {
             y1: (k0 / width) as u32 + 1,
         };
         let triangles = &self.triangles;
-        let source = |i: u32| -> Option<SceneTriangle> {
-            let f = triangles.get(i as usize)?.map(|v| v.as_vec3());
-            let n = (f[1] - f[0]).cross(f[2] - f[0]).normalize_or_zero();
-            Some(SceneTriangle { positions: f, normals: [n; 3] })
-        };
+        let source = |i: u32| triangles.get(i as usize).copied();
         self.taps.clear();
         self.out.clear();
         self.out.resize(k1 - k0, Shaded::BACKGROUND);
@@ -163,7 +161,7 @@ impl<'a, F: DepthFormat, U: ShadowUnit<F>> Replay<'a, F, U> {
         let (Some(&id), Some(light)) = (self.ids.get(k), s.light) else {
             return judge.cause(&[], &Receiver::flat::<F>(0), |_| false);
         };
-        let triangle = self.triangles.get(id as usize).copied();
+        let triangle = self.reference.triangle(id).copied();
         // The receiver's plane, kept while the pixels stay on its triangle.
         let plane = match *receiver {
             Some((of, plane)) if of == id => plane,
@@ -188,7 +186,7 @@ impl<'a, F: DepthFormat, U: ShadowUnit<F>> Replay<'a, F, U> {
             let own = *own.get_or_insert_with(|| {
                 let centre = (f64::from(x) + 0.5, f64::from(y) + 0.5);
                 let (p, _) = surface_point(&self.camera_inverse, centre, size, &tri)?;
-                self.rays.reference().occluder_of(p, &self.light_source)
+                self.reference.occluder_of(p, &self.light_source)
             });
             own.is_none_or(|o| o == occluder)
         })

@@ -26,7 +26,7 @@ use umbra_core::probe::{Event, Probe, Tap};
 use umbra_core::shadow::{DepthTest, Filter, Shadow};
 use umbra_core::{DepthFormat, DepthFormatKind};
 
-use crate::truth::reference::Reference;
+use crate::truth::reference::{Reference, camera_ray};
 
 /// Why a pixel's shade is wrong.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -86,7 +86,8 @@ impl Taps {
     /// since the last [`Taps::clear`]; empty when it was not shaded.
     #[must_use]
     pub fn of_column(&self, x: u32) -> &[Tap] {
-        let Some(at) = self.pixels.iter().position(|&(c, _)| c == x) else { return &[] };
+        // The pixels of a row are shaded left to right.
+        let Ok(at) = self.pixels.binary_search_by_key(&x, |p| p.0) else { return &[] };
         let end = self.pixels.get(at + 1).map_or(self.taps.len(), |p| p.1);
         self.taps.get(self.pixels[at].1..end).unwrap_or_default()
     }
@@ -215,25 +216,14 @@ impl<'r> Rays<'r> {
         Self { reference, inverse: light.inverse(), size }
     }
 
-    /// The reference the rays are cast against.
-    #[must_use]
-    pub const fn reference(&self) -> &'r Reference {
-        self.reference
-    }
-
     /// The object whose surface the exact light ray through the centre of
     /// texel `(x, y)` meets before it reaches the plane of `receiver`
     /// (world space): the true occluder of that tap, if there is one.
     #[must_use]
     #[allow(clippy::cast_precision_loss, reason = "texel coordinates")]
     pub fn occluder(&self, x: i64, y: i64, receiver: &[DVec3; 3]) -> Option<u32> {
-        let (w, h) = (f64::from(self.size.0), f64::from(self.size.1));
-        let (nx, ny) = (2.0 * (x as f64 + 0.5) / w - 1.0, 1.0 - 2.0 * (y as f64 + 0.5) / h);
-        let at = |z: f64| {
-            let v = self.inverse * DVec4::new(nx, ny, z, 1.0);
-            v.truncate() / v.w
-        };
-        let (near, far) = (at(0.0), at(1.0));
+        let size = (f64::from(self.size.0), f64::from(self.size.1));
+        let (near, far) = camera_ray(&self.inverse, (x as f64 + 0.5, y as f64 + 0.5), size);
         let normal = (receiver[1] - receiver[0]).cross(receiver[2] - receiver[0]);
         let dir = far - near;
         let t = normal.dot(receiver[0] - near) / normal.dot(dir);
@@ -277,8 +267,7 @@ impl Judge {
     #[must_use]
     pub fn cause(&self, taps: &[Tap], receiver: &Receiver, mut occluded: impl FnMut(&Tap) -> bool) -> Cause {
         let counted = || taps.iter().filter(|t| t.weight > 0);
-        let partial = self.shade > Shadow::ZERO && self.shade < Shadow::ONE && counted().count() > 1;
-        let partial = partial && self.soft;
+        let partial = self.soft && self.shade > Shadow::ZERO && self.shade < Shadow::ONE && counted().count() > 1;
         let edge = if partial { Cause::Penumbra } else { Cause::Aliasing };
         if self.dark {
             #[allow(clippy::cast_precision_loss, reason = "depths in PlaneZ bits, below 2^57")]

@@ -72,6 +72,21 @@ impl Reference {
         Self::with_objects(scene, &[])
     }
 
+    /// The reference of `scene`: its triangles in the order the visibility
+    /// unit numbers them, each with its object.
+    ///
+    /// # Errors
+    /// [`ReferenceError`] for an empty or unusable scene.
+    pub fn of(scene: &crate::world::scene::Scene) -> Result<Self, ReferenceError> {
+        Self::with_objects(&scene.triangles(), &scene.triangle_objects())
+    }
+
+    /// Triangle `id` (the visibility unit's number), in f64.
+    #[must_use]
+    pub fn triangle(&self, id: u32) -> Option<&[DVec3; 3]> {
+        self.triangles.get(usize::try_from(id).ok()?)
+    }
+
     /// [`Reference::new`] with the object each triangle belongs to
     /// ([`Scene::triangle_objects`](crate::world::scene::Scene::triangle_objects);
     /// a triangle beyond `objects` is object 0): occluders are then told
@@ -121,31 +136,42 @@ impl Reference {
         let dir = d / length;
         let ray = Ray::new(Vector::new(from.x, from.y, from.z), Vector::new(dir.x, dir.y, dir.z));
         let hit = self.mesh.cast_local_ray_and_get_normal(&ray, length - self.epsilon * 32.0, false)?;
-        Some(usize::try_from(hit.subshape).ok().and_then(|t| self.objects.get(t)).copied().unwrap_or(0))
+        Some(self.object_of(hit.subshape))
+    }
+
+    /// The ray from point `p` towards the light, started just off the
+    /// surface, and how far it may go before it reaches the light.
+    fn towards_light(&self, p: DVec3, light: &LightSource) -> (Ray, f64) {
+        let (to_light, distance) = light.towards(p);
+        let origin = p + to_light * self.epsilon * 16.0;
+        let ray = Ray::new(Vector::new(origin.x, origin.y, origin.z), Vector::new(to_light.x, to_light.y, to_light.z));
+        let max = if distance.is_finite() { distance - self.epsilon * 32.0 } else { f64::MAX };
+        (ray, max.max(0.0))
     }
 
     /// The object that hides point `p` from the light (`None` when the
-    /// point sees it, or its surface faces away).
+    /// point sees it).
     #[must_use]
     pub fn occluder_of(&self, p: DVec3, light: &LightSource) -> Option<u32> {
-        let (to_light, distance) = light.towards(p);
-        let origin = p + to_light * self.epsilon * 16.0;
-        let reach = if distance.is_finite() { distance } else { self.epsilon.recip() };
-        self.first_on(origin, origin + to_light * reach)
+        let (ray, max) = self.towards_light(p, light);
+        let hit = self.mesh.cast_local_ray_and_get_normal(&ray, max, false)?;
+        Some(self.object_of(hit.subshape))
     }
 
     /// Whether the point `p` of a surface with normal `n` sees the light.
     /// `None` when the surface faces away from it.
     #[must_use]
     pub fn sees_light(&self, p: DVec3, n: DVec3, light: &LightSource) -> Option<bool> {
-        let (to_light, distance) = light.towards(p);
-        if n.dot(to_light) <= 0.0 {
+        if n.dot(light.towards(p).0) <= 0.0 {
             return None;
         }
-        let origin = p + to_light * self.epsilon * 16.0;
-        let ray = Ray::new(Vector::new(origin.x, origin.y, origin.z), Vector::new(to_light.x, to_light.y, to_light.z));
-        let max = if distance.is_finite() { distance - self.epsilon * 32.0 } else { f64::MAX };
-        Some(self.mesh.cast_local_ray(&ray, max.max(0.0), false).is_none())
+        let (ray, max) = self.towards_light(p, light);
+        Some(self.mesh.cast_local_ray(&ray, max, false).is_none())
+    }
+
+    /// The object of the ray-casting mesh's triangle `t`.
+    fn object_of(&self, t: u32) -> u32 {
+        usize::try_from(t).ok().and_then(|t| self.objects.get(t)).copied().unwrap_or(0)
     }
 
     /// Whether a surface lies on the segment from `from` to just short of
@@ -229,10 +255,12 @@ impl Reference {
     }
 }
 
-/// The camera ray through screen point `(sx, sy)` of a `(w, h)` image seen
-/// through the inverse of the camera's view-projection: its points on the
-/// near and far planes.
-fn camera_ray(inverse: &DMat4, (sx, sy): (f64, f64), (w, h): (f64, f64)) -> (DVec3, DVec3) {
+/// The ray through screen point `(sx, sy)` of a `(w, h)` target seen
+/// through `inverse`, the inverse of a view-projection (the camera's, or
+/// the light's with the map as the target): its points on the near and
+/// far planes.
+#[must_use]
+pub fn camera_ray(inverse: &DMat4, (sx, sy): (f64, f64), (w, h): (f64, f64)) -> (DVec3, DVec3) {
     let ndc = |z: f64| {
         let v = *inverse * DVec4::new(2.0 * sx / w - 1.0, 1.0 - 2.0 * sy / h, z, 1.0);
         v.truncate() / v.w

@@ -119,7 +119,7 @@ impl<'s> ImageShare<'s> {
             size,
             truth,
             fields: Fields::new(truth, size.0),
-            reference: Reference::with_objects(&scene.triangles(), &scene.triangle_objects()).ok()?,
+            reference: Reference::of(scene).ok()?,
             archs,
             limits: *limits,
             seen,

@@ -5,7 +5,7 @@
 use glam::Mat4;
 use umbra_core::probe::{Probe, Totals};
 use umbra_core::shade::{MapUnit, PixelResult, ShadeSetup, Shaded, ShadowUnit, SilhouetteUnit};
-use umbra_core::shadow::{MapView, Shadow, ShadowConfig};
+use umbra_core::shadow::{MapView, Shadow};
 use umbra_core::silhouette::{Packed, SilPoint, SilStore, SilhouetteMap};
 use umbra_core::{DepthFormat, RasterConfig};
 
@@ -18,6 +18,7 @@ use crate::pass::PassError;
 use crate::pass::algorithm::MapKind;
 use crate::pass::camera::{CameraOptions, map_view, shade};
 use crate::pass::occluders::silhouette_map;
+use crate::render::camera_options;
 use crate::render::replay::{PassInputs, judged};
 use crate::render::{RenderConfig, RenderError};
 use crate::truth::metrics::Metrics;
@@ -57,13 +58,7 @@ pub fn render_shared<F: DepthFormat>(
         return None;
     }
     let units = cfg.algorithm.units::<F>(cfg.bias);
-    let options = CameraOptions {
-        width: image.size.0,
-        height: image.size.1,
-        shadow: ShadowConfig::new(units.test, units.bias, cfg.filter, true).ok()?,
-        virtual_samples: units.virtual_samples(cfg.virtual_samples),
-        tiling: Tiling::DEFAULT,
-    };
+    let options = camera_options(cfg, &units, image.size, Tiling::DEFAULT).ok()?;
     // The shading classes, the functional render's first: each a pair of
     // visibility and map classes, and the architectures that drew it.
     let class_of = |i: usize| Some((image.seen[image.seen_by[i]?].class, light.lit[light.lit_by[i]?].class));
@@ -100,8 +95,7 @@ pub fn render_shared<F: DepthFormat>(
         if k == 0 {
             // The functional render's metrics, each wrong pixel judged by
             // replaying it.
-            let view = (units.map != MapKind::Volumes).then_some(&view);
-            let inputs = PassInputs { scene, seen, view, options: &options, kind: units.map };
+            let inputs = PassInputs { scene, seen, view: Some(&view), options: &options, kind: units.map };
             metrics = Some(judged(&inputs, pixels, (image.truth, &image.fields, &image.reference)).ok()?.0);
         }
         let names = (image.scene.name.as_str(), image.counts);
