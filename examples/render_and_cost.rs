@@ -12,9 +12,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let scene = Scene::open(&scene, &limits)?;
     let arch = Arch::open(&arch, &limits)?;
     // Williams' first depth at a bias of 0.002, everything else the default.
-    let config = RenderConfig { algorithm: Algorithm::First, bias: 0.002, ..RenderConfig::DEFAULT }.checked()?;
+    // Checked once against the scene and the limits; the render and the
+    // costing take the checked job.
+    let config = RenderConfig { algorithm: Algorithm::First, bias: 0.002, ..RenderConfig::DEFAULT };
+    let job = config.check(&scene, &limits)?;
 
-    let render = umbra::sim::render(&scene, &config, &limits, TruthSource::Quiet)?;
+    let render = umbra::sim::render(&job, TruthSource::Quiet)?;
     let m = &render.metrics;
     println!("{}: {}", scene.name, config.describe());
     println!(
@@ -22,7 +25,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         m.misclassified_percent, m.acne, m.detachment, m.leaks, m.aliasing, m.penumbra
     );
 
-    let cost = umbra::sim::cost(&scene, &config, &arch, &limits)?;
+    let cost = umbra::sim::cost(&job, &arch)?;
     println!(
         "  on {}: {:.0} cycles, {:.3} ms, {} DRAM bytes, light pass bound by {}, camera pass by {}",
         arch.name,

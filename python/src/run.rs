@@ -8,12 +8,11 @@ use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use umbra_core::DepthFormatKind;
-use umbra_core::shadow::Filter;
 use umbra_sim::experiment::plan::PlanSpec;
 use umbra_sim::experiment::study::{Shard, SweepFile, schema::schema_csv, table};
 use umbra_sim::io::limits::Limits;
 use umbra_sim::render::arrays::PixelArrays;
-use umbra_sim::render::{Algorithm, Culling, RenderConfig, TruthSource};
+use umbra_sim::render::{RenderConfig, RenderRequest, TruthSource};
 
 use crate::arch::Arch;
 use crate::scene::Scene;
@@ -48,56 +47,32 @@ fn bad(name: &str, e: impl std::fmt::Display) -> PyErr {
     UmbraError::new_err(format!("{name}: {e}"))
 }
 
-/// The configuration of a render of `scene`, each argument as `umbra
-/// render`'s flag of the same name takes it, `None` for its default;
-/// width and height default to the scene's image.
+/// The configuration of a render of `scene`: each keyword a render
+/// parameter (`umbra schema render` lists them: `umbra render`'s flag of
+/// the same name, an alias, or its `no-` switch's name with `False`),
+/// each left out at its default; width and height default to the scene's
+/// image. Checked against the scene and the limits.
 #[pyfunction]
-#[pyo3(signature = (scene, algo=None, depth=None, map=None, filter=None, bias=None, bias1=None, offset=None,
-                    culling=None, virtual_samples=None, width=None, height=None, rays=None))]
-#[allow(clippy::too_many_arguments, reason = "one keyword argument a flag of umbra render")]
-pub fn config(
-    scene: &Scene,
-    algo: Option<&str>,
-    depth: Option<&str>,
-    map: Option<u32>,
-    filter: Option<&str>,
-    bias: Option<f64>,
-    bias1: Option<f64>,
-    offset: Option<f64>,
-    culling: Option<&str>,
-    virtual_samples: Option<bool>,
-    width: Option<u32>,
-    height: Option<u32>,
-    rays: Option<u32>,
-) -> PyResult<Config> {
-    let d = RenderConfig::DEFAULT;
-    let [w, h] = scene.inner.image;
-    let algorithm = match algo {
-        Some(name) => Algorithm::named(
-            name,
-            bias1.unwrap_or(Algorithm::DEFAULT_BIAS1),
-            offset.unwrap_or(Algorithm::DEFAULT_OFFSET),
-        )
-        .map_err(|e| bad("algo", e))?,
-        None => d.algorithm,
-    };
-    let cfg = RenderConfig {
-        algorithm,
-        format: depth.map_or(Ok(d.format), str::parse::<DepthFormatKind>).map_err(|e| bad("depth", e))?,
-        map_size: map.unwrap_or(d.map_size),
-        filter: filter.map_or(Ok(d.filter), str::parse::<Filter>).map_err(|e| bad("filter", e))?,
-        bias: bias.unwrap_or(d.bias),
-        virtual_samples: virtual_samples.unwrap_or(d.virtual_samples),
-        width: width.unwrap_or(w),
-        height: height.unwrap_or(h),
-        reference_rays: rays.unwrap_or(d.reference_rays),
-        culling: culling.map_or(Ok(d.culling), str::parse::<Culling>).map_err(|e| bad("culling", e))?,
-    };
-    if !RenderConfig::REFERENCE_RAYS.contains(&cfg.reference_rays) {
-        return Err(bad("rays", format!("{} is outside {:?}", cfg.reference_rays, RenderConfig::REFERENCE_RAYS)));
+#[pyo3(signature = (scene, **flags))]
+pub fn config(scene: &Scene, flags: Option<&Bound<'_, PyDict>>) -> PyResult<Config> {
+    let mut request = RenderRequest::DEFAULT;
+    for (key, value) in flags.into_iter().flatten() {
+        let name: String = key.extract()?;
+        let text = if let Ok(b) = value.extract::<bool>() {
+            b.to_string()
+        } else if let Ok(n) = value.extract::<i64>() {
+            n.to_string()
+        } else if let Ok(x) = value.extract::<f64>() {
+            x.to_string()
+        } else if let Ok(t) = value.extract::<String>() {
+            t
+        } else {
+            return Err(bad(&name, format!("{value} is not a number, a flag or text")));
+        };
+        request.set(&name, &text).map_err(|e| UmbraError::new_err(e.to_string()))?;
     }
-    let cfg = cfg.checked().map_err(|e| UmbraError::new_err(e.to_string()))?;
-    cfg.within(&scene.inner, &Limits::DEFAULT).map_err(|e| error(&e))?;
+    let cfg = request.config(scene.inner.image).map_err(|e| UmbraError::new_err(e.to_string()))?;
+    cfg.check(&scene.inner, &Limits::DEFAULT).map_err(|e| error(&e))?;
     Ok(Config { inner: cfg })
 }
 
@@ -117,7 +92,8 @@ pub fn render<'py>(
     let bar = ProgressBar::hidden();
     bar.set_length(u64::from(config.inner.height));
     let r = progress::run(py, &bar, progress, threads, || {
-        umbra_sim::render(&scene.inner, &config.inner, &Limits::DEFAULT, TruthSource::Build(&bar))
+        let job = config.inner.check(&scene.inner, &Limits::DEFAULT)?;
+        umbra_sim::render(&job, TruthSource::Build(&bar))
     })?
     .map_err(|e| error(&e))?;
     let metrics = serde_json::to_string(&r.metrics).map_err(|e| error(&e))?;
@@ -153,7 +129,7 @@ pub fn render<'py>(
 #[pyfunction]
 pub fn cost(py: Python<'_>, scene: &Scene, config: &Config, arch: &Arch) -> PyResult<String> {
     let report = py
-        .detach(|| umbra_sim::cost(&scene.inner, &config.inner, &arch.inner, &Limits::DEFAULT))
+        .detach(|| umbra_sim::cost(&config.inner.check(&scene.inner, &Limits::DEFAULT)?, &arch.inner))
         .map_err(|e| error(&e))?;
     serde_json::to_string(&report).map_err(|e| error(&e))
 }

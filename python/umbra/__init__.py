@@ -128,10 +128,11 @@ _as_scene, _as_arch = scene, arch
 
 
 def config(scene: Union[str, Scene, Mapping[str, Any]], **flags: Any) -> Config:
-    """A render configuration of a scene, checked: the keywords are ``umbra
-    render``'s flags (``algo``, ``depth``, ``map``, ``filter``, ``bias``,
-    ``bias1``, ``offset``, ``culling``, ``virtual_samples``, ``width``,
-    ``height``, ``rays``), each defaulting as the flag does."""
+    """A render configuration of a scene, checked: the keywords are the
+    render's parameters, ``umbra render``'s flags (``umbra schema render``
+    lists each with its Python keyword: ``algo``, ``depth``, ``map``,
+    ``filter``, ``bias``, ``reference_rays`` or ``rays``, ...), each
+    defaulting as the flag does."""
     return _umbra.config(_as_scene(scene), **flags)
 
 

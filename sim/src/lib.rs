@@ -22,11 +22,12 @@
 //!     height: 90,
 //!     map_size: 256,
 //!     ..RenderConfig::DEFAULT
-//! }
-//! .checked()?;
-//! let render = umbra_sim::render(&scene, &config, &limits, TruthSource::Quiet)?;
+//! };
+//! // Checked once, against the scene and the limits: what a render takes.
+//! let job = config.check(&scene, &limits)?;
+//! let render = umbra_sim::render(&job, TruthSource::Quiet)?;
 //! assert!(render.metrics.evaluated > 0);
-//! let cost = umbra_sim::cost(&scene, &config, &arch, &limits)?;
+//! let cost = umbra_sim::cost(&job, &arch)?;
 //! assert!(cost.cycles > 0.0 && cost.bytes > 0);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
@@ -53,6 +54,6 @@ pub use cost::arch::{Arch, CostReport};
 pub use experiment::plan::{Plan, PlanSpec, plan};
 pub use experiment::study::{Row, Spec as StudySpec, SweepFile, run as study};
 pub use io::limits::Limits;
-pub use render::{Algorithm, Culling, Render, RenderConfig, TruthSource, cost, render};
+pub use render::{Algorithm, Checked, Culling, Render, RenderConfig, RenderRequest, TruthSource, cost, render};
 pub use world::mesh::Mesh;
 pub use world::scene::Scene;

@@ -23,6 +23,7 @@ mod cost;
 mod experiment;
 mod io;
 mod probe;
+mod render;
 mod truth;
 
 mod world;

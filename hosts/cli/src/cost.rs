@@ -1,6 +1,6 @@
 //! `umbra cost` and `umbra trace`: a render's cost on architectures, and its timeline.
 
-use crate::render::{RenderArgs, render_config};
+use crate::render::{RenderArgs, job};
 use crate::say::say;
 use anyhow::{Result, bail};
 use umbra_sim::cost::arch::Arch;
@@ -94,7 +94,8 @@ pub(super) fn command_line() -> String {
 
 /// `umbra cost` and `umbra trace`.
 pub(super) fn cost(args: &CostArgs, trace: bool, limits: &Limits) -> Result<()> {
-    let (scene, cfg) = render_config(&args.render, limits)?;
+    let scene = umbra_sim::world::scene::Scene::open(&args.render.scene, limits)?;
+    let job = job(&args.render, &scene, limits)?;
     let archs = args.archs.resolve(&BUNDLED.map(|b| b.0), limits)?;
     let command = command_line();
     let own = if trace { "out/trace" } else { "out/cost" };
@@ -102,7 +103,7 @@ pub(super) fn cost(args: &CostArgs, trace: bool, limits: &Limits) -> Result<()> 
     let mut folder = OutputFolder::create(&out)?;
     let mut reports = Vec::new();
     for arch in &archs {
-        let report = umbra_sim::render::cost(&scene, &cfg, arch, limits)?;
+        let report = umbra_sim::render::cost(&job, arch)?;
         let name = &arch.name;
         if !trace {
             say!("{}", report.markdown());

@@ -134,8 +134,14 @@ enum Command {
     Status(StatusArgs),
     /// The columns of a study's rows (results.csv, results.jsonl): name,
     /// type, unit and meaning, as each study writes them to schema.csv
-    /// (architecture axes add one column each, `arch_<key>_<unit>`).
-    Schema,
+    /// (architecture axes add one column each, `arch_<key>_<unit>`); or,
+    /// `umbra schema render`, a render's parameters: flag, Python keyword,
+    /// values, default, unit and column.
+    Schema {
+        /// `rows` or `render`.
+        #[arg(default_value = "rows", value_parser = ["rows", "render"])]
+        what: String,
+    },
     /// Show an architecture with its derived figures, check it for keys
     /// that have no effect, or compare two.
     #[command(subcommand)]
@@ -190,8 +196,13 @@ fn main() -> Result<()> {
         Some(Command::Study(args)) => study(&args, limits),
         Some(Command::Plan(args)) => plan(&args, limits),
         Some(Command::Arch(command)) => arch::arch(&command, limits),
-        Some(Command::Schema) => {
-            say!("{}", umbra_sim::experiment::study::schema::markdown().trim_end());
+        Some(Command::Schema { what }) => {
+            let table = if what == "render" {
+                umbra_sim::render::params::markdown()
+            } else {
+                umbra_sim::experiment::study::schema::markdown()
+            };
+            say!("{}", table.trim_end());
             Ok(())
         }
         Some(Command::Status(args)) => {

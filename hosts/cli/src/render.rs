@@ -5,132 +5,136 @@ use std::path::PathBuf;
 use crate::say::say;
 use anyhow::Result;
 use indicatif::ProgressBar;
-use umbra_core::DepthFormatKind;
-use umbra_core::shadow::Filter;
 use umbra_sim::io::folder::OutputFolder;
 use umbra_sim::io::limits::Limits;
 use umbra_sim::io::output::{RawMap, write_array, write_npy, write_preview};
 use umbra_sim::render::arrays::PixelArrays;
 use umbra_sim::render::pictures::{write_error_image, write_shadow_image, write_shadow_term};
-use umbra_sim::render::{Algorithm, Culling, RenderConfig, TruthSource};
+use umbra_sim::render::{Checked, Kind, PARAMS, RenderRequest, TruthSource};
 use umbra_sim::truth::metrics::SHADE_STEP;
 use umbra_sim::world::scene::Scene;
+use umbra_sim::world::scene_file::BUNDLED;
 
-#[derive(clap::Args, Debug)]
+/// The scene, the render's parameters and the output folder. The
+/// parameters' flags are made from the library's table of them
+/// ([`PARAMS`]): name, values, default and help.
+#[derive(Debug, Clone)]
 pub(super) struct RenderArgs {
-    /// A bundled scene by name (table-and-sphere, wang-molnar-4,
-    /// reeves-sphere, weiskopf-l, weiskopf-l-boxes, double-torus, thin,
-    /// open-sheet, crowd, crowd-zoom, crowd-overhead, crowd-grazing, grazing,
-    /// factory, quad) or a scene file.
-    #[arg(default_value = "table-and-sphere")]
+    /// A bundled scene by name or a scene file.
     pub(super) scene: String,
-    /// Shadow algorithm: first (Williams, use --bias), bias-range (Reeves:
-    /// per sample from [--bias, --bias1]), second (Wang & Molnar, dual
-    /// unit), second-ffc (second depth by front-face culling), midpoint
-    /// (Woo), dual (Weiskopf & Ertl, use --offset), silhouette and
-    /// silhouette-packed (Sen et al.), volumes (depth-fail stencil).
-    #[arg(long, default_value = "second", value_parser = clap::builder::PossibleValuesParser::new(Algorithm::NAMES))]
-    pub(super) algo: String,
-    /// Depth format of the map: d16, d24, f32.
-    #[arg(long, default_value = "d24", alias = "format")]
-    pub(super) depth: DepthFormatKind,
-    /// Map side in texels.
-    #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u32).range(1..), alias = "size")]
-    pub(super) map: u32,
-    /// Percentage-closer filter: point, bilinear, box<N> (N from 1 to 16),
-    /// or Reeves' jitter<NumSamples> with optional
-    /// ,res-factor=<texels>,min-samples=<n>,min-size=<texels>
-    /// (jitter16 is Reeves' Figure 4).
-    #[arg(long, default_value = "bilinear")]
-    pub(super) filter: Filter,
-    /// Depth bias, as a depth in [0, 1] (`Bias0` of a bias range).
-    #[arg(long, default_value_t = 0.0)]
-    pub(super) bias: f64,
-    /// `Bias1` of Reeves' bias range (--algo bias-range), as a depth in [0, 1].
-    #[arg(long, default_value_t = Algorithm::DEFAULT_BIAS1)]
-    pub(super) bias1: f64,
-    /// The dual-depth offset, as a depth in [0, 1].
-    #[arg(long, default_value_t = Algorithm::DEFAULT_OFFSET)]
-    pub(super) offset: f64,
-    /// The light pass's culling per object class: `algorithm` (solids as
-    /// the algorithm culls them, open surfaces never), or
-    /// `solids=X,open=Y` with X, Y one of algorithm, none, front, back.
-    #[arg(long, default_value = "algorithm")]
-    pub(super) cull: Culling,
-    /// Turn Wang & Molnar's virtual samples off.
-    #[arg(long)]
-    pub(super) no_virtual_samples: bool,
-    /// Image width (default: the scene's).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
-    pub(super) width: Option<u32>,
-    /// Image height (default: the scene's).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
-    pub(super) height: Option<u32>,
-    /// Reference rays per pixel side for the area-averaged visibility.
-    #[arg(
-        long,
-        default_value_t = RenderConfig::DEFAULT.reference_rays,
-        value_parser = clap::value_parser!(u32).range(RenderConfig::reference_rays_flag()),
-        alias = "reference-samples"
-    )]
-    pub(super) reference_rays: u32,
-    /// Output folder (default: the command's own, out/render, out/cost or
-    /// out/trace, so that one command's run never replaces another's).
-    #[arg(long)]
+    /// Each parameter given, by name, as written (a switch as `false`).
+    pub(super) params: Vec<(&'static str, String)>,
+    /// Output folder (default: the command's own).
     pub(super) out: Option<PathBuf>,
 }
 
 impl Default for RenderArgs {
     fn default() -> Self {
-        Self {
-            scene: "table-and-sphere".into(),
-            algo: "second".into(),
-            depth: DepthFormatKind::D24,
-            map: 1024,
-            filter: Filter::Bilinear,
-            bias: 0.0,
-            bias1: Algorithm::DEFAULT_BIAS1,
-            offset: Algorithm::DEFAULT_OFFSET,
-            no_virtual_samples: false,
-            cull: Culling::ALGORITHM,
-            width: None,
-            height: None,
-            reference_rays: 4,
-            out: None,
-        }
+        Self { scene: DEFAULT_SCENE.to_owned(), params: Vec::new(), out: None }
     }
 }
 
-/// The scene and render configuration the arguments ask for, checked.
-pub(super) fn render_config(args: &RenderArgs, limits: &Limits) -> Result<(Scene, RenderConfig)> {
-    let scene = Scene::open(&args.scene, limits)?;
-    let [width, height] = scene.image;
-    let cfg = RenderConfig {
-        algorithm: Algorithm::named(&args.algo, args.bias1, args.offset)?,
-        format: args.depth,
-        map_size: args.map,
-        filter: args.filter,
-        bias: args.bias,
-        virtual_samples: !args.no_virtual_samples,
-        width: args.width.unwrap_or(width),
-        height: args.height.unwrap_or(height),
-        reference_rays: args.reference_rays,
-        culling: args.cull,
-    };
-    // The flags name what the render checks: --bias, --bias1, --offset.
-    let cfg = cfg.checked().map_err(|e| anyhow::anyhow!("--{e}"))?;
-    // The limits, memory included, before any folder is made.
-    cfg.within(&scene, limits)?;
-    Ok((scene, cfg))
+const DEFAULT_SCENE: &str = "table-and-sphere";
+
+impl clap::FromArgMatches for RenderArgs {
+    fn from_arg_matches(m: &clap::ArgMatches) -> Result<Self, clap::Error> {
+        let mut params = Vec::new();
+        for p in PARAMS {
+            if p.kind == Kind::Flag {
+                if m.get_flag(p.name) {
+                    params.push((p.name, "false".to_owned()));
+                }
+            } else if let Some(v) = m.get_one::<String>(p.name) {
+                params.push((p.name, v.clone()));
+            }
+        }
+        Ok(Self {
+            scene: m.get_one::<String>("scene").cloned().unwrap_or_else(|| DEFAULT_SCENE.to_owned()),
+            params,
+            out: m.get_one::<PathBuf>("out").cloned(),
+        })
+    }
+
+    fn update_from_arg_matches(&mut self, m: &clap::ArgMatches) -> Result<(), clap::Error> {
+        *self = Self::from_arg_matches(m)?;
+        Ok(())
+    }
+}
+
+impl clap::Args for RenderArgs {
+    fn augment_args(cmd: clap::Command) -> clap::Command {
+        use clap::{Arg, ArgAction};
+        let scenes: Vec<&str> = BUNDLED.iter().map(|b| b.0).collect();
+        let scenes = scenes.join(", ");
+        let mut cmd = cmd.arg(
+            Arg::new("scene")
+                .default_value(DEFAULT_SCENE)
+                .help(format!("A bundled scene by name ({scenes}) or a scene file")),
+        );
+        for p in PARAMS {
+            let flag = p.flag();
+            let default = match p.default_value() {
+                Some(v) if p.kind == Kind::Flag => format!(" [default: {}]", if v == "true" { "on" } else { "off" }),
+                Some(v) => format!(" [default: {v}]"),
+                None => " [default: the scene's]".to_owned(),
+            };
+            let values = p.values.replace('`', "");
+            let help = if p.kind == Kind::Flag { format!("Turn off {values}") } else { capitalised(&values) };
+            let help = format!("{help}{default}");
+            let mut arg = Arg::new(p.name)
+                .long(flag.trim_start_matches("--").to_owned())
+                .value_name(p.name.to_uppercase())
+                .help(help)
+                .aliases(p.aliases.iter().map(|a| a.replace('_', "-")));
+            arg = match p.kind {
+                Kind::Flag => arg.action(ArgAction::SetTrue),
+                Kind::Choice(names) => {
+                    arg.value_parser(clap::builder::PossibleValuesParser::new(names.iter().copied()))
+                }
+                _ => {
+                    arg.value_parser(clap::builder::ValueParser::new(move |s: &str| p.check(s).map(|()| s.to_owned())))
+                }
+            };
+            cmd = cmd.arg(arg);
+        }
+        cmd.arg(
+            Arg::new("out")
+                .long("out")
+                .value_parser(clap::value_parser!(PathBuf))
+                .help("Output folder (default: the command's own, out/render, out/cost or out/trace, so that one command's run never replaces another's)"),
+        )
+    }
+
+    fn augment_args_for_update(cmd: clap::Command) -> clap::Command {
+        Self::augment_args(cmd)
+    }
+}
+
+/// `text` with its first letter a capital.
+fn capitalised(text: &str) -> String {
+    let mut c = text.chars();
+    c.next().map_or_else(String::new, |f| f.to_uppercase().chain(c).collect())
+}
+
+/// The render the arguments ask for, of `scene` (opened from
+/// `args.scene`), checked once against it and the limits.
+pub(super) fn job<'s>(args: &RenderArgs, scene: &'s Scene, limits: &Limits) -> Result<Checked<'s>> {
+    let mut request = RenderRequest::DEFAULT;
+    for (name, value) in &args.params {
+        request.set(name, value)?;
+    }
+    Ok(request.config(scene.image)?.check(scene, limits)?)
 }
 
 /// `umbra render`: the pictures, the metrics and the events of one render.
 pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
-    let (scene, cfg) = render_config(args, limits)?;
+    let scene = Scene::open(&args.scene, limits)?;
+    let job = job(args, &scene, limits)?;
+    let cfg = *job.config();
     let out = args.out.clone().unwrap_or_else(|| PathBuf::from("out/render"));
     let mut folder = OutputFolder::create(&out)?;
     let progress = ProgressBar::new(u64::from(cfg.height)).with_message("reference rays");
-    let r = umbra_sim::render::render(&scene, &cfg, limits, TruthSource::Build(&progress))?;
+    let r = umbra_sim::render::render(&job, TruthSource::Build(&progress))?;
     progress.finish_and_clear();
     let (w, h) = (r.maps.maps.config.raster.width(), r.maps.maps.config.raster.height());
     let f = &mut folder;

@@ -133,12 +133,9 @@ fn every_bundled_sweep_spells_commands_the_cli_reads() {
                 continue;
             }
             let m = render_again(&command, &format!("{name}-{}", seen.len()));
-            let want = umbra_sim::render::render(
-                scene,
-                &small,
-                &limits,
-                TruthSource::Build(&indicatif::ProgressBar::hidden()),
-            );
+            let want = small
+                .check(scene, &limits)
+                .and_then(|job| umbra_sim::render::render(&job, TruthSource::Build(&indicatif::ProgressBar::hidden())));
             match want {
                 Ok(r) => assert_eq!(m["acne_px"].as_u64(), Some(r.metrics.acne), "{command}"),
                 Err(e) => panic!("{command}: {e}"),

@@ -224,7 +224,7 @@ fn measure(
     truth: &[Option<PixelTruth>],
     c: &CostReport,
 ) -> Result<(Figures, Render), PlanError> {
-    let r = render(scene, cfg, &spec.limits, TruthSource::Given(truth.to_vec()))?;
+    let r = render(&cfg.check(scene, &spec.limits)?, TruthSource::Given(truth.to_vec()))?;
     Ok((figures(&r.metrics, c), r))
 }
 
@@ -304,7 +304,7 @@ pub fn plan(scene: &Scene, spec: &PlanSpec) -> Result<Plan, PlanError> {
         for &map in &spec.map_sizes {
             for &filter in filters {
                 let cfg = at(spec.image, map, filter, algorithm, format, 4);
-                let c = cost(scene, &cfg, &spec.arch, &spec.limits)?;
+                let c = cost(&cfg.check(scene, &spec.limits)?, &spec.arch)?;
                 costed.push((cfg, c));
             }
         }
@@ -358,7 +358,7 @@ pub fn plan(scene: &Scene, spec: &PlanSpec) -> Result<Plan, PlanError> {
     let full_algorithm =
         if config.algorithm == Algorithm::SecondFrontCulled { Algorithm::Second } else { config.algorithm };
     let full_config = at(spec.image, map, filter, full_algorithm, DepthFormatKind::D24, 4);
-    let full_cost = cost(scene, &full_config, &spec.arch, &spec.limits)?;
+    let full_cost = cost(&full_config.check(scene, &spec.limits)?, &spec.arch)?;
     let (full, _) = measure(scene, &full_config, spec, &image_truth, &full_cost)?;
     Ok(Plan {
         config,

@@ -63,13 +63,54 @@ pub enum RenderConfigError {
     },
 }
 
-/// A render configuration checked once: its map and camera targets.
+/// A render configuration checked once, against its scene and the
+/// limits ([`RenderConfig::check`]): what every render and costing takes,
+/// so none checks it again.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Checked {
+pub struct Checked<'s> {
+    scene: &'s Scene,
+    config: RenderConfig,
+    limits: Limits,
+}
+
+/// The passes' targets, the map and the camera image, in one tile size.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Targets {
     /// The light pass's target (the map).
     pub(super) map: RasterConfig,
     /// The camera pass's target (the image).
     pub(super) image: RasterConfig,
+}
+
+impl<'s> Checked<'s> {
+    /// The scene it was checked against.
+    #[must_use]
+    pub const fn scene(&self) -> &'s Scene {
+        self.scene
+    }
+
+    /// The configuration.
+    #[must_use]
+    pub const fn config(&self) -> &RenderConfig {
+        &self.config
+    }
+
+    /// The limits it is within.
+    #[must_use]
+    pub const fn limits(&self) -> &Limits {
+        &self.limits
+    }
+
+    /// The targets the passes draw, in `tile`-pixel tiles.
+    pub(crate) fn targets(&self, tile: u32) -> Result<Targets, RenderError> {
+        let bits = RasterConfig::DEFAULT_SUBPIXEL_BITS;
+        let c = &self.config;
+        let image = RasterConfig::new(c.width, c.height, tile, bits).map_err(RenderError::ImageSize)?;
+        // Shadow volumes draw no map: one texel stands for it.
+        let side = if c.algorithm == Algorithm::Volumes { 1 } else { c.map_size };
+        let map = RasterConfig::new(side, side, tile, bits).map_err(RenderError::MapSize)?;
+        Ok(Targets { map, image })
+    }
 }
 
 impl RenderConfig {
@@ -114,10 +155,10 @@ impl RenderConfig {
 
     /// The configuration, if a render takes it: every bias and offset a
     /// depth in `[0, 1]`, 1 to 16 reference rays a side, no side of zero.
-    /// (Sizes against a machine's [`Limits`] and the filter against the
-    /// shadow unit are checked when the render starts.) Every render
-    /// checks this first; the command line and sweep files call it to
-    /// report a mistake before anything runs.
+    /// (Sizes against a machine's [`Limits`] are checked by
+    /// [`check`](Self::check), the filter against the shadow unit when the
+    /// render starts.) Sweep files call it to report a mistake before
+    /// anything runs.
     ///
     /// ```
     /// use umbra_sim::render::{Algorithm, RenderConfig, RenderConfigError};
@@ -171,41 +212,28 @@ impl RenderConfig {
     #[must_use]
     pub fn command(&self, source: &str) -> String {
         let quoted = crate::io::provenance::shell_word(source);
-        let mut c = format!(
-            "umbra render {quoted} {} --depth {} --map {} --filter {} --bias {} --width {} --height {} --reference-rays {}",
-            self.algorithm.flags(),
-            self.format.name(),
-            self.map_size,
-            self.filter,
-            self.bias,
-            self.width,
-            self.height,
-            self.reference_rays
-        );
-        if !self.virtual_samples {
-            c.push_str(" --no-virtual-samples");
-        }
-        if self.culling != Culling::ALGORITHM {
-            c.push_str(&format!(" --cull {}", self.culling));
-        }
-        c
+        format!("umbra render {quoted} {}", super::params::flags(self))
     }
 
-    /// Whether a render of `scene` with this configuration is within
-    /// `limits` (the map, the image, the triangles and the memory all
-    /// together, [`Footprint::render`]): the check [`render()`](super::render()) makes before
-    /// it allocates, for a caller to make before it writes anything.
+    /// This configuration checked for a render of `scene` within `limits`:
+    /// its values ([`checked`](Self::checked)), then the map side, the
+    /// image size, the scene's triangles and the memory, all together
+    /// ([`Footprint::render`]), before anything is allocated. Every render
+    /// and costing takes the result, so a caller checks once, before it
+    /// writes anything.
+    ///
+    /// ```
+    /// use umbra_sim::{Limits, RenderConfig, Scene};
+    /// let scene = Scene::open("weiskopf-l", &Limits::DEFAULT)?;
+    /// let huge = RenderConfig { map_size: 1 << 16, ..RenderConfig::DEFAULT };
+    /// assert!(huge.check(&scene, &Limits::DEFAULT).is_err());
+    /// assert!(RenderConfig::DEFAULT.check(&scene, &Limits::DEFAULT).is_ok());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     ///
     /// # Errors
-    /// [`RenderError`] naming the first quantity beyond its limit.
-    pub fn within(&self, scene: &Scene, limits: &Limits) -> Result<(), RenderError> {
-        self.check(scene, limits, RasterConfig::DEFAULT_TILE_SIZE).map(|_| ())
-    }
-
-    /// Check the map side, the image size and the scene's triangles against
-    /// `limits`, before any buffer is allocated, and the targets the passes
-    /// will draw, both in `tile`-pixel tiles.
-    pub(crate) fn check(&self, scene: &Scene, limits: &Limits, tile: u32) -> Result<Checked, RenderError> {
+    /// [`RenderError`] naming the first quantity out of range or beyond its limit.
+    pub fn check<'s>(self, scene: &'s Scene, limits: &Limits) -> Result<Checked<'s>, RenderError> {
         self.checked()?;
         limits.check_map(self.map_size)?;
         limits.check_image(self.width, self.height)?;
@@ -214,11 +242,8 @@ impl RenderConfig {
         limits.check_triangles(triangles)?;
         let pixels = u64::from(self.width) * u64::from(self.height);
         limits.check_memory("the render", Footprint::render(pixels, self.map_size, triangles))?;
-        let bits = RasterConfig::DEFAULT_SUBPIXEL_BITS;
-        let image = RasterConfig::new(self.width, self.height, tile, bits).map_err(RenderError::ImageSize)?;
-        // Shadow volumes draw no map: one texel stands for it.
-        let side = if self.algorithm == Algorithm::Volumes { 1 } else { self.map_size };
-        let map = RasterConfig::new(side, side, tile, bits).map_err(RenderError::MapSize)?;
-        Ok(Checked { map, image })
+        let checked = Checked { scene, config: self, limits: *limits };
+        checked.targets(RasterConfig::DEFAULT_TILE_SIZE)?;
+        Ok(checked)
     }
 }

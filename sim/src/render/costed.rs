@@ -12,7 +12,7 @@ use umbra_core::shadow::Filter;
 use umbra_core::silhouette::{Packed, SilPoint, SilStore};
 use umbra_core::{DepthFormat, DepthFormatKind, Probe, RasterConfig};
 
-use super::{Algorithm, Checked, Culling, Render, RenderConfig, RenderError, TruthSource, passes, render_in};
+use super::{Algorithm, Checked, Culling, Render, RenderConfig, RenderError, Targets, TruthSource, passes, render_in};
 use crate::base::maps::{Tiling, with_format};
 use crate::base::probes::Fan;
 use crate::cost::arch::{Arch, ArchProbe, CostReport, PassKind};
@@ -86,7 +86,7 @@ pub(super) fn reading<const C: bool>(
 /// The two passes' probes of `archs` for `cfg` on `checked`.
 fn probes<F: DepthFormat, const L: bool, const C: bool>(
     cfg: &RenderConfig,
-    checked: Checked,
+    checked: Targets,
     archs: &[&Arch],
     shadowed: bool,
 ) -> (Fan<ArchProbe<L>>, Fan<ArchProbe<C>>) {
@@ -146,8 +146,8 @@ fn reports<const L: bool, const C: bool>(
     light.into_iter().zip(camera).map(|(l, c)| report((&scene.name, counts), cfg, config, l, c)).collect()
 }
 
-/// The cost of a render of `scene` on an architecture, within `limits`
-/// (checked as [`super::render`] checks them): both passes through
+/// The cost of a render, checked for its scene ([`RenderConfig::check`]),
+/// on an architecture: both passes through
 /// its timing model, the light pass and the camera's visibility in the
 /// architecture's tiles.
 ///
@@ -156,7 +156,8 @@ fn reports<const L: bool, const C: bool>(
 /// let scene = Scene::open("weiskopf-l", &Limits::DEFAULT)?;
 /// let cfg = RenderConfig { width: 96, height: 72, map_size: 128, ..RenderConfig::DEFAULT };
 /// let (slow, fast) = (Arch::open("pixelflow", &Limits::DEFAULT)?, Arch::open("desktop-imr", &Limits::DEFAULT)?);
-/// let cost = |a: &Arch| umbra_sim::cost(&scene, &cfg, a, &Limits::DEFAULT);
+/// let job = cfg.check(&scene, &Limits::DEFAULT)?;
+/// let cost = |a: &Arch| umbra_sim::cost(&job, a);
 /// // The same frame, the same events: the machines differ in time only.
 /// assert_eq!(cost(&slow)?.pixels, cost(&fast)?.pixels);
 /// assert!(cost(&slow)?.seconds > cost(&fast)?.seconds);
@@ -165,8 +166,8 @@ fn reports<const L: bool, const C: bool>(
 ///
 /// # Errors
 /// See [`RenderError`].
-pub fn cost(scene: &Scene, cfg: &RenderConfig, arch: &Arch, limits: &Limits) -> Result<CostReport, RenderError> {
-    cost_group(scene, cfg, &[arch], limits, true).map(|mut r| r.remove(0))
+pub fn cost(job: &Checked<'_>, arch: &Arch) -> Result<CostReport, RenderError> {
+    cost_group(job, &[arch], true).map(|mut r| r.remove(0))
 }
 
 /// The cost of drawing `scene` from its camera at `width × height` without
@@ -193,21 +194,16 @@ pub fn cost_unshadowed(
         reference_rays: 1,
         culling: Culling::ALGORITHM,
     };
-    cost_group(scene, &cfg, &[arch], limits, false).map(|mut r| r.remove(0))
+    cost_group(&cfg.check(scene, limits)?, &[arch], false).map(|mut r| r.remove(0))
 }
 
 /// The cost on `archs`, which share a [`Shape`] (the first's), from one
 /// run of the passes.
-fn cost_group(
-    scene: &Scene,
-    cfg: &RenderConfig,
-    archs: &[&Arch],
-    limits: &Limits,
-    shadowed: bool,
-) -> Result<Vec<CostReport>, RenderError> {
+fn cost_group(job: &Checked<'_>, archs: &[&Arch], shadowed: bool) -> Result<Vec<CostReport>, RenderError> {
     let Some(first) = archs.first() else { return Ok(Vec::new()) };
+    let (scene, cfg) = (job.scene(), job.config());
     let Shape { tiling, light_addresses: light_detail, camera_addresses: camera_detail } = shape(first);
-    let checked = cfg.check(scene, limits, tiling.tile)?;
+    let checked = job.targets(tiling.tile)?;
     with_format!(cfg.format, F => match (light_detail, camera_detail) {
         (false, false) => cost_in::<F, false, false>(scene, cfg, checked, archs, shadowed),
         (true, false) => cost_in::<F, true, false>(scene, cfg, checked, archs, shadowed),
@@ -219,7 +215,7 @@ fn cost_group(
 fn cost_in<F: DepthFormat, const L: bool, const C: bool>(
     scene: &Scene,
     cfg: &RenderConfig,
-    checked: Checked,
+    checked: Targets,
     archs: &[&Arch],
     shadowed: bool,
 ) -> Result<Vec<CostReport>, RenderError> {
@@ -255,14 +251,13 @@ fn cost_in<F: DepthFormat, const L: bool, const C: bool>(
 /// # Errors
 /// The render's [`RenderError`].
 pub fn render_costed(
-    scene: &Scene,
-    cfg: &RenderConfig,
-    limits: &Limits,
+    job: &Checked<'_>,
     truth_from: TruthSource<'_>,
     archs: &[Arch],
 ) -> Result<(Render, Vec<Result<CostReport, RenderError>>), RenderError> {
     let own = Shape { tiling: Tiling::DEFAULT, light_addresses: false, camera_addresses: false };
-    let checked = cfg.check(scene, limits, RasterConfig::DEFAULT_TILE_SIZE)?;
+    let (scene, cfg) = (job.scene(), job.config());
+    let checked = job.targets(RasterConfig::DEFAULT_TILE_SIZE)?;
     let shared: Vec<&Arch> = archs.iter().filter(|a| shape(a) == own).collect();
     let (render, costed) = with_format!(cfg.format, F => {
         let (light, mut camera) = probes::<F, false, false>(cfg, checked, &shared, true);
@@ -274,7 +269,7 @@ pub fn render_costed(
     let mut out: Vec<Option<Result<CostReport, RenderError>>> =
         archs.iter().map(|a| if shape(a) == own { costed.next().map(Ok) } else { None }).collect();
     // The other tilings, each group in one run.
-    cost_others(scene, cfg, limits, archs, &mut out);
+    cost_others(job, archs, &mut out);
     Ok((render, out.into_iter().map(|r| r.unwrap_or_else(|| Err(RenderError::Cost("not costed".into())))).collect()))
 }
 
@@ -282,13 +277,7 @@ pub fn render_costed(
 /// architectures from one run of the passes (as [`render_costed`] costs
 /// those that do not draw as the render does). A costing that fails is
 /// that architecture's error.
-pub fn cost_others(
-    scene: &Scene,
-    cfg: &RenderConfig,
-    limits: &Limits,
-    archs: &[Arch],
-    out: &mut [Option<Result<CostReport, RenderError>>],
-) {
+pub fn cost_others(job: &Checked<'_>, archs: &[Arch], out: &mut [Option<Result<CostReport, RenderError>>]) {
     let mut groups: Vec<(Shape, Vec<usize>)> = Vec::new();
     for (k, a) in archs.iter().enumerate().filter(|&(k, _)| out[k].is_none()) {
         match groups.iter_mut().find(|g| g.0 == shape(a)) {
@@ -298,7 +287,7 @@ pub fn cost_others(
     }
     for (_, members) in groups {
         let group: Vec<&Arch> = members.iter().map(|&k| &archs[k]).collect();
-        match cost_group(scene, cfg, &group, limits, true) {
+        match cost_group(job, &group, true) {
             Ok(reports) => members.iter().zip(reports).for_each(|(&k, r)| out[k] = Some(Ok(r))),
             Err(e) => {
                 let text = e.to_string();

@@ -7,6 +7,7 @@
 pub mod arrays;
 mod config;
 pub mod costed;
+pub mod params;
 pub mod pictures;
 pub mod replay;
 pub mod shared;
@@ -18,14 +19,15 @@ use umbra_core::shadow::{MapView, ShadowConfig, ShadowConfigError};
 use umbra_core::silhouette::{Packed, SilPoint, SilStore, SilhouetteMap};
 use umbra_core::{DepthFormat, DepthUnit, LightPassConfig, Probe, RasterConfig, TileState};
 
-pub(crate) use self::config::Checked;
-pub use self::config::{RenderConfig, RenderConfigError};
+pub(crate) use self::config::Targets;
+pub use self::config::{Checked, RenderConfig, RenderConfigError};
 pub use self::costed::{cost, cost_others, cost_unshadowed, render_costed};
+pub use self::params::{Kind, PARAMS, ParamError, RenderParam, RenderRequest, Written};
 use self::replay::{PassInputs, judged};
 use crate::base::counters::Counters;
 use crate::base::maps::{Tiling, with_format};
 use crate::base::probes::Tee;
-use crate::io::limits::{LimitError, Limits};
+use crate::io::limits::LimitError;
 use crate::pass::PassError;
 use crate::pass::algorithm::MapKind;
 pub use crate::pass::algorithm::{Algorithm, Cull, Culling};
@@ -117,14 +119,15 @@ pub enum TruthSource<'p> {
     Given(Vec<Option<PixelTruth>>),
 }
 
-/// Render `scene` with `cfg` within `limits`, against the exact reference
-/// `truth` names.
+/// Render the configuration `job` checked for its scene
+/// ([`RenderConfig::check`]), against the exact reference `truth_from`
+/// names.
 ///
 /// ```
 /// use umbra_sim::{Limits, RenderConfig, Scene, TruthSource};
 /// let scene = Scene::open("weiskopf-l", &Limits::DEFAULT)?;
 /// let cfg = RenderConfig { width: 96, height: 72, map_size: 128, ..RenderConfig::DEFAULT };
-/// let r = umbra_sim::render(&scene, &cfg, &Limits::DEFAULT, TruthSource::Quiet)?;
+/// let r = umbra_sim::render(&cfg.check(&scene, &Limits::DEFAULT)?, TruthSource::Quiet)?;
 /// let m = &r.metrics;
 /// assert_eq!(m.evaluated as usize, r.truth.iter().flatten().filter(|t| t.faces_light).count());
 /// assert!(m.aliasing + m.penumbra + m.acne + m.detachment + m.leaks <= m.evaluated);
@@ -133,13 +136,9 @@ pub enum TruthSource<'p> {
 ///
 /// # Errors
 /// See [`RenderError`].
-pub fn render(
-    scene: &Scene,
-    cfg: &RenderConfig,
-    limits: &Limits,
-    truth_from: TruthSource<'_>,
-) -> Result<Render, RenderError> {
-    let checked = cfg.check(scene, limits, RasterConfig::DEFAULT_TILE_SIZE)?;
+pub fn render(job: &Checked<'_>, truth_from: TruthSource<'_>) -> Result<Render, RenderError> {
+    let (scene, cfg) = (job.scene(), job.config());
+    let checked = job.targets(RasterConfig::DEFAULT_TILE_SIZE)?;
     let none = (umbra_core::NoProbe, &mut umbra_core::NoProbe);
     Ok(with_format!(cfg.format, F => render_in::<F, _, _>(scene, cfg, checked, truth_from, none)?.0))
 }
@@ -215,7 +214,7 @@ pub(crate) fn camera_options(
 pub(super) fn passes<F: DepthFormat, L: Probe, C: Probe>(
     scene: &Scene,
     cfg: &RenderConfig,
-    checked: Checked,
+    checked: Targets,
     frame: &mut LightFrame<F::Texel>,
     light_probe: L,
     camera_probe: &mut C,
@@ -277,7 +276,7 @@ fn silhouette<S: SilStore, F: DepthFormat, L: Probe, C: Probe>(
 pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
     scene: &Scene,
     cfg: &RenderConfig,
-    checked: Checked,
+    checked: Targets,
     truth_from: TruthSource<'_>,
     (light_also, camera_also): (L, &mut C),
 ) -> Result<(Render, L), RenderError> {

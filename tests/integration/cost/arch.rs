@@ -177,7 +177,7 @@ fn one_triangle_per_tile_by_hand_on_every_bundled_file() {
 #[test]
 fn memory_bound_halves_and_compute_bound_stays() {
     let (scene, cfg) = super::bound::small();
-    let frame = |arch: &Arch| cost(&scene, &cfg, arch, &Limits::DEFAULT).expect("costs");
+    let frame = |arch: &Arch| cfg.check(&scene, &Limits::DEFAULT).and_then(|job| cost(&job, arch)).expect("costs");
     let mut slow = bundled("immediate");
     slow.set("dram.bandwidth=20MB/s").expect("valid");
     slow.set("dram.latency=0ns").expect("valid");
@@ -221,7 +221,7 @@ fn energy_is_the_sum_over_units_recomputed_from_the_events() {
         culling: Culling::ALGORITHM,
     };
     let arch = bundled("talisman");
-    let r = cost(&scene, &cfg, &arch, &Limits::DEFAULT).expect("costs");
+    let r = cfg.check(&scene, &Limits::DEFAULT).and_then(|job| cost(&job, &arch)).expect("costs");
     let e = &arch.energy;
     let (l, c) = (&r.light_events, &r.camera_events);
     let buffers = l.depth_reads() + l.depth_writes() + c.depth_reads() + c.depth_writes();
@@ -276,8 +276,8 @@ fn shadow_volume_cost_follows_overdraw_and_stays_on_chip_on_a_tiler() {
         culling: Culling::ALGORITHM,
     };
     let talisman = bundled("talisman");
-    let small = cost(&scene, &cfg(320, 180), &talisman, &Limits::DEFAULT).expect("costs");
-    let large = cost(&scene, &cfg(640, 360), &talisman, &Limits::DEFAULT).expect("costs");
+    let small = cfg(320, 180).check(&scene, &Limits::DEFAULT).and_then(|job| cost(&job, &talisman)).expect("costs");
+    let large = cfg(640, 360).check(&scene, &Limits::DEFAULT).and_then(|job| cost(&job, &talisman)).expect("costs");
     for r in [&small, &large] {
         let c = &r.camera_events;
         // Raster: every visibility and volume fragment at 2 a clock, one
@@ -291,7 +291,8 @@ fn shadow_volume_cost_follows_overdraw_and_stays_on_chip_on_a_tiler() {
     // Four times the pixels, about four times the volume fragments.
     let growth = large.camera_events.volume_fragments as f64 / small.camera_events.volume_fragments as f64;
     assert!((3.6..4.4).contains(&growth), "{growth}");
-    let immediate = cost(&scene, &cfg(320, 180), &bundled("immediate"), &Limits::DEFAULT).expect("costs");
+    let immediate =
+        cfg(320, 180).check(&scene, &Limits::DEFAULT).and_then(|job| cost(&job, &bundled("immediate"))).expect("costs");
     let c = &immediate.camera_events;
     assert_eq!(immediate.camera_dram.stencil, c.stencil_read_bytes + c.stencil_write_bytes);
     assert_eq!(immediate.camera_dram.volume_depth_reads, c.volume_depth_bytes);
@@ -320,7 +321,7 @@ fn sens_p_both_ways() {
             reference_rays: 1,
             culling: Culling::ALGORITHM,
         };
-        cost(&scene, &cfg, &talisman, &Limits::DEFAULT).expect("costs").sen
+        cfg.check(&scene, &Limits::DEFAULT).and_then(|job| cost(&job, &talisman)).expect("costs").sen
     };
     let (small, large) = (sen(480, 270), sen(960, 540));
     let fill = small.p_fill / large.p_fill;
@@ -353,7 +354,7 @@ fn a_silhouette_map_costs_its_four_corner_samples_whatever_the_filter() {
             reference_rays: 1,
             culling: Culling::ALGORITHM,
         };
-        cost(&scene, &cfg, &r300, &Limits::DEFAULT).expect("costs")
+        cfg.check(&scene, &Limits::DEFAULT).and_then(|job| cost(&job, &r300)).expect("costs")
     };
     let silhouette = Algorithm::Silhouette { packed: false };
     let point = report(silhouette, Filter::Point);
@@ -389,7 +390,7 @@ fn the_timeline_is_the_timing_model() {
         culling: Culling::ALGORITHM,
     };
     let arch = bundled("talisman");
-    let r = cost(&scene, &cfg, &arch, &Limits::DEFAULT).expect("costs");
+    let r = cfg.check(&scene, &Limits::DEFAULT).and_then(|job| cost(&job, &arch)).expect("costs");
     let (trace, slices) = umbra::sim::cost::arch::trace(std::slice::from_ref(&r));
     let events = trace["traceEvents"].as_array().expect("events");
     let names: Vec<&str> =
@@ -451,7 +452,7 @@ fn every_architecture_s_timeline_nests_in_its_passes() {
     cfg.algorithm = Algorithm::Silhouette { packed: false };
     let reports: Vec<_> = umbra::sim::cost::arch::file::BUNDLED
         .iter()
-        .map(|(name, _)| cost(&scene, &cfg, &bundled(name), &Limits::DEFAULT).expect("costs"))
+        .map(|(name, _)| cfg.check(&scene, &Limits::DEFAULT).and_then(|job| cost(&job, &bundled(name))).expect("costs"))
         .collect();
     let (trace, slices) = umbra::sim::cost::arch::trace(&reports);
     let events = trace["traceEvents"].as_array().expect("events");

@@ -107,7 +107,7 @@ pub(super) fn small() -> (Scene, RenderConfig) {
 
 fn report(arch: &Arch) -> CostReport {
     let (scene, cfg) = small();
-    cost(&scene, &cfg, arch, &Limits::DEFAULT).expect("costs")
+    cfg.check(&scene, &Limits::DEFAULT).and_then(|job| cost(&job, arch)).expect("costs")
 }
 
 /// Talisman, then Talisman at twice the clock with twice the bandwidth and

@@ -155,7 +155,7 @@ fn each_files_depth_only_fill_as_derived_by_hand() {
         let mut arch = Arch::open(name, &limits).expect("bundled");
         // The R300's map-writing program is not depth-only fill.
         arch.set("depth.program_cycles=0").expect("a key");
-        let r = cost(&scene, &cfg, &arch, &limits).expect("costs");
+        let r = cfg.check(&scene, &limits).and_then(|job| cost(&job, &arch)).expect("costs");
         assert_eq!(r.light_events.fragments, 256 * 256, "{name}: the quad fills the map once");
         #[allow(clippy::cast_precision_loss, reason = "a count")]
         let fill = r.light_events.fragments as f64 / ((r.light.cycles - r.light.overhead) / arch.clock);

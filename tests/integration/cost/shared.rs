@@ -39,15 +39,21 @@ fn a_shared_pass_costs_each_architecture_as_alone() {
             reference_rays: 1,
             culling: Culling::ALGORITHM,
         };
-        let alone = render(&s, &cfg, &limits, TruthSource::Build(&indicatif::ProgressBar::hidden())).expect("renders");
-        let (shared, costs) =
-            render_costed(&s, &cfg, &limits, TruthSource::Given(alone.truth.clone()), &archs).expect("renders");
+        let alone = cfg
+            .check(&s, &limits)
+            .and_then(|job| render(&job, TruthSource::Build(&indicatif::ProgressBar::hidden())))
+            .expect("renders");
+        let (shared, costs) = cfg
+            .check(&s, &limits)
+            .and_then(|job| render_costed(&job, TruthSource::Given(alone.truth.clone()), &archs))
+            .expect("renders");
         assert_eq!(shared.image.pixels, alone.image.pixels, "{scene}");
         assert_eq!(shared.metrics, alone.metrics, "{scene}");
         assert_eq!(shared.camera_events.totals, alone.camera_events.totals, "{scene}");
         assert_eq!(costs.len(), archs.len());
         for (a, c) in archs.iter().zip(&costs) {
-            let one = serde_json::to_string(&cost(&s, &cfg, a, &limits).expect("costed")).expect("JSON");
+            let one = serde_json::to_string(&cfg.check(&s, &limits).and_then(|job| cost(&job, a)).expect("costed"))
+                .expect("JSON");
             let together = serde_json::to_string(c.as_ref().expect("costed")).expect("JSON");
             assert!(one == together, "{scene} on {}: costed alone and shared differ", a.name);
         }

@@ -37,8 +37,11 @@ fn every_candidate(scene: &Scene, spec: &PlanSpec, p: &Plan) -> Vec<Measured> {
         for &map in &spec.map_sizes {
             for &filter in &spec.filters {
                 let cfg = umbra::sim::RenderConfig { algorithm, map_size: map, filter, ..p.config };
-                let r = render(scene, &cfg, &Limits::DEFAULT, TruthSource::Given(reference.clone())).expect("renders");
-                let c = cost(scene, &cfg, &spec.arch, &Limits::DEFAULT).expect("costs");
+                let r = cfg
+                    .check(scene, &Limits::DEFAULT)
+                    .and_then(|job| render(&job, TruthSource::Given(reference.clone())))
+                    .expect("renders");
+                let c = cfg.check(scene, &Limits::DEFAULT).and_then(|job| cost(&job, &spec.arch)).expect("costs");
                 let name = algorithm.name().to_owned();
                 out.push((name, map, filter.to_string(), c.cycles, c.bytes, r.metrics.artifact_percent));
             }

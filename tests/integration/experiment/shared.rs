@@ -86,8 +86,10 @@ fn a_shared_render_is_its_own_render() {
                     reference_rays: 2,
                     culling: v.culling,
                 };
-                let (own, own_costs) =
-                    render_costed(&scene, &cfg, &limits, TruthSource::Given(t.clone()), &archs).expect("renders");
+                let (own, own_costs) = cfg
+                    .check(&scene, &limits)
+                    .and_then(|job| render_costed(&job, TruthSource::Given(t.clone()), &archs))
+                    .expect("renders");
                 let Some(_) = LightKey::of(&cfg) else {
                     assert_eq!(v.algorithm, Algorithm::Volumes, "only shadow volumes draw no map");
                     continue;

@@ -116,7 +116,9 @@ fn silhouette_maps_follow_the_exact_boundary_closer_than_shadow_maps() {
     for degrees in [0.0f32, 30.0] {
         let s = scene(vec![square(degrees, shift as f32)]);
         let run = |a| {
-            render(&s, &config(a, map, &s), &Limits::DEFAULT, TruthSource::Build(&ProgressBar::hidden()))
+            config(a, map, &s)
+                .check(&s, &Limits::DEFAULT)
+                .and_then(|job| render(&job, TruthSource::Build(&ProgressBar::hidden())))
                 .expect("renders")
         };
         let (d, shadow_map, sil, packed) = (
@@ -177,7 +179,10 @@ fn shadow_volumes_are_exact_away_from_boundaries() {
         s.lights = vec![light];
         let mut cfg = config(Algorithm::Volumes, 8, &s);
         cfg.reference_rays = 4;
-        let r = render(&s, &cfg, &Limits::DEFAULT, TruthSource::Build(&ProgressBar::hidden())).expect("renders");
+        let r = cfg
+            .check(&s, &Limits::DEFAULT)
+            .and_then(|job| render(&job, TruthSource::Build(&ProgressBar::hidden())))
+            .expect("renders");
         let w = s.image[0] as usize;
         let (mut checked, mut shadowed, mut wrong) = (0, 0, Vec::new());
         for (i, p) in r.image.pixels.iter().enumerate() {
@@ -217,13 +222,10 @@ fn silhouette_map_artifacts_stay_local() {
     for (occluders, solid) in [(slabs, true), (vec![wedge], false)] {
         let mut s = scene(Vec::new());
         s.objects.extend(occluders.into_iter().map(|mesh| Object { name: "occluder".into(), mesh, solid }));
-        let r = render(
-            &s,
-            &config(Algorithm::Silhouette { packed: false }, map, &s),
-            &Limits::DEFAULT,
-            TruthSource::Build(&ProgressBar::hidden()),
-        )
-        .expect("renders");
+        let r = config(Algorithm::Silhouette { packed: false }, map, &s)
+            .check(&s, &Limits::DEFAULT)
+            .and_then(|job| render(&job, TruthSource::Build(&ProgressBar::hidden())))
+            .expect("renders");
         assert!(r.metrics.misclassified_percent.is_finite());
         let wrong = r
             .image
@@ -271,7 +273,7 @@ fn crowd_bandwidth_follows_sens_model() {
     let run = |a| {
         let mut c = config(a, 512, &s);
         c.format = DepthFormatKind::F32;
-        cost(&s, &c, &talisman, &Limits::DEFAULT).expect("costs").sen
+        c.check(&s, &Limits::DEFAULT).and_then(|job| cost(&job, &talisman)).expect("costs").sen
     };
     let (map, sil, vol) = (run(Algorithm::First), run(Algorithm::Silhouette { packed: true }), run(Algorithm::Volumes));
     println!(
@@ -307,9 +309,10 @@ fn crowd_bandwidth_follows_sens_model() {
 fn volumes_beyond_the_far_plane_keep_their_planes() {
     let mut s = Scene::bundled("crowd").expect("bundled");
     s.image = [480, 270];
-    let r =
-        render(&s, &config(Algorithm::Volumes, 8, &s), &Limits::DEFAULT, TruthSource::Build(&ProgressBar::hidden()))
-            .expect("renders");
+    let r = config(Algorithm::Volumes, 8, &s)
+        .check(&s, &Limits::DEFAULT)
+        .and_then(|job| render(&job, TruthSource::Build(&ProgressBar::hidden())))
+        .expect("renders");
     println!("crowd volumes: {:.4} % misclassified", r.metrics.misclassified_percent);
     assert!(r.metrics.evaluated > 50_000);
     assert!(r.metrics.misclassified_percent <= 0.05, "{:.4} %", r.metrics.misclassified_percent);

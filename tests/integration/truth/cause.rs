@@ -125,7 +125,7 @@ fn rendered(scene: &Scene, (algo, bias, filter): (Algorithm, f64, &str), map: u3
         reference_rays: 2,
         ..RenderConfig::DEFAULT
     };
-    render(scene, &cfg, &Limits::DEFAULT, TruthSource::Quiet).expect("renders")
+    cfg.check(scene, &Limits::DEFAULT).and_then(|job| render(&job, TruthSource::Quiet)).expect("renders")
 }
 
 /// The object of each pixel's visible triangle (`None` for the background).

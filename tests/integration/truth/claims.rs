@@ -439,7 +439,7 @@ fn sen_table_one_overdraw_and_silhouette_fill() {
             reference_rays: 1,
             culling: Culling::ALGORITHM,
         };
-        cost(&s, &cfg, &arch, &Limits::DEFAULT).expect("costed").sen
+        cfg.check(&s, &Limits::DEFAULT).and_then(|job| cost(&job, &arch)).expect("costed").sen
     };
     let zoom = figures("crowd-zoom", Algorithm::Volumes);
     let wide = figures("crowd", Algorithm::Volumes);

@@ -145,9 +145,13 @@ fn a_renders_own_reference_is_the_shared_one() {
             reference_rays: 2,
             ..RenderConfig::DEFAULT
         };
-        let own = render(&scene, &cfg, &Limits::DEFAULT, TruthSource::Quiet).expect("renders");
+        let own =
+            cfg.check(&scene, &Limits::DEFAULT).and_then(|job| render(&job, TruthSource::Quiet)).expect("renders");
         assert!(own.truth == shared, "{algorithm}: the references differ");
-        let given = render(&scene, &cfg, &Limits::DEFAULT, TruthSource::Given(shared.clone())).expect("renders");
+        let given = cfg
+            .check(&scene, &Limits::DEFAULT)
+            .and_then(|job| render(&job, TruthSource::Given(shared.clone())))
+            .expect("renders");
         assert_eq!(own.metrics, given.metrics, "{algorithm}");
     }
 }

@@ -208,25 +208,37 @@ fn huge_maps_and_images_are_refused_before_allocating() {
     let scene = Scene::bundled("table-and-sphere").expect("bundled");
     let hidden = indicatif::ProgressBar::hidden();
     for side in [65_536u32, 16_384] {
-        let err = render(&scene, &render_config(side, 64, 48), &Limits::DEFAULT, TruthSource::Build(&hidden))
+        let err = render_config(side, 64, 48)
+            .check(&scene, &Limits::DEFAULT)
+            .and_then(|job| render(&job, TruthSource::Build(&hidden)))
             .err()
             .expect("refused");
         assert!(matches!(err, RenderError::Limit(LimitError::MapSide { side: s, max: 8192 }) if s == side), "{err}");
         assert!(err.to_string().contains(&format!("map side {side}")), "{err}");
     }
-    let err = render(&scene, &render_config(64, 100_000, 1), &Limits::DEFAULT, TruthSource::Build(&hidden))
+    let err = render_config(64, 100_000, 1)
+        .check(&scene, &Limits::DEFAULT)
+        .and_then(|job| render(&job, TruthSource::Build(&hidden)))
         .err()
         .expect("refused");
     assert!(matches!(err, RenderError::Limit(LimitError::ImageSide { side: 100_000, .. })), "{err}");
-    let err = render(&scene, &render_config(64, 8192, 8192), &Limits::DEFAULT, TruthSource::Build(&hidden))
+    let err = render_config(64, 8192, 8192)
+        .check(&scene, &Limits::DEFAULT)
+        .and_then(|job| render(&job, TruthSource::Build(&hidden)))
         .err()
         .expect("refused");
     assert!(matches!(err, RenderError::Limit(LimitError::ImagePixels { .. })), "{err}");
     let few = Limits { max_triangles: 100, ..Limits::DEFAULT };
-    let err = render(&scene, &render_config(64, 64, 48), &few, TruthSource::Build(&hidden)).err().expect("refused");
+    let err = render_config(64, 64, 48)
+        .check(&scene, &few)
+        .and_then(|job| render(&job, TruthSource::Build(&hidden)))
+        .err()
+        .expect("refused");
     assert!(matches!(err, RenderError::Limit(LimitError::Triangles { max: 100, .. })), "{err}");
     // Zero is the configuration's to refuse, and named as the map's.
-    let err = render(&scene, &render_config(0, 64, 48), &Limits::DEFAULT, TruthSource::Build(&hidden))
+    let err = render_config(0, 64, 48)
+        .check(&scene, &Limits::DEFAULT)
+        .and_then(|job| render(&job, TruthSource::Build(&hidden)))
         .err()
         .expect("refused");
     assert!(
@@ -328,7 +340,11 @@ fn every_obj_error_names_its_line() {
 #[test]
 fn nothing_to_measure_is_an_error_not_a_perfect_score() {
     let hidden = indicatif::ProgressBar::hidden();
-    let run = |scene: Scene| render(&scene, &render_config(64, 64, 48), &Limits::DEFAULT, TruthSource::Build(&hidden));
+    let run = |scene: Scene| {
+        render_config(64, 64, 48)
+            .check(&scene, &Limits::DEFAULT)
+            .and_then(|job| render(&job, TruthSource::Build(&hidden)))
+    };
     let away = with("target = [0.0, 0.0, 0.0]\nfov", "target = [0.0, 2.0, 10.0]\nfov").expect("valid");
     let err = run(away).err().expect("the camera looks away from the ball");
     assert!(matches!(err, RenderError::NothingEvaluated) && err.to_string().starts_with("camera:"), "{err}");

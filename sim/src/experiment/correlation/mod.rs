@@ -321,7 +321,7 @@ pub struct Correlation {
 fn simulate(point: &Point, scene: &Scene, arch: &Arch, limits: &Limits) -> Result<f64, RenderError> {
     let [w, h] = point.image.unwrap_or(scene.image);
     let report: CostReport = match &point.config {
-        Some(c) => cost(scene, &c.render(w, h).map_err(RenderError::Cost)?, arch, limits)?,
+        Some(c) => cost(&c.render(w, h).map_err(RenderError::Cost)?.check(scene, limits)?, arch)?,
         None => cost_unshadowed(scene, (w, h), arch, limits)?,
     };
     let pass = match point.pass {

@@ -50,7 +50,9 @@ pub fn run_config(spec: &Spec, c: &Config, truth: &Truth) -> Vec<Row> {
     let scene = &spec.scenes[c.scene];
     let cfg = render_config(spec, c);
     let done = match truth {
-        Ok(t) => render_costed(scene, &cfg, &spec.limits, TruthSource::Given(t.clone()), &spec.archs)
+        Ok(t) => cfg
+            .check(scene, &spec.limits)
+            .and_then(|job| render_costed(&job, TruthSource::Given(t.clone()), &spec.archs))
             .map_err(|e| e.to_string()),
         Err(e) => Err(format!("reference: {e}")),
     };
@@ -99,7 +101,7 @@ fn run_shared<F: DepthFormat>(
 ) -> Option<Vec<Row>> {
     let cfg = render_config(spec, c);
     let (metrics, camera, mut costs) = render_shared::<F>(image, light, &cfg, scratch)?;
-    cost_others(&spec.scenes[c.scene], &cfg, &spec.limits, &spec.archs, &mut costs);
+    cost_others(&cfg.check(&spec.scenes[c.scene], &spec.limits).ok()?, &spec.archs, &mut costs);
     let costs = costs.into_iter().map(|r| r.unwrap_or_else(|| Err(RenderError::Cost("not costed".into()))));
     Some(rows_of(spec, c, &Ok((RowMetrics::new(&metrics, tangent_share(&camera)), costs.collect()))))
 }
@@ -186,8 +188,7 @@ fn alike(spec: &Spec, c: &Config) -> Option<RenderConfig> {
         }
         _ => return None,
     };
-    let tile = umbra_core::RasterConfig::DEFAULT_TILE_SIZE;
-    cfg.check(&spec.scenes[c.scene], &spec.limits, tile).is_ok().then_some(like)
+    cfg.check(&spec.scenes[c.scene], &spec.limits).is_ok().then_some(like)
 }
 
 /// The rows of `c`, rendered alike to the configuration whose rows are

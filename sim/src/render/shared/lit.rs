@@ -81,7 +81,7 @@ impl<T: umbra_core::depth::Texel> LightShare<T> {
         let draws = scene.draws_culled(scene.light().view_projection(), |solid| units.cull(solid, cfg.culling));
         let (mut lit, mut kept, mut setups) = (Vec::<Lit<T>>::new(), Vec::new(), 0);
         for (k, &(tiling, detail)) in shapes.iter().enumerate() {
-            let checked = cfg.check(scene, &image.limits, tiling.tile).ok()?;
+            let checked = cfg.check(scene, &image.limits).ok()?.targets(tiling.tile).ok()?;
             let mut probes = Probes::default();
             for (i, a) in image.archs.iter().enumerate().filter(|&(i, _)| lit_by[i] == Some(k)) {
                 let pass = (PassKind::Light, checked.map);

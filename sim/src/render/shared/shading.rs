@@ -50,9 +50,10 @@ pub fn render_shared<F: DepthFormat>(
     scratch: &mut Scratch,
 ) -> Option<SharedRender> {
     let scene = image.scene;
-    let checked = cfg.check(scene, &image.limits, RasterConfig::DEFAULT_TILE_SIZE).ok()?;
+    let job = cfg.check(scene, &image.limits).ok()?;
+    let checked = job.targets(RasterConfig::DEFAULT_TILE_SIZE).ok()?;
     for a in image.archs.iter().filter(|a| shares(a)) {
-        cfg.check(scene, &image.limits, a.tiling().tile).ok()?;
+        job.targets(a.tiling().tile).ok()?;
     }
     if (checked.image.width(), checked.image.height()) != image.size || light.setups == 0 {
         return None;

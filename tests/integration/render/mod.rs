@@ -1,0 +1,3 @@
+//! One render's configuration: its parameters and its one check.
+
+mod params;
