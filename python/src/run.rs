@@ -9,7 +9,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use umbra_core::DepthFormatKind;
 use umbra_sim::experiment::plan::PlanSpec;
-use umbra_sim::experiment::study::{Shard, SweepFile, schema::schema_csv, table};
+use umbra_sim::experiment::study::{Overrides, Request, Shard, SweepFile, schema::schema_csv, table};
 use umbra_sim::io::limits::Limits;
 use umbra_sim::render::arrays::PixelArrays;
 use umbra_sim::render::{RenderConfig, RenderRequest, TruthSource};
@@ -154,14 +154,18 @@ pub fn study(
         (None, Some(text)) => SweepFile { file: PathBuf::from(file), text, bundled: false },
         _ => return Err(UmbraError::new_err("study: give a sweep's name or file, or its text, not both")),
     };
-    let spec = sweep.spec(&limits).map_err(|e| error(&e))?;
     let (index, count) = shard;
-    if count == 0 || index >= count {
-        return Err(bad("shard", format!("{index}/{count} is not a shard: want i/n with i < n")));
-    }
-    if let Some(problem) = spec.size_problem() {
-        return Err(UmbraError::new_err(format!("the sweep: {problem}")));
-    }
+    // The library's one check of a study: the sweep, its size, the shard
+    // and the memory of the renders run at once.
+    let request = Request {
+        sweep: sweep.file.display().to_string(),
+        overrides: Overrides::default(),
+        shard: Some(format!("{index}/{count}")),
+        extremes: false,
+        out: PathBuf::new(),
+    };
+    let at_once = threads.unwrap_or_else(rayon::current_num_threads);
+    let spec = request.prepare_file(sweep, &limits, at_once).map_err(|e| error(&e))?.spec;
     let bar = ProgressBar::hidden();
     let rows = progress::run(py, &bar, progress, threads, || umbra_sim::study(&spec, Shard { index, count }, &bar))?
         .map_err(|e| error(&e))?;

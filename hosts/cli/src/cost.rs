@@ -29,25 +29,7 @@ impl ArchArgs {
     /// The chosen architectures with the overrides applied; `default` names
     /// them when `--arch` is not given.
     pub(super) fn resolve(&self, default: &[&str], limits: &Limits) -> Result<Vec<Arch>> {
-        let names: Vec<&str> =
-            if self.arch.is_empty() { default.to_vec() } else { self.arch.iter().map(String::as_str).collect() };
-        let mut archs: Vec<Arch> = Vec::new();
-        for name in names {
-            let more = if name == "all" { Arch::presets()? } else { vec![Arch::open(name, limits)?] };
-            for arch in more {
-                if archs.iter().any(|a| a.name == arch.name) {
-                    bail!("--arch {name}: architecture `{}` is chosen twice", arch.name);
-                }
-                archs.push(arch);
-            }
-        }
-        crate::no_repeats("--set", self.set.iter().map(|s| s.split_once('=').map_or(s.as_str(), |(k, _)| k.trim())))?;
-        for arch in &mut archs {
-            for s in &self.set {
-                arch.set(s)?;
-            }
-        }
-        Ok(archs)
+        Ok(umbra_sim::experiment::study::choose_archs(&self.arch, &self.set, default, limits)?)
     }
 }
 

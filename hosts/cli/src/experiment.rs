@@ -6,7 +6,6 @@ use crate::cost::{ArchArgs, OneArchArgs};
 use crate::say::say;
 use anyhow::{Context, Result, bail};
 use indicatif::ProgressBar;
-use umbra_core::RasterConfig;
 use umbra_sim::io::folder::OutputFolder;
 use umbra_sim::io::limits::Limits;
 use umbra_sim::render::RenderConfig;
@@ -120,132 +119,56 @@ pub(super) fn plan(args: &PlanArgs, limits: &Limits) -> Result<()> {
     crate::say::wrote(&args.out, &manifest)
 }
 
-/// `umbra study`.
+/// `umbra study`: the library prepares (checks and hashes) and runs it;
+/// this prints what it did.
 pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
-    use umbra_sim::experiment::study::{self, Manifest, Shard, SweepFile};
-    crate::no_repeats("scene", args.scenes.iter().map(String::as_str))?;
-    crate::no_repeats("--image", args.images.iter().map(String::as_str))?;
-    let maps: Vec<String> = args.maps.iter().map(u32::to_string).collect();
-    crate::no_repeats("--maps", maps.iter().map(String::as_str))?;
-    let file = SweepFile::open(if args.quick { "quick" } else { &args.sweep }, limits)?;
-    let mut spec = file.spec(limits)?;
-    if !args.scenes.is_empty() {
-        spec.scenes = study::load_scenes(&args.scenes, limits)?;
-    }
-    if !args.archs.arch.is_empty() {
-        spec.archs = args.archs.resolve(&[], limits)?;
-        spec.arch_points.clear();
-    } else {
-        for arch in &mut spec.archs {
-            for s in &args.archs.set {
-                arch.set(s)?;
-            }
-        }
-    }
-    if !args.images.is_empty() {
-        spec.images = args.images.iter().map(|i| image_size(i, limits)).collect::<Result<_>>()?;
-    }
-    // Within its bound already: the flag's parser reads it.
-    if let Some(n) = args.reference_rays {
-        spec.reference_rays = n;
-    }
-    if !args.budgets.is_empty() {
-        if let Some((_, problem)) = study::budgets_problem(&args.budgets) {
-            bail!("--budgets: {problem}");
-        }
-        spec.budgets.clone_from(&args.budgets);
-    }
-    // Flags change the sweep: its hash covers them, so shards run with
-    // different flags do not merge. Without flags it is the file's own.
-    let flagged = !(args.scenes.is_empty()
-        && args.archs.arch.is_empty()
-        && args.archs.set.is_empty()
-        && args.images.is_empty()
-        && args.reference_rays.is_none()
-        && args.budgets.is_empty()
-        && args.maps.is_empty());
-    if flagged {
-        let overrides = format!(
-            "{:?}{:?}{:?}{:?}{:?}{:?}{:?}",
-            args.scenes, args.archs.arch, args.archs.set, args.images, args.reference_rays, args.budgets, args.maps
-        );
-        spec.hash = umbra_sim::io::provenance::hash(format!("{}{overrides}", file.text).as_bytes());
-    }
-    spec.limits = *limits;
-    if !args.maps.is_empty() {
-        for &side in &args.maps {
-            limits.check_map(side).with_context(|| format!("--maps {side}"))?;
-            RasterConfig::new(side, side, RasterConfig::DEFAULT_TILE_SIZE, RasterConfig::DEFAULT_SUBPIXEL_BITS)
-                .with_context(|| format!("--maps {side}"))?;
-        }
-        spec.map_sizes.clone_from(&args.maps);
-    }
-    if let Some(problem) = spec.size_problem() {
-        bail!("the sweep with these flags: {problem}");
-    }
-    let shard = args.shard.as_deref().map(Shard::parse).transpose()?.unwrap_or(Shard::ALL);
-    // The memory bound, before any folder is made.
-    spec.renders_at_once(rayon::current_num_threads())?;
-    // A shard already complete and verified, of this sweep and version,
-    // would be written again byte for byte: a rerun task skips it.
-    let expected = Manifest::new(&spec, shard, 0);
-    if shard != Shard::ALL && study::already_complete(&args.out, &expected, limits) {
-        say!(
-            "study: shard {} in {} is already complete and verified: not recomputed",
-            expected.shard,
-            args.out.display()
-        );
-        return Ok(());
-    }
-    let mut folder = OutputFolder::create(&args.out)?;
+    use umbra_sim::experiment::study::{Outcome, Overrides, Request};
+    let request = Request {
+        sweep: if args.quick { "quick".to_owned() } else { args.sweep.clone() },
+        overrides: Overrides {
+            scenes: args.scenes.clone(),
+            archs: args.archs.arch.clone(),
+            sets: args.archs.set.clone(),
+            images: args.images.clone(),
+            reference_rays: args.reference_rays,
+            budgets: args.budgets.clone(),
+            maps: args.maps.clone(),
+        },
+        shard: args.shard.clone(),
+        extremes: args.extremes,
+        out: args.out.clone(),
+    };
+    let prepared = request.prepare(limits, rayon::current_num_threads())?;
     let style = indicatif::ProgressStyle::with_template(
         "{prefix} [{elapsed_precise}] {wide_bar} {pos}/{len} configurations, {per_sec}, {eta} left",
     )
     .context("progress bar template")?;
     let progress = ProgressBar::new(0).with_style(style).with_prefix("study");
     let start = std::time::Instant::now();
-    let rows = study::run(&spec, shard, &progress)?;
+    let outcome = prepared.run(&progress)?;
     progress.finish_and_clear();
-    let configs = rows.iter().map(|r| r.config_index).collect::<std::collections::BTreeSet<_>>().len();
-    let skipped = rows.iter().filter(|r| r.metrics.is_none()).count();
-    let manifest = Manifest::new(&spec, shard, rows.len());
-    if shard == Shard::ALL {
-        study::write_outputs(&mut folder, &rows, &manifest)?;
-    } else {
-        study::write_partial(&mut folder, &rows)?;
+    match outcome {
+        Outcome::AlreadyComplete(m) => {
+            say!("study: shard {} in {} is already complete and verified: not recomputed", m.shard, args.out.display());
+        }
+        Outcome::Ran { rows, summary, extremes, .. } => {
+            if let Some(summary) = summary {
+                say!("{summary}");
+            }
+            if let Some(report) = extremes {
+                say!("{report}");
+            }
+            let configs = rows.iter().map(|r| r.config_index).collect::<std::collections::BTreeSet<_>>().len();
+            let skipped = rows.iter().filter(|r| r.metrics.is_none()).count();
+            say!(
+                "study: {configs} configurations, {} rows ({skipped} skipped); wrote {} (its files in {})",
+                rows.len(),
+                args.out.display(),
+                args.out.join(umbra_sim::io::folder::MANIFEST).display()
+            );
+            // The wall time varies with the machine: not part of the results.
+            eprintln!("study took {:.1} s", start.elapsed().as_secs_f64());
+        }
     }
-    folder.write_text("sweep.toml", &file.text)?;
-    // The effective architectures, beside the rows that name them.
-    for arch in &spec.archs {
-        folder.write_text(&format!("arch-{}.toml", arch.name), &arch.to_toml())?;
-    }
-    let extremes = if args.extremes { Some(study::extremes::run_all(&mut folder, limits)?) } else { None };
-    study::finish(folder, &manifest)?;
-    if shard == Shard::ALL {
-        say!("{}", study::summary(&rows, &manifest));
-    }
-    if let Some(report) = extremes {
-        say!("{report}");
-    }
-    say!(
-        "study: {configs} configurations, {} rows ({skipped} skipped); wrote {} (its files in {})",
-        rows.len(),
-        args.out.display(),
-        args.out.join(umbra_sim::io::folder::MANIFEST).display()
-    );
-    // The wall time varies with the machine: not part of the results.
-    eprintln!("study took {:.1} s", start.elapsed().as_secs_f64());
     Ok(())
-}
-
-/// A `--image` size, `WIDTHxHEIGHT`, within the limits.
-fn image_size(text: &str, limits: &Limits) -> Result<[u32; 2]> {
-    let (w, h) = text
-        .split_once(['x', '×'])
-        .and_then(|(w, h)| Some((w.trim().parse::<u32>().ok()?, h.trim().parse::<u32>().ok()?)))
-        .with_context(|| format!("--image `{text}`: expected WIDTHxHEIGHT, e.g. 640x360"))?;
-    limits.check_image(w, h).with_context(|| format!("--image {text}"))?;
-    RasterConfig::new(w, h, RasterConfig::DEFAULT_TILE_SIZE, RasterConfig::DEFAULT_SUBPIXEL_BITS)
-        .with_context(|| format!("--image {text}"))?;
-    Ok([w, h])
 }

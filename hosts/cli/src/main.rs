@@ -154,13 +154,7 @@ enum Command {
 
 /// Refuse a list flag that names one thing twice (it would run it twice).
 fn no_repeats<'a>(flag: &str, items: impl IntoIterator<Item = &'a str>) -> Result<()> {
-    let mut seen = std::collections::BTreeSet::new();
-    for item in items {
-        if !seen.insert(item) {
-            anyhow::bail!("{flag} `{item}` is given twice");
-        }
-    }
-    Ok(())
+    Ok(umbra_sim::experiment::study::no_repeats(flag, items)?)
 }
 
 /// The most worker threads a run starts. `RAYON_NUM_THREADS` above it is

@@ -28,6 +28,7 @@ use crate::world::scene_file::SceneError;
 pub mod extremes;
 pub mod plot;
 
+mod request;
 mod row;
 mod run;
 pub mod schema;
@@ -36,6 +37,7 @@ mod summary;
 mod sweep;
 mod sweep_file;
 
+pub use request::{Outcome, Overrides, Prepared, Request, choose_archs, image_size, no_repeats};
 pub use row::{Row, RowConfig, RowCost, RowMetrics, Status};
 use run::sort_rows;
 pub use run::{Truth, load_scenes, render_config, run, run_config, run_unshared, truth_of};
@@ -170,4 +172,11 @@ pub enum StudyError {
         /// What went wrong.
         problem: String,
     },
+    /// What a host asked for is unusable: the message names the flag and
+    /// the value.
+    #[error("{0}")]
+    Request(String),
+    /// An architecture did not load, or refused a change.
+    #[error(transparent)]
+    Arch(#[from] crate::cost::arch::ArchError),
 }
