@@ -92,16 +92,22 @@ fn missing_tools(target: &str) -> Option<String> {
 /// Build the firmware for `target` in its own workspace and target directory.
 fn build_firmware(target: &str) -> PathBuf {
     let dir = firmware_dir();
-    let out = Command::new(option_env!("CARGO").unwrap_or("cargo"))
+    let mut cargo = Command::new(option_env!("CARGO").unwrap_or("cargo"));
+    cargo
         .args(["build", "--release", "--quiet", "--target", target])
         .current_dir(&dir)
-        // The firmware's own `.cargo/config.toml` decides flags and runners.
+        // The firmware's own `.cargo/config.toml` and profile decide flags
+        // and runners, whatever the environment overrides for the host.
         .env_remove("CARGO_TARGET_DIR")
         .env_remove("CARGO_BUILD_TARGET")
         .env_remove("RUSTFLAGS")
-        .env_remove("CARGO_ENCODED_RUSTFLAGS")
-        .output()
-        .expect("cargo runs");
+        .env_remove("CARGO_ENCODED_RUSTFLAGS");
+    for (key, _) in std::env::vars_os() {
+        if key.to_string_lossy().starts_with("CARGO_PROFILE_") {
+            cargo.env_remove(key);
+        }
+    }
+    let out = cargo.output().expect("cargo runs");
     assert!(out.status.success(), "firmware build for {target} failed:\n{}", String::from_utf8_lossy(&out.stderr));
     dir.join("target").join(target).join("release/umbra-cortex-m")
 }
