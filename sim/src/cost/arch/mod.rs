@@ -7,13 +7,16 @@ use serde::{Deserialize, Serialize};
 pub mod derived;
 pub mod file;
 mod keys;
+mod machine;
+mod presets;
 mod report;
 pub mod timing;
 mod units;
 mod work;
 
-pub use file::{Arch, ArchError, Calibration, Problem};
-pub use keys::Unit;
+pub use file::ArchError;
+pub use keys::{Problem, Unit};
+pub use machine::{Arch, Calibration};
 pub use report::{Compared, Comparison, CostReport, SenFigures, trace, unit_of};
 pub use timing::{ArchProbe, PassKind, PassTiming};
 pub use work::{MemoryLimit, MemoryTime};
