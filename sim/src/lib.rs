@@ -49,7 +49,8 @@ pub mod experiment;
 pub use glam;
 pub use umbra_core as core;
 
-pub use cost::arch::{Arch, CostReport};
+pub use cost::arch::Arch;
+pub use cost::report::CostReport;
 pub use experiment::plan::{Plan, PlanSpec, plan};
 pub use experiment::study::{Row, Spec as StudySpec, SweepFile, run as study};
 pub use io::limits::Limits;

@@ -112,14 +112,14 @@ pub(super) fn cost(args: &CostArgs, trace: bool, limits: &Limits) -> Result<()> 
         reports.push(report);
     }
     if trace {
-        let (json, slices) = umbra_sim::cost::arch::trace(&reports);
+        let (json, slices) = umbra_sim::cost::report::trace(&reports);
         folder.write_text("trace.json", &serde_json::to_string(&json)?)?;
         for (r, n) in reports.iter().zip(slices) {
             let unit = if r.arch.immediate() { "draw" } else { "tile" };
             say!("trace.json: {} ({:.3} ms): {n} {unit} slices", r.arch.name, r.seconds * 1e3);
         }
     } else {
-        let comparison = umbra_sim::cost::arch::Comparison::new(&reports);
+        let comparison = umbra_sim::cost::report::Comparison::new(&reports);
         if let Some(c) = &comparison {
             let md = c.markdown();
             say!("{md}");

@@ -29,7 +29,8 @@ use serde::Serialize;
 use umbra_core::shadow::Filter;
 use umbra_core::{CullMode, DepthFormat, DepthFormatKind, DepthUnit, F32, LightPassConfig, RasterConfig};
 
-use crate::cost::arch::{Arch, CostReport};
+use crate::cost::arch::Arch;
+use crate::cost::report::CostReport;
 use crate::cost::storage::{MapShape, StorageBytes, storage_bytes};
 use crate::experiment::presets::FILTERS;
 use crate::io::limits::Limits;

@@ -4,7 +4,7 @@
 //! image size; the image size at which shadow volumes stop being the
 //! cheapest; the bottleneck an architecture parameter moves.
 
-use umbra::sim::cost::arch::Bottleneck;
+use umbra::sim::cost::work::Bottleneck;
 use umbra::sim::experiment::study::{Manifest, Row, RowConfig, RowCost, RowMetrics, Status, summary};
 
 /// A row: `algorithm` of `family` at `image` on `arch` (`params`), with

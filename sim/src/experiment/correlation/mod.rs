@@ -27,7 +27,8 @@ use umbra_core::shadow::Filter;
 
 pub use self::plot::plot;
 pub use self::stats::Stats;
-use crate::cost::arch::{Arch, CostReport};
+use crate::cost::arch::Arch;
+use crate::cost::report::CostReport;
 use crate::io::limits::Limits;
 use crate::render::{Algorithm, Culling, RenderConfig, RenderError, cost, cost_unshadowed};
 use crate::world::scene::Scene;

@@ -9,7 +9,8 @@
 //! and Weiskopf & Ertl's dual depth over an offset sweep (§3), with and
 //! without their per-object back-face culling, Sen et al.'s silhouette maps
 //! and stencil shadow volumes (§2, §5). What it costs is counted by
-//! the architecture presets of [`crate::cost::arch`] (Sen et al.'s §5 bandwidth
+//! the architecture presets of [`crate::cost::arch`] and the timing model of
+//! [`crate::cost::timing`] (Sen et al.'s §5 bandwidth
 //! question, per buffer).
 //!
 //! Rows are sorted by configuration index and preset, whatever the thread

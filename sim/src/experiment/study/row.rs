@@ -15,7 +15,9 @@ use umbra_core::DepthFormatKind;
 use umbra_core::shadow::Filter;
 
 use super::{Config, Spec};
-use crate::cost::arch::{Arch, Bottleneck, CostReport};
+use crate::cost::arch::Arch;
+use crate::cost::report::CostReport;
+use crate::cost::work::Bottleneck;
 use crate::pass::algorithm::{Culling, Family};
 use crate::truth::metrics::Metrics;
 
@@ -294,7 +296,7 @@ impl RowCost {
             light_cycles: round(r.light.cycles),
             light_bottleneck: r.light.bottleneck,
             camera_cycles: round(r.camera.cycles),
-            camera_shadow_cycles: round(r.camera.stages[crate::cost::arch::Stage::Shadow as usize]),
+            camera_shadow_cycles: round(r.camera.stages[crate::cost::work::Stage::Shadow as usize]),
             camera_bottleneck: r.camera.bottleneck,
             total_cycles: round(r.cycles),
             clock_hertz: r.arch.clock,

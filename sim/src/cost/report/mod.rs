@@ -14,9 +14,10 @@ pub use trace::trace;
 
 use std::fmt::Write as _;
 
-use super::timing::{EnergySplit, PassTiming, Work};
-use super::{Arch, ArchProbe, Bottleneck, Dram};
+use crate::cost::arch::Arch;
 use crate::cost::cache::CacheStats;
+use crate::cost::timing::{ArchProbe, Dram};
+use crate::cost::work::{Bottleneck, EnergySplit, PassTiming, Work};
 use serde::Serialize;
 use umbra_core::probe::Totals;
 
