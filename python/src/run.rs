@@ -11,7 +11,7 @@ use umbra_core::DepthFormatKind;
 use umbra_core::shadow::Filter;
 use umbra_sim::experiment::plan::PlanSpec;
 use umbra_sim::experiment::study::{Shard, SweepFile, schema::schema_csv, table};
-use umbra_sim::io::limits::Limits;
+use umbra_sim::input::limits::Limits;
 use umbra_sim::render::arrays::PixelArrays;
 use umbra_sim::render::{Algorithm, Culling, RenderConfig, TruthSource};
 

@@ -33,7 +33,8 @@
 
 pub mod base;
 
-pub mod io;
+pub mod input;
+pub mod output;
 
 pub mod world;
 
@@ -53,7 +54,7 @@ pub use cost::arch::Arch;
 pub use cost::report::CostReport;
 pub use experiment::plan::{Plan, PlanSpec, plan};
 pub use experiment::study::{Row, Spec as StudySpec, SweepFile, run as study};
-pub use io::limits::Limits;
+pub use input::limits::Limits;
 pub use render::{Algorithm, Culling, Render, RenderConfig, TruthSource, cost, render};
 pub use world::mesh::Mesh;
 pub use world::scene::Scene;

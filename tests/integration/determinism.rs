@@ -94,7 +94,7 @@ fn a_render_is_the_same_on_any_thread_count() {
     let hidden = indicatif::ProgressBar::hidden();
     let go = || {
         bits(
-            &render(&scene, &cfg, &umbra::sim::io::limits::Limits::DEFAULT, TruthSource::Build(&hidden))
+            &render(&scene, &cfg, &umbra::sim::input::limits::Limits::DEFAULT, TruthSource::Build(&hidden))
                 .expect("renders"),
         )
     };

@@ -20,7 +20,8 @@ const CORE: &[&[&str]] = &[
 ];
 
 /// `umbra-sim`'s layers, bottom first.
-const SIM: &[&[&str]] = &[&["base"], &["io"], &["world"], &["pass", "cost", "truth"], &["render"], &["experiment"]];
+const SIM: &[&[&str]] =
+    &[&["base"], &["input", "output"], &["world"], &["pass", "cost", "truth"], &["render"], &["experiment"]];
 
 /// One import: the importing file's module path and the imported path.
 #[derive(Debug)]
@@ -242,10 +243,11 @@ fn the_simulator_imports_only_downwards() {
 #[test]
 fn the_check_sees_an_upward_import() {
     let pass = vec!["pass".to_owned(), "light".to_owned()];
-    let text = "use crate::{world::scene::Draw, render::{a, b}};\nuse super::super::cost::x;\nlet y = crate::io::f();";
+    let text =
+        "use crate::{world::scene::Draw, render::{a, b}};\nuse super::super::cost::x;\nlet y = crate::input::f();";
     let paths = imports(&pass, text);
     let names: Vec<String> = paths.iter().map(|p| p.join("::")).collect();
-    assert_eq!(names, ["crate::world::scene::Draw", "crate::render", "super::cost::x", "crate::io::f"]);
+    assert_eq!(names, ["crate::world::scene::Draw", "crate::render", "super::cost::x", "crate::input::f"]);
     let found: Vec<Import> =
         paths.into_iter().map(|to| Import { file: "x.rs".into(), from: pass.clone(), to: to[1..].to_vec() }).collect();
     let bad = upward(&found, SIM);

@@ -5,8 +5,8 @@ use crate::say::say;
 use anyhow::{Result, bail};
 use umbra_sim::cost::arch::Arch;
 use umbra_sim::cost::arch::file::BUNDLED;
-use umbra_sim::io::folder::OutputFolder;
-use umbra_sim::io::limits::Limits;
+use umbra_sim::input::limits::Limits;
+use umbra_sim::output::folder::OutputFolder;
 
 /// Which architectures, and what to change in them.
 #[derive(clap::Args, Debug, Clone, Default)]
@@ -89,7 +89,7 @@ pub(super) struct CostArgs {
 
 /// The command line, as outputs record it.
 pub(super) fn command_line() -> String {
-    umbra_sim::io::provenance::command_line()
+    umbra_sim::output::provenance::command_line()
 }
 
 /// `umbra cost` and `umbra trace`.
@@ -126,7 +126,7 @@ pub(super) fn cost(args: &CostArgs, trace: bool, limits: &Limits) -> Result<()> 
             folder.write_text("comparison.md", &md)?;
         }
         let json = serde_json::json!({
-            "version": umbra_sim::io::provenance::version(), "command": command, "reports": reports, "comparison": comparison,
+            "version": umbra_sim::output::provenance::version(), "command": command, "reports": reports, "comparison": comparison,
         });
         folder.write_text("cost.json", &serde_json::to_string_pretty(&json)?)?;
     }
@@ -185,7 +185,7 @@ pub(super) fn correlate(args: &CorrelateArgs, limits: &Limits) -> Result<()> {
     say!("{}", md.trim_end());
     folder.write_text("correlation.md", &md)?;
     let json = serde_json::json!({
-        "version": umbra_sim::io::provenance::version(),
+        "version": umbra_sim::output::provenance::version(),
         "command": command_line(),
         "correlation": c,
     });

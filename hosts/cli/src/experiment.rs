@@ -7,8 +7,8 @@ use crate::say::say;
 use anyhow::{Context, Result, bail};
 use indicatif::ProgressBar;
 use umbra_core::RasterConfig;
-use umbra_sim::io::folder::OutputFolder;
-use umbra_sim::io::limits::Limits;
+use umbra_sim::input::limits::Limits;
+use umbra_sim::output::folder::OutputFolder;
 use umbra_sim::render::RenderConfig;
 use umbra_sim::world::scene::Scene;
 
@@ -169,7 +169,7 @@ pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
             "{:?}{:?}{:?}{:?}{:?}{:?}{:?}",
             args.scenes, args.archs.arch, args.archs.set, args.images, args.reference_rays, args.budgets, args.maps
         );
-        spec.hash = umbra_sim::io::provenance::hash(format!("{}{overrides}", file.text).as_bytes());
+        spec.hash = umbra_sim::output::provenance::hash(format!("{}{overrides}", file.text).as_bytes());
     }
     spec.limits = *limits;
     if !args.maps.is_empty() {
@@ -231,7 +231,7 @@ pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
         "study: {configs} configurations, {} rows ({skipped} skipped); wrote {} (its files in {})",
         rows.len(),
         args.out.display(),
-        args.out.join(umbra_sim::io::folder::MANIFEST).display()
+        args.out.join(umbra_sim::output::folder::MANIFEST).display()
     );
     // The wall time varies with the machine: not part of the results.
     eprintln!("study took {:.1} s", start.elapsed().as_secs_f64());

@@ -7,7 +7,7 @@ use umbra_core::shadow::Filter;
 use umbra_core::{DepthFormatKind, RasterConfig};
 
 use super::{Algorithm, Culling, RenderError};
-use crate::io::limits::{Footprint, Limits};
+use crate::input::limits::{Footprint, Limits};
 use crate::world::scene::Scene;
 
 /// What to render and how.
@@ -170,7 +170,7 @@ impl RenderConfig {
     /// the scene `source` (a bundled name or a file) again, bit for bit.
     #[must_use]
     pub fn command(&self, source: &str) -> String {
-        let quoted = crate::io::provenance::shell_word(source);
+        let quoted = crate::output::provenance::shell_word(source);
         let mut c = format!(
             "umbra render {quoted} {} --depth {} --map {} --filter {} --bias {} --width {} --height {} --reference-rays {}",
             self.algorithm.flags(),

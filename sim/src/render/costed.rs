@@ -18,7 +18,7 @@ use crate::base::probes::Fan;
 use crate::cost::arch::Arch;
 use crate::cost::report::CostReport;
 use crate::cost::timing::{ArchProbe, PassKind};
-use crate::io::limits::Limits;
+use crate::input::limits::Limits;
 use crate::pass::algorithm::{MapKind, Units};
 use crate::pass::camera::{CameraFrame, visibility};
 use crate::pass::light::LightFrame;

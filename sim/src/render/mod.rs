@@ -25,7 +25,7 @@ use self::replay::{PassInputs, judged};
 use crate::base::counters::Counters;
 use crate::base::maps::{Tiling, with_format};
 use crate::base::probes::Tee;
-use crate::io::limits::{LimitError, Limits};
+use crate::input::limits::{LimitError, Limits};
 use crate::pass::PassError;
 use crate::pass::algorithm::MapKind;
 pub use crate::pass::algorithm::{Algorithm, Cull, Culling};

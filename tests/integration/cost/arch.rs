@@ -8,7 +8,7 @@ use umbra::sim::cost::arch::Arch;
 use umbra::sim::cost::arch::file::BUNDLED;
 use umbra::sim::cost::timing::{ArchProbe, PassKind};
 use umbra::sim::cost::work::{Bottleneck, PassTiming, Stage};
-use umbra::sim::io::limits::Limits;
+use umbra::sim::input::limits::Limits;
 use umbra::sim::render::{Algorithm, Culling, RenderConfig, cost};
 use umbra::sim::world::scene::Scene;
 

@@ -9,7 +9,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use crate::io::limits::Limits;
+use crate::input::limits::Limits;
 
 pub use super::keys::{PARAMS, Param, Problem, Unit, Value, column};
 use super::keys::{from_text, from_toml};

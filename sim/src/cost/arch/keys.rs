@@ -134,7 +134,7 @@ pub struct Param {
     /// The smallest and largest value a number may take, in the unit's
     /// base (none for text and flags): the model's counters (bytes in
     /// `u64`, cycles in `f64`) cannot overflow inside these ranges and the
-    /// [`Limits`](crate::io::limits::Limits), and its times stay finite.
+    /// [`Limits`](crate::input::limits::Limits), and its times stay finite.
     pub range: Option<(f64, f64)>,
     pub(super) get: fn(&Arch) -> Value,
     pub(super) set: fn(&mut Arch, Value) -> Result<(), Problem>,

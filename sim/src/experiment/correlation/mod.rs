@@ -29,7 +29,7 @@ pub use self::plot::plot;
 pub use self::stats::Stats;
 use crate::cost::arch::Arch;
 use crate::cost::report::CostReport;
-use crate::io::limits::Limits;
+use crate::input::limits::Limits;
 use crate::render::{Algorithm, Culling, RenderConfig, RenderError, cost, cost_unshadowed};
 use crate::world::scene::Scene;
 

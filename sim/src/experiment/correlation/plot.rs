@@ -9,7 +9,7 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 use super::{DatasetResult, Role};
 use crate::experiment::study::StudyError;
 use crate::experiment::study::plot::{Figure, SIZE, both, colour, footnote, log_log_chart, log_range};
-use crate::io::folder::OutputFolder;
+use crate::output::folder::OutputFolder;
 
 struct Correlated<'a> {
     d: &'a DatasetResult,

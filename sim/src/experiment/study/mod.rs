@@ -22,8 +22,8 @@
 
 use std::path::PathBuf;
 
-use crate::io::limits::FileError;
-use crate::io::output::OutputError;
+use crate::input::limits::FileError;
+use crate::output::OutputError;
 use crate::world::scene_file::SceneError;
 
 pub mod extremes;
@@ -118,7 +118,7 @@ pub enum StudyError {
     Sweep(#[from] SweepError),
     /// The study would take more memory than the limits allow.
     #[error(transparent)]
-    Limit(#[from] crate::io::limits::LimitError),
+    Limit(#[from] crate::input::limits::LimitError),
     /// A `--shard` argument is not `i/n` with `i < n`.
     #[error("--shard `{0}`: expected i/n with 0 ≤ i < n")]
     Shard(String),
@@ -126,7 +126,7 @@ pub enum StudyError {
     #[error(transparent)]
     Output(#[from] OutputError),
     /// A results file could not be read, is not a regular file, or is
-    /// larger than [`Limits::max_file_bytes`](crate::io::limits::Limits::max_file_bytes).
+    /// larger than [`Limits::max_file_bytes`](crate::input::limits::Limits::max_file_bytes).
     #[error("{path}: {source}")]
     Read {
         /// The file.

@@ -108,9 +108,9 @@ pub struct RowConfig {
     /// The `umbra render` command line that renders this configuration
     /// again.
     pub command: String,
-    /// The version that made the row ([`crate::io::provenance::version`]).
+    /// The version that made the row ([`crate::output::provenance::version`]).
     pub umbra_version: String,
-    /// The sweep file's hash ([`crate::io::provenance::hash`]).
+    /// The sweep file's hash ([`crate::output::provenance::hash`]).
     pub sweep_hash: String,
 }
 
@@ -375,7 +375,7 @@ impl Row {
                 image_height_px: cfg.height,
                 reference_rays: cfg.reference_rays,
                 command: cfg.command(&spec.scenes[c.scene].source),
-                umbra_version: crate::io::provenance::version(),
+                umbra_version: crate::output::provenance::version(),
                 sweep_hash: spec.hash.clone(),
             },
             status: Status::Ok,

@@ -2,8 +2,8 @@
 //! and the plots.
 
 use super::{Manifest, Row, RowCost, StudyError, distinct, jsonl, loosest, plot, sort_rows};
-use crate::io::folder::OutputFolder;
-use crate::io::markdown::escape;
+use crate::output::folder::OutputFolder;
+use crate::output::markdown::escape;
 use std::fmt::Write as _;
 
 /// Write `results.jsonl`, `results.csv`, the Pareto plots per scene and

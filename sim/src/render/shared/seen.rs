@@ -12,7 +12,7 @@ use crate::base::maps::Tiling;
 use crate::base::probes::Tee;
 use crate::cost::arch::Arch;
 use crate::cost::timing::PassKind;
-use crate::io::limits::Limits;
+use crate::input::limits::Limits;
 use crate::pass::PassError;
 use crate::pass::camera::{CameraFrame, Visibility, visibility};
 use crate::render::costed::{SceneCounts, shape};

@@ -11,7 +11,7 @@ use crate::cost::arch::file::column;
 use crate::experiment::study::schema::axis_unit;
 use crate::experiment::study::summary::{TIME, cheapest};
 use crate::experiment::study::{Manifest, Row, StudyError, distinct, loosest};
-use crate::io::folder::OutputFolder;
+use crate::output::folder::OutputFolder;
 
 /// One panel: its label, and per series (index into the series names)
 /// its `(x, µs)` points.

@@ -6,7 +6,7 @@ use plotters::prelude::*;
 
 use super::{ERROR_FLOOR, Figure, Legend, SIZE, both, colour, log_log_chart, log_range, marker};
 use crate::experiment::study::StudyError;
-use crate::io::folder::OutputFolder;
+use crate::output::folder::OutputFolder;
 
 /// One named series of `(x, y)` points.
 pub type Series = (String, Vec<(f64, f64)>);

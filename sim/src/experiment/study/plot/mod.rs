@@ -21,8 +21,8 @@ use plotters::coord::combinators::WithKeyPoints;
 use plotters::prelude::*;
 
 use super::{Manifest, StudyError};
-use crate::io::folder::OutputFolder;
-use crate::io::output::{font, png};
+use crate::output::folder::OutputFolder;
+use crate::output::formats::{font, png};
 use crate::pass::algorithm::Family;
 
 /// Plot size in pixels.

@@ -8,7 +8,7 @@ use super::{
     pareto_front, provenance,
 };
 use crate::experiment::study::{Manifest, Row, RowCost, StudyError, distinct};
-use crate::io::folder::OutputFolder;
+use crate::output::folder::OutputFolder;
 
 /// Artifacts against cost, with the Pareto front as a staircase.
 struct Pareto<'a> {
