@@ -22,12 +22,14 @@
 
 use std::path::PathBuf;
 
+use crate::experiment::plot::PlotError;
 use crate::input::limits::FileError;
 use crate::output::OutputError;
 use crate::world::scene_file::SceneError;
 
 pub mod extremes;
 pub mod plot;
+mod rank;
 
 mod row;
 mod run;
@@ -171,4 +173,13 @@ pub enum StudyError {
         /// What went wrong.
         problem: String,
     },
+}
+
+impl From<PlotError> for StudyError {
+    fn from(e: PlotError) -> Self {
+        match e {
+            PlotError::Draw { path, problem } => Self::Plot { path, problem },
+            PlotError::Output(e) => Self::Output(e),
+        }
+    }
 }
