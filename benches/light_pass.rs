@@ -209,7 +209,8 @@ fn bench_light_pass(c: &mut Criterion) {
 /// against the functional path (no probe) on the same render, in one run.
 fn bench_probe_overhead(c: &mut Criterion) {
     use umbra::core::DepthFormatKind;
-    use umbra::sim::cost::arch::{Arch, ArchProbe, PassKind};
+    use umbra::sim::cost::arch::Arch;
+    use umbra::sim::cost::timing::{ArchProbe, PassKind};
     let small = small_triangles();
     let mut g = c.benchmark_group("probe_overhead");
     g.sample_size(10);

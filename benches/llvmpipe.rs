@@ -26,7 +26,7 @@ use std::time::Instant;
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 use umbra::core::{CullMode, D24, DepthUnit, LightPassConfig, NoProbe, RasterConfig};
-use umbra::sim::io::limits::Limits;
+use umbra::sim::input::limits::Limits;
 use umbra::sim::pass::light::{Draw, LightFrame, LightOptions, render};
 use umbra::sim::world::mesh::Mesh;
 use umbra::sim::world::scene::Perspective;

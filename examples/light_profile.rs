@@ -33,8 +33,9 @@ use std::hash::{DefaultHasher, Hash, Hasher};
 
 use umbra::core::glam::Vec3;
 use umbra::core::{CullMode, D24, DepthFormat, DepthUnit, LightPassConfig, NoProbe, RasterConfig};
-use umbra::sim::cost::arch::{Arch, ArchProbe, PassKind};
-use umbra::sim::io::limits::Limits;
+use umbra::sim::cost::arch::Arch;
+use umbra::sim::cost::timing::{ArchProbe, PassKind};
+use umbra::sim::input::limits::Limits;
 use umbra::sim::pass::light::{Draw, LightFrame, LightOptions, render};
 use umbra::sim::world::mesh::Mesh;
 use umbra::sim::world::scene::Perspective;

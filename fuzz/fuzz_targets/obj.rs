@@ -3,7 +3,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use umbra_sim::io::limits::Limits;
+use umbra_sim::input::limits::Limits;
 use umbra_sim::world::mesh::Mesh;
 
 const LIMITS: Limits = Limits { max_triangles: 50_000, max_file_bytes: 1 << 20, ..Limits::DEFAULT };

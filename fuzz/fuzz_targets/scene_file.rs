@@ -6,7 +6,7 @@
 use std::path::Path;
 
 use libfuzzer_sys::fuzz_target;
-use umbra_sim::io::limits::Limits;
+use umbra_sim::input::limits::Limits;
 use umbra_sim::world::scene::Scene;
 
 /// Small limits keep each run fast; the checks are the same at any size.

@@ -3,7 +3,7 @@
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use umbra_sim::cost::arch::file::PARAMS;
-use umbra_sim::io::limits::Limits;
+use umbra_sim::input::limits::Limits;
 
 use crate::error;
 

@@ -50,7 +50,7 @@ fn toml_from_json(text: &str, what: &str) -> PyResult<String> {
 #[pymodule]
 fn _umbra(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("UmbraError", m.py().get_type::<UmbraError>())?;
-    m.add("VERSION", umbra_sim::io::provenance::version())?;
+    m.add("VERSION", umbra_sim::output::provenance::version())?;
     m.add_class::<scene::Scene>()?;
     m.add_class::<arch::Arch>()?;
     m.add_class::<run::Config>()?;

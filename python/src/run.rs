@@ -10,7 +10,7 @@ use pyo3::types::PyDict;
 use umbra_core::DepthFormatKind;
 use umbra_sim::experiment::plan::PlanSpec;
 use umbra_sim::experiment::study::{Overrides, Request, Shard, SweepFile, schema::schema_csv, table};
-use umbra_sim::io::limits::Limits;
+use umbra_sim::input::limits::Limits;
 use umbra_sim::render::arrays::PixelArrays;
 use umbra_sim::render::{RenderConfig, RenderRequest, TruthSource};
 

@@ -6,7 +6,7 @@ use std::path::Path;
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use umbra_sim::io::limits::Limits;
+use umbra_sim::input::limits::Limits;
 
 use crate::error;
 

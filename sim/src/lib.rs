@@ -34,7 +34,8 @@
 
 pub mod base;
 
-pub mod io;
+pub mod input;
+pub mod output;
 
 pub mod world;
 
@@ -50,10 +51,11 @@ pub mod experiment;
 pub use glam;
 pub use umbra_core as core;
 
-pub use cost::arch::{Arch, CostReport};
+pub use cost::arch::Arch;
+pub use cost::report::CostReport;
 pub use experiment::plan::{Plan, PlanSpec, plan};
 pub use experiment::study::{Row, Spec as StudySpec, SweepFile, run as study};
-pub use io::limits::Limits;
+pub use input::limits::Limits;
 pub use render::{Algorithm, Checked, Culling, Render, RenderConfig, RenderRequest, TruthSource, cost, render};
 pub use world::mesh::Mesh;
 pub use world::scene::Scene;

@@ -94,7 +94,7 @@ fn a_render_is_the_same_on_any_thread_count() {
     let hidden = indicatif::ProgressBar::hidden();
     let go = || {
         bits(
-            &cfg.check(&scene, &umbra::sim::io::limits::Limits::DEFAULT)
+            &cfg.check(&scene, &umbra::sim::input::limits::Limits::DEFAULT)
                 .and_then(|job| render(&job, TruthSource::Build(&hidden)))
                 .expect("renders"),
         )

@@ -1,9 +1,10 @@
 //! Layers that point one way: every `crate::` or `super::` path in
 //! `umbra-core` and `umbra-sim` names a module of a lower layer than its
-//! own (or its own), and no two folders import each other, however deep.
+//! own (or its own), and no two sibling modules (files or folders) import
+//! each other, however deep.
 //! The layers are those `ARCHITECTURE.md` states.
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 /// `umbra-core`'s layers, bottom first.
@@ -20,10 +21,11 @@ const CORE: &[&[&str]] = &[
 ];
 
 /// `umbra-sim`'s layers, bottom first.
-const SIM: &[&[&str]] = &[&["base"], &["io"], &["world"], &["pass", "cost", "truth"], &["render"], &["experiment"]];
+const SIM: &[&[&str]] =
+    &[&["base"], &["input", "output"], &["world"], &["pass", "cost", "truth"], &["render"], &["experiment"]];
 
 /// One import: the importing file's module path and the imported path.
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 struct Import {
     file: PathBuf,
     from: Vec<String>,
@@ -190,26 +192,33 @@ fn upward(imports: &[Import], layers: &[&[&str]]) -> Vec<String> {
     bad
 }
 
-/// Pairs of folders (at any depth, siblings under one parent) that import
-/// each other.
-fn folder_cycles(src: &Path, imports: &[Import]) -> Vec<String> {
-    let is_dir = |m: &[String]| src.join(m.iter().collect::<PathBuf>()).is_dir();
-    let mut edges: BTreeMap<Vec<String>, BTreeSet<Vec<String>>> = BTreeMap::new();
+/// Pairs of sibling modules (files or folders, at any depth, under one
+/// parent) that import each other. A module naming its parent's own items
+/// (`super::Item` from a child of `mod.rs`) imports no sibling.
+fn module_cycles(src: &Path, imports: &[Import]) -> Vec<String> {
+    let is_module = |m: &[String]| {
+        let path = src.join(m.iter().collect::<PathBuf>());
+        path.is_dir() || path.with_extension("rs").is_file()
+    };
+    let mut edges: BTreeMap<Vec<String>, BTreeMap<Vec<String>, PathBuf>> = BTreeMap::new();
     for i in imports {
         let common = i.from.iter().zip(&i.to).take_while(|(a, b)| a == b).count();
         if common >= i.from.len() || common >= i.to.len() {
             continue;
         }
         let (a, b) = (i.from[..=common].to_vec(), i.to[..=common].to_vec());
-        if is_dir(&a) && is_dir(&b) {
-            edges.entry(a).or_default().insert(b);
+        if is_module(&a) && is_module(&b) {
+            edges.entry(a).or_default().entry(b).or_insert_with(|| i.file.clone());
         }
     }
     let mut cycles = Vec::new();
     for (a, tos) in &edges {
-        for b in tos {
-            if a < b && edges.get(b).is_some_and(|t| t.contains(a)) {
-                cycles.push(format!("{} ⇄ {}", a.join("::"), b.join("::")));
+        for (b, file) in tos {
+            if let Some(back) = edges.get(b).and_then(|t| t.get(a))
+                && a < b
+            {
+                let shown = |f: &Path| f.strip_prefix(src).unwrap_or(f).display().to_string();
+                cycles.push(format!("{} ⇄ {} ({} and {})", a.join("::"), b.join("::"), shown(file), shown(back)));
             }
         }
     }
@@ -220,12 +229,13 @@ fn src(krate: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join(krate).join("src")
 }
 
-/// No upward import and no folder cycle in `krate`'s source.
+/// No upward import and no two modules importing each other in `krate`'s
+/// source.
 fn assert_layered(krate: &str, layers: &[&[&str]]) {
     let found = scan(&src(krate));
     assert!(found.len() > 100, "the scan found {} imports: it is not reading {krate}", found.len());
     assert_eq!(upward(&found, layers), Vec::<String>::new());
-    assert_eq!(folder_cycles(&src(krate), &found), Vec::<String>::new());
+    assert_eq!(module_cycles(&src(krate), &found), Vec::<String>::new(), "modules that import each other");
 }
 
 #[test]
@@ -242,10 +252,11 @@ fn the_simulator_imports_only_downwards() {
 #[test]
 fn the_check_sees_an_upward_import() {
     let pass = vec!["pass".to_owned(), "light".to_owned()];
-    let text = "use crate::{world::scene::Draw, render::{a, b}};\nuse super::super::cost::x;\nlet y = crate::io::f();";
+    let text =
+        "use crate::{world::scene::Draw, render::{a, b}};\nuse super::super::cost::x;\nlet y = crate::input::f();";
     let paths = imports(&pass, text);
     let names: Vec<String> = paths.iter().map(|p| p.join("::")).collect();
-    assert_eq!(names, ["crate::world::scene::Draw", "crate::render", "super::cost::x", "crate::io::f"]);
+    assert_eq!(names, ["crate::world::scene::Draw", "crate::render", "super::cost::x", "crate::input::f"]);
     let found: Vec<Import> =
         paths.into_iter().map(|to| Import { file: "x.rs".into(), from: pass.clone(), to: to[1..].to_vec() }).collect();
     let bad = upward(&found, SIM);
@@ -253,6 +264,21 @@ fn the_check_sees_an_upward_import() {
     // A comment naming an upper layer is not an import.
     let code: String = "// crate::render::x".split("//").next().unwrap_or_default().to_owned();
     assert!(imports(&pass, &code).is_empty());
+}
+
+/// The checker itself: two files that import each other are a cycle, a
+/// file naming its parent's items is not.
+#[test]
+fn the_check_sees_two_modules_importing_each_other() {
+    let path = |p: &[&str]| p.iter().map(|s| (*s).to_owned()).collect::<Vec<_>>();
+    let import = |from: &[&str], to: &[&str]| Import { file: "x.rs".into(), from: path(from), to: path(to) };
+    let sim = src("sim");
+    let one_way = [import(&["world", "scene"], &["world", "occluders", "Occluders"])];
+    assert_eq!(module_cycles(&sim, &one_way), Vec::<String>::new());
+    let parent = [import(&["world", "scene"], &["world", "Scene"]), import(&["world"], &["world", "scene", "Scene"])];
+    assert_eq!(module_cycles(&sim, &parent), Vec::<String>::new(), "a child naming its parent's items");
+    let both = [one_way[0].clone(), import(&["world", "occluders"], &["world", "scene", "Scene"])];
+    assert_eq!(module_cycles(&sim, &both).len(), 1, "two files importing each other");
 }
 
 /// Every `.rs` file under `root`'s folders `within` (their `src/` folders

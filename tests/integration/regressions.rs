@@ -78,7 +78,7 @@ fn face_corners_naming_missing_texture_coordinates_or_normals_are_syntax_errors(
     ] {
         let path = dir.join("mesh.obj");
         std::fs::write(&path, format!("{header}{face}\n")).expect("writes");
-        match Mesh::load_obj(&path, &umbra::sim::io::limits::Limits::DEFAULT) {
+        match Mesh::load_obj(&path, &umbra::sim::input::limits::Limits::DEFAULT) {
             Err(MeshError::Syntax { line: 7, problem, .. }) => assert!(problem.contains(names), "{face}: {problem}"),
             other => panic!("{face}: {other:?}"),
         }
@@ -87,8 +87,8 @@ fn face_corners_naming_missing_texture_coordinates_or_normals_are_syntax_errors(
     for face in ["f 1/1/1 2/1/1 3/-1/-1", "f 1//1 2//1 3//1", "f 1/1 2/1 3/1", "f -3 -2 -1"] {
         let path = dir.join("mesh.obj");
         std::fs::write(&path, format!("{header}{face}\n")).expect("writes");
-        let mesh =
-            Mesh::load_obj(&path, &umbra::sim::io::limits::Limits::DEFAULT).unwrap_or_else(|e| panic!("{face}: {e}"));
+        let mesh = Mesh::load_obj(&path, &umbra::sim::input::limits::Limits::DEFAULT)
+            .unwrap_or_else(|e| panic!("{face}: {e}"));
         assert_eq!(mesh.triangles.len(), 1, "{face}");
     }
 }

@@ -7,7 +7,7 @@ use clap::Subcommand;
 use umbra_sim::Arch;
 use umbra_sim::cost::arch::derived::diff;
 use umbra_sim::cost::arch::file::PARAMS;
-use umbra_sim::io::limits::Limits;
+use umbra_sim::input::limits::Limits;
 
 use crate::cost::OneArchArgs;
 use crate::say::say;

@@ -5,8 +5,8 @@ use crate::say::say;
 use anyhow::{Result, bail};
 use umbra_sim::cost::arch::Arch;
 use umbra_sim::cost::arch::file::BUNDLED;
-use umbra_sim::io::folder::OutputFolder;
-use umbra_sim::io::limits::Limits;
+use umbra_sim::input::limits::Limits;
+use umbra_sim::output::folder::OutputFolder;
 
 /// Which architectures, and what to change in them.
 #[derive(clap::Args, Debug, Clone, Default)]
@@ -71,7 +71,7 @@ pub(super) struct CostArgs {
 
 /// The command line, as outputs record it.
 pub(super) fn command_line() -> String {
-    umbra_sim::io::provenance::command_line()
+    umbra_sim::output::provenance::command_line()
 }
 
 /// `umbra cost` and `umbra trace`.
@@ -95,21 +95,21 @@ pub(super) fn cost(args: &CostArgs, trace: bool, limits: &Limits) -> Result<()> 
         reports.push(report);
     }
     if trace {
-        let (json, slices) = umbra_sim::cost::arch::trace(&reports);
+        let (json, slices) = umbra_sim::cost::report::trace(&reports);
         folder.write_text("trace.json", &serde_json::to_string(&json)?)?;
         for (r, n) in reports.iter().zip(slices) {
             let unit = if r.arch.immediate() { "draw" } else { "tile" };
             say!("trace.json: {} ({:.3} ms): {n} {unit} slices", r.arch.name, r.seconds * 1e3);
         }
     } else {
-        let comparison = umbra_sim::cost::arch::Comparison::new(&reports);
+        let comparison = umbra_sim::cost::report::Comparison::new(&reports);
         if let Some(c) = &comparison {
             let md = c.markdown();
             say!("{md}");
             folder.write_text("comparison.md", &md)?;
         }
         let json = serde_json::json!({
-            "version": umbra_sim::io::provenance::version(), "command": command, "reports": reports, "comparison": comparison,
+            "version": umbra_sim::output::provenance::version(), "command": command, "reports": reports, "comparison": comparison,
         });
         folder.write_text("cost.json", &serde_json::to_string_pretty(&json)?)?;
     }
@@ -168,7 +168,7 @@ pub(super) fn correlate(args: &CorrelateArgs, limits: &Limits) -> Result<()> {
     say!("{}", md.trim_end());
     folder.write_text("correlation.md", &md)?;
     let json = serde_json::json!({
-        "version": umbra_sim::io::provenance::version(),
+        "version": umbra_sim::output::provenance::version(),
         "command": command_line(),
         "correlation": c,
     });

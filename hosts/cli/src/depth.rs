@@ -9,9 +9,9 @@ use clap::ValueEnum;
 use umbra_core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, RasterConfig};
 use umbra_sim::base::counters::Counters;
 use umbra_sim::glam::Mat4;
-use umbra_sim::io::folder::OutputFolder;
-use umbra_sim::io::limits::Limits;
-use umbra_sim::io::output::{RawMap, write_npy, write_preview};
+use umbra_sim::input::limits::Limits;
+use umbra_sim::output::folder::OutputFolder;
+use umbra_sim::output::formats::{RawMap, write_npy, write_preview};
 use umbra_sim::pass::light::RawMaps;
 use umbra_sim::world::mesh::Mesh;
 use umbra_sim::world::scene::{Light, Object, Perspective, Scene, parse_matrix};
@@ -212,7 +212,7 @@ fn summary(maps: &RawMaps, c: &Counters, ignored: umbra_sim::world::mesh::Ignore
 fn tile_report(scene: &Scene, maps: &RawMaps, c: &Counters, args: &DepthArgs) -> String {
     let raster = maps.maps.config.raster;
     let mut s = String::new();
-    let _ = writeln!(s, "# Light-pass tiles: {}\n", umbra_sim::io::markdown::escape(&scene.name));
+    let _ = writeln!(s, "# Light-pass tiles: {}\n", umbra_sim::output::markdown::escape(&scene.name));
     let _ = writeln!(s, "{}, cull {:?}; {}.\n", describe(maps), args.cull, scene.ignored());
     let _ = writeln!(s, "| tile | triangles | fragments | culled | flushes | z1 min | z1 max | z2 min | z2 max |");
     let _ = writeln!(s, "|---|---:|---:|---:|---:|---:|---:|---:|---:|");

@@ -6,8 +6,8 @@ use crate::cost::{ArchArgs, OneArchArgs};
 use crate::say::say;
 use anyhow::{Context, Result, bail};
 use indicatif::ProgressBar;
-use umbra_sim::io::folder::OutputFolder;
-use umbra_sim::io::limits::Limits;
+use umbra_sim::output::folder::OutputFolder;
+use umbra_sim::input::limits::Limits;
 use umbra_sim::render::RenderConfig;
 use umbra_sim::world::scene::Scene;
 
@@ -164,7 +164,7 @@ pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
                 "study: {configs} configurations, {} rows ({skipped} skipped); wrote {} (its files in {})",
                 rows.len(),
                 args.out.display(),
-                args.out.join(umbra_sim::io::folder::MANIFEST).display()
+                args.out.join(umbra_sim::output::folder::MANIFEST).display()
             );
             // The wall time varies with the machine: not part of the results.
             eprintln!("study took {:.1} s", start.elapsed().as_secs_f64());

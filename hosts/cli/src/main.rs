@@ -9,7 +9,7 @@ use depth::{DepthArgs, depth};
 use experiment::{MergeArgs, PlanArgs, StatusArgs, StudyArgs, plan, study};
 use render::{RenderArgs, render};
 use umbra_sim::cost::arch::Unit;
-use umbra_sim::io::limits::Limits;
+use umbra_sim::input::limits::Limits;
 
 mod arch;
 mod cost;
@@ -40,7 +40,7 @@ struct Cli {
 }
 
 /// What the simulator accepts, each checked before anything of that size is
-/// allocated (`umbra_sim::io::limits`). Options, not scene-file keys: a file
+/// allocated (`umbra_sim::input::limits`). Options, not scene-file keys: a file
 /// cannot raise the limits it is read under.
 #[derive(clap::Args, Debug, Clone, Copy)]
 #[command(next_help_heading = "Limits")]

@@ -5,9 +5,9 @@ use std::path::PathBuf;
 use crate::say::say;
 use anyhow::Result;
 use indicatif::ProgressBar;
-use umbra_sim::io::folder::OutputFolder;
-use umbra_sim::io::limits::Limits;
-use umbra_sim::io::output::{RawMap, write_array, write_npy, write_preview};
+use umbra_sim::output::folder::OutputFolder;
+use umbra_sim::input::limits::Limits;
+use umbra_sim::output::formats::{RawMap, write_array, write_npy, write_preview};
 use umbra_sim::render::arrays::PixelArrays;
 use umbra_sim::render::pictures::{write_error_image, write_shadow_image, write_shadow_term};
 use umbra_sim::render::{Checked, Kind, PARAMS, RenderRequest, TruthSource};
@@ -156,8 +156,8 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
     let mut record = serde_json::to_value(r.metrics)?;
     if let Some(fields) = record.as_object_mut() {
         for (k, v) in [
-            ("umbra_version", umbra_sim::io::provenance::version()),
-            ("command", umbra_sim::io::provenance::command_line()),
+            ("umbra_version", umbra_sim::output::provenance::version()),
+            ("command", umbra_sim::output::provenance::command_line()),
             ("scene", scene.source.clone()),
             ("configuration_text", cfg.describe()),
             ("render_again", r.command.clone()),

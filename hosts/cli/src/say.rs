@@ -8,7 +8,7 @@ use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use anyhow::{Result, anyhow};
-use umbra_sim::io::folder::{MANIFEST, RunManifest};
+use umbra_sim::output::folder::{MANIFEST, RunManifest};
 
 /// Set once stdout is found closed.
 static CLOSED: AtomicBool = AtomicBool::new(false);

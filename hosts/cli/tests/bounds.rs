@@ -6,7 +6,7 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
-use umbra_sim::io::limits::{Footprint, Limits};
+use umbra_sim::input::limits::{Footprint, Limits};
 
 mod common;
 use common::{dir, umbra};

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-use umbra_sim::io::folder::{MANIFEST, PENDING, RunManifest};
+use umbra_sim::output::folder::{MANIFEST, PENDING, RunManifest};
 
 mod common;
 use common::{dir, umbra};

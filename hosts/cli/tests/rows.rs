@@ -10,7 +10,7 @@ use std::collections::BTreeMap;
 
 use common::{dir, umbra};
 use umbra_sim::experiment::study::{self, Row, Shard, SweepFile, render_config};
-use umbra_sim::io::limits::Limits;
+use umbra_sim::input::limits::Limits;
 use umbra_sim::render::{Culling, TruthSource};
 
 /// A user's sweep: every kind of choice a row's command must spell.

@@ -15,7 +15,7 @@ use std::time::Instant;
 
 use glow::HasContext;
 use khronos_egl as egl;
-use umbra_sim::io::limits::Limits;
+use umbra_sim::input::limits::Limits;
 use umbra_sim::world::mesh::Mesh;
 use umbra_sim::world::scene::Perspective;
 

@@ -1,6 +1,11 @@
-//! What a pass costs: the architecture and its timing model, the map
-//! cache, the map's storage schemes.
+//! What a pass costs: architecture files ([`arch`]), the work the timing
+//! model charges ([`work`]), the timing model itself ([`timing`]), the
+//! reports it gives ([`report`]), the map cache, the map's storage
+//! schemes.
 
 pub mod arch;
 pub mod cache;
+pub mod report;
 pub mod storage;
+pub mod timing;
+pub mod work;

@@ -1,7 +1,10 @@
 //! Experiments over renders: the planner (a configuration for an error
-//! budget) and the study (a sweep of configurations, its summary and plots).
+//! budget), the study (a sweep of configurations, its summary and plots),
+//! the correlation of the model against measurements, and the plotting
+//! they share.
 
 pub mod correlation;
 pub mod plan;
+pub mod plot;
 pub mod presets;
 pub mod study;

@@ -29,10 +29,11 @@ use serde::Serialize;
 use umbra_core::shadow::Filter;
 use umbra_core::{CullMode, DepthFormat, DepthFormatKind, DepthUnit, F32, LightPassConfig, RasterConfig};
 
-use crate::cost::arch::{Arch, CostReport};
+use crate::cost::arch::Arch;
+use crate::cost::report::CostReport;
 use crate::cost::storage::{MapShape, StorageBytes, storage_bytes};
 use crate::experiment::presets::FILTERS;
-use crate::io::limits::Limits;
+use crate::input::limits::Limits;
 use crate::pass::light::{self, DEFAULT_BIN_CAPACITY, LightFrame, LightOptions};
 use crate::render::{Algorithm, Culling, Render, RenderConfig, RenderError, TruthSource, cost, render, truth};
 use crate::truth::metrics::Metrics;

@@ -7,7 +7,7 @@ use umbra_core::shadow::Filter;
 use umbra_core::{DepthFormatKind, RasterConfig};
 
 use super::{Algorithm, Culling, RenderError};
-use crate::io::limits::{Footprint, Limits};
+use crate::input::limits::{Footprint, Limits};
 use crate::world::scene::Scene;
 
 /// What to render and how.
@@ -211,7 +211,7 @@ impl RenderConfig {
     /// the scene `source` (a bundled name or a file) again, bit for bit.
     #[must_use]
     pub fn command(&self, source: &str) -> String {
-        let quoted = crate::io::provenance::shell_word(source);
+        let quoted = crate::output::provenance::shell_word(source);
         format!("umbra render {quoted} {}", super::params::flags(self))
     }
 

@@ -1,5 +1,5 @@
-//! A render's cost on architectures ([`crate::cost::arch`]), in as few
-//! passes as their tilings allow.
+//! A render's cost on architectures ([`crate::cost::arch`], timed by
+//! [`crate::cost::timing`]), in as few passes as their tilings allow.
 //!
 //! An architecture's timing model needs the passes' events in its own tiles
 //! (and, for a depth cache, each fragment's address), so architectures
@@ -15,8 +15,10 @@ use umbra_core::{DepthFormat, DepthFormatKind, Probe, RasterConfig};
 use super::{Algorithm, Checked, Culling, Render, RenderConfig, RenderError, Targets, TruthSource, passes, render_in};
 use crate::base::maps::{Tiling, with_format};
 use crate::base::probes::Fan;
-use crate::cost::arch::{Arch, ArchProbe, CostReport, PassKind};
-use crate::io::limits::Limits;
+use crate::cost::arch::Arch;
+use crate::cost::report::CostReport;
+use crate::cost::timing::{ArchProbe, PassKind};
+use crate::input::limits::Limits;
 use crate::pass::algorithm::{MapKind, Units};
 use crate::pass::camera::{CameraFrame, visibility};
 use crate::pass::light::LightFrame;

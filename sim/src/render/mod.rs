@@ -27,7 +27,7 @@ use self::replay::{PassInputs, judged};
 use crate::base::counters::Counters;
 use crate::base::maps::{Tiling, with_format};
 use crate::base::probes::Tee;
-use crate::io::limits::LimitError;
+use crate::input::limits::LimitError;
 use crate::pass::PassError;
 use crate::pass::algorithm::MapKind;
 pub use crate::pass::algorithm::{Algorithm, Cull, Culling};

@@ -152,7 +152,7 @@ where
 }
 
 /// A map's or an image's side takes any whole number from 1: the
-/// machine's [`Limits`](crate::io::limits::Limits) bound it.
+/// machine's [`Limits`](crate::input::limits::Limits) bound it.
 const SIDE: u32 = u32::MAX;
 
 /// Every parameter of a render, in the order the command that renders

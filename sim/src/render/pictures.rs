@@ -4,8 +4,9 @@
 
 use std::path::PathBuf;
 
-use crate::io::folder::OutputFolder;
-use crate::io::output::{OutputError, font, save};
+use crate::output::OutputError;
+use crate::output::folder::OutputFolder;
+use crate::output::formats::{font, save};
 use crate::pass::camera::CameraImage;
 use crate::truth::cause::Cause;
 use crate::truth::metrics::Verdict;

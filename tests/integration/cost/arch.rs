@@ -4,9 +4,11 @@
 
 use umbra::core::glam::Vec4;
 use umbra::core::{CullMode, D16, D24, DepthFormat, DepthFormatKind, DepthUnit, LightPassConfig, RasterConfig};
+use umbra::sim::cost::arch::Arch;
 use umbra::sim::cost::arch::file::BUNDLED;
-use umbra::sim::cost::arch::{Arch, ArchProbe, Bottleneck, PassKind, PassTiming, Stage};
-use umbra::sim::io::limits::Limits;
+use umbra::sim::cost::timing::{ArchProbe, PassKind};
+use umbra::sim::cost::work::{Bottleneck, PassTiming, Stage};
+use umbra::sim::input::limits::Limits;
 use umbra::sim::render::{Algorithm, Culling, RenderConfig, cost};
 use umbra::sim::world::scene::Scene;
 
@@ -358,7 +360,7 @@ fn a_silhouette_map_costs_its_four_corner_samples_whatever_the_filter() {
     };
     let silhouette = Algorithm::Silhouette { packed: false };
     let point = report(silhouette, Filter::Point);
-    let json = |r: &umbra::sim::cost::arch::CostReport| {
+    let json = |r: &umbra::sim::cost::report::CostReport| {
         let mut v = serde_json::to_value(r).expect("serialises");
         v["config"] = serde_json::Value::Null;
         v
@@ -391,7 +393,7 @@ fn the_timeline_is_the_timing_model() {
     };
     let arch = bundled("talisman");
     let r = cfg.check(&scene, &Limits::DEFAULT).and_then(|job| cost(&job, &arch)).expect("costs");
-    let (trace, slices) = umbra::sim::cost::arch::trace(std::slice::from_ref(&r));
+    let (trace, slices) = umbra::sim::cost::report::trace(std::slice::from_ref(&r));
     let events = trace["traceEvents"].as_array().expect("events");
     let names: Vec<&str> =
         events.iter().filter(|e| e["name"] == "thread_name").filter_map(|e| e["args"]["name"].as_str()).collect();
@@ -412,7 +414,7 @@ fn the_timeline_is_the_timing_model() {
 /// the other, lasting what the timing model says; every other slice inside
 /// its pass; as many tile (draw) slices as said; the last slice ending
 /// with the frame.
-fn assert_timeline(events: &[serde_json::Value], pid: usize, r: &umbra::sim::cost::arch::CostReport, said: usize) {
+fn assert_timeline(events: &[serde_json::Value], pid: usize, r: &umbra::sim::cost::report::CostReport, said: usize) {
     let us = |cycles: f64| cycles / r.arch.clock * 1e6;
     let mine: Vec<&serde_json::Value> = events.iter().filter(|e| e["ph"] == "X" && e["pid"] == pid).collect();
     let span = |e: &serde_json::Value| {
@@ -454,7 +456,7 @@ fn every_architecture_s_timeline_nests_in_its_passes() {
         .iter()
         .map(|(name, _)| cfg.check(&scene, &Limits::DEFAULT).and_then(|job| cost(&job, &bundled(name))).expect("costs"))
         .collect();
-    let (trace, slices) = umbra::sim::cost::arch::trace(&reports);
+    let (trace, slices) = umbra::sim::cost::report::trace(&reports);
     let events = trace["traceEvents"].as_array().expect("events");
     for (k, r) in reports.iter().enumerate() {
         let named = events.iter().filter(|e| e["name"] == "process_name" && e["pid"] == k + 1).count();

@@ -7,9 +7,11 @@ use std::collections::HashMap;
 
 use umbra::core::shadow::Filter;
 use umbra::core::{D24, DepthFormatKind, DepthUnit};
-use umbra::sim::cost::arch::{Arch, Bottleneck, Comparison, CostReport};
+use umbra::sim::cost::arch::Arch;
 use umbra::sim::cost::cache::Cache;
-use umbra::sim::io::limits::Limits;
+use umbra::sim::cost::report::{Comparison, CostReport};
+use umbra::sim::cost::work::Bottleneck;
+use umbra::sim::input::limits::Limits;
 use umbra::sim::render::{Algorithm, Culling, RenderConfig, cost};
 use umbra::sim::world::scene::Scene;
 

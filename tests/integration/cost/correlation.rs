@@ -8,7 +8,7 @@ use umbra::core::DepthFormatKind;
 use umbra::core::shadow::Filter;
 use umbra::sim::cost::arch::Arch;
 use umbra::sim::experiment::correlation::{BUNDLED, Dataset, Kind, Role, Stats, run};
-use umbra::sim::io::limits::Limits;
+use umbra::sim::input::limits::Limits;
 use umbra::sim::render::{Algorithm, RenderConfig, cost};
 use umbra::sim::world::scene::Scene;
 

@@ -6,7 +6,7 @@
 use umbra::core::DepthFormatKind;
 use umbra::core::shadow::Filter;
 use umbra::sim::cost::arch::Arch;
-use umbra::sim::io::limits::Limits;
+use umbra::sim::input::limits::Limits;
 use umbra::sim::render::{Algorithm, Culling, RenderConfig, TruthSource, cost, render, render_costed};
 use umbra::sim::world::scene::Scene;
 

@@ -6,8 +6,8 @@
 use std::path::{Path, PathBuf};
 
 use umbra::sim::experiment::study::{self, Manifest, Row, Shard, Spec, StudyError, Variant};
-use umbra::sim::io::folder::RunManifest;
-use umbra::sim::io::limits::Limits;
+use umbra::sim::input::limits::Limits;
+use umbra::sim::output::folder::RunManifest;
 use umbra::sim::render::Algorithm;
 
 fn dir(name: &str) -> PathBuf {
@@ -108,7 +108,7 @@ fn merge_refuses_what_would_lie() {
 /// shard by its folder; a complete shard is recognised for a rerun to skip.
 #[test]
 fn status_tells_every_shards_state_and_merge_refuses_the_unfinished() {
-    use umbra::sim::io::folder::OutputFolder;
+    use umbra::sim::output::folder::OutputFolder;
     let spec = tiny("status");
     let limits = Limits::DEFAULT;
     let done: Vec<PathBuf> = (0..2).map(|i| shard(&spec, "status", i, 4)).collect();

@@ -9,7 +9,7 @@ use std::path::Path;
 
 use indicatif::ProgressBar;
 use umbra::sim::experiment::plan::{Plan, PlanSpec, plan};
-use umbra::sim::io::limits::Limits;
+use umbra::sim::input::limits::Limits;
 use umbra::sim::render::{Algorithm, TruthSource, cost, render, truth};
 use umbra::sim::world::scene::Scene;
 use umbra::sim::world::scene_file::BUNDLED;

@@ -9,7 +9,7 @@ use umbra::core::DepthFormatKind;
 use umbra::core::shadow::Filter;
 use umbra::sim::cost::arch::Arch;
 use umbra::sim::experiment::study::{self, Manifest, Shard, Spec, Variant, jittered};
-use umbra::sim::io::limits::Limits;
+use umbra::sim::input::limits::Limits;
 use umbra::sim::render::shared::{ImageShare, LightKey, LightShare, Scratch, render_shared, shares};
 use umbra::sim::render::{Algorithm, RenderConfig, TruthSource, render_costed, truth};
 use umbra::sim::world::scene::Scene;

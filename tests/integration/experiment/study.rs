@@ -11,7 +11,7 @@ use umbra::sim::cost::arch::Arch;
 use umbra::sim::experiment::study::extremes::{self, RATIOS};
 use umbra::sim::experiment::study::plot::pareto_front;
 use umbra::sim::experiment::study::{self, Manifest, Row, Shard, Spec, Status, Variant};
-use umbra::sim::io::limits::Limits;
+use umbra::sim::input::limits::Limits;
 use umbra::sim::render::Algorithm;
 use umbra::sim::world::scene::Scene;
 
@@ -169,7 +169,7 @@ fn shards_merge_into_the_whole_run() {
     let n = study::merge(&inputs, &merged, &Limits::DEFAULT).expect("merge");
     assert_eq!(n, spec.configs().len() * Arch::era_presets().len());
     assert_eq!(outputs(&full), outputs(&merged));
-    let run = umbra::sim::io::folder::RunManifest::verify(&merged, u64::MAX).expect("a complete folder");
+    let run = umbra::sim::output::folder::RunManifest::verify(&merged, u64::MAX).expect("a complete folder");
     let m: Manifest = serde_json::from_value(run.study.expect("the study's record")).expect("JSON");
     assert_eq!((m.shard.as_str(), m.rows), ("0/1", n));
     for bad in ["3/3", "1", "a/2", "0/0"] {
@@ -290,7 +290,7 @@ fn extremes_give_finite_metrics() {
 fn extremes_keep_to_their_limits() {
     let out = dir("extremes-limits");
     let limits = Limits { max_map_side: 256, ..Limits::DEFAULT };
-    let mut folder = umbra::sim::io::folder::OutputFolder::create(&out).expect("folder");
+    let mut folder = umbra::sim::output::folder::OutputFolder::create(&out).expect("folder");
     let md = extremes::run_all(&mut folder, &limits).expect("runs");
     folder.finish(None).expect("finished");
     let rows = study::read_rows(&out.join("extremes.jsonl"), &Limits::DEFAULT).expect("written");

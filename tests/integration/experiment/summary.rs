@@ -4,7 +4,7 @@
 //! image size; the image size at which shadow volumes stop being the
 //! cheapest; the bottleneck an architecture parameter moves.
 
-use umbra::sim::cost::arch::Bottleneck;
+use umbra::sim::cost::work::Bottleneck;
 use umbra::sim::experiment::study::{Manifest, Row, RowConfig, RowCost, RowMetrics, Status, summary};
 
 /// A row: `algorithm` of `family` at `image` on `arch` (`params`), with
@@ -218,7 +218,7 @@ fn scene_names_never_become_paths() {
 /// and text), and the palette keeps twelve architectures apart.
 #[test]
 fn the_arch_axes_plot_is_numeric_with_a_line_per_base() {
-    use umbra::sim::experiment::study::plot::{colour, log_ticks, tick_label};
+    use umbra::sim::experiment::plot::{colour, log_ticks, tick_label};
     let base = std::env::temp_dir().join(format!("umbra-axes-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&base);
     let mut rows = Vec::new();

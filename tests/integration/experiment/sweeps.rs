@@ -3,7 +3,7 @@
 //! scene beside it loads; a bad file is refused naming its key.
 
 use umbra::sim::experiment::study::{SweepFile, Variant};
-use umbra::sim::io::limits::Limits;
+use umbra::sim::input::limits::Limits;
 use umbra::sim::render::{Algorithm, Culling};
 
 fn dir(name: &str) -> std::path::PathBuf {

@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use umbra::sim::io::folder::{LOCK, MANIFEST, OutputFolder, PENDING, RunManifest, sha256, write_all_synced};
+use umbra::sim::output::folder::{LOCK, MANIFEST, OutputFolder, PENDING, RunManifest, sha256, write_all_synced};
 
 use crate::common::scratch;
 

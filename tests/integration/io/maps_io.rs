@@ -7,8 +7,8 @@ use umbra::core::glam::Vec4;
 use umbra::core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, RasterConfig};
 use umbra::sim::base::counters::Counters;
 use umbra::sim::base::maps::raw_far;
-use umbra::sim::io::limits::Limits;
-use umbra::sim::io::output::{RawMap, write_npy};
+use umbra::sim::input::limits::Limits;
+use umbra::sim::output::formats::{RawMap, write_npy};
 use umbra::sim::pass::light::{Draw, RawMaps};
 use umbra::sim::world::mesh::{Mesh, MeshError};
 use umbra::sim::world::scene::{MatrixError, Perspective, Scene, parse_matrix};
@@ -113,7 +113,7 @@ fn npy_holds_raw_texels() {
     let cfg = LightPassConfig { raster, unit: DepthUnit::Dual, max_z_cull: true };
     let draws = scene.draws(scene.light().view_projection(), CullMode::None);
     let dir = scratch("npy");
-    let mut folder = umbra::sim::io::folder::OutputFolder::create(&dir).expect("folder");
+    let mut folder = umbra::sim::output::folder::OutputFolder::create(&dir).expect("folder");
     for (format, descr, bytes) in [(DepthFormatKind::D16, "<u2", 2usize), (DepthFormatKind::D24, "<u4", 4)] {
         let (maps, _) = RawMaps::render(cfg, format, &draws, umbra::core::NoProbe).expect("renders");
         let map = RawMap { format, width: 48, height: 32, raw: &maps.maps.z1 };

@@ -10,7 +10,7 @@
 use umbra::core::DepthFormatKind;
 use umbra::core::shadow::{Filter, Jitter, MapCoord};
 use umbra::sim::experiment::study::{self, Row, RowMetrics, Shard, Spec, Status, UNLIMITED_OFFSET, Variant};
-use umbra::sim::io::limits::Limits;
+use umbra::sim::input::limits::Limits;
 use umbra::sim::render::Algorithm;
 use umbra::sim::world::scene::{Light, Scene};
 

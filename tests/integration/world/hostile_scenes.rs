@@ -7,7 +7,7 @@ use std::path::Path;
 
 use umbra::core::DepthFormatKind;
 use umbra::core::shadow::Filter;
-use umbra::sim::io::limits::{LimitError, Limits};
+use umbra::sim::input::limits::{LimitError, Limits};
 use umbra::sim::render::{Algorithm, Culling, RenderConfig, RenderError, TruthSource, render};
 use umbra::sim::world::mesh::{Mesh, MeshError};
 use umbra::sim::world::scene::Scene;

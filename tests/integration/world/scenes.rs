@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use umbra::core::glam::Vec3;
-use umbra::sim::io::limits::Limits;
+use umbra::sim::input::limits::Limits;
 use umbra::sim::world::mesh::{Mesh, MeshError};
 use umbra::sim::world::scene::{Light, Scene};
 use umbra::sim::world::scene_file::{BUNDLED, Problem, SceneError};

@@ -5,8 +5,9 @@
 //! warnings where one key makes another ineffective; and the difference
 //! between two files, key by key and figure by figure.
 
-use super::file::{Arch, CacheParams};
 use super::keys::{PARAMS, Unit};
+use super::machine::Arch;
+use super::units::CacheParams;
 
 /// One derived figure: a name, its value in the unit's base, the unit.
 #[derive(Clone, Debug, PartialEq)]

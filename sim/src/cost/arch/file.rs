@@ -9,12 +9,12 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use serde::Serialize;
+use crate::input::limits::Limits;
 
-use crate::io::limits::Limits;
-
-pub use super::keys::{PARAMS, Param, Unit, Value, column};
+pub use super::keys::{PARAMS, Param, Problem, Unit, Value, column};
 use super::keys::{from_text, from_toml};
+pub use super::machine::{Arch, Calibration};
+pub use super::presets::BUNDLED;
 pub use super::units::{Bins, CacheParams, DepthRates, DramParams, Energy, Front, OnChip, Raster, Shade, ShadowRates};
 
 /// The largest cache an architecture may have, bytes: the model keeps a
@@ -27,62 +27,6 @@ const MAX_LINE: u64 = 4096;
 /// The most ways of a cache.
 const MAX_WAYS: u64 = 64;
 
-/// The bundled architecture files (presets), by name.
-pub const BUNDLED: [(&str, &str); 6] = [
-    ("pixelflow", include_str!("../../../../arch/pixelflow.toml")),
-    ("talisman", include_str!("../../../../arch/talisman.toml")),
-    ("immediate", include_str!("../../../../arch/immediate.toml")),
-    ("mobile-tbdr", include_str!("../../../../arch/mobile-tbdr.toml")),
-    ("desktop-imr", include_str!("../../../../arch/desktop-imr.toml")),
-    ("r300", include_str!("../../../../arch/r300.toml")),
-];
-
-/// An architecture: every parameter of the machine a render is costed on.
-#[derive(Clone, Debug, Default, PartialEq, Serialize)]
-pub struct Arch {
-    /// Name for reports and file names.
-    pub name: String,
-    /// What it models.
-    pub description: String,
-    /// Clock, hertz.
-    pub clock: f64,
-    /// Setup and binning.
-    pub front: Front,
-    /// Scan conversion.
-    pub raster: Raster,
-    /// The depth unit.
-    pub depth: DepthRates,
-    /// Buffers on chip.
-    pub on_chip: OnChip,
-    /// Bins.
-    pub bins: Bins,
-    /// The shadow unit.
-    pub shadow: ShadowRates,
-    /// Shading besides the shadow lookup.
-    pub shade: Shade,
-    /// DRAM.
-    pub dram: DramParams,
-    /// The shadow unit's map cache.
-    pub map_cache: CacheParams,
-    /// The cache for off-chip depth, ids and stencil.
-    pub depth_cache: CacheParams,
-    /// Energy per access.
-    pub energy: Energy,
-    /// The parameters set from a measurement, each with the point of a
-    /// correlation dataset it came from (`[calibration]`, key = point):
-    /// that point then validates nothing.
-    pub calibration: Vec<Calibration>,
-}
-
-/// A parameter fitted to a measurement.
-#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
-pub struct Calibration {
-    /// The dotted key of the parameter.
-    pub key: String,
-    /// The dataset point it was set from, `dataset/point`.
-    pub point: String,
-}
-
 /// What is wrong with an architecture file or an override.
 #[derive(Debug, thiserror::Error)]
 #[error("{file}: {key}: {problem}")]
@@ -93,62 +37,6 @@ pub struct ArchError {
     pub key: String,
     /// What is wrong.
     pub problem: Problem,
-}
-
-/// The kinds of problem.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum Problem {
-    /// The file cannot be read.
-    #[error("cannot read: {0}")]
-    Read(String),
-    /// Not valid TOML.
-    #[error("{0}")]
-    Syntax(String),
-    /// No such key.
-    #[error("unknown key (the keys are: {})", PARAMS.iter().map(|p| p.key).collect::<Vec<_>>().join(", "))]
-    Unknown,
-    /// A key the file must give.
-    #[error("missing")]
-    Missing,
-    /// A value of the wrong kind.
-    #[error("expected {0}")]
-    Type(&'static str),
-    /// A number with a unit that cannot be read.
-    #[error("`{value}` is not {unit}")]
-    Unit {
-        /// The text.
-        value: String,
-        /// What was expected.
-        unit: &'static str,
-    },
-    /// A value outside its range.
-    #[error("{value} is not {what}")]
-    Range {
-        /// The value.
-        value: f64,
-        /// What it must be.
-        what: &'static str,
-    },
-    /// A number outside its key's range ([`Param::range`](super::keys::Param::range)).
-    #[error("{value} is outside {min} ..= {max}")]
-    Outside {
-        /// The value, in the key's unit.
-        value: String,
-        /// The smallest allowed.
-        min: String,
-        /// The largest allowed.
-        max: String,
-    },
-    /// An override not of the form `key=value`.
-    #[error("expected key=value")]
-    Override,
-    /// A name that cannot be part of a file name.
-    #[error("`{0}` is not a name: use 1 to 64 letters, digits, `-` and `_` (it names output files)")]
-    Name(String),
-    /// No bundled architecture of that name.
-    #[error("no bundled architecture of that name (the bundled ones are: {})", BUNDLED.map(|b| b.0).join(", "))]
-    NoSuchPreset,
 }
 
 /// Look up a dotted key in a table.
@@ -402,31 +290,5 @@ impl Arch {
             let _ = writeln!(s, "calibration.\"{}\" = \"{}\"  # fitted to this point", c.key, c.point);
         }
         s
-    }
-
-    /// An immediate-mode machine: no bins, so each draw is finished before
-    /// the next and timed as one unit.
-    #[must_use]
-    pub const fn immediate(&self) -> bool {
-        self.bins.entry_bytes == 0 && self.bins.setup_record_bytes == 0
-    }
-
-    /// How the passes walk the target on this machine: its tiles, and draw
-    /// by draw when it is immediate-mode.
-    #[must_use]
-    pub const fn tiling(&self) -> crate::base::maps::Tiling {
-        crate::base::maps::Tiling { tile: self.raster.tile, per_draw: self.immediate() }
-    }
-
-    /// Bytes DRAM moves per clock.
-    #[must_use]
-    pub fn bytes_per_cycle(&self) -> f64 {
-        self.dram.bandwidth / self.clock
-    }
-
-    /// DRAM latency in clocks.
-    #[must_use]
-    pub fn latency_cycles(&self) -> f64 {
-        self.dram.latency * self.clock
     }
 }

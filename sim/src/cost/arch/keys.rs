@@ -1,8 +1,66 @@
 //! The keys of an architecture file: one table, [`PARAMS`], of every key
-//! with its unit and meaning, and the units values are written in
-//! (`16KiB`, `25.6GB/s`, `800MHz`, `2ns`, `20pJ`).
+//! with its unit and meaning, the units values are written in (`16KiB`,
+//! `25.6GB/s`, `800MHz`, `2ns`, `20pJ`), and what can be wrong with a key,
+//! its value or the file ([`Problem`]).
 
-use super::file::{Arch, Problem};
+use super::machine::Arch;
+use super::presets::BUNDLED;
+
+/// The kinds of problem with an architecture file, a key or its value.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum Problem {
+    /// The file cannot be read.
+    #[error("cannot read: {0}")]
+    Read(String),
+    /// Not valid TOML.
+    #[error("{0}")]
+    Syntax(String),
+    /// No such key.
+    #[error("unknown key (the keys are: {})", PARAMS.iter().map(|p| p.key).collect::<Vec<_>>().join(", "))]
+    Unknown,
+    /// A key the file must give.
+    #[error("missing")]
+    Missing,
+    /// A value of the wrong kind.
+    #[error("expected {0}")]
+    Type(&'static str),
+    /// A number with a unit that cannot be read.
+    #[error("`{value}` is not {unit}")]
+    Unit {
+        /// The text.
+        value: String,
+        /// What was expected.
+        unit: &'static str,
+    },
+    /// A value outside its range.
+    #[error("{value} is not {what}")]
+    Range {
+        /// The value.
+        value: f64,
+        /// What it must be.
+        what: &'static str,
+    },
+    /// A number outside its key's range ([`Param::range`]).
+    #[error("{value} is outside {min} ..= {max}")]
+    Outside {
+        /// The value, in the key's unit.
+        value: String,
+        /// The smallest allowed.
+        min: String,
+        /// The largest allowed.
+        max: String,
+    },
+    /// An override not of the form `key=value`.
+    #[error("expected key=value")]
+    Override,
+    /// A name that cannot be part of a file name.
+    #[error("`{0}` is not a name: use 1 to 64 letters, digits, `-` and `_` (it names output files)")]
+    Name(String),
+    /// No bundled architecture of that name.
+    #[error("no bundled architecture of that name (the bundled ones are: {})", BUNDLED.map(|b| b.0).join(", "))]
+    NoSuchPreset,
+}
 
 /// The unit a key's value is written in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -76,7 +134,7 @@ pub struct Param {
     /// The smallest and largest value a number may take, in the unit's
     /// base (none for text and flags): the model's counters (bytes in
     /// `u64`, cycles in `f64`) cannot overflow inside these ranges and the
-    /// [`Limits`](crate::io::limits::Limits), and its times stay finite.
+    /// [`Limits`](crate::input::limits::Limits), and its times stay finite.
     pub range: Option<(f64, f64)>,
     pub(super) get: fn(&Arch) -> Value,
     pub(super) set: fn(&mut Arch, Value) -> Result<(), Problem>,

@@ -27,8 +27,9 @@ use umbra_core::shadow::Filter;
 
 pub use self::plot::plot;
 pub use self::stats::Stats;
-use crate::cost::arch::{Arch, CostReport};
-use crate::io::limits::Limits;
+use crate::cost::arch::Arch;
+use crate::cost::report::CostReport;
+use crate::input::limits::Limits;
 use crate::render::{Algorithm, Culling, RenderConfig, RenderError, cost, cost_unshadowed};
 use crate::world::scene::Scene;
 
@@ -409,7 +410,7 @@ pub fn run(datasets: &[Dataset], arch: &ArchResolver<'_>, limits: &Limits) -> Re
 
 /// A value for a table: three significant digits, SI-scaled past 10⁴.
 fn value(v: f64) -> String {
-    if v.abs() >= 1e4 { crate::experiment::study::plot::tick_label(v) } else { format!("{v:.1}") }
+    if v.abs() >= 1e4 { crate::experiment::plot::tick_label(v) } else { format!("{v:.1}") }
 }
 
 fn stats_cells(s: &Stats) -> String {

@@ -7,9 +7,8 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::{DatasetResult, Role};
-use crate::experiment::study::StudyError;
-use crate::experiment::study::plot::{Figure, SIZE, both, colour, footnote, log_log_chart, log_range};
-use crate::io::folder::OutputFolder;
+use crate::experiment::plot::{Figure, PlotError, SIZE, both, colour, footnote, log_log_chart, log_range};
+use crate::output::folder::OutputFolder;
 
 struct Correlated<'a> {
     d: &'a DatasetResult,
@@ -79,8 +78,8 @@ impl Figure for Correlated<'_> {
 /// points.
 ///
 /// # Errors
-/// [`StudyError::Plot`] or [`StudyError::Output`].
-pub fn plot(folder: &mut OutputFolder, datasets: &[DatasetResult]) -> Result<(), StudyError> {
+/// [`PlotError::Draw`] or [`PlotError::Output`].
+pub fn plot(folder: &mut OutputFolder, datasets: &[DatasetResult]) -> Result<(), PlotError> {
     for d in datasets.iter().filter(|d| !d.points.is_empty()) {
         // The release, not the revision: the picture a page shows must not
         // change with every commit (correlation.json and the manifest carry

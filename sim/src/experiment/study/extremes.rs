@@ -21,8 +21,8 @@ use umbra_core::DepthFormatKind;
 
 use super::plot::{self, Series};
 use super::{Row, Shard, Spec, StudyError, Variant};
-use crate::io::folder::OutputFolder;
-use crate::io::limits::Limits;
+use crate::input::limits::Limits;
+use crate::output::folder::OutputFolder;
 use crate::render::Algorithm;
 use crate::world::mesh::Mesh;
 use crate::world::scene::{Light, Object, Scene};

@@ -9,7 +9,8 @@
 //! and Weiskopf & Ertl's dual depth over an offset sweep (§3), with and
 //! without their per-object back-face culling, Sen et al.'s silhouette maps
 //! and stencil shadow volumes (§2, §5). What it costs is counted by
-//! the architecture presets of [`crate::cost::arch`] (Sen et al.'s §5 bandwidth
+//! the architecture presets of [`crate::cost::arch`] and the timing model of
+//! [`crate::cost::timing`] (Sen et al.'s §5 bandwidth
 //! question, per buffer).
 //!
 //! Rows are sorted by configuration index and preset, whatever the thread
@@ -21,12 +22,14 @@
 
 use std::path::PathBuf;
 
-use crate::io::limits::FileError;
-use crate::io::output::OutputError;
+use crate::experiment::plot::PlotError;
+use crate::input::limits::FileError;
+use crate::output::OutputError;
 use crate::world::scene_file::SceneError;
 
 pub mod extremes;
 pub mod plot;
+mod rank;
 
 mod request;
 mod row;
@@ -119,7 +122,7 @@ pub enum StudyError {
     Sweep(#[from] SweepError),
     /// The study would take more memory than the limits allow.
     #[error(transparent)]
-    Limit(#[from] crate::io::limits::LimitError),
+    Limit(#[from] crate::input::limits::LimitError),
     /// A `--shard` argument is not `i/n` with `i < n`.
     #[error("--shard `{0}`: expected i/n with 0 ≤ i < n")]
     Shard(String),
@@ -127,7 +130,7 @@ pub enum StudyError {
     #[error(transparent)]
     Output(#[from] OutputError),
     /// A results file could not be read, is not a regular file, or is
-    /// larger than [`Limits::max_file_bytes`](crate::io::limits::Limits::max_file_bytes).
+    /// larger than [`Limits::max_file_bytes`](crate::input::limits::Limits::max_file_bytes).
     #[error("{path}: {source}")]
     Read {
         /// The file.
@@ -179,4 +182,13 @@ pub enum StudyError {
     /// An architecture did not load, or refused a change.
     #[error(transparent)]
     Arch(#[from] crate::cost::arch::ArchError),
+}
+
+impl From<PlotError> for StudyError {
+    fn from(e: PlotError) -> Self {
+        match e {
+            PlotError::Draw { path, problem } => Self::Plot { path, problem },
+            PlotError::Output(e) => Self::Output(e),
+        }
+    }
 }

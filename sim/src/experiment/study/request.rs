@@ -17,9 +17,9 @@ use super::{
     load_scenes, run, summary, write_outputs, write_partial,
 };
 use crate::cost::arch::Arch;
-use crate::io::folder::OutputFolder;
-use crate::io::limits::Limits;
-use crate::io::provenance::hash;
+use crate::output::folder::OutputFolder;
+use crate::input::limits::Limits;
+use crate::output::provenance::hash;
 
 /// The axes a host replaces in a sweep file, each empty (or `None`) to
 /// keep the file's.

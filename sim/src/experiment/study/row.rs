@@ -15,7 +15,9 @@ use umbra_core::DepthFormatKind;
 use umbra_core::shadow::Filter;
 
 use super::{Config, Spec};
-use crate::cost::arch::{Arch, Bottleneck, CostReport};
+use crate::cost::arch::Arch;
+use crate::cost::report::CostReport;
+use crate::cost::work::Bottleneck;
 use crate::pass::algorithm::{Culling, Family};
 use crate::truth::metrics::Metrics;
 
@@ -106,9 +108,9 @@ pub struct RowConfig {
     /// The `umbra render` command line that renders this configuration
     /// again.
     pub command: String,
-    /// The version that made the row ([`crate::io::provenance::version`]).
+    /// The version that made the row ([`crate::output::provenance::version`]).
     pub umbra_version: String,
-    /// The sweep file's hash ([`crate::io::provenance::hash`]).
+    /// The sweep file's hash ([`crate::output::provenance::hash`]).
     pub sweep_hash: String,
 }
 
@@ -294,7 +296,7 @@ impl RowCost {
             light_cycles: round(r.light.cycles),
             light_bottleneck: r.light.bottleneck,
             camera_cycles: round(r.camera.cycles),
-            camera_shadow_cycles: round(r.camera.stages[crate::cost::arch::Stage::Shadow as usize]),
+            camera_shadow_cycles: round(r.camera.stages[crate::cost::work::Stage::Shadow as usize]),
             camera_bottleneck: r.camera.bottleneck,
             total_cycles: round(r.cycles),
             clock_hertz: r.arch.clock,
@@ -373,7 +375,7 @@ impl Row {
                 image_height_px: cfg.height,
                 reference_rays: cfg.reference_rays,
                 command: cfg.command(&spec.scenes[c.scene].source),
-                umbra_version: crate::io::provenance::version(),
+                umbra_version: crate::output::provenance::version(),
                 sweep_hash: spec.hash.clone(),
             },
             status: Status::Ok,

@@ -7,8 +7,9 @@ use std::sync::Mutex;
 
 use super::{Config, Row, RowCost, RowMetrics, Shard, Spec, StudyError};
 use crate::base::maps::with_format;
-use crate::cost::arch::{Arch, CostReport};
-use crate::io::limits::Limits;
+use crate::cost::arch::Arch;
+use crate::cost::report::CostReport;
+use crate::input::limits::Limits;
 use crate::render::shared::{ImageShare, LightKey, LightShare, Scratch, render_shared};
 use crate::render::{Algorithm, RenderConfig, RenderError, TruthSource, cost_others, render_costed, truth};
 use crate::truth::reference::PixelTruth;

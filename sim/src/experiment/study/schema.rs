@@ -5,7 +5,7 @@
 
 use std::fmt::Write as _;
 
-use crate::cost::arch::unit_of;
+use crate::cost::report::unit_of;
 use crate::render::RenderParam;
 
 /// One column: name, type (`integer`, `number`, `text`, `boolean`), unit

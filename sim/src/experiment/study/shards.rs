@@ -6,8 +6,8 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use super::{Layout, Row, Shard, Spec, Status, StudyError, sort_rows, write_outputs};
-use crate::io::folder::{OutputFolder, RunManifest};
-use crate::io::limits::Limits;
+use crate::input::limits::Limits;
+use crate::output::folder::{OutputFolder, RunManifest};
 
 /// What a study run (whole or one shard) wrote: enough to tell whether
 /// shards belong together and are complete.
@@ -43,14 +43,14 @@ impl Manifest {
         Self {
             sweep: spec.name.clone(),
             sweep_hash: spec.hash.clone(),
-            umbra_version: crate::io::provenance::version(),
+            umbra_version: crate::output::provenance::version(),
             shard: format!("{}/{}", shard.index, shard.count),
             configurations: spec.configs().len(),
             layout: Layout::of(spec),
             architectures: spec.archs.len().max(1),
             rows,
             budgets: spec.budgets.clone(),
-            command: crate::io::provenance::command_line(),
+            command: crate::output::provenance::command_line(),
         }
     }
 }
@@ -154,7 +154,7 @@ pub fn read_rows(path: &Path, limits: &Limits) -> Result<Vec<Row>, StudyError> {
 /// file it lists (a truncated or changed results file does not match).
 fn read_manifest(input: &Path, limits: &Limits) -> Result<(PathBuf, Manifest), StudyError> {
     let dir = if input.is_dir() { input.to_owned() } else { input.parent().unwrap_or(Path::new(".")).to_owned() };
-    let file = dir.join(crate::io::folder::MANIFEST);
+    let file = dir.join(crate::output::folder::MANIFEST);
     let run = RunManifest::verify(&dir, limits.max_file_bytes)?;
     if !run.files.iter().any(|f| f.path == "results.jsonl") {
         return Err(refuse(&file, "lists no results.jsonl: not a study's folder"));
@@ -259,7 +259,7 @@ pub fn merge(inputs: &[PathBuf], out: &Path, limits: &Limits) -> Result<usize, S
     let mut first: Option<Manifest> = None;
     let mut seen: Vec<usize> = Vec::new();
     for input in inputs {
-        use crate::io::folder::FolderState;
+        use crate::output::folder::FolderState;
         if input.is_dir() {
             let unfinished = match FolderState::unfinished(input) {
                 Some(FolderState::Running) => Some("its run is under way"),
@@ -343,7 +343,8 @@ pub fn merge(inputs: &[PathBuf], out: &Path, limits: &Limits) -> Result<usize, S
         let expected = expected.map_or_else(|| "more than can be counted".to_owned(), |n| n.to_string());
         return Err(refuse(out, format!("{} rows merged where the sweep has {expected}", rows.len())));
     }
-    let whole = Manifest { shard: "0/1".into(), rows: rows.len(), command: crate::io::provenance::command_line(), ..m };
+    let whole =
+        Manifest { shard: "0/1".into(), rows: rows.len(), command: crate::output::provenance::command_line(), ..m };
     // The sweep file and architectures the shards' command wrote, as the
     // unsharded run writes them.
     let extra = match inputs.iter().find(|i| i.is_dir()) {
@@ -448,7 +449,7 @@ impl ShardStatus {
 /// complete ones holds.
 #[must_use]
 pub fn status(inputs: &[PathBuf], limits: &Limits) -> ShardStatus {
-    use crate::io::folder::FolderState;
+    use crate::output::folder::FolderState;
     let mut folders = Vec::new();
     let mut held: Vec<usize> = Vec::new();
     let mut count: Option<usize> = None;

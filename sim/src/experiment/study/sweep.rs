@@ -5,7 +5,7 @@ use umbra_core::shadow::{Filter, Jitter};
 
 use super::StudyError;
 use crate::cost::arch::Arch;
-use crate::io::limits::{Footprint, LimitError, Limits};
+use crate::input::limits::{Footprint, LimitError, Limits};
 use crate::render::{Algorithm, Culling};
 use crate::world::scene::Scene;
 
@@ -90,7 +90,7 @@ pub struct Spec {
     pub budgets: Vec<f64>,
     /// The sweep's name (`quick`, `full`, or the file's).
     pub name: String,
-    /// The hash of the sweep file's text ([`crate::io::provenance::hash`]),
+    /// The hash of the sweep file's text ([`crate::output::provenance::hash`]),
     /// which every row and manifest carries.
     pub hash: String,
     /// What each render may ask for: a configuration beyond them is a

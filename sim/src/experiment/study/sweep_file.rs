@@ -33,8 +33,8 @@ use umbra_core::{DepthFormatKind, RasterConfig};
 
 use super::{Spec, Variant, repeated};
 use crate::cost::arch::Arch;
-use crate::io::exact::Exact;
-use crate::io::limits::Limits;
+use crate::input::exact::Exact;
+use crate::input::limits::Limits;
 use crate::render::{Algorithm, Culling, RenderConfig};
 use crate::world::scene::Scene;
 use crate::world::scene_file::BUNDLED;
@@ -181,7 +181,7 @@ impl SweepFile {
     /// The hash every row of this sweep carries.
     #[must_use]
     pub fn hash(&self) -> String {
-        crate::io::provenance::hash(self.text.as_bytes())
+        crate::output::provenance::hash(self.text.as_bytes())
     }
 
     fn err(&self, key: impl Into<String>, problem: impl Into<String>) -> SweepError {

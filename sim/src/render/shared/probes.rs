@@ -6,7 +6,9 @@ use umbra_core::{DepthFormatKind, RasterConfig};
 
 use super::super::costed::{SceneCounts, reading, report};
 use crate::base::probes::{Fan, Tee};
-use crate::cost::arch::{Arch, ArchProbe, CostReport, PassKind};
+use crate::cost::arch::Arch;
+use crate::cost::report::CostReport;
+use crate::cost::timing::{ArchProbe, PassKind};
 use crate::pass::algorithm::Units;
 use crate::render::RenderConfig;
 

@@ -13,7 +13,7 @@ use super::probes::{Kept, Probes, Reporting, copy_of};
 use super::{ImageShare, LightShare, shares};
 use crate::base::maps::Tiling;
 use crate::base::probes::Tee;
-use crate::cost::arch::CostReport;
+use crate::cost::report::CostReport;
 use crate::pass::PassError;
 use crate::pass::algorithm::MapKind;
 use crate::pass::camera::{CameraOptions, map_view, shade};

@@ -8,7 +8,7 @@ use std::path::PathBuf;
 
 use glam::{Mat4, Vec3};
 
-use crate::io::limits::LimitError;
+use crate::input::limits::LimitError;
 
 mod obj;
 
@@ -75,7 +75,7 @@ pub enum MeshError {
         /// The path.
         path: PathBuf,
     },
-    /// The file or its triangle count is beyond the [`Limits`](crate::io::limits::Limits).
+    /// The file or its triangle count is beyond the [`Limits`](crate::input::limits::Limits).
     #[error("{path}: {source}")]
     Limit {
         /// The file.

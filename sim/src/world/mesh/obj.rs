@@ -7,7 +7,7 @@ use std::path::Path;
 use glam::Vec3;
 
 use super::{Mesh, MeshError};
-use crate::io::limits::{FileError, LimitError, Limits};
+use crate::input::limits::{FileError, LimitError, Limits};
 
 /// OBJ records that are not surfaces, left out of a loaded mesh and counted.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -3,8 +3,8 @@
 use std::path::Path;
 
 use super::{Check, MeshFile, Problem, SceneError, shared_meshes};
-use crate::io::exact::Exact;
-use crate::io::limits::Limits;
+use crate::input::exact::Exact;
+use crate::input::limits::Limits;
 use crate::world::mesh::Mesh;
 
 /// The head's slices of a `figure` that does not say.

@@ -33,12 +33,12 @@
 //! (from `../shared/meshes/` of the working directory, or `$UMBRA_MESHES`),
 //! `box`, `quad`, `sphere`, `torus`, `table`, `sheet`, `figure`.
 
-use crate::io::exact::Exact;
+use crate::input::exact::Exact;
 use std::path::{Path, PathBuf};
 
 use glam::{EulerRot, Mat4, Quat, Vec3};
 
-use crate::io::limits::{FileError, LimitError, Limits};
+use crate::input::limits::{FileError, LimitError, Limits};
 use crate::world::mesh::MeshError;
 use crate::world::scene::{Light, Object, Orthographic, Scene};
 use meshes::{build_mesh, generated_triangles};

@@ -5,7 +5,7 @@ use std::path::Path;
 use glam::Vec3;
 use serde::Deserialize;
 
-use crate::io::exact::Exact;
+use crate::input::exact::Exact;
 
 use super::{MAX_SUBDIVISION, Problem, SceneError};
 use crate::world::scene::Perspective;

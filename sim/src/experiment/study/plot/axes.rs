@@ -6,12 +6,13 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::{FAMILIES, Figure, Legend, SIZE, both, colour, footnote, marker, provenance};
+use super::{FAMILIES, Legend, marker, provenance};
 use crate::cost::arch::file::column;
+use crate::experiment::plot::{Figure, SIZE, both, colour, footnote};
+use crate::experiment::study::rank::{TIME, cheapest};
 use crate::experiment::study::schema::axis_unit;
-use crate::experiment::study::summary::{TIME, cheapest};
 use crate::experiment::study::{Manifest, Row, StudyError, distinct, loosest};
-use crate::io::folder::OutputFolder;
+use crate::output::folder::OutputFolder;
 
 /// One panel: its label, and per series (index into the series names)
 /// its `(x, µs)` points.
@@ -198,5 +199,5 @@ pub fn arch_axes(folder: &mut OutputFolder, scene: &str, rows: &[&Row], manifest
         panels,
         provenance: provenance(manifest),
     };
-    both(folder, &format!("arch-axes-{scene}"), &fig)
+    Ok(both(folder, &format!("arch-axes-{scene}"), &fig)?)
 }

@@ -4,9 +4,10 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::{ERROR_FLOOR, Figure, Legend, SIZE, both, colour, log_log_chart, log_range, marker};
+use super::{ERROR_FLOOR, Legend, marker};
+use crate::experiment::plot::{Figure, SIZE, both, colour, log_log_chart, log_range};
 use crate::experiment::study::StudyError;
-use crate::io::folder::OutputFolder;
+use crate::output::folder::OutputFolder;
 
 /// One named series of `(x, y)` points.
 pub type Series = (String, Vec<(f64, f64)>);
@@ -87,5 +88,5 @@ pub fn lines(
     y_desc: &str,
     series: &[Series],
 ) -> Result<(), StudyError> {
-    both(folder, base, &Lines { title, x_desc, y_desc, series })
+    Ok(both(folder, base, &Lines { title, x_desc, y_desc, series })?)
 }

@@ -3,12 +3,10 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::{
-    ERROR_FLOOR, FAMILIES, Figure, Legend, SIZE, both, colour, footnote, log_log_chart, log_range, marker,
-    pareto_front, provenance,
-};
+use super::{ERROR_FLOOR, FAMILIES, Legend, marker, pareto_front, provenance};
+use crate::experiment::plot::{Figure, SIZE, both, colour, footnote, log_log_chart, log_range};
 use crate::experiment::study::{Manifest, Row, RowCost, StudyError, distinct};
-use crate::io::folder::OutputFolder;
+use crate::output::folder::OutputFolder;
 
 /// Artifacts against cost, with the Pareto front as a staircase.
 struct Pareto<'a> {

@@ -9,7 +9,7 @@
 /// they style a cell, they cannot break one.
 ///
 /// ```
-/// use umbra_sim::io::markdown::escape;
+/// use umbra_sim::output::markdown::escape;
 /// assert_eq!(escape("table-and-sphere"), "table-and-sphere");
 /// assert_eq!(escape("a|b\nc"), r"a\|b\u{a}c");
 /// ```

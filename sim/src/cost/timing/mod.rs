@@ -12,11 +12,10 @@
 
 mod events;
 
-use super::file::{Arch, CacheParams};
-use super::work::MemoryLimit;
-pub use super::work::{Accesses, EnergySplit, PassTiming, Work};
-use super::{Bottleneck, Dram, Stage};
+use crate::cost::arch::{Arch, CacheParams};
 use crate::cost::cache::{Cache, MapCache};
+use crate::cost::work::{Accesses, EnergySplit, PassTiming, Work};
+use crate::cost::work::{Bottleneck, MemoryLimit, Stage};
 use serde::Serialize;
 use umbra_core::probe::Totals;
 use umbra_core::{DepthFormatKind, RasterConfig, TileId};
@@ -417,5 +416,78 @@ impl<const D: bool> ArchProbe<D> {
         if self.map_cache.is_none() {
             self.stream(bytes);
         }
+    }
+}
+
+/// DRAM traffic per buffer, bytes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct Dram {
+    /// Map texels written by the resolve.
+    pub map_writes: u64,
+    /// Tiles loaded back by a later flush.
+    pub map_rmw_reads: u64,
+    /// Off-chip depth (and ids) read and written per fragment: cache lines
+    /// fetched and written back, or each access when uncached.
+    pub depth_rmw: u64,
+    /// Map texels and silhouette points requested by the shadow unit
+    /// (before any cache).
+    pub map_reads: u64,
+    /// Map and silhouette lines fetched through the map cache.
+    pub map_fetched: u64,
+    /// Shaded pixels' colour written to the frame buffer.
+    pub colour: u64,
+    /// Bins and setup records written and read.
+    pub bins: u64,
+    /// Silhouette points written by the silhouette pass.
+    pub silhouette_writes: u64,
+    /// Silhouette points read by the camera pass.
+    pub silhouette_reads: u64,
+    /// Scene depth read by shadow-volume fragments.
+    pub volume_depth_reads: u64,
+    /// Stencil read and written by shadow-volume fragments.
+    pub stencil: u64,
+}
+
+impl Dram {
+    /// Every purpose's bytes with its name, in declaration order.
+    #[must_use]
+    pub const fn fields(&self) -> [(&'static str, u64); 11] {
+        [
+            ("map_writes", self.map_writes),
+            ("map_rmw_reads", self.map_rmw_reads),
+            ("depth_rmw", self.depth_rmw),
+            ("map_reads", self.map_reads),
+            ("map_fetched", self.map_fetched),
+            ("colour", self.colour),
+            ("bins", self.bins),
+            ("silhouette_writes", self.silhouette_writes),
+            ("silhouette_reads", self.silhouette_reads),
+            ("volume_depth_reads", self.volume_depth_reads),
+            ("stencil", self.stencil),
+        ]
+    }
+
+    /// Every byte that crossed the DRAM interface: map reads as fetched
+    /// through the map cache when there is one.
+    #[must_use]
+    pub const fn total(&self, map_cached: bool) -> u64 {
+        let map = if map_cached { self.map_fetched } else { self.map_reads + self.silhouette_reads };
+        self.map_writes
+            + self.map_rmw_reads
+            + self.depth_rmw
+            + map
+            + self.colour
+            + self.bins
+            + self.silhouette_writes
+            + self.volume_depth_reads
+            + self.stencil
+    }
+
+    /// The camera pass's shadow traffic: map (as fetched), silhouette
+    /// points, volume depth and stencil.
+    #[must_use]
+    pub const fn shadow_bytes(&self, map_cached: bool) -> u64 {
+        let map = if map_cached { self.map_fetched } else { self.map_reads + self.silhouette_reads };
+        map + self.volume_depth_reads + self.stencil
     }
 }

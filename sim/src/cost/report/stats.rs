@@ -6,7 +6,7 @@
 use std::fmt::Write as _;
 
 use super::CostReport;
-use crate::cost::arch::{Bottleneck, Stage};
+use crate::cost::work::{Bottleneck, Stage};
 use umbra_core::probe::Totals;
 
 /// The unit a figure's name ends in, as the file writes it: the one rule

@@ -1,8 +1,8 @@
 //! The cost report: time, bytes and energy of a render on one
 //! architecture, what bounds each pass (memory told as bandwidth or
 //! latency), its caches, and Sen et al.'s bandwidth figures; written as
-//! Markdown, as a gem5-style stats file ([`stats`]) and as a timeline
-//! ([`trace`]).
+//! Markdown, as a gem5-style stats file ([`CostReport::stats`]) and as a
+//! timeline ([`trace`]).
 
 mod compare;
 mod stats;
@@ -14,9 +14,10 @@ pub use trace::trace;
 
 use std::fmt::Write as _;
 
-use super::timing::{EnergySplit, PassTiming, Work};
-use super::{Arch, ArchProbe, Bottleneck, Dram};
+use crate::cost::arch::Arch;
 use crate::cost::cache::CacheStats;
+use crate::cost::timing::{ArchProbe, Dram};
+use crate::cost::work::{Bottleneck, EnergySplit, PassTiming, Work};
 use serde::Serialize;
 use umbra_core::probe::Totals;
 

@@ -5,7 +5,7 @@
 use std::fmt::Write as _;
 
 use super::CostReport;
-use crate::cost::arch::Bottleneck;
+use crate::cost::work::Bottleneck;
 use serde::Serialize;
 
 /// One architecture's line of a [`Comparison`].

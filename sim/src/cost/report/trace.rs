@@ -6,8 +6,7 @@
 use serde_json::{Value, json};
 
 use super::CostReport;
-use crate::cost::arch::Stage;
-use crate::cost::arch::timing::Work;
+use crate::cost::work::{Stage, Work};
 
 /// Tracks of a process: passes, the front end, the tiles, then one per
 /// stage after setup.

@@ -1,8 +1,9 @@
 //! The timing probe's account of each event: an exhaustive match, so an
 //! event without a charge does not compile.
 
-use super::{ArchProbe, COLOUR_BYTES, PassKind, Phase, Stage};
+use super::{ArchProbe, COLOUR_BYTES, PassKind, Phase};
 use crate::cost::cache::morton;
+use crate::cost::work::Stage;
 use umbra_core::probe::{Buffer, Event, Fragment, TexelRead};
 use umbra_core::{Probe, TileId};
 

@@ -1,11 +1,133 @@
-//! What the timing model charges: a tile's (or the front end's) work in
-//! cycles per stage and DRAM traffic, the accesses that cost energy, and a
-//! pass's time.
+//! What the timing model charges: the stages a tile's time is the slowest
+//! of and what bounds it, a tile's (or the front end's) work in cycles per
+//! stage and DRAM traffic, the accesses that cost energy, and a pass's
+//! time.
 
-use super::file::{Arch, CacheParams};
-use super::{Bottleneck, Stage};
+use crate::cost::arch::{Arch, CacheParams};
 use crate::cost::cache::CacheStats;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
+
+/// The stages a tile's time is the slowest of.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "lowercase")]
+#[repr(usize)]
+pub enum Stage {
+    /// Triangle setup (the front end).
+    #[default]
+    Setup,
+    /// Scan conversion.
+    Raster,
+    /// The depth unit.
+    Depth,
+    /// The shadow unit (camera pass).
+    Shadow,
+    /// Shading besides the shadow lookup (camera pass).
+    Shade,
+    /// DRAM.
+    Memory,
+}
+
+impl Stage {
+    /// Every stage, in pipeline order.
+    pub const ALL: [Self; 6] = [Self::Setup, Self::Raster, Self::Depth, Self::Shadow, Self::Shade, Self::Memory];
+
+    /// The stage's name in reports.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Setup => "setup",
+            Self::Raster => "raster",
+            Self::Depth => "depth",
+            Self::Shadow => "shadow",
+            Self::Shade => "shade",
+            Self::Memory => "memory",
+        }
+    }
+}
+
+/// What bounds a tile, a pass or a frame: a compute stage, or memory
+/// through its bandwidth (bytes at the peak rate) or its latency (requests
+/// at the latency over those kept in flight, Little's law).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+#[repr(usize)]
+pub enum Bottleneck {
+    /// Triangle setup.
+    #[default]
+    Setup,
+    /// Scan conversion.
+    Raster,
+    /// The depth unit.
+    Depth,
+    /// The shadow unit.
+    Shadow,
+    /// Shading.
+    Shade,
+    /// DRAM, its bytes at the bandwidth.
+    DramBandwidth,
+    /// DRAM, its requests at the latency over those in flight.
+    DramLatency,
+}
+
+impl Bottleneck {
+    /// Every bottleneck, in pipeline order.
+    pub const ALL: [Self; 7] =
+        [Self::Setup, Self::Raster, Self::Depth, Self::Shadow, Self::Shade, Self::DramBandwidth, Self::DramLatency];
+
+    /// The bottleneck of `stage`, memory bound by `memory`.
+    #[must_use]
+    pub const fn of(stage: Stage, memory: MemoryLimit) -> Self {
+        match (stage, memory) {
+            (Stage::Setup, _) => Self::Setup,
+            (Stage::Raster, _) => Self::Raster,
+            (Stage::Depth, _) => Self::Depth,
+            (Stage::Shadow, _) => Self::Shadow,
+            (Stage::Shade, _) => Self::Shade,
+            (Stage::Memory, MemoryLimit::Bandwidth) => Self::DramBandwidth,
+            (Stage::Memory, MemoryLimit::Latency) => Self::DramLatency,
+        }
+    }
+
+    /// The stage it is in.
+    #[must_use]
+    pub const fn stage(self) -> Stage {
+        match self {
+            Self::Setup => Stage::Setup,
+            Self::Raster => Stage::Raster,
+            Self::Depth => Stage::Depth,
+            Self::Shadow => Stage::Shadow,
+            Self::Shade => Stage::Shade,
+            Self::DramBandwidth | Self::DramLatency => Stage::Memory,
+        }
+    }
+
+    /// Its name in reports, rows and files.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::DramBandwidth => "dram-bandwidth",
+            Self::DramLatency => "dram-latency",
+            s => s.stage().name(),
+        }
+    }
+}
+
+impl core::str::FromStr for Bottleneck {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        Self::ALL.into_iter().find(|b| b.name() == s).ok_or_else(|| {
+            let names: Vec<&str> = Self::ALL.iter().map(|b| b.name()).collect();
+            format!("`{s}` is not a bottleneck (one of {})", names.join(", "))
+        })
+    }
+}
+
+impl core::fmt::Display for Bottleneck {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(self.name())
+    }
+}
 
 /// What limits memory time: the bytes at the bandwidth, or the requests at
 /// the latency over those kept in flight.

@@ -26,7 +26,7 @@ use std::path::{Component, Path, PathBuf};
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 
-use super::output::OutputError;
+use super::error::OutputError;
 
 /// The manifest of a finished run.
 pub const MANIFEST: &str = "manifest.json";

@@ -1,5 +1,6 @@
-//! Files a person or another tool can open: NumPy arrays of raw texels, PNG
-//! previews, Markdown tables.
+//! The formats maps and pictures are written in, files a person or another
+//! tool can open: NumPy arrays of raw texels, PNG images and previews, and
+//! the pictures' bundled font.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -8,46 +9,9 @@ use std::sync::OnceLock;
 use plotters::style::FontStyle;
 use umbra_core::DepthFormatKind;
 
+use super::error::OutputError;
 use super::folder::OutputFolder;
 use crate::base::maps::{raw_depth, raw_far};
-
-/// Why an output file could not be written.
-#[derive(Debug, thiserror::Error)]
-pub enum OutputError {
-    /// Creating or writing the file failed.
-    #[error("{path}: {source}")]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// The OS error.
-        source: std::io::Error,
-    },
-    /// Drawing a picture's text failed (no usable font).
-    #[error("{path}: {problem}")]
-    Font {
-        /// The file.
-        path: PathBuf,
-        /// What went wrong.
-        problem: String,
-    },
-    /// The folder cannot take the file: a name outside it, a folder that
-    /// is a file, a manifest that does not match.
-    #[error("{path}: {problem}")]
-    Folder {
-        /// The file or folder.
-        path: PathBuf,
-        /// What is wrong.
-        problem: String,
-    },
-    /// Encoding the image failed.
-    #[error("{path}: {source}")]
-    Image {
-        /// The file.
-        path: PathBuf,
-        /// The encoder's error.
-        source: image::ImageError,
-    },
-}
 
 /// The pictures' font, DejaVu Sans (Bitstream Vera licence, `assets/DejaVuSans.LICENSE`), bundled so that
 /// no system font is needed.
