@@ -6,8 +6,8 @@ use crate::cost::{ArchArgs, OneArchArgs};
 use crate::say::say;
 use anyhow::{Context, Result, bail};
 use indicatif::ProgressBar;
-use umbra_sim::output::folder::OutputFolder;
 use umbra_sim::input::limits::Limits;
+use umbra_sim::output::folder::OutputFolder;
 use umbra_sim::render::RenderConfig;
 use umbra_sim::world::scene::Scene;
 

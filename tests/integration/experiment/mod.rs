@@ -3,6 +3,7 @@
 
 mod merge;
 mod plan;
+mod request;
 mod shared;
 mod study;
 mod summary;

@@ -17,8 +17,8 @@ use super::{
     load_scenes, run, summary, write_outputs, write_partial,
 };
 use crate::cost::arch::Arch;
-use crate::output::folder::OutputFolder;
 use crate::input::limits::Limits;
+use crate::output::folder::OutputFolder;
 use crate::output::provenance::hash;
 
 /// The axes a host replaces in a sweep file, each empty (or `None`) to
