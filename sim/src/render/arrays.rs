@@ -63,7 +63,7 @@ impl PixelArrays {
     /// use umbra_sim::render::arrays::PixelArrays;
     /// let scene = Scene::open("weiskopf-l", &Limits::DEFAULT)?;
     /// let cfg = RenderConfig { width: 96, height: 72, map_size: 256, reference_rays: 1, ..RenderConfig::DEFAULT };
-    /// let r = umbra_sim::render(&scene, &cfg, &Limits::DEFAULT, TruthSource::Quiet)?;
+    /// let r = umbra_sim::render(&cfg.check(&scene, &Limits::DEFAULT)?, TruthSource::Quiet)?;
     /// let a = PixelArrays::of(&r);
     /// assert_eq!(a.shadow.len(), 96 * 72);
     /// // Each verdict counted by the metrics is a code in the array.

@@ -125,7 +125,8 @@ fn names() -> String {
 fn whole(text: &str, min: u32, max: u32) -> Result<u32, String> {
     match text.trim().parse::<u32>() {
         Ok(n) if (min..=max).contains(&n) => Ok(n),
-        _ => Err(format!("expected a whole number from {min} to {max}")),
+        _ if max == u32::MAX => Err(format!("expected a whole number from {min}")),
+        _ => Err(format!("expected a whole number in {min}..={max}")),
     }
 }
 
