@@ -19,7 +19,7 @@ use std::hash::{DefaultHasher, Hash, Hasher};
 
 use umbra::core::depth::PlaneZ;
 use umbra::core::probe::TexelRead;
-use umbra::core::shade::{MapUnit, Normals, ShadeConfig, ShadeSetup, Shaded, TriangleSource, shade_with};
+use umbra::core::shade::{MapUnit, Normals, ShadeConfig, ShadeInputs, ShadeSetup, Shaded, TriangleSource, shade_with};
 use umbra::core::shadow::{Bias, DepthTest, Filter, MapView, ShadowConfig};
 use umbra::core::{ConfigError, CullMode, D24, DepthUnit, Event, LightPassConfig, NoProbe, Probe, RasterConfig};
 use umbra::sim::base::maps::Tiling;
@@ -55,7 +55,7 @@ fn shade_once<P: Probe>(
     setups: &mut [ShadeSetup],
     probe: &mut P,
 ) -> Result<(), ConfigError> {
-    shade_with(cfg, ids, view, source, pixels, &MapUnit, setups, probe)
+    shade_with(&ShadeInputs { cfg, map: view, scene: source, unit: &MapUnit }, ids, pixels, setups, probe)
 }
 
 /// Shade `scene` once per configuration and fold every pixel's bits into

@@ -14,7 +14,7 @@ mod event;
 mod totals;
 
 pub use event::{Buffer, CullLevel, Event, FlushReason, Fragment, RejectReason, Tap, TexelRead};
-pub use totals::Totals;
+pub use totals::{Counted, Totals};
 
 /// Receives unit events. Every method has an empty default.
 pub trait Probe {

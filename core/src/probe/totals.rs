@@ -6,10 +6,20 @@
 
 use super::{Buffer, CullLevel, Event, FlushReason, Probe, RejectReason};
 
-/// Declares [`Totals`] and its list of named fields from one list, so the
-/// names the firmware prints and the fields cannot drift apart.
+/// What a field of [`Totals`] counts in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Counted {
+    /// Events or items (triangles, fragments, tiles, lookups).
+    Count,
+    /// Bytes.
+    Bytes,
+}
+
+/// Declares [`Totals`] and its list of named fields from one list — name,
+/// unit and meaning each once — so the names the firmware prints, the
+/// fields and their units cannot drift apart.
 macro_rules! totals {
-    ($($(#[doc = $doc:literal])+ $name:ident,)+) => {
+    ($($(#[doc = $doc:literal])+ $name:ident: $unit:ident,)+) => {
         /// Event totals of one pass: every field of every [`Event`], summed.
         #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
         #[cfg_attr(feature = "serde", derive(serde::Serialize))]
@@ -28,6 +38,9 @@ macro_rules! totals {
             /// order.
             pub const DOCS: [&'static str; NAMES.len()] = [$(concat!($($doc),+)),+];
 
+            /// What each field is counted in, in declaration order.
+            pub const UNITS: [Counted; NAMES.len()] = [$(Counted::$unit),+];
+
             /// Every field with its name, in declaration order (the names
             /// the firmware prints).
             #[must_use]
@@ -40,124 +53,124 @@ macro_rules! totals {
 
 totals! {
     /// Triangles submitted ([`Event::TriangleSubmitted`]).
-    submitted,
+    submitted: Count,
     /// Rejected before setup: a vertex not finite.
-    rejected_non_finite,
+    rejected_non_finite: Count,
     /// Rejected: zero area on the subpixel grid.
-    rejected_degenerate,
+    rejected_degenerate: Count,
     /// Rejected: facing (culling).
-    rejected_facing,
+    rejected_facing: Count,
     /// Rejected: outside near, far or the guard band.
-    rejected_clipped,
+    rejected_clipped: Count,
     /// Rejected: no pixel centre in the bounding box.
-    rejected_no_coverage,
+    rejected_no_coverage: Count,
     /// Rejected: a snapped coordinate outside the integer budget.
-    rejected_out_of_range,
+    rejected_out_of_range: Count,
     /// Triangles set up, clipped pieces and shadow-volume triangles included
     /// ([`Event::TriangleSetup`]).
-    setups,
+    setups: Count,
     /// Bin entries written, summed over [`Event::TriangleBinned`].
-    bin_entries,
+    bin_entries: Count,
     /// Bins drained because they were full.
-    flushes_bin_full,
+    flushes_bin_full: Count,
     /// Bins drained because the setup store was full.
-    flushes_setup_full,
+    flushes_setup_full: Count,
     /// Bins drained at the end of the pass.
-    flushes_finish,
+    flushes_finish: Count,
     /// Bins drained at the end of a draw.
-    flushes_draw,
+    flushes_draw: Count,
     /// Triangles drained from bins, summed over [`Event::BinFlush`].
-    flushed_triangles,
+    flushed_triangles: Count,
     /// Tiles loaded back from the map ([`Event::TileLoad`]).
-    tile_loads,
+    tile_loads: Count,
     /// Bytes of those loads.
-    tile_load_bytes,
+    tile_load_bytes: Bytes,
     /// Tiles stored with geometry ([`Event::TileStore`]).
-    tile_stores,
+    tile_stores: Count,
     /// Tiles stored as a clear only.
-    tile_clears,
+    tile_clears: Count,
     /// Bytes of all stores, clears included.
-    tile_store_bytes,
+    tile_store_bytes: Bytes,
     /// Fragments generated, summed over [`Event::Fragments`].
-    fragments,
+    fragments: Count,
     /// Triangle-in-tile pairs that generated fragments ([`Event::Fragments`]).
-    rasterized,
+    rasterized: Count,
     /// Triangle-in-tile pairs skipped by max-z culling ([`Event::Culled`]).
-    culled_triangles,
+    culled_triangles: Count,
     /// Fragment blocks skipped by max-z culling.
-    culled_blocks,
+    culled_blocks: Count,
     /// Texels of the skipped regions.
-    culled_texels,
+    culled_texels: Count,
     /// `z1` texels read by the depth unit ([`Event::DepthRead`]).
-    depth_reads_z1,
+    depth_reads_z1: Count,
     /// `z2` texels read by the depth unit.
-    depth_reads_z2,
+    depth_reads_z2: Count,
     /// Id texels read by the depth unit.
-    depth_reads_id,
+    depth_reads_id: Count,
     /// Silhouette texels read by the depth unit.
-    depth_reads_silhouette,
+    depth_reads_silhouette: Count,
     /// Bytes of the depth unit's reads.
-    depth_read_bytes,
+    depth_read_bytes: Bytes,
     /// `z1` texels written by the depth unit ([`Event::DepthWrite`]).
-    depth_writes_z1,
+    depth_writes_z1: Count,
     /// `z2` texels written by the depth unit.
-    depth_writes_z2,
+    depth_writes_z2: Count,
     /// Id texels written by the depth unit.
-    depth_writes_id,
+    depth_writes_id: Count,
     /// Silhouette texels written by the depth unit.
-    depth_writes_silhouette,
+    depth_writes_silhouette: Count,
     /// Bytes of the depth unit's writes.
-    depth_write_bytes,
+    depth_write_bytes: Bytes,
     /// Reductions recomputing a tile's max ([`Event::TileMaxUpdate`]).
-    tile_max_updates,
+    tile_max_updates: Count,
     /// `z1` texels read by the shadow unit ([`Event::MapRead`]).
-    map_reads_z1,
+    map_reads_z1: Count,
     /// `z2` texels read by the shadow unit.
-    map_reads_z2,
+    map_reads_z2: Count,
     /// Id texels read by the shadow unit.
-    map_reads_id,
+    map_reads_id: Count,
     /// Silhouette texels read by the shadow unit.
-    map_reads_silhouette,
+    map_reads_silhouette: Count,
     /// Bytes of the shadow unit's reads.
-    map_read_bytes,
+    map_read_bytes: Bytes,
     /// Lookups decided without reading a texel ([`Event::LookupCulled`]).
-    lookups_culled,
+    lookups_culled: Count,
     /// Texels those lookups did not read.
-    lookup_culled_texels,
+    lookup_culled_texels: Count,
     /// Receiver depths evaluated on tangent planes ([`Event::VirtualSamples`]).
-    virtual_samples,
+    virtual_samples: Count,
     /// Tangent planes set up ([`Event::TangentSetup`]).
-    tangent_setups,
+    tangent_setups: Count,
     /// Tangent planes too close to the light ray ([`Event::TangentFallback`]).
-    tangent_fallbacks,
+    tangent_fallbacks: Count,
     /// Pixels decided lit by the ordinary comparison ([`Event::TrivialPixel`]).
-    trivial_lit,
+    trivial_lit: Count,
     /// Pixels decided shadowed by the ordinary comparison.
-    trivial_shadowed,
+    trivial_shadowed: Count,
     /// Silhouette-pass fragments ([`Event::SilhouetteFragments`]).
-    silhouette_fragments,
+    silhouette_fragments: Count,
     /// Silhouette points written.
-    silhouette_stored,
+    silhouette_stored: Count,
     /// Bytes of those writes.
-    silhouette_write_bytes,
+    silhouette_write_bytes: Bytes,
     /// Silhouette points read by the camera pass ([`Event::SilhouetteRead`]).
-    silhouette_reads,
+    silhouette_reads: Count,
     /// Bytes of those reads.
-    silhouette_read_bytes,
+    silhouette_read_bytes: Bytes,
     /// Covered pixels shaded ([`Event::PixelShaded`]).
-    pixels_shaded,
+    pixels_shaded: Count,
     /// Shadow-volume fragments ([`Event::VolumeFragments`]).
-    volume_fragments,
+    volume_fragments: Count,
     /// Scene depth bytes those fragments read.
-    volume_depth_bytes,
+    volume_depth_bytes: Bytes,
     /// Stencil texels read ([`Event::StencilRead`]).
-    stencil_reads,
+    stencil_reads: Count,
     /// Bytes of those reads.
-    stencil_read_bytes,
+    stencil_read_bytes: Bytes,
     /// Stencil texels written ([`Event::StencilWrite`]).
-    stencil_writes,
+    stencil_writes: Count,
     /// Bytes of those writes.
-    stencil_write_bytes,
+    stencil_write_bytes: Bytes,
 }
 
 impl Totals {

@@ -24,8 +24,8 @@
 use glam::Mat4;
 
 use super::{
-    Interp, LightPoint, MapCoord, MapView, Normals, PixelResult, ShadeConfig, ShadeSetup, Shaded, ShadowUnit,
-    TriangleSource, setup_of, setup_slot, shade_pixel,
+    Interp, LightPoint, MapCoord, MapView, Normals, PixelResult, ShadeConfig, ShadeInputs, ShadeSetup, Shaded,
+    ShadowUnit, TriangleSource, setup_of, setup_slot, shade_pixel,
 };
 use crate::depth::{DepthFormat, PlaneZ};
 use crate::grid::TileRect;
@@ -54,18 +54,14 @@ pub(super) fn settle(cfg: &ShadeConfig) -> bool {
 
 /// [`super::shade_rect`] by blocks, for a result that keeps the fraction
 /// alone and a probe that watches no events.
-#[allow(clippy::too_many_arguments, reason = "the unit's inputs, its store and the light's matrix")]
 pub(super) fn shade<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, R: PixelResult>(
-    cfg: &ShadeConfig,
+    inputs: &ShadeInputs<'_, F, S, U>,
     rect: TileRect,
-    ids: &[u32],
-    map: &MapView<'_, F>,
-    scene: &S,
-    out: &mut [R],
-    unit: &U,
+    (ids, out): (&[u32], &mut [R]),
     setups: &mut [ShadeSetup],
     light_inverse_transpose: &Mat4,
 ) {
+    let &ShadeInputs { cfg, map, scene, unit } = inputs;
     let mut blocks = Blocks { cfg, rect, ids, map, scene, unit, setups, run: (NO_TRIANGLE, None) };
     for by in (rect.y0..rect.y1).step_by(BLOCK as usize) {
         for bx in (rect.x0..rect.x1).step_by(BLOCK as usize) {

@@ -202,7 +202,23 @@ pub fn shade<F: DepthFormat, S: TriangleSource, R: PixelResult, P: Probe>(
     probe: &mut P,
 ) -> Result<(), ConfigError> {
     let mut setups = [ShadeSetup::EMPTY; SETUP_STORE];
-    shade_with(cfg, ids, map, scene, out, &MapUnit, &mut setups, probe)
+    let inputs = ShadeInputs { cfg, map, scene, unit: &MapUnit };
+    shade_with(&inputs, ids, out, &mut setups, probe)
+}
+
+/// What a shading pass reads, whichever part of the image it shades: the
+/// configuration, the map, the scene's triangles and the shadow unit
+/// ([`shade_with`], [`shade_rect`]). The ids, the results, the setup
+/// store and the probe are each call's own.
+pub struct ShadeInputs<'a, F: DepthFormat, S, U> {
+    /// The camera, the light and the shadow lookup's configuration.
+    pub cfg: &'a ShadeConfig,
+    /// The map the shadow unit reads.
+    pub map: &'a MapView<'a, F>,
+    /// The scene's triangles, by id.
+    pub scene: &'a S,
+    /// The shadow unit.
+    pub unit: &'a U,
 }
 
 /// One entry of the shading unit's setup store: a triangle's interpolator
@@ -223,19 +239,15 @@ impl ShadeSetup {
 ///
 /// # Errors
 /// [`ConfigError::BufferLength`] when `ids` or `out` is not `width × height`.
-#[allow(clippy::too_many_arguments, reason = "the unit's inputs, its store and its probe")]
 pub fn shade_with<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, R: PixelResult, P: Probe>(
-    cfg: &ShadeConfig,
+    inputs: &ShadeInputs<'_, F, S, U>,
     ids: &[u32],
-    map: &MapView<'_, F>,
-    scene: &S,
     out: &mut [R],
-    unit: &U,
     setups: &mut [ShadeSetup],
     probe: &mut P,
 ) -> Result<(), ConfigError> {
-    let whole = TileRect { x0: 0, y0: 0, x1: cfg.width, y1: cfg.height };
-    shade_rect(cfg, whole, ids, map, scene, out, unit, setups, probe)
+    let whole = TileRect { x0: 0, y0: 0, x1: inputs.cfg.width, y1: inputs.cfg.height };
+    shade_rect(inputs, whole, ids, out, setups, probe)
 }
 
 /// [`shade_with`] over one rectangle of the image (a tile of a camera pass
@@ -246,18 +258,15 @@ pub fn shade_with<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, R: PixelR
 /// # Errors
 /// [`ConfigError::Window`] when `rect` is empty or leaves the image;
 /// [`ConfigError::BufferLength`] when `ids` or `out` is not its size.
-#[allow(clippy::too_many_arguments, reason = "the unit's inputs, its store and its probe")]
 pub fn shade_rect<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, R: PixelResult, P: Probe>(
-    cfg: &ShadeConfig,
+    inputs: &ShadeInputs<'_, F, S, U>,
     rect: TileRect,
     ids: &[u32],
-    map: &MapView<'_, F>,
-    scene: &S,
     out: &mut [R],
-    unit: &U,
     setups: &mut [ShadeSetup],
     probe: &mut P,
 ) -> Result<(), ConfigError> {
+    let &ShadeInputs { cfg, map, scene, unit } = inputs;
     if let Some(missing) = U::Built::missing(&cfg.shadow, cfg.normals == Normals::Smooth) {
         return Err(ConfigError::ShadowNotBuilt { missing });
     }
@@ -281,7 +290,7 @@ pub fn shade_rect<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, R: PixelR
         return Ok(());
     }
     if R::FRACTION_ONLY && !P::EVENTS && blocks::settle(cfg) {
-        blocks::shade(cfg, rect, ids, map, scene, out, unit, setups, &light_inverse_transpose);
+        blocks::shade(inputs, rect, (ids, out), setups, &light_inverse_transpose);
         return Ok(());
     }
     // The store is consulted when the id changes along a row; the source

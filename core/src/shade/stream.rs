@@ -24,7 +24,7 @@ use crate::probe::Probe;
 use crate::raster::bin::Bin;
 use crate::shadow::MapView;
 
-use super::{PixelResult, ShadeConfig, ShadeSetup, Shaded, ShadowUnit, TriangleSource, shade_rect};
+use super::{PixelResult, ShadeConfig, ShadeInputs, ShadeSetup, Shaded, ShadowUnit, TriangleSource, shade_rect};
 
 /// The caller-owned memory of a camera pass streamed by tile: one tile of
 /// everything, besides the setup stores. For a tile of `T × T` pixels:
@@ -149,7 +149,7 @@ where
         draw(&mut pass)?;
         probe = pass.finish();
         let (ids, pixels) = (&buf.ids[..n], &mut buf.pixels[..n]);
-        shade_rect(cfg, rect, ids, map, scene, pixels, unit, buf.shade_setups, &mut probe)?;
+        shade_rect(&ShadeInputs { cfg, map, scene, unit }, rect, ids, pixels, buf.shade_setups, &mut probe)?;
         sink(rect, pixels);
     }
     Ok(probe)

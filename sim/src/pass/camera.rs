@@ -4,7 +4,7 @@
 use glam::Mat4;
 use umbra_core::front::setup::Setup;
 use umbra_core::raster::bin::Bin;
-use umbra_core::shade::{Normals, PixelResult, ShadeConfig, ShadeSetup, Shaded, ShadowUnit, shade_with};
+use umbra_core::shade::{Normals, PixelResult, ShadeConfig, ShadeInputs, ShadeSetup, Shaded, ShadowUnit, shade_with};
 use umbra_core::shadow::{MapView, Shadow, ShadowConfig};
 use umbra_core::{
     CullMode, D24, DepthFormat, DepthUnit, LightBuffers, LightPass, LightPassConfig, NO_TRIANGLE, Probe, RasterConfig,
@@ -246,7 +246,7 @@ pub fn shade<F: DepthFormat, U: ShadowUnit<F>, R: PixelResult, P: Probe>(
     // Every pixel is written: the fill only sizes a new frame.
     out.resize(ids.len(), R::BACKGROUND);
     setups.resize(SHADE_SETUPS, ShadeSetup::EMPTY);
-    shade_with(&cfg, ids, view, &source, out, unit, setups, probe)?;
+    shade_with(&ShadeInputs { cfg: &cfg, map: view, scene: &source, unit }, ids, out, setups, probe)?;
     Ok(())
 }
 

@@ -4,7 +4,7 @@
 
 use glam::{DMat4, Mat4};
 use umbra_core::shade::{
-    MapUnit, SceneTriangle, ShadeConfig, ShadeSetup, Shaded, ShadowUnit, SilhouetteUnit, shade_rect,
+    MapUnit, SceneTriangle, ShadeConfig, ShadeInputs, ShadeSetup, Shaded, ShadowUnit, SilhouetteUnit, shade_rect,
 };
 use umbra_core::shadow::MapView;
 use umbra_core::silhouette::{Packed, SilPoint, SilStore, SilhouetteMap};
@@ -136,17 +136,8 @@ impl<'a, F: DepthFormat, U: ShadowUnit<F>> Replay<'a, F, U> {
         self.out.clear();
         self.out.resize(k1 - k0, Shaded::BACKGROUND);
         let ids = self.ids.get(k0..k1).unwrap_or_default();
-        let replayed = shade_rect(
-            &self.cfg,
-            rect,
-            ids,
-            self.view,
-            &source,
-            &mut self.out,
-            self.unit,
-            &mut self.setups,
-            &mut self.taps,
-        );
+        let inputs = ShadeInputs { cfg: &self.cfg, map: self.view, scene: &source, unit: self.unit };
+        let replayed = shade_rect(&inputs, rect, ids, &mut self.out, &mut self.setups, &mut self.taps);
         debug_assert!(replayed.is_ok(), "the replay of pixels {k0}..{k1} runs as the pass did");
     }
 

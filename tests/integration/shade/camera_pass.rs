@@ -7,7 +7,8 @@ use umbra::core::grid::TileRect;
 use umbra::core::probe::Probe;
 use umbra::core::probe::Totals;
 use umbra::core::shade::{
-    MapUnit, MapUnitWith, Normals, SceneTriangle, ShadeConfig, ShadeSetup, Shaded, shade, shade_rect, shade_with,
+    MapUnit, MapUnitWith, Normals, SceneTriangle, ShadeConfig, ShadeInputs, ShadeSetup, Shaded, shade, shade_rect,
+    shade_with,
 };
 use umbra::core::shadow::{Bias, BoxFilter, DepthTest, Filter, Jitter, MapCoord, MapView, Shadow, ShadowConfig};
 use umbra::core::{ConfigError, CullMode, D16, D24, DepthFormat, DepthUnit, F32, NO_TRIANGLE, NoProbe};
@@ -220,9 +221,21 @@ fn a_box_only_unit_shades_as_the_whole_unit_and_refuses_the_rest() {
         let mut out = vec![Shaded::BACKGROUND; (CAMERA * CAMERA) as usize];
         let mut totals = Totals::default();
         let r = if boxed {
-            shade_with(cam, &ids, &view, &source, &mut out, &MapUnitWith::<BoxFilter>::new(), &mut [], &mut totals)
+            shade_with(
+                &ShadeInputs { cfg: cam, map: &view, scene: &source, unit: &MapUnitWith::<BoxFilter>::new() },
+                &ids,
+                &mut out,
+                &mut [],
+                &mut totals,
+            )
         } else {
-            shade_with(cam, &ids, &view, &source, &mut out, &MapUnit, &mut [], &mut totals)
+            shade_with(
+                &ShadeInputs { cfg: cam, map: &view, scene: &source, unit: &MapUnit },
+                &ids,
+                &mut out,
+                &mut [],
+                &mut totals,
+            )
         };
         r.map(|()| (out, totals))
     };
@@ -273,8 +286,22 @@ fn the_fraction_alone_is_the_whole_results_fraction() {
         let n = (CAMERA * CAMERA) as usize;
         let (mut whole, mut fractions) = (vec![Shaded::BACKGROUND; n], vec![Shadow::ONE; n]);
         let (mut a, mut b) = (Totals::default(), Totals::default());
-        shade_with(&cam, &ids, &view, &source, &mut whole, &MapUnit, &mut [], &mut a).expect("sized");
-        shade_with(&cam, &ids, &view, &source, &mut fractions, &MapUnit, &mut [], &mut b).expect("sized");
+        shade_with(
+            &ShadeInputs { cfg: &cam, map: &view, scene: &source, unit: &MapUnit },
+            &ids,
+            &mut whole,
+            &mut [],
+            &mut a,
+        )
+        .expect("sized");
+        shade_with(
+            &ShadeInputs { cfg: &cam, map: &view, scene: &source, unit: &MapUnit },
+            &ids,
+            &mut fractions,
+            &mut [],
+            &mut b,
+        )
+        .expect("sized");
         assert!(whole.iter().any(|p| p.shadow == Shadow::ONE) && whole.iter().any(|p| p.shadow == Shadow::ZERO));
         assert!(whole.iter().map(|p| p.shadow).eq(fractions.iter().copied()), "{filter:?}");
         assert_eq!(a, b, "{filter:?}");
@@ -299,8 +326,22 @@ fn blocks_at_the_maps_edge_give_the_pixel_units_fractions() {
             let cam = camera_config(light, second(Filter::Box { size }), true, Normals::Flat);
             let n = (CAMERA * CAMERA) as usize;
             let (mut whole, mut fractions) = (vec![Shaded::BACKGROUND; n], vec![Shadow::ONE; n]);
-            shade_with(&cam, &ids, &view, &source, &mut whole, &MapUnit, &mut [], &mut NoProbe).expect("sized");
-            shade_with(&cam, &ids, &view, &source, &mut fractions, &MapUnit, &mut [], &mut NoProbe).expect("sized");
+            shade_with(
+                &ShadeInputs { cfg: &cam, map: &view, scene: &source, unit: &MapUnit },
+                &ids,
+                &mut whole,
+                &mut [],
+                &mut NoProbe,
+            )
+            .expect("sized");
+            shade_with(
+                &ShadeInputs { cfg: &cam, map: &view, scene: &source, unit: &MapUnit },
+                &ids,
+                &mut fractions,
+                &mut [],
+                &mut NoProbe,
+            )
+            .expect("sized");
             let outside = whole
                 .iter()
                 .filter(|p| p.light.is_some_and(|l| l.x < MapCoord::ZERO || l.x.to_num::<u32>() >= 128))
@@ -319,8 +360,15 @@ fn blocks_at_the_maps_edge_give_the_pixel_units_fractions() {
                 let rows = || (rect.y0..rect.y1).map(|y| at(rect.x0, y)..at(rect.x1, y));
                 let rect_ids: Vec<u32> = rows().flat_map(|r| ids[r].to_vec()).collect();
                 let mut out = vec![Shadow::ONE; rect_ids.len()];
-                shade_rect(&cam, rect, &rect_ids, &view, &source, &mut out, &MapUnit, &mut [], &mut NoProbe)
-                    .expect("sized");
+                shade_rect(
+                    &ShadeInputs { cfg: &cam, map: &view, scene: &source, unit: &MapUnit },
+                    rect,
+                    &rect_ids,
+                    &mut out,
+                    &mut [],
+                    &mut NoProbe,
+                )
+                .expect("sized");
                 for (r, chunk) in rows().zip(out.chunks(rect.width() as usize)) {
                     by_rects[r].copy_from_slice(chunk);
                 }
@@ -349,7 +397,14 @@ fn setup_stores_of_any_size_shade_alike() {
     let with = |light: Mat4, setups: &mut [ShadeSetup]| {
         let cam = camera_config(light, second(Filter::Box { size: 3 }), true, Normals::Flat);
         let mut out = vec![Shaded::BACKGROUND; (CAMERA * CAMERA) as usize];
-        shade_with(&cam, &ids, &view, &source, &mut out, &MapUnit, setups, &mut NoProbe).expect("sized");
+        shade_with(
+            &ShadeInputs { cfg: &cam, map: &view, scene: &source, unit: &MapUnit },
+            &ids,
+            &mut out,
+            setups,
+            &mut NoProbe,
+        )
+        .expect("sized");
         out
     };
     let reference = with(light, &mut []);

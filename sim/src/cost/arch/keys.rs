@@ -100,6 +100,20 @@ impl Unit {
             Self::Joules => "joules",
         }
     }
+
+    /// The symbol of the SI base unit a value is held in (`B`, `B/s`,
+    /// `Hz`, `s`, `J`); `-` for counts, numbers, flags and text.
+    #[must_use]
+    pub const fn symbol(self) -> &'static str {
+        match self {
+            Self::Text | Self::Flag | Self::Count | Self::Number => "-",
+            Self::Bytes => "B",
+            Self::Bandwidth => "B/s",
+            Self::Frequency => "Hz",
+            Self::Time => "s",
+            Self::Joules => "J",
+        }
+    }
 }
 
 /// The column a key's values take in a table of rows: `arch_`, the key

@@ -9,7 +9,7 @@ mod stats;
 mod trace;
 
 pub use compare::{Compared, Comparison};
-pub use stats::unit_of;
+pub use stats::StatUnit;
 pub use trace::trace;
 
 use std::fmt::Write as _;

@@ -7,28 +7,51 @@ use std::fmt::Write as _;
 
 use super::CostReport;
 use crate::cost::work::{Bottleneck, Stage};
-use umbra_core::probe::Totals;
+use umbra_core::probe::{Counted, Totals};
 
-/// The unit a figure's name ends in, as the file writes it: the one rule
-/// that names and units follow.
-#[must_use]
-pub fn unit_of(name: &str) -> &'static str {
-    const SUFFIXES: [(&str, &str); 11] = [
-        ("bytes_per_second", "B/s"),
-        ("per_second", "1/s"),
-        ("bytes_per_pixel", "B/pixel"),
-        ("bytes_per_fragment", "B/fragment"),
-        ("seconds", "s"),
-        ("cycles", "cycles"),
-        ("bytes", "B"),
-        ("joules", "J"),
-        ("hertz", "Hz"),
-        ("rate", "ratio"),
-        ("ratio", "ratio"),
-    ];
-    let last = name.rsplit('.').next().unwrap_or(name);
-    let ends = |suffix: &str| last == suffix || last.strip_suffix(suffix).is_some_and(|rest| rest.ends_with('_'));
-    SUFFIXES.iter().find(|(suffix, _)| ends(suffix)).map_or("count", |s| s.1)
+/// The unit a statistic is counted in, declared with it; its name ends
+/// in the unit's name (`_cycles`, `_bytes`, `_bytes_per_second`, …).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StatUnit {
+    /// Events or items.
+    Count,
+    /// Clock cycles.
+    Cycles,
+    /// Seconds.
+    Seconds,
+    /// Per second.
+    PerSecond,
+    /// Bytes.
+    Bytes,
+    /// Bytes per second.
+    BytesPerSecond,
+    /// Bytes per covered pixel.
+    BytesPerPixel,
+    /// Bytes per fragment.
+    BytesPerFragment,
+    /// Joules.
+    Joules,
+    /// A ratio.
+    Ratio,
+}
+
+impl StatUnit {
+    /// Its symbol, as the stats file writes it.
+    #[must_use]
+    pub const fn symbol(self) -> &'static str {
+        match self {
+            Self::Count => "count",
+            Self::Cycles => "cycles",
+            Self::Seconds => "s",
+            Self::PerSecond => "1/s",
+            Self::Bytes => "B",
+            Self::BytesPerSecond => "B/s",
+            Self::BytesPerPixel => "B/pixel",
+            Self::BytesPerFragment => "B/fragment",
+            Self::Joules => "J",
+            Self::Ratio => "ratio",
+        }
+    }
 }
 
 /// A doc comment as one line of plain text.
@@ -50,119 +73,184 @@ impl CostReport {
         for line in self.arch.to_toml().lines() {
             let _ = writeln!(s, "# arch.{line}");
         }
-        let mut stat = |name: &str, value: String, doc: &str| {
-            let _ = writeln!(s, "{name:<48} {value:>20} # {doc} ({})", unit_of(name));
+        let mut stat = |name: &str, unit: StatUnit, value: String, doc: &str| {
+            let _ = writeln!(s, "{name:<48} {value:>20} # {doc} ({})", unit.symbol());
         };
         let count = |v: u64| v.to_string();
         let real = |v: f64| format!("{v:.6e}");
-        stat("frame.cycles", format!("{:.0}", self.cycles), "light pass then camera pass");
-        stat("frame.seconds", real(self.seconds), "the frame at the clock");
-        stat("frame.frames_per_second", real(self.fps), "frames a second");
-        stat("frame.dram_bytes", count(self.bytes), "DRAM traffic of the frame");
+        stat("frame.cycles", StatUnit::Cycles, format!("{:.0}", self.cycles), "light pass then camera pass");
+        stat("frame.seconds", StatUnit::Seconds, real(self.seconds), "the frame at the clock");
+        stat("frame.frames_per_second", StatUnit::PerSecond, real(self.fps), "frames a second");
+        stat("frame.dram_bytes", StatUnit::Bytes, count(self.bytes), "DRAM traffic of the frame");
         stat(
             "frame.dram.achieved_bytes_per_second",
+            StatUnit::BytesPerSecond,
             real(self.achieved_bytes_per_second),
             "DRAM bytes over the frame's time",
         );
-        stat("frame.dram.peak_bytes_per_second", real(self.dram_peak_bytes_per_second), "the DRAM's bandwidth");
+        stat(
+            "frame.dram.peak_bytes_per_second",
+            StatUnit::BytesPerSecond,
+            real(self.dram_peak_bytes_per_second),
+            "the DRAM's bandwidth",
+        );
         stat(
             "frame.dram.latency_ceiling_bytes_per_second",
+            StatUnit::BytesPerSecond,
             real(self.dram_latency_ceiling_bytes_per_second),
             "requests in flight x burst / latency (Little's law)",
         );
         for (unit, e) in self.energy.fields() {
-            stat(&format!("frame.energy.{unit}_joules"), real(e), "energy of the unit");
+            stat(&format!("frame.energy.{unit}_joules"), StatUnit::Joules, real(e), "energy of the unit");
         }
-        stat("frame.energy.total_joules", real(self.energy.total()), "sum over units");
+        stat("frame.energy.total_joules", StatUnit::Joules, real(self.energy.total()), "sum over units");
         for (pass, t, dram) in [("light", &self.light, &self.light_dram), ("camera", &self.camera, &self.camera_dram)] {
-            stat(&format!("{pass}.cycles"), format!("{:.0}", t.cycles), "the pass");
-            stat(&format!("{pass}.seconds"), real(t.cycles / self.arch.clock), "the pass at the clock");
-            stat(&format!("{pass}.front_cycles"), format!("{:.0}", t.front), "setup and bin writes");
+            stat(&format!("{pass}.cycles"), StatUnit::Cycles, format!("{:.0}", t.cycles), "the pass");
+            stat(
+                &format!("{pass}.seconds"),
+                StatUnit::Seconds,
+                real(t.cycles / self.arch.clock),
+                "the pass at the clock",
+            );
+            stat(&format!("{pass}.front_cycles"), StatUnit::Cycles, format!("{:.0}", t.front), "setup and bin writes");
             stat(
                 &format!("{pass}.tile_cycles"),
+                StatUnit::Cycles,
                 format!("{:.0}", t.tiles),
                 "each tile (draw, on an immediate-mode machine) its slowest stage, summed",
             );
             for (k, stage) in Stage::ALL.iter().enumerate() {
                 stat(
                     &format!("{pass}.stage.{}_cycles", stage.name()),
+                    StatUnit::Cycles,
                     format!("{:.0}", t.stages[k]),
                     "stage cycles summed over tiles",
                 );
             }
             stat(
                 &format!("{pass}.memory.bandwidth_cycles"),
+                StatUnit::Cycles,
                 format!("{:.0}", t.memory.bandwidth_cycles),
                 "memory cycles summed over tiles were the bytes at the bandwidth what bound them",
             );
             stat(
                 &format!("{pass}.memory.latency_cycles"),
+                StatUnit::Cycles,
                 format!("{:.0}", t.memory.latency_cycles),
                 "memory cycles summed over tiles were the requests at the latency what bound them",
             );
             for (k, b) in Bottleneck::ALL.iter().enumerate() {
                 stat(
                     &format!("{pass}.bound.{}", b.name().replace('-', "_")),
+                    StatUnit::Count,
                     count(t.bound[k]),
                     "tiles (draws) bound by it",
                 );
             }
-            stat(&format!("{pass}.dram_bytes"), count(t.bytes), "DRAM traffic of the pass");
+            stat(&format!("{pass}.dram_bytes"), StatUnit::Bytes, count(t.bytes), "DRAM traffic of the pass");
             stat(
                 &format!("{pass}.dram.achieved_bytes_per_second"),
+                StatUnit::BytesPerSecond,
                 real(t.achieved_bytes_per_second),
                 "DRAM bytes over the pass's time",
             );
             for (purpose, b) in dram.fields() {
-                stat(&format!("{pass}.dram.{purpose}_bytes"), count(b), "DRAM traffic by purpose");
+                stat(&format!("{pass}.dram.{purpose}_bytes"), StatUnit::Bytes, count(b), "DRAM traffic by purpose");
             }
             for (cache, c) in [("map_cache", t.map_cache), ("depth_cache", t.depth_cache)] {
                 let Some(c) = c else { continue };
-                stat(&format!("{pass}.{cache}.accesses"), count(c.accesses), "reads and read-modify-writes");
-                stat(&format!("{pass}.{cache}.hits"), count(c.hits), "accesses that found their line");
-                stat(&format!("{pass}.{cache}.misses"), count(c.misses), "accesses that fetched their line");
-                stat(&format!("{pass}.{cache}.hit_rate"), real(c.hit_rate), "hits over accesses");
-                stat(&format!("{pass}.{cache}.fetched_bytes"), count(c.fetched_bytes), "a line a miss");
+                stat(
+                    &format!("{pass}.{cache}.accesses"),
+                    StatUnit::Count,
+                    count(c.accesses),
+                    "reads and read-modify-writes",
+                );
+                stat(&format!("{pass}.{cache}.hits"), StatUnit::Count, count(c.hits), "accesses that found their line");
+                stat(
+                    &format!("{pass}.{cache}.misses"),
+                    StatUnit::Count,
+                    count(c.misses),
+                    "accesses that fetched their line",
+                );
+                stat(&format!("{pass}.{cache}.hit_rate"), StatUnit::Ratio, real(c.hit_rate), "hits over accesses");
+                stat(
+                    &format!("{pass}.{cache}.fetched_bytes"),
+                    StatUnit::Bytes,
+                    count(c.fetched_bytes),
+                    "a line a miss",
+                );
                 stat(
                     &format!("{pass}.{cache}.written_back_bytes"),
+                    StatUnit::Bytes,
                     count(c.written_back_bytes),
                     "a line a dirty eviction or flush",
                 );
             }
             for (unit, e) in t.energy.fields() {
-                stat(&format!("{pass}.energy.{unit}_joules"), real(e), "energy of the unit");
+                stat(&format!("{pass}.energy.{unit}_joules"), StatUnit::Joules, real(e), "energy of the unit");
             }
         }
         let n = &self.sen;
-        for (name, v, doc) in [
-            ("sen.triangles", count(n.triangles), "scene triangles (Table 1)"),
-            ("sen.silhouette_edges", count(n.silhouette_edges), "silhouette edges under the light (Table 1)"),
-            ("sen.scene_fill", count(n.scene_fill), "camera visibility fragments (Table 1)"),
-            ("sen.volume_fill", count(n.volume_fill), "shadow-volume fragments (Table 1)"),
-            ("sen.silhouette_fill", count(n.silhouette_fill), "silhouette-pass fragments (Table 1)"),
-            ("sen.p_fill_ratio", real(n.p_fill), "silhouette fill over scene fill (Table 1)"),
-            ("sen.p_lookup_rate", real(n.p_lookup), "covered pixels reconstructed (bandwidth model)"),
-            ("sen.overdraw_ratio", real(n.overdraw), "volume fragments over scene fill"),
-            ("sen.map_bytes_per_pixel", real(n.map_bytes_per_pixel), "simulated map bytes a covered pixel"),
-            ("sen.model_map_bytes_per_pixel", real(n.model_map_bytes_per_pixel), "4 B x samples"),
+        for (name, unit, v, doc) in [
+            ("sen.triangles", StatUnit::Count, count(n.triangles), "scene triangles (Table 1)"),
+            (
+                "sen.silhouette_edges",
+                StatUnit::Count,
+                count(n.silhouette_edges),
+                "silhouette edges under the light (Table 1)",
+            ),
+            ("sen.scene_fill", StatUnit::Count, count(n.scene_fill), "camera visibility fragments (Table 1)"),
+            ("sen.volume_fill", StatUnit::Count, count(n.volume_fill), "shadow-volume fragments (Table 1)"),
+            ("sen.silhouette_fill", StatUnit::Count, count(n.silhouette_fill), "silhouette-pass fragments (Table 1)"),
+            ("sen.p_fill_ratio", StatUnit::Ratio, real(n.p_fill), "silhouette fill over scene fill (Table 1)"),
+            ("sen.p_lookup_rate", StatUnit::Ratio, real(n.p_lookup), "covered pixels reconstructed (bandwidth model)"),
+            ("sen.overdraw_ratio", StatUnit::Ratio, real(n.overdraw), "volume fragments over scene fill"),
+            (
+                "sen.map_bytes_per_pixel",
+                StatUnit::BytesPerPixel,
+                real(n.map_bytes_per_pixel),
+                "simulated map bytes a covered pixel",
+            ),
+            (
+                "sen.model_map_bytes_per_pixel",
+                StatUnit::BytesPerPixel,
+                real(n.model_map_bytes_per_pixel),
+                "4 B x samples",
+            ),
             (
                 "sen.silhouette_bytes_per_pixel",
+                StatUnit::BytesPerPixel,
                 real(n.silhouette_bytes_per_pixel),
                 "simulated point bytes a covered pixel",
             ),
-            ("sen.model_silhouette_bytes_per_pixel", real(n.model_silhouette_bytes_per_pixel), "24 P"),
+            (
+                "sen.model_silhouette_bytes_per_pixel",
+                StatUnit::BytesPerPixel,
+                real(n.model_silhouette_bytes_per_pixel),
+                "24 P",
+            ),
             (
                 "sen.volume_bytes_per_fragment",
+                StatUnit::BytesPerFragment,
                 real(n.volume_bytes_per_fill),
                 "simulated volume bytes a scene-fill fragment",
             ),
-            ("sen.model_volume_bytes_per_fragment", real(n.model_volume_bytes_per_fill), "5.5 O"),
+            (
+                "sen.model_volume_bytes_per_fragment",
+                StatUnit::BytesPerFragment,
+                real(n.model_volume_bytes_per_fill),
+                "5.5 O",
+            ),
         ] {
-            stat(name, v, doc);
+            stat(name, unit, v, doc);
         }
         for (pass, t) in [("light", &self.light_events), ("camera", &self.camera_events)] {
-            for ((name, v), doc) in t.fields().into_iter().zip(Totals::DOCS) {
-                stat(&format!("{pass}.events.{name}"), count(v), &plain(doc));
+            for (((name, v), doc), counted) in t.fields().into_iter().zip(Totals::DOCS).zip(Totals::UNITS) {
+                let unit = match counted {
+                    Counted::Count => StatUnit::Count,
+                    Counted::Bytes => StatUnit::Bytes,
+                };
+                stat(&format!("{pass}.events.{name}"), unit, count(v), &plain(doc));
             }
         }
         s.push_str("---------- End Simulation Statistics   ----------\n\n");

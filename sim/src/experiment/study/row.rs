@@ -17,9 +17,52 @@ use umbra_core::shadow::Filter;
 use super::{Config, Spec};
 use crate::cost::arch::Arch;
 use crate::cost::report::CostReport;
-use crate::cost::work::Bottleneck;
+use crate::cost::work::{Bottleneck, Stage};
 use crate::pass::algorithm::{Culling, Family};
 use crate::truth::metrics::Metrics;
+
+/// A row's column: name, type (`integer`, `number`, `text`, `boolean`),
+/// unit (`-` for none) and meaning.
+pub type Column = (&'static str, &'static str, &'static str, &'static str);
+
+/// Declares a block of a row's columns, each once: its field and Rust
+/// type, its type, unit and meaning in the schema, and its value from the
+/// block's sources. Makes the struct (each field's doc its meaning), its
+/// `COLUMNS` in row order, and `new` from the sources.
+macro_rules! columns {
+    (
+        $(#[$attr:meta])*
+        pub struct $name:ident from ($($arg:ident: $argty:ty),*) {
+            $($field:ident: $ty:ty, $kind:literal, $unit:literal, $meaning:literal = $value:expr;)+
+        }
+    ) => {
+        $(#[$attr])*
+        pub struct $name {
+            $(#[doc = $meaning] pub $field: $ty,)+
+        }
+
+        impl $name {
+            /// Its columns, in row order, each as its declaration states it.
+            pub const COLUMNS: &'static [Column] = &[$((stringify!($field), $kind, $unit, $meaning)),+];
+
+            /// The block's values from its sources.
+            #[must_use]
+            pub fn new($($arg: $argty),*) -> Self {
+                Self { $($field: $value,)+ }
+            }
+        }
+    };
+}
+
+/// Cycles, rounded to whole ones.
+#[allow(
+    clippy::cast_possible_truncation,
+    clippy::cast_sign_loss,
+    reason = "cycles, rounded; non-negative and below 2^64"
+)]
+fn round(c: f64) -> u64 {
+    c.round() as u64
+}
 
 /// Whether a row was measured.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -114,128 +157,72 @@ pub struct RowConfig {
     pub sweep_hash: String,
 }
 
-/// A row's error against the exact reference ([`Metrics`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RowMetrics {
-    /// Pixels compared (facing the light).
-    pub evaluated_px: u64,
-    /// Misclassified, percent of the evaluated pixels.
-    pub misclassified_percent: f64,
-    /// Shadowed by the ½ verdict, lit in truth.
-    pub false_shadow_px: u64,
-    /// Lit by the ½ verdict, shadowed in truth.
-    pub false_light_px: u64,
-    /// Wrong because the taps straddle a true edge or miss the occluder:
-    /// aliasing (edge placement).
-    pub aliasing_px: u64,
-    /// A filter's own partial shade across a true edge: penumbra.
-    pub penumbra_px: u64,
-    /// Too dark from the receiver's own surface: acne.
-    pub acne_px: u64,
-    /// Of the acne, on surfaces near grazing to the light: the terminator's.
-    pub terminator_acne_px: u64,
-    /// Too light because only the bias moved the test past an occluder
-    /// the map holds: detached shadows.
-    pub detachment_px: u64,
-    /// Too light because the depth compared lies behind the receiver
-    /// under a first-layer occluder: leaks.
-    pub leaks_px: u64,
-    /// The aliasing's summed shade difference, pixels.
-    pub aliasing_area_px: f64,
-    /// The penumbra's summed shade difference, pixels.
-    pub penumbra_area_px: f64,
-    /// The acne's summed excess shadow, pixels.
-    pub acne_area_px: f64,
-    /// The detachment's summed missing shadow, pixels.
-    pub detachment_area_px: f64,
-    /// The leaks' summed missing shadow, pixels.
-    pub leak_area_px: f64,
-    /// Acne, detachment and leaks, percent of the evaluated pixels: what
-    /// error budgets apply to.
-    pub artifact_percent: f64,
-    /// The penumbra pixels' distance from the exact boundary, 95th
-    /// percentile: the filter's soft edge's width to each side.
-    pub penumbra_width_p95_px: f64,
-    /// Mean |shadow fraction − true shadowed area|.
-    pub mean_abs_error: f64,
-    /// Root mean square of the same.
-    pub rms_error: f64,
-    /// Mean boundary displacement.
-    pub displacement_mean_px: f64,
-    /// 95th-percentile boundary displacement.
-    pub displacement_p95_px: f64,
-    /// The map's footprint along x, texels per pixel, median (below 1:
-    /// magnified that way).
-    pub footprint_x_texels_per_px: f64,
-    /// The same along y.
-    pub footprint_y_texels_per_px: f64,
-    /// Lookups with virtual samples, percent.
-    pub virtual_sample_percent: f64,
+columns! {
+    /// A row's error against the exact reference ([`Metrics`]).
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct RowMetrics from (m: &Metrics, virtual_sample_fraction: f64) {
+        evaluated_px: u64, "integer", "px", "pixels compared (facing the light)" = m.evaluated;
+        misclassified_percent: f64, "number", "percent", "misclassified by the ½ verdict, of the evaluated pixels" = m.misclassified_percent;
+        false_shadow_px: u64, "integer", "px", "shadowed by the ½ verdict, lit in truth" = m.false_shadow;
+        false_light_px: u64, "integer", "px", "lit by the ½ verdict, shadowed in truth" = m.false_light;
+        aliasing_px: u64, "integer", "px", "wrong because the taps straddle a true edge or miss the occluder: aliasing" = m.aliasing;
+        penumbra_px: u64, "integer", "px", "a filter's own partial shade across a true edge: penumbra" = m.penumbra;
+        acne_px: u64, "integer", "px", "too dark from the receiver's own surface: acne" = m.acne;
+        terminator_acne_px: u64, "integer", "px", "of the acne, near grazing beside a surface facing away: the terminator's" = m.terminator_acne;
+        detachment_px: u64, "integer", "px", "too light because only the bias moved the test past an occluder: detachment" = m.detachment;
+        leaks_px: u64, "integer", "px", "too light because the depth compared lies behind the receiver: leaks" = m.leaks;
+        aliasing_area_px: f64, "number", "px", "the aliasing's summed shade difference" = m.aliasing_area;
+        penumbra_area_px: f64, "number", "px", "the penumbra's summed shade difference" = m.penumbra_area;
+        acne_area_px: f64, "number", "px", "the acne's summed excess shadow" = m.acne_area;
+        detachment_area_px: f64, "number", "px", "the detachment's summed missing shadow" = m.detachment_area;
+        leak_area_px: f64, "number", "px", "the leaks' summed missing shadow" = m.leak_area;
+        artifact_percent: f64, "number", "percent", "acne, detachment and leaks, of the evaluated pixels: what budgets bound" = m.artifact_percent;
+        penumbra_width_p95_px: f64, "number", "px", "95th percentile distance of penumbra pixels from the exact boundary" = m.penumbra_width[1];
+        mean_abs_error: f64, "number", "shadow fraction", "mean |shadow fraction − true shadowed area|" = m.mean_abs_error;
+        rms_error: f64, "number", "shadow fraction", "root mean square of the same" = m.rms_error;
+        displacement_mean_px: f64, "number", "px", "mean distance of the rendered boundary from the exact one" = m.displacement[0];
+        displacement_p95_px: f64, "number", "px", "its 95th percentile" = m.displacement[1];
+        footprint_x_texels_per_px: f64, "number", "texels/px", "median map texels a pixel along x (below 1: magnified)" = m.footprint_x[0];
+        footprint_y_texels_per_px: f64, "number", "texels/px", "the same along y" = m.footprint_y[0];
+        virtual_sample_percent: f64, "number", "percent", "lookups with virtual samples" = 100.0 * virtual_sample_fraction;
+    }
 }
 
-/// A row's cost on its architecture ([`CostReport`]).
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RowCost {
-    /// Light pass cycles (silhouette pass included).
-    pub light_cycles: u64,
-    /// What bounds the light pass (`dram-bandwidth` or `dram-latency` when
-    /// memory does).
-    pub light_bottleneck: Bottleneck,
-    /// Camera pass cycles.
-    pub camera_cycles: u64,
-    /// Camera pass: shadow-unit cycles summed over tiles.
-    pub camera_shadow_cycles: u64,
-    /// What bounds the camera pass.
-    pub camera_bottleneck: Bottleneck,
-    /// The frame: light pass then camera pass.
-    pub total_cycles: u64,
-    /// The architecture's clock.
-    pub clock_hertz: f64,
-    /// The frame at the architecture's clock.
-    pub frame_seconds: f64,
-    /// Frames a second at the architecture's clock.
-    pub frames_per_second: f64,
-    /// The frame's energy.
-    pub energy_joules: f64,
-    /// The frame's DRAM bytes over its time.
-    pub dram_achieved_bytes_per_second: f64,
-    /// The DRAM's peak bandwidth.
-    pub dram_peak_bytes_per_second: f64,
-    /// The bandwidth the requests in flight sustain at the latency
-    /// (Little's law).
-    pub dram_latency_ceiling_bytes_per_second: f64,
-    /// Map texels written by the light pass.
-    pub dram_map_write_bytes: u64,
-    /// Depth read back by the light pass.
-    pub dram_map_readback_bytes: u64,
-    /// Bins and setup records of both passes.
-    pub dram_bin_bytes: u64,
-    /// Camera-pass visibility depth, when off chip.
-    pub dram_camera_depth_bytes: u64,
-    /// Map bytes the shadow unit requested.
-    pub dram_map_requested_bytes: u64,
-    /// Map bytes fetched through the architecture's cache.
-    pub dram_map_fetched_bytes: u64,
-    /// Silhouette points written and read.
-    pub dram_silhouette_bytes: u64,
-    /// Scene depth read by shadow-volume fragments.
-    pub dram_volume_depth_bytes: u64,
-    /// Stencil read and written by shadow-volume fragments.
-    pub dram_stencil_bytes: u64,
-    /// All DRAM traffic (map reads as fetched).
-    pub total_dram_bytes: u64,
-    /// On-chip depth storage.
-    pub on_chip_bytes: u64,
-    /// Light-pass triangle-tile pairs and blocks max-z culled, percent.
-    pub light_culled_percent: f64,
-    /// The same of the camera's visibility, percent.
-    pub camera_culled_percent: f64,
-    /// Shadow lookups culled per covered pixel.
-    pub lookups_culled_per_px: f64,
-    /// Camera-pass map bytes per covered pixel.
-    pub map_bytes_per_px: f64,
+columns! {
+    /// A row's cost on its architecture ([`CostReport`]).
+    #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct RowCost from (r: &CostReport) {
+        light_cycles: u64, "integer", "cycles", "the light pass (silhouette pass included)" = round(r.light.cycles);
+        light_bottleneck: Bottleneck, "text", "-", "what bounds the light pass: setup, raster, depth, shadow, shade, dram-bandwidth, dram-latency" = r.light.bottleneck;
+        camera_cycles: u64, "integer", "cycles", "the camera pass" = round(r.camera.cycles);
+        camera_shadow_cycles: u64, "integer", "cycles", "the camera pass's shadow-unit cycles summed over tiles" = round(r.camera.stages[Stage::Shadow as usize]);
+        camera_bottleneck: Bottleneck, "text", "-", "what bounds the camera pass" = r.camera.bottleneck;
+        total_cycles: u64, "integer", "cycles", "the frame: light pass then camera pass" = round(r.cycles);
+        clock_hertz: f64, "number", "Hz", "the architecture's clock" = r.arch.clock;
+        frame_seconds: f64, "number", "s", "the frame at the clock" = r.seconds;
+        frames_per_second: f64, "number", "1/s", "frames a second at the clock" = r.fps;
+        energy_joules: f64, "number", "J", "the frame's energy" = r.energy.total();
+        dram_achieved_bytes_per_second: f64, "number", "B/s", "the frame's DRAM bytes over its time" = r.achieved_bytes_per_second;
+        dram_peak_bytes_per_second: f64, "number", "B/s", "the DRAM's bandwidth" = r.dram_peak_bytes_per_second;
+        dram_latency_ceiling_bytes_per_second: f64, "number", "B/s", "requests in flight × burst / latency (Little's law)" = r.dram_latency_ceiling_bytes_per_second;
+        dram_map_write_bytes: u64, "integer", "B", "map texels written by the light pass" = r.light_dram.map_writes;
+        dram_map_readback_bytes: u64, "integer", "B", "depth read back by the light pass" = r.light_dram.map_rmw_reads;
+        dram_bin_bytes: u64, "integer", "B", "bins and setup records of both passes" = r.light_dram.bins + r.camera_dram.bins;
+        dram_camera_depth_bytes: u64, "integer", "B", "camera visibility depth, when off chip" = r.camera_dram.map_rmw_reads + r.camera_dram.depth_rmw;
+        dram_map_requested_bytes: u64, "integer", "B", "map bytes the shadow unit requested" = r.camera_dram.map_reads;
+        dram_map_fetched_bytes: u64, "integer", "B", "map bytes fetched through the map cache" = if r.arch.map_cache.size > 0 { r.camera_dram.map_fetched } else { r.camera_dram.map_reads };
+        dram_silhouette_bytes: u64, "integer", "B", "silhouette points written and read" = r.light_dram.silhouette_writes + r.camera_dram.silhouette_reads;
+        dram_volume_depth_bytes: u64, "integer", "B", "scene depth read by shadow-volume fragments" = r.camera_dram.volume_depth_reads;
+        dram_stencil_bytes: u64, "integer", "B", "stencil read and written by shadow-volume fragments" = r.camera_dram.stencil;
+        total_dram_bytes: u64, "integer", "B", "all DRAM traffic, map reads as fetched" = r.bytes;
+        on_chip_bytes: u64, "integer", "B", "on-chip depth storage of the light pass" = r.on_chip_bytes;
+        light_culled_percent: f64, "number", "percent", "light-pass triangle-tile pairs and blocks max-z culled" = 100.0 * r.max_z_cull_rate[0];
+        camera_culled_percent: f64, "number", "percent", "the same of the camera's visibility" = 100.0 * r.max_z_cull_rate[1];
+        lookups_culled_per_px: f64, "number", "1/px", "shadow lookups decided by the tiles' bounds a covered pixel" = r.lookups_culled_per_pixel;
+        map_bytes_per_px: f64, "number", "B/px", "camera-pass map bytes a covered pixel" = r.sen.map_bytes_per_pixel;
+    }
 }
 
 impl RowConfig {
@@ -247,81 +234,10 @@ impl RowConfig {
 }
 
 impl RowMetrics {
-    /// The metrics of a render, with its fraction of virtual-sampled lookups.
-    #[must_use]
-    pub fn new(m: &Metrics, virtual_sample_fraction: f64) -> Self {
-        Self {
-            evaluated_px: m.evaluated,
-            misclassified_percent: m.misclassified_percent,
-            false_shadow_px: m.false_shadow,
-            false_light_px: m.false_light,
-            aliasing_px: m.aliasing,
-            penumbra_px: m.penumbra,
-            acne_px: m.acne,
-            terminator_acne_px: m.terminator_acne,
-            detachment_px: m.detachment,
-            leaks_px: m.leaks,
-            aliasing_area_px: m.aliasing_area,
-            penumbra_area_px: m.penumbra_area,
-            acne_area_px: m.acne_area,
-            detachment_area_px: m.detachment_area,
-            leak_area_px: m.leak_area,
-            artifact_percent: m.artifact_percent,
-            penumbra_width_p95_px: m.penumbra_width[1],
-            mean_abs_error: m.mean_abs_error,
-            rms_error: m.rms_error,
-            displacement_mean_px: m.displacement[0],
-            displacement_p95_px: m.displacement[1],
-            footprint_x_texels_per_px: m.footprint_x[0],
-            footprint_y_texels_per_px: m.footprint_y[0],
-            virtual_sample_percent: 100.0 * virtual_sample_fraction,
-        }
-    }
-
     /// Acne, detachment and leaks, pixels.
     #[must_use]
     pub const fn artifacts_px(&self) -> u64 {
         self.acne_px + self.detachment_px + self.leaks_px
-    }
-}
-
-impl RowCost {
-    /// The cost of a report.
-    #[must_use]
-    pub fn new(r: &CostReport) -> Self {
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "cycles, rounded")]
-        let round = |c: f64| c.round() as u64;
-        let (l, c) = (&r.light_dram, &r.camera_dram);
-        Self {
-            light_cycles: round(r.light.cycles),
-            light_bottleneck: r.light.bottleneck,
-            camera_cycles: round(r.camera.cycles),
-            camera_shadow_cycles: round(r.camera.stages[crate::cost::work::Stage::Shadow as usize]),
-            camera_bottleneck: r.camera.bottleneck,
-            total_cycles: round(r.cycles),
-            clock_hertz: r.arch.clock,
-            frame_seconds: r.seconds,
-            frames_per_second: r.fps,
-            energy_joules: r.energy.total(),
-            dram_achieved_bytes_per_second: r.achieved_bytes_per_second,
-            dram_peak_bytes_per_second: r.dram_peak_bytes_per_second,
-            dram_latency_ceiling_bytes_per_second: r.dram_latency_ceiling_bytes_per_second,
-            dram_map_write_bytes: l.map_writes,
-            dram_map_readback_bytes: l.map_rmw_reads,
-            dram_bin_bytes: l.bins + c.bins,
-            dram_camera_depth_bytes: c.map_rmw_reads + c.depth_rmw,
-            dram_map_requested_bytes: c.map_reads,
-            dram_map_fetched_bytes: if r.arch.map_cache.size > 0 { c.map_fetched } else { c.map_reads },
-            dram_silhouette_bytes: l.silhouette_writes + c.silhouette_reads,
-            dram_volume_depth_bytes: c.volume_depth_reads,
-            dram_stencil_bytes: c.stencil,
-            total_dram_bytes: r.bytes,
-            on_chip_bytes: r.on_chip_bytes,
-            light_culled_percent: 100.0 * r.max_z_cull_rate[0],
-            camera_culled_percent: 100.0 * r.max_z_cull_rate[1],
-            lookups_culled_per_px: r.lookups_culled_per_pixel,
-            map_bytes_per_px: r.sen.map_bytes_per_pixel,
-        }
     }
 }
 
