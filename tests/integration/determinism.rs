@@ -9,7 +9,7 @@ use umbra::core::shadow::Filter;
 use umbra::core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, RasterConfig};
 use umbra::sim::base::counters::Counters;
 use umbra::sim::pass::light::RawMaps;
-use umbra::sim::render::{Algorithm, Culling, Render, RenderConfig, TruthSource, render};
+use umbra::sim::render::{Algorithm, Render, RenderConfig, TruthSource, render};
 use umbra::sim::world::scene::Scene;
 
 /// 1, 2 and every core of the machine (at least 3, so the pools differ).
@@ -89,7 +89,7 @@ fn a_render_is_the_same_on_any_thread_count() {
         width: 80,
         height: 45,
         reference_rays: 2,
-        culling: Culling::ALGORITHM,
+        ..RenderConfig::DEFAULT
     };
     let hidden = indicatif::ProgressBar::hidden();
     let go = || {

@@ -35,7 +35,7 @@ use crate::cost::storage::{MapShape, StorageBytes, storage_bytes};
 use crate::experiment::presets::FILTERS;
 use crate::input::limits::Limits;
 use crate::pass::light::{self, DEFAULT_BIN_CAPACITY, LightFrame, LightOptions};
-use crate::render::{Algorithm, Culling, Render, RenderConfig, RenderError, TruthSource, cost, render, truth};
+use crate::render::{Algorithm, Render, RenderConfig, RenderError, TruthSource, cost, render, truth};
 use crate::truth::metrics::Metrics;
 use crate::truth::reference::PixelTruth;
 use crate::world::scene::Scene;
@@ -289,12 +289,10 @@ pub fn plan(scene: &Scene, spec: &PlanSpec) -> Result<Plan, PlanError> {
             format,
             map_size: map,
             filter,
-            bias: 0.0,
-            virtual_samples: true,
             width: image[0],
             height: image[1],
             reference_rays: rays,
-            culling: Culling::ALGORITHM,
+            ..RenderConfig::DEFAULT
         }
     };
     // Every candidate costed at the image, cheapest first; then measured

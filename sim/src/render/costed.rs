@@ -12,7 +12,7 @@ use umbra_core::shadow::Filter;
 use umbra_core::silhouette::{Packed, SilPoint, SilStore};
 use umbra_core::{DepthFormat, DepthFormatKind, Probe, RasterConfig};
 
-use super::{Algorithm, Checked, Culling, Render, RenderConfig, RenderError, Targets, TruthSource, passes, render_in};
+use super::{Algorithm, Checked, Render, RenderConfig, RenderError, Targets, TruthSource, passes, render_in};
 use crate::base::maps::{Tiling, with_format};
 use crate::base::probes::Fan;
 use crate::cost::arch::Arch;
@@ -189,12 +189,11 @@ pub fn cost_unshadowed(
         format: DepthFormatKind::D24,
         map_size: 8,
         filter: Filter::Point,
-        bias: 0.0,
         virtual_samples: false,
         width,
         height,
         reference_rays: 1,
-        culling: Culling::ALGORITHM,
+        ..RenderConfig::DEFAULT
     };
     cost_group(&cfg.check(scene, limits)?, &[arch], false).map(|mut r| r.remove(0))
 }

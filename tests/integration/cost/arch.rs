@@ -9,7 +9,7 @@ use umbra::sim::cost::arch::file::BUNDLED;
 use umbra::sim::cost::timing::{ArchProbe, PassKind};
 use umbra::sim::cost::work::{Bottleneck, PassTiming, Stage};
 use umbra::sim::input::limits::Limits;
-use umbra::sim::render::{Algorithm, Culling, RenderConfig, cost};
+use umbra::sim::render::{Algorithm, RenderConfig, cost};
 use umbra::sim::world::scene::Scene;
 
 use crate::common::{run, triangles};
@@ -220,7 +220,7 @@ fn energy_is_the_sum_over_units_recomputed_from_the_events() {
         width: 160,
         height: 90,
         reference_rays: 1,
-        culling: Culling::ALGORITHM,
+        ..RenderConfig::DEFAULT
     };
     let arch = bundled("talisman");
     let r = cfg.check(&scene, &Limits::DEFAULT).and_then(|job| cost(&job, &arch)).expect("costs");
@@ -275,7 +275,7 @@ fn shadow_volume_cost_follows_overdraw_and_stays_on_chip_on_a_tiler() {
         width: w,
         height: h,
         reference_rays: 1,
-        culling: Culling::ALGORITHM,
+        ..RenderConfig::DEFAULT
     };
     let talisman = bundled("talisman");
     let small = cfg(320, 180).check(&scene, &Limits::DEFAULT).and_then(|job| cost(&job, &talisman)).expect("costs");
@@ -321,7 +321,7 @@ fn sens_p_both_ways() {
             width: w,
             height: h,
             reference_rays: 1,
-            culling: Culling::ALGORITHM,
+            ..RenderConfig::DEFAULT
         };
         cfg.check(&scene, &Limits::DEFAULT).and_then(|job| cost(&job, &talisman)).expect("costs").sen
     };
@@ -354,7 +354,7 @@ fn a_silhouette_map_costs_its_four_corner_samples_whatever_the_filter() {
             width: 160,
             height: 90,
             reference_rays: 1,
-            culling: Culling::ALGORITHM,
+            ..RenderConfig::DEFAULT
         };
         cfg.check(&scene, &Limits::DEFAULT).and_then(|job| cost(&job, &r300)).expect("costs")
     };
@@ -389,7 +389,7 @@ fn the_timeline_is_the_timing_model() {
         width: 160,
         height: 90,
         reference_rays: 1,
-        culling: Culling::ALGORITHM,
+        ..RenderConfig::DEFAULT
     };
     let arch = bundled("talisman");
     let r = cfg.check(&scene, &Limits::DEFAULT).and_then(|job| cost(&job, &arch)).expect("costs");

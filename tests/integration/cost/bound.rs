@@ -12,7 +12,7 @@ use umbra::sim::cost::cache::Cache;
 use umbra::sim::cost::report::{Comparison, CostReport};
 use umbra::sim::cost::work::Bottleneck;
 use umbra::sim::input::limits::Limits;
-use umbra::sim::render::{Algorithm, Culling, RenderConfig, cost};
+use umbra::sim::render::{Algorithm, RenderConfig, cost};
 use umbra::sim::world::scene::Scene;
 
 use super::arch::{bundled, close, pass, quad};
@@ -102,7 +102,7 @@ pub(super) fn small() -> (Scene, RenderConfig) {
         width: 240,
         height: 135,
         reference_rays: 1,
-        culling: Culling::ALGORITHM,
+        ..RenderConfig::DEFAULT
     };
     (Scene::bundled("table-and-sphere").expect("bundled"), cfg)
 }

@@ -7,7 +7,7 @@ use umbra::core::DepthFormatKind;
 use umbra::core::shadow::Filter;
 use umbra::sim::cost::arch::Arch;
 use umbra::sim::input::limits::Limits;
-use umbra::sim::render::{Algorithm, Culling, RenderConfig, TruthSource, cost, render, render_costed};
+use umbra::sim::render::{Algorithm, RenderConfig, TruthSource, cost, render, render_costed};
 use umbra::sim::world::scene::Scene;
 
 #[test]
@@ -37,7 +37,7 @@ fn a_shared_pass_costs_each_architecture_as_alone() {
             width: 160,
             height: 96,
             reference_rays: 1,
-            culling: Culling::ALGORITHM,
+            ..RenderConfig::DEFAULT
         };
         let alone = cfg
             .check(&s, &limits)

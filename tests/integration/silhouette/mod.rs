@@ -6,7 +6,7 @@ use umbra::core::DepthFormatKind;
 use umbra::core::glam::{Mat4, Vec3};
 use umbra::core::shadow::Filter;
 use umbra::sim::input::limits::Limits;
-use umbra::sim::render::{Algorithm, Culling, Render, RenderConfig, TruthSource, render};
+use umbra::sim::render::{Algorithm, Render, RenderConfig, TruthSource, render};
 use umbra::sim::world::mesh::Mesh;
 use umbra::sim::world::scene::{Light, Object, Orthographic, Perspective, Scene};
 
@@ -52,7 +52,7 @@ fn config(algorithm: Algorithm, map: u32, scene: &Scene) -> RenderConfig {
         width: scene.image[0],
         height: scene.image[1],
         reference_rays: 1,
-        culling: Culling::ALGORITHM,
+        ..RenderConfig::DEFAULT
     }
 }
 

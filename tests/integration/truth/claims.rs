@@ -423,7 +423,7 @@ fn sen_silhouette_maps_on_variants_of_the_zoomed_crowd() {
 #[test]
 fn sen_table_one_overdraw_and_silhouette_fill() {
     use umbra::sim::cost::arch::Arch;
-    use umbra::sim::render::{Culling, RenderConfig, cost};
+    use umbra::sim::render::{RenderConfig, cost};
     let arch = Arch::bundled("talisman").expect("bundled");
     let figures = |scene: &str, algorithm| {
         let s = Scene::bundled(scene).expect("bundled");
@@ -437,7 +437,7 @@ fn sen_table_one_overdraw_and_silhouette_fill() {
             width: s.image[0],
             height: s.image[1],
             reference_rays: 1,
-            culling: Culling::ALGORITHM,
+            ..RenderConfig::DEFAULT
         };
         cfg.check(&s, &Limits::DEFAULT).and_then(|job| cost(&job, &arch)).expect("costed").sen
     };

@@ -8,7 +8,7 @@ use std::path::Path;
 use umbra::core::DepthFormatKind;
 use umbra::core::shadow::Filter;
 use umbra::sim::input::limits::{LimitError, Limits};
-use umbra::sim::render::{Algorithm, Culling, RenderConfig, RenderError, TruthSource, render};
+use umbra::sim::render::{Algorithm, RenderConfig, RenderError, TruthSource, render};
 use umbra::sim::world::mesh::{Mesh, MeshError};
 use umbra::sim::world::scene::Scene;
 use umbra::sim::world::scene_file::{Problem, SceneError};
@@ -196,7 +196,7 @@ fn render_config(map_size: u32, width: u32, height: u32) -> RenderConfig {
         width,
         height,
         reference_rays: 1,
-        culling: Culling::ALGORITHM,
+        ..RenderConfig::DEFAULT
     }
 }
 

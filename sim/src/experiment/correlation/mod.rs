@@ -30,7 +30,7 @@ pub use self::stats::Stats;
 use crate::cost::arch::Arch;
 use crate::cost::report::CostReport;
 use crate::input::limits::Limits;
-use crate::render::{Algorithm, Culling, RenderConfig, RenderError, cost, cost_unshadowed};
+use crate::render::{Algorithm, RenderConfig, RenderError, cost, cost_unshadowed};
 use crate::world::scene::Scene;
 
 /// The bundled datasets, by name.
@@ -251,7 +251,7 @@ impl PointConfig {
             width,
             height,
             reference_rays: 1,
-            culling: Culling::ALGORITHM,
+            ..RenderConfig::DEFAULT
         })
     }
 }

@@ -20,6 +20,7 @@ use umbra_core::{DepthFormat, DepthFormatKind};
 
 /// The render configuration of `c`.
 #[must_use]
+#[allow(clippy::needless_update, reason = "a parameter no sweep axis sets takes its default")]
 pub fn render_config(spec: &Spec, c: &Config) -> RenderConfig {
     let v = &spec.variants[c.variant];
     RenderConfig {
@@ -33,6 +34,7 @@ pub fn render_config(spec: &Spec, c: &Config) -> RenderConfig {
         height: spec.images[c.image][1],
         reference_rays: spec.reference_rays,
         culling: v.culling,
+        ..RenderConfig::DEFAULT
     }
 }
 
