@@ -61,6 +61,7 @@ fn variants() -> Vec<Variant> {
 /// wrong events (a map of the wrong tiling, a camera probe that had not
 /// seen the visibility, the wrong filter's reading), a report would differ.
 #[test]
+#[allow(clippy::needless_update, reason = "a parameter the study does not vary takes its default")]
 fn a_shared_render_is_its_own_render() {
     let limits = Limits::DEFAULT;
     let scene = Scene::open("table-and-sphere", &limits).expect("bundled");
@@ -85,6 +86,7 @@ fn a_shared_render_is_its_own_render() {
                     height: h,
                     reference_rays: 2,
                     culling: v.culling,
+                    ..RenderConfig::DEFAULT
                 };
                 let (own, own_costs) = cfg
                     .check(&scene, &limits)
