@@ -5,6 +5,7 @@ use crate::say::say;
 use anyhow::{Result, bail};
 use umbra_sim::cost::arch::Arch;
 use umbra_sim::cost::arch::file::BUNDLED;
+use umbra_sim::cost::report::files;
 use umbra_sim::input::limits::Limits;
 use umbra_sim::output::folder::OutputFolder;
 
@@ -79,39 +80,24 @@ pub(super) fn cost(args: &CostArgs, trace: bool, limits: &Limits) -> Result<()> 
     let scene = umbra_sim::world::scene::Scene::open(&args.render.scene, limits)?;
     let job = job(&args.render, &scene, limits)?;
     let archs = args.archs.resolve(&BUNDLED.map(|b| b.0), limits)?;
-    let command = command_line();
     let own = if trace { "out/trace" } else { "out/cost" };
     let out = args.render.out.clone().unwrap_or_else(|| std::path::PathBuf::from(own));
     let mut folder = OutputFolder::create(&out)?;
-    let mut reports = Vec::new();
-    for arch in &archs {
-        let report = umbra_sim::render::cost(&job, arch)?;
-        let name = &arch.name;
-        if !trace {
-            say!("{}", report.markdown());
-            folder.write_text(&format!("stats-{name}.txt"), &report.stats(&command))?;
-        }
-        folder.write_text(&format!("arch-{name}.toml"), &arch.to_toml())?;
-        reports.push(report);
-    }
+    let reports = archs.iter().map(|arch| umbra_sim::render::cost(&job, arch)).collect::<Result<Vec<_>, _>>()?;
     if trace {
-        let (json, slices) = umbra_sim::cost::report::trace(&reports);
-        folder.write_text("trace.json", &serde_json::to_string(&json)?)?;
+        let slices = files::write_trace(&mut folder, &reports)?;
         for (r, n) in reports.iter().zip(slices) {
             let unit = if r.arch.immediate() { "draw" } else { "tile" };
             say!("trace.json: {} ({:.3} ms): {n} {unit} slices", r.arch.name, r.seconds * 1e3);
         }
     } else {
-        let comparison = umbra_sim::cost::report::Comparison::new(&reports);
-        if let Some(c) = &comparison {
-            let md = c.markdown();
-            say!("{md}");
-            folder.write_text("comparison.md", &md)?;
+        let comparison = files::write_costs(&mut folder, &reports)?;
+        for r in &reports {
+            say!("{}", r.markdown());
         }
-        let json = serde_json::json!({
-            "version": umbra_sim::output::provenance::version(), "command": command, "reports": reports, "comparison": comparison,
-        });
-        folder.write_text("cost.json", &serde_json::to_string_pretty(&json)?)?;
+        if let Some(c) = comparison {
+            say!("{}", c.markdown());
+        }
     }
     let manifest = folder.finish(None)?;
     crate::say::wrote(&out, &manifest)

@@ -7,9 +7,6 @@ use anyhow::Result;
 use indicatif::ProgressBar;
 use umbra_sim::input::limits::Limits;
 use umbra_sim::output::folder::OutputFolder;
-use umbra_sim::output::formats::{RawMap, write_array, write_npy, write_preview};
-use umbra_sim::render::arrays::PixelArrays;
-use umbra_sim::render::pictures::{write_error_image, write_shadow_image, write_shadow_term};
 use umbra_sim::render::{Checked, Kind, PARAMS, RenderRequest, TruthSource};
 use umbra_sim::truth::metrics::SHADE_STEP;
 use umbra_sim::world::scene::Scene;
@@ -136,37 +133,7 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
     let progress = ProgressBar::new(u64::from(cfg.height)).with_message("reference rays");
     let r = umbra_sim::render::render(&job, TruthSource::Build(&progress))?;
     progress.finish_and_clear();
-    let (w, h) = (r.maps.maps.config.raster.width(), r.maps.maps.config.raster.height());
-    let f = &mut folder;
-    write_shadow_image(f, "shaded.png", &r.image, &r.truth)?;
-    write_shadow_term(f, "shadow.png", &r.image)?;
-    write_error_image(f, "error.png", &r.image, &r.verdicts, &r.truth)?;
-    for (name, data) in r.maps.stored() {
-        let map = RawMap { format: r.maps.format, width: w, height: h, raw: data };
-        write_npy(f, &format!("{name}.npy"), &map)?;
-        write_preview(f, &format!("{name}.png"), &map)?;
-    }
-    // Pixel by pixel, for scripts: the shadow term, the reference and the verdicts.
-    let arrays = PixelArrays::of(&r);
-    let size = (arrays.width, arrays.height);
-    write_array(f, "shadow.npy", size, &arrays.shadow)?;
-    write_array(f, "reference.npy", size, &arrays.reference)?;
-    write_array(f, "verdict.npy", size, &arrays.verdict)?;
-    // The metrics, with what made them.
-    let mut record = serde_json::to_value(r.metrics)?;
-    if let Some(fields) = record.as_object_mut() {
-        for (k, v) in [
-            ("umbra_version", umbra_sim::output::provenance::version()),
-            ("command", umbra_sim::output::provenance::command_line()),
-            ("scene", scene.source.clone()),
-            ("configuration_text", cfg.describe()),
-            ("render_again", r.command.clone()),
-        ] {
-            fields.insert(k.to_owned(), serde_json::Value::String(v));
-        }
-        fields.insert("configuration".to_owned(), serde_json::to_value(cfg)?);
-    }
-    folder.write_text("metrics.json", &serde_json::to_string_pretty(&record)?)?;
+    umbra_sim::render::files::write_render(&mut folder, &job, &r)?;
     let manifest = folder.finish(None)?;
     let m = &r.metrics;
     let t = &r.camera_events.totals;

@@ -7,6 +7,7 @@
 pub mod arrays;
 mod config;
 pub mod costed;
+pub mod files;
 pub mod params;
 pub mod pictures;
 pub mod replay;

@@ -5,6 +5,7 @@
 //! timeline ([`trace`]).
 
 mod compare;
+pub mod files;
 mod stats;
 mod trace;
 

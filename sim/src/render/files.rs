@@ -1,0 +1,57 @@
+//! The files a render writes into its folder, the same from every door:
+//! the pictures (`shaded.png`, `shadow.png`, `error.png`), the maps (`.npy`
+//! of the stored integers and `.png` previews), the per-pixel arrays
+//! (`shadow.npy`, `reference.npy`, `verdict.npy`) and `metrics.json` with
+//! what made it (version, command line, scene, configuration, the command
+//! that renders it again).
+
+use serde_json::Value;
+
+use super::arrays::PixelArrays;
+use super::pictures::{write_error_image, write_shadow_image, write_shadow_term};
+use super::{Checked, Render};
+use crate::output::OutputError;
+use crate::output::folder::OutputFolder;
+use crate::output::formats::{RawMap, write_array, write_npy, write_preview};
+use crate::output::provenance::{command_line, version};
+
+/// Write render `r` of the checked `job` into `folder` (its manifest is
+/// the caller's to finish).
+///
+/// # Errors
+/// [`OutputError`] for a file that could not be written.
+pub fn write_render(folder: &mut OutputFolder, job: &Checked<'_>, r: &Render) -> Result<(), OutputError> {
+    let (scene, cfg) = (job.scene(), job.config());
+    write_shadow_image(folder, "shaded.png", &r.image, &r.truth)?;
+    write_shadow_term(folder, "shadow.png", &r.image)?;
+    write_error_image(folder, "error.png", &r.image, &r.verdicts, &r.truth)?;
+    let (w, h) = (r.maps.maps.config.raster.width(), r.maps.maps.config.raster.height());
+    for (name, data) in r.maps.stored() {
+        let map = RawMap { format: r.maps.format, width: w, height: h, raw: data };
+        write_npy(folder, &format!("{name}.npy"), &map)?;
+        write_preview(folder, &format!("{name}.png"), &map)?;
+    }
+    // Pixel by pixel, for scripts: the shadow term, the reference and the verdicts.
+    let arrays = PixelArrays::of(r);
+    let size = (arrays.width, arrays.height);
+    write_array(folder, "shadow.npy", size, &arrays.shadow)?;
+    write_array(folder, "reference.npy", size, &arrays.reference)?;
+    write_array(folder, "verdict.npy", size, &arrays.verdict)?;
+    // The metrics, with what made them. Numbers and strings only: these
+    // serialise without fail.
+    let mut record = serde_json::to_value(r.metrics).unwrap_or(Value::Null);
+    if let Some(fields) = record.as_object_mut() {
+        for (k, v) in [
+            ("umbra_version", version()),
+            ("command", command_line()),
+            ("scene", scene.source.clone()),
+            ("configuration_text", cfg.describe()),
+            ("render_again", r.command.clone()),
+        ] {
+            fields.insert(k.to_owned(), Value::String(v));
+        }
+        fields.insert("configuration".to_owned(), serde_json::to_value(cfg).unwrap_or(Value::Null));
+    }
+    folder.write_text("metrics.json", &serde_json::to_string_pretty(&record).unwrap_or_default())?;
+    Ok(())
+}
