@@ -286,22 +286,9 @@ fn the_fraction_alone_is_the_whole_results_fraction() {
         let n = (CAMERA * CAMERA) as usize;
         let (mut whole, mut fractions) = (vec![Shaded::BACKGROUND; n], vec![Shadow::ONE; n]);
         let (mut a, mut b) = (Totals::default(), Totals::default());
-        shade_with(
-            &ShadeInputs { cfg: &cam, map: &view, scene: &source, unit: &MapUnit },
-            &ids,
-            &mut whole,
-            &mut [],
-            &mut a,
-        )
-        .expect("sized");
-        shade_with(
-            &ShadeInputs { cfg: &cam, map: &view, scene: &source, unit: &MapUnit },
-            &ids,
-            &mut fractions,
-            &mut [],
-            &mut b,
-        )
-        .expect("sized");
+        let inputs = ShadeInputs { cfg: &cam, map: &view, scene: &source, unit: &MapUnit };
+        shade_with(&inputs, &ids, &mut whole, &mut [], &mut a).expect("sized");
+        shade_with(&inputs, &ids, &mut fractions, &mut [], &mut b).expect("sized");
         assert!(whole.iter().any(|p| p.shadow == Shadow::ONE) && whole.iter().any(|p| p.shadow == Shadow::ZERO));
         assert!(whole.iter().map(|p| p.shadow).eq(fractions.iter().copied()), "{filter:?}");
         assert_eq!(a, b, "{filter:?}");
@@ -326,22 +313,9 @@ fn blocks_at_the_maps_edge_give_the_pixel_units_fractions() {
             let cam = camera_config(light, second(Filter::Box { size }), true, Normals::Flat);
             let n = (CAMERA * CAMERA) as usize;
             let (mut whole, mut fractions) = (vec![Shaded::BACKGROUND; n], vec![Shadow::ONE; n]);
-            shade_with(
-                &ShadeInputs { cfg: &cam, map: &view, scene: &source, unit: &MapUnit },
-                &ids,
-                &mut whole,
-                &mut [],
-                &mut NoProbe,
-            )
-            .expect("sized");
-            shade_with(
-                &ShadeInputs { cfg: &cam, map: &view, scene: &source, unit: &MapUnit },
-                &ids,
-                &mut fractions,
-                &mut [],
-                &mut NoProbe,
-            )
-            .expect("sized");
+            let inputs = ShadeInputs { cfg: &cam, map: &view, scene: &source, unit: &MapUnit };
+            shade_with(&inputs, &ids, &mut whole, &mut [], &mut NoProbe).expect("sized");
+            shade_with(&inputs, &ids, &mut fractions, &mut [], &mut NoProbe).expect("sized");
             let outside = whole
                 .iter()
                 .filter(|p| p.light.is_some_and(|l| l.x < MapCoord::ZERO || l.x.to_num::<u32>() >= 128))
