@@ -440,8 +440,8 @@ impl RenderRequest {
         }
     }
 
-    /// The configuration asked for, the image `scene_image` (a scene's
-    /// `[width, height]`) where the request leaves it open. Every value
+    /// The configuration asked for, with the image `[width, height]` (a
+    /// scene's) where the request leaves it open. Every value
     /// was checked as it was set; the configuration's check against a
     /// scene and the limits is [`RenderConfig::check`].
     ///
