@@ -11,6 +11,7 @@ pub mod files;
 pub mod params;
 pub mod pictures;
 pub mod replay;
+mod request;
 pub mod shared;
 
 use indicatif::ProgressBar;
@@ -23,8 +24,9 @@ use umbra_core::{DepthFormat, DepthUnit, LightPassConfig, Probe, RasterConfig, T
 pub(crate) use self::config::Targets;
 pub use self::config::{Checked, RenderConfig, RenderConfigError};
 pub use self::costed::{cost, cost_others, cost_unshadowed, render_costed};
-pub use self::params::{Kind, PARAMS, ParamError, RenderParam, RenderRequest, Written};
+pub use self::params::{Kind, PARAMS, ParamError, RenderParam, Written};
 use self::replay::{PassInputs, judged};
+pub use self::request::RenderRequest;
 use crate::base::counters::Counters;
 use crate::base::maps::{Tiling, with_format};
 use crate::base::probes::Tee;

@@ -1,15 +1,17 @@
 //! A render's parameters, each declared once in [`PARAMS`]: its name (the
 //! `umbra render` flag, Python's keyword), the values it takes, its unit,
 //! its column in a study's rows, what it means, and how it reads and
-//! writes a [`RenderRequest`]. The command line's flags, Python's keyword
-//! arguments, the rows' schema, the command that renders a row again and
-//! the documentation's flag table (`umbra schema render`) are all made
-//! from this table; [`RenderConfig::DEFAULT`] holds the defaults.
+//! writes a [`RenderRequest`] (`request.rs`). The command line's flags,
+//! Python's keyword arguments, the rows' schema, the command that renders
+//! a row again and the documentation's flag table (`umbra schema render`)
+//! are all made from this table; [`RenderConfig::DEFAULT`] holds the
+//! defaults.
 
 use std::fmt::Write as _;
 
 use umbra_core::DepthFormatKind;
 
+use super::request::RenderRequest;
 use super::{Algorithm, RenderConfig};
 
 /// What values a render parameter takes.
@@ -54,22 +56,6 @@ pub enum Written {
     For(&'static str),
     /// Only when it is not the default.
     Changed,
-}
-
-/// A render asked for, parameter by parameter, before its scene fills in
-/// what it leaves open (the image size) and the algorithm takes its
-/// parameter: what the command line and Python's keywords build.
-#[derive(Clone, Debug, PartialEq)]
-pub struct RenderRequest {
-    /// The configuration's fields but the algorithm and the image size.
-    config: RenderConfig,
-    /// The algorithm's name and the parameters of those that take one.
-    algo: &'static str,
-    bias1: f64,
-    offset: f64,
-    /// The image size, where given.
-    width: Option<u32>,
-    height: Option<u32>,
 }
 
 /// One parameter of a render.
@@ -131,10 +117,8 @@ fn whole(text: &str, min: u32, max: u32) -> Result<u32, String> {
 }
 
 fn depth(text: &str) -> Result<f64, String> {
-    match text.trim().parse::<f64>() {
-        Ok(x) if x.is_finite() && (0.0..=1.0).contains(&x) => Ok(x),
-        _ => Err("expected a depth in [0, 1]".to_owned()),
-    }
+    let x = text.trim().parse::<f64>().map_err(|_| "expected a depth in [0, 1]".to_owned())?;
+    RenderConfig::depth("the value", x).map(|_| x).map_err(|_| "expected a depth in [0, 1]".to_owned())
 }
 
 fn flag(text: &str) -> Result<bool, String> {
@@ -387,22 +371,23 @@ impl RenderParam {
     /// # Errors
     /// [`ParamError::Value`] saying what it takes.
     pub fn check(&self, text: &str) -> Result<(), ParamError> {
-        RenderRequest::DEFAULT.clone().set_param(self, text)
+        self.apply(&mut RenderRequest::DEFAULT.clone(), text)
+    }
+
+    /// Set this parameter of `request` to the value `text` writes.
+    ///
+    /// # Errors
+    /// [`ParamError::Value`] saying what it takes.
+    pub(super) fn apply(&self, request: &mut RenderRequest, text: &str) -> Result<(), ParamError> {
+        (self.set)(request, text).map_err(|problem| ParamError::Value {
+            name: self.name,
+            value: text.to_owned(),
+            problem,
+        })
     }
 }
 
 impl RenderRequest {
-    /// The default render ([`RenderConfig::DEFAULT`]) at its scene's
-    /// image size.
-    pub const DEFAULT: Self = Self {
-        config: RenderConfig::DEFAULT,
-        algo: RenderConfig::DEFAULT.algorithm.name(),
-        bias1: Algorithm::DEFAULT_BIAS1,
-        offset: Algorithm::DEFAULT_OFFSET,
-        width: None,
-        height: None,
-    };
-
     /// Set the parameter called `name` (as [`RenderParam::named`] finds
     /// it) to the value `text` writes.
     ///
@@ -420,46 +405,7 @@ impl RenderRequest {
     /// # Errors
     /// [`ParamError`] naming the parameter or the value.
     pub fn set(&mut self, name: &str, text: &str) -> Result<(), ParamError> {
-        self.set_param(RenderParam::named(name)?, text)
-    }
-
-    fn set_param(&mut self, p: &RenderParam, text: &str) -> Result<(), ParamError> {
-        (p.set)(self, text).map_err(|problem| ParamError::Value { name: p.name, value: text.to_owned(), problem })
-    }
-
-    /// The request of a configuration: every parameter as `cfg` has it.
-    #[must_use]
-    pub fn of(cfg: &RenderConfig) -> Self {
-        Self {
-            config: *cfg,
-            algo: cfg.algorithm.name(),
-            bias1: cfg.algorithm.bias_hi().unwrap_or(Algorithm::DEFAULT_BIAS1),
-            offset: cfg.algorithm.offset().unwrap_or(Algorithm::DEFAULT_OFFSET),
-            width: Some(cfg.width),
-            height: Some(cfg.height),
-        }
-    }
-
-    /// The configuration asked for, with the image `[width, height]` (a
-    /// scene's) where the request leaves it open. Every value
-    /// was checked as it was set; the configuration's check against a
-    /// scene and the limits is [`RenderConfig::check`].
-    ///
-    /// # Errors
-    /// [`ParamError`] when the algorithm's name is unknown (never, for a
-    /// request built by [`RenderRequest::set`]).
-    pub fn config(&self, [width, height]: [u32; 2]) -> Result<RenderConfig, ParamError> {
-        let algorithm = Algorithm::named(self.algo, self.bias1, self.offset).map_err(|e| ParamError::Value {
-            name: "algo",
-            value: self.algo.to_owned(),
-            problem: e.to_string(),
-        })?;
-        Ok(RenderConfig {
-            algorithm,
-            width: self.width.unwrap_or(width),
-            height: self.height.unwrap_or(height),
-            ..self.config
-        })
+        RenderParam::named(name)?.apply(self, text)
     }
 }
 
