@@ -2,7 +2,7 @@
 
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use umbra_sim::cost::arch::file::PARAMS;
+use umbra_sim::cost::arch::PARAMS;
 use umbra_sim::input::limits::Limits;
 
 use crate::error;
@@ -65,5 +65,5 @@ impl Arch {
 /// The bundled architectures' names.
 #[pyfunction]
 pub fn bundled_archs() -> Vec<&'static str> {
-    umbra_sim::cost::arch::file::BUNDLED.iter().map(|b| b.0).collect()
+    umbra_sim::cost::arch::BUNDLED.iter().map(|b| b.0).collect()
 }

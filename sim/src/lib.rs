@@ -56,6 +56,7 @@ pub use cost::report::CostReport;
 pub use experiment::plan::{Plan, PlanSpec, plan};
 pub use experiment::study::{Row, Spec as StudySpec, SweepFile, run as study};
 pub use input::limits::Limits;
-pub use render::{Algorithm, Checked, Culling, Render, RenderConfig, RenderRequest, TruthSource, cost, render};
+pub use pass::algorithm::{Algorithm, Culling};
+pub use render::{Checked, Render, RenderConfig, RenderRequest, TruthSource, cost, render};
 pub use world::mesh::Mesh;
 pub use world::scene::Scene;

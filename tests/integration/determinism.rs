@@ -7,9 +7,10 @@ use umbra::core::probe::Totals;
 use umbra::core::shade::Shaded;
 use umbra::core::shadow::Filter;
 use umbra::core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, RasterConfig};
+use umbra::sim::Algorithm;
 use umbra::sim::base::counters::Counters;
 use umbra::sim::pass::light::RawMaps;
-use umbra::sim::render::{Algorithm, Render, RenderConfig, TruthSource, render};
+use umbra::sim::render::{Render, RenderConfig, TruthSource, render};
 use umbra::sim::world::scene::Scene;
 
 /// 1, 2 and every core of the machine (at least 3, so the pools differ).

@@ -5,8 +5,8 @@
 use anyhow::{Result, bail};
 use clap::Subcommand;
 use umbra_sim::Arch;
+use umbra_sim::cost::arch::PARAMS;
 use umbra_sim::cost::arch::derived::diff;
-use umbra_sim::cost::arch::file::PARAMS;
 use umbra_sim::input::limits::Limits;
 
 use crate::cost::OneArchArgs;

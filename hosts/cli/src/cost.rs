@@ -4,7 +4,7 @@ use crate::render::{RenderArgs, job};
 use crate::say::say;
 use anyhow::{Result, bail};
 use umbra_sim::cost::arch::Arch;
-use umbra_sim::cost::arch::file::BUNDLED;
+use umbra_sim::cost::arch::BUNDLED;
 use umbra_sim::cost::report::files;
 use umbra_sim::input::limits::Limits;
 use umbra_sim::output::folder::OutputFolder;

@@ -9,9 +9,10 @@ mod common;
 use std::collections::BTreeMap;
 
 use common::{dir, umbra};
+use umbra_sim::Culling;
 use umbra_sim::experiment::study::{self, Row, Shard, SweepFile, render_config};
 use umbra_sim::input::limits::Limits;
-use umbra_sim::render::{Culling, TruthSource};
+use umbra_sim::render::TruthSource;
 
 /// A user's sweep: every kind of choice a row's command must spell.
 const MINE: &str = r#"

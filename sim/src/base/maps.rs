@@ -33,7 +33,7 @@ pub(crate) use with_format;
 
 /// The depth a raw texel of `format` stands for, in `[0, 1]`.
 #[must_use]
-pub fn raw_depth(format: DepthFormatKind, raw: u32) -> f64 {
+pub(crate) fn raw_depth(format: DepthFormatKind, raw: u32) -> f64 {
     match format {
         DepthFormatKind::D16 => D16::unquantize(u16::try_from(raw).unwrap_or(u16::MAX)),
         DepthFormatKind::D24 => D24::unquantize(raw),

@@ -5,5 +5,5 @@
 
 pub mod counters;
 pub mod maps;
-pub mod probes;
-pub mod text;
+pub(crate) mod probes;
+pub(crate) mod text;

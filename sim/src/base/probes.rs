@@ -5,7 +5,7 @@ use umbra_core::probe::{Event, Fragment, Probe, Tap, TexelRead};
 
 /// Forwards every event, fragment and texel read to two probes.
 #[derive(Clone, Debug, Default)]
-pub struct Tee<A, B>(pub A, pub B);
+pub(crate) struct Tee<A, B>(pub A, pub B);
 
 impl<A: Probe, B: Probe> Probe for Tee<A, B> {
     const FRAGMENTS: bool = A::FRAGMENTS || B::FRAGMENTS;
@@ -40,7 +40,7 @@ impl<A: Probe, B: Probe> Probe for Tee<A, B> {
 
 /// Every event to each of several probes, in order.
 #[derive(Debug)]
-pub struct Fan<P>(pub Vec<P>);
+pub(crate) struct Fan<P>(pub Vec<P>);
 
 impl<P: Probe> Probe for Fan<P> {
     const FRAGMENTS: bool = P::FRAGMENTS;

@@ -12,7 +12,7 @@ use serde::{Deserialize, Deserializer, Serializer};
 ///
 /// # Errors
 /// The serializer's.
-pub fn serialize<T: Display, S: Serializer>(value: &T, s: S) -> Result<S::Ok, S::Error> {
+pub(crate) fn serialize<T: Display, S: Serializer>(value: &T, s: S) -> Result<S::Ok, S::Error> {
     s.collect_str(value)
 }
 
@@ -20,7 +20,7 @@ pub fn serialize<T: Display, S: Serializer>(value: &T, s: S) -> Result<S::Ok, S:
 ///
 /// # Errors
 /// The text does not parse.
-pub fn deserialize<'de, T, D>(d: D) -> Result<T, D::Error>
+pub(crate) fn deserialize<'de, T, D>(d: D) -> Result<T, D::Error>
 where
     T: FromStr,
     T::Err: Display,

@@ -73,7 +73,7 @@ pub struct CacheStats {
 impl CacheStats {
     /// Every count times `k` (a pass run `k` times over the same stream).
     #[must_use]
-    pub fn times(self, k: u64) -> Self {
+    pub(crate) fn times(self, k: u64) -> Self {
         Self {
             accesses: self.accesses * k,
             hits: self.hits * k,
@@ -116,7 +116,7 @@ impl Cache {
 
     /// Bytes of one line.
     #[must_use]
-    pub const fn line(&self) -> u64 {
+    pub(crate) const fn line(&self) -> u64 {
         1 << self.line_shift
     }
 
@@ -256,7 +256,7 @@ impl MapCache {
 
     /// With a silhouette map of `bytes`-byte points.
     #[must_use]
-    pub const fn with_silhouette(mut self, bytes: u32) -> Self {
+    pub(crate) const fn with_silhouette(mut self, bytes: u32) -> Self {
         self.silhouette_bytes = bytes as u64;
         self
     }

@@ -140,13 +140,13 @@ pub struct TexelBox {
 impl TexelBox {
     /// Width, texels.
     #[must_use]
-    pub const fn width(&self) -> u32 {
+    pub(crate) const fn width(&self) -> u32 {
         self.x1 - self.x0
     }
 
     /// Texels inside.
     #[must_use]
-    pub fn area(&self) -> u64 {
+    pub(crate) fn area(&self) -> u64 {
         u64::from(self.x1 - self.x0) * u64::from(self.y1 - self.y0)
     }
 }
@@ -317,24 +317,6 @@ impl SparseTiles {
             }
         }
         Ok(s)
-    }
-
-    /// The map's shape.
-    #[must_use]
-    pub const fn shape(&self) -> &MapShape {
-        &self.shape
-    }
-
-    /// The tile side.
-    #[must_use]
-    pub const fn tile(&self) -> u32 {
-        self.tile
-    }
-
-    /// Tiles stored.
-    #[must_use]
-    pub fn stored_tiles(&self) -> usize {
-        self.offsets.len()
     }
 
     /// Texel `(x, y)`: the stored value, or the clear value in an absent tile.

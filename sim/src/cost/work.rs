@@ -71,12 +71,12 @@ pub enum Bottleneck {
 
 impl Bottleneck {
     /// Every bottleneck, in pipeline order.
-    pub const ALL: [Self; 7] =
+    pub(crate) const ALL: [Self; 7] =
         [Self::Setup, Self::Raster, Self::Depth, Self::Shadow, Self::Shade, Self::DramBandwidth, Self::DramLatency];
 
     /// The bottleneck of `stage`, memory bound by `memory`.
     #[must_use]
-    pub const fn of(stage: Stage, memory: MemoryLimit) -> Self {
+    pub(crate) const fn of(stage: Stage, memory: MemoryLimit) -> Self {
         match (stage, memory) {
             (Stage::Setup, _) => Self::Setup,
             (Stage::Raster, _) => Self::Raster,
@@ -90,7 +90,7 @@ impl Bottleneck {
 
     /// The stage it is in.
     #[must_use]
-    pub const fn stage(self) -> Stage {
+    pub(crate) const fn stage(self) -> Stage {
         match self {
             Self::Setup => Stage::Setup,
             Self::Raster => Stage::Raster,
@@ -133,7 +133,7 @@ impl core::fmt::Display for Bottleneck {
 /// the latency over those kept in flight.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
-pub enum MemoryLimit {
+pub(crate) enum MemoryLimit {
     /// Bytes at the DRAM's bandwidth.
     #[default]
     Bandwidth,
@@ -154,19 +154,19 @@ pub struct MemoryTime {
 impl MemoryTime {
     /// The time memory takes: the longer of the two.
     #[must_use]
-    pub const fn cycles(&self) -> f64 {
+    pub(crate) const fn cycles(&self) -> f64 {
         self.bandwidth_cycles.max(self.latency_cycles)
     }
 
     /// Which of the two it is (bandwidth on a tie).
     #[must_use]
-    pub fn limit(&self) -> MemoryLimit {
+    pub(crate) fn limit(&self) -> MemoryLimit {
         if self.latency_cycles > self.bandwidth_cycles { MemoryLimit::Latency } else { MemoryLimit::Bandwidth }
     }
 
     /// Both added.
     #[must_use]
-    pub fn plus(&self, o: &Self) -> Self {
+    pub(crate) fn plus(&self, o: &Self) -> Self {
         Self {
             bandwidth_cycles: self.bandwidth_cycles + o.bandwidth_cycles,
             latency_cycles: self.latency_cycles + o.latency_cycles,
@@ -209,7 +209,7 @@ impl Work {
     /// latency over those in flight.
     #[must_use]
     #[allow(clippy::cast_precision_loss, reason = "counts far below 2^53")]
-    pub fn memory(&self, arch: &Arch) -> MemoryTime {
+    pub(crate) fn memory(&self, arch: &Arch) -> MemoryTime {
         let lat = arch.latency_cycles();
         let window = |c: &CacheParams| c.misses_in_flight.max(1) as f64;
         let requests = self.streamed.div_ceil(arch.dram.burst.max(1)) + self.requests;
@@ -224,7 +224,7 @@ impl Work {
     /// What bounds this work: its slowest stage, memory told as bandwidth
     /// or latency; and that stage's cycles. `None` for no work.
     #[must_use]
-    pub fn bottleneck(&self, arch: &Arch) -> Option<(Bottleneck, f64)> {
+    pub(crate) fn bottleneck(&self, arch: &Arch) -> Option<(Bottleneck, f64)> {
         let memory = self.memory(arch);
         let s = self.stages_with(arch, memory);
         let slowest = s.iter().copied().fold(0.0, f64::max);
@@ -237,7 +237,7 @@ impl Work {
     /// Cycles per stage, memory included; a shadow test that runs in the
     /// shading program adds to the shading.
     #[must_use]
-    pub fn stages(&self, arch: &Arch) -> [f64; 6] {
+    pub(crate) fn stages(&self, arch: &Arch) -> [f64; 6] {
         self.stages_with(arch, self.memory(arch))
     }
 
@@ -302,7 +302,7 @@ impl EnergySplit {
 
     /// Every unit's energy with its name.
     #[must_use]
-    pub const fn fields(&self) -> [(&'static str, f64); 5] {
+    pub(crate) const fn fields(&self) -> [(&'static str, f64); 5] {
         [
             ("dram", self.dram),
             ("buffers", self.buffers),
@@ -314,7 +314,7 @@ impl EnergySplit {
 
     /// Both added.
     #[must_use]
-    pub fn plus(&self, o: &Self) -> Self {
+    pub(crate) fn plus(&self, o: &Self) -> Self {
         Self {
             dram: self.dram + o.dram,
             buffers: self.buffers + o.buffers,

@@ -41,13 +41,13 @@ use crate::truth::reference::PixelTruth;
 use crate::world::scene::Scene;
 
 /// 16-bit steps the thinnest gaps between surfaces must span.
-pub const GAP_LSBS: f64 = 8.0;
+pub(crate) const GAP_LSBS: f64 = 8.0;
 
 /// Tile side of the sparse storage scheme (Reeves et al. 1987 Table 2).
-pub const STORAGE_TILE: u32 = 32;
+pub(crate) const STORAGE_TILE: u32 = 32;
 
 /// The dual test's offset the planner uses, as a depth in `[0, 1]`.
-pub const DUAL_OFFSET: f64 = 0.01;
+pub(crate) const DUAL_OFFSET: f64 = 0.01;
 
 /// What the planner may choose from.
 #[derive(Clone, Debug, PartialEq)]
@@ -175,7 +175,7 @@ pub enum PlanError {
 ///
 /// # Errors
 /// [`PlanError::Render`] when the light pass cannot run.
-pub fn thinnest_gap(scene: &Scene, map: u32) -> Result<f64, PlanError> {
+pub(crate) fn thinnest_gap(scene: &Scene, map: u32) -> Result<f64, PlanError> {
     let raster = RasterConfig::new(map, map, RasterConfig::DEFAULT_TILE_SIZE, RasterConfig::DEFAULT_SUBPIXEL_BITS)
         .map_err(RenderError::MapSize)?;
     let config = LightPassConfig { raster, unit: DepthUnit::Dual, max_z_cull: true };

@@ -5,7 +5,7 @@ use serde::Deserialize;
 /// `N` values, exactly: an array of any other length is an error naming
 /// its line, never cut or padded.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Exact<const N: usize, T = f64>(pub [T; N]);
+pub(crate) struct Exact<const N: usize, T = f64>(pub [T; N]);
 
 impl<'de, const N: usize, T: Deserialize<'de>> Deserialize<'de> for Exact<N, T> {
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {

@@ -60,7 +60,7 @@ impl Limits {
     ///
     /// # Errors
     /// [`LimitError::Memory`] above [`Limits::max_memory`], naming `what`.
-    pub const fn check_memory(&self, what: &'static str, footprint: u64) -> Result<(), LimitError> {
+    pub(crate) const fn check_memory(&self, what: &'static str, footprint: u64) -> Result<(), LimitError> {
         if footprint > self.max_memory {
             return Err(LimitError::Memory { what, bytes: footprint, max: self.max_memory });
         }
@@ -71,7 +71,7 @@ impl Limits {
     ///
     /// # Errors
     /// [`LimitError::Objects`] above [`Limits::max_objects`].
-    pub const fn check_objects(&self, objects: u64) -> Result<(), LimitError> {
+    pub(crate) const fn check_objects(&self, objects: u64) -> Result<(), LimitError> {
         if objects > self.max_objects {
             return Err(LimitError::Objects { objects, max: self.max_objects });
         }
@@ -93,7 +93,7 @@ impl Limits {
     ///
     /// # Errors
     /// [`LimitError::ImageSide`] or [`LimitError::ImagePixels`].
-    pub const fn check_image(&self, width: u32, height: u32) -> Result<(), LimitError> {
+    pub(crate) const fn check_image(&self, width: u32, height: u32) -> Result<(), LimitError> {
         let side = if width > height { width } else { height };
         if side > self.max_image_side {
             return Err(LimitError::ImageSide { side, max: self.max_image_side });
@@ -109,7 +109,7 @@ impl Limits {
     ///
     /// # Errors
     /// [`LimitError::Triangles`] above [`Limits::max_triangles`].
-    pub const fn check_triangles(&self, triangles: u64) -> Result<(), LimitError> {
+    pub(crate) const fn check_triangles(&self, triangles: u64) -> Result<(), LimitError> {
         if triangles > self.max_triangles {
             return Err(LimitError::Triangles { triangles, max: self.max_triangles });
         }
@@ -138,7 +138,7 @@ impl Limits {
     /// As [`Limits::read_file`], with [`LimitError::TextBytes`], and
     /// [`LimitError::Memory`] when its parse would not fit
     /// [`Limits::max_memory`].
-    pub fn read_text_file(&self, path: &Path) -> Result<Vec<u8>, FileError> {
+    pub(crate) fn read_text_file(&self, path: &Path) -> Result<Vec<u8>, FileError> {
         let bytes = Self::read_within(path, self.max_text_bytes, |bytes, max| LimitError::TextBytes { bytes, max })?;
         let parse = (bytes.len() as u64).saturating_mul(Footprint::PER_TEXT_BYTE).saturating_add(Footprint::BASE);
         self.check_memory("parsing the TOML file", parse).map_err(FileError::Limit)?;
@@ -279,20 +279,20 @@ pub struct Footprint;
 
 impl Footprint {
     /// The process, its code, thread stacks and small tables.
-    pub const BASE: u64 = 96 << 20;
+    pub(crate) const BASE: u64 = 96 << 20;
     /// A camera pixel: the camera pass's image and bins, its reference,
     /// the metrics' per-pixel verdicts and the pictures written from them
     /// (about 70 measured).
-    pub const PER_PIXEL: u64 = 160;
+    pub(crate) const PER_PIXEL: u64 = 160;
     /// A light-map texel: two 32-bit z-buffers, the bins (8 bytes a texel
     /// with 8-texel tiles) and the map's picture (about 14 measured with
     /// 32-texel tiles).
-    pub const PER_TEXEL: u64 = 24;
+    pub(crate) const PER_TEXEL: u64 = 24;
     /// A scene triangle: the mesh, the passes' transformed copies and the
     /// reference's bounding-volume hierarchy (about 600 measured).
-    pub const PER_TRIANGLE: u64 = 1024;
+    pub(crate) const PER_TRIANGLE: u64 = 1024;
     /// A byte of a TOML file while it is parsed.
-    pub const PER_TEXT_BYTE: u64 = 96;
+    pub(crate) const PER_TEXT_BYTE: u64 = 96;
 
     /// One render (or costing) of `pixels` camera pixels, a map of side
     /// `map_side` and `triangles`, its reference included.

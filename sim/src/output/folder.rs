@@ -99,7 +99,7 @@ struct Pending {
 }
 
 /// The folder's lock file: held (an OS lock) for the whole run.
-pub const LOCK: &str = ".umbra-lock";
+pub(crate) const LOCK: &str = ".umbra-lock";
 
 /// An output folder being written by one run.
 #[derive(Debug)]
@@ -126,7 +126,7 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> OutputError + '_ {
 
 /// SHA-256 of `bytes` in lower-case hex.
 #[must_use]
-pub fn sha256(bytes: &[u8]) -> String {
+pub(crate) fn sha256(bytes: &[u8]) -> String {
     Sha256::digest(bytes).iter().fold(String::with_capacity(64), |mut s, b| {
         use std::fmt::Write as _;
         let _ = write!(s, "{b:02x}");
@@ -223,7 +223,7 @@ fn lock(dir: &Path) -> Result<std::fs::File, OutputError> {
 
 /// What a run left in a folder, as far as can be told without writing.
 #[derive(Clone, Debug, PartialEq)]
-pub enum FolderState {
+pub(crate) enum FolderState {
     /// A finished run: its manifest, every file checked against it.
     Complete(RunManifest),
     /// A run under way: its record is pending and it holds the lock.
@@ -242,7 +242,7 @@ impl FolderState {
     /// The state of `dir` (files each at most `max_bytes`). Reads only: a
     /// lock it takes to look is released at once.
     #[must_use]
-    pub fn of(dir: &Path, max_bytes: u64) -> Self {
+    pub(crate) fn of(dir: &Path, max_bytes: u64) -> Self {
         if dir.join(MANIFEST).exists() {
             return match RunManifest::verify(dir, max_bytes) {
                 Ok(m) => Self::Complete(m),
@@ -256,7 +256,7 @@ impl FolderState {
     /// unfinished run's record (a pending record, no manifest); `None`
     /// otherwise, without reading any other file.
     #[must_use]
-    pub fn unfinished(dir: &Path) -> Option<Self> {
+    pub(crate) fn unfinished(dir: &Path) -> Option<Self> {
         if dir.join(MANIFEST).exists() || !dir.join(PENDING).exists() {
             return None;
         }
@@ -314,14 +314,8 @@ impl OutputFolder {
 
     /// The folder.
     #[must_use]
-    pub fn dir(&self) -> &Path {
+    pub(crate) fn dir(&self) -> &Path {
         &self.dir
-    }
-
-    /// The files written so far.
-    #[must_use]
-    pub fn written(&self) -> &[FileRecord] {
-        &self.written
     }
 
     fn record_pending(&self) -> Result<(), OutputError> {
@@ -438,8 +432,11 @@ fn atomic(path: &Path, bytes: &[u8], mode: Option<u32>) -> Result<(), OutputErro
 ///
 /// # Errors
 /// The OS error.
-pub fn write_all_synced(sink: &mut std::fs::File, bytes: &[u8]) -> std::io::Result<()> {
+pub(crate) fn write_all_synced(sink: &mut std::fs::File, bytes: &[u8]) -> std::io::Result<()> {
     sink.write_all(bytes)?;
     sink.flush()?;
     sink.sync_all()
 }
+
+#[cfg(test)]
+mod tests;

@@ -32,7 +32,7 @@ pub(crate) fn font() -> Result<(), String> {
 ///
 /// # Errors
 /// [`OutputError::Image`].
-pub fn png(
+pub(crate) fn png(
     path: &Path,
     pixels: &[u8],
     width: u32,
@@ -87,7 +87,7 @@ pub fn write_npy(folder: &mut OutputFolder, name: &str, map: &RawMap<'_>) -> Res
 ///
 /// # Errors
 /// [`OutputError::Io`] naming the file.
-pub fn write_array<T: npyz::AutoSerialize + Copy>(
+pub(crate) fn write_array<T: npyz::AutoSerialize + Copy>(
     folder: &mut OutputFolder,
     name: &str,
     (width, height): (u32, u32),

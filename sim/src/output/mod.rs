@@ -9,4 +9,4 @@ pub mod formats;
 pub mod markdown;
 pub mod provenance;
 
-pub use error::OutputError;
+pub(crate) use error::OutputError;

@@ -16,7 +16,7 @@ pub fn version() -> String {
 /// `arg` as a POSIX shell word: as it is when it needs no quoting, else in
 /// single quotes.
 #[must_use]
-pub fn shell_word(arg: &str) -> String {
+pub(crate) fn shell_word(arg: &str) -> String {
     if !arg.is_empty() && arg.chars().all(|c| c.is_ascii_alphanumeric() || "-_./=,:+%@".contains(c)) {
         arg.to_owned()
     } else {
@@ -29,7 +29,7 @@ pub fn shell_word(arg: &str) -> String {
 /// bash and zsh, each byte outside printable ASCII as `\ooo`, so the word
 /// stands for the same bytes.
 #[must_use]
-pub fn os_shell_word(arg: &std::ffi::OsStr) -> String {
+pub(crate) fn os_shell_word(arg: &std::ffi::OsStr) -> String {
     if let Some(text) = arg.to_str() {
         return shell_word(text);
     }
@@ -67,7 +67,7 @@ pub fn command_line() -> String {
 /// The FNV-1a 64-bit hash of `bytes`, in hex: names a sweep file's exact
 /// text in its outputs (not a cryptographic digest; it tells sweeps apart).
 #[must_use]
-pub fn hash(bytes: &[u8]) -> String {
+pub(crate) fn hash(bytes: &[u8]) -> String {
     let h = bytes.iter().fold(0xcbf2_9ce4_8422_2325_u64, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3));
     format!("{h:016x}")
 }

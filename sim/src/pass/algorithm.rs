@@ -166,7 +166,7 @@ impl std::str::FromStr for Culling {
 
 /// The map an algorithm's camera pass reads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum MapKind {
+pub(crate) enum MapKind {
     /// A depth map (single, dual, or single front-face culled).
     Depth,
     /// Sen et al.'s silhouette map over a first-depth map.
@@ -180,7 +180,7 @@ pub enum MapKind {
 
 /// What an algorithm asks of the hardware.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Units {
+pub(crate) struct Units {
     /// The map the camera pass reads.
     pub map: MapKind,
     /// The light pass's depth unit.
@@ -201,13 +201,13 @@ impl Units {
     /// Whether Wang & Molnar's virtual samples apply when asked for: only
     /// to the second-depth test.
     #[must_use]
-    pub fn virtual_samples(&self, asked: bool) -> bool {
+    pub(crate) fn virtual_samples(&self, asked: bool) -> bool {
         asked && self.test == DepthTest::Second
     }
 
     /// How the light pass culls an object, solid or open, under `culling`.
     #[must_use]
-    pub const fn cull(&self, solid: bool, culling: Culling) -> CullMode {
+    pub(crate) const fn cull(&self, solid: bool, culling: Culling) -> CullMode {
         match (if solid { culling.solids } else { culling.open }, solid) {
             (Cull::Algorithm, true) => self.solids,
             (Cull::Algorithm, false) | (Cull::None, _) => CullMode::None,
@@ -221,7 +221,7 @@ impl Algorithm {
     /// The units this algorithm uses in format `F`, with `bias` (a depth in
     /// `[0, 1]`; Reeves' `Bias0` for a bias range).
     #[must_use]
-    pub fn units<F: DepthFormat>(self, bias: f64) -> Units {
+    pub(crate) fn units<F: DepthFormat>(self, bias: f64) -> Units {
         let constant = Bias::Constant(F::plane_z(bias));
         let units = |unit, test| Units {
             map: MapKind::Depth,
@@ -272,7 +272,7 @@ impl Algorithm {
 
     /// The paper the algorithm comes from, as the study groups them.
     #[must_use]
-    pub const fn family(self) -> Family {
+    pub(crate) const fn family(self) -> Family {
         match self {
             Self::First | Self::BiasRange { .. } => Family::FirstDepth,
             Self::Second | Self::SecondFrontCulled => Family::SecondDepth,
@@ -283,7 +283,7 @@ impl Algorithm {
     }
 
     /// Every algorithm's name, in the order of the papers.
-    pub const NAMES: [&'static str; 9] = {
+    pub(crate) const NAMES: [&'static str; 9] = {
         let every = Self::every(0.0, 0.0);
         let mut names = [""; 9];
         let mut k = 0;
@@ -311,10 +311,10 @@ impl Algorithm {
     }
 
     /// Reeves' `Bias1` when none is given (`umbra render --bias1`).
-    pub const DEFAULT_BIAS1: f64 = 0.005;
+    pub(crate) const DEFAULT_BIAS1: f64 = 0.005;
 
     /// The dual-depth offset when none is given (`umbra render --offset`).
-    pub const DEFAULT_OFFSET: f64 = 0.01;
+    pub(crate) const DEFAULT_OFFSET: f64 = 0.01;
 
     /// The algorithm named `name` ([`Algorithm::name`]), with Reeves'
     /// `Bias1` for a bias range and the offset for dual depth (the others
@@ -338,7 +338,7 @@ impl Algorithm {
     /// The algorithm as `umbra render` takes it: `--algo` and its own
     /// parameter.
     #[must_use]
-    pub fn flags(self) -> String {
+    pub(crate) fn flags(self) -> String {
         match self {
             Self::BiasRange { hi } => format!("--algo bias-range --bias1 {hi}"),
             Self::Dual { offset } => format!("--algo dual --offset {offset}"),
@@ -348,7 +348,7 @@ impl Algorithm {
 
     /// Reeves' `Bias1`, if the algorithm draws its bias from a range.
     #[must_use]
-    pub const fn bias_hi(self) -> Option<f64> {
+    pub(crate) const fn bias_hi(self) -> Option<f64> {
         match self {
             Self::BiasRange { hi } => Some(hi),
             _ => None,
@@ -357,7 +357,7 @@ impl Algorithm {
 
     /// The dual offset, if the algorithm has one.
     #[must_use]
-    pub const fn offset(self) -> Option<f64> {
+    pub(crate) const fn offset(self) -> Option<f64> {
         match self {
             Self::Dual { offset } => Some(offset),
             _ => None,

@@ -230,7 +230,7 @@ pub fn render_into<F: DepthFormat, U: ShadowUnit<F>, R: PixelResult, P: Probe>(
 /// # Errors
 /// As [`render`].
 #[allow(clippy::too_many_arguments, reason = "the unit's inputs, its store and its probe")]
-pub fn shade<F: DepthFormat, U: ShadowUnit<F>, R: PixelResult, P: Probe>(
+pub(crate) fn shade<F: DepthFormat, U: ShadowUnit<F>, R: PixelResult, P: Probe>(
     scene: &Scene,
     (ids, camera): (&[u32], Mat4),
     view: &MapView<'_, F>,
@@ -319,7 +319,7 @@ pub fn streamed<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
 ///
 /// # Errors
 /// [`PassError`] for an unusable size or a malformed mesh.
-pub fn volumes<P: Probe>(
+pub(crate) fn volumes<P: Probe>(
     frame: &mut CameraFrame,
     scene: &Scene,
     size: (u32, u32),

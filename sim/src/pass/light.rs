@@ -17,7 +17,7 @@ pub const DEFAULT_BIN_CAPACITY: usize = 256;
 /// Setup-store size the simulator uses unless told otherwise: the most the
 /// bins can address, so a scene of up to 64k triangles is captured whole
 /// before any tile is rasterized.
-pub const DEFAULT_SETUPS: usize = umbra_core::raster::bin::MAX_SETUPS;
+pub(crate) const DEFAULT_SETUPS: usize = umbra_core::raster::bin::MAX_SETUPS;
 
 /// Setup-store size of a pass whose probe ignores events: four setups a
 /// tile, between 4096 (640 KB, within a core's cache) and

@@ -5,7 +5,7 @@
 pub mod algorithm;
 pub mod camera;
 pub mod light;
-pub mod occluders;
+pub(crate) mod occluders;
 
 use umbra_core::{ConfigError, SubmitError};
 

@@ -22,7 +22,7 @@ fn clip(m: &Mat4, p: Vec3) -> ClipVertex {
 ///
 /// # Errors
 /// [`ConfigError`] when `map` is unusable.
-pub fn silhouette_map<S: SilStore, F: DepthFormat, P: Probe>(
+pub(crate) fn silhouette_map<S: SilStore, F: DepthFormat, P: Probe>(
     occluders: &Occluders,
     light: &Mat4,
     map: &MapView<'_, F>,
@@ -43,7 +43,7 @@ pub fn silhouette_map<S: SilStore, F: DepthFormat, P: Probe>(
 /// light's to twice the scene's farthest distance from it, a directional
 /// light's by twice the scene's diagonal.
 #[must_use]
-pub fn volume_light(scene: &Scene, camera: &Mat4) -> VolumeLight {
+pub(crate) fn volume_light(scene: &Scene, camera: &Mat4) -> VolumeLight {
     let points = scene.objects.iter().flat_map(|o| o.mesh.positions.iter().map(|p| p.as_dvec3()));
     let light = scene.light();
     let clip4 = |v: glam::Vec4| (*camera * v).to_array().map(f64::from);
@@ -73,7 +73,7 @@ pub fn volume_light(scene: &Scene, camera: &Mat4) -> VolumeLight {
 ///
 /// # Errors
 /// [`ConfigError`] when a buffer does not fit `raster`.
-pub fn stencil<F: DepthFormat, P: Probe>(
+pub(crate) fn stencil<F: DepthFormat, P: Probe>(
     scene: &Scene,
     occluders: &Occluders,
     camera: &Mat4,

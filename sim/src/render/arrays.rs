@@ -27,22 +27,11 @@ pub struct PixelArrays {
 }
 
 impl Verdict {
-    /// Every verdict in code order ([`Verdict::code`]), with its name.
-    pub const NAMES: [(Self, &'static str); 7] = [
-        (Self::Unevaluated, "unevaluated"),
-        (Self::Right, "right"),
-        (Self::Wrong(Cause::Aliasing), "aliasing"),
-        (Self::Wrong(Cause::Acne), "acne"),
-        (Self::Wrong(Cause::Leak), "leak"),
-        (Self::Wrong(Cause::Detachment), "detachment"),
-        (Self::Wrong(Cause::Penumbra), "penumbra"),
-    ];
-
-    /// The verdict's code in [`PixelArrays::verdict`]: its place in
-    /// [`Verdict::NAMES`] (the codes of earlier releases kept: 2 was edge
-    /// placement, now aliasing).
+    /// The verdict's code in [`PixelArrays::verdict`]: 0 unevaluated,
+    /// 1 right, then the causes (the codes of earlier releases kept: 2 was
+    /// edge placement, now aliasing).
     #[must_use]
-    pub const fn code(self) -> u8 {
+    pub(crate) const fn code(self) -> u8 {
         match self {
             Self::Unevaluated => 0,
             Self::Right => 1,

@@ -70,12 +70,11 @@ pub enum RenderConfigError {
 pub struct Checked<'s> {
     scene: &'s Scene,
     config: RenderConfig,
-    limits: Limits,
 }
 
 /// The passes' targets, the map and the camera image, in one tile size.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Targets {
+pub struct Targets {
     /// The light pass's target (the map).
     pub(super) map: RasterConfig,
     /// The camera pass's target (the image).
@@ -93,12 +92,6 @@ impl<'s> Checked<'s> {
     #[must_use]
     pub const fn config(&self) -> &RenderConfig {
         &self.config
-    }
-
-    /// The limits it is within.
-    #[must_use]
-    pub const fn limits(&self) -> &Limits {
-        &self.limits
     }
 
     /// The targets the passes draw, in `tile`-pixel tiles.
@@ -133,7 +126,7 @@ impl RenderConfig {
 
     /// Reference rays per pixel side a render takes: the one statement of
     /// the bound, which the command line, Python and sweep files read.
-    pub const REFERENCE_RAYS: std::ops::RangeInclusive<u32> = 1..=16;
+    pub(crate) const REFERENCE_RAYS: std::ops::RangeInclusive<u32> = 1..=16;
 
     /// [`RenderConfig::REFERENCE_RAYS`] as a command-line parser's range.
     #[must_use]
@@ -145,7 +138,7 @@ impl RenderConfig {
     ///
     /// # Errors
     /// [`RenderConfigError::Depth`].
-    pub fn depth(quantity: &'static str, value: f64) -> Result<f64, RenderConfigError> {
+    pub(crate) fn depth(quantity: &'static str, value: f64) -> Result<f64, RenderConfigError> {
         if value.is_finite() && (0.0..=1.0).contains(&value) {
             Ok(value)
         } else {
@@ -160,17 +153,9 @@ impl RenderConfig {
     /// render starts.) Sweep files call it to report a mistake before
     /// anything runs.
     ///
-    /// ```
-    /// use umbra_sim::render::{Algorithm, RenderConfig, RenderConfigError};
-    /// let first = RenderConfig { algorithm: Algorithm::First, bias: 0.002, ..RenderConfig::DEFAULT };
-    /// assert!(first.checked().is_ok());
-    /// let bad = RenderConfig { bias: 1.5, ..first };
-    /// assert_eq!(bad.checked(), Err(RenderConfigError::Depth { quantity: "bias", value: 1.5 }));
-    /// ```
-    ///
     /// # Errors
     /// [`RenderConfigError`] naming the first quantity out of range.
-    pub fn checked(self) -> Result<Self, RenderConfigError> {
+    pub(crate) fn checked(self) -> Result<Self, RenderConfigError> {
         Self::depth("bias", self.bias)?;
         if let Some(hi) = self.algorithm.bias_hi() {
             Self::depth("bias1", hi)?;
@@ -242,7 +227,7 @@ impl RenderConfig {
         limits.check_triangles(triangles)?;
         let pixels = u64::from(self.width) * u64::from(self.height);
         limits.check_memory("the render", Footprint::render(pixels, self.map_size, triangles))?;
-        let checked = Checked { scene, config: self, limits: *limits };
+        let checked = Checked { scene, config: self };
         checked.targets(RasterConfig::DEFAULT_TILE_SIZE)?;
         Ok(checked)
     }

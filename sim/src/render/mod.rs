@@ -6,11 +6,11 @@
 
 pub mod arrays;
 mod config;
-pub mod costed;
+mod costed;
 pub mod files;
 pub mod params;
 pub mod pictures;
-pub mod replay;
+pub(crate) mod replay;
 mod request;
 pub mod shared;
 
@@ -24,7 +24,6 @@ use umbra_core::{DepthFormat, DepthUnit, LightPassConfig, Probe, RasterConfig, T
 pub(crate) use self::config::Targets;
 pub use self::config::{Checked, RenderConfig, RenderConfigError};
 pub use self::costed::{cost, cost_others, cost_unshadowed, render_costed};
-pub use self::params::{Kind, PARAMS, ParamError, RenderParam, Written};
 use self::replay::{PassInputs, judged};
 pub use self::request::RenderRequest;
 use crate::base::counters::Counters;
@@ -33,7 +32,7 @@ use crate::base::probes::Tee;
 use crate::input::limits::LimitError;
 use crate::pass::PassError;
 use crate::pass::algorithm::MapKind;
-pub use crate::pass::algorithm::{Algorithm, Cull, Culling};
+pub(crate) use crate::pass::algorithm::{Algorithm, Culling};
 use crate::pass::camera::{self, CameraFrame, CameraImage, CameraOptions, map_view, visibility, volumes};
 use crate::pass::light::{self, DEFAULT_BIN_CAPACITY, LightFrame, LightMaps, LightOptions, RawMaps};
 use crate::pass::occluders::silhouette_map;

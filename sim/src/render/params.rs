@@ -356,7 +356,7 @@ impl RenderParam {
     /// Its value in `request` as the command line writes it; none when
     /// the request leaves it to the scene.
     #[must_use]
-    pub fn value(&self, request: &RenderRequest) -> Option<String> {
+    pub(crate) fn value(&self, request: &RenderRequest) -> Option<String> {
         (self.get)(request)
     }
 

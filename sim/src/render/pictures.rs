@@ -29,7 +29,7 @@ fn lambert(truth: &[Option<PixelTruth>], k: usize) -> f64 {
 ///
 /// # Errors
 /// [`OutputError::Image`].
-pub fn write_shadow_image(
+pub(crate) fn write_shadow_image(
     folder: &mut OutputFolder,
     name: &str,
     image: &CameraImage,
@@ -66,7 +66,11 @@ pub fn write_shadow_image(
 ///
 /// # Errors
 /// [`OutputError::Image`].
-pub fn write_shadow_term(folder: &mut OutputFolder, name: &str, image: &CameraImage) -> Result<PathBuf, OutputError> {
+pub(crate) fn write_shadow_term(
+    folder: &mut OutputFolder,
+    name: &str,
+    image: &CameraImage,
+) -> Result<PathBuf, OutputError> {
     let pixels: Vec<u8> = image
         .pixels
         .iter()
@@ -99,7 +103,7 @@ fn colour_of(cause: Cause) -> [u8; 3] {
 
 /// Artifact pixels (acne, detachment, leaks) ringed on the error map when
 /// there are at most this many.
-pub const RINGS: usize = 2000;
+pub(crate) const RINGS: usize = 2000;
 
 /// Write the error map: every pixel's [`Verdict`] over a faint shading of
 /// the scene (light greys, lit surfaces lighter by their exact cosine to

@@ -22,7 +22,7 @@ use crate::world::scene::{LightSource, Scene};
 
 /// What a render's judge reads: the scene, the visibility it shaded (ids
 /// and camera), the map and the camera options, and the exact reference.
-pub struct PassInputs<'a, F: DepthFormat> {
+pub(crate) struct PassInputs<'a, F: DepthFormat> {
     /// The scene.
     pub scene: &'a Scene,
     /// The visible triangle of each pixel, and the camera it was seen through.
@@ -44,7 +44,7 @@ pub struct PassInputs<'a, F: DepthFormat> {
 ///
 /// # Errors
 /// [`PassError`] when the silhouette map cannot be drawn again.
-pub fn judged<F: DepthFormat>(
+pub(crate) fn judged<F: DepthFormat>(
     what: &PassInputs<'_, F>,
     pixels: &[Shaded],
     (truth, fields, reference): (&[Option<PixelTruth>], &Fields, &Reference),

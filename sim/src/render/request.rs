@@ -35,7 +35,7 @@ impl RenderRequest {
 
     /// The request of a configuration: every parameter as `cfg` has it.
     #[must_use]
-    pub fn of(cfg: &RenderConfig) -> Self {
+    pub(crate) fn of(cfg: &RenderConfig) -> Self {
         Self {
             config: *cfg,
             algo: cfg.algorithm.name(),

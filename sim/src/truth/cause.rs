@@ -69,7 +69,7 @@ pub struct Taps {
 
 impl Taps {
     /// Forget every pixel's taps.
-    pub fn clear(&mut self) {
+    pub(crate) fn clear(&mut self) {
         self.taps.clear();
         self.pixels.clear();
         self.ordinary.clear();
@@ -85,7 +85,7 @@ impl Taps {
     /// The taps that decided the pixel of column `x` in the row shaded
     /// since the last [`Taps::clear`]; empty when it was not shaded.
     #[must_use]
-    pub fn of_column(&self, x: u32) -> &[Tap] {
+    pub(crate) fn of_column(&self, x: u32) -> &[Tap] {
         // The pixels of a row are shaded left to right.
         let Ok(at) = self.pixels.binary_search_by_key(&x, |p| p.0) else { return &[] };
         let end = self.pixels.get(at + 1).map_or(self.taps.len(), |p| p.1);
@@ -203,7 +203,7 @@ fn step<F: DepthFormat>(z: f64) -> f64 {
 
 /// The exact light rays through the texel centres of a map: which surface,
 /// if any, lies in front of a receiver along each.
-pub struct Rays<'r> {
+pub(crate) struct Rays<'r> {
     reference: &'r Reference,
     inverse: DMat4,
     size: (u32, u32),
@@ -212,7 +212,7 @@ pub struct Rays<'r> {
 impl<'r> Rays<'r> {
     /// The rays of a `size` map seen through `light` (world to light clip).
     #[must_use]
-    pub fn new(reference: &'r Reference, light: &DMat4, size: (u32, u32)) -> Self {
+    pub(crate) fn new(reference: &'r Reference, light: &DMat4, size: (u32, u32)) -> Self {
         Self { reference, inverse: light.inverse(), size }
     }
 
@@ -221,7 +221,7 @@ impl<'r> Rays<'r> {
     /// (world space): the true occluder of that tap, if there is one.
     #[must_use]
     #[allow(clippy::cast_precision_loss, reason = "texel coordinates")]
-    pub fn occluder(&self, x: i64, y: i64, receiver: &[DVec3; 3]) -> Option<u32> {
+    pub(crate) fn occluder(&self, x: i64, y: i64, receiver: &[DVec3; 3]) -> Option<u32> {
         let size = (f64::from(self.size.0), f64::from(self.size.1));
         let (near, far) = camera_ray(&self.inverse, (x as f64 + 0.5, y as f64 + 0.5), size);
         let normal = (receiver[1] - receiver[0]).cross(receiver[2] - receiver[0]);

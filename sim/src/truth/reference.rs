@@ -77,13 +77,13 @@ impl Reference {
     ///
     /// # Errors
     /// [`ReferenceError`] for an empty or unusable scene.
-    pub fn of(scene: &crate::world::scene::Scene) -> Result<Self, ReferenceError> {
+    pub(crate) fn of(scene: &crate::world::scene::Scene) -> Result<Self, ReferenceError> {
         Self::with_objects(&scene.triangles(), &scene.triangle_objects())
     }
 
     /// Triangle `id` (the visibility unit's number), in f64.
     #[must_use]
-    pub fn triangle(&self, id: u32) -> Option<&[DVec3; 3]> {
+    pub(crate) fn triangle(&self, id: u32) -> Option<&[DVec3; 3]> {
         self.triangles.get(usize::try_from(id).ok()?)
     }
 
@@ -94,7 +94,7 @@ impl Reference {
     ///
     /// # Errors
     /// [`ReferenceError`] for an empty or unusable scene.
-    pub fn with_objects(scene: &[SceneTriangle], objects: &[u32]) -> Result<Self, ReferenceError> {
+    pub(crate) fn with_objects(scene: &[SceneTriangle], objects: &[u32]) -> Result<Self, ReferenceError> {
         let triangles: Vec<[DVec3; 3]> = scene.iter().map(|t| t.positions.map(|p| p.as_dvec3())).collect();
         let usable: Vec<(usize, &[DVec3; 3])> = triangles
             .iter()
@@ -127,7 +127,7 @@ impl Reference {
     /// front of a receiver at `to`, seen from `from`; `None` when nothing
     /// lies there.
     #[must_use]
-    pub fn first_on(&self, from: DVec3, to: DVec3) -> Option<u32> {
+    pub(crate) fn first_on(&self, from: DVec3, to: DVec3) -> Option<u32> {
         let d = to - from;
         let length = d.length();
         if !(length.is_finite() && length > self.epsilon * 64.0) {
@@ -152,7 +152,7 @@ impl Reference {
     /// The object that hides point `p` from the light (`None` when the
     /// point sees it).
     #[must_use]
-    pub fn occluder_of(&self, p: DVec3, light: &LightSource) -> Option<u32> {
+    pub(crate) fn occluder_of(&self, p: DVec3, light: &LightSource) -> Option<u32> {
         let (ray, max) = self.towards_light(p, light);
         let hit = self.mesh.cast_local_ray_and_get_normal(&ray, max, false)?;
         Some(self.object_of(hit.subshape))
@@ -161,7 +161,7 @@ impl Reference {
     /// Whether the point `p` of a surface with normal `n` sees the light.
     /// `None` when the surface faces away from it.
     #[must_use]
-    pub fn sees_light(&self, p: DVec3, n: DVec3, light: &LightSource) -> Option<bool> {
+    pub(crate) fn sees_light(&self, p: DVec3, n: DVec3, light: &LightSource) -> Option<bool> {
         if n.dot(light.towards(p).0) <= 0.0 {
             return None;
         }
@@ -177,7 +177,7 @@ impl Reference {
     /// Whether a surface lies on the segment from `from` to just short of
     /// `to` ([`Reference::first_on`]).
     #[must_use]
-    pub fn blocked(&self, from: DVec3, to: DVec3) -> bool {
+    pub(crate) fn blocked(&self, from: DVec3, to: DVec3) -> bool {
         self.first_on(from, to).is_some()
     }
 
@@ -260,7 +260,7 @@ impl Reference {
 /// the light's with the map as the target): its points on the near and
 /// far planes.
 #[must_use]
-pub fn camera_ray(inverse: &DMat4, (sx, sy): (f64, f64), (w, h): (f64, f64)) -> (DVec3, DVec3) {
+pub(crate) fn camera_ray(inverse: &DMat4, (sx, sy): (f64, f64), (w, h): (f64, f64)) -> (DVec3, DVec3) {
     let ndc = |z: f64| {
         let v = *inverse * DVec4::new(2.0 * sx / w - 1.0, 1.0 - 2.0 * sy / h, z, 1.0);
         v.truncate() / v.w
@@ -272,7 +272,7 @@ pub fn camera_ray(inverse: &DMat4, (sx, sy): (f64, f64), (w, h): (f64, f64)) -> 
 /// triangle `tri`, and the plane's normal on the side the camera sees;
 /// `None` for a ray along the plane.
 #[must_use]
-pub fn surface_point(
+pub(crate) fn surface_point(
     inverse: &DMat4,
     (sx, sy): (f64, f64),
     (w, h): (f64, f64),

@@ -3,6 +3,6 @@
 //! casts shadows with (Sen et al.'s silhouette edges and volumes).
 
 pub mod mesh;
-pub mod occluders;
+pub(crate) mod occluders;
 pub mod scene;
 pub mod scene_file;

@@ -13,7 +13,7 @@ use crate::world::scene::{Light, Scene};
 
 /// One occluder triangle, turned to face the light.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Occluder {
+pub(crate) struct Occluder {
     /// World positions, counter-clockwise seen from the light.
     pub positions: [Vec3; 3],
     /// Whether edge `k` (`positions[k] → positions[k + 1]`) is a silhouette
@@ -23,7 +23,7 @@ pub struct Occluder {
 
 /// The occluders of a scene under its light.
 #[derive(Clone, Debug, Default, PartialEq)]
-pub struct Occluders {
+pub(crate) struct Occluders {
     /// Every occluder triangle.
     pub triangles: Vec<Occluder>,
 }
@@ -50,7 +50,7 @@ impl Occluders {
     /// triangle, turned to face the light (they cast shadows from both
     /// sides). Triangles edge-on to the light are left out.
     #[must_use]
-    pub fn new(scene: &Scene) -> Self {
+    pub(crate) fn new(scene: &Scene) -> Self {
         let light = scene.light();
         let mut triangles = Vec::new();
         for o in &scene.objects {
@@ -82,7 +82,7 @@ impl Occluders {
     /// Each silhouette edge once (a fold of an open surface is a side of
     /// both its triangles), in a fixed order.
     #[must_use]
-    pub fn silhouette_edges(&self) -> Vec<[Vec3; 2]> {
+    pub(crate) fn silhouette_edges(&self) -> Vec<[Vec3; 2]> {
         let mut seen = std::collections::HashSet::new();
         let mut edges = Vec::new();
         for t in &self.triangles {

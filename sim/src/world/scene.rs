@@ -113,18 +113,9 @@ impl Light {
         }
     }
 
-    /// Where the light is (for a directional light, a point on its side).
-    #[must_use]
-    pub fn position(&self) -> Vec3 {
-        match self {
-            Self::Spot(p) => p.position,
-            Self::Directional(o) => o.position,
-        }
-    }
-
     /// The direction the light shines in (from the light into the scene).
     #[must_use]
-    pub fn direction(&self) -> Vec3 {
+    pub(crate) fn direction(&self) -> Vec3 {
         match self {
             Self::Spot(p) => p.target - p.position,
             Self::Directional(o) => o.target - o.position,
@@ -224,7 +215,7 @@ impl Scene {
     /// One draw call per object, culled by whether the object is solid
     /// (Weiskopf & Ertl cull solids and leave open surfaces two-sided).
     #[must_use]
-    pub fn draws_culled(&self, transform: Mat4, cull: impl Fn(bool) -> CullMode) -> Vec<Draw<'_>> {
+    pub(crate) fn draws_culled(&self, transform: Mat4, cull: impl Fn(bool) -> CullMode) -> Vec<Draw<'_>> {
         self.objects
             .iter()
             .map(|o| Draw {

@@ -4,12 +4,13 @@
 
 use umbra::core::glam::Vec4;
 use umbra::core::{CullMode, D16, D24, DepthFormat, DepthFormatKind, DepthUnit, LightPassConfig, RasterConfig};
+use umbra::sim::Algorithm;
 use umbra::sim::cost::arch::Arch;
-use umbra::sim::cost::arch::file::BUNDLED;
+use umbra::sim::cost::arch::BUNDLED;
 use umbra::sim::cost::timing::{ArchProbe, PassKind};
 use umbra::sim::cost::work::{Bottleneck, PassTiming, Stage};
 use umbra::sim::input::limits::Limits;
-use umbra::sim::render::{Algorithm, RenderConfig, cost};
+use umbra::sim::render::{RenderConfig, cost};
 use umbra::sim::world::scene::Scene;
 
 use crate::common::{run, triangles};
@@ -452,7 +453,7 @@ fn assert_timeline(events: &[serde_json::Value], pid: usize, r: &umbra::sim::cos
 fn every_architecture_s_timeline_nests_in_its_passes() {
     let (scene, mut cfg) = super::bound::small();
     cfg.algorithm = Algorithm::Silhouette { packed: false };
-    let reports: Vec<_> = umbra::sim::cost::arch::file::BUNDLED
+    let reports: Vec<_> = umbra::sim::cost::arch::BUNDLED
         .iter()
         .map(|(name, _)| cfg.check(&scene, &Limits::DEFAULT).and_then(|job| cost(&job, &bundled(name))).expect("costs"))
         .collect();

@@ -2,8 +2,8 @@
 //! the record outputs carry; a corrupted copy names its file, key and
 //! problem; overrides read their units.
 
-use umbra::sim::cost::arch::file::{BUNDLED, PARAMS, Problem, Value};
 use umbra::sim::cost::arch::{Arch, ArchError};
+use umbra::sim::cost::arch::{BUNDLED, PARAMS, Problem, Value};
 
 #[test]
 fn every_bundled_file_parses_and_round_trips() {

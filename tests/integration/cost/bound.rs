@@ -7,12 +7,13 @@ use std::collections::HashMap;
 
 use umbra::core::shadow::Filter;
 use umbra::core::{D24, DepthFormatKind, DepthUnit};
+use umbra::sim::Algorithm;
 use umbra::sim::cost::arch::Arch;
 use umbra::sim::cost::cache::Cache;
 use umbra::sim::cost::report::{Comparison, CostReport};
 use umbra::sim::cost::work::Bottleneck;
 use umbra::sim::input::limits::Limits;
-use umbra::sim::render::{Algorithm, RenderConfig, cost};
+use umbra::sim::render::{RenderConfig, cost};
 use umbra::sim::world::scene::Scene;
 
 use super::arch::{bundled, close, pass, quad};

@@ -6,30 +6,12 @@
 
 use umbra::core::DepthFormatKind;
 use umbra::core::shadow::Filter;
+use umbra::sim::Algorithm;
 use umbra::sim::cost::arch::Arch;
-use umbra::sim::experiment::correlation::{BUNDLED, Dataset, Kind, Role, Stats, run};
+use umbra::sim::experiment::correlation::{BUNDLED, Dataset, Kind, Role, run};
 use umbra::sim::input::limits::Limits;
-use umbra::sim::render::{Algorithm, RenderConfig, cost};
+use umbra::sim::render::{RenderConfig, cost};
 use umbra::sim::world::scene::Scene;
-
-#[test]
-fn statistics_as_worked_by_hand() {
-    // Errors +10 %, −20 %, +50 %.
-    let s = Stats::of(&[(110.0, 100.0), (80.0, 100.0), (30.0, 20.0)], true);
-    assert_eq!(s.points, 3);
-    assert!((s.mean_absolute_error_percent - 80.0 / 3.0).abs() < 1e-9);
-    // Means 73.33 both; Σdpdm = 3466.67, Σdp² = 3266.67, Σdm² = 4266.67.
-    let (sxy, sxx, syy) = (10_400.0 / 3.0, 9_800.0 / 3.0, 12_800.0 / 3.0);
-    assert!((s.pearson_r.expect("one unit") - sxy / f64::sqrt(sxx * syy)).abs() < 1e-9);
-    assert!((s.pearson_r.expect("r") - 0.928_571_4).abs() < 1e-6);
-    // √((10² + 20² + 10²)/3) / 73.33 = 19.28 %.
-    assert!((s.nrmse_percent.expect("one unit") - 19.284_730).abs() < 1e-5);
-    assert_eq!((s.within_10_percent, s.within_25_percent, s.over, s.under), (1, 2, 2, 1));
-    // Points of different units: no r, no NRMSE.
-    let mixed = Stats::of(&[(110.0, 100.0), (80.0, 100.0)], false);
-    assert_eq!((mixed.pearson_r, mixed.nrmse_percent), (None, None));
-    assert_eq!(Stats::of(&[], true).points, 0);
-}
 
 #[test]
 fn the_datasets_hold_their_sources_numbers() {

@@ -5,9 +5,10 @@
 
 use umbra::core::DepthFormatKind;
 use umbra::core::shadow::Filter;
+use umbra::sim::Algorithm;
 use umbra::sim::cost::arch::Arch;
 use umbra::sim::input::limits::Limits;
-use umbra::sim::render::{Algorithm, RenderConfig, TruthSource, cost, render, render_costed};
+use umbra::sim::render::{RenderConfig, TruthSource, cost, render, render_costed};
 use umbra::sim::world::scene::Scene;
 
 #[test]

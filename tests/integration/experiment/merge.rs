@@ -5,10 +5,10 @@
 
 use std::path::{Path, PathBuf};
 
+use umbra::sim::Algorithm;
 use umbra::sim::experiment::study::{self, Manifest, Row, Shard, Spec, StudyError, Variant};
 use umbra::sim::input::limits::Limits;
 use umbra::sim::output::folder::RunManifest;
-use umbra::sim::render::Algorithm;
 
 fn dir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("umbra-merge-{}-{name}", std::process::id()));

@@ -8,9 +8,10 @@
 use std::path::Path;
 
 use indicatif::ProgressBar;
+use umbra::sim::Algorithm;
 use umbra::sim::experiment::plan::{Plan, PlanSpec, plan};
 use umbra::sim::input::limits::Limits;
-use umbra::sim::render::{Algorithm, TruthSource, cost, render, truth};
+use umbra::sim::render::{TruthSource, cost, render, truth};
 use umbra::sim::world::scene::Scene;
 use umbra::sim::world::scene_file::BUNDLED;
 

@@ -7,11 +7,12 @@ use std::path::{Path, PathBuf};
 
 use umbra::core::DepthFormatKind;
 use umbra::core::shadow::Filter;
+use umbra::sim::Algorithm;
 use umbra::sim::cost::arch::Arch;
 use umbra::sim::experiment::study::{self, Manifest, Shard, Spec, Variant, jittered};
 use umbra::sim::input::limits::Limits;
 use umbra::sim::render::shared::{ImageShare, LightKey, LightShare, Scratch, render_shared, shares};
-use umbra::sim::render::{Algorithm, RenderConfig, TruthSource, render_costed, truth};
+use umbra::sim::render::{RenderConfig, TruthSource, render_costed, truth};
 use umbra::sim::world::scene::Scene;
 
 /// `$body` with `$F` the depth-format type `$kind` names.

@@ -7,12 +7,12 @@
 use std::path::{Path, PathBuf};
 
 use umbra::core::DepthFormatKind;
+use umbra::sim::Algorithm;
 use umbra::sim::cost::arch::Arch;
 use umbra::sim::experiment::study::extremes::{self, RATIOS};
 use umbra::sim::experiment::study::plot::pareto_front;
 use umbra::sim::experiment::study::{self, Manifest, Row, Shard, Spec, Status, Variant};
 use umbra::sim::input::limits::Limits;
-use umbra::sim::render::Algorithm;
 use umbra::sim::world::scene::Scene;
 
 /// A folder of this test process for `name`, emptied.

@@ -34,7 +34,7 @@ fn row(
             bias1: None,
             offset: None,
             virtual_samples: Some(true),
-            culling: umbra::sim::render::Culling::ALGORITHM,
+            culling: umbra::sim::Culling::ALGORITHM,
             depth_format: umbra::core::DepthFormatKind::D16,
             map_side_texels: 256,
             filter_name: umbra::core::shadow::Filter::Point,

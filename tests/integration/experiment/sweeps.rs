@@ -2,9 +2,10 @@
 //! study writes; a user's file with an architecture-parameter axis and a
 //! scene beside it loads; a bad file is refused naming its key.
 
+use umbra::sim::Algorithm;
+use umbra::sim::Culling;
 use umbra::sim::experiment::study::{SweepFile, Variant};
 use umbra::sim::input::limits::Limits;
-use umbra::sim::render::{Algorithm, Culling};
 
 fn dir(name: &str) -> std::path::PathBuf {
     let d = std::env::temp_dir().join(format!("umbra-sweeps-{}-{name}", std::process::id()));

@@ -2,7 +2,13 @@
 //! reads them from the declaration, and a configuration written back by
 //! the command that renders it again reads back the same.
 
-use umbra::sim::render::{Kind, PARAMS, ParamError, RenderError, RenderParam, RenderRequest};
+use umbra::sim::render::{RenderError, RenderRequest};
+
+use umbra::sim::render::params::Kind;
+
+use umbra::sim::render::params::ParamError;
+
+use umbra::sim::render::params::RenderParam;
 use umbra::sim::{Algorithm, Culling, Limits, RenderConfig, Scene};
 
 /// The defaults, worked by hand from the papers' set-up the README names:
@@ -67,23 +73,6 @@ fn a_bad_value_names_the_parameter() {
     }
     // The request, untouched by what it refused, is still the default.
     assert_eq!(r, RenderRequest::DEFAULT);
-}
-
-/// Every parameter is a column of the study's schema with its unit and
-/// meaning, and the rows' schema holds no configuration column the table
-/// does not declare.
-#[test]
-fn every_parameter_is_a_schema_column() {
-    let columns = umbra::sim::experiment::study::schema::columns();
-    for p in PARAMS {
-        let c = columns.iter().find(|c| c.0 == p.column).unwrap_or_else(|| panic!("{} has no column", p.name));
-        assert_eq!((c.1, c.2, c.3), (p.kind.column_type(), p.unit, p.meaning), "{}", p.name);
-    }
-    assert_eq!(
-        PARAMS.len(),
-        12,
-        "the parameters: algo, bias1, offset, depth, map, filter, bias, width, height, rays, virtual samples, cull"
-    );
 }
 
 /// The check happens once, in `RenderConfig::check`, and covers the

@@ -5,8 +5,9 @@ use indicatif::ProgressBar;
 use umbra::core::DepthFormatKind;
 use umbra::core::glam::{Mat4, Vec3};
 use umbra::core::shadow::Filter;
+use umbra::sim::Algorithm;
 use umbra::sim::input::limits::Limits;
-use umbra::sim::render::{Algorithm, Render, RenderConfig, TruthSource, render};
+use umbra::sim::render::{Render, RenderConfig, TruthSource, render};
 use umbra::sim::world::mesh::Mesh;
 use umbra::sim::world::scene::{Light, Object, Orthographic, Perspective, Scene};
 

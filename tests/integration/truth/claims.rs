@@ -9,9 +9,9 @@
 
 use umbra::core::DepthFormatKind;
 use umbra::core::shadow::{Filter, Jitter, MapCoord};
+use umbra::sim::Algorithm;
 use umbra::sim::experiment::study::{self, Row, RowMetrics, Shard, Spec, Status, UNLIMITED_OFFSET, Variant};
 use umbra::sim::input::limits::Limits;
-use umbra::sim::render::Algorithm;
 use umbra::sim::world::scene::{Light, Scene};
 
 /// A metrics-only sweep of one bundled scene at `size` (width, height,

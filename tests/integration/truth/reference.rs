@@ -125,8 +125,9 @@ fn the_reference_does_not_depend_on_the_thread_count() {
 /// and shadow volumes.
 #[test]
 fn a_renders_own_reference_is_the_shared_one() {
+    use umbra::sim::Algorithm;
     use umbra::sim::input::limits::Limits;
-    use umbra::sim::render::{Algorithm, RenderConfig, TruthSource, render, truth};
+    use umbra::sim::render::{RenderConfig, TruthSource, render, truth};
     let scene = Scene::bundled("weiskopf-l").expect("bundled");
     let shared = truth(&scene, 96, 72, 2, &indicatif::ProgressBar::hidden()).expect("a reference");
     assert!(shared.iter().flatten().any(|t| t.faces_light));

@@ -7,8 +7,9 @@ use std::path::Path;
 
 use umbra::core::DepthFormatKind;
 use umbra::core::shadow::Filter;
+use umbra::sim::Algorithm;
 use umbra::sim::input::limits::{LimitError, Limits};
-use umbra::sim::render::{Algorithm, RenderConfig, RenderError, TruthSource, render};
+use umbra::sim::render::{RenderConfig, RenderError, TruthSource, render};
 use umbra::sim::world::mesh::{Mesh, MeshError};
 use umbra::sim::world::scene::Scene;
 use umbra::sim::world::scene_file::{Problem, SceneError};

@@ -46,7 +46,7 @@ impl Figure {
 /// (infinite at zero latency).
 #[must_use]
 #[allow(clippy::cast_precision_loss, reason = "counts and sizes below 2^53")]
-pub fn latency_ceiling(in_flight: u64, bytes: u64, latency: f64) -> f64 {
+pub(crate) fn latency_ceiling(in_flight: u64, bytes: u64, latency: f64) -> f64 {
     if latency > 0.0 { in_flight as f64 * bytes as f64 / latency } else { f64::INFINITY }
 }
 
@@ -54,14 +54,14 @@ impl Arch {
     /// The DRAM bandwidth the machine can sustain: its bandwidth, or the
     /// latency ceiling when that is lower.
     #[must_use]
-    pub fn achievable_bandwidth(&self) -> f64 {
+    pub(crate) fn achievable_bandwidth(&self) -> f64 {
         self.dram.bandwidth.min(self.dram_latency_ceiling())
     }
 
     /// The DRAM bandwidth the requests kept in flight sustain at the
     /// latency (Little's law): `requests_in_flight × burst / latency`.
     #[must_use]
-    pub fn dram_latency_ceiling(&self) -> f64 {
+    pub(crate) fn dram_latency_ceiling(&self) -> f64 {
         latency_ceiling(self.dram.requests_in_flight, self.dram.burst, self.dram.latency)
     }
 
@@ -217,7 +217,7 @@ fn cache_figures(prefix: &'static str, c: &CacheParams, latency: f64) -> Vec<Fig
 
 /// One difference: a key's or a figure's name, then `a`'s and `b`'s value
 /// as text.
-pub type Difference = (&'static str, String, String);
+pub(crate) type Difference = (&'static str, String, String);
 
 /// The differences between `a` and `b`: every key whose value differs,
 /// then every derived figure that differs.

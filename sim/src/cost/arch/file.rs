@@ -11,16 +11,14 @@ use std::path::Path;
 
 use crate::input::limits::Limits;
 
-pub use super::keys::{PARAMS, Param, Problem, Unit, Value, column};
-use super::keys::{from_text, from_toml};
-pub use super::machine::{Arch, Calibration};
-pub use super::presets::BUNDLED;
-pub use super::units::{Bins, CacheParams, DepthRates, DramParams, Energy, Front, OnChip, Raster, Shade, ShadowRates};
+use super::keys::{PARAMS, Problem, Unit, Value, from_text, from_toml};
+use super::machine::{Arch, Calibration};
+use super::presets::BUNDLED;
 
 /// The largest cache an architecture may have, bytes: the model keeps a
 /// tag per line, so a cache's model takes at most 64 MiB / 16 B × 25 B =
 /// 100 MiB of memory.
-pub const MAX_CACHE_BYTES: u64 = 64 << 20;
+pub(crate) const MAX_CACHE_BYTES: u64 = 64 << 20;
 /// The smallest and largest cache line, bytes.
 const MIN_LINE: u64 = 16;
 const MAX_LINE: u64 = 4096;
@@ -191,7 +189,7 @@ impl Arch {
     ///
     /// # Errors
     /// The problem: an unknown key, or a value of the wrong unit or range.
-    pub fn assign(&mut self, key: &str, value: &str) -> Result<(), Problem> {
+    pub(crate) fn assign(&mut self, key: &str, value: &str) -> Result<(), Problem> {
         let p = PARAMS.iter().find(|p| p.key == key).ok_or(Problem::Unknown)?;
         from_text(p.unit, value).and_then(|v| p.assign(self, v))
     }
@@ -207,7 +205,7 @@ impl Arch {
     ///
     /// # Errors
     /// The key and the problem.
-    pub fn check(&self) -> Result<(), (&'static str, Problem)> {
+    pub(crate) fn check(&self) -> Result<(), (&'static str, Problem)> {
         let positive = |key: &'static str, v: f64| {
             if v > 0.0 { Ok(()) } else { Err((key, Problem::Range { value: v, what: "positive" })) }
         };

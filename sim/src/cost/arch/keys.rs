@@ -90,7 +90,7 @@ impl Unit {
     /// (`bytes`, `bytes_per_second`, `hertz`, `seconds`, `joules`); empty
     /// for counts, numbers, flags and text.
     #[must_use]
-    pub const fn si_name(self) -> &'static str {
+    pub(crate) const fn si_name(self) -> &'static str {
         match self {
             Self::Text | Self::Flag | Self::Count | Self::Number => "",
             Self::Bytes => "bytes",
@@ -104,7 +104,7 @@ impl Unit {
     /// The symbol of the SI base unit a value is held in (`B`, `B/s`,
     /// `Hz`, `s`, `J`); `-` for counts, numbers, flags and text.
     #[must_use]
-    pub const fn symbol(self) -> &'static str {
+    pub(crate) const fn symbol(self) -> &'static str {
         match self {
             Self::Text | Self::Flag | Self::Count | Self::Number => "-",
             Self::Bytes => "B",
@@ -428,7 +428,7 @@ impl Unit {
     /// Write `v` (in the base) with the largest suffix that reads back to
     /// the same bits.
     #[must_use]
-    pub fn write(self, v: f64) -> String {
+    pub(crate) fn write(self, v: f64) -> String {
         for &(s, scale) in self.suffixes() {
             let scaled = v / scale;
             let text = format!("{scaled}{s}");

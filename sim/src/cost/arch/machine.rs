@@ -63,19 +63,19 @@ impl Arch {
     /// How the passes walk the target on this machine: its tiles, and draw
     /// by draw when it is immediate-mode.
     #[must_use]
-    pub const fn tiling(&self) -> crate::base::maps::Tiling {
+    pub(crate) const fn tiling(&self) -> crate::base::maps::Tiling {
         crate::base::maps::Tiling { tile: self.raster.tile, per_draw: self.immediate() }
     }
 
     /// Bytes DRAM moves per clock.
     #[must_use]
-    pub fn bytes_per_cycle(&self) -> f64 {
+    pub(crate) fn bytes_per_cycle(&self) -> f64 {
         self.dram.bandwidth / self.clock
     }
 
     /// DRAM latency in clocks.
     #[must_use]
-    pub fn latency_cycles(&self) -> f64 {
+    pub(crate) fn latency_cycles(&self) -> f64 {
         self.dram.latency * self.clock
     }
 }

@@ -3,13 +3,15 @@
 //! ([`derived`]).
 
 pub mod derived;
-pub mod file;
+mod file;
 mod keys;
 mod machine;
 mod presets;
 mod units;
 
 pub use file::ArchError;
-pub use keys::{Problem, Unit};
+pub(crate) use keys::column;
+pub use keys::{PARAMS, Param, Problem, Unit, Value};
 pub use machine::{Arch, Calibration};
-pub use units::CacheParams;
+pub use presets::BUNDLED;
+pub(crate) use units::CacheParams;

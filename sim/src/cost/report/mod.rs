@@ -9,7 +9,7 @@ pub mod files;
 mod stats;
 mod trace;
 
-pub use compare::{Compared, Comparison};
+pub use compare::Comparison;
 pub use stats::StatUnit;
 pub use trace::trace;
 
@@ -159,7 +159,7 @@ impl CostReport {
     /// rendered with `config` (described in words), whose filter takes
     /// `samples_per_pixel` depth samples.
     #[must_use]
-    pub fn new<const L: bool, const C: bool>(
+    pub(crate) fn new<const L: bool, const C: bool>(
         (scene, config): (&str, String),
         light: &ArchProbe<L>,
         camera: &ArchProbe<C>,
@@ -368,7 +368,7 @@ impl CostReport {
     /// Every cache a pass used: the pass, the cache's name (capitalised, as
     /// a line begins), its statistics.
     #[must_use]
-    pub fn caches(&self) -> Vec<(&'static str, &'static str, CacheStats)> {
+    pub(crate) fn caches(&self) -> Vec<(&'static str, &'static str, CacheStats)> {
         let mut out = Vec::new();
         for (pass, t) in [("light", &self.light), ("camera", &self.camera)] {
             for (name, c) in [("Map cache", t.map_cache), ("Depth cache", t.depth_cache)] {

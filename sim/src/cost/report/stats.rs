@@ -38,7 +38,7 @@ pub enum StatUnit {
 impl StatUnit {
     /// Its symbol, as the stats file writes it.
     #[must_use]
-    pub const fn symbol(self) -> &'static str {
+    pub(crate) const fn symbol(self) -> &'static str {
         match self {
             Self::Count => "count",
             Self::Cycles => "cycles",

@@ -48,7 +48,7 @@ impl CostReport {
     /// bandwidth or latency) in its arguments; the DRAM shared by the front
     /// end and the tiles, when it outlasts them; and the units after the
     /// tiles. A DRAM-bandwidth counter. Times in microseconds at the clock.
-    pub fn timeline(&self, pid: usize, events: &mut Vec<Value>) -> usize {
+    pub(crate) fn timeline(&self, pid: usize, events: &mut Vec<Value>) -> usize {
         let a = &self.arch;
         let us = |cycles: f64| cycles / a.clock * 1e6;
         events.push(json!({ "name": "process_name", "ph": "M", "pid": pid, "args": { "name": format!("{} on {}", self.scene, a.name) } }));

@@ -31,7 +31,7 @@ pub enum PassKind {
 }
 
 /// Bytes of one shaded pixel's colour written to the frame buffer.
-pub const COLOUR_BYTES: u64 = 4;
+pub(crate) const COLOUR_BYTES: u64 = 4;
 
 /// Where a pass timed per draw is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -150,7 +150,7 @@ impl<const D: bool> ArchProbe<D> {
     /// of `silhouette_bytes`, through the map cache, with a filter of
     /// `filter.0` samples (bilinearly weighted when `filter.1`).
     #[must_use]
-    pub fn reading(mut self, buffers: u32, bytes: u32, silhouette_bytes: u32, filter: (u64, bool)) -> Self {
+    pub(crate) fn reading(mut self, buffers: u32, bytes: u32, silhouette_bytes: u32, filter: (u64, bool)) -> Self {
         self.lookups = true;
         self.filter = filter;
         self.map_cache =
@@ -367,7 +367,7 @@ impl<const D: bool> ArchProbe<D> {
     /// and a write a texel, one fragment a texel), the silhouette pass,
     /// and the depth cache's final write-back.
     #[must_use]
-    pub fn tail(&self) -> [(&'static str, Work); 3] {
+    pub(crate) fn tail(&self) -> [(&'static str, Work); 3] {
         let mut combine = Work::default();
         if self.passes > 1 {
             let texels = self.raster.texel_count() as u64;
@@ -384,7 +384,7 @@ impl<const D: bool> ArchProbe<D> {
     /// Tiles a row of the pass's target, when it is timed per tile (row
     /// major); `None` when it is timed per draw.
     #[must_use]
-    pub const fn tiles_across(&self) -> Option<usize> {
+    pub(crate) const fn tiles_across(&self) -> Option<usize> {
         if self.per_draw { None } else { Some(self.across) }
     }
 
@@ -451,7 +451,7 @@ pub struct Dram {
 impl Dram {
     /// Every purpose's bytes with its name, in declaration order.
     #[must_use]
-    pub const fn fields(&self) -> [(&'static str, u64); 11] {
+    pub(crate) const fn fields(&self) -> [(&'static str, u64); 11] {
         [
             ("map_writes", self.map_writes),
             ("map_rmw_reads", self.map_rmw_reads),
@@ -465,29 +465,5 @@ impl Dram {
             ("volume_depth_reads", self.volume_depth_reads),
             ("stencil", self.stencil),
         ]
-    }
-
-    /// Every byte that crossed the DRAM interface: map reads as fetched
-    /// through the map cache when there is one.
-    #[must_use]
-    pub const fn total(&self, map_cached: bool) -> u64 {
-        let map = if map_cached { self.map_fetched } else { self.map_reads + self.silhouette_reads };
-        self.map_writes
-            + self.map_rmw_reads
-            + self.depth_rmw
-            + map
-            + self.colour
-            + self.bins
-            + self.silhouette_writes
-            + self.volume_depth_reads
-            + self.stencil
-    }
-
-    /// The camera pass's shadow traffic: map (as fetched), silhouette
-    /// points, volume depth and stencil.
-    #[must_use]
-    pub const fn shadow_bytes(&self, map_cached: bool) -> u64 {
-        let map = if map_cached { self.map_fetched } else { self.map_reads + self.silhouette_reads };
-        map + self.volume_depth_reads + self.stencil
     }
 }

@@ -71,7 +71,7 @@ pub enum Measure {
 impl Measure {
     /// The unit of its values.
     #[must_use]
-    pub const fn unit(self) -> &'static str {
+    pub(crate) const fn unit(self) -> &'static str {
         match self {
             Self::Frame => "fps",
             Self::Fill => "pixels/s",
@@ -345,7 +345,7 @@ fn simulate(point: &Point, scene: &Scene, arch: &Arch, limits: &Limits) -> Resul
 
 /// Resolves an architecture's name and a point's overrides to the
 /// architecture (the bundled one, or a file standing in for it).
-pub type ArchResolver<'a> = dyn Fn(&str, &[String]) -> Result<Arch, String> + Sync + 'a;
+pub(crate) type ArchResolver<'a> = dyn Fn(&str, &[String]) -> Result<Arch, String> + Sync + 'a;
 
 /// Simulate every point of `datasets`, each architecture resolved by
 /// `arch` (a name, then the point's overrides), and compare.

@@ -196,7 +196,7 @@ fn curve<'a>(rows: &'a [Row], algorithm: &'a str, format: DepthFormatKind) -> im
 
 /// A misclassified percentage beyond which the near/far sweep counts a
 /// format as broken down: 1 point above what it scores at ratio 10.
-pub const BREAKDOWN_POINTS: f64 = 1.0;
+pub(crate) const BREAKDOWN_POINTS: f64 = 1.0;
 
 /// The smallest swept ratio at which `algorithm` in `format` misclassifies
 /// [`BREAKDOWN_POINTS`] more than at ratio 10; `None` if it never does.
@@ -288,7 +288,7 @@ fn cell(r: &Row) -> String {
 /// `z/w`, whose steps near 1 are 2⁻²⁴ as well: its curves lie on d24's),
 /// each named with its breakdown ratio.
 #[must_use]
-pub fn precision_series(rows: &[Row]) -> Vec<Series> {
+pub(crate) fn precision_series(rows: &[Row]) -> Vec<Series> {
     let mut out = Vec::new();
     for a in variants().iter().map(|v| v.algorithm.name()) {
         for f in [DepthFormatKind::D16, DepthFormatKind::D24] {

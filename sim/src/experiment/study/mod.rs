@@ -40,20 +40,33 @@ mod summary;
 mod sweep;
 mod sweep_file;
 
-pub use request::{Outcome, Overrides, Prepared, Request, choose_archs, image_size, no_repeats};
-pub use row::{Row, RowConfig, RowCost, RowMetrics, Status};
+pub use request::Outcome;
+pub use request::Overrides;
+pub use request::Request;
+pub use request::choose_archs;
+pub use request::no_repeats;
+pub use row::Row;
+pub use row::RowConfig;
+pub use row::RowCost;
+pub use row::RowMetrics;
+pub use row::Status;
+pub use run::run;
 use run::sort_rows;
-pub use run::{Truth, load_scenes, render_config, run, run_config, run_unshared, truth_of};
+pub use run::{Truth, load_scenes, render_config, run_config, run_unshared, truth_of};
+pub use shards::Manifest;
+pub use shards::ShardState;
 use shards::jsonl;
-pub use shards::{
-    Manifest, ShardFolder, ShardState, ShardStatus, already_complete, finish, invalid, merge, read_rows, status,
-    write_partial, write_run,
-};
-pub use summary::{slug, summary, table, write_outputs};
-pub use sweep::{
-    ArchPoint, Config, Layout, MAX_ARCHITECTURES, MAX_CONFIGURATIONS, Shard, Spec, UNLIMITED_OFFSET, Variant, jittered,
-};
-pub use sweep_file::{BUNDLED_SWEEPS, SweepError, SweepFile};
+pub use shards::merge;
+pub use shards::status;
+pub use shards::{ShardFolder, already_complete, finish, invalid, read_rows, write_partial, write_run};
+pub use summary::table;
+pub use summary::{slug, summary, write_outputs};
+pub use sweep::Shard;
+pub use sweep::Spec;
+pub use sweep::Variant;
+pub use sweep::{ArchPoint, Config, Layout, MAX_ARCHITECTURES, MAX_CONFIGURATIONS, UNLIMITED_OFFSET, jittered};
+pub(crate) use sweep_file::SweepError;
+pub use sweep_file::SweepFile;
 
 /// The distinct `values`, in order of first appearance (scenes, families,
 /// architecture points as the rows list them).
@@ -69,13 +82,13 @@ fn distinct<T: PartialEq>(values: impl IntoIterator<Item = T>) -> Vec<T> {
 
 /// Most error budgets a study takes (each is a line on every plot and a
 /// column of every table).
-pub const MAX_BUDGETS: usize = 16;
+pub(crate) const MAX_BUDGETS: usize = 16;
 
 /// Why a list of error budgets is unusable, if it is: more than
 /// [`MAX_BUDGETS`], a value that is not a percentage in (0, 100], or one
 /// given twice. The message names the offending entry by its index.
 #[must_use]
-pub fn budgets_problem(budgets: &[f64]) -> Option<(usize, String)> {
+pub(crate) fn budgets_problem(budgets: &[f64]) -> Option<(usize, String)> {
     if budgets.len() > MAX_BUDGETS {
         return Some((MAX_BUDGETS, format!("{} budgets; at most {MAX_BUDGETS}", budgets.len())));
     }

@@ -7,7 +7,7 @@
 //! axes written canonically ([`Overrides::canonical`]): the same request
 //! spelled in another order of flags, or by another host, hashes the same.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use indicatif::ProgressBar;
 use umbra_core::RasterConfig;
@@ -294,11 +294,5 @@ impl Prepared {
         finish(folder, &manifest)?;
         let summary = (shard == Shard::ALL).then(|| summary(&rows, &manifest));
         Ok(Outcome::Ran { rows, manifest, summary, extremes })
-    }
-
-    /// The output folder.
-    #[must_use]
-    pub fn out(&self) -> &Path {
-        &self.out
     }
 }

@@ -23,7 +23,7 @@ use crate::truth::metrics::Metrics;
 
 /// A row's column: name, type (`integer`, `number`, `text`, `boolean`),
 /// unit (`-` for none) and meaning.
-pub type Column = (&'static str, &'static str, &'static str, &'static str);
+pub(crate) type Column = (&'static str, &'static str, &'static str, &'static str);
 
 /// Declares a block of a row's columns, each once: its field and Rust
 /// type, its type, unit and meaning in the schema, and its value from the
@@ -32,22 +32,22 @@ pub type Column = (&'static str, &'static str, &'static str, &'static str);
 macro_rules! columns {
     (
         $(#[$attr:meta])*
-        pub struct $name:ident from ($($arg:ident: $argty:ty),*) {
+        $vis:vis struct $name:ident from ($($arg:ident: $argty:ty),*) {
             $($field:ident: $ty:ty, $kind:literal, $unit:literal, $meaning:literal = $value:expr;)+
         }
     ) => {
         $(#[$attr])*
-        pub struct $name {
+        $vis struct $name {
             $(#[doc = $meaning] pub $field: $ty,)+
         }
 
         impl $name {
             /// Its columns, in row order, each as its declaration states it.
-            pub const COLUMNS: &'static [Column] = &[$((stringify!($field), $kind, $unit, $meaning)),+];
+            $vis const COLUMNS: &'static [Column] = &[$((stringify!($field), $kind, $unit, $meaning)),+];
 
             /// The block's values from its sources.
             #[must_use]
-            pub fn new($($arg: $argty),*) -> Self {
+            $vis fn new($($arg: $argty),*) -> Self {
                 Self { $($field: $value,)+ }
             }
         }
@@ -139,7 +139,7 @@ pub struct RowConfig {
     /// empty for none).
     pub arch_params: String,
     /// The same, one value per axis under its column's name
-    /// ([`column`](crate::cost::arch::file::column): `arch_`, the key, its
+    /// ([`column`](crate::cost::arch::column): `arch_`, the key, its
     /// SI unit), numbers in SI base units.
     pub arch_axes: BTreeMap<String, serde_json::Value>,
     /// Camera image width.
@@ -228,7 +228,7 @@ columns! {
 impl RowConfig {
     /// The architecture point: its name and parameter assignments.
     #[must_use]
-    pub fn arch_point(&self) -> (&str, &str) {
+    pub(crate) fn arch_point(&self) -> (&str, &str) {
         (&self.arch, &self.arch_params)
     }
 }
@@ -244,7 +244,7 @@ impl RowMetrics {
 /// An architecture point's axis values on `arch`, each under its column's
 /// name: numbers in SI base units, flags and text as they are.
 fn axes(arch: &Arch, point: &super::ArchPoint) -> BTreeMap<String, serde_json::Value> {
-    use crate::cost::arch::file::{Value, column};
+    use crate::cost::arch::{Value, column};
     point
         .assignments
         .iter()
@@ -314,12 +314,6 @@ impl Row {
         matches!(self.status, Status::Ok) && self.metrics.is_some() && self.cost.is_some()
     }
 
-    /// The metrics, when measured.
-    #[must_use]
-    pub const fn measured(&self) -> Option<&RowMetrics> {
-        self.metrics.as_ref()
-    }
-
     /// The configuration and architecture in words, for tables.
     #[must_use]
     pub fn label(&self) -> String {
@@ -333,7 +327,7 @@ impl Row {
 
     /// The render configuration in words (no architecture).
     #[must_use]
-    pub fn render_label(&self) -> String {
+    pub(crate) fn render_label(&self) -> String {
         let c = &self.config;
         let mut s = c.algorithm.clone();
         if let Some(hi) = c.bias1 {

@@ -6,13 +6,13 @@
 use std::fmt::Write as _;
 
 use super::row::{RowCost, RowMetrics};
-use crate::cost::arch::file::{PARAMS, column as arch_column};
-use crate::render::RenderParam;
+use crate::cost::arch::{PARAMS, column as arch_column};
+use crate::render::params::RenderParam;
 
 /// One column: name, type (`integer`, `number`, `text`, `boolean`), unit
 /// (`-` for none) and meaning. An empty cell is a value that does not apply
 /// to the row (or a skipped row's measurement).
-pub use super::row::Column;
+pub(crate) use super::row::Column;
 
 /// Where a column is declared: here; (a configuration's) as a render
 /// parameter ([`PARAMS`](crate::render::PARAMS), by name), whose column,
@@ -63,7 +63,7 @@ const DECLARED: &[Declared] = &[
 /// Every fixed column, in the order the rows hold them, each from its
 /// one declaration.
 #[must_use]
-pub fn columns() -> Vec<Column> {
+pub(crate) fn columns() -> Vec<Column> {
     let mut out = Vec::new();
     for d in DECLARED {
         match d {
@@ -78,7 +78,7 @@ pub fn columns() -> Vec<Column> {
 }
 
 /// The unit of an architecture axis's column (`arch_<key>_<unit>`), as
-/// its key declares it ([`PARAMS`](crate::cost::arch::file::PARAMS)); `-`
+/// its key declares it ([`PARAMS`](crate::cost::arch::PARAMS)); `-`
 /// for a key without one, or a column of no key.
 pub(crate) fn axis_unit(column: &str) -> &'static str {
     PARAMS.iter().find(|p| arch_column(p.key) == column).map_or("-", |p| p.unit.symbol())
@@ -119,4 +119,26 @@ pub fn markdown() -> String {
         let _ = writeln!(s, "| `{name}` | {kind} | {unit} | {meaning} |");
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::render::params::PARAMS;
+
+    /// Every parameter is a column of the study's schema with its unit and
+    /// meaning, and the rows' schema holds no configuration column the table
+    /// does not declare.
+    #[test]
+    fn every_parameter_is_a_schema_column() {
+        let columns = super::columns();
+        for p in PARAMS {
+            let c = columns.iter().find(|c| c.0 == p.column).unwrap_or_else(|| panic!("{} has no column", p.name));
+            assert_eq!((c.1, c.2, c.3), (p.kind.column_type(), p.unit, p.meaning), "{}", p.name);
+        }
+        assert_eq!(
+            PARAMS.len(),
+            12,
+            "the parameters: algo, bias1, offset, depth, map, filter, bias, width, height, rays, virtual samples, cull"
+        );
+    }
 }

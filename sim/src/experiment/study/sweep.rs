@@ -99,15 +99,6 @@ pub struct Spec {
 }
 
 impl Spec {
-    /// The bundled full sweep (`sweeps/full.toml`) over `scenes`.
-    ///
-    /// # Panics
-    /// Never: the bundled sweep files are validated by the tests.
-    #[must_use]
-    pub fn full(scenes: Vec<Scene>) -> Self {
-        Self { scenes, ..super::SweepFile::bundled("full").and_then(|f| f.spec(&Limits::DEFAULT)).expect("valid") }
-    }
-
     /// The bundled quick sweep (`sweeps/quick.toml`) over `scenes`.
     ///
     /// # Panics
@@ -121,7 +112,7 @@ impl Spec {
     /// [`MAX_CONFIGURATIONS`] configurations or [`MAX_ARCHITECTURES`]
     /// architecture points (each a loop over the input, bounded here).
     #[must_use]
-    pub fn size_problem(&self) -> Option<String> {
+    pub(crate) fn size_problem(&self) -> Option<String> {
         let axes = [
             self.scenes.len(),
             self.images.len(),
@@ -149,7 +140,7 @@ impl Spec {
     ///
     /// # Errors
     /// [`LimitError::Memory`] when not even one render fits.
-    pub fn renders_at_once(&self, threads: usize) -> Result<usize, LimitError> {
+    pub(crate) fn renders_at_once(&self, threads: usize) -> Result<usize, LimitError> {
         let pixels = self
             .images
             .iter()
@@ -244,7 +235,7 @@ pub struct Layout {
 impl Layout {
     /// The layout of `spec`'s configurations ([`Spec::configs`]).
     #[must_use]
-    pub fn of(spec: &Spec) -> Self {
+    pub(crate) fn of(spec: &Spec) -> Self {
         let configurations = spec.configs().len();
         let (variants, formats, maps, filters) =
             (spec.variants.len(), spec.formats.len(), spec.map_sizes.len(), spec.filters.len());
@@ -253,13 +244,13 @@ impl Layout {
 
     /// Configurations a block holds: every algorithm and filter.
     #[must_use]
-    pub const fn block_size(&self) -> usize {
+    pub(crate) const fn block_size(&self) -> usize {
         self.variants.saturating_mul(self.filters)
     }
 
     /// Blocks in the sweep.
     #[must_use]
-    pub const fn blocks(&self) -> usize {
+    pub(crate) const fn blocks(&self) -> usize {
         match self.configurations.checked_div(self.block_size()) {
             Some(b) => b,
             None => 0,
@@ -269,7 +260,7 @@ impl Layout {
     /// The block of configuration `index`, and its place in the block
     /// (algorithm-major, as [`Spec::configs`] numbers them).
     #[must_use]
-    pub fn block_of(&self, index: usize) -> (usize, usize) {
+    pub(crate) fn block_of(&self, index: usize) -> (usize, usize) {
         let axis = |n: usize, of: usize| if of == 0 { (0, 0) } else { (n % of, n / of) };
         let (filter, rest) = axis(index, self.filters);
         let (map, rest) = axis(rest, self.maps);

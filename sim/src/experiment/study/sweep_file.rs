@@ -45,7 +45,7 @@ pub const BUNDLED_SWEEPS: [(&str, &str); 2] =
 
 /// Most values one axis of a sweep may list (an algorithm's variants
 /// together count as one axis).
-pub const MAX_AXIS_VALUES: usize = 4096;
+pub(crate) const MAX_AXIS_VALUES: usize = 4096;
 
 /// What is wrong with a sweep file: the file, the key, the problem.
 #[derive(Debug, thiserror::Error)]
@@ -180,7 +180,7 @@ impl SweepFile {
 
     /// The hash every row of this sweep carries.
     #[must_use]
-    pub fn hash(&self) -> String {
+    pub(crate) fn hash(&self) -> String {
         crate::output::provenance::hash(self.text.as_bytes())
     }
 
@@ -392,7 +392,7 @@ impl SweepFile {
     fn archs(&self, t: &FileText, limits: &Limits) -> Result<(Vec<Arch>, Vec<super::ArchPoint>), SweepError> {
         let mut base = Vec::new();
         for (i, a) in t.archs.iter().enumerate() {
-            let bundled = crate::cost::arch::file::BUNDLED.iter().any(|(n, _)| n == a);
+            let bundled = crate::cost::arch::BUNDLED.iter().any(|(n, _)| n == a);
             base.push(
                 Arch::open(&self.relative(a, bundled), limits)
                     .map_err(|e| self.err(format!("archs[{i}]"), e.to_string()))?,

@@ -35,7 +35,8 @@ use umbra_core::{CullMode, DepthUnit};
 
 pub use self::lit::LightShare;
 pub use self::seen::ImageShare;
-pub use self::shading::{Scratch, SharedRender, render_shared};
+pub use self::shading::Scratch;
+pub use self::shading::render_shared;
 use super::RenderConfig;
 use super::costed::shape;
 use crate::base::maps::Tiling;
@@ -101,14 +102,14 @@ impl LightKey {
 /// image of `pixels` drawn in `tilings` tilings: each tiling's depth and
 /// ids, and the reference's fields.
 #[must_use]
-pub const fn image_bytes(pixels: u64, tilings: u64) -> u64 {
+pub(crate) const fn image_bytes(pixels: u64, tilings: u64) -> u64 {
     pixels * (8 * tilings + 32)
 }
 
 /// Bytes a [`LightShare`] holds, at most, for maps of `texels` texels
 /// drawn in `tilings` tilings: two buffers of 4-byte texels each.
 #[must_use]
-pub const fn light_bytes(texels: u64, tilings: u64) -> u64 {
+pub(crate) const fn light_bytes(texels: u64, tilings: u64) -> u64 {
     texels * 8 * tilings
 }
 
@@ -116,7 +117,7 @@ pub const fn light_bytes(texels: u64, tilings: u64) -> u64 {
 /// tilings or the light pass's shapes, whichever are more (for the memory
 /// a share takes).
 #[must_use]
-pub fn tilings(archs: &[Arch]) -> usize {
+pub(crate) fn tilings(archs: &[Arch]) -> usize {
     let light = |a: &Arch| {
         let s = shape(a);
         (s.tiling, s.light_addresses)

@@ -57,11 +57,11 @@ pub const SHADE_STEP: f64 = 0.1;
 /// (the sphere's in Wang & Molnar's Figure 4, the L's silhouettes in
 /// Weiskopf & Ertl's Figure 5), rather than a receiver's (a floor lit at
 /// grazing, far from any such line).
-pub const GRAZING_COS: f64 = 0.25;
+pub(crate) const GRAZING_COS: f64 = 0.25;
 
 /// How near, in pixels, terminator acne lies to a surface facing away
 /// from the light.
-pub const TERMINATOR_REACH: u32 = 16;
+pub(crate) const TERMINATOR_REACH: u32 = 16;
 
 /// How a render's shadows compare with the truth, over the pixels whose
 /// surface faces the light (the others are dark by shading whatever the
@@ -239,7 +239,7 @@ fn wrong(s: &Shaded, t: &PixelTruth) -> Option<bool> {
 /// Each pixel's verdict: right, unevaluated, or wrong for the cause
 /// `causes` gives.
 #[must_use]
-pub fn verdicts(render: &[Shaded], truth: &[Option<PixelTruth>], causes: &mut impl Attribution) -> Vec<Verdict> {
+pub(crate) fn verdicts(render: &[Shaded], truth: &[Option<PixelTruth>], causes: &mut impl Attribution) -> Vec<Verdict> {
     let mut verdicts: Vec<Verdict> = Vec::with_capacity(render.len());
     let mut wrongs = Vec::new();
     for (k, (s, t)) in render.iter().zip(truth).enumerate() {
@@ -296,7 +296,12 @@ pub fn compare(
     clippy::cast_sign_loss,
     reason = "pixel counts and coordinates"
 )]
-pub fn measure(render: &[Shaded], truth: &[Option<PixelTruth>], fields: &Fields, verdicts: &[Verdict]) -> Metrics {
+pub(crate) fn measure(
+    render: &[Shaded],
+    truth: &[Option<PixelTruth>],
+    fields: &Fields,
+    verdicts: &[Verdict],
+) -> Metrics {
     let width = fields.width;
     let points = Points::new(render, truth, width);
     let rendered: Vec<Option<bool>> =

@@ -69,10 +69,10 @@ pub const BUNDLED: [(&str, &str); 15] = [
 /// Largest magnitude of a vertex coordinate once placed (2⁴⁰): the
 /// triangle setup's edge functions multiply three coordinate differences,
 /// which stay finite in f32 below (2·2⁴⁰)³ = 2¹²³.
-pub const MAX_COORDINATE: f32 = 1_099_511_627_776.0;
+pub(crate) const MAX_COORDINATE: f32 = 1_099_511_627_776.0;
 
 /// Largest procedural subdivision count.
-pub const MAX_SUBDIVISION: u32 = 1024;
+pub(crate) const MAX_SUBDIVISION: u32 = 1024;
 
 /// What is wrong with a scene file.
 #[derive(Debug, thiserror::Error)]

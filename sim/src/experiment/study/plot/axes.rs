@@ -7,7 +7,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::{FAMILIES, Legend, marker, provenance};
-use crate::cost::arch::file::column;
+use crate::cost::arch::column;
 use crate::experiment::plot::{Figure, SIZE, both, colour, footnote};
 use crate::experiment::study::rank::{TIME, cheapest};
 use crate::experiment::study::schema::axis_unit;
@@ -32,7 +32,7 @@ struct AxisPlot {
 
 /// `v` with an SI prefix (`25.6G`, `225n`), three significant digits.
 #[must_use]
-pub fn si(v: f64) -> String {
+pub(crate) fn si(v: f64) -> String {
     const PREFIXES: [(f64, &str); 8] =
         [(1e12, "T"), (1e9, "G"), (1e6, "M"), (1e3, "k"), (1.0, ""), (1e-3, "m"), (1e-6, "µ"), (1e-9, "n")];
     if v == 0.0 {
@@ -136,7 +136,12 @@ fn value(r: &Row, col: &str, values: &[String]) -> Option<f64> {
 ///
 /// # Errors
 /// [`StudyError::Plot`] or [`StudyError::Output`].
-pub fn arch_axes(folder: &mut OutputFolder, scene: &str, rows: &[&Row], manifest: &Manifest) -> Result<(), StudyError> {
+pub(crate) fn arch_axes(
+    folder: &mut OutputFolder,
+    scene: &str,
+    rows: &[&Row],
+    manifest: &Manifest,
+) -> Result<(), StudyError> {
     let Some(budget) = loosest(&manifest.budgets) else { return Ok(()) };
     let keys = axis_keys(rows);
     let Some(first) = keys.first() else { return Ok(()) };

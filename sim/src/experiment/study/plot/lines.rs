@@ -10,7 +10,7 @@ use crate::experiment::study::StudyError;
 use crate::output::folder::OutputFolder;
 
 /// One named series of `(x, y)` points.
-pub type Series = (String, Vec<(f64, f64)>);
+pub(crate) type Series = (String, Vec<(f64, f64)>);
 
 /// Lines on log axes.
 struct Lines<'a> {
@@ -80,7 +80,7 @@ impl Figure for Lines<'_> {
 ///
 /// # Errors
 /// [`StudyError::Plot`] or [`StudyError::Output`].
-pub fn lines(
+pub(crate) fn lines(
     folder: &mut OutputFolder,
     base: &str,
     title: &str,

@@ -8,9 +8,9 @@ mod axes;
 mod lines;
 mod pareto;
 
-pub use axes::arch_axes;
-pub use lines::{Series, lines};
-pub use pareto::pareto;
+pub(crate) use axes::arch_axes;
+pub(crate) use lines::{Series, lines};
+pub(crate) use pareto::pareto;
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -38,7 +38,7 @@ pub fn pareto_front(points: &[(f64, f64)]) -> Vec<usize> {
 }
 
 /// Errors of zero are drawn at this floor on the log axis (percent).
-pub const ERROR_FLOOR: f64 = 1e-3;
+pub(crate) const ERROR_FLOOR: f64 = 1e-3;
 
 /// The algorithm families in the order their markers are listed.
 const FAMILIES: [Family; 5] = Family::ALL;

@@ -95,7 +95,12 @@ impl Figure for Pareto<'_> {
 ///
 /// # Errors
 /// [`StudyError::Plot`] or [`StudyError::Output`].
-pub fn pareto(folder: &mut OutputFolder, scene: &str, rows: &[&Row], manifest: &Manifest) -> Result<(), StudyError> {
+pub(crate) fn pareto(
+    folder: &mut OutputFolder,
+    scene: &str,
+    rows: &[&Row],
+    manifest: &Manifest,
+) -> Result<(), StudyError> {
     let rows: Vec<&Row> = rows.iter().copied().filter(|r| r.complete()).collect();
     let names = distinct(rows.iter().map(|r| r.config.arch.as_str()));
     let arch_of: Vec<usize> =

@@ -4,9 +4,12 @@
 
 use std::path::Path;
 
-use umbra::sim::output::folder::{LOCK, MANIFEST, OutputFolder, PENDING, RunManifest, sha256, write_all_synced};
+use super::{LOCK, MANIFEST, OutputFolder, PENDING, RunManifest, sha256, write_all_synced};
 
-use crate::common::scratch;
+/// A fresh directory of this test, kept for the test to remove.
+fn scratch(name: &str) -> std::path::PathBuf {
+    tempfile::Builder::new().prefix(&format!("umbra-{name}-")).tempdir().expect("temp dir").keep()
+}
 
 /// The folder's entries, but for its lock.
 fn names(dir: &Path) -> Vec<String> {
