@@ -31,3 +31,4 @@ mod world;
 mod determinism;
 mod layers;
 mod regressions;
+mod surface;

@@ -178,7 +178,7 @@ impl MemoryTime {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct Work {
     /// Compute cycles per stage, in [`Stage::ALL`] order (memory's slot is
-    /// filled by [`Work::memory`]).
+    /// filled by `Work::memory`).
     pub cycles: [f64; 6],
     /// DRAM bytes.
     pub bytes: u64,
@@ -345,7 +345,7 @@ pub struct PassTiming {
     #[serde(rename = "overhead_cycles")]
     pub overhead: f64,
     /// Tiles (draws) with work bound by each bottleneck, in
-    /// [`Bottleneck::ALL`] order.
+    /// `Bottleneck::ALL` order.
     #[serde(rename = "tiles_bound", serialize_with = "by_bottleneck")]
     pub bound: [u64; 7],
     /// What bounds the most cycles.

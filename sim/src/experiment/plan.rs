@@ -13,7 +13,7 @@
 //!    at every texel where both exist; the tests place their reference
 //!    inside that gap, so 16-bit depth suffices when the thinnest gaps (the
 //!    1st percentile, ignoring grazing slivers at silhouettes) span at least
-//!    [`GAP_LSBS`] 16-bit steps. This folds in the depth range: a large
+//!    `GAP_LSBS` 16-bit steps. This folds in the depth range: a large
 //!    far/near ratio squeezes distant gaps into few steps.
 //! 3. **Algorithm, map size and filter.** Every candidate (for solids,
 //!    second depth by front-face culling or from the dual unit; × map side
@@ -147,7 +147,7 @@ pub struct Plan {
     /// The reasons, one line each.
     pub reasons: Vec<String>,
     /// The chosen map's storage under Reeves et al.'s schemes (Table 2),
-    /// tiles of [`STORAGE_TILE`].
+    /// tiles of `STORAGE_TILE`.
     pub storage: StorageBytes,
 }
 

@@ -29,7 +29,7 @@ pub struct Limits {
     /// Largest scene or mesh file, bytes.
     pub max_file_bytes: u64,
     /// Largest TOML file (a scene, a sweep, an architecture), bytes: its
-    /// parse keeps about [`Footprint::PER_TEXT_BYTE`] bytes a byte.
+    /// parse keeps about `Footprint::PER_TEXT_BYTE` bytes a byte.
     pub max_text_bytes: u64,
     /// Most objects in a scene file, counted before any mesh is built.
     pub max_objects: u64,

@@ -67,7 +67,7 @@ impl RunManifest {
     /// most `max_bytes`) against its size and hash.
     ///
     /// # Errors
-    /// [`OutputError::Folder`] naming the manifest or the file that does
+    /// `OutputError::Folder` naming the manifest or the file that does
     /// not match: a folder without a matching manifest is incomplete.
     pub fn verify(dir: &Path, max_bytes: u64) -> Result<Self, OutputError> {
         let path = dir.join(MANIFEST);
@@ -272,7 +272,7 @@ impl OutputFolder {
     /// under way (its `manifest.json` is gone until [`finish`](Self::finish)).
     ///
     /// # Errors
-    /// [`OutputError::Io`] or [`OutputError::Folder`] naming the folder.
+    /// `OutputError::Io` or `OutputError::Folder` naming the folder.
     pub fn create(dir: &Path) -> Result<Self, OutputError> {
         if std::fs::symlink_metadata(dir).is_ok_and(|m| m.file_type().is_symlink()) && !dir.exists() {
             return Err(problem(dir, "is a symbolic link to nothing (dangling, or a loop): give a folder"));
@@ -339,8 +339,8 @@ impl OutputFolder {
     /// all. Returns the file's path.
     ///
     /// # Errors
-    /// [`OutputError::Folder`] for a name outside the folder or one of the
-    /// manifests; [`OutputError::Io`] naming the file for any write error.
+    /// `OutputError::Folder` for a name outside the folder or one of the
+    /// manifests; `OutputError::Io` naming the file for any write error.
     pub fn write(&mut self, name: &str, bytes: &[u8]) -> Result<PathBuf, OutputError> {
         let relative = checked_name(&self.dir, name)?;
         if name == MANIFEST || name == PENDING {
@@ -373,7 +373,7 @@ impl OutputFolder {
     /// not write, write `manifest.json`, drop the pending record.
     ///
     /// # Errors
-    /// [`OutputError::Io`] naming the file that could not be removed or
+    /// `OutputError::Io` naming the file that could not be removed or
     /// written.
     pub fn finish(self, study: Option<serde_json::Value>) -> Result<RunManifest, OutputError> {
         for old in &self.earlier {

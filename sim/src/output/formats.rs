@@ -69,7 +69,7 @@ pub struct RawMap<'a> {
 /// and for the f32 format's bits.
 ///
 /// # Errors
-/// [`OutputError::Io`] naming the file.
+/// `OutputError::Io` naming the file.
 pub fn write_npy(folder: &mut OutputFolder, name: &str, map: &RawMap<'_>) -> Result<PathBuf, OutputError> {
     let RawMap { format, width, height, raw } = *map;
     let mut bytes = Vec::new();
@@ -115,7 +115,7 @@ fn npy_body<T: npyz::AutoSerialize>(
 /// the clear value is white.
 ///
 /// # Errors
-/// [`OutputError::Image`] or [`OutputError::Io`] naming the file.
+/// `OutputError::Image` or `OutputError::Io` naming the file.
 pub fn write_preview(folder: &mut OutputFolder, name: &str, map: &RawMap<'_>) -> Result<PathBuf, OutputError> {
     let RawMap { format, width, height, raw } = *map;
     let far = raw_far(format);

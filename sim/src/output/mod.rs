@@ -1,7 +1,7 @@
 //! What the simulator writes out: output folders ([`folder`]), the formats
 //! maps and pictures are written in ([`formats`]), Markdown text
 //! ([`markdown`]), where an output came from ([`provenance`]), and why a
-//! file could not be written ([`OutputError`]).
+//! file could not be written (`OutputError`).
 
 mod error;
 pub mod folder;

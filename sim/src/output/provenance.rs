@@ -58,7 +58,7 @@ pub(crate) fn os_shell_word(arg: &std::ffi::OsStr) -> String {
 }
 
 /// This process's command line, each argument a shell word (an argument
-/// that is not UTF-8 included: see [`os_shell_word`]).
+/// that is not UTF-8 included: see `os_shell_word`).
 #[must_use]
 pub fn command_line() -> String {
     std::env::args_os().map(|a| os_shell_word(&a)).collect::<Vec<_>>().join(" ")

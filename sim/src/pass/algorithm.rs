@@ -79,7 +79,7 @@ umbra_core::spelled!(Family, "algorithm family", {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Cull {
-    /// As the algorithm does it: solids as [`Units::solids`] says, open
+    /// As the algorithm does it: solids as `Units::solids` says, open
     /// surfaces never (Weiskopf & Ertl §3.2).
     #[default]
     Algorithm,

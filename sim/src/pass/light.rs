@@ -45,7 +45,7 @@ pub struct LightMaps<T> {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct LightOptions {
     /// Entries of the setup store. `None`: as large as the scene, at most
-    /// the bins' reach ([`DEFAULT_SETUPS`]); for a pass whose probe ignores
+    /// the bins' reach (`DEFAULT_SETUPS`); for a pass whose probe ignores
     /// events, a store that stays in cache instead (the maps do not depend
     /// on its size, only the events do).
     pub setups: Option<usize>,

@@ -21,7 +21,7 @@ pub struct PixelArrays {
     /// (1 − the fraction its reference rays see the light); NaN for the
     /// background.
     pub reference: Vec<f32>,
-    /// Each pixel's verdict as a code ([`Verdict::code`]): 0 unevaluated,
+    /// Each pixel's verdict as a code (`Verdict::code`): 0 unevaluated,
     /// 1 right, 2 aliasing, 3 acne, 4 leak, 5 detachment, 6 penumbra.
     pub verdict: Vec<u8>,
 }

@@ -52,7 +52,7 @@ pub enum RenderConfigError {
         /// The value given.
         value: f64,
     },
-    /// Reference rays per pixel side outside [`RenderConfig::REFERENCE_RAYS`].
+    /// Reference rays per pixel side outside `RenderConfig::REFERENCE_RAYS`.
     #[error("reference_rays {0} is outside {range:?}", range = RenderConfig::REFERENCE_RAYS)]
     ReferenceRays(u32),
     /// A map side or image side of zero.
@@ -110,7 +110,7 @@ impl RenderConfig {
     /// The default render (`umbra render`'s): Wang & Molnar's second depth
     /// with virtual samples, a 24-bit 1024² map, bilinear filtering, no
     /// bias, the algorithm's culling, 960×540 against 4² reference rays a
-    /// pixel. Change fields with struct update syntax, then [`checked`](Self::checked).
+    /// pixel. Change fields with struct update syntax, then `checked`.
     pub const DEFAULT: Self = Self {
         algorithm: Algorithm::Second,
         format: DepthFormatKind::D24,
@@ -128,7 +128,7 @@ impl RenderConfig {
     /// the bound, which the command line, Python and sweep files read.
     pub(crate) const REFERENCE_RAYS: std::ops::RangeInclusive<u32> = 1..=16;
 
-    /// [`RenderConfig::REFERENCE_RAYS`] as a command-line parser's range.
+    /// `RenderConfig::REFERENCE_RAYS` as a command-line parser's range.
     #[must_use]
     pub fn reference_rays_flag() -> std::ops::RangeInclusive<i64> {
         i64::from(*Self::REFERENCE_RAYS.start())..=i64::from(*Self::REFERENCE_RAYS.end())
@@ -201,7 +201,7 @@ impl RenderConfig {
     }
 
     /// This configuration checked for a render of `scene` within `limits`:
-    /// its values ([`checked`](Self::checked)), then the map side, the
+    /// its values (`checked`), then the map side, the
     /// image size, the scene's triangles and the memory, all together
     /// ([`Footprint::render`]), before anything is allocated. Every render
     /// and costing takes the result, so a caller checks once, before it

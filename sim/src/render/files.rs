@@ -19,7 +19,7 @@ use crate::output::provenance::{command_line, version};
 /// the caller's to finish).
 ///
 /// # Errors
-/// [`OutputError`] for a file that could not be written.
+/// `OutputError` for a file that could not be written.
 pub fn write_render(folder: &mut OutputFolder, job: &Checked<'_>, r: &Render) -> Result<(), OutputError> {
     let (scene, cfg) = (job.scene(), job.config());
     write_shadow_image(folder, "shaded.png", &r.image, &r.truth)?;

@@ -1,7 +1,7 @@
 //! One render of a [`RenderConfig`]: the light pass for a shadow
 //! algorithm, the camera pass, the exact reference and the metrics between
 //! them ([`render`]); its cost on
-//! architectures ([`costed`]); its pictures ([`pictures`]). This layer sits
+//! architectures (`costed`); its pictures ([`pictures`]). This layer sits
 //! above the passes, the cost model and the truth, and joins them.
 
 pub mod arrays;
@@ -78,7 +78,7 @@ pub enum RenderError {
         /// Pixels the reference has.
         found: usize,
     },
-    /// The map, the image or the scene is beyond the [`Limits`].
+    /// The map, the image or the scene is beyond the `Limits`.
     #[error(transparent)]
     Limit(#[from] LimitError),
     /// The camera sees no surface facing the light: there is no pixel to

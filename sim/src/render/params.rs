@@ -399,7 +399,7 @@ impl RenderRequest {
     /// assert!(r.set("bias", "1.5").is_err());
     /// let cfg = r.config([320, 180]).expect("an algorithm");
     /// assert_eq!((cfg.map_size, cfg.reference_rays, cfg.width), (512, 2, 320));
-    /// # Ok::<(), umbra_sim::render::ParamError>(())
+    /// # Ok::<(), umbra_sim::render::params::ParamError>(())
     /// ```
     ///
     /// # Errors

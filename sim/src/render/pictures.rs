@@ -108,11 +108,11 @@ pub(crate) const RINGS: usize = 2000;
 /// Write the error map: every pixel's [`Verdict`] over a faint shading of
 /// the scene (light greys, lit surfaces lighter by their exact cosine to
 /// the light from `truth`, so the geometry stays readable), each wrong pixel in its class's colour ([`ERROR_COLOURS`]),
-/// each artifact pixel ringed in its colour (up to [`RINGS`] of them),
+/// each artifact pixel ringed in its colour (up to `RINGS` of them),
 /// with a legend band below the image giving each class and its count.
 ///
 /// # Errors
-/// [`OutputError::Image`] or [`OutputError::Io`] naming the file.
+/// `OutputError::Image` or `OutputError::Io` naming the file.
 pub fn write_error_image(
     folder: &mut OutputFolder,
     name: &str,

@@ -75,7 +75,7 @@ impl Taps {
         self.ordinary.clear();
     }
 
-    /// Every tap recorded since the last [`Taps::clear`] (a lookup made
+    /// Every tap recorded since the last `Taps::clear` (a lookup made
     /// directly, outside a shading pass, is one pixel's).
     #[must_use]
     pub fn taps(&self) -> &[Tap] {

@@ -1,4 +1,4 @@
-//! A render's parameters, declared once (`render::PARAMS`): every door
+//! A render's parameters, declared once (`render::params::PARAMS`): every door
 //! reads them from the declaration, and a configuration written back by
 //! the command that renders it again reads back the same.
 

@@ -87,7 +87,7 @@ impl Arch {
     /// # Errors
     /// [`ArchError`] naming the file, the key and the problem: TOML syntax,
     /// an unknown or missing key, a value of the wrong type or unit, or a
-    /// machine that cannot be modelled (see [`Arch::check`]).
+    /// machine that cannot be modelled (see `Arch::check`).
     pub fn parse(text: &str, file: &str) -> Result<Self, ArchError> {
         let err = |key: &str, problem| ArchError { file: file.to_owned(), key: key.to_owned(), problem };
         let mut table: toml::Table = text.parse().map_err(|e: toml::de::Error| {

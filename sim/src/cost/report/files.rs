@@ -14,7 +14,7 @@ use crate::output::provenance::{command_line, version};
 /// manifest is the caller's to finish).
 ///
 /// # Errors
-/// [`OutputError`] for a file that could not be written.
+/// `OutputError` for a file that could not be written.
 pub fn write_costs(folder: &mut OutputFolder, reports: &[CostReport]) -> Result<Option<Comparison>, OutputError> {
     let command = command_line();
     for r in reports {
@@ -39,7 +39,7 @@ pub fn write_costs(folder: &mut OutputFolder, reports: &[CostReport]) -> Result<
 /// slices each architecture's process holds.
 ///
 /// # Errors
-/// [`OutputError`] for a file that could not be written.
+/// `OutputError` for a file that could not be written.
 pub fn write_trace(folder: &mut OutputFolder, reports: &[CostReport]) -> Result<Vec<usize>, OutputError> {
     for r in reports {
         folder.write_text(&format!("arch-{}.toml", r.arch.name), &r.arch.to_toml())?;

@@ -117,7 +117,7 @@ pub struct Point {
     pub id: String,
     /// What was measured, in words.
     pub what: String,
-    /// The measured value, in [`Measure::unit`].
+    /// The measured value, in `Measure::unit`.
     pub measured: f64,
     /// What is simulated.
     pub measure: Measure,

@@ -199,7 +199,7 @@ fn curve<'a>(rows: &'a [Row], algorithm: &'a str, format: DepthFormatKind) -> im
 pub(crate) const BREAKDOWN_POINTS: f64 = 1.0;
 
 /// The smallest swept ratio at which `algorithm` in `format` misclassifies
-/// [`BREAKDOWN_POINTS`] more than at ratio 10; `None` if it never does.
+/// `BREAKDOWN_POINTS` more than at ratio 10; `None` if it never does.
 #[must_use]
 pub fn breakdown(rows: &[Row], algorithm: &str, format: DepthFormatKind) -> Option<f64> {
     let errs: Vec<(f64, f64)> =

@@ -139,7 +139,7 @@ pub struct RowConfig {
     /// empty for none).
     pub arch_params: String,
     /// The same, one value per axis under its column's name
-    /// ([`column`](crate::cost::arch::column): `arch_`, the key, its
+    /// (`column`: `arch_`, the key, its
     /// SI unit), numbers in SI base units.
     pub arch_axes: BTreeMap<String, serde_json::Value>,
     /// Camera image width.
@@ -153,7 +153,7 @@ pub struct RowConfig {
     pub command: String,
     /// The version that made the row ([`crate::output::provenance::version`]).
     pub umbra_version: String,
-    /// The sweep file's hash ([`crate::output::provenance::hash`]).
+    /// The sweep file's hash (`crate::output::provenance::hash`).
     pub sweep_hash: String,
 }
 

@@ -128,7 +128,7 @@ pub fn truth_of(spec: &Spec, scene: usize, image: usize) -> Truth {
 ///
 /// One scene and image size is run at a time: its reference is built once,
 /// shared by its configurations and dropped before the next, and at most
-/// [`Spec::renders_at_once`] of its configurations render at once, so the
+/// `Spec::renders_at_once` of its configurations render at once, so the
 /// study stays within [`Limits::max_memory`].
 ///
 /// ```
@@ -163,7 +163,7 @@ pub fn run(spec: &Spec, shard: Shard, progress: &ProgressBar) -> Result<Vec<Row>
 }
 
 /// [`run`] rendering every configuration, even those that render alike
-/// ([`alike`]): the reference the shared path is held to.
+/// (`alike`): the reference the shared path is held to.
 ///
 /// # Errors
 /// As [`run`].

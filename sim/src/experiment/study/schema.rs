@@ -15,7 +15,7 @@ use crate::render::params::RenderParam;
 pub(crate) use super::row::Column;
 
 /// Where a column is declared: here; (a configuration's) as a render
-/// parameter ([`PARAMS`](crate::render::PARAMS), by name), whose column,
+/// parameter ([`PARAMS`](crate::render::params::PARAMS), by name), whose column,
 /// type, unit and meaning it takes; or (a measurement's) in a row block,
 /// [`RowMetrics`] or [`RowCost`], beside the value it holds.
 enum Declared {
@@ -85,7 +85,7 @@ pub(crate) fn axis_unit(column: &str) -> &'static str {
 }
 
 /// The schema of rows whose columns are `header`, as `schema.csv`
-/// (`column,type,unit,meaning`): each fixed column from [`columns`], each
+/// (`column,type,unit,meaning`): each fixed column from `columns`, each
 /// architecture axis's (a name starting `arch_` not in the table) as a
 /// number in the SI unit its name ends in. A column that is neither has
 /// an empty meaning.

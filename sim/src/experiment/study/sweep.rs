@@ -90,7 +90,7 @@ pub struct Spec {
     pub budgets: Vec<f64>,
     /// The sweep's name (`quick`, `full`, or the file's).
     pub name: String,
-    /// The hash of the sweep file's text ([`crate::output::provenance::hash`]),
+    /// The hash of the sweep file's text (`crate::output::provenance::hash`),
     /// which every row and manifest carries.
     pub hash: String,
     /// What each render may ask for: a configuration beyond them is a

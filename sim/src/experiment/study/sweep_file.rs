@@ -144,7 +144,7 @@ impl SweepFile {
     /// A bundled sweep by name.
     ///
     /// # Errors
-    /// [`SweepError`] with key `(name)` for an unknown name.
+    /// `SweepError` with key `(name)` for an unknown name.
     pub fn bundled(name: &str) -> Result<Self, SweepError> {
         let file = PathBuf::from(format!("sweeps/{name}.toml"));
         let (_, text) = BUNDLED_SWEEPS.iter().find(|(n, _)| *n == name).ok_or_else(|| SweepError {
@@ -159,7 +159,7 @@ impl SweepFile {
     /// in `.toml`), read within `limits`.
     ///
     /// # Errors
-    /// [`SweepError`] naming the file.
+    /// `SweepError` naming the file.
     pub fn open(name: &str, limits: &Limits) -> Result<Self, SweepError> {
         let path = Path::new(name);
         if !(path.extension().is_some_and(|e| e == "toml") || path.components().count() > 1 || path.is_file()) {
@@ -201,7 +201,7 @@ impl SweepFile {
     /// algorithms, formats, filters, maps and images valid.
     ///
     /// # Errors
-    /// [`SweepError`] naming the key and the problem.
+    /// `SweepError` naming the key and the problem.
     #[allow(clippy::too_many_lines, reason = "one check per axis, in the file's order")]
     pub fn spec(&self, limits: &Limits) -> Result<Spec, SweepError> {
         let t: FileText = toml::from_str(&self.text).map_err(|e| {

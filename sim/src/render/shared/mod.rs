@@ -16,7 +16,7 @@
 //!   bounds (lookup culling): it runs once per configuration for each
 //!   distinct pair of them, feeding every architecture that drew that pair
 //!   at once (pixel coordinates, not the tiling, place its events);
-//! * the **reference's** boundaries and distance fields ([`Fields`]) are
+//! * the **reference's** boundaries and distance fields (`Fields`) are
 //!   worked out once per scene and image.
 //!
 //! A probe continued from a kept copy receives exactly the events, in

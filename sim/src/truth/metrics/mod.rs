@@ -18,7 +18,7 @@
 //!   across a true edge; Reeves et al.) are the map's resolution and the
 //!   filter at work.
 //!
-//! Acne on a surface lit within [`GRAZING_COS`] of grazing next to where
+//! Acne on a surface lit within `GRAZING_COS` of grazing next to where
 //! it turns from the light is the terminator's (the occluder's own shadow
 //! line; Weiskopf & Ertl §3), the rest the receiver's. Area error and the
 //! displacement of the rendered boundary from the exact one are reported
@@ -93,8 +93,8 @@ pub struct Metrics {
     /// Too dark from the receiver's own surface: acne.
     #[serde(rename = "acne_px")]
     pub acne: u64,
-    /// Of [`Metrics::acne`], on surfaces within [`GRAZING_COS`] of grazing
-    /// and [`TERMINATOR_REACH`] of a surface facing away: the terminator's.
+    /// Of [`Metrics::acne`], on surfaces within `GRAZING_COS` of grazing
+    /// and `TERMINATOR_REACH` of a surface facing away: the terminator's.
     #[serde(rename = "terminator_acne_px")]
     pub terminator_acne: u64,
     /// The acne's summed excess shadow, pixels (a stripe of fraction 0.3

@@ -149,7 +149,7 @@ pub enum Problem {
     /// The file, the image or the scene's triangles are beyond the [`Limits`].
     #[error(transparent)]
     Limit(LimitError),
-    /// A vertex, as placed in the scene, beyond [`MAX_COORDINATE`] (or
+    /// A vertex, as placed in the scene, beyond `MAX_COORDINATE` (or
     /// not finite): the f32 vertex and setup units would overflow.
     #[error(
         "vertex {vertex} is at {position:?} once placed, beyond ±{MAX_COORDINATE:e} (the f32 pipeline's products of coordinates would overflow)"

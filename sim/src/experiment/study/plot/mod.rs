@@ -1,7 +1,7 @@
 //! The study's plots, as SVG and PNG (drawn through the shared
 //! [`crate::experiment::plot`]): error against cost with the Pareto front
-//! ([`pareto`]), cost against architecture axes ([`arch_axes`]), and error
-//! against a swept parameter ([`lines`]); the algorithm families' markers,
+//! (`pareto`), cost against architecture axes (`arch_axes`), and error
+//! against a swept parameter (`lines`); the algorithm families' markers,
 //! and a legend that lists only what is drawn and wraps what is long.
 
 mod axes;
