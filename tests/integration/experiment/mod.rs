@@ -1,10 +1,7 @@
-//! The planner and the study: sweeps, sweep files, shards, merges and the
-//! summary.
+//! The planner and the study's sweep files and requests (the study's
+//! runs, shards, merges and summary are tested beside them, in
+//! `sim/src/experiment/study/tests/`).
 
-mod merge;
 mod plan;
 mod request;
-mod shared;
-mod study;
-mod summary;
 mod sweeps;

@@ -40,31 +40,22 @@ mod summary;
 mod sweep;
 mod sweep_file;
 
-pub use request::Outcome;
-pub use request::Overrides;
-pub use request::Request;
-pub use request::choose_archs;
-pub use request::no_repeats;
-pub use row::Row;
-pub use row::RowConfig;
-pub use row::RowCost;
-pub use row::RowMetrics;
-pub use row::Status;
-pub use run::run;
+pub use request::{Outcome, Overrides, Request, choose_archs, no_repeats};
+pub use row::{Row, RowConfig, RowCost, RowMetrics, Status};
+pub(crate) use run::load_scenes;
+#[cfg(test)]
+use run::run_unshared;
 use run::sort_rows;
-pub use run::{Truth, load_scenes, render_config, run_config, run_unshared, truth_of};
-pub use shards::Manifest;
-pub use shards::ShardState;
+pub use run::{render_config, run};
 use shards::jsonl;
-pub use shards::merge;
-pub use shards::status;
-pub use shards::{ShardFolder, already_complete, finish, invalid, read_rows, write_partial, write_run};
-pub use summary::table;
-pub use summary::{slug, summary, write_outputs};
-pub use sweep::Shard;
-pub use sweep::Spec;
-pub use sweep::Variant;
-pub use sweep::{ArchPoint, Config, Layout, MAX_ARCHITECTURES, MAX_CONFIGURATIONS, UNLIMITED_OFFSET, jittered};
+pub(crate) use shards::{Manifest, already_complete, finish, write_partial};
+#[cfg(test)]
+use shards::{ShardState, write_run};
+pub use shards::{merge, read_rows, status};
+pub use summary::{summary, table, write_outputs};
+#[cfg(test)]
+use sweep::jittered;
+pub use sweep::{ArchPoint, Config, Layout, MAX_ARCHITECTURES, MAX_CONFIGURATIONS, Shard, Spec, Variant};
 pub(crate) use sweep_file::SweepError;
 pub use sweep_file::SweepFile;
 
@@ -205,3 +196,6 @@ impl From<PlotError> for StudyError {
         }
     }
 }
+
+#[cfg(test)]
+mod tests;

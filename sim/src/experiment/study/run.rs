@@ -162,12 +162,13 @@ pub fn run(spec: &Spec, shard: Shard, progress: &ProgressBar) -> Result<Vec<Row>
     run_with(spec, shard, progress, true)
 }
 
+#[cfg(test)]
 /// [`run`] rendering every configuration, even those that render alike
 /// (`alike`): the reference the shared path is held to.
 ///
 /// # Errors
 /// As [`run`].
-pub fn run_unshared(spec: &Spec, shard: Shard, progress: &ProgressBar) -> Result<Vec<Row>, StudyError> {
+pub(crate) fn run_unshared(spec: &Spec, shard: Shard, progress: &ProgressBar) -> Result<Vec<Row>, StudyError> {
     run_with(spec, shard, progress, false)
 }
 

@@ -85,12 +85,13 @@ pub fn finish(folder: OutputFolder, manifest: &Manifest) -> Result<RunManifest, 
     Ok(folder.finish(serde_json::to_value(manifest).ok())?)
 }
 
+#[cfg(test)]
 /// Write a whole run's files (or, for a shard, its rows) into a fresh
 /// folder `dir` and finish it.
 ///
 /// # Errors
 /// See [`StudyError`].
-pub fn write_run(dir: &Path, rows: &[Row], manifest: &Manifest) -> Result<RunManifest, StudyError> {
+pub(crate) fn write_run(dir: &Path, rows: &[Row], manifest: &Manifest) -> Result<RunManifest, StudyError> {
     write_run_with(dir, rows, manifest, &[])
 }
 

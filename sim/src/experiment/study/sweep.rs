@@ -1,7 +1,7 @@
 //! The sweep: the algorithms and their parameters, the axes of a study, its configurations and shards.
 
 use umbra_core::DepthFormatKind;
-use umbra_core::shadow::{Filter, Jitter};
+use umbra_core::shadow::Filter;
 
 use super::StudyError;
 use crate::cost::arch::Arch;
@@ -46,16 +46,12 @@ impl Variant {
     }
 }
 
-/// Woo's midpoint computed by the dual test with an unlimited offset:
-/// `z1 + min((z2 − z1)/2, 1) = (z1 + z2)/2`, which lets the midpoint run
-/// with Weiskopf & Ertl's per-object back-face culling.
-pub const UNLIMITED_OFFSET: f64 = 1.0;
-
+#[cfg(test)]
 /// Reeves' jittered filter with `n` samples per lookup, his other Figure 4
 /// parameters unchanged.
 #[must_use]
-pub fn jittered(n: u16) -> Filter {
-    Filter::Jittered(Jitter { num_samples: n, ..Jitter::REEVES })
+pub(crate) fn jittered(n: u16) -> Filter {
+    Filter::Jittered(umbra_core::shadow::Jitter { num_samples: n, ..umbra_core::shadow::Jitter::REEVES })
 }
 
 /// Most configurations a sweep may have.

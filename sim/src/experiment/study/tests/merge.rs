@@ -5,10 +5,10 @@
 
 use std::path::{Path, PathBuf};
 
-use umbra::sim::Algorithm;
-use umbra::sim::experiment::study::{self, Manifest, Row, Shard, Spec, StudyError, Variant};
-use umbra::sim::input::limits::Limits;
-use umbra::sim::output::folder::RunManifest;
+use crate::Algorithm;
+use crate::experiment::study::{self, Manifest, Row, Shard, Spec, StudyError, Variant};
+use crate::input::limits::Limits;
+use crate::output::folder::RunManifest;
 
 fn dir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("umbra-merge-{}-{name}", std::process::id()));
@@ -108,7 +108,7 @@ fn merge_refuses_what_would_lie() {
 /// shard by its folder; a complete shard is recognised for a rerun to skip.
 #[test]
 fn status_tells_every_shards_state_and_merge_refuses_the_unfinished() {
-    use umbra::sim::output::folder::OutputFolder;
+    use crate::output::folder::OutputFolder;
     let spec = tiny("status");
     let limits = Limits::DEFAULT;
     let done: Vec<PathBuf> = (0..2).map(|i| shard(&spec, "status", i, 4)).collect();

@@ -5,35 +5,16 @@
 
 use std::path::{Path, PathBuf};
 
-use umbra::core::DepthFormatKind;
-use umbra::core::shadow::Filter;
-use umbra::sim::Algorithm;
-use umbra::sim::cost::arch::Arch;
-use umbra::sim::experiment::study::{self, Manifest, Shard, Spec, Variant, jittered};
-use umbra::sim::input::limits::Limits;
-use umbra::sim::render::shared::{ImageShare, LightKey, LightShare, Scratch, render_shared, shares};
-use umbra::sim::render::{RenderConfig, TruthSource, render_costed, truth};
-use umbra::sim::world::scene::Scene;
-
-/// `$body` with `$F` the depth-format type `$kind` names.
-macro_rules! with_format {
-    ($kind:expr, $F:ident => $body:expr) => {
-        match $kind {
-            DepthFormatKind::D16 => {
-                type $F = umbra::core::D16;
-                $body
-            }
-            DepthFormatKind::D24 => {
-                type $F = umbra::core::D24;
-                $body
-            }
-            DepthFormatKind::F32 => {
-                type $F = umbra::core::F32;
-                $body
-            }
-        }
-    };
-}
+use crate::Algorithm;
+use crate::base::maps::with_format;
+use crate::cost::arch::Arch;
+use crate::experiment::study::{self, Manifest, Shard, Spec, Variant, jittered};
+use crate::input::limits::Limits;
+use crate::render::shared::{ImageShare, LightKey, LightShare, Scratch, render_shared, shares};
+use crate::render::{RenderConfig, TruthSource, render_costed, truth};
+use crate::world::scene::Scene;
+use umbra_core::DepthFormatKind;
+use umbra_core::shadow::Filter;
 
 /// Every algorithm of the full sweep, one parameter each, and the
 /// variants that change only the shading (virtual samples off) or only

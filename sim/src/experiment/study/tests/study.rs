@@ -6,14 +6,14 @@
 
 use std::path::{Path, PathBuf};
 
-use umbra::core::DepthFormatKind;
-use umbra::sim::Algorithm;
-use umbra::sim::cost::arch::Arch;
-use umbra::sim::experiment::study::extremes::{self, RATIOS};
-use umbra::sim::experiment::study::plot::pareto_front;
-use umbra::sim::experiment::study::{self, Manifest, Row, Shard, Spec, Status, Variant};
-use umbra::sim::input::limits::Limits;
-use umbra::sim::world::scene::Scene;
+use crate::Algorithm;
+use crate::cost::arch::Arch;
+use crate::experiment::study::extremes::{self, RATIOS};
+use crate::experiment::study::plot::pareto_front;
+use crate::experiment::study::{self, Manifest, Row, Shard, Spec, Status, Variant};
+use crate::input::limits::Limits;
+use crate::world::scene::Scene;
+use umbra_core::DepthFormatKind;
 
 /// A folder of this test process for `name`, emptied.
 fn dir(name: &str) -> PathBuf {
@@ -169,7 +169,7 @@ fn shards_merge_into_the_whole_run() {
     let n = study::merge(&inputs, &merged, &Limits::DEFAULT).expect("merge");
     assert_eq!(n, spec.configs().len() * Arch::era_presets().len());
     assert_eq!(outputs(&full), outputs(&merged));
-    let run = umbra::sim::output::folder::RunManifest::verify(&merged, u64::MAX).expect("a complete folder");
+    let run = crate::output::folder::RunManifest::verify(&merged, u64::MAX).expect("a complete folder");
     let m: Manifest = serde_json::from_value(run.study.expect("the study's record")).expect("JSON");
     assert_eq!((m.shard.as_str(), m.rows), ("0/1", n));
     for bad in ["3/3", "1", "a/2", "0/0"] {
@@ -290,7 +290,7 @@ fn extremes_give_finite_metrics() {
 fn extremes_keep_to_their_limits() {
     let out = dir("extremes-limits");
     let limits = Limits { max_map_side: 256, ..Limits::DEFAULT };
-    let mut folder = umbra::sim::output::folder::OutputFolder::create(&out).expect("folder");
+    let mut folder = crate::output::folder::OutputFolder::create(&out).expect("folder");
     let md = extremes::run_all(&mut folder, &limits).expect("runs");
     folder.finish(None).expect("finished");
     let rows = study::read_rows(&out.join("extremes.jsonl"), &Limits::DEFAULT).expect("written");
@@ -356,7 +356,7 @@ fn configurations_that_render_alike_write_the_unshared_files() {
 /// of one another.
 #[test]
 fn shards_partition_by_whole_blocks() {
-    use umbra::sim::experiment::study::Layout;
+    use crate::experiment::study::Layout;
     for (scenes, variants, formats, maps, filters) in
         [(9, 22, 3, 6, 5), (3, 14, 2, 2, 2), (1, 3, 1, 1, 4), (2, 5, 3, 2, 1)]
     {

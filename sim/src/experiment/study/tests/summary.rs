@@ -4,8 +4,8 @@
 //! image size; the image size at which shadow volumes stop being the
 //! cheapest; the bottleneck an architecture parameter moves.
 
-use umbra::sim::cost::work::Bottleneck;
-use umbra::sim::experiment::study::{Manifest, Row, RowConfig, RowCost, RowMetrics, Status, summary};
+use crate::cost::work::Bottleneck;
+use crate::experiment::study::{Manifest, Row, RowConfig, RowCost, RowMetrics, Status, summary};
 
 /// A row: `algorithm` of `family` at `image` on `arch` (`params`), with
 /// `artifacts` percent of 10 000 evaluated pixels, and its costs: light and
@@ -34,10 +34,10 @@ fn row(
             bias1: None,
             offset: None,
             virtual_samples: Some(true),
-            culling: umbra::sim::Culling::ALGORITHM,
-            depth_format: umbra::core::DepthFormatKind::D16,
+            culling: crate::Culling::ALGORITHM,
+            depth_format: umbra_core::DepthFormatKind::D16,
             map_side_texels: 256,
-            filter_name: umbra::core::shadow::Filter::Point,
+            filter_name: umbra_core::shadow::Filter::Point,
             arch: arch.into(),
             base_arch: arch.into(),
             arch_params: params.into(),
@@ -80,13 +80,7 @@ fn manifest() -> Manifest {
         umbra_version: "test".into(),
         shard: "0/1".into(),
         configurations: 5,
-        layout: umbra::sim::experiment::study::Layout {
-            configurations: 5,
-            variants: 5,
-            formats: 1,
-            maps: 1,
-            filters: 1,
-        },
+        layout: crate::experiment::study::Layout { configurations: 5, variants: 5, formats: 1, maps: 1, filters: 1 },
         architectures: 1,
         rows: 6,
         budgets: vec![1.0, 0.1, 0.001],
@@ -195,7 +189,7 @@ fn scene_names_never_become_paths() {
         Row { config: RowConfig { scene: name.into(), ..r.config }, ..r }
     };
     let rows = vec![named("/../../../ESCAPED", 0), named("table.v2", 1)];
-    umbra::sim::experiment::study::write_run(&out, &rows, &manifest()).expect("written");
+    crate::experiment::study::write_run(&out, &rows, &manifest()).expect("written");
     let mut names: Vec<String> =
         std::fs::read_dir(&out).expect("out").map(|e| e.expect("entry").file_name().to_string_lossy().into()).collect();
     names.sort();
@@ -207,7 +201,7 @@ fn scene_names_never_become_paths() {
     assert_eq!(above.len(), 1, "only out/ inside {}", base.display());
     assert!(!base.join("ESCAPED-time.png").exists() && std::fs::read_dir(&base).expect("dir").count() == 1);
     let clash = vec![named("a.b", 0), named("a/b", 1)];
-    let e = umbra::sim::experiment::study::write_run(&base.join("clash"), &clash, &manifest()).expect_err("clash");
+    let e = crate::experiment::study::write_run(&base.join("clash"), &clash, &manifest()).expect_err("clash");
     assert!(e.to_string().contains("`a.b` and `a/b`"), "{e}");
     let _ = std::fs::remove_dir_all(&base);
 }
@@ -218,7 +212,7 @@ fn scene_names_never_become_paths() {
 /// and text), and the palette keeps twelve architectures apart.
 #[test]
 fn the_arch_axes_plot_is_numeric_with_a_line_per_base() {
-    use umbra::sim::experiment::plot::{colour, log_ticks, tick_label};
+    use crate::experiment::plot::{colour, log_ticks, tick_label};
     let base = std::env::temp_dir().join(format!("umbra-axes-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&base);
     let mut rows = Vec::new();
@@ -243,7 +237,7 @@ fn the_arch_axes_plot_is_numeric_with_a_line_per_base() {
             rows.push(Row { arch_index: 3 * b + k, config, ..r });
         }
     }
-    umbra::sim::experiment::study::write_run(&base, &rows, &manifest()).expect("written");
+    crate::experiment::study::write_run(&base, &rows, &manifest()).expect("written");
     let svg = std::fs::read_to_string(base.join("arch-axes-synthetic.svg")).expect("the plot");
     // Each base's line: three points, in its colour.
     for k in 0..2 {
