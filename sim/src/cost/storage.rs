@@ -26,14 +26,15 @@ use umbra_core::DepthFormatKind;
 
 /// Bytes of the bounding-box scheme's header: the box as four `u16`
 /// (first column, first row, width, height; map sides are at most 2¹⁴).
-pub const BOX_HEADER_BYTES: u64 = 8;
+pub(crate) const BOX_HEADER_BYTES: u64 = 8;
 
 /// Bytes of one entry of the tile scheme's directory (a `u32` offset, or a
 /// marker for an absent tile).
-pub const TILE_ENTRY_BYTES: u64 = 4;
+pub(crate) const TILE_ENTRY_BYTES: u64 = 4;
 
-/// Reeves et al.'s tile side.
-pub const REEVES_TILE: u32 = 32;
+/// Reeves et al.'s tile side (1987, Table 2): the planner stores its maps
+/// in tiles of this side.
+pub(crate) const REEVES_TILE: u32 = 32;
 
 /// Largest map side (the core's limit).
 const MAX_SIDE: u32 = 1 << umbra_core::budget::MAX_TARGET_BITS;
@@ -210,7 +211,7 @@ fn finite(shape: &MapShape, buffers: &[&[u32]], x: u32, y: u32) -> bool {
 ///
 /// # Errors
 /// [`StorageError`] for a bad shape or a buffer of the wrong length.
-pub fn finite_box(shape: &MapShape, buffers: &[&[u32]]) -> Result<Option<TexelBox>, StorageError> {
+pub(crate) fn finite_box(shape: &MapShape, buffers: &[&[u32]]) -> Result<Option<TexelBox>, StorageError> {
     check_buffers(shape, 1, buffers)?;
     let mut b: Option<TexelBox> = None;
     for y in 0..shape.height {
@@ -231,7 +232,7 @@ pub fn finite_box(shape: &MapShape, buffers: &[&[u32]]) -> Result<Option<TexelBo
 ///
 /// # Errors
 /// [`StorageError`] for a bad shape or tile size, or a buffer of the wrong length.
-pub fn storage_bytes(shape: &MapShape, buffers: &[&[u32]], tile: u32) -> Result<StorageBytes, StorageError> {
+pub(crate) fn storage_bytes(shape: &MapShape, buffers: &[&[u32]], tile: u32) -> Result<StorageBytes, StorageError> {
     check_buffers(shape, tile, buffers)?;
     let b = u64::from(shape.texel_bytes);
     let u = buffers.len() as u64;
@@ -358,3 +359,6 @@ impl SparseTiles {
         TILE_ENTRY_BYTES * self.directory.len() as u64 + (self.texels.len() as u64 + self.max.len() as u64) * b
     }
 }
+
+#[cfg(test)]
+mod tests;

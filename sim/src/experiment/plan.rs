@@ -31,7 +31,7 @@ use umbra_core::{CullMode, DepthFormat, DepthFormatKind, DepthUnit, F32, LightPa
 
 use crate::cost::arch::Arch;
 use crate::cost::report::CostReport;
-use crate::cost::storage::{MapShape, StorageBytes, storage_bytes};
+use crate::cost::storage::{MapShape, REEVES_TILE, StorageBytes, storage_bytes};
 use crate::experiment::presets::FILTERS;
 use crate::input::limits::Limits;
 use crate::pass::light::{self, DEFAULT_BIN_CAPACITY, LightFrame, LightOptions};
@@ -42,9 +42,6 @@ use crate::world::scene::Scene;
 
 /// 16-bit steps the thinnest gaps between surfaces must span.
 pub(crate) const GAP_LSBS: f64 = 8.0;
-
-/// Tile side of the sparse storage scheme (Reeves et al. 1987 Table 2).
-pub(crate) const STORAGE_TILE: u32 = 32;
 
 /// The dual test's offset the planner uses, as a depth in `[0, 1]`.
 pub(crate) const DUAL_OFFSET: f64 = 0.01;
@@ -147,7 +144,7 @@ pub struct Plan {
     /// The reasons, one line each.
     pub reasons: Vec<String>,
     /// The chosen map's storage under Reeves et al.'s schemes (Table 2),
-    /// tiles of `STORAGE_TILE`.
+    /// tiles of [`REEVES_TILE`].
     pub storage: StorageBytes,
 }
 
@@ -351,7 +348,7 @@ pub fn plan(scene: &Scene, spec: &PlanSpec) -> Result<Plan, PlanError> {
     }
     let raster = r.maps.maps.config.raster;
     let shape = MapShape::of_format(raster.width(), raster.height(), r.maps.format);
-    let storage = storage_bytes(&shape, &r.maps.buffers(), STORAGE_TILE)
+    let storage = storage_bytes(&shape, &r.maps.buffers(), REEVES_TILE)
         .map_err(|e| PlanError::Spec(format!("map storage: {e}")))?;
     // The same test with everything: the dual unit's own z2 and 24 bits.
     let full_algorithm =
@@ -427,7 +424,7 @@ impl Plan {
         let _ = writeln!(s, "| bounding box | {} | {} texels of finite depth |", st.bounding_box, st.box_texels);
         let _ = writeln!(
             s,
-            "| {STORAGE_TILE}×{STORAGE_TILE} tiles | {} | {} of {} tiles that received geometry |",
+            "| {REEVES_TILE}×{REEVES_TILE} tiles | {} | {} of {} tiles that received geometry |",
             st.tiles, st.stored_tiles, st.grid_tiles
         );
         s

@@ -89,7 +89,7 @@ const PALETTE: [RGBColor; 10] = [
 /// hues spaced evenly round the wheel, lightness alternating, so that no
 /// two of any number repeat.
 #[must_use]
-pub fn colour(k: usize, n: usize) -> RGBColor {
+pub(crate) fn colour(k: usize, n: usize) -> RGBColor {
     if n <= PALETTE.len() {
         return PALETTE[k % PALETTE.len()];
     }
@@ -110,7 +110,7 @@ pub(crate) fn log_range(values: impl Iterator<Item = f64>, floor: f64) -> std::o
 /// 2 and 5 of each when the range spans fewer than three decades), minor
 /// ones at every whole multiple of each decade.
 #[must_use]
-pub fn log_ticks(range: &std::ops::Range<f64>) -> (Vec<f64>, Vec<f64>) {
+pub(crate) fn log_ticks(range: &std::ops::Range<f64>) -> (Vec<f64>, Vec<f64>) {
     let (lo, hi) = (range.start.max(f64::MIN_POSITIVE), range.end);
     #[allow(clippy::cast_possible_truncation, reason = "decades of finite numbers")]
     let decades = lo.log10().floor() as i32..=hi.log10().ceil() as i32;
@@ -136,7 +136,7 @@ pub fn log_ticks(range: &std::ops::Range<f64>) -> (Vec<f64>, Vec<f64>) {
 /// A tick's label: plain for 0.01 to 10 000, else `2e5`-style; three
 /// significant digits at most.
 #[must_use]
-pub fn tick_label(v: f64) -> String {
+pub(crate) fn tick_label(v: f64) -> String {
     if v == 0.0 {
         return "0".to_owned();
     }

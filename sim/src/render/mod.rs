@@ -12,7 +12,7 @@ pub mod params;
 pub mod pictures;
 pub(crate) mod replay;
 mod request;
-pub mod shared;
+pub(crate) mod shared;
 
 use indicatif::ProgressBar;
 use umbra_core::depth::Texel;
@@ -23,7 +23,8 @@ use umbra_core::{DepthFormat, DepthUnit, LightPassConfig, Probe, RasterConfig, T
 
 pub(crate) use self::config::Targets;
 pub use self::config::{Checked, RenderConfig, RenderConfigError};
-pub use self::costed::{cost, cost_others, cost_unshadowed, render_costed};
+pub use self::costed::{cost, render_costed};
+pub(crate) use self::costed::{cost_others, cost_unshadowed};
 use self::replay::{PassInputs, judged};
 pub use self::request::RenderRequest;
 use crate::base::counters::Counters;

@@ -7,4 +7,3 @@ mod cache;
 mod correlation;
 mod derived;
 mod shared;
-mod storage;

@@ -28,10 +28,10 @@ use crate::world::mesh::Mesh;
 use crate::world::scene::{Light, Object, Scene};
 
 /// The light near/far ratios swept.
-pub const RATIOS: [f64; 6] = [10.0, 1e2, 1e3, 1e4, 1e5, 1e6];
+pub(crate) const RATIOS: [f64; 6] = [10.0, 1e2, 1e3, 1e4, 1e5, 1e6];
 
 /// The grazing angles, degrees between the light and the floor.
-pub const GRAZING_DEGREES: [f64; 2] = [0.1, 0.02];
+pub(crate) const GRAZING_DEGREES: [f64; 2] = [0.1, 0.02];
 
 /// Wang & Molnar's table (a spot light) with the light's near plane at
 /// `far / ratio`, its far plane where the scene file has it. The scene is
@@ -40,7 +40,7 @@ pub const GRAZING_DEGREES: [f64; 2] = [0.1, 0.02];
 /// # Panics
 /// Never: the bundled table-and-sphere scene is valid.
 #[must_use]
-pub fn near_far_scene(ratio: f64) -> Scene {
+pub(crate) fn near_far_scene(ratio: f64) -> Scene {
     let mut s = Scene::default_scene();
     if let Some(Light::Spot(p)) = s.lights.first_mut() {
         #[allow(clippy::cast_possible_truncation, reason = "a plane distance well inside f32")]
@@ -61,7 +61,7 @@ fn near_far_name(ratio: f64) -> String {
 /// # Panics
 /// Never: the bundled grazing scene is valid.
 #[must_use]
-pub fn grazing_scene(degrees: f64) -> Scene {
+pub(crate) fn grazing_scene(degrees: f64) -> Scene {
     let mut s = Scene::bundled("grazing").expect("the bundled grazing scene is valid");
     if let Some(Light::Directional(o)) = s.lights.first_mut() {
         let d = o.position - o.target;
@@ -89,7 +89,7 @@ fn floor_quad(name: &str, x: (f32, f32), z: (f32, f32), y: f32) -> Object {
 /// # Panics
 /// Never: the bundled scene is valid.
 #[must_use]
-pub fn guard_band_scene() -> Scene {
+pub(crate) fn guard_band_scene() -> Scene {
     let mut s = Scene::bundled("weiskopf-l").expect("the bundled weiskopf-l scene is valid");
     s.objects.retain(|o| o.name != "plane");
     s.objects.push(floor_quad("inside the guard band", (-1027.9, 1019.9), (-3.0, 3.0), 0.0));
@@ -103,7 +103,7 @@ pub fn guard_band_scene() -> Scene {
 /// of sub-pixel triangles (2·10⁻³ units, a fraction of a texel) floating
 /// above it.
 #[must_use]
-pub fn sliver_scene() -> Scene {
+pub(crate) fn sliver_scene() -> Scene {
     let mut s = Scene::default_scene();
     let mut slivers = Mesh::default();
     for k in 0..200u16 {
@@ -134,7 +134,7 @@ pub fn sliver_scene() -> Scene {
 /// # Panics
 /// Never: the bundled scene is valid.
 #[must_use]
-pub fn coincident_scene() -> Scene {
+pub(crate) fn coincident_scene() -> Scene {
     let mut s = Scene::bundled("weiskopf-l").expect("the bundled weiskopf-l scene is valid");
     let base = s.objects.iter().find(|o| o.name == "L base").cloned();
     s.objects.extend(base.map(|mut o| {
@@ -149,7 +149,7 @@ pub fn coincident_scene() -> Scene {
 /// The algorithms the extremes run: first depth at a bias that suits the
 /// bundled scenes, second depth, midpoint and dual.
 #[must_use]
-pub fn variants() -> Vec<Variant> {
+pub(crate) fn variants() -> Vec<Variant> {
     vec![
         Variant::new(Algorithm::First, 0.002),
         Variant::new(Algorithm::Second, 0.0),
@@ -162,7 +162,7 @@ pub fn variants() -> Vec<Variant> {
 /// 512² map, bilinear filter, metrics only (no presets), `width × height`
 /// images against one reference ray per pixel.
 #[must_use]
-pub fn spec(scenes: Vec<Scene>, width: u32, height: u32) -> Spec {
+pub(crate) fn spec(scenes: Vec<Scene>, width: u32, height: u32) -> Spec {
     Spec {
         scenes,
         variants: variants(),
@@ -182,7 +182,7 @@ pub fn spec(scenes: Vec<Scene>, width: u32, height: u32) -> Spec {
 
 /// Every extreme scene: the near/far sweep, then the other cases.
 #[must_use]
-pub fn scenes() -> Vec<Scene> {
+pub(crate) fn scenes() -> Vec<Scene> {
     let mut s: Vec<Scene> = RATIOS.iter().map(|&r| near_far_scene(r)).collect();
     s.extend(GRAZING_DEGREES.iter().map(|&d| grazing_scene(d)));
     s.extend([guard_band_scene(), sliver_scene(), coincident_scene()]);
@@ -201,7 +201,7 @@ pub(crate) const BREAKDOWN_POINTS: f64 = 1.0;
 /// The smallest swept ratio at which `algorithm` in `format` misclassifies
 /// `BREAKDOWN_POINTS` more than at ratio 10; `None` if it never does.
 #[must_use]
-pub fn breakdown(rows: &[Row], algorithm: &str, format: DepthFormatKind) -> Option<f64> {
+pub(crate) fn breakdown(rows: &[Row], algorithm: &str, format: DepthFormatKind) -> Option<f64> {
     let errs: Vec<(f64, f64)> =
         curve(rows, algorithm, format).filter_map(|r| Some((ratio_of(&r.config.scene)?, misclassified(r)?))).collect();
     let base = errs.first()?.1;
@@ -216,7 +216,7 @@ fn ratio_of(scene: &str) -> Option<f64> {
 /// The extremes table in Markdown: the near/far sweep (misclassified % per
 /// ratio, with each curve's breakdown) and the other cases.
 #[must_use]
-pub fn markdown(rows: &[Row]) -> String {
+pub(crate) fn markdown(rows: &[Row]) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "# Umbra study: numerical extremes\n");
     let _ = writeln!(

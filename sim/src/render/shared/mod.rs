@@ -33,10 +33,10 @@ mod shading;
 
 use umbra_core::{CullMode, DepthUnit};
 
-pub use self::lit::LightShare;
-pub use self::seen::ImageShare;
-pub use self::shading::Scratch;
-pub use self::shading::render_shared;
+pub(crate) use self::lit::LightShare;
+pub(crate) use self::seen::ImageShare;
+pub(crate) use self::shading::Scratch;
+pub(crate) use self::shading::render_shared;
 use super::RenderConfig;
 use super::costed::shape;
 use crate::base::maps::Tiling;
@@ -47,7 +47,7 @@ use crate::pass::algorithm::MapKind;
 /// charges the filter's instructions on the visibility pass's depth writes,
 /// so its visibility is not the same for every configuration.
 #[must_use]
-pub fn shares(arch: &Arch) -> bool {
+pub(crate) fn shares(arch: &Arch) -> bool {
     !arch.shade.per_fragment
 }
 
@@ -74,7 +74,7 @@ fn assign<K: PartialEq + Copy>(archs: &[Arch], first: K, key: impl Fn(&Arch) -> 
 /// What a light pass reads of a configuration: configurations with the
 /// same key draw the same maps with the same events.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct LightKey {
+pub(crate) struct LightKey {
     format: umbra_core::DepthFormatKind,
     map_size: u32,
     unit: DepthUnit,

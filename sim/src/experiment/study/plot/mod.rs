@@ -23,7 +23,7 @@ use crate::pass::algorithm::Family;
 /// costly and strictly more accurate, or cheaper and as accurate), by
 /// increasing cost.
 #[must_use]
-pub fn pareto_front(points: &[(f64, f64)]) -> Vec<usize> {
+pub(crate) fn pareto_front(points: &[(f64, f64)]) -> Vec<usize> {
     let mut order: Vec<usize> = (0..points.len()).collect();
     order.sort_by(|&a, &b| points[a].0.total_cmp(&points[b].0).then(points[a].1.total_cmp(&points[b].1)));
     let mut best = f64::INFINITY;
