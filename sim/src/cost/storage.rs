@@ -8,8 +8,8 @@
 //! | scheme | bytes |
 //! |---|---|
 //! | **raw** | `W·H·b·u` for `u` buffers |
-//! | **bounding box** of the texels holding a finite (non-clear) depth in any buffer; texels outside it are not stored | [`BOX_HEADER_BYTES`] `+ w·h·b·u` for a `w × h` box (`w·h = 0` for an empty map) |
-//! | **tiles** of `T × T` texels (Reeves' 32×32; partial at the right and bottom edges), storing only tiles with a finite depth in any buffer, each with its max depth per buffer (§3.3: "store a maximum z value with each tile") | [`TILE_ENTRY_BYTES`]` · n + Σ (a·b + b)·u` over the stored tiles, `n` tiles in the grid, `a` a stored tile's texels |
+//! | **bounding box** of the texels holding a finite (non-clear) depth in any buffer; texels outside it are not stored | `BOX_HEADER_BYTES` `+ w·h·b·u` for a `w × h` box (`w·h = 0` for an empty map) |
+//! | **tiles** of `T × T` texels (Reeves' 32×32; partial at the right and bottom edges), storing only tiles with a finite depth in any buffer, each with its max depth per buffer (§3.3: "store a maximum z value with each tile") | `TILE_ENTRY_BYTES`` · n + Σ (a·b + b)·u` over the stored tiles, `n` tiles in the grid, `a` a stored tile's texels |
 //!
 //! The tile scheme's directory has one entry per tile of the grid: where the
 //! tile's texels are, or that it is absent (every texel clear). Texel sizes
@@ -26,15 +26,15 @@ use umbra_core::DepthFormatKind;
 
 /// Bytes of the bounding-box scheme's header: the box as four `u16`
 /// (first column, first row, width, height; map sides are at most 2¹⁴).
-pub(crate) const BOX_HEADER_BYTES: u64 = 8;
+pub const BOX_HEADER_BYTES: u64 = 8;
 
 /// Bytes of one entry of the tile scheme's directory (a `u32` offset, or a
 /// marker for an absent tile).
-pub(crate) const TILE_ENTRY_BYTES: u64 = 4;
+pub const TILE_ENTRY_BYTES: u64 = 4;
 
 /// Reeves et al.'s tile side (1987, Table 2): the planner stores its maps
 /// in tiles of this side.
-pub(crate) const REEVES_TILE: u32 = 32;
+pub const REEVES_TILE: u32 = 32;
 
 /// Largest map side (the core's limit).
 const MAX_SIDE: u32 = 1 << umbra_core::budget::MAX_TARGET_BITS;
@@ -211,7 +211,7 @@ fn finite(shape: &MapShape, buffers: &[&[u32]], x: u32, y: u32) -> bool {
 ///
 /// # Errors
 /// [`StorageError`] for a bad shape or a buffer of the wrong length.
-pub(crate) fn finite_box(shape: &MapShape, buffers: &[&[u32]]) -> Result<Option<TexelBox>, StorageError> {
+pub fn finite_box(shape: &MapShape, buffers: &[&[u32]]) -> Result<Option<TexelBox>, StorageError> {
     check_buffers(shape, 1, buffers)?;
     let mut b: Option<TexelBox> = None;
     for y in 0..shape.height {
@@ -232,7 +232,7 @@ pub(crate) fn finite_box(shape: &MapShape, buffers: &[&[u32]]) -> Result<Option<
 ///
 /// # Errors
 /// [`StorageError`] for a bad shape or tile size, or a buffer of the wrong length.
-pub(crate) fn storage_bytes(shape: &MapShape, buffers: &[&[u32]], tile: u32) -> Result<StorageBytes, StorageError> {
+pub fn storage_bytes(shape: &MapShape, buffers: &[&[u32]], tile: u32) -> Result<StorageBytes, StorageError> {
     check_buffers(shape, tile, buffers)?;
     let b = u64::from(shape.texel_bytes);
     let u = buffers.len() as u64;
@@ -359,6 +359,3 @@ impl SparseTiles {
         TILE_ENTRY_BYTES * self.directory.len() as u64 + (self.texels.len() as u64 + self.max.len() as u64) * b
     }
 }
-
-#[cfg(test)]
-mod tests;

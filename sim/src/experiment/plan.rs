@@ -144,7 +144,7 @@ pub struct Plan {
     /// The reasons, one line each.
     pub reasons: Vec<String>,
     /// The chosen map's storage under Reeves et al.'s schemes (Table 2),
-    /// tiles of [`REEVES_TILE`].
+    /// tiles of `REEVES_TILE`.
     pub storage: StorageBytes,
 }
 

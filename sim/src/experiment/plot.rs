@@ -1,6 +1,6 @@
 //! Plots drawn the same way on any backend, shared by the study and the
 //! correlation: SVG and PNG of one figure (`both`), colours that stay
-//! distinct for any number of series ([`colour`]), log–log charts whose
+//! distinct for any number of series (`colour`), log–log charts whose
 //! axes have labelled ticks (a log axis at each decade, at 2 and 5 too when
 //! it spans few, with minor ticks), and a footnote.
 //!

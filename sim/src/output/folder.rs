@@ -341,7 +341,7 @@ impl OutputFolder {
     /// # Errors
     /// `OutputError::Folder` for a name outside the folder or one of the
     /// manifests; `OutputError::Io` naming the file for any write error.
-    pub fn write(&mut self, name: &str, bytes: &[u8]) -> Result<PathBuf, OutputError> {
+    pub(crate) fn write(&mut self, name: &str, bytes: &[u8]) -> Result<PathBuf, OutputError> {
         let relative = checked_name(&self.dir, name)?;
         if name == MANIFEST || name == PENDING {
             return Err(problem(&self.dir, format!("`{name}` is the folder's own record")));
@@ -364,7 +364,7 @@ impl OutputFolder {
     /// Write UTF-8 text as `name`.
     ///
     /// # Errors
-    /// As [`write`](Self::write).
+    /// As `write`.
     pub fn write_text(&mut self, name: &str, text: &str) -> Result<PathBuf, OutputError> {
         self.write(name, text.as_bytes())
     }

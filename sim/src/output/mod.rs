@@ -9,4 +9,4 @@ pub mod formats;
 pub mod markdown;
 pub mod provenance;
 
-pub(crate) use error::OutputError;
+pub use error::OutputError;

@@ -178,7 +178,7 @@ pub fn cost(job: &Checked<'_>, arch: &Arch) -> Result<CostReport, RenderError> {
 ///
 /// # Errors
 /// See [`RenderError`].
-pub fn cost_unshadowed(
+pub(crate) fn cost_unshadowed(
     scene: &Scene,
     (width, height): (u32, u32),
     arch: &Arch,
@@ -278,7 +278,7 @@ pub fn render_costed(
 /// architectures from one run of the passes (as [`render_costed`] costs
 /// those that do not draw as the render does). A costing that fails is
 /// that architecture's error.
-pub fn cost_others(job: &Checked<'_>, archs: &[Arch], out: &mut [Option<Result<CostReport, RenderError>>]) {
+pub(crate) fn cost_others(job: &Checked<'_>, archs: &[Arch], out: &mut [Option<Result<CostReport, RenderError>>]) {
     let mut groups: Vec<(Shape, Vec<usize>)> = Vec::new();
     for (k, a) in archs.iter().enumerate().filter(|&(k, _)| out[k].is_none()) {
         match groups.iter_mut().find(|g| g.0 == shape(a)) {

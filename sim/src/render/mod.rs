@@ -10,7 +10,7 @@ mod costed;
 pub mod files;
 pub mod params;
 pub mod pictures;
-pub(crate) mod replay;
+pub mod replay;
 mod request;
 pub(crate) mod shared;
 

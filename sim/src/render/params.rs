@@ -37,7 +37,7 @@ pub enum Kind {
 impl Kind {
     /// The type its column holds in a study's rows.
     #[must_use]
-    pub const fn column_type(self) -> &'static str {
+    pub(crate) const fn column_type(self) -> &'static str {
         match self {
             Self::Choice(_) | Self::Spelled => "text",
             Self::Whole { .. } => "integer",

@@ -7,3 +7,4 @@ mod cache;
 mod correlation;
 mod derived;
 mod shared;
+mod storage;

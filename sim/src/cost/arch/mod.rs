@@ -14,4 +14,4 @@ pub(crate) use keys::column;
 pub use keys::{PARAMS, Param, Problem, Unit, Value};
 pub use machine::{Arch, Calibration};
 pub use presets::BUNDLED;
-pub(crate) use units::CacheParams;
+pub use units::{Bins, CacheParams, DepthRates, DramParams, Energy, Front, OnChip, Raster, Shade, ShadowRates};

@@ -9,8 +9,7 @@ pub mod files;
 mod stats;
 mod trace;
 
-pub use compare::Comparison;
-pub use stats::StatUnit;
+pub use compare::{Compared, Comparison};
 pub use trace::trace;
 
 use std::fmt::Write as _;

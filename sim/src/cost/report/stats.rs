@@ -12,7 +12,7 @@ use umbra_core::probe::{Counted, Totals};
 /// The unit a statistic is counted in, declared with it; its name ends
 /// in the unit's name (`_cycles`, `_bytes`, `_bytes_per_second`, …).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum StatUnit {
+pub(crate) enum StatUnit {
     /// Events or items.
     Count,
     /// Clock cycles.

@@ -309,7 +309,7 @@ pub(crate) fn precision_series(rows: &[Row]) -> Vec<Series> {
 ///
 /// # Errors
 /// See [`StudyError`].
-pub fn run_all(folder: &mut OutputFolder, limits: &Limits) -> Result<String, StudyError> {
+pub(crate) fn run_all(folder: &mut OutputFolder, limits: &Limits) -> Result<String, StudyError> {
     let spec = Spec { limits: *limits, ..spec(scenes(), 160, 90) };
     let rows = super::run(&spec, Shard::ALL, &ProgressBar::hidden())?;
     folder.write_text("extremes.jsonl", &super::jsonl(&rows))?;

@@ -27,8 +27,8 @@ use crate::input::limits::FileError;
 use crate::output::OutputError;
 use crate::world::scene_file::SceneError;
 
-pub mod extremes;
-pub mod plot;
+pub(crate) mod extremes;
+pub(crate) mod plot;
 mod rank;
 
 mod request;
@@ -40,24 +40,24 @@ mod summary;
 mod sweep;
 mod sweep_file;
 
-pub use request::{Outcome, Overrides, Request, choose_archs, no_repeats};
+pub use request::{Outcome, Overrides, Prepared, Request, choose_archs, no_repeats};
 pub use row::{Row, RowConfig, RowCost, RowMetrics, Status};
-pub(crate) use run::load_scenes;
 #[cfg(test)]
 use run::run_unshared;
 use run::sort_rows;
-pub use run::{render_config, run};
+pub use run::{load_scenes, render_config, run};
 use shards::jsonl;
-pub(crate) use shards::{Manifest, already_complete, finish, write_partial};
 #[cfg(test)]
-use shards::{ShardState, write_run};
+use shards::write_run;
+pub use shards::{Manifest, ShardFolder, ShardState, ShardStatus};
+pub(crate) use shards::{already_complete, finish, write_partial};
 pub use shards::{merge, read_rows, status};
-pub use summary::{summary, table, write_outputs};
+pub(crate) use summary::write_outputs;
+pub use summary::{summary, table};
 #[cfg(test)]
 use sweep::jittered;
 pub use sweep::{ArchPoint, Config, Layout, MAX_ARCHITECTURES, MAX_CONFIGURATIONS, Shard, Spec, Variant};
-pub(crate) use sweep_file::SweepError;
-pub use sweep_file::SweepFile;
+pub use sweep_file::{SweepError, SweepFile};
 
 /// The distinct `values`, in order of first appearance (scenes, families,
 /// architecture points as the rows list them).

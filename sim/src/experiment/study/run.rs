@@ -49,7 +49,7 @@ pub fn render_config(spec: &Spec, c: &Config) -> RenderConfig {
 /// (`PixelFlow`'s 128² regions bin and flush differently from 32² chunks).
 /// The exact reference, the expensive part, is not recomputed.
 #[must_use]
-pub fn run_config(spec: &Spec, c: &Config, truth: &Truth) -> Vec<Row> {
+pub(crate) fn run_config(spec: &Spec, c: &Config, truth: &Truth) -> Vec<Row> {
     let scene = &spec.scenes[c.scene];
     let cfg = render_config(spec, c);
     let done = match truth {
@@ -110,13 +110,13 @@ fn run_shared<F: DepthFormat>(
 }
 
 /// A scene's exact reference at the study's image size, or why there is none.
-pub type Truth = Result<Vec<Option<PixelTruth>>, String>;
+pub(crate) type Truth = Result<Vec<Option<PixelTruth>>, String>;
 
 /// The exact reference of scene `scene` at image size `image` of `spec`,
 /// built in parallel: it depends only on the scene, the image size and the
 /// rays per pixel, not on the configuration. An image beyond the limits is
 /// refused before anything is built.
-pub fn truth_of(spec: &Spec, scene: usize, image: usize) -> Truth {
+pub(crate) fn truth_of(spec: &Spec, scene: usize, image: usize) -> Truth {
     let [w, h] = spec.images[image];
     spec.limits.check_image(w, h).map_err(|e| e.to_string())?;
     truth(&spec.scenes[scene], w, h, spec.reference_rays, &ProgressBar::hidden()).map_err(|e| e.to_string())

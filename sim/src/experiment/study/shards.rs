@@ -39,7 +39,7 @@ pub struct Manifest {
 impl Manifest {
     /// The manifest of `rows`, the run of `shard` of `spec`.
     #[must_use]
-    pub fn new(spec: &Spec, shard: Shard, rows: usize) -> Self {
+    pub(crate) fn new(spec: &Spec, shard: Shard, rows: usize) -> Self {
         Self {
             sweep: spec.name.clone(),
             sweep_hash: spec.hash.clone(),
@@ -173,7 +173,7 @@ fn refuse(path: &Path, problem: impl Into<String>) -> StudyError {
 /// Why `r` is not a row a study writes, if it is not: a known status with
 /// the blocks it implies, finite numbers, values in their ranges.
 #[must_use]
-pub fn invalid(r: &Row) -> Option<String> {
+pub(crate) fn invalid(r: &Row) -> Option<String> {
     match (r.status, &r.metrics) {
         (Status::Ok, None) => return Some("status ok without metrics".into()),
         (Status::Skipped, _) if r.reason.is_empty() => return Some("skipped without a reason".into()),
@@ -246,7 +246,7 @@ pub fn invalid(r: &Row) -> Option<String> {
 /// Refused, each with the file named: a shard without a manifest, of
 /// another sweep or version, of another shard count, twice; a missing
 /// shard; a row count that is not the manifest's; a row outside its shard,
-/// of another sweep, repeated, or failing [`invalid`].
+/// of another sweep, repeated, or failing `invalid`.
 ///
 /// # Errors
 /// See [`StudyError`].

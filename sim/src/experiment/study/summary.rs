@@ -13,7 +13,7 @@ use std::fmt::Write as _;
 ///
 /// # Errors
 /// See [`StudyError`].
-pub fn write_outputs(folder: &mut OutputFolder, rows: &[Row], manifest: &Manifest) -> Result<(), StudyError> {
+pub(crate) fn write_outputs(folder: &mut OutputFolder, rows: &[Row], manifest: &Manifest) -> Result<(), StudyError> {
     let mut rows = rows.to_vec();
     sort_rows(&mut rows);
     folder.write_text("results.jsonl", &jsonl(&rows))?;
@@ -84,7 +84,7 @@ pub fn table(rows: &[Row]) -> Result<(String, Vec<String>), StudyError> {
 /// `_` kept, anything else (a `/`, a `.`) made `_`, so that no name writes
 /// outside the output folder or changes a file's extension.
 #[must_use]
-pub fn slug(name: &str) -> String {
+pub(crate) fn slug(name: &str) -> String {
     let s: String =
         name.chars().map(|c| if c.is_ascii_alphanumeric() || c == '-' || c == '_' { c } else { '_' }).collect();
     if s.is_empty() { "scene".to_owned() } else { s }

@@ -288,7 +288,7 @@ impl Shard {
     ///
     /// # Errors
     /// [`StudyError::Shard`] unless `i` and `n` are integers with `i < n`.
-    pub fn parse(s: &str) -> Result<Self, StudyError> {
+    pub(crate) fn parse(s: &str) -> Result<Self, StudyError> {
         let bad = || StudyError::Shard(s.to_owned());
         let (i, n) = s.split_once('/').ok_or_else(bad)?;
         let (index, count) = (i.trim().parse().map_err(|_| bad())?, n.trim().parse().map_err(|_| bad())?);

@@ -40,7 +40,7 @@ use crate::world::scene::Scene;
 use crate::world::scene_file::BUNDLED;
 
 /// The bundled sweep files, by name.
-pub const BUNDLED_SWEEPS: [(&str, &str); 2] =
+pub(crate) const BUNDLED_SWEEPS: [(&str, &str); 2] =
     [("quick", include_str!("../../../../sweeps/quick.toml")), ("full", include_str!("../../../../sweeps/full.toml"))];
 
 /// Most values one axis of a sweep may list (an algorithm's variants

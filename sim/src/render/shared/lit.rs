@@ -29,7 +29,7 @@ pub(super) struct Lit<T> {
 /// light pass per tiling of the architectures (and the default one), each
 /// architecture's light probe as its pass left it.
 #[derive(Debug)]
-pub struct LightShare<T> {
+pub(crate) struct LightShare<T> {
     /// The default tiling's first.
     pub(super) lit: Vec<Lit<T>>,
     /// For each architecture that [`shares`](super::shares), its entry in `lit`.
@@ -72,7 +72,7 @@ impl<T: umbra_core::depth::Texel> LightShare<T> {
     /// `F`: `None` when one cannot run, for each configuration to render
     /// (and fail) on its own.
     #[must_use]
-    pub fn new<F: DepthFormat<Texel = T>>(image: &ImageShare<'_>, cfg: &RenderConfig) -> Option<Self> {
+    pub(crate) fn new<F: DepthFormat<Texel = T>>(image: &ImageShare<'_>, cfg: &RenderConfig) -> Option<Self> {
         let scene = image.scene;
         let units = cfg.algorithm.units::<F>(cfg.bias);
         let (shapes, lit_by) = assign(image.archs, (Tiling::DEFAULT, false), |a: &Arch| {

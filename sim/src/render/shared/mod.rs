@@ -85,7 +85,7 @@ pub(crate) struct LightKey {
 impl LightKey {
     /// The key of `cfg`: `None` for shadow volumes, which draw no map.
     #[must_use]
-    pub fn of(cfg: &RenderConfig) -> Option<Self> {
+    pub(crate) fn of(cfg: &RenderConfig) -> Option<Self> {
         // The unit and its culling do not depend on the format.
         let units = cfg.algorithm.units::<umbra_core::D24>(cfg.bias);
         (units.map != MapKind::Volumes).then(|| Self {

@@ -39,7 +39,7 @@ pub(super) struct Seen {
 /// What the renders of one scene at one image size share: the reference
 /// with its [`Fields`], a visibility pass per tiling, the scene's counts.
 #[derive(Debug)]
-pub struct ImageShare<'s> {
+pub(crate) struct ImageShare<'s> {
     pub(super) scene: &'s Scene,
     pub(super) size: (u32, u32),
     pub(super) truth: &'s [Option<PixelTruth>],
@@ -79,7 +79,7 @@ impl<'s> ImageShare<'s> {
     /// when the reference has no pixel to measure or a pass cannot run, for
     /// each configuration to render (and fail) on its own.
     #[must_use]
-    pub fn new(
+    pub(crate) fn new(
         scene: &'s Scene,
         size: (u32, u32),
         truth: &'s [Option<PixelTruth>],

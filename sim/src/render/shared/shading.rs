@@ -28,7 +28,7 @@ use crate::truth::metrics::Metrics;
 /// only the shadow, which reports the same events) and the shading unit's
 /// setup store.
 #[derive(Debug, Default)]
-pub struct Scratch {
+pub(crate) struct Scratch {
     pixels: Vec<Shaded>,
     others: Vec<Shadow>,
     setups: Vec<ShadeSetup>,
@@ -37,13 +37,13 @@ pub struct Scratch {
 /// What one configuration's shared render gives: its metrics, the event
 /// totals of its camera pass, and for each architecture that [`shares`]
 /// its cost (`None` for the others, costed on their own).
-pub type SharedRender = (Metrics, Totals, Vec<Option<Result<CostReport, RenderError>>>);
+pub(crate) type SharedRender = (Metrics, Totals, Vec<Option<Result<CostReport, RenderError>>>);
 
 /// Render `cfg` (of `light`'s key) from what it shares, in format `F`,
 /// with `scratch`'s buffers: `None` when anything fails, for the
 /// configuration to render on its own and report why.
 #[must_use]
-pub fn render_shared<F: DepthFormat>(
+pub(crate) fn render_shared<F: DepthFormat>(
     image: &ImageShare<'_>,
     light: &LightShare<F::Texel>,
     cfg: &RenderConfig,

@@ -133,7 +133,7 @@ fn outputs(d: &Path) -> Vec<(String, Vec<u8>)> {
 }
 
 /// Three shards of `spec`, each in its folder with its manifest.
-pub fn shards(spec: &Spec, tag: &str) -> Vec<PathBuf> {
+pub(crate) fn shards(spec: &Spec, tag: &str) -> Vec<PathBuf> {
     (0..3)
         .map(|i| {
             let d = dir(&format!("{tag}-shard-{i}"));

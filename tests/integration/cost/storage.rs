@@ -5,14 +5,14 @@
 
 use std::collections::BTreeMap;
 
-use super::{
+use proptest::prelude::*;
+use umbra::core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, NoProbe, RasterConfig};
+use umbra::sim::cost::storage::{
     BOX_HEADER_BYTES, MapShape, REEVES_TILE, SparseTiles, StorageError, TILE_ENTRY_BYTES, TexelBox, finite_box,
     storage_bytes,
 };
-use crate::pass::light::RawMaps;
-use crate::world::scene::Scene;
-use proptest::prelude::*;
-use umbra_core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, NoProbe, RasterConfig};
+use umbra::sim::pass::light::RawMaps;
+use umbra::sim::world::scene::Scene;
 
 const CLEAR16: u32 = 0xffff;
 
@@ -115,7 +115,7 @@ fn bad_input_is_a_typed_error() {
 }
 
 /// Render a bundled scene's dual 24-bit light maps at `size`².
-fn scene_maps(name: &str, size: u32) -> crate::pass::light::RawMaps {
+fn scene_maps(name: &str, size: u32) -> umbra::sim::pass::light::RawMaps {
     let scene = Scene::bundled(name).expect("bundled scene");
     let raster = RasterConfig::new(size, size, 32, RasterConfig::DEFAULT_SUBPIXEL_BITS).unwrap();
     let cfg = LightPassConfig { raster, unit: DepthUnit::Dual, max_z_cull: true };
