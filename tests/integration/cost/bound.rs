@@ -166,7 +166,7 @@ const UNITS: [(&str, &str); 21] = [
     ("camera.stage.memory_cycles", "cycles"),
     ("light.events.tile_load_bytes", "B"),
     ("light.events.submitted", "count"),
-    ("sen.map_bytes_per_pixel", "B/pixel"),
+    ("sen.map_bytes_per_pixel", "B/px"),
     ("sen.volume_bytes_per_fragment", "B/fragment"),
     ("sen.p_fill_ratio", "ratio"),
 ];
@@ -224,7 +224,13 @@ fn the_stats_file_has_one_convention() {
         })
         .collect();
     let names: Vec<&str> = bottlenecks.iter().map(|b| b.0).collect();
-    assert_eq!(names, ["frame.bottleneck", "light.bottleneck", "camera.bottleneck"]);
-    assert!(bottlenecks[0].1 == bottlenecks[1].1 || bottlenecks[0].1 == bottlenecks[2].1);
-    assert_eq!((bottlenecks[1].1, bottlenecks[2].1), (r.light.bottleneck, r.camera.bottleneck));
+    assert_eq!(names, ["light.bottleneck", "camera.bottleneck", "frame.bottleneck"]);
+    assert!(bottlenecks[2].1 == bottlenecks[0].1 || bottlenecks[2].1 == bottlenecks[1].1);
+    assert_eq!((bottlenecks[0].1, bottlenecks[1].1), (r.light.bottleneck, r.camera.bottleneck));
+    // The row's figures are the stats file's, each declared once: the
+    // frame's cycles rounded as the row rounds them (half away from zero),
+    // the passes' culling in percent, to the file's 7 digits.
+    assert_eq!(v("frame.cycles"), r.cycles.round(), "{}", r.cycles);
+    let culled = 100.0 * r.max_z_cull_rate[0];
+    assert!((v("light.max_z_culled_percent") - culled).abs() <= 1e-6 * culled, "{culled}");
 }

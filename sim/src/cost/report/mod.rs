@@ -6,7 +6,7 @@
 
 mod compare;
 pub mod files;
-mod stats;
+pub(crate) mod stats;
 mod trace;
 
 pub use compare::{Compared, Comparison};

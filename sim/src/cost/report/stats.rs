@@ -1,9 +1,16 @@
-//! The cost report as a gem5-style stats file: `name value # description
-//! (unit)`, one figure a line, every value a number in an SI base unit
-//! whose name ends in that unit; what bounds each pass, an enumerated name,
-//! in a section of its own.
+//! A cost report's statistics, each declared once — its name in the
+//! stats file, its row column, unit, meaning and value — in the manner of
+//! gem5's `ADD_STAT`: the gem5-style stats file (`name value # meaning
+//! (unit)`, one figure a line, what bounds each pass in a section of its
+//! own), the study's rows ([`RowCost`]) and the rows' schema all read the
+//! declaration. The families declared by the units themselves (the
+//! pipeline's stages, the bottlenecks, DRAM traffic by purpose, the
+//! caches, energy by unit, the core's events) follow them.
 
+use std::collections::BTreeSet;
 use std::fmt::Write as _;
+
+use serde::{Deserialize, Serialize};
 
 use super::CostReport;
 use crate::cost::work::{Bottleneck, Stage};
@@ -27,12 +34,20 @@ pub(crate) enum StatUnit {
     BytesPerSecond,
     /// Bytes per covered pixel.
     BytesPerPixel,
+    /// Per covered pixel.
+    PerPixel,
     /// Bytes per fragment.
     BytesPerFragment,
     /// Joules.
     Joules,
     /// A ratio.
     Ratio,
+    /// Percent.
+    Percent,
+    /// Hertz.
+    Hertz,
+    /// None: a name, not a number.
+    Name,
 }
 
 impl StatUnit {
@@ -46,10 +61,14 @@ impl StatUnit {
             Self::PerSecond => "1/s",
             Self::Bytes => "B",
             Self::BytesPerSecond => "B/s",
-            Self::BytesPerPixel => "B/pixel",
+            Self::BytesPerPixel => "B/px",
+            Self::PerPixel => "1/px",
             Self::BytesPerFragment => "B/fragment",
             Self::Joules => "J",
             Self::Ratio => "ratio",
+            Self::Percent => "percent",
+            Self::Hertz => "Hz",
+            Self::Name => "-",
         }
     }
 }
@@ -59,11 +78,167 @@ fn plain(doc: &str) -> String {
     doc.split_whitespace().collect::<Vec<_>>().join(" ").replace(['`', '[', ']'], "")
 }
 
+/// A statistic's value: its type in the rows' schema and its text in the
+/// stats file.
+pub(crate) trait StatValue {
+    /// Its type in the schema: `integer`, `number` or `text`.
+    const KIND: &'static str;
+    /// As the stats file prints it.
+    fn text(&self) -> String;
+}
+
+impl StatValue for u64 {
+    const KIND: &'static str = "integer";
+    fn text(&self) -> String {
+        self.to_string()
+    }
+}
+
+impl StatValue for f64 {
+    const KIND: &'static str = "number";
+    fn text(&self) -> String {
+        format!("{self:.6e}")
+    }
+}
+
+impl StatValue for Bottleneck {
+    const KIND: &'static str = "text";
+    fn text(&self) -> String {
+        self.name().to_owned()
+    }
+}
+
+/// One declared statistic of a report: name, unit, meaning, its value as
+/// the stats file prints it, and whether it is a number (else a name).
+type Declared = (&'static str, StatUnit, &'static str, String, bool);
+
+/// Declares a report's statistics, each once: those a study's row carries
+/// (the stats file's name `=>` the row's field), then those only the
+/// stats file does. Makes the row block (each field's doc its meaning),
+/// its `COLUMNS` in row order, `new` from a report, and `declared`, every
+/// statistic in order.
+macro_rules! stats {
+    (
+        $(#[$attr:meta])*
+        $vis:vis struct $name:ident from ($r:ident: &CostReport) {
+            $($stat:literal => $field:ident: $ty:ty, $unit:ident, $meaning:literal = $value:expr;)+
+        }
+        only {
+            $($only:literal: $oty:ty, $ounit:ident, $omeaning:literal = $ovalue:expr;)+
+        }
+    ) => {
+        $(#[$attr])*
+        $vis struct $name {
+            $(#[doc = $meaning] pub $field: $ty,)+
+        }
+
+        impl $name {
+            /// Its columns, in row order, each as its statistic's
+            /// declaration states it: field, type, unit and meaning.
+            pub(crate) const COLUMNS: &'static [(&'static str, &'static str, &'static str, &'static str)] =
+                &[$((stringify!($field), <$ty as StatValue>::KIND, StatUnit::$unit.symbol(), $meaning)),+];
+
+            /// The block's values from a report.
+            #[must_use]
+            pub(crate) fn new($r: &CostReport) -> Self {
+                Self { $($field: $value,)+ }
+            }
+        }
+
+        /// Every declared statistic of `r`, in declaration order.
+        fn declared($r: &CostReport) -> Vec<Declared> {
+            vec![
+                $(($stat, StatUnit::$unit, $meaning, StatValue::text(&{ let v: $ty = $value; v }), <$ty as StatValue>::KIND != "text"),)+
+                $(($only, StatUnit::$ounit, $omeaning, StatValue::text(&{ let v: $oty = $ovalue; v }), <$oty as StatValue>::KIND != "text"),)+
+            ]
+        }
+    };
+}
+
+/// Cycles, rounded to whole ones.
+#[allow(
+    clippy::cast_possible_truncation,
+    clippy::cast_sign_loss,
+    reason = "cycles, rounded; non-negative and below 2^64"
+)]
+fn round(c: f64) -> u64 {
+    c.round() as u64
+}
+
+stats! {
+    /// A study's row's cost on its architecture: the statistics of a
+    /// [`CostReport`] a row carries.
+    #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+    #[serde(deny_unknown_fields)]
+    pub struct RowCost from (r: &CostReport) {
+        "light.cycles" => light_cycles: u64, Cycles, "the light pass (silhouette pass included)" = round(r.light.cycles);
+        "light.bottleneck" => light_bottleneck: Bottleneck, Name, "what bounds the light pass: setup, raster, depth, shadow, shade, dram-bandwidth, dram-latency" = r.light.bottleneck;
+        "camera.cycles" => camera_cycles: u64, Cycles, "the camera pass" = round(r.camera.cycles);
+        "camera.stage.shadow_cycles" => camera_shadow_cycles: u64, Cycles, "the camera pass's shadow-unit cycles summed over tiles" = round(r.camera.stages[Stage::Shadow as usize]);
+        "camera.bottleneck" => camera_bottleneck: Bottleneck, Name, "what bounds the camera pass" = r.camera.bottleneck;
+        "frame.cycles" => total_cycles: u64, Cycles, "the frame: light pass then camera pass" = round(r.cycles);
+        "arch.clock_hertz" => clock_hertz: f64, Hertz, "the architecture's clock" = r.arch.clock;
+        "frame.seconds" => frame_seconds: f64, Seconds, "the frame at the clock" = r.seconds;
+        "frame.frames_per_second" => frames_per_second: f64, PerSecond, "frames a second at the clock" = r.fps;
+        "frame.energy.total_joules" => energy_joules: f64, Joules, "the frame's energy" = r.energy.total();
+        "frame.dram.achieved_bytes_per_second" => dram_achieved_bytes_per_second: f64, BytesPerSecond, "the frame's DRAM bytes over its time" = r.achieved_bytes_per_second;
+        "frame.dram.peak_bytes_per_second" => dram_peak_bytes_per_second: f64, BytesPerSecond, "the DRAM's bandwidth" = r.dram_peak_bytes_per_second;
+        "frame.dram.latency_ceiling_bytes_per_second" => dram_latency_ceiling_bytes_per_second: f64, BytesPerSecond, "requests in flight × burst / latency (Little's law)" = r.dram_latency_ceiling_bytes_per_second;
+        "light.dram.map_writes_bytes" => dram_map_write_bytes: u64, Bytes, "map texels written by the light pass" = r.light_dram.map_writes;
+        "light.dram.map_rmw_reads_bytes" => dram_map_readback_bytes: u64, Bytes, "depth read back by the light pass" = r.light_dram.map_rmw_reads;
+        "frame.dram.bins_bytes" => dram_bin_bytes: u64, Bytes, "bins and setup records of both passes" = r.light_dram.bins + r.camera_dram.bins;
+        "camera.dram.depth_bytes" => dram_camera_depth_bytes: u64, Bytes, "camera visibility depth, when off chip" = r.camera_dram.map_rmw_reads + r.camera_dram.depth_rmw;
+        "camera.dram.map_reads_bytes" => dram_map_requested_bytes: u64, Bytes, "map bytes the shadow unit requested" = r.camera_dram.map_reads;
+        "camera.dram.map_as_fetched_bytes" => dram_map_fetched_bytes: u64, Bytes, "map bytes fetched through the map cache" = if r.arch.map_cache.size > 0 { r.camera_dram.map_fetched } else { r.camera_dram.map_reads };
+        "frame.dram.silhouette_bytes" => dram_silhouette_bytes: u64, Bytes, "silhouette points written and read" = r.light_dram.silhouette_writes + r.camera_dram.silhouette_reads;
+        "camera.dram.volume_depth_reads_bytes" => dram_volume_depth_bytes: u64, Bytes, "scene depth read by shadow-volume fragments" = r.camera_dram.volume_depth_reads;
+        "camera.dram.stencil_bytes" => dram_stencil_bytes: u64, Bytes, "stencil read and written by shadow-volume fragments" = r.camera_dram.stencil;
+        "frame.dram_bytes" => total_dram_bytes: u64, Bytes, "all DRAM traffic, map reads as fetched" = r.bytes;
+        "light.on_chip_bytes" => on_chip_bytes: u64, Bytes, "on-chip depth storage of the light pass" = r.on_chip_bytes;
+        "light.max_z_culled_percent" => light_culled_percent: f64, Percent, "light-pass triangle-tile pairs and blocks max-z culled" = 100.0 * r.max_z_cull_rate[0];
+        "camera.max_z_culled_percent" => camera_culled_percent: f64, Percent, "the same of the camera's visibility" = 100.0 * r.max_z_cull_rate[1];
+        "camera.lookups_culled_per_pixel" => lookups_culled_per_px: f64, PerPixel, "shadow lookups decided by the tiles' bounds a covered pixel" = r.lookups_culled_per_pixel;
+        "sen.map_bytes_per_pixel" => map_bytes_per_px: f64, BytesPerPixel, "camera-pass map bytes a covered pixel" = r.sen.map_bytes_per_pixel;
+    }
+    only {
+        "frame.bottleneck": Bottleneck, Name, "what bounds the most cycles of the frame" = r.bottleneck;
+        "frame.host_cycles": u64, Cycles, "the host and driver's cycles a frame" = round(r.host_cycles);
+        "light.seconds": f64, Seconds, "the light pass at the clock" = r.light.cycles / r.arch.clock;
+        "camera.seconds": f64, Seconds, "the camera pass at the clock" = r.camera.cycles / r.arch.clock;
+        "light.front_cycles": u64, Cycles, "setup and bin writes of the light pass" = round(r.light.front);
+        "camera.front_cycles": u64, Cycles, "setup and bin writes of the camera pass" = round(r.camera.front);
+        "light.tile_cycles": u64, Cycles, "the light pass's tiles (draws, on an immediate-mode machine), each its slowest stage, summed" = round(r.light.tiles);
+        "camera.tile_cycles": u64, Cycles, "the camera pass's tiles (draws), each its slowest stage, summed" = round(r.camera.tiles);
+        "light.memory.bandwidth_cycles": u64, Cycles, "the light pass's memory cycles summed over tiles were the bytes at the bandwidth what bound them" = round(r.light.memory.bandwidth_cycles);
+        "camera.memory.bandwidth_cycles": u64, Cycles, "the camera pass's memory cycles summed over tiles were the bytes at the bandwidth what bound them" = round(r.camera.memory.bandwidth_cycles);
+        "light.memory.latency_cycles": u64, Cycles, "the light pass's memory cycles summed over tiles were the requests at the latency what bound them" = round(r.light.memory.latency_cycles);
+        "camera.memory.latency_cycles": u64, Cycles, "the camera pass's memory cycles summed over tiles were the requests at the latency what bound them" = round(r.camera.memory.latency_cycles);
+        "light.dram_bytes": u64, Bytes, "DRAM traffic of the light pass" = r.light.bytes;
+        "camera.dram_bytes": u64, Bytes, "DRAM traffic of the camera pass" = r.camera.bytes;
+        "light.dram.achieved_bytes_per_second": f64, BytesPerSecond, "the light pass's DRAM bytes over its time" = r.light.achieved_bytes_per_second;
+        "camera.dram.achieved_bytes_per_second": f64, BytesPerSecond, "the camera pass's DRAM bytes over its time" = r.camera.achieved_bytes_per_second;
+        "sen.triangles": u64, Count, "scene triangles (Table 1)" = r.sen.triangles;
+        "sen.silhouette_edges": u64, Count, "silhouette edges under the light (Table 1)" = r.sen.silhouette_edges;
+        "sen.scene_fill": u64, Count, "camera visibility fragments (Table 1)" = r.sen.scene_fill;
+        "sen.volume_fill": u64, Count, "shadow-volume fragments (Table 1)" = r.sen.volume_fill;
+        "sen.silhouette_fill": u64, Count, "silhouette-pass fragments (Table 1)" = r.sen.silhouette_fill;
+        "sen.p_fill_ratio": f64, Ratio, "silhouette fill over scene fill (Table 1)" = r.sen.p_fill;
+        "sen.p_lookup_rate": f64, Ratio, "covered pixels reconstructed (bandwidth model)" = r.sen.p_lookup;
+        "sen.overdraw_ratio": f64, Ratio, "volume fragments over scene fill" = r.sen.overdraw;
+        "sen.model_map_bytes_per_pixel": f64, BytesPerPixel, "4 B x samples" = r.sen.model_map_bytes_per_pixel;
+        "sen.silhouette_bytes_per_pixel": f64, BytesPerPixel, "simulated point bytes a covered pixel" = r.sen.silhouette_bytes_per_pixel;
+        "sen.model_silhouette_bytes_per_pixel": f64, BytesPerPixel, "24 P" = r.sen.model_silhouette_bytes_per_pixel;
+        "sen.volume_bytes_per_fragment": f64, BytesPerFragment, "simulated volume bytes a scene-fill fragment" = r.sen.volume_bytes_per_fill;
+        "sen.model_volume_bytes_per_fragment": f64, BytesPerFragment, "5.5 O" = r.sen.model_volume_bytes_per_fill;
+    }
+}
+
 impl CostReport {
     /// The report as a gem5-style stats file: headed by the command line,
     /// the scene, the configuration, the version and the effective
-    /// architecture; then one `name value # description (unit)` line per
-    /// figure; then each pass's and the frame's bottleneck.
+    /// architecture; then one `name value # meaning (unit)` line per
+    /// statistic, the declared ones first, then the families the units
+    /// declare; then what bounds each pass and the frame.
     #[must_use]
     pub fn stats(&self, command: &str) -> String {
         let mut s = String::new();
@@ -73,176 +248,73 @@ impl CostReport {
         for line in self.arch.to_toml().lines() {
             let _ = writeln!(s, "# arch.{line}");
         }
-        let mut stat = |name: &str, unit: StatUnit, value: String, doc: &str| {
+        let declared = declared(self);
+        let names: BTreeSet<&str> = declared.iter().map(|d| d.0).collect();
+        let mut line = |name: &str, unit: StatUnit, value: &str, doc: &str| {
             let _ = writeln!(s, "{name:<48} {value:>20} # {doc} ({})", unit.symbol());
         };
+        for (name, unit, doc, value, _) in declared.iter().filter(|d| d.4) {
+            line(name, *unit, value, doc);
+        }
+        // A family's member declared on its own is written once, declared.
+        self.families(&mut |name, unit, value, doc| {
+            if !names.contains(name) {
+                line(name, unit, &value, doc);
+            }
+        });
+        s.push_str("---------- End Simulation Statistics   ----------\n\n");
+        s.push_str("---------- Begin Bottlenecks ----------\n");
+        let names = Bottleneck::ALL.map(Bottleneck::name).join(" ");
+        for (name, _, doc, value, _) in declared.iter().filter(|d| !d.4) {
+            let _ = writeln!(s, "{name:<48} {value:>20} # {doc} (one of: {names})");
+        }
+        s.push_str("---------- End Bottlenecks ----------\n");
+        s
+    }
+
+    /// The statistics of the families the units declare: each pass's
+    /// stages, bottleneck counts, DRAM traffic by purpose, caches and
+    /// energy by unit, the frame's energy by unit, and the core's events.
+    fn families(&self, stat: &mut impl FnMut(&str, StatUnit, String, &str)) {
         let count = |v: u64| v.to_string();
+        let cycles = |v: f64| round(v).to_string();
         let real = |v: f64| format!("{v:.6e}");
-        stat("frame.cycles", StatUnit::Cycles, format!("{:.0}", self.cycles), "light pass then camera pass");
-        stat("frame.seconds", StatUnit::Seconds, real(self.seconds), "the frame at the clock");
-        stat("frame.frames_per_second", StatUnit::PerSecond, real(self.fps), "frames a second");
-        stat("frame.dram_bytes", StatUnit::Bytes, count(self.bytes), "DRAM traffic of the frame");
-        stat(
-            "frame.dram.achieved_bytes_per_second",
-            StatUnit::BytesPerSecond,
-            real(self.achieved_bytes_per_second),
-            "DRAM bytes over the frame's time",
-        );
-        stat(
-            "frame.dram.peak_bytes_per_second",
-            StatUnit::BytesPerSecond,
-            real(self.dram_peak_bytes_per_second),
-            "the DRAM's bandwidth",
-        );
-        stat(
-            "frame.dram.latency_ceiling_bytes_per_second",
-            StatUnit::BytesPerSecond,
-            real(self.dram_latency_ceiling_bytes_per_second),
-            "requests in flight x burst / latency (Little's law)",
-        );
         for (unit, e) in self.energy.fields() {
             stat(&format!("frame.energy.{unit}_joules"), StatUnit::Joules, real(e), "energy of the unit");
         }
-        stat("frame.energy.total_joules", StatUnit::Joules, real(self.energy.total()), "sum over units");
         for (pass, t, dram) in [("light", &self.light, &self.light_dram), ("camera", &self.camera, &self.camera_dram)] {
-            stat(&format!("{pass}.cycles"), StatUnit::Cycles, format!("{:.0}", t.cycles), "the pass");
-            stat(
-                &format!("{pass}.seconds"),
-                StatUnit::Seconds,
-                real(t.cycles / self.arch.clock),
-                "the pass at the clock",
-            );
-            stat(&format!("{pass}.front_cycles"), StatUnit::Cycles, format!("{:.0}", t.front), "setup and bin writes");
-            stat(
-                &format!("{pass}.tile_cycles"),
-                StatUnit::Cycles,
-                format!("{:.0}", t.tiles),
-                "each tile (draw, on an immediate-mode machine) its slowest stage, summed",
-            );
             for (k, stage) in Stage::ALL.iter().enumerate() {
-                stat(
-                    &format!("{pass}.stage.{}_cycles", stage.name()),
-                    StatUnit::Cycles,
-                    format!("{:.0}", t.stages[k]),
-                    "stage cycles summed over tiles",
-                );
+                let name = format!("{pass}.stage.{}_cycles", stage.name());
+                stat(&name, StatUnit::Cycles, cycles(t.stages[k]), "stage cycles summed over tiles");
             }
-            stat(
-                &format!("{pass}.memory.bandwidth_cycles"),
-                StatUnit::Cycles,
-                format!("{:.0}", t.memory.bandwidth_cycles),
-                "memory cycles summed over tiles were the bytes at the bandwidth what bound them",
-            );
-            stat(
-                &format!("{pass}.memory.latency_cycles"),
-                StatUnit::Cycles,
-                format!("{:.0}", t.memory.latency_cycles),
-                "memory cycles summed over tiles were the requests at the latency what bound them",
-            );
             for (k, b) in Bottleneck::ALL.iter().enumerate() {
-                stat(
-                    &format!("{pass}.bound.{}", b.name().replace('-', "_")),
-                    StatUnit::Count,
-                    count(t.bound[k]),
-                    "tiles (draws) bound by it",
-                );
+                let name = format!("{pass}.bound.{}", b.name().replace('-', "_"));
+                stat(&name, StatUnit::Count, count(t.bound[k]), "tiles (draws) bound by it");
             }
-            stat(&format!("{pass}.dram_bytes"), StatUnit::Bytes, count(t.bytes), "DRAM traffic of the pass");
-            stat(
-                &format!("{pass}.dram.achieved_bytes_per_second"),
-                StatUnit::BytesPerSecond,
-                real(t.achieved_bytes_per_second),
-                "DRAM bytes over the pass's time",
-            );
             for (purpose, b) in dram.fields() {
                 stat(&format!("{pass}.dram.{purpose}_bytes"), StatUnit::Bytes, count(b), "DRAM traffic by purpose");
             }
             for (cache, c) in [("map_cache", t.map_cache), ("depth_cache", t.depth_cache)] {
                 let Some(c) = c else { continue };
-                stat(
-                    &format!("{pass}.{cache}.accesses"),
-                    StatUnit::Count,
-                    count(c.accesses),
-                    "reads and read-modify-writes",
-                );
-                stat(&format!("{pass}.{cache}.hits"), StatUnit::Count, count(c.hits), "accesses that found their line");
-                stat(
-                    &format!("{pass}.{cache}.misses"),
-                    StatUnit::Count,
-                    count(c.misses),
-                    "accesses that fetched their line",
-                );
-                stat(&format!("{pass}.{cache}.hit_rate"), StatUnit::Ratio, real(c.hit_rate), "hits over accesses");
-                stat(
-                    &format!("{pass}.{cache}.fetched_bytes"),
-                    StatUnit::Bytes,
-                    count(c.fetched_bytes),
-                    "a line a miss",
-                );
-                stat(
-                    &format!("{pass}.{cache}.written_back_bytes"),
-                    StatUnit::Bytes,
-                    count(c.written_back_bytes),
-                    "a line a dirty eviction or flush",
-                );
+                for (what, unit, value, doc) in [
+                    ("accesses", StatUnit::Count, count(c.accesses), "reads and read-modify-writes"),
+                    ("hits", StatUnit::Count, count(c.hits), "accesses that found their line"),
+                    ("misses", StatUnit::Count, count(c.misses), "accesses that fetched their line"),
+                    ("hit_rate", StatUnit::Ratio, real(c.hit_rate), "hits over accesses"),
+                    ("fetched_bytes", StatUnit::Bytes, count(c.fetched_bytes), "a line a miss"),
+                    (
+                        "written_back_bytes",
+                        StatUnit::Bytes,
+                        count(c.written_back_bytes),
+                        "a line a dirty eviction or flush",
+                    ),
+                ] {
+                    stat(&format!("{pass}.{cache}.{what}"), unit, value, doc);
+                }
             }
             for (unit, e) in t.energy.fields() {
                 stat(&format!("{pass}.energy.{unit}_joules"), StatUnit::Joules, real(e), "energy of the unit");
             }
-        }
-        let n = &self.sen;
-        for (name, unit, v, doc) in [
-            ("sen.triangles", StatUnit::Count, count(n.triangles), "scene triangles (Table 1)"),
-            (
-                "sen.silhouette_edges",
-                StatUnit::Count,
-                count(n.silhouette_edges),
-                "silhouette edges under the light (Table 1)",
-            ),
-            ("sen.scene_fill", StatUnit::Count, count(n.scene_fill), "camera visibility fragments (Table 1)"),
-            ("sen.volume_fill", StatUnit::Count, count(n.volume_fill), "shadow-volume fragments (Table 1)"),
-            ("sen.silhouette_fill", StatUnit::Count, count(n.silhouette_fill), "silhouette-pass fragments (Table 1)"),
-            ("sen.p_fill_ratio", StatUnit::Ratio, real(n.p_fill), "silhouette fill over scene fill (Table 1)"),
-            ("sen.p_lookup_rate", StatUnit::Ratio, real(n.p_lookup), "covered pixels reconstructed (bandwidth model)"),
-            ("sen.overdraw_ratio", StatUnit::Ratio, real(n.overdraw), "volume fragments over scene fill"),
-            (
-                "sen.map_bytes_per_pixel",
-                StatUnit::BytesPerPixel,
-                real(n.map_bytes_per_pixel),
-                "simulated map bytes a covered pixel",
-            ),
-            (
-                "sen.model_map_bytes_per_pixel",
-                StatUnit::BytesPerPixel,
-                real(n.model_map_bytes_per_pixel),
-                "4 B x samples",
-            ),
-            (
-                "sen.silhouette_bytes_per_pixel",
-                StatUnit::BytesPerPixel,
-                real(n.silhouette_bytes_per_pixel),
-                "simulated point bytes a covered pixel",
-            ),
-            (
-                "sen.model_silhouette_bytes_per_pixel",
-                StatUnit::BytesPerPixel,
-                real(n.model_silhouette_bytes_per_pixel),
-                "24 P",
-            ),
-            (
-                "sen.volume_bytes_per_fragment",
-                StatUnit::BytesPerFragment,
-                real(n.volume_bytes_per_fill),
-                "simulated volume bytes a scene-fill fragment",
-            ),
-            (
-                "sen.model_volume_bytes_per_fragment",
-                StatUnit::BytesPerFragment,
-                real(n.model_volume_bytes_per_fill),
-                "5.5 O",
-            ),
-        ] {
-            stat(name, unit, v, doc);
         }
         for (pass, t) in [("light", &self.light_events), ("camera", &self.camera_events)] {
             for (((name, v), doc), counted) in t.fields().into_iter().zip(Totals::DOCS).zip(Totals::UNITS) {
@@ -253,20 +325,5 @@ impl CostReport {
                 stat(&format!("{pass}.events.{name}"), unit, count(v), &plain(doc));
             }
         }
-        s.push_str("---------- End Simulation Statistics   ----------\n\n");
-        s.push_str("---------- Begin Bottlenecks ----------\n");
-        let names = Bottleneck::ALL.map(Bottleneck::name).join(" ");
-        for (what, b) in
-            [("frame", self.bottleneck), ("light", self.light.bottleneck), ("camera", self.camera.bottleneck)]
-        {
-            let _ = writeln!(
-                s,
-                "{:<48} {:>20} # what bounds the most cycles (one of: {names})",
-                format!("{what}.bottleneck"),
-                b.name()
-            );
-        }
-        s.push_str("---------- End Bottlenecks ----------\n");
-        s
     }
 }

@@ -40,8 +40,9 @@ mod summary;
 mod sweep;
 mod sweep_file;
 
+pub use crate::cost::report::stats::RowCost;
 pub use request::{Outcome, Overrides, Prepared, Request, choose_archs, no_repeats};
-pub use row::{Row, RowConfig, RowCost, RowMetrics, Status};
+pub use row::{Row, RowConfig, RowMetrics, Status};
 #[cfg(test)]
 use run::run_unshared;
 use run::sort_rows;

@@ -16,8 +16,7 @@ use umbra_core::shadow::Filter;
 
 use super::{Config, Spec};
 use crate::cost::arch::Arch;
-use crate::cost::report::CostReport;
-use crate::cost::work::{Bottleneck, Stage};
+use crate::cost::report::stats::RowCost;
 use crate::pass::algorithm::{Culling, Family};
 use crate::truth::metrics::Metrics;
 
@@ -52,16 +51,6 @@ macro_rules! columns {
             }
         }
     };
-}
-
-/// Cycles, rounded to whole ones.
-#[allow(
-    clippy::cast_possible_truncation,
-    clippy::cast_sign_loss,
-    reason = "cycles, rounded; non-negative and below 2^64"
-)]
-fn round(c: f64) -> u64 {
-    c.round() as u64
 }
 
 /// Whether a row was measured.
@@ -186,42 +175,6 @@ columns! {
         footprint_x_texels_per_px: f64, "number", "texels/px", "median map texels a pixel along x (below 1: magnified)" = m.footprint_x[0];
         footprint_y_texels_per_px: f64, "number", "texels/px", "the same along y" = m.footprint_y[0];
         virtual_sample_percent: f64, "number", "percent", "lookups with virtual samples" = 100.0 * virtual_sample_fraction;
-    }
-}
-
-columns! {
-    /// A row's cost on its architecture ([`CostReport`]).
-    #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-    #[serde(deny_unknown_fields)]
-    pub struct RowCost from (r: &CostReport) {
-        light_cycles: u64, "integer", "cycles", "the light pass (silhouette pass included)" = round(r.light.cycles);
-        light_bottleneck: Bottleneck, "text", "-", "what bounds the light pass: setup, raster, depth, shadow, shade, dram-bandwidth, dram-latency" = r.light.bottleneck;
-        camera_cycles: u64, "integer", "cycles", "the camera pass" = round(r.camera.cycles);
-        camera_shadow_cycles: u64, "integer", "cycles", "the camera pass's shadow-unit cycles summed over tiles" = round(r.camera.stages[Stage::Shadow as usize]);
-        camera_bottleneck: Bottleneck, "text", "-", "what bounds the camera pass" = r.camera.bottleneck;
-        total_cycles: u64, "integer", "cycles", "the frame: light pass then camera pass" = round(r.cycles);
-        clock_hertz: f64, "number", "Hz", "the architecture's clock" = r.arch.clock;
-        frame_seconds: f64, "number", "s", "the frame at the clock" = r.seconds;
-        frames_per_second: f64, "number", "1/s", "frames a second at the clock" = r.fps;
-        energy_joules: f64, "number", "J", "the frame's energy" = r.energy.total();
-        dram_achieved_bytes_per_second: f64, "number", "B/s", "the frame's DRAM bytes over its time" = r.achieved_bytes_per_second;
-        dram_peak_bytes_per_second: f64, "number", "B/s", "the DRAM's bandwidth" = r.dram_peak_bytes_per_second;
-        dram_latency_ceiling_bytes_per_second: f64, "number", "B/s", "requests in flight × burst / latency (Little's law)" = r.dram_latency_ceiling_bytes_per_second;
-        dram_map_write_bytes: u64, "integer", "B", "map texels written by the light pass" = r.light_dram.map_writes;
-        dram_map_readback_bytes: u64, "integer", "B", "depth read back by the light pass" = r.light_dram.map_rmw_reads;
-        dram_bin_bytes: u64, "integer", "B", "bins and setup records of both passes" = r.light_dram.bins + r.camera_dram.bins;
-        dram_camera_depth_bytes: u64, "integer", "B", "camera visibility depth, when off chip" = r.camera_dram.map_rmw_reads + r.camera_dram.depth_rmw;
-        dram_map_requested_bytes: u64, "integer", "B", "map bytes the shadow unit requested" = r.camera_dram.map_reads;
-        dram_map_fetched_bytes: u64, "integer", "B", "map bytes fetched through the map cache" = if r.arch.map_cache.size > 0 { r.camera_dram.map_fetched } else { r.camera_dram.map_reads };
-        dram_silhouette_bytes: u64, "integer", "B", "silhouette points written and read" = r.light_dram.silhouette_writes + r.camera_dram.silhouette_reads;
-        dram_volume_depth_bytes: u64, "integer", "B", "scene depth read by shadow-volume fragments" = r.camera_dram.volume_depth_reads;
-        dram_stencil_bytes: u64, "integer", "B", "stencil read and written by shadow-volume fragments" = r.camera_dram.stencil;
-        total_dram_bytes: u64, "integer", "B", "all DRAM traffic, map reads as fetched" = r.bytes;
-        on_chip_bytes: u64, "integer", "B", "on-chip depth storage of the light pass" = r.on_chip_bytes;
-        light_culled_percent: f64, "number", "percent", "light-pass triangle-tile pairs and blocks max-z culled" = 100.0 * r.max_z_cull_rate[0];
-        camera_culled_percent: f64, "number", "percent", "the same of the camera's visibility" = 100.0 * r.max_z_cull_rate[1];
-        lookups_culled_per_px: f64, "number", "1/px", "shadow lookups decided by the tiles' bounds a covered pixel" = r.lookups_culled_per_pixel;
-        map_bytes_per_px: f64, "number", "B/px", "camera-pass map bytes a covered pixel" = r.sen.map_bytes_per_pixel;
     }
 }
 

@@ -5,7 +5,8 @@
 
 use std::fmt::Write as _;
 
-use super::row::{RowCost, RowMetrics};
+use super::RowCost;
+use super::row::RowMetrics;
 use crate::cost::arch::{PARAMS, column as arch_column};
 use crate::render::params::RenderParam;
 
