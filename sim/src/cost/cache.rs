@@ -1,6 +1,17 @@
 //! A set-associative cache with LRU replacement, for the camera pass's map
 //! reads: how many bytes the shadow unit really pulls from memory for a
 //! given cache size, line and associativity.
+//!
+//! ```
+//! use umbra_sim::cost::cache::Cache;
+//! // Two sets of two 16-byte ways: lines 0, 2 and 4 (addresses 0, 32 and
+//! // 64) share set 0, so the third evicts the least recently used.
+//! let mut c = Cache::new(64, 16, 2)?;
+//! let hits: Vec<bool> = [0, 32, 0, 64, 32].iter().map(|&a| c.access(a)).collect();
+//! assert_eq!(hits, [false, false, true, false, false]);
+//! assert_eq!(c.stats().fetched_bytes, 4 * 16);
+//! # Ok::<(), umbra_sim::cost::cache::CacheError>(())
+//! ```
 
 use serde::Serialize;
 use umbra_core::probe::{Buffer, Probe, TexelRead};

@@ -21,6 +21,20 @@
 //! [`SparseTiles::bytes`] is the tile scheme's count for its one buffer.
 //! [`storage_bytes`] counts all three schemes for a map's buffers (a light
 //! pass's: `RawMaps::buffers`).
+//!
+//! ```
+//! use umbra_sim::cost::storage::{MapShape, REEVES_TILE, storage_bytes};
+//! // A 64 × 64 map of 16-bit texels, clear but for one texel.
+//! let shape = MapShape { width: 64, height: 64, texel_bytes: 2, clear: 0xffff };
+//! let mut z = vec![0xffff; 64 * 64];
+//! z[0] = 100;
+//! let b = storage_bytes(&shape, &[&z], REEVES_TILE)?;
+//! // Raw: 64·64·2. Box: 8 + 1·1·2. Tiles: 4 entries of 4 B, then one
+//! // stored 32 × 32 tile of 2-byte texels and its 2-byte max depth.
+//! assert_eq!((b.raw, b.bounding_box, b.tiles), (8192, 10, 16 + 2048 + 2));
+//! assert_eq!((b.grid_tiles, b.stored_tiles), (4, 1));
+//! # Ok::<(), umbra_sim::cost::storage::StorageError>(())
+//! ```
 
 use umbra_core::DepthFormatKind;
 

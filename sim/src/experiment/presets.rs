@@ -1,4 +1,14 @@
 //! Named configurations the benches and the study sweep.
+//!
+//! ```
+//! use umbra_sim::experiment::presets::FILTERS;
+//! let names: Vec<String> = FILTERS.iter().map(ToString::to_string).collect();
+//! assert_eq!(names.len(), 5);
+//! // Each reads back from its one spelling.
+//! for (f, name) in FILTERS.iter().zip(&names) {
+//!     assert_eq!(name.parse::<umbra_sim::core::shadow::Filter>().ok().as_ref(), Some(f));
+//! }
+//! ```
 
 use umbra_core::shadow::{Filter, Jitter};
 

@@ -7,6 +7,14 @@
 //! `umbra_core::config`); these are the simulator's, below them, chosen so
 //! that one render fits comfortably in a workstation's memory. They are
 //! plain data: a caller that needs more builds its own [`Limits`].
+//!
+//! ```
+//! use umbra_sim::Limits;
+//! let limits = Limits::DEFAULT;
+//! assert!(limits.check_map(limits.max_map_side).is_ok());
+//! let err = limits.check_map(limits.max_map_side + 1).unwrap_err();
+//! assert!(err.to_string().contains(&limits.max_map_side.to_string()), "{err}");
+//! ```
 
 use std::io::Read;
 use std::path::Path;

@@ -19,6 +19,20 @@
 //! if the run dies), so a second run into it fails at once; temporaries a
 //! dead run left (`.umbra-*.tmp`) are removed by the next. Files are
 //! created as the process's umask allows (as `touch` would), not private.
+//!
+//! ```
+//! use umbra_sim::output::folder::{OutputFolder, RunManifest};
+//! let scratch = tempfile::tempdir()?;
+//! let out = scratch.path().join("out");
+//! let mut folder = OutputFolder::create(&out)?;
+//! folder.write("notes.txt", b"hello")?;
+//! assert!(!out.join("manifest.json").exists(), "not yet finished");
+//! let manifest = folder.finish(None)?;
+//! assert_eq!(manifest.files.len(), 1);
+//! // The folder as it is on disk, checked against its manifest.
+//! assert_eq!(RunManifest::verify(&out, u64::MAX)?, manifest);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 use std::io::Write;
 use std::path::{Component, Path, PathBuf};
@@ -341,7 +355,7 @@ impl OutputFolder {
     /// # Errors
     /// `OutputError::Folder` for a name outside the folder or one of the
     /// manifests; `OutputError::Io` naming the file for any write error.
-    pub(crate) fn write(&mut self, name: &str, bytes: &[u8]) -> Result<PathBuf, OutputError> {
+    pub fn write(&mut self, name: &str, bytes: &[u8]) -> Result<PathBuf, OutputError> {
         let relative = checked_name(&self.dir, name)?;
         if name == MANIFEST || name == PENDING {
             return Err(problem(&self.dir, format!("`{name}` is the folder's own record")));

@@ -10,9 +10,11 @@ use umbra::core::{D24, DepthFormatKind, DepthUnit};
 use umbra::sim::Algorithm;
 use umbra::sim::cost::arch::Arch;
 use umbra::sim::cost::cache::Cache;
+use umbra::sim::cost::report::files::write_costs;
 use umbra::sim::cost::report::{Comparison, CostReport};
 use umbra::sim::cost::work::Bottleneck;
 use umbra::sim::input::limits::Limits;
+use umbra::sim::output::folder::OutputFolder;
 use umbra::sim::render::{RenderConfig, cost};
 use umbra::sim::world::scene::Scene;
 
@@ -233,4 +235,39 @@ fn the_stats_file_has_one_convention() {
     assert_eq!(v("frame.cycles"), r.cycles.round(), "{}", r.cycles);
     let culled = 100.0 * r.max_z_cull_rate[0];
     assert!((v("light.max_z_culled_percent") - culled).abs() <= 1e-6 * culled, "{culled}");
+}
+
+/// `cost.json` holds each report's statistics as its stats file lists
+/// them: every line's name, with the value the line prints (to its 7
+/// digits) and the same unit, and nothing else.
+#[test]
+fn cost_json_holds_the_stats_files_statistics() {
+    let r = report(&bundled("desktop-imr"));
+    let dir = crate::common::scratch("cost-json");
+    let mut folder = OutputFolder::create(&dir.join("out")).expect("a folder");
+    write_costs(&mut folder, std::slice::from_ref(&r)).expect("written");
+    folder.finish(None).expect("finished");
+    let stats = std::fs::read_to_string(dir.join("out/stats-desktop-imr.txt")).expect("the stats file");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("out/cost.json")).expect("cost.json")).expect("JSON");
+    let listed = json["statistics"][0].as_object().expect("the report's statistics");
+    let mut lines = 0;
+    for line in stats.lines().filter(|l| !l.starts_with('#') && l.contains(" # ")) {
+        let (figure, comment) = line.split_once(" # ").expect("a description");
+        let mut words = figure.split_whitespace();
+        let (name, text) = (words.next().expect("a name"), words.next().expect("a value"));
+        let s = listed.get(name).unwrap_or_else(|| panic!("{name} is not in cost.json"));
+        match text.parse::<f64>() {
+            Ok(x) => {
+                let y = s["value"].as_f64().expect("a number");
+                assert!((x - y).abs() <= 1e-6 * y.abs(), "{name}: {x} against {y}");
+                assert!(comment.ends_with(&format!("({})", s["unit"].as_str().expect("a unit"))), "{line}");
+            }
+            Err(_) => assert_eq!(s["value"], text, "{name}"),
+        }
+        lines += 1;
+    }
+    assert_eq!(lines, listed.len(), "cost.json lists what the stats file does, no more");
+    assert_eq!(listed["frame.cycles"]["value"], r.cycles.round(), "the frame's whole cycles");
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -4,6 +4,15 @@
 //! geometry and miss ceilings, and the on-chip bytes a tile needs; the
 //! warnings where one key makes another ineffective; and the difference
 //! between two files, key by key and figure by figure.
+//!
+//! ```
+//! use umbra_sim::Arch;
+//! let arch = Arch::bundled("mobile-tbdr")?;
+//! let figure = |name: &str| arch.derived().into_iter().find(|f| f.name == name).map(|f| f.value);
+//! // 180 requests in flight × 64 B bursts / 225 ns of latency.
+//! assert_eq!(figure("DRAM latency ceiling").map(f64::round), Some(51.2e9));
+//! # Ok::<(), umbra_sim::cost::arch::ArchError>(())
+//! ```
 
 use super::keys::{PARAMS, Unit};
 use super::machine::Arch;

@@ -1,7 +1,8 @@
 //! The files a costing writes into its folder, the same from every door:
 //! each architecture's gem5-style `stats-<name>.txt` and effective
 //! `arch-<name>.toml`, the comparison of several (`comparison.md`) and
-//! `cost.json` with what made it; or, for a timeline, `trace.json`.
+//! `cost.json` with what made it and each report's statistics as its
+//! stats file lists them; or, for a timeline, `trace.json`.
 
 use super::{Comparison, CostReport, trace};
 use crate::output::OutputError;
@@ -26,8 +27,14 @@ pub fn write_costs(folder: &mut OutputFolder, reports: &[CostReport]) -> Result<
     if let Some(c) = &comparison {
         folder.write_text("comparison.md", &c.markdown())?;
     }
+    // Each report's statistics by name, as its stats file lists them.
+    let statistics: Vec<serde_json::Map<String, serde_json::Value>> = reports
+        .iter()
+        .map(|r| r.statistics().into_iter().map(|s| (s.name.clone(), serde_json::json!(s))).collect())
+        .collect();
     let json = serde_json::json!({
         "version": version(), "command": command, "reports": reports, "comparison": comparison,
+        "statistics": statistics,
     });
     // Numbers and strings only: it serialises without fail.
     folder.write_text("cost.json", &serde_json::to_string_pretty(&json).unwrap_or_default())?;

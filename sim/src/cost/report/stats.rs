@@ -78,39 +78,79 @@ fn plain(doc: &str) -> String {
     doc.split_whitespace().collect::<Vec<_>>().join(" ").replace(['`', '[', ']'], "")
 }
 
-/// A statistic's value: its type in the rows' schema and its text in the
-/// stats file.
+/// A statistic's value: a count, a real number, or a name (what bounds a
+/// pass).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(untagged)]
+pub(crate) enum Figure {
+    /// A whole number.
+    Count(u64),
+    /// A real number.
+    Real(f64),
+    /// An enumerated name.
+    Name(&'static str),
+}
+
+impl Figure {
+    /// As the stats file prints it: a real to 7 significant digits.
+    fn text(self) -> String {
+        match self {
+            Self::Count(n) => n.to_string(),
+            Self::Real(x) => format!("{x:.6e}"),
+            Self::Name(n) => n.to_owned(),
+        }
+    }
+}
+
+/// A declared statistic's Rust type: its type in the rows' schema and its
+/// figure.
 pub(crate) trait StatValue {
     /// Its type in the schema: `integer`, `number` or `text`.
     const KIND: &'static str;
-    /// As the stats file prints it.
-    fn text(&self) -> String;
+    /// Its figure.
+    fn figure(&self) -> Figure;
 }
 
 impl StatValue for u64 {
     const KIND: &'static str = "integer";
-    fn text(&self) -> String {
-        self.to_string()
+    fn figure(&self) -> Figure {
+        Figure::Count(*self)
     }
 }
 
 impl StatValue for f64 {
     const KIND: &'static str = "number";
-    fn text(&self) -> String {
-        format!("{self:.6e}")
+    fn figure(&self) -> Figure {
+        Figure::Real(*self)
     }
 }
 
 impl StatValue for Bottleneck {
     const KIND: &'static str = "text";
-    fn text(&self) -> String {
-        self.name().to_owned()
+    fn figure(&self) -> Figure {
+        Figure::Name(self.name())
     }
 }
 
-/// One declared statistic of a report: name, unit, meaning, its value as
-/// the stats file prints it, and whether it is a number (else a name).
-type Declared = (&'static str, StatUnit, &'static str, String, bool);
+/// One statistic of a report, as every writer reads it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub(crate) struct Statistic {
+    /// Its name in the stats file (`frame.cycles`).
+    #[serde(skip)]
+    pub(crate) name: String,
+    /// Its value.
+    pub(crate) value: Figure,
+    /// Its unit's symbol.
+    pub(crate) unit: &'static str,
+    /// What it means.
+    pub(crate) meaning: String,
+}
+
+impl Statistic {
+    fn new(name: &str, unit: StatUnit, meaning: &str, value: Figure) -> Self {
+        Self { name: name.to_owned(), value, unit: unit.symbol(), meaning: meaning.to_owned() }
+    }
+}
 
 /// Declares a report's statistics, each once: those a study's row carries
 /// (the stats file's name `=>` the row's field), then those only the
@@ -146,10 +186,10 @@ macro_rules! stats {
         }
 
         /// Every declared statistic of `r`, in declaration order.
-        fn declared($r: &CostReport) -> Vec<Declared> {
+        fn declared($r: &CostReport) -> Vec<Statistic> {
             vec![
-                $(($stat, StatUnit::$unit, $meaning, StatValue::text(&{ let v: $ty = $value; v }), <$ty as StatValue>::KIND != "text"),)+
-                $(($only, StatUnit::$ounit, $omeaning, StatValue::text(&{ let v: $oty = $ovalue; v }), <$oty as StatValue>::KIND != "text"),)+
+                $(Statistic::new($stat, StatUnit::$unit, $meaning, StatValue::figure(&{ let v: $ty = $value; v })),)+
+                $(Statistic::new($only, StatUnit::$ounit, $omeaning, StatValue::figure(&{ let v: $oty = $ovalue; v })),)+
             ]
         }
     };
@@ -234,11 +274,30 @@ stats! {
 }
 
 impl CostReport {
+    /// Every statistic of the report, each once: the declared numbers,
+    /// then the families the units declare, then what bounds each pass and
+    /// the frame.
+    #[must_use]
+    pub(crate) fn statistics(&self) -> Vec<Statistic> {
+        let (numbers, names): (Vec<_>, Vec<_>) =
+            declared(self).into_iter().partition(|s| !matches!(s.value, Figure::Name(_)));
+        let declared: BTreeSet<String> = numbers.iter().map(|s| s.name.clone()).collect();
+        let mut all = numbers;
+        // A family's member declared on its own is listed once, declared.
+        self.families(&mut |name, unit, value, meaning| {
+            if !declared.contains(name) {
+                all.push(Statistic::new(name, unit, meaning, value));
+            }
+        });
+        all.extend(names);
+        all
+    }
+
     /// The report as a gem5-style stats file: headed by the command line,
     /// the scene, the configuration, the version and the effective
     /// architecture; then one `name value # meaning (unit)` line per
-    /// statistic, the declared ones first, then the families the units
-    /// declare; then what bounds each pass and the frame.
+    /// statistic ([`statistics`](Self::statistics)); then, in a section
+    /// of their own, what bounds each pass and the frame.
     #[must_use]
     pub fn stats(&self, command: &str) -> String {
         let mut s = String::new();
@@ -248,25 +307,16 @@ impl CostReport {
         for line in self.arch.to_toml().lines() {
             let _ = writeln!(s, "# arch.{line}");
         }
-        let declared = declared(self);
-        let names: BTreeSet<&str> = declared.iter().map(|d| d.0).collect();
-        let mut line = |name: &str, unit: StatUnit, value: &str, doc: &str| {
-            let _ = writeln!(s, "{name:<48} {value:>20} # {doc} ({})", unit.symbol());
-        };
-        for (name, unit, doc, value, _) in declared.iter().filter(|d| d.4) {
-            line(name, *unit, value, doc);
+        let (numbers, names): (Vec<_>, Vec<_>) =
+            self.statistics().into_iter().partition(|s| !matches!(s.value, Figure::Name(_)));
+        for Statistic { name, value, unit, meaning } in numbers {
+            let _ = writeln!(s, "{name:<48} {:>20} # {meaning} ({unit})", value.text());
         }
-        // A family's member declared on its own is written once, declared.
-        self.families(&mut |name, unit, value, doc| {
-            if !names.contains(name) {
-                line(name, unit, &value, doc);
-            }
-        });
         s.push_str("---------- End Simulation Statistics   ----------\n\n");
         s.push_str("---------- Begin Bottlenecks ----------\n");
-        let names = Bottleneck::ALL.map(Bottleneck::name).join(" ");
-        for (name, _, doc, value, _) in declared.iter().filter(|d| !d.4) {
-            let _ = writeln!(s, "{name:<48} {value:>20} # {doc} (one of: {names})");
+        let all = Bottleneck::ALL.map(Bottleneck::name).join(" ");
+        for Statistic { name, value, meaning, .. } in names {
+            let _ = writeln!(s, "{name:<48} {:>20} # {meaning} (one of: {all})", value.text());
         }
         s.push_str("---------- End Bottlenecks ----------\n");
         s
@@ -275,10 +325,10 @@ impl CostReport {
     /// The statistics of the families the units declare: each pass's
     /// stages, bottleneck counts, DRAM traffic by purpose, caches and
     /// energy by unit, the frame's energy by unit, and the core's events.
-    fn families(&self, stat: &mut impl FnMut(&str, StatUnit, String, &str)) {
-        let count = |v: u64| v.to_string();
-        let cycles = |v: f64| round(v).to_string();
-        let real = |v: f64| format!("{v:.6e}");
+    fn families(&self, stat: &mut impl FnMut(&str, StatUnit, Figure, &str)) {
+        let count = Figure::Count;
+        let cycles = |v: f64| Figure::Count(round(v));
+        let real = Figure::Real;
         for (unit, e) in self.energy.fields() {
             stat(&format!("frame.energy.{unit}_joules"), StatUnit::Joules, real(e), "energy of the unit");
         }

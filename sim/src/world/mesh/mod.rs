@@ -2,6 +2,17 @@
 //!
 //! Every generator winds triangles counter-clockwise seen from outside, so
 //! `(b − a) × (c − a)` is the outward normal.
+//!
+//! ```
+//! use umbra_sim::Mesh;
+//! use umbra_sim::glam::Vec3;
+//! // A unit cube: four corners and two triangles a face, closed once its
+//! // corners are welded by position.
+//! let cube = Mesh::cuboid(Vec3::ZERO, Vec3::ONE);
+//! assert_eq!((cube.positions.len(), cube.triangles.len()), (24, 12));
+//! assert!(cube.is_closed());
+//! assert!(!Mesh::quad(Vec3::ZERO, Vec3::X, Vec3::Y).is_closed());
+//! ```
 
 use std::f32::consts::TAU;
 use std::path::PathBuf;
