@@ -296,7 +296,7 @@ impl CostReport {
     /// The report as a gem5-style stats file: headed by the command line,
     /// the scene, the configuration, the version and the effective
     /// architecture; then one `name value # meaning (unit)` line per
-    /// statistic ([`statistics`](Self::statistics)); then, in a section
+    /// statistic (the same `statistics` `cost.json` holds); then, in a section
     /// of their own, what bounds each pass and the frame.
     #[must_use]
     pub fn stats(&self, command: &str) -> String {
