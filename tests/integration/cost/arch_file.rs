@@ -48,7 +48,13 @@ fn a_corrupted_copy_names_the_file_the_key_and_the_problem() {
         ("clock", "clock = 75", "clock", |p| matches!(p, Problem::Type(_))),
         ("clock", "clock = \"75 parsecs\"", "clock", |p| matches!(p, Problem::Unit { .. })),
         ("tile", "tile = 48", "raster.tile", |p| matches!(p, Problem::Range { .. })),
-        ("bandwidth", "bandwidht = \"1.2GB/s\"", "dram.bandwidht", |p| matches!(p, Problem::Unknown)),
+        // A misspelt key is unknown, and the key it meant is missing: both in one error.
+        (
+            "bandwidth",
+            "bandwidht = \"1.2GB/s\"",
+            "(file)",
+            |p| matches!(p, Problem::Several(v) if v.iter().map(|(k, _)| k.as_str()).eq(["dram.bandwidht", "dram.bandwidth"])),
+        ),
         ("bandwidth", "# gone", "dram.bandwidth", |p| matches!(p, Problem::Missing)),
         ("size", "size = \"10000B\"", "map_cache.size", |p| matches!(p, Problem::Range { .. })),
         ("samples_per_clock", "samples_per_clock = 0", "shadow.samples_per_clock", |p| {
@@ -98,4 +104,59 @@ fn overrides_read_their_units() {
         assert_eq!((e.file.as_str(), e.key.as_str()), ("--set", key), "{bad}: {e}");
     }
     assert!(matches!(a.set("clock").expect_err("no =").problem, Problem::Override));
+}
+
+/// The keys added after the first release.
+const ADDED: [&str; 7] = [
+    "frame_overhead_cycles",
+    "program_cycles",
+    "peel_cycles",
+    "combine_cycles",
+    "cycles_per_sample",
+    "cycles_per_weights",
+    "per_fragment",
+];
+
+/// A file written before the seven keys existed loads, each key at the
+/// value that keeps the earlier behaviour (0 cycles; shading per pixel),
+/// the same machine as the file stating those values.
+#[test]
+fn a_file_from_before_the_added_keys_loads_as_it_did() {
+    for (name, text) in BUNDLED {
+        let added = |l: &str| ADDED.iter().find(|k| l.starts_with(&format!("{k} =")));
+        let old: Vec<&str> = text.lines().filter(|l| added(l).is_none()).collect();
+        assert_eq!(old.len(), text.lines().count() - ADDED.len(), "{name}: each added key once");
+        let stated: Vec<String> = text
+            .lines()
+            .map(|l| match added(l) {
+                Some(&"per_fragment") => "per_fragment = false".to_owned(),
+                Some(k) => format!("{k} = 0"),
+                None => l.to_owned(),
+            })
+            .collect();
+        let loaded = Arch::parse(&old.join("\n"), "old.toml").unwrap_or_else(|e| panic!("{name}: {e}"));
+        let earlier = Arch::parse(&stated.join("\n"), "stated.toml").unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(loaded, earlier, "{name}");
+    }
+    // Keys every file must give have no default.
+    let defaulted: Vec<&str> = PARAMS.iter().filter(|p| p.default.is_some()).map(|p| p.key).collect();
+    assert_eq!(defaulted.len(), ADDED.len(), "{defaulted:?}");
+    assert!(ADDED.iter().all(|k| defaulted.iter().any(|d| d.ends_with(k))), "{defaulted:?}");
+}
+
+/// One error names every missing and unknown key, in file order.
+#[test]
+fn one_error_names_every_missing_and_unknown_key() {
+    let text: String = BUNDLED[0]
+        .1
+        .lines()
+        .filter(|l| !l.starts_with("clock =") && !l.starts_with("bandwidth ="))
+        .chain(["[extra]", "knob = 1"])
+        .collect::<Vec<_>>()
+        .join("\n");
+    let e = Arch::parse(&text, "old.toml").expect_err("three problems");
+    let Problem::Several(problems) = &e.problem else { panic!("{e}") };
+    let keys: Vec<&str> = problems.iter().map(|(k, _)| k.as_str()).collect();
+    assert_eq!(keys, ["extra.knob", "clock", "dram.bandwidth"], "{e}");
+    assert!(e.to_string().starts_with("old.toml: (file): 3 keys: extra.knob: unknown key; clock: missing"), "{e}");
 }

@@ -97,13 +97,30 @@ impl Arch {
         let calibration = calibration(table.remove("calibration")).map_err(|(key, problem)| err(&key, problem))?;
         let mut keys = Vec::new();
         leaves(&table, "", &mut keys);
-        if let Some(unknown) = keys.iter().find(|k| !PARAMS.iter().any(|p| p.key == k.as_str())) {
-            return Err(err(unknown, Problem::Unknown));
-        }
+        // Every unknown, missing or malformed key, all at once.
+        let mut problems: Vec<(String, Problem)> = keys
+            .into_iter()
+            .filter(|k| !PARAMS.iter().any(|p| p.key == k.as_str()))
+            .map(|k| (k, Problem::Unknown))
+            .collect();
         let mut arch = Self { calibration, ..Self::default() };
         for p in PARAMS {
-            let v = lookup(&table, p.key).ok_or_else(|| err(p.key, Problem::Missing))?;
-            from_toml(p.unit, v).and_then(|v| p.assign(&mut arch, v)).map_err(|e| err(p.key, e))?;
+            let value = match (lookup(&table, p.key), &p.default) {
+                (Some(v), _) => from_toml(p.unit, v),
+                // A key added since the file was written: the earlier behaviour.
+                (None, Some(default)) => Ok(default.clone()),
+                (None, None) => Err(Problem::Missing),
+            };
+            if let Err(problem) = value.and_then(|v| p.assign(&mut arch, v)) {
+                problems.push((p.key.to_owned(), problem));
+            }
+        }
+        if problems.len() == 1 {
+            let (key, problem) = problems.remove(0);
+            return Err(err(&key, problem));
+        }
+        if !problems.is_empty() {
+            return Err(err("(file)", Problem::Several(problems)));
         }
         arch.check().map_err(|(key, problem)| err(key, problem))?;
         Ok(arch)

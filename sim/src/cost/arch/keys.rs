@@ -22,6 +22,9 @@ pub enum Problem {
     /// A key the file must give.
     #[error("missing")]
     Missing,
+    /// Several keys wrong at once, each with its problem.
+    #[error("{}", several(.0))]
+    Several(Vec<(String, Problem)>),
     /// A value of the wrong kind.
     #[error("expected {0}")]
     Type(&'static str),
@@ -126,6 +129,16 @@ pub fn column(key: &str) -> String {
     if unit.is_empty() { base } else { format!("{base}_{unit}") }
 }
 
+/// Several keys' problems in one line, an unknown key without the list of
+/// every key.
+fn several(problems: &[(String, Problem)]) -> String {
+    let each = problems.iter().map(|(key, problem)| match problem {
+        Problem::Unknown => format!("{key}: unknown key"),
+        _ => format!("{key}: {problem}"),
+    });
+    format!("{} keys: {}", problems.len(), each.collect::<Vec<_>>().join("; "))
+}
+
 /// A key's value, read or to be written.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Value {
@@ -150,6 +163,9 @@ pub struct Param {
     /// `u64`, cycles in `f64`) cannot overflow inside these ranges and the
     /// [`Limits`](crate::input::limits::Limits), and its times stay finite.
     pub range: Option<(f64, f64)>,
+    /// The value a file that lacks the key gets: the behaviour of the
+    /// releases before the key existed (none: every file must give it).
+    pub default: Option<Value>,
     pub(super) get: fn(&Arch) -> Value,
     pub(super) set: fn(&mut Arch, Value) -> Result<(), Problem>,
 }
@@ -281,21 +297,25 @@ impl Param {
 }
 
 /// Declares [`PARAMS`] from one list: key, unit, field path, range (for
-/// numbers), meaning.
+/// numbers), the default of a key added after the first release (the
+/// value that keeps the earlier behaviour), meaning.
 macro_rules! params {
-    ($($key:literal, $unit:ident, $($field:ident).+, $([$min:expr, $max:expr],)? $doc:literal;)+) => {
+    ($($key:literal, $unit:ident, $($field:ident).+, $([$min:expr, $max:expr],)? $(default $default:expr,)? $doc:literal;)+) => {
         /// Every key of an architecture file, in file order.
         pub const PARAMS: &[Param] = &[$(Param {
             key: $key,
             unit: Unit::$unit,
             doc: $doc,
             range: params!(@range $([$min, $max])?),
+            default: params!(@default $($default)?),
             get: |a: &Arch| Field::get(&a.$($field).+),
             set: |a: &mut Arch, v: Value| Field::set(&mut a.$($field).+, v),
         }),+];
     };
     (@range [$min:expr, $max:expr]) => { Some(($min, $max)) };
     (@range) => { None };
+    (@default $default:expr) => { Some($default) };
+    (@default) => { None };
 }
 
 /// Largest cycle count of one unit event (setup, tile, division), cycles.
@@ -314,16 +334,16 @@ params! {
     "front.setup_cycles", Number, front.setup_cycles, [0.0, CYCLES], "cycles per triangle set up";
     "front.overlap", Flag, front.overlap, "setup and binning overlap the tiles";
     "front.pass_overhead_cycles", Number, front.pass_overhead_cycles, [0.0, 1e9], "fixed cycles per pass waiting for the host";
-    "front.frame_overhead_cycles", Number, front.frame_overhead_cycles, [0.0, 1e10], "fixed cycles per frame in the host and driver";
+    "front.frame_overhead_cycles", Number, front.frame_overhead_cycles, [0.0, 1e10], default Value::Number(0.0), "fixed cycles per frame in the host and driver";
     "raster.tile", Count, raster.tile, [8.0, 128.0], "tile (chunk, region) side in pixels";
     "raster.fragments_per_clock", Number, raster.fragments_per_clock, [0.0, RATE], "fragments scan-converted per clock (0: evaluator)";
     "raster.cycles_per_tile", Number, raster.cycles_per_tile, [0.0, CYCLES], "evaluator cycles per triangle per tile touched";
     "depth.fragments_per_clock", Number, depth.fragments_per_clock, [0.0, RATE], "fragments depth-tested per clock per buffer (0: bit-serial)";
     "depth.cycles_per_bit", Number, depth.cycles_per_bit, [0.0, CYCLES], "bit-serial cycles per depth bit per buffer per triangle per tile";
     "depth.second_depth_pass", Flag, depth.second_depth_pass, "second depth by a second light pass and a combining pass";
-    "depth.program_cycles", Number, depth.program_cycles, [0.0, CYCLES], "map-writing fragment program cycles per light fragment passing depth (0: fixed function)";
-    "depth.peel_cycles", Number, depth.peel_cycles, [0.0, CYCLES], "second light pass's further program cycles per fragment passing depth";
-    "depth.combine_cycles", Number, depth.combine_cycles, [0.0, CYCLES], "combining pass program cycles per texel";
+    "depth.program_cycles", Number, depth.program_cycles, [0.0, CYCLES], default Value::Number(0.0), "map-writing fragment program cycles per light fragment passing depth (0: fixed function)";
+    "depth.peel_cycles", Number, depth.peel_cycles, [0.0, CYCLES], default Value::Number(0.0), "second light pass's further program cycles per fragment passing depth";
+    "depth.combine_cycles", Number, depth.combine_cycles, [0.0, CYCLES], default Value::Number(0.0), "combining pass program cycles per texel";
     "on_chip.light_depth", Flag, on_chip.light_depth, "light-pass depth buffers on chip";
     "on_chip.camera_depth", Flag, on_chip.camera_depth, "camera visibility depth and ids on chip";
     "on_chip.stencil", Flag, on_chip.stencil, "stencil and volume-tested depth on chip";
@@ -334,11 +354,11 @@ params! {
     "shadow.divider_cycles", Number, shadow.divider_cycles, [0.0, CYCLES], "latency of one tangent-plane division";
     "shadow.dividers", Count, shadow.dividers, [1.0, PARALLEL], "dividers working in parallel";
     "shadow.cycles_per_lookup", Number, shadow.cycles_per_lookup, [0.0, CYCLES], "shadow-test cycles per pixel besides the samples";
-    "shadow.cycles_per_sample", Number, shadow.cycles_per_sample, [0.0, CYCLES], "filter program cycles per sample besides its fetch";
-    "shadow.cycles_per_weights", Number, shadow.cycles_per_weights, [0.0, CYCLES], "bilinear weights program cycles per lookup";
+    "shadow.cycles_per_sample", Number, shadow.cycles_per_sample, [0.0, CYCLES], default Value::Number(0.0), "filter program cycles per sample besides its fetch";
+    "shadow.cycles_per_weights", Number, shadow.cycles_per_weights, [0.0, CYCLES], default Value::Number(0.0), "bilinear weights program cycles per lookup";
     "shadow.in_shader", Flag, shadow.in_shader, "the shadow test runs in the shading program";
     "shade.cycles_per_pixel", Number, shade.cycles_per_pixel, [0.0, CYCLES], "shading cycles per pixel besides the shadow lookup";
-    "shade.per_fragment", Flag, shade.per_fragment, "shading runs per camera fragment passing depth, not per covered pixel";
+    "shade.per_fragment", Flag, shade.per_fragment, default Value::Flag(false), "shading runs per camera fragment passing depth, not per covered pixel";
     "dram.bandwidth", Bandwidth, dram.bandwidth, [1e6, 1e14], "DRAM bandwidth";
     "dram.latency", Time, dram.latency, [0.0, 1e-3], "DRAM latency, request to data";
     "dram.burst", Bytes, dram.burst, [1.0, RECORD], "bytes of one DRAM access";
