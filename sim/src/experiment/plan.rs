@@ -31,6 +31,7 @@ use umbra_core::{CullMode, DepthFormat, DepthFormatKind, DepthUnit, F32, LightPa
 
 use crate::cost::arch::Arch;
 use crate::cost::report::CostReport;
+use crate::cost::report::stats::whole_cycles;
 use crate::cost::storage::{MapShape, REEVES_TILE, StorageBytes, storage_bytes};
 use crate::experiment::presets::FILTERS;
 use crate::input::limits::Limits;
@@ -202,13 +203,12 @@ pub(crate) fn thinnest_gap(scene: &Scene, map: u32) -> Result<f64, PlanError> {
 }
 
 fn figures(m: &Metrics, c: &CostReport) -> Figures {
-    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "cycles, rounded")]
     Figures {
         artifact_percent: m.artifact_percent,
         misclassified_percent: m.misclassified_percent,
         rms_error: m.rms_error,
         displacement: m.displacement[0],
-        cycles: c.cycles.round() as u64,
+        cycles: whole_cycles(c.cycles),
         bytes: c.bytes,
     }
 }

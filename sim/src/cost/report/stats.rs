@@ -195,13 +195,14 @@ macro_rules! stats {
     };
 }
 
-/// Cycles, rounded to whole ones.
+/// Cycles, rounded to whole ones (half away from zero), as every writer
+/// of a report rounds them.
 #[allow(
     clippy::cast_possible_truncation,
     clippy::cast_sign_loss,
     reason = "cycles, rounded; non-negative and below 2^64"
 )]
-fn round(c: f64) -> u64 {
+pub(crate) fn whole_cycles(c: f64) -> u64 {
     c.round() as u64
 }
 
@@ -211,12 +212,12 @@ stats! {
     #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
     #[serde(deny_unknown_fields)]
     pub struct RowCost from (r: &CostReport) {
-        "light.cycles" => light_cycles: u64, Cycles, "the light pass (silhouette pass included)" = round(r.light.cycles);
+        "light.cycles" => light_cycles: u64, Cycles, "the light pass (silhouette pass included)" = whole_cycles(r.light.cycles);
         "light.bottleneck" => light_bottleneck: Bottleneck, Name, "what bounds the light pass: setup, raster, depth, shadow, shade, dram-bandwidth, dram-latency" = r.light.bottleneck;
-        "camera.cycles" => camera_cycles: u64, Cycles, "the camera pass" = round(r.camera.cycles);
-        "camera.stage.shadow_cycles" => camera_shadow_cycles: u64, Cycles, "the camera pass's shadow-unit cycles summed over tiles" = round(r.camera.stages[Stage::Shadow as usize]);
+        "camera.cycles" => camera_cycles: u64, Cycles, "the camera pass" = whole_cycles(r.camera.cycles);
+        "camera.stage.shadow_cycles" => camera_shadow_cycles: u64, Cycles, "the camera pass's shadow-unit cycles summed over tiles" = whole_cycles(r.camera.stages[Stage::Shadow as usize]);
         "camera.bottleneck" => camera_bottleneck: Bottleneck, Name, "what bounds the camera pass" = r.camera.bottleneck;
-        "frame.cycles" => total_cycles: u64, Cycles, "the frame: light pass then camera pass" = round(r.cycles);
+        "frame.cycles" => total_cycles: u64, Cycles, "the frame: light pass then camera pass" = whole_cycles(r.cycles);
         "arch.clock_hertz" => clock_hertz: f64, Hertz, "the architecture's clock" = r.arch.clock;
         "frame.seconds" => frame_seconds: f64, Seconds, "the frame at the clock" = r.seconds;
         "frame.frames_per_second" => frames_per_second: f64, PerSecond, "frames a second at the clock" = r.fps;
@@ -242,17 +243,17 @@ stats! {
     }
     only {
         "frame.bottleneck": Bottleneck, Name, "what bounds the most cycles of the frame" = r.bottleneck;
-        "frame.host_cycles": u64, Cycles, "the host and driver's cycles a frame" = round(r.host_cycles);
+        "frame.host_cycles": u64, Cycles, "the host and driver's cycles a frame" = whole_cycles(r.host_cycles);
         "light.seconds": f64, Seconds, "the light pass at the clock" = r.light.cycles / r.arch.clock;
         "camera.seconds": f64, Seconds, "the camera pass at the clock" = r.camera.cycles / r.arch.clock;
-        "light.front_cycles": u64, Cycles, "setup and bin writes of the light pass" = round(r.light.front);
-        "camera.front_cycles": u64, Cycles, "setup and bin writes of the camera pass" = round(r.camera.front);
-        "light.tile_cycles": u64, Cycles, "the light pass's tiles (draws, on an immediate-mode machine), each its slowest stage, summed" = round(r.light.tiles);
-        "camera.tile_cycles": u64, Cycles, "the camera pass's tiles (draws), each its slowest stage, summed" = round(r.camera.tiles);
-        "light.memory.bandwidth_cycles": u64, Cycles, "the light pass's memory cycles summed over tiles were the bytes at the bandwidth what bound them" = round(r.light.memory.bandwidth_cycles);
-        "camera.memory.bandwidth_cycles": u64, Cycles, "the camera pass's memory cycles summed over tiles were the bytes at the bandwidth what bound them" = round(r.camera.memory.bandwidth_cycles);
-        "light.memory.latency_cycles": u64, Cycles, "the light pass's memory cycles summed over tiles were the requests at the latency what bound them" = round(r.light.memory.latency_cycles);
-        "camera.memory.latency_cycles": u64, Cycles, "the camera pass's memory cycles summed over tiles were the requests at the latency what bound them" = round(r.camera.memory.latency_cycles);
+        "light.front_cycles": u64, Cycles, "setup and bin writes of the light pass" = whole_cycles(r.light.front);
+        "camera.front_cycles": u64, Cycles, "setup and bin writes of the camera pass" = whole_cycles(r.camera.front);
+        "light.tile_cycles": u64, Cycles, "the light pass's tiles (draws, on an immediate-mode machine), each its slowest stage, summed" = whole_cycles(r.light.tiles);
+        "camera.tile_cycles": u64, Cycles, "the camera pass's tiles (draws), each its slowest stage, summed" = whole_cycles(r.camera.tiles);
+        "light.memory.bandwidth_cycles": u64, Cycles, "the light pass's memory cycles summed over tiles were the bytes at the bandwidth what bound them" = whole_cycles(r.light.memory.bandwidth_cycles);
+        "camera.memory.bandwidth_cycles": u64, Cycles, "the camera pass's memory cycles summed over tiles were the bytes at the bandwidth what bound them" = whole_cycles(r.camera.memory.bandwidth_cycles);
+        "light.memory.latency_cycles": u64, Cycles, "the light pass's memory cycles summed over tiles were the requests at the latency what bound them" = whole_cycles(r.light.memory.latency_cycles);
+        "camera.memory.latency_cycles": u64, Cycles, "the camera pass's memory cycles summed over tiles were the requests at the latency what bound them" = whole_cycles(r.camera.memory.latency_cycles);
         "light.dram_bytes": u64, Bytes, "DRAM traffic of the light pass" = r.light.bytes;
         "camera.dram_bytes": u64, Bytes, "DRAM traffic of the camera pass" = r.camera.bytes;
         "light.dram.achieved_bytes_per_second": f64, BytesPerSecond, "the light pass's DRAM bytes over its time" = r.light.achieved_bytes_per_second;
@@ -327,7 +328,7 @@ impl CostReport {
     /// energy by unit, the frame's energy by unit, and the core's events.
     fn families(&self, stat: &mut impl FnMut(&str, StatUnit, Figure, &str)) {
         let count = Figure::Count;
-        let cycles = |v: f64| Figure::Count(round(v));
+        let cycles = |v: f64| Figure::Count(whole_cycles(v));
         let real = Figure::Real;
         for (unit, e) in self.energy.fields() {
             stat(&format!("frame.energy.{unit}_joules"), StatUnit::Joules, real(e), "energy of the unit");
