@@ -1,6 +1,6 @@
 //! A render asked for parameter by parameter ([`RenderRequest`]): what the
 //! command line and Python's keywords build through the declarations in
-//! [`PARAMS`](super::PARAMS), before a scene fills in the image size.
+//! [`PARAMS`](super::params::PARAMS), before a scene fills in the image size.
 
 use super::RenderConfig;
 use crate::pass::algorithm::{Algorithm, UnknownAlgorithm};

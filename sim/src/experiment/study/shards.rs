@@ -95,7 +95,9 @@ pub(crate) fn write_run(dir: &Path, rows: &[Row], manifest: &Manifest) -> Result
     write_run_with(dir, rows, manifest, &[])
 }
 
-/// [`write_run`], then `extra` files (name, bytes) after the outputs.
+/// Write a whole run's files (or, for a shard, its rows) into a fresh
+/// folder `dir`, then `extra` files (name, bytes) after the outputs, and
+/// finish it.
 fn write_run_with(
     dir: &Path,
     rows: &[Row],
