@@ -3,7 +3,7 @@
 //! stage and DRAM traffic, the accesses that cost energy, and a pass's
 //! time.
 
-use crate::cost::arch::{Arch, CacheParams};
+use crate::cost::arch::Arch;
 use crate::cost::cache::CacheStats;
 use serde::{Deserialize, Serialize};
 
@@ -46,8 +46,10 @@ impl Stage {
 }
 
 /// What bounds a tile, a pass or a frame: a compute stage, or memory
-/// through its bandwidth (bytes at the peak rate) or its latency (requests
-/// at the latency over those kept in flight, Little's law).
+/// through its bandwidth (bytes at the peak rate) or through one of its
+/// finite queues, each a ceiling of its own by Little's law (its requests
+/// at the DRAM latency over those it keeps in flight): the DRAM's requests
+/// and each cache's misses.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 #[repr(usize)]
@@ -65,14 +67,31 @@ pub enum Bottleneck {
     Shade,
     /// DRAM, its bytes at the bandwidth.
     DramBandwidth,
-    /// DRAM, its requests at the latency over those in flight.
+    /// DRAM, its requests (bursts, scattered accesses and every cache's
+    /// misses) at the latency over `dram.requests_in_flight`.
     DramLatency,
+    /// The map cache, its misses at the DRAM latency over
+    /// `map_cache.misses_in_flight`.
+    MapCacheMissesInFlight,
+    /// The depth cache, its misses at the DRAM latency over
+    /// `depth_cache.misses_in_flight`.
+    DepthCacheMissesInFlight,
 }
 
 impl Bottleneck {
-    /// Every bottleneck, in pipeline order.
-    pub(crate) const ALL: [Self; 7] =
-        [Self::Setup, Self::Raster, Self::Depth, Self::Shadow, Self::Shade, Self::DramBandwidth, Self::DramLatency];
+    /// Every bottleneck, in pipeline order: a bottleneck's code in the
+    /// stats file is its place here.
+    pub const ALL: [Self; 9] = [
+        Self::Setup,
+        Self::Raster,
+        Self::Depth,
+        Self::Shadow,
+        Self::Shade,
+        Self::DramBandwidth,
+        Self::DramLatency,
+        Self::MapCacheMissesInFlight,
+        Self::DepthCacheMissesInFlight,
+    ];
 
     /// The bottleneck of `stage`, memory bound by `memory`.
     #[must_use]
@@ -84,7 +103,9 @@ impl Bottleneck {
             (Stage::Shadow, _) => Self::Shadow,
             (Stage::Shade, _) => Self::Shade,
             (Stage::Memory, MemoryLimit::Bandwidth) => Self::DramBandwidth,
-            (Stage::Memory, MemoryLimit::Latency) => Self::DramLatency,
+            (Stage::Memory, MemoryLimit::DramRequests) => Self::DramLatency,
+            (Stage::Memory, MemoryLimit::MapCacheMisses) => Self::MapCacheMissesInFlight,
+            (Stage::Memory, MemoryLimit::DepthCacheMisses) => Self::DepthCacheMissesInFlight,
         }
     }
 
@@ -97,7 +118,9 @@ impl Bottleneck {
             Self::Depth => Stage::Depth,
             Self::Shadow => Stage::Shadow,
             Self::Shade => Stage::Shade,
-            Self::DramBandwidth | Self::DramLatency => Stage::Memory,
+            Self::DramBandwidth | Self::DramLatency | Self::MapCacheMissesInFlight | Self::DepthCacheMissesInFlight => {
+                Stage::Memory
+            }
         }
     }
 
@@ -107,6 +130,8 @@ impl Bottleneck {
         match self {
             Self::DramBandwidth => "dram-bandwidth",
             Self::DramLatency => "dram-latency",
+            Self::MapCacheMissesInFlight => "map-cache-misses-in-flight",
+            Self::DepthCacheMissesInFlight => "depth-cache-misses-in-flight",
             s => s.stage().name(),
         }
     }
@@ -129,49 +154,88 @@ impl core::fmt::Display for Bottleneck {
     }
 }
 
-/// What limits memory time: the bytes at the bandwidth, or the requests at
-/// the latency over those kept in flight.
+/// What limits memory time: the bytes at the bandwidth, or one queue's
+/// requests at the latency over those it keeps in flight.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
+#[repr(usize)]
 pub(crate) enum MemoryLimit {
     /// Bytes at the DRAM's bandwidth.
     #[default]
     Bandwidth,
-    /// Requests at the latency over those in flight (Little's law).
-    Latency,
+    /// Every DRAM request at the latency over `dram.requests_in_flight`.
+    DramRequests,
+    /// Map-cache misses at the latency over `map_cache.misses_in_flight`.
+    MapCacheMisses,
+    /// Depth-cache misses at the latency over `depth_cache.misses_in_flight`.
+    DepthCacheMisses,
 }
+
+impl MemoryLimit {
+    /// The bandwidth, then the queues in [`MemoryTime::queue_cycles`] order.
+    pub(crate) const ALL: [Self; 4] =
+        [Self::Bandwidth, Self::DramRequests, Self::MapCacheMisses, Self::DepthCacheMisses];
+}
+
+/// The finite queues' names, in [`MemoryTime::queue_cycles`] order.
+pub(crate) const QUEUE_NAMES: [&str; 3] = ["dram_requests", "map_cache_misses", "depth_cache_misses"];
 
 /// Memory time, cycles, as each limit would make it.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct MemoryTime {
     /// The bytes at the bandwidth.
     pub bandwidth_cycles: f64,
-    /// The requests (bursts, scattered accesses, cache misses) at the
-    /// latency over those in flight.
+    /// The queue that binds: the longest of `queue_cycles` (summed over
+    /// tiles, each tile's longest).
     pub latency_cycles: f64,
+    /// Each finite queue by Little's law, its requests at the latency over
+    /// those it keeps in flight: every DRAM
+    /// request (bursts, scattered accesses, both caches' misses) over
+    /// `dram.requests_in_flight`, the map cache's misses over its
+    /// `misses_in_flight`, the depth cache's over its own.
+    #[serde(serialize_with = "by_queue")]
+    pub queue_cycles: [f64; 3],
 }
 
 impl MemoryTime {
-    /// The time memory takes: the longer of the two.
+    /// The time memory takes: the longest of the bandwidth and the queues.
     #[must_use]
     pub(crate) const fn cycles(&self) -> f64 {
         self.bandwidth_cycles.max(self.latency_cycles)
     }
 
-    /// Which of the two it is (bandwidth on a tie).
+    /// Which limit it is: the bandwidth on a tie, else the first of the
+    /// longest queues.
     #[must_use]
     pub(crate) fn limit(&self) -> MemoryLimit {
-        if self.latency_cycles > self.bandwidth_cycles { MemoryLimit::Latency } else { MemoryLimit::Bandwidth }
+        let mut limit = MemoryLimit::Bandwidth;
+        let mut longest = self.bandwidth_cycles;
+        for (&q, c) in MemoryLimit::ALL[1..].iter().zip(self.queue_cycles) {
+            if c > longest {
+                (limit, longest) = (q, c);
+            }
+        }
+        limit
     }
 
     /// Both added.
     #[must_use]
     pub(crate) fn plus(&self, o: &Self) -> Self {
+        let mut queue_cycles = self.queue_cycles;
+        for (a, b) in queue_cycles.iter_mut().zip(o.queue_cycles) {
+            *a += b;
+        }
         Self {
             bandwidth_cycles: self.bandwidth_cycles + o.bandwidth_cycles,
             latency_cycles: self.latency_cycles + o.latency_cycles,
+            queue_cycles,
         }
     }
+}
+
+/// Per-queue figures as a map from the queue's name.
+fn by_queue<S: serde::Serializer>(v: &[f64; 3], s: S) -> Result<S::Ok, S::Error> {
+    s.collect_map(QUEUE_NAMES.iter().zip(v))
 }
 
 /// What one tile (or the front end) did, in the units the timing charges.
@@ -205,19 +269,24 @@ impl Work {
         }
     }
 
-    /// Memory time: the bytes at the bandwidth, and the requests at the
-    /// latency over those in flight.
+    /// Memory time: the bytes at the bandwidth, and each queue's requests
+    /// at the latency over those it keeps in flight (Little's law). A
+    /// cache's miss is a DRAM request too: it waits in both queues.
     #[must_use]
     #[allow(clippy::cast_precision_loss, reason = "counts far below 2^53")]
     pub(crate) fn memory(&self, arch: &Arch) -> MemoryTime {
         let lat = arch.latency_cycles();
-        let window = |c: &CacheParams| c.misses_in_flight.max(1) as f64;
-        let requests = self.streamed.div_ceil(arch.dram.burst.max(1)) + self.requests;
+        let wait = |requests: u64, in_flight: u64| requests as f64 * lat / in_flight.max(1) as f64;
+        let dram = self.streamed.div_ceil(arch.dram.burst.max(1)) + self.requests + self.map_misses + self.depth_misses;
+        let queue_cycles = [
+            wait(dram, arch.dram.requests_in_flight),
+            wait(self.map_misses, arch.map_cache.misses_in_flight),
+            wait(self.depth_misses, arch.depth_cache.misses_in_flight),
+        ];
         MemoryTime {
             bandwidth_cycles: self.bytes as f64 / arch.bytes_per_cycle(),
-            latency_cycles: requests as f64 * lat / arch.dram.requests_in_flight.max(1) as f64
-                + self.map_misses as f64 * lat / window(&arch.map_cache)
-                + self.depth_misses as f64 * lat / window(&arch.depth_cache),
+            latency_cycles: queue_cycles.iter().copied().fold(0.0, f64::max),
+            queue_cycles,
         }
     }
 
@@ -347,7 +416,7 @@ pub struct PassTiming {
     /// Tiles (draws) with work bound by each bottleneck, in
     /// `Bottleneck::ALL` order.
     #[serde(rename = "tiles_bound", serialize_with = "by_bottleneck")]
-    pub bound: [u64; 7],
+    pub bound: [u64; 9],
     /// What bounds the most cycles.
     pub bottleneck: Bottleneck,
     /// Memory time summed over the pass, as each limit would make it.
@@ -372,7 +441,7 @@ fn by_stage<S: serde::Serializer>(v: &[f64; 6], s: S) -> Result<S::Ok, S::Error>
 }
 
 /// Per-bottleneck counts as a map from the bottleneck's name.
-fn by_bottleneck<S: serde::Serializer>(v: &[u64; 7], s: S) -> Result<S::Ok, S::Error> {
+fn by_bottleneck<S: serde::Serializer>(v: &[u64; 9], s: S) -> Result<S::Ok, S::Error> {
     s.collect_map(Bottleneck::ALL.iter().map(|b| b.name()).zip(v))
 }
 

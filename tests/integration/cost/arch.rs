@@ -154,7 +154,9 @@ fn one_triangle_per_tile_by_hand_on_every_bundled_file() {
                 .map(|(i, j)| umbra::sim::cost::cache::morton(i, j) * 4 / line)
                 .collect();
             let (n, line) = (lines.len() as f64, line as f64);
-            let miss = (n * line / bpc).max(n * lat / arch.depth_cache.misses_in_flight as f64);
+            // Each miss waits in the cache's queue and in DRAM's.
+            let queue = n * lat / (arch.depth_cache.misses_in_flight.min(arch.dram.requests_in_flight) as f64);
+            let miss = (n * line / bpc).max(queue);
             let back = 16.0 * n * line;
             (miss, (back / bpc).max((back / burst).ceil() * lat / in_flight))
         };

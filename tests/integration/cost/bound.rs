@@ -69,6 +69,61 @@ fn latency_bound_then_bandwidth_bound_by_hand() {
     assert!(close(t.achieved_bytes_per_second, 1.2e9), "{}", t.achieved_bytes_per_second);
 }
 
+/// A cache's misses in flight as a queue of their own. The immediate-mode
+/// file with fast compute (64 fragments a clock: 64 raster and 64 depth
+/// cycles for the quad's 4096), 4.8 GB/s (64 bytes a cycle at 75 MHz),
+/// 50 ns = 3.75 cycles of latency, and a 1 MiB depth cache of 64-byte
+/// lines keeping `misses` in flight. The 64² 24-bit map's 4-byte slots fill
+/// 256 lines, each fetched once by the one draw:
+///
+/// * one miss in flight: the depth cache's ceiling is 64 B / 50 ns =
+///   1.28 GB/s. The draw's misses take 256 × 3.75 = 960 cycles; DRAM's
+///   own queue (4 in flight) 256 × 3.75 / 4 = 240, its bytes at the
+///   bandwidth 16384 / 64 = 256: the draw is bound by the depth cache's
+///   misses at 960 cycles and moves its bytes at exactly the ceiling,
+///   16384 B / 960 cycles × 75 MHz = 1.28 GB/s. The flush after it
+///   streams the 256 dirty lines back, 512 bursts × 3.75 / 4 = 480 cycles
+///   (above 256 at the bandwidth): 1440 cycles. `arch check` names both
+///   keys that cap the bandwidth at once: DRAM's 4 × 32 B / 50 ns =
+///   2.56 GB/s, and the cache's 1.28 GB/s, with 4 misses in flight
+///   (4.8 GB/s × 50 ns / 64 B = 3.75) to use it.
+/// * four in flight: the misses take 240 cycles, below the bytes' 256, so
+///   the draw is bound by the bandwidth: 256 + 480 = 736 cycles.
+#[test]
+fn a_cache_s_misses_in_flight_bind_by_hand() {
+    let arch = |misses: u32| {
+        let mut a = bundled("immediate");
+        for s in ["raster.fragments_per_clock=64", "depth.fragments_per_clock=64", "dram.bandwidth=4.8GB/s"] {
+            a.set(s).expect("valid");
+        }
+        a.set("depth_cache.size=1MiB").expect("valid");
+        a.set(&format!("depth_cache.misses_in_flight={misses}")).expect("valid");
+        a
+    };
+    let one = arch(1);
+    let keys: Vec<&str> = one.warnings().iter().map(|w| w.0).collect();
+    assert_eq!(keys, ["dram.bandwidth", "depth_cache.misses_in_flight"], "{:?}", one.warnings());
+    let advice = &one.warnings()[1].1;
+    assert!(advice.contains("1.28GB/s") && advice.contains("; 4 would use the bandwidth"), "{advice}");
+    let ceiling = one.derived().into_iter().find(|f| f.name == "depth cache miss ceiling").expect("a figure");
+    assert!(close(ceiling.value, 1.28e9), "{}", ceiling.value);
+
+    let t = pass::<D24>(&one, DepthUnit::Single, &quad(), 64).timing();
+    assert_eq!(t.bottleneck, Bottleneck::DepthCacheMissesInFlight);
+    assert_eq!(t.bound[Bottleneck::DepthCacheMissesInFlight as usize], 1, "{:?}", t.bound);
+    assert!(close(t.cycles, 960.0 + 480.0), "{}", t.cycles);
+    let [dram, map, depth] = t.memory.queue_cycles;
+    assert!(close(depth, 960.0) && close(map, 0.0) && close(dram, 240.0 + 480.0), "{:?}", t.memory);
+    assert_eq!(t.bytes, 2 * 16384);
+    assert!(close(16384.0 / (960.0 / one.clock), ceiling.value), "the draw moves its bytes at the ceiling");
+
+    let four = arch(4);
+    assert_eq!(four.warnings().iter().map(|w| w.0).collect::<Vec<_>>(), ["dram.bandwidth"]);
+    let t = pass::<D24>(&four, DepthUnit::Single, &quad(), 64).timing();
+    assert_eq!(t.bottleneck, Bottleneck::DramBandwidth);
+    assert!(close(t.cycles, 256.0 + 480.0), "{}", t.cycles);
+}
+
 /// Two sets of two 32-byte ways (lines 0, 2 and 4 in set 0, line 1 in
 /// set 1), written (w) and read (r):
 /// w0 miss · r8 hit · r64 miss · w32 miss · r128 miss, evicting dirty
@@ -149,7 +204,7 @@ fn time_ranks_architectures_of_different_clocks() {
 }
 
 /// The unit each kind of figure must carry, by the end of its name.
-const UNITS: [(&str, &str); 21] = [
+const UNITS: [(&str, &str); 24] = [
     ("frame.cycles", "cycles"),
     ("frame.seconds", "s"),
     ("frame.frames_per_second", "1/s"),
@@ -161,6 +216,9 @@ const UNITS: [(&str, &str); 21] = [
     ("frame.energy.total_joules", "J"),
     ("light.memory.latency_cycles", "cycles"),
     ("light.bound.dram_latency", "count"),
+    ("light.bound.map_cache_misses_in_flight", "count"),
+    ("camera.memory.map_cache_misses_cycles", "cycles"),
+    ("frame.bottleneck", "code"),
     ("light.depth_cache.hits", "count"),
     ("light.depth_cache.hit_rate", "ratio"),
     ("light.depth_cache.written_back_bytes", "B"),
@@ -176,8 +234,8 @@ const UNITS: [(&str, &str); 21] = [
 /// The stats file of a render on a machine with both caches: every value
 /// line `name value # description (unit)` with a number; units as the
 /// table says; no name twice; the caches' statistics consistent with the
-/// DRAM bytes by purpose; the bottlenecks enumerated names in their own
-/// section.
+/// DRAM bytes by purpose; the bottlenecks codes the header's legend
+/// names.
 #[test]
 fn the_stats_file_has_one_convention() {
     let r = report(&bundled("desktop-imr"));
@@ -217,16 +275,14 @@ fn the_stats_file_has_one_convention() {
     }
     assert!(close(v("camera.map_cache.fetched_bytes"), v("camera.dram.map_fetched_bytes")));
     assert!(!values.contains_key("light.map_cache.accesses"), "the light pass reads no map");
-    let bottlenecks: Vec<(&str, Bottleneck)> = rest
-        .lines()
-        .filter(|l| l.contains(".bottleneck"))
-        .map(|l| {
-            let mut w = l.split_whitespace();
-            (w.next().expect("a name"), w.next().expect("a value").parse().expect("an enumerated bottleneck"))
-        })
+    let legend = text.lines().find_map(|l| l.strip_prefix("# bottleneck codes: ")).expect("the codes' legend");
+    let codes: Vec<String> = Bottleneck::ALL.iter().enumerate().map(|(k, b)| format!("{k} {b}")).collect();
+    assert_eq!(legend, codes.join(", "));
+    let bottlenecks: Vec<(&str, Bottleneck)> = ["light.bottleneck", "camera.bottleneck", "frame.bottleneck"]
+        .into_iter()
+        .map(|name| (name, Bottleneck::ALL[values[name].0 as usize]))
         .collect();
-    let names: Vec<&str> = bottlenecks.iter().map(|b| b.0).collect();
-    assert_eq!(names, ["light.bottleneck", "camera.bottleneck", "frame.bottleneck"]);
+    assert_eq!(rest.trim(), "----------", "every statistic in the one section");
     assert!(bottlenecks[2].1 == bottlenecks[0].1 || bottlenecks[2].1 == bottlenecks[1].1);
     assert_eq!((bottlenecks[0].1, bottlenecks[1].1), (r.light.bottleneck, r.camera.bottleneck));
     // The row's figures are the stats file's, each declared once: the
@@ -239,7 +295,8 @@ fn the_stats_file_has_one_convention() {
 
 /// `cost.json` holds each report's statistics as its stats file lists
 /// them: every line's name, with the value the line prints (to its 7
-/// digits) and the same unit, and nothing else.
+/// digits; a bottleneck's name for its code) and the same unit, and
+/// nothing else.
 #[test]
 fn cost_json_holds_the_stats_files_statistics() {
     let r = report(&bundled("desktop-imr"));
@@ -257,13 +314,15 @@ fn cost_json_holds_the_stats_files_statistics() {
         let mut words = figure.split_whitespace();
         let (name, text) = (words.next().expect("a name"), words.next().expect("a value"));
         let s = listed.get(name).unwrap_or_else(|| panic!("{name} is not in cost.json"));
-        match text.parse::<f64>() {
-            Ok(x) => {
+        let x: f64 = text.parse().unwrap_or_else(|_| panic!("not a number: {line}"));
+        assert!(comment.ends_with(&format!("({})", s["unit"].as_str().expect("a unit"))), "{line}");
+        match s["value"].as_str() {
+            // A bottleneck: its name in cost.json, its code in the file.
+            Some(b) => assert_eq!(Bottleneck::ALL[x as usize].name(), b, "{name}"),
+            None => {
                 let y = s["value"].as_f64().expect("a number");
                 assert!((x - y).abs() <= 1e-6 * y.abs(), "{name}: {x} against {y}");
-                assert!(comment.ends_with(&format!("({})", s["unit"].as_str().expect("a unit"))), "{line}");
             }
-            Err(_) => assert_eq!(s["value"], text, "{name}"),
         }
         lines += 1;
     }

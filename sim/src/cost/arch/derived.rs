@@ -164,20 +164,23 @@ impl Arch {
                 ),
             ));
         }
-        for (keys, c) in [
-            (["map_cache.size", "map_cache.misses_in_flight"], &self.map_cache),
-            (["depth_cache.size", "depth_cache.misses_in_flight"], &self.depth_cache),
-        ] {
+        // Each cache's misses are a queue of their own: judged against the
+        // peak, not what DRAM's own queue achieves, so that every key that
+        // caps the bandwidth is named at once, in order along the chain.
+        for (key, c) in
+            [("map_cache.misses_in_flight", &self.map_cache), ("depth_cache.misses_in_flight", &self.depth_cache)]
+        {
             let misses = latency_ceiling(c.misses_in_flight, c.line, self.dram.latency);
-            if c.size > 0 && misses < self.achievable_bandwidth() {
+            if c.size > 0 && misses < self.dram.bandwidth {
+                let needed = (self.dram.bandwidth * self.dram.latency / c.line.max(1) as f64).ceil();
                 w.push((
-                    keys[1],
+                    key,
                     format!(
-                        "{} misses of {} in flight fetch at most {} at the DRAM latency, below the {} DRAM achieves: misses are latency-bound",
+                        "{} misses of {} in flight fetch at most {} at the DRAM latency, below the DRAM's {}: misses are latency-bound whatever dram.requests_in_flight is; {needed} would use the bandwidth",
                         c.misses_in_flight,
                         Unit::Bytes.write(c.line as f64),
                         Unit::Bandwidth.write(misses),
-                        Unit::Bandwidth.write(self.achievable_bandwidth()),
+                        Unit::Bandwidth.write(self.dram.bandwidth),
                     ),
                 ));
             }

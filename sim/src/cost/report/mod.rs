@@ -15,6 +15,7 @@ pub use trace::trace;
 use std::fmt::Write as _;
 
 use crate::cost::arch::Arch;
+use crate::cost::arch::derived::latency_ceiling;
 use crate::cost::cache::CacheStats;
 use crate::cost::timing::{ArchProbe, Dram};
 use crate::cost::work::{Bottleneck, EnergySplit, PassTiming, Work};
@@ -261,9 +262,10 @@ impl CostReport {
             self.bottleneck
         );
         let unit = if a.immediate() { "draws" } else { "tiles" };
+        let bounds = Bottleneck::ALL.map(Bottleneck::name).join("/");
         let _ = writeln!(
             s,
-            "| pass | setup | raster | depth | shadow | shade | memory | memory at bandwidth / latency | pass cycles | bottleneck | DRAM achieved | {unit} bound (setup/raster/depth/shadow/shade/dram-bandwidth/dram-latency) |"
+            "| pass | setup | raster | depth | shadow | shade | memory | memory at bandwidth / latency | pass cycles | bottleneck | DRAM achieved | {unit} bound ({bounds}) |"
         );
         let _ = writeln!(s, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---|");
         for (name, t) in [("light", &self.light), ("camera", &self.camera)] {
@@ -296,15 +298,20 @@ impl CostReport {
             a.dram.latency * 1e9
         );
         for (pass, name, c) in self.caches() {
+            let p = if name == "Map cache" { &a.map_cache } else { &a.depth_cache };
             let _ = writeln!(
                 s,
-                "{name} ({pass} pass): {} accesses, {} hits, {} misses ({:.2} % hits), {} bytes fetched, {} bytes written back.",
+                "{name} ({pass} pass): {} accesses, {} hits, {} misses ({:.2} % hits), {} bytes fetched, {} bytes written back; its misses in flight cap its fetches at {} ({} × {} B / {:.1} ns).",
                 c.accesses,
                 c.hits,
                 c.misses,
                 100.0 * c.hit_rate,
                 c.fetched_bytes,
-                c.written_back_bytes
+                c.written_back_bytes,
+                gb(latency_ceiling(p.misses_in_flight, p.line, a.dram.latency)),
+                p.misses_in_flight,
+                p.line,
+                a.dram.latency * 1e9
             );
         }
         let e = &self.energy;

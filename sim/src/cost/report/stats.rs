@@ -1,8 +1,8 @@
 //! A cost report's statistics, each declared once — its name in the
 //! stats file, its row column, unit, meaning and value — in the manner of
 //! gem5's `ADD_STAT`: the gem5-style stats file (`name value # meaning
-//! (unit)`, one figure a line, what bounds each pass in a section of its
-//! own), the study's rows ([`RowCost`]) and the rows' schema all read the
+//! (unit)`, one number a line, what bounds each pass as a code its header
+//! lists), the study's rows ([`RowCost`]) and the rows' schema all read the
 //! declaration. The families declared by the units themselves (the
 //! pipeline's stages, the bottlenecks, DRAM traffic by purpose, the
 //! caches, energy by unit, the core's events) follow them.
@@ -13,7 +13,7 @@ use std::fmt::Write as _;
 use serde::{Deserialize, Serialize};
 
 use super::CostReport;
-use crate::cost::work::{Bottleneck, Stage};
+use crate::cost::work::{Bottleneck, QUEUE_NAMES, Stage};
 use umbra_core::probe::{Counted, Totals};
 
 /// The unit a statistic is counted in, declared with it; its name ends
@@ -46,8 +46,9 @@ pub(crate) enum StatUnit {
     Percent,
     /// Hertz.
     Hertz,
-    /// None: a name, not a number.
-    Name,
+    /// An enumerated code: a place in a list the stats file's header
+    /// gives.
+    Code,
 }
 
 impl StatUnit {
@@ -68,7 +69,7 @@ impl StatUnit {
             Self::Ratio => "ratio",
             Self::Percent => "percent",
             Self::Hertz => "Hz",
-            Self::Name => "-",
+            Self::Code => "code",
         }
     }
 }
@@ -78,8 +79,8 @@ fn plain(doc: &str) -> String {
     doc.split_whitespace().collect::<Vec<_>>().join(" ").replace(['`', '[', ']'], "")
 }
 
-/// A statistic's value: a count, a real number, or a name (what bounds a
-/// pass).
+/// A statistic's value: a count, a real number, or what bounds a pass
+/// (its name in `cost.json` and the rows, its code in the stats file).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 #[serde(untagged)]
 pub(crate) enum Figure {
@@ -87,17 +88,18 @@ pub(crate) enum Figure {
     Count(u64),
     /// A real number.
     Real(f64),
-    /// An enumerated name.
-    Name(&'static str),
+    /// What bounds a pass or the frame.
+    Bound(Bottleneck),
 }
 
 impl Figure {
-    /// As the stats file prints it: a real to 7 significant digits.
+    /// As the stats file prints it: a real to 7 significant digits, a
+    /// bottleneck as its code (its place in [`Bottleneck::ALL`]).
     fn text(self) -> String {
         match self {
             Self::Count(n) => n.to_string(),
             Self::Real(x) => format!("{x:.6e}"),
-            Self::Name(n) => n.to_owned(),
+            Self::Bound(b) => (b as usize).to_string(),
         }
     }
 }
@@ -128,7 +130,7 @@ impl StatValue for f64 {
 impl StatValue for Bottleneck {
     const KIND: &'static str = "text";
     fn figure(&self) -> Figure {
-        Figure::Name(self.name())
+        Figure::Bound(*self)
     }
 }
 
@@ -213,10 +215,10 @@ stats! {
     #[serde(deny_unknown_fields)]
     pub struct RowCost from (r: &CostReport) {
         "light.cycles" => light_cycles: u64, Cycles, "the light pass (silhouette pass included)" = whole_cycles(r.light.cycles);
-        "light.bottleneck" => light_bottleneck: Bottleneck, Name, "what bounds the light pass: setup, raster, depth, shadow, shade, dram-bandwidth, dram-latency" = r.light.bottleneck;
+        "light.bottleneck" => light_bottleneck: Bottleneck, Code, "what bounds the light pass: setup, raster, depth, shadow, shade, dram-bandwidth, dram-latency, map-cache-misses-in-flight, depth-cache-misses-in-flight" = r.light.bottleneck;
         "camera.cycles" => camera_cycles: u64, Cycles, "the camera pass" = whole_cycles(r.camera.cycles);
         "camera.stage.shadow_cycles" => camera_shadow_cycles: u64, Cycles, "the camera pass's shadow-unit cycles summed over tiles" = whole_cycles(r.camera.stages[Stage::Shadow as usize]);
-        "camera.bottleneck" => camera_bottleneck: Bottleneck, Name, "what bounds the camera pass" = r.camera.bottleneck;
+        "camera.bottleneck" => camera_bottleneck: Bottleneck, Code, "what bounds the camera pass" = r.camera.bottleneck;
         "frame.cycles" => total_cycles: u64, Cycles, "the frame: light pass then camera pass" = whole_cycles(r.cycles);
         "arch.clock_hertz" => clock_hertz: f64, Hertz, "the architecture's clock" = r.arch.clock;
         "frame.seconds" => frame_seconds: f64, Seconds, "the frame at the clock" = r.seconds;
@@ -242,7 +244,7 @@ stats! {
         "sen.map_bytes_per_pixel" => map_bytes_per_px: f64, BytesPerPixel, "camera-pass map bytes a covered pixel" = r.sen.map_bytes_per_pixel;
     }
     only {
-        "frame.bottleneck": Bottleneck, Name, "what bounds the most cycles of the frame" = r.bottleneck;
+        "frame.bottleneck": Bottleneck, Code, "what bounds the most cycles of the frame" = r.bottleneck;
         "frame.host_cycles": u64, Cycles, "the host and driver's cycles a frame" = whole_cycles(r.host_cycles);
         "light.seconds": f64, Seconds, "the light pass at the clock" = r.light.cycles / r.arch.clock;
         "camera.seconds": f64, Seconds, "the camera pass at the clock" = r.camera.cycles / r.arch.clock;
@@ -281,7 +283,7 @@ impl CostReport {
     #[must_use]
     pub(crate) fn statistics(&self) -> Vec<Statistic> {
         let (numbers, names): (Vec<_>, Vec<_>) =
-            declared(self).into_iter().partition(|s| !matches!(s.value, Figure::Name(_)));
+            declared(self).into_iter().partition(|s| !matches!(s.value, Figure::Bound(_)));
         let declared: BTreeSet<String> = numbers.iter().map(|s| s.name.clone()).collect();
         let mut all = numbers;
         // A family's member declared on its own is listed once, declared.
@@ -295,10 +297,10 @@ impl CostReport {
     }
 
     /// The report as a gem5-style stats file: headed by the command line,
-    /// the scene, the configuration, the version and the effective
-    /// architecture; then one `name value # meaning (unit)` line per
-    /// statistic (the same `statistics` `cost.json` holds); then, in a section
-    /// of their own, what bounds each pass and the frame.
+    /// the scene, the configuration, the version, the effective
+    /// architecture and the legend of the bottleneck codes; then one
+    /// `name value # meaning (unit)` line per statistic (the same
+    /// `statistics` `cost.json` holds), every value a number.
     #[must_use]
     pub fn stats(&self, command: &str) -> String {
         let mut s = String::new();
@@ -308,18 +310,12 @@ impl CostReport {
         for line in self.arch.to_toml().lines() {
             let _ = writeln!(s, "# arch.{line}");
         }
-        let (numbers, names): (Vec<_>, Vec<_>) =
-            self.statistics().into_iter().partition(|s| !matches!(s.value, Figure::Name(_)));
-        for Statistic { name, value, unit, meaning } in numbers {
+        let legend: Vec<String> = Bottleneck::ALL.iter().map(|b| format!("{} {}", *b as usize, b.name())).collect();
+        let _ = writeln!(s, "# bottleneck codes: {}", legend.join(", "));
+        for Statistic { name, value, unit, meaning } in self.statistics() {
             let _ = writeln!(s, "{name:<48} {:>20} # {meaning} ({unit})", value.text());
         }
-        s.push_str("---------- End Simulation Statistics   ----------\n\n");
-        s.push_str("---------- Begin Bottlenecks ----------\n");
-        let all = Bottleneck::ALL.map(Bottleneck::name).join(" ");
-        for Statistic { name, value, meaning, .. } in names {
-            let _ = writeln!(s, "{name:<48} {:>20} # {meaning} (one of: {all})", value.text());
-        }
-        s.push_str("---------- End Bottlenecks ----------\n");
+        s.push_str("---------- End Simulation Statistics   ----------\n");
         s
     }
 
@@ -337,6 +333,15 @@ impl CostReport {
             for (k, stage) in Stage::ALL.iter().enumerate() {
                 let name = format!("{pass}.stage.{}_cycles", stage.name());
                 stat(&name, StatUnit::Cycles, cycles(t.stages[k]), "stage cycles summed over tiles");
+            }
+            for (queue, c) in QUEUE_NAMES.iter().zip(t.memory.queue_cycles) {
+                let name = format!("{pass}.memory.{queue}_cycles");
+                stat(
+                    &name,
+                    StatUnit::Cycles,
+                    cycles(c),
+                    "the queue's requests at the latency over those it keeps in flight, summed over tiles",
+                );
             }
             for (k, b) in Bottleneck::ALL.iter().enumerate() {
                 let name = format!("{pass}.bound.{}", b.name().replace('-', "_"));

@@ -281,9 +281,9 @@ impl<const D: bool> ArchProbe<D> {
         let mut t = PassTiming::default();
         // Cycles of the tiles each bottleneck bounds; memory cycles of the
         // work each memory limit bounds.
-        let mut per_bound = [0.0f64; 7];
-        let mut by_limit = [0.0f64; 2];
-        let add = |t: &mut PassTiming, by_limit: &mut [f64; 2], w: &Work| {
+        let mut per_bound = [0.0f64; 9];
+        let mut by_limit = [0.0f64; 4];
+        let add = |t: &mut PassTiming, by_limit: &mut [f64; 4], w: &Work| {
             let s = w.stages(a);
             for (acc, c) in t.stages.iter_mut().zip(s) {
                 *acc += c;
@@ -311,12 +311,17 @@ impl<const D: bool> ArchProbe<D> {
         let fs = add(&mut t, &mut by_limit, &front);
         t.front = fs.iter().copied().fold(0.0, f64::max);
         // Overlapped, the front end and the tiles share the DRAM: what
-        // limits it is what limits the most of their memory cycles.
-        let shared_limit = if by_limit[1] > by_limit[0] { MemoryLimit::Latency } else { MemoryLimit::Bandwidth };
+        // limits it is what limits the most of their memory cycles (the
+        // first on a tie).
+        let shared_limit = MemoryLimit::ALL
+            .into_iter()
+            .zip(by_limit)
+            .fold((MemoryLimit::Bandwidth, 0.0), |b, (l, c)| if c > b.1 { (l, c) } else { b })
+            .0;
         // The units after the tiles, each with its own stages.
         let mut after = 0.0;
         for (_, w) in &self.tail() {
-            let ws = add(&mut t, &mut [0.0; 2], w);
+            let ws = add(&mut t, &mut [0.0; 4], w);
             after += ws.iter().copied().fold(0.0, f64::max);
         }
         // A pass that drew nothing (no light pass for shadow volumes, none
