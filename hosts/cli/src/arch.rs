@@ -1,6 +1,6 @@
-//! `umbra arch show | check | diff`: an architecture file's effective
-//! values and what they imply, its ineffective keys, and two files side by
-//! side.
+//! `umbra arch show | check | diff | upgrade`: an architecture file's
+//! effective values and what they imply, its ineffective keys, two files
+//! side by side, and a file brought to the current format.
 
 use anyhow::{Result, bail};
 use clap::Subcommand;
@@ -21,6 +21,10 @@ pub(super) enum ArchCommand {
     /// The derived ceilings that make a key ineffective, each naming the
     /// key; exits non-zero when the file is not a machine the model can run.
     Check(OneArchArgs),
+    /// Rewrite an architecture file for the current format: the format
+    /// stated, and every key added since with the value that keeps the
+    /// earlier behaviour, its meaning and unit as a comment.
+    Upgrade(crate::upgrade::UpgradeArgs),
     /// Two architectures key by key and derived figure by derived figure.
     Diff {
         /// The first: a bundled name or an architecture file.
@@ -54,6 +58,7 @@ pub(super) fn arch(command: &ArchCommand, limits: &Limits) -> Result<()> {
             say!("{}: a machine the model can run; {} warning(s)", a.name, warnings.len());
             Ok(())
         }
+        ArchCommand::Upgrade(args) => crate::upgrade::upgrade(crate::upgrade::Kind::Arch, args, limits),
         ArchCommand::Diff { a, b } => {
             let (a, b) = (Arch::open(a, limits)?, Arch::open(b, limits)?);
             if a.name == b.name && a == b {

@@ -17,6 +17,7 @@ mod depth;
 mod experiment;
 mod render;
 mod say;
+mod upgrade;
 
 use say::say;
 
@@ -143,9 +144,16 @@ enum Command {
         what: String,
     },
     /// Show an architecture with its derived figures, check it for keys
-    /// that have no effect, or compare two.
+    /// that have no effect, compare two, or upgrade a file written for an
+    /// earlier format.
     #[command(subcommand)]
     Arch(arch::ArchCommand),
+    /// Upgrade a scene file written for an earlier format.
+    #[command(subcommand)]
+    Scene(upgrade::FileCommand),
+    /// Upgrade a sweep file written for an earlier format.
+    #[command(subcommand)]
+    Sweep(upgrade::FileCommand),
     /// The least costly configuration a scene needs for an error budget:
     /// buffers, depth precision, map size and filter, with the reasons, the
     /// predicted and measured error and cost, and the map's storage.
@@ -190,6 +198,12 @@ fn main() -> Result<()> {
         Some(Command::Study(args)) => study(&args, limits),
         Some(Command::Plan(args)) => plan(&args, limits),
         Some(Command::Arch(command)) => arch::arch(&command, limits),
+        Some(Command::Scene(upgrade::FileCommand::Upgrade(args))) => {
+            upgrade::upgrade(upgrade::Kind::Scene, &args, limits)
+        }
+        Some(Command::Sweep(upgrade::FileCommand::Upgrade(args))) => {
+            upgrade::upgrade(upgrade::Kind::Sweep, &args, limits)
+        }
         Some(Command::Schema { what }) => {
             let table = if what == "render" {
                 umbra_sim::render::params::markdown()

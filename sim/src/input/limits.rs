@@ -146,7 +146,7 @@ impl Limits {
     /// As [`Limits::read_file`], with [`LimitError::TextBytes`], and
     /// [`LimitError::Memory`] when its parse would not fit
     /// [`Limits::max_memory`].
-    pub(crate) fn read_text_file(&self, path: &Path) -> Result<Vec<u8>, FileError> {
+    pub fn read_text_file(&self, path: &Path) -> Result<Vec<u8>, FileError> {
         let bytes = Self::read_within(path, self.max_text_bytes, |bytes, max| LimitError::TextBytes { bytes, max })?;
         let parse = (bytes.len() as u64).saturating_mul(Footprint::PER_TEXT_BYTE).saturating_add(Footprint::BASE);
         self.check_memory("parsing the TOML file", parse).map_err(FileError::Limit)?;

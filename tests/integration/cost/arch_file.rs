@@ -72,7 +72,7 @@ fn a_corrupted_copy_names_the_file_the_key_and_the_problem() {
         assert!(matches!(e.problem, Problem::Name(_)) && e.key == "name", "{e}");
     }
     let e = Arch::parse("clock = [", "broken.toml").expect_err("syntax");
-    assert!(matches!(e.problem, Problem::Syntax(_)) && e.key == "line 1", "{e}");
+    assert!(matches!(e.problem, Problem::Syntax(_)) && e.key == "line 1, `clock = [`", "{e}");
     let e = Arch::bundled("cray-1").expect_err("no such preset");
     assert!(matches!(e.problem, Problem::NoSuchPreset), "{e}");
 }
@@ -142,6 +142,55 @@ fn a_file_from_before_the_added_keys_loads_as_it_did() {
     let defaulted: Vec<&str> = PARAMS.iter().filter(|p| p.default.is_some()).map(|p| p.key).collect();
     assert_eq!(defaulted.len(), ADDED.len(), "{defaulted:?}");
     assert!(ADDED.iter().all(|k| defaulted.iter().any(|d| d.ends_with(k))), "{defaulted:?}");
+}
+
+/// A file of the first release's keys, upgraded: the format stated, the
+/// seven keys written with the values that keep the earlier behaviour
+/// (each with its meaning), every line of the original still there in
+/// order, the same machine loaded; upgrading again changes nothing. A file
+/// that states the current format must give every key, and one stating a
+/// later format is refused naming it.
+#[test]
+fn an_upgraded_file_loads_as_the_original_did() {
+    for (name, text) in BUNDLED {
+        let old: String = text
+            .lines()
+            .filter(|l| !ADDED.iter().any(|k| l.starts_with(&format!("{k} ="))))
+            .map(|l| format!("{l}\n"))
+            .collect();
+        let new = Arch::upgrade(&old, "old.toml").unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert!(new.starts_with("format = 2\n"), "{name}");
+        let mut lines = new.lines();
+        for l in old.lines() {
+            assert!(lines.any(|n| n == l), "{name}: `{l}` kept, in order");
+        }
+        for k in ADDED {
+            let line = new.lines().find(|l| l.starts_with(&format!("{k} = "))).expect("added");
+            assert!(line.contains("  # ") && line.ends_with("this value keeps the earlier behaviour"), "{line}");
+        }
+        let (a, b) = (Arch::parse(&old, "old.toml"), Arch::parse(&new, "new.toml"));
+        assert_eq!(a.expect("loads"), b.expect("loads"), "{name}");
+        assert_eq!(Arch::upgrade(&new, "new.toml").expect("loads"), new, "{name}: idempotent");
+        // Stating the current format, the file must be whole.
+        let stated = format!("format = 2\n{old}");
+        let e = Arch::parse(&stated, "stated.toml").expect_err("seven keys missing");
+        let Problem::Several(problems) = &e.problem else { panic!("{e}") };
+        assert_eq!(problems.len(), ADDED.len(), "{e}");
+        assert!(problems.iter().all(|(_, p)| matches!(p, Problem::Missing)), "{e}");
+    }
+    // The shipped example of a first-release file: mobile-tbdr under its
+    // own name, loading as it did, upgraded to the same machine.
+    let shipped = include_str!("../../../examples/first-release-gpu.toml");
+    let mut first = Arch::parse(shipped, "first-release-gpu.toml").expect("loads");
+    let upgraded = Arch::parse(&Arch::upgrade(shipped, "x").expect("upgrades"), "x").expect("loads");
+    assert_eq!(first, upgraded);
+    let tbdr = Arch::bundled("mobile-tbdr").expect("bundled");
+    (first.name, first.description) = (tbdr.name.clone(), tbdr.description.clone());
+    assert_eq!(first, tbdr);
+    let later = format!("format = 3\n{}", BUNDLED[0].1);
+    let e = Arch::parse(&later, "later.toml").expect_err("a later format");
+    assert_eq!(e.key, "format", "{e}");
+    assert!(e.to_string().contains("reads formats 1 to 2"), "{e}");
 }
 
 /// One error names every missing and unknown key, in file order.

@@ -88,6 +88,55 @@ cull = ["algorithm", "solids=none"]
     assert_eq!(spec.configs().len(), 2 * 2 * 4 * 2);
 }
 
+/// An architecture axis takes numbers where the key means one, and the
+/// names of the points it makes fit the 64 characters a name may have,
+/// however long the base's name: cut, with a hash that keeps them apart.
+#[test]
+fn an_axis_of_numbers_and_long_generated_names() {
+    let d = dir("numbers");
+    let base = "a-mobile-tiler-of-our-own-with-a-rather-long-descriptive-name";
+    let arch = umbra::sim::Arch::bundled("mobile-tbdr").expect("bundled").to_toml().replace("mobile-tbdr", base);
+    std::fs::write(d.join("mine.toml"), arch).expect("write");
+    let text = r#"
+format = 2
+name = "numbers"
+scenes = ["table-and-sphere"]
+images = [[64, 36]]
+reference_rays = 1
+formats = ["d16"]
+maps = [128]
+filters = ["point"]
+archs = ["mine.toml"]
+budgets = [1.0]
+
+[[arch_axes]]
+key = "dram.requests_in_flight"
+values = [180, 360]
+
+[[arch_axes]]
+key = "map_cache.misses_in_flight"
+values = [180, 360.0]
+
+[[algorithms]]
+algo = "first"
+"#;
+    let f = d.join("numbers.toml");
+    std::fs::write(&f, text).expect("write");
+    let l = Limits::DEFAULT;
+    let spec =
+        SweepFile::open(f.to_str().expect("UTF-8"), &l).and_then(|s| s.spec(&l)).unwrap_or_else(|e| panic!("{e}"));
+    let got: Vec<(u64, u64)> =
+        spec.archs.iter().map(|a| (a.dram.requests_in_flight, a.map_cache.misses_in_flight)).collect();
+    assert_eq!(got, [(180, 180), (180, 360), (360, 180), (360, 360)]);
+    let names: std::collections::BTreeSet<&str> = spec.archs.iter().map(|a| a.name.as_str()).collect();
+    assert_eq!(names.len(), 4, "{names:?}");
+    assert!(names.iter().all(|n| n.len() <= 64 && n.starts_with(&base[..40])), "{names:?}");
+    // A format this build does not know is refused, naming it.
+    std::fs::write(&f, text.replace("format = 2", "format = 3")).expect("write");
+    let e = SweepFile::open(f.to_str().expect("UTF-8"), &l).and_then(|s| s.spec(&l)).expect_err("format 3");
+    assert!(e.key == "format" && e.problem.contains("formats 1 to 2"), "{e}");
+}
+
 #[test]
 fn a_bad_sweep_file_names_its_key() {
     let d = dir("bad");
@@ -113,7 +162,7 @@ fn a_bad_sweep_file_names_its_key() {
             None,
             "arch_axes[0]",
         ),
-        ("[[algorithms]]\nalgo = \"first\"\nspeed = 3\n", None, "(line"),
+        ("[[algorithms]]\nalgo = \"first\"\nspeed = 3\n", None, "(line 12, `speed = 3`)"),
         // Repeats would run every configuration twice; sizes are whole.
         ("[[algorithms]]\nalgo = \"first\"\n", Some(("maps = [128]", "maps = [128, 128]")), "maps[1]"),
         (

@@ -9,6 +9,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
+use crate::input::format::{ARCH, Added};
 use crate::input::limits::Limits;
 
 use super::keys::{PARAMS, Problem, Unit, Value, from_text, from_toml};
@@ -91,9 +92,15 @@ impl Arch {
     pub fn parse(text: &str, file: &str) -> Result<Self, ArchError> {
         let err = |key: &str, problem| ArchError { file: file.to_owned(), key: key.to_owned(), problem };
         let mut table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
-            let line = e.span().map_or(0, |s| text[..s.start.min(text.len())].lines().count().max(1));
-            err(&format!("line {line}"), Problem::Syntax(e.message().to_owned()))
+            let at = e.span().map_or_else(|| "(file)".to_owned(), |s| crate::input::at_line(text, s.start));
+            err(&at, Problem::Syntax(e.message().trim().to_owned()))
         })?;
+        let format = match table.remove("format") {
+            None => None,
+            Some(toml::Value::Integer(v)) => Some(u32::try_from(v).unwrap_or(u32::MAX)),
+            Some(_) => return Err(err("format", Problem::Type("a whole number, the file format version"))),
+        };
+        let format = ARCH.stated(format).map_err(|e| err("format", Problem::Format(e)))?;
         let calibration = calibration(table.remove("calibration")).map_err(|(key, problem)| err(&key, problem))?;
         let mut keys = Vec::new();
         leaves(&table, "", &mut keys);
@@ -107,9 +114,9 @@ impl Arch {
         for p in PARAMS {
             let value = match (lookup(&table, p.key), &p.default) {
                 (Some(v), _) => from_toml(p.unit, v),
-                // A key added since the file was written: the earlier behaviour.
-                (None, Some(default)) => Ok(default.clone()),
-                (None, None) => Err(Problem::Missing),
+                // A key added since the file's format: the earlier behaviour.
+                (None, Some(default)) if format < ARCH.current => Ok(default.clone()),
+                (None, _) => Err(Problem::Missing),
             };
             if let Err(problem) = value.and_then(|v| p.assign(&mut arch, v)) {
                 problems.push((p.key.to_owned(), problem));
@@ -124,6 +131,56 @@ impl Arch {
         }
         arch.check().map_err(|(key, problem)| err(key, problem))?;
         Ok(arch)
+    }
+
+    /// An architecture file's text for the current format: `format`
+    /// stated, and every key added since the file's format written into
+    /// its table with the value that keeps the earlier behaviour, its
+    /// meaning and its unit as a comment; everything else as it was. The
+    /// upgraded text loads to the same architecture, and upgrading it
+    /// again changes nothing.
+    ///
+    /// ```
+    /// use umbra_sim::Arch;
+    /// let old = Arch::bundled("talisman")?.to_toml().replace("depth.peel_cycles = 0", "");
+    /// let old = old.lines().filter(|l| !l.starts_with("format")).collect::<Vec<_>>().join("\n");
+    /// let new = Arch::upgrade(&old, "old.toml")?;
+    /// assert!(new.starts_with("format = 2\n"));
+    /// assert!(new.contains("peel_cycles = 0  # second light pass"));
+    /// assert_eq!(Arch::parse(&new, "new.toml")?, Arch::parse(&old, "old.toml")?);
+    /// assert_eq!(Arch::upgrade(&new, "new.toml")?, new);
+    /// # Ok::<(), umbra_sim::cost::arch::ArchError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`ArchError`] for a file that does not load: the upgrade is of a
+    /// file that does.
+    pub fn upgrade(text: &str, file: &str) -> Result<String, ArchError> {
+        Self::parse(text, file)?;
+        let added: Vec<Added> = PARAMS
+            .iter()
+            .filter_map(|p| {
+                let value = match p.default.as_ref()? {
+                    // Whole numbers as integers, as the bundled files write them.
+                    #[allow(clippy::cast_possible_truncation, reason = "whole and far below 2^53")]
+                    Value::Number(x) if x.fract() == 0.0 && x.abs() < 1e15 => toml_edit::Value::from(*x as i64),
+                    Value::Number(x) => toml_edit::Value::from(*x),
+                    Value::Flag(b) => toml_edit::Value::from(*b),
+                    Value::Text(t) => toml_edit::Value::from(t.as_str()),
+                };
+                let unit = match p.unit.symbol() {
+                    "-" => String::new(),
+                    u => format!(" ({u})"),
+                };
+                let comment = format!("{}{unit}; added in format 2, this value keeps the earlier behaviour", p.doc);
+                Some(Added { key: p.key, value, comment })
+            })
+            .collect();
+        ARCH.upgrade(text, &added).map_err(|e| ArchError {
+            file: file.to_owned(),
+            key: "(file)".into(),
+            problem: Problem::Syntax(e),
+        })
     }
 
     /// Load an architecture file (a regular file within `limits`).
@@ -291,7 +348,7 @@ impl Arch {
     /// carries; it parses back to the same architecture).
     #[must_use]
     pub fn to_toml(&self) -> String {
-        let mut s = String::new();
+        let mut s = format!("format = {}  # the architecture file format this is written for\n", ARCH.current);
         for p in PARAMS {
             let w = p.written(self);
             let value = match p.unit {

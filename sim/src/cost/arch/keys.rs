@@ -60,6 +60,9 @@ pub enum Problem {
     /// A name that cannot be part of a file name.
     #[error("`{0}` is not a name: use 1 to 64 letters, digits, `-` and `_` (it names output files)")]
     Name(String),
+    /// A file format version this build does not read.
+    #[error("{0}")]
+    Format(String),
     /// No bundled architecture of that name.
     #[error("no bundled architecture of that name (the bundled ones are: {})", BUNDLED.map(|b| b.0).join(", "))]
     NoSuchPreset,

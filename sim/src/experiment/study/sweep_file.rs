@@ -62,6 +62,9 @@ pub struct SweepError {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct FileText {
+    /// The file format version it is written for (`input::format::SWEEP`).
+    #[serde(default)]
+    format: Option<u32>,
     name: String,
     scenes: Vec<String>,
     images: Vec<Exact<2, u32>>,
@@ -109,7 +112,31 @@ struct JitterText {
 #[serde(deny_unknown_fields)]
 struct AxisText {
     key: String,
-    values: Vec<String>,
+    values: Vec<AxisValue>,
+}
+
+/// An architecture axis's value as the file writes it: text as `--set`
+/// takes it (`"16KiB"`), or a number or flag where the key means one
+/// (`180`, `true`; format 2).
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum AxisValue {
+    Text(String),
+    Integer(i64),
+    Real(f64),
+    Flag(bool),
+}
+
+impl AxisValue {
+    /// The value as `--set` takes it.
+    fn text(&self) -> String {
+        match self {
+            Self::Text(t) => t.clone(),
+            Self::Integer(n) => n.to_string(),
+            Self::Real(x) => x.to_string(),
+            Self::Flag(b) => b.to_string(),
+        }
+    }
 }
 
 #[derive(Deserialize)]
@@ -205,10 +232,12 @@ impl SweepFile {
     #[allow(clippy::too_many_lines, reason = "one check per axis, in the file's order")]
     pub fn spec(&self, limits: &Limits) -> Result<Spec, SweepError> {
         let t: FileText = toml::from_str(&self.text).map_err(|e| {
-            let key =
-                e.span().map_or_else(|| "(syntax)".to_owned(), |s| format!("(line {})", line_of(&self.text, s.start)));
-            self.err(key, e.message().to_owned())
+            let key = e
+                .span()
+                .map_or_else(|| "(syntax)".to_owned(), |s| format!("({})", crate::input::at_line(&self.text, s.start)));
+            self.err(key, e.message().trim().to_owned())
         })?;
+        crate::input::format::SWEEP.stated(t.format).map_err(|e| self.err("format", e))?;
         self.lengths(&t)?;
         let mut scenes = Vec::new();
         for (i, s) in t.scenes.iter().enumerate() {
@@ -416,11 +445,13 @@ impl SweepFile {
                 ));
             }
         }
+        let values: Vec<Vec<String>> =
+            t.arch_axes.iter().map(|a| a.values.iter().map(AxisValue::text).collect()).collect();
         let mut points: Vec<Vec<(usize, &str)>> = vec![Vec::new()];
-        for (i, axis) in t.arch_axes.iter().enumerate() {
+        for (i, axis) in values.iter().enumerate() {
             points = points
                 .iter()
-                .flat_map(|p| axis.values.iter().map(move |v| [p.clone(), vec![(i, v.as_str())]].concat()))
+                .flat_map(|p| axis.iter().map(move |v| [p.clone(), vec![(i, v.as_str())]].concat()))
                 .collect();
         }
         let word = |s: &str| s.chars().map(|c| if c.is_ascii_alphanumeric() { c } else { '_' }).collect::<String>();
@@ -437,6 +468,7 @@ impl SweepFile {
                     arch.name = format!("{}-{}-{}", arch.name, word(key), word(value));
                     assignments.push((key.clone(), value.to_owned()));
                 }
+                arch.name = fit_name(&arch.name);
                 arch.check().map_err(|(k, e)| self.err(format!("arch_axes ({k})"), e.to_string()))?;
                 archs.push(arch);
                 params.push(super::ArchPoint { base: a.name.clone(), assignments });
@@ -494,7 +526,14 @@ impl SweepFile {
     }
 }
 
-/// The line (from 1) of byte `offset` in `text`.
-fn line_of(text: &str, offset: usize) -> usize {
-    text.get(..offset).map_or(0, |t| t.matches('\n').count()) + 1
+/// A generated architecture name that fits the 64 characters a name may
+/// have: as it is when it fits, else its first 55 characters, `-` and 8
+/// hexadecimal digits of its hash, so that two long names stay apart.
+fn fit_name(name: &str) -> String {
+    const MAX: usize = 64;
+    if name.len() <= MAX {
+        return name.to_owned();
+    }
+    let hash = crate::output::provenance::hash(name.as_bytes());
+    format!("{}-{}", &name[..MAX - 9], &hash[..8])
 }

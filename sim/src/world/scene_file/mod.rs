@@ -284,12 +284,10 @@ impl Scene {
     pub fn parse(text: &str, file: &Path, limits: &Limits) -> Result<Self, SceneError> {
         let c = Check { file };
         let parsed: SceneFile = toml::from_str(text).map_err(|e| {
-            let key = e.span().map_or_else(
-                || "(file)".to_owned(),
-                |s| format!("line {}", text.get(..s.start).map_or(0, |t| t.matches('\n').count()) + 1),
-            );
+            let key = e.span().map_or_else(|| "(file)".to_owned(), |s| crate::input::at_line(text, s.start));
             c.err(key, Problem::Syntax(e.message().trim().to_owned()))
         })?;
+        crate::input::format::SCENE.stated(parsed.format).map_err(|e| c.err("format", Problem::Syntax(e)))?;
         // Whole pixels (integers, read as such); then the limits, which
         // name themselves.
         let image = parsed.image.0;

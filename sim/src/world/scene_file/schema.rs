@@ -13,6 +13,8 @@ use crate::world::scene::Perspective;
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 pub(super) struct SceneFile {
+    /// The file format version it is written for (`input::format::SCENE`).
+    pub(super) format: Option<u32>,
     pub(super) name: Option<String>,
     pub(super) image: Exact<2, u32>,
     pub(super) camera: ViewFile,

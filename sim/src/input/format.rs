@@ -1,0 +1,104 @@
+//! The format versions of the files users write: each kind of file
+//! (architecture, scene, sweep) has a current version, a file may state
+//! the one it was written for (`format = 2` at its top), and a file from
+//! an earlier version keeps loading. `upgrade` rewrites a file's text for
+//! the current version: the stated version, and any keys it lacks with
+//! the values that keep what it meant, each with its meaning as a comment;
+//! everything the user wrote, comments included, stays as it was.
+//!
+//! ```
+//! use umbra_sim::input::format::{ARCH, SWEEP};
+//! assert_eq!(ARCH.stated(None), Ok(1));
+//! assert!(SWEEP.stated(Some(SWEEP.current + 1)).is_err());
+//! let text = SWEEP.upgrade("name = \"mine\" # my sweep\n", &[]).expect("TOML");
+//! assert_eq!(text, format!("format = {}\nname = \"mine\" # my sweep\n", SWEEP.current));
+//! ```
+
+use toml_edit::{DocumentMut, Item, Table, Value};
+
+/// One kind of file and its current format version.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Format {
+    /// What the files are (`architecture`), for messages.
+    pub kind: &'static str,
+    /// The version this build writes and reads up to.
+    pub current: u32,
+}
+
+/// Architecture files. Version 2 added `front.frame_overhead_cycles`,
+/// `depth.program_cycles`, `depth.peel_cycles`, `depth.combine_cycles`,
+/// `shadow.cycles_per_sample`, `shadow.cycles_per_weights` and
+/// `shade.per_fragment`.
+pub const ARCH: Format = Format { kind: "architecture", current: 2 };
+/// Scene files: one version so far.
+pub const SCENE: Format = Format { kind: "scene", current: 1 };
+/// Sweep files. Version 2 takes an architecture axis's values as numbers
+/// and flags as well as text.
+pub const SWEEP: Format = Format { kind: "sweep", current: 2 };
+
+/// A key an upgrade adds: its dotted path, its value, and the comment
+/// written after it.
+pub struct Added {
+    /// The dotted key (`depth.program_cycles`).
+    pub key: &'static str,
+    /// Its value.
+    pub value: Value,
+    /// What it means, and why this value.
+    pub comment: String,
+}
+
+impl Format {
+    /// The version a file states (`format`), 1 when it states none.
+    ///
+    /// # Errors
+    /// The problem, for a version 0 or one newer than this build reads.
+    pub fn stated(&self, format: Option<u32>) -> Result<u32, String> {
+        match format.unwrap_or(1) {
+            0 => Err("format versions start at 1".to_owned()),
+            v if v > self.current => Err(format!(
+                "the file is written for {} file format {v}; this umbra reads formats 1 to {} (a later release reads it)",
+                self.kind, self.current
+            )),
+            v => Ok(v),
+        }
+    }
+
+    /// `text` for the current version: `format` set (first, for a file
+    /// that had none), each of `added` that the file lacks put in its
+    /// table with its comment; the rest of the text as it was. Applied to
+    /// its own output it changes nothing.
+    ///
+    /// # Errors
+    /// The TOML parser's message, for text that is not TOML.
+    pub fn upgrade(&self, text: &str, added: &[Added]) -> Result<String, String> {
+        let mut doc: DocumentMut = text.parse().map_err(|e: toml_edit::TomlError| e.to_string())?;
+        let current = i64::from(self.current);
+        let stated = doc.contains_key("format");
+        if stated {
+            doc["format"] = toml_edit::value(current);
+        }
+        for a in added {
+            let (table, leaf) = match a.key.rsplit_once('.') {
+                Some((t, leaf)) => (Some(t), leaf),
+                None => (None, a.key),
+            };
+            let t: &mut Table = match table {
+                Some(t) => {
+                    let item = doc.entry(t).or_insert_with(toml_edit::table);
+                    let Some(t) = item.as_table_mut() else { continue };
+                    t
+                }
+                None => doc.as_table_mut(),
+            };
+            if t.contains_key(leaf) {
+                continue;
+            }
+            let mut value = a.value.clone();
+            value.decor_mut().set_suffix(format!("  # {}", a.comment));
+            t.insert(leaf, Item::Value(value));
+        }
+        // A key at the top of the text precedes every table, as TOML
+        // needs it to.
+        Ok(if stated { doc.to_string() } else { format!("format = {current}\n{doc}") })
+    }
+}
