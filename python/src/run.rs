@@ -8,7 +8,7 @@ use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use umbra_core::DepthFormatKind;
-use umbra_sim::experiment::plan::PlanSpec;
+use umbra_sim::experiment::plan::{Budget, PlanSpec};
 use umbra_sim::experiment::study::{Overrides, Request, Shard, SweepFile, schema::schema_csv, table};
 use umbra_sim::input::limits::Limits;
 use umbra_sim::render::arrays::PixelArrays;
@@ -173,25 +173,43 @@ pub fn study(
     Ok((csv, schema_csv(&header)))
 }
 
-/// The cheapest configuration of `scene` on `arch` whose artifacts stay
-/// within `budget` percent, as the JSON text of `plan.json`.
+/// The cheapest configuration of `scene` on `arch` meeting every budget
+/// (`budgets` spelt as `umbra plan --budget` spells them: `acne=0.01%`),
+/// as the JSON text of `plan.json`. `sweep` (a bundled sweep or a sweep
+/// file), `maps` and `image` narrow the candidates as the command's flags
+/// do.
 #[pyfunction]
-#[pyo3(signature = (scene, budget, arch, progress=None, threads=None))]
+#[pyo3(signature = (scene, budgets, arch, sweep=None, maps=None, image=None, progress=None, threads=None))]
+#[allow(clippy::too_many_arguments, reason = "Python's keyword arguments")]
 pub fn plan(
     py: Python<'_>,
     scene: &Scene,
-    budget: f64,
+    budgets: Vec<String>,
     arch: &Arch,
+    sweep: Option<String>,
+    maps: Option<Vec<u32>>,
+    image: Option<(u32, u32)>,
     progress: Option<&Bound<'_, PyAny>>,
     threads: Option<usize>,
 ) -> PyResult<String> {
-    if !budget.is_finite() || !(0.0..=100.0).contains(&budget) {
-        return Err(bad("budget", format!("{budget}% is outside 0…100%")));
-    }
-    let mut spec = PlanSpec::new(&scene.inner, budget);
+    let budgets = budgets.iter().map(|b| b.parse()).collect::<Result<Vec<Budget>, String>>().map_err(|e| bad("budget", e))?;
+    let mut spec = match sweep {
+        Some(name) => {
+            let limits = Limits::DEFAULT;
+            let sweep = SweepFile::open(&name, &limits).and_then(|f| f.spec(&limits)).map_err(|e| error(&e))?;
+            PlanSpec::from_sweep(&scene.inner, budgets, &sweep)
+        }
+        None => PlanSpec::new(&scene.inner, budgets),
+    };
     spec.arch = arch.inner.clone();
+    if let Some(maps) = maps {
+        spec.map_sizes = maps;
+    }
+    if let Some((w, h)) = image {
+        spec.image = [w, h];
+    }
     let bar = ProgressBar::hidden();
-    let p =
-        progress::run(py, &bar, progress, threads, || umbra_sim::plan(&scene.inner, &spec))?.map_err(|e| error(&e))?;
+    let p = progress::run(py, &bar, progress, threads, || umbra_sim::plan(&scene.inner, &spec, &bar))?
+        .map_err(|e| error(&e))?;
     serde_json::to_string(&p).map_err(|e| error(&e))
 }

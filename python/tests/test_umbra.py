@@ -178,11 +178,21 @@ def test_a_scene_from_numpy_arrays_is_the_scene_from_its_file():
     assert a["misclassified_percent"] == b["misclassified_percent"]
 
 
-def test_plan_names_a_configuration_within_its_budget():
-    p = umbra.plan("weiskopf-l", 50.0, "talisman")
-    assert p["arch"] == "talisman" and p["command"].startswith("umbra render weiskopf-l")
-    # What it measured of its pick is within the budget.
-    assert p["measured"]["artifact_percent"] <= 50.0
+def test_plan_names_a_configuration_within_its_budgets():
+    p = umbra.plan(
+        "weiskopf-l", ["acne=5%", "misclassified=50"], "talisman", sweep="quick", maps=[128], image=(96, 54)
+    )
+    assert p["arch"] == "talisman" and p["pick"]["command"].startswith("umbra render weiskopf-l")
+    # What it measured of its pick is within both budgets, spelt as the
+    # command spells them.
+    assert p["meets"] and p["pick"]["percent"]["acne"] <= 5.0 and p["pick"]["percent"]["misclassified"] <= 50.0
+    assert [b["measure"] for b in p["budgets"]] == ["acne", "misclassified"]
+    # A bare number is an artifacts budget.
+    q = umbra.plan("weiskopf-l", 50.0, "talisman", sweep="quick", maps=[128], image=(96, 54))
+    assert q["budgets"] == [{"measure": "artifacts", "percent": 50.0}]
+    with pytest.raises(umbra.UmbraError) as e:
+        umbra.plan("weiskopf-l", "glare=1%", "talisman")
+    assert "glare" in str(e.value)
 
 
 def test_bad_input_names_the_file_and_key(tmp_path):

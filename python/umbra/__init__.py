@@ -21,7 +21,7 @@ import io
 import json
 import sys
 from pathlib import Path
-from typing import Any, Callable, Mapping, Optional, Union
+from typing import Any, Callable, Mapping, Optional, Sequence, Union
 
 import numpy as np
 import pandas as pd
@@ -230,15 +230,35 @@ def _typed(rows: str, schema: str) -> pd.DataFrame:
 
 def plan(
     scene: Union[str, Scene, Mapping[str, Any]],
-    budget: float,
+    budget: Union[float, str, Sequence[Union[float, str]]],
     arch: Union[str, Arch] = "talisman",
+    sweep: Optional[str] = None,
+    maps: Optional[Sequence[int]] = None,
+    image: Optional[tuple[int, int]] = None,
     progress: Optional[Progress] = None,
     threads: Optional[int] = None,
 ) -> dict[str, Any]:
-    """The cheapest configuration on ``arch`` whose artifacts stay within
-    ``budget`` percent of the pixels, as ``umbra plan`` chooses it
-    (``plan.json``): the configuration, its figures, every candidate's."""
-    return json.loads(_umbra.plan(_as_scene(scene), float(budget), _as_arch(arch), progress, threads))
+    """The cheapest configuration on ``arch`` meeting every budget, as
+    ``umbra plan`` chooses it (``plan.json``): the pick, its figures, the
+    runners-up and why each lost. A budget is spelt as ``umbra plan
+    --budget`` spells it (``"acne=0.01%"``, ``"misclassified=0.1"``), or a
+    number: percent artifacts; give a list for several at once. ``sweep``
+    (``"quick"``, ``"full"`` or a sweep file), ``maps`` and ``image``
+    choose the candidates as the command's flags do."""
+    budgets = [budget] if isinstance(budget, (int, float, str)) else list(budget)
+    spelt = [b if isinstance(b, str) else f"artifacts={float(b)!r}%" for b in budgets]
+    return json.loads(
+        _umbra.plan(
+            _as_scene(scene),
+            spelt,
+            _as_arch(arch),
+            sweep,
+            None if maps is None else [int(m) for m in maps],
+            None if image is None else (int(image[0]), int(image[1])),
+            progress,
+            threads,
+        )
+    )
 
 
 def print_progress(done: int, total: int) -> None:

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use crate::cost::{ArchArgs, OneArchArgs};
 use crate::say::say;
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use indicatif::ProgressBar;
 use umbra_sim::input::limits::Limits;
 use umbra_sim::output::folder::OutputFolder;
@@ -16,16 +16,42 @@ pub(super) struct PlanArgs {
     /// A bundled scene by name or a scene file.
     #[arg(default_value = "table-and-sphere")]
     pub(super) scene: String,
-    /// Artifacts allowed (acne, detachment and leaks, judged by their
-    /// cause), e.g. `0.1%` (percent of the pixels facing the light).
-    #[arg(long, default_value = "0.1%")]
-    pub(super) error_budget: String,
-    /// The architecture whose cost is minimised (default: talisman).
+    /// An error budget the pick must meet, `MEASURE=PERCENT` (repeat it
+    /// for several, all met at once): a measure of `artifacts`,
+    /// `misclassified`, `acne`, `detachment`, `leaks`, `aliasing`,
+    /// `penumbra`, `false-shadow`, `false-light`, percent of the pixels
+    /// facing the light (`--budget acne=0.01% --budget
+    /// misclassified=0.1%`); a bare percentage bounds artifacts. Default:
+    /// `artifacts=0.1%`.
+    #[arg(long = "budget", value_parser = budget)]
+    pub(super) budgets: Vec<umbra_sim::experiment::plan::Budget>,
+    /// The same as `--budget artifacts=PERCENT`.
+    #[arg(long, value_parser = budget, conflicts_with = "budgets")]
+    pub(super) error_budget: Option<umbra_sim::experiment::plan::Budget>,
+    /// Take the candidates' algorithms, depth formats, map sides and
+    /// filters from a sweep (`quick`, `full`, or a sweep file) instead of
+    /// the quick sweep's algorithms and formats over map sides 128…2048
+    /// and the point, bilinear and 3×3 box filters.
+    #[arg(long)]
+    pub(super) sweep: Option<String>,
+    /// Map sides to try instead (`--maps 256,512`).
+    #[arg(long, value_delimiter = ',')]
+    pub(super) maps: Vec<u32>,
+    /// The image the candidates are measured at (`--image 640x360`);
+    /// default: the scene's.
+    #[arg(long)]
+    pub(super) image: Option<String>,
+    /// The architecture whose time is minimised (default: talisman).
     #[command(flatten)]
     pub(super) archs: OneArchArgs,
     /// Output folder for plan.md and plan.json.
     #[arg(long, default_value = "out/plan")]
     pub(super) out: PathBuf,
+}
+
+/// A `--budget` value, read as the library (and Python) reads it.
+fn budget(text: &str) -> Result<umbra_sim::experiment::plan::Budget, String> {
+    text.parse()
 }
 
 #[derive(clap::Args, Debug)]
@@ -94,29 +120,48 @@ pub(super) struct MergeArgs {
 /// `umbra plan`.
 pub(super) fn plan(args: &PlanArgs, limits: &Limits) -> Result<()> {
     use umbra_sim::experiment::plan::{PlanSpec, plan};
-    let text = args.error_budget.trim();
-    let text = text.strip_suffix('%').unwrap_or(text);
-    let budget: f64 =
-        text.trim().parse().with_context(|| format!("--error-budget `{}` is not a percentage", args.error_budget))?;
-    if !budget.is_finite() || !(0.0..=100.0).contains(&budget) {
-        bail!("--error-budget {budget}% is outside 0…100%");
-    }
+    use umbra_sim::experiment::study::{SweepFile, image_size};
     let scene = Scene::open(&args.scene, limits)?;
-    let mut spec = PlanSpec::new(&scene, budget);
+    let budgets = match (&args.budgets[..], args.error_budget) {
+        ([], Some(b)) => vec![b],
+        ([], None) => vec![budget("artifacts=0.1%").map_err(anyhow::Error::msg)?],
+        (b, _) => b.to_vec(),
+    };
+    let mut spec = match &args.sweep {
+        Some(sweep) => PlanSpec::from_sweep(&scene, budgets, &SweepFile::open(sweep, limits)?.spec(limits)?),
+        None => PlanSpec::new(&scene, budgets),
+    };
     spec.limits = *limits;
     spec.arch = args.archs.one("talisman", limits)?;
-    let mut folder = OutputFolder::create(&args.out)?;
-    let p = plan(&scene, &spec)?;
-    let md = p.markdown(&scene, budget);
-    say!("{}", md.trim_end());
-    if !p.meets(budget) {
-        say!("\nNo candidate meets the budget at this image size: all {} were measured.", p.candidates);
+    if !args.maps.is_empty() {
+        let sides: Vec<String> = args.maps.iter().map(ToString::to_string).collect();
+        crate::no_repeats("--maps", sides.iter().map(String::as_str))?;
+        spec.map_sizes.clone_from(&args.maps);
     }
+    if let Some(image) = &args.image {
+        spec.image = image_size(image, limits)?;
+    }
+    let mut folder = OutputFolder::create(&args.out)?;
+    let bar = configurations_bar("plan")?;
+    let p = plan(&scene, &spec, &bar)?;
+    bar.finish_and_clear();
+    let md = p.markdown(&scene);
+    say!("{}", md.trim_end());
     folder.write_text("plan.md", &md)?;
     folder.write_text("plan.json", &serde_json::to_string_pretty(&p)?)?;
     folder.write_text(&format!("arch-{}.toml", spec.arch.name), &spec.arch.to_toml())?;
     let manifest = folder.finish(None)?;
     crate::say::wrote(&args.out, &manifest)
+}
+
+/// A bar of configurations run, on stderr (hidden when it is not a
+/// terminal); the run sets its length.
+fn configurations_bar(prefix: &'static str) -> Result<ProgressBar> {
+    let style = indicatif::ProgressStyle::with_template(
+        "{prefix} [{elapsed_precise}] {wide_bar} {pos}/{len} configurations, {per_sec}, {eta} left",
+    )
+    .context("progress bar template")?;
+    Ok(ProgressBar::new(0).with_style(style).with_prefix(prefix))
 }
 
 /// `umbra study`: the library prepares (checks and hashes) and runs it;
@@ -139,11 +184,7 @@ pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
         out: args.out.clone(),
     };
     let prepared = request.prepare(limits, rayon::current_num_threads())?;
-    let style = indicatif::ProgressStyle::with_template(
-        "{prefix} [{elapsed_precise}] {wide_bar} {pos}/{len} configurations, {per_sec}, {eta} left",
-    )
-    .context("progress bar template")?;
-    let progress = ProgressBar::new(0).with_style(style).with_prefix("study");
+    let progress = configurations_bar("study")?;
     let start = std::time::Instant::now();
     let outcome = prepared.run(&progress)?;
     progress.finish_and_clear();

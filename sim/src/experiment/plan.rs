@@ -1,28 +1,31 @@
-//! The planner: the least costly configuration a scene needs for an error
-//! budget, modelling only what the scene requires.
+//! The planner: the least costly configuration of a study's whole space
+//! that meets every error budget a user sets on a scene.
 //!
-//! 1. **Buffers.** A scene of solids gets second depth: from one buffer by
-//!    front-face culling (Wang & Molnar 1994 §3.4), or from the dual unit's
-//!    `z2`, whichever meets the budget more cheaply (culling the front faces
-//!    is not always the cheaper: it draws the backs, which can shadow more
-//!    and need more virtual samples). Open surfaces cannot be front-face
-//!    culled (they have no back), so a scene with any gets the dual unit
-//!    and Weiskopf & Ertl's dual test with per-object culling.
-//! 2. **Precision.** The dual map of the scene, rendered in the f32 format,
-//!    gives the gap `z2 − z1` between the nearest and second-nearest surface
-//!    at every texel where both exist; the tests place their reference
-//!    inside that gap, so 16-bit depth suffices when the thinnest gaps (the
-//!    1st percentile, ignoring grazing slivers at silhouettes) span at least
-//!    `GAP_LSBS` 16-bit steps. This folds in the depth range: a large
-//!    far/near ratio squeezes distant gaps into few steps.
-//! 3. **Algorithm, map size and filter.** Every candidate (for solids,
-//!    second depth by front-face culling or from the dual unit; × map side
-//!    × filter) is
-//!    costed on the architecture at the scene's image, and the candidates
-//!    are measured against the 4×4-ray reference cheapest first (cycles,
-//!    then DRAM bytes) until one meets the budget: the first that does is
-//!    the cheapest that does. Only when every candidate has been measured
-//!    and missed is the most accurate taken, and the plan says so.
+//! The space is a sweep's ([`PlanSpec::new`] takes the bundled quick
+//! sweep's algorithms — first depth at its biases, Reeves' bias range,
+//! second depth with and without virtual samples and by front-face
+//! culling, the midpoint, dual depth at its offsets, silhouette maps,
+//! shadow volumes — and its depth formats, over map sides 128 to 2048 and
+//! the point, bilinear and 3×3 box filters; [`PlanSpec::from_sweep`] takes
+//! a sweep file's). Every candidate is rendered, measured against the
+//! exact reference and costed on the architecture by the study's own run
+//! (which shares each light pass among the candidates that draw it), so
+//! the pick is the cheapest *measured* candidate — in cycles on the
+//! architecture, then DRAM bytes — whose every budgeted error class is
+//! within its budget ([`Budget`]: artifacts, misclassified pixels, or any
+//! single class of the metrics, judged by its cause). The plan lists the
+//! runners-up: the cheaper candidates nearest it, each with the budgets it
+//! missed, and the next dearer ones that meet every budget, with how much
+//! dearer. When none meets every budget it takes the one nearest to doing
+//! so (the least worst ratio of measure to budget) and says so.
+//!
+//! The thinnest gap between the nearest and second-nearest surfaces, in
+//! 16-bit steps, is reported beside the pick: the tests place their
+//! reference inside that gap, so it tells whether 16-bit depth can hold
+//! the scene (`GAP_LSBS` steps).
+
+use std::fmt::Write as _;
+use std::str::FromStr;
 
 use indicatif::ProgressBar;
 use serde::Serialize;
@@ -30,33 +33,160 @@ use umbra_core::shadow::Filter;
 use umbra_core::{CullMode, DepthFormat, DepthFormatKind, DepthUnit, F32, LightPassConfig, RasterConfig};
 
 use crate::cost::arch::Arch;
-use crate::cost::report::CostReport;
-use crate::cost::report::stats::whole_cycles;
 use crate::cost::storage::{MapShape, REEVES_TILE, StorageBytes, storage_bytes};
 use crate::experiment::presets::FILTERS;
+use crate::experiment::study::{Row, RowMetrics, Shard, Spec, StudyError, SweepFile, Variant, render_config, run};
 use crate::input::limits::Limits;
 use crate::pass::light::{self, DEFAULT_BIN_CAPACITY, LightFrame, LightOptions};
-use crate::render::{Algorithm, Render, RenderConfig, RenderError, TruthSource, cost, render, truth};
-use crate::truth::metrics::Metrics;
-use crate::truth::reference::PixelTruth;
+use crate::render::{RenderConfig, RenderError, TruthSource, render};
 use crate::world::scene::Scene;
 
 /// 16-bit steps the thinnest gaps between surfaces must span.
 pub(crate) const GAP_LSBS: f64 = 8.0;
 
-/// The dual test's offset the planner uses, as a depth in `[0, 1]`.
-pub(crate) const DUAL_OFFSET: f64 = 0.01;
+/// Reference rays per pixel side the candidates are measured against.
+pub const REFERENCE_RAYS: u32 = 4;
 
-/// What the planner may choose from.
+/// What a budget bounds: a class of the metrics' wrong pixels
+/// ([`crate::truth::metrics`]), percent of the evaluated pixels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Measure {
+    /// Acne, detachment and leaks together.
+    Artifacts,
+    /// Every pixel the ½ verdict gets wrong, aliasing included.
+    Misclassified,
+    /// Too dark from the receiver's own surface.
+    Acne,
+    /// Too light because only the bias moved the test past an occluder.
+    Detachment,
+    /// Too light because the depth compared lies behind the receiver.
+    Leaks,
+    /// Wrong because the taps straddle a true edge or miss the occluder.
+    Aliasing,
+    /// A filter's own partial shade across a true edge.
+    Penumbra,
+    /// Shadowed by the ½ verdict, lit in truth.
+    FalseShadow,
+    /// Lit by the ½ verdict, shadowed in truth.
+    FalseLight,
+}
+
+impl Measure {
+    /// Every measure, in the order reports list them.
+    pub const ALL: [Self; 9] = [
+        Self::Artifacts,
+        Self::Misclassified,
+        Self::Acne,
+        Self::Detachment,
+        Self::Leaks,
+        Self::Aliasing,
+        Self::Penumbra,
+        Self::FalseShadow,
+        Self::FalseLight,
+    ];
+
+    /// Its one spelling, in `--budget` and in Python.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Artifacts => "artifacts",
+            Self::Misclassified => "misclassified",
+            Self::Acne => "acne",
+            Self::Detachment => "detachment",
+            Self::Leaks => "leaks",
+            Self::Aliasing => "aliasing",
+            Self::Penumbra => "penumbra",
+            Self::FalseShadow => "false-shadow",
+            Self::FalseLight => "false-light",
+        }
+    }
+
+    /// Its value in a row's metrics: percent of the evaluated pixels.
+    #[must_use]
+    #[allow(clippy::cast_precision_loss, reason = "pixel counts far below 2^53")]
+    pub fn percent(self, m: &RowMetrics) -> f64 {
+        let of = |px: u64| if m.evaluated_px == 0 { 0.0 } else { 100.0 * px as f64 / m.evaluated_px as f64 };
+        match self {
+            Self::Artifacts => m.artifact_percent,
+            Self::Misclassified => m.misclassified_percent,
+            Self::Acne => of(m.acne_px),
+            Self::Detachment => of(m.detachment_px),
+            Self::Leaks => of(m.leaks_px),
+            Self::Aliasing => of(m.aliasing_px),
+            Self::Penumbra => of(m.penumbra_px),
+            Self::FalseShadow => of(m.false_shadow_px),
+            Self::FalseLight => of(m.false_light_px),
+        }
+    }
+}
+
+/// An error budget: a measure and the most of it allowed, percent of the
+/// evaluated pixels. Spelt `acne=0.01%` (the `%` optional), or a bare
+/// percentage for artifacts (`0.1%`), alike in `umbra plan --budget` and
+/// Python's `umbra.plan`.
+///
+/// ```
+/// use umbra_sim::experiment::plan::{Budget, Measure};
+/// let b: Budget = "misclassified=0.1%".parse()?;
+/// assert_eq!((b.measure, b.percent), (Measure::Misclassified, 0.1));
+/// assert_eq!("0.01".parse::<Budget>()?.measure, Measure::Artifacts);
+/// assert!("glare=1%".parse::<Budget>().is_err());
+/// # Ok::<(), String>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Budget {
+    /// What it bounds.
+    pub measure: Measure,
+    /// The most allowed, percent.
+    pub percent: f64,
+}
+
+impl FromStr for Budget {
+    type Err = String;
+
+    fn from_str(text: &str) -> Result<Self, String> {
+        let (measure, value) = match text.split_once('=') {
+            Some((m, v)) => {
+                let m = m.trim();
+                let measure = Measure::ALL.into_iter().find(|x| x.name() == m).ok_or_else(|| {
+                    let names: Vec<&str> = Measure::ALL.iter().map(|x| x.name()).collect();
+                    format!("budget `{text}`: `{m}` is not a measure (one of {})", names.join(", "))
+                })?;
+                (measure, v)
+            }
+            None => (Measure::Artifacts, text),
+        };
+        let v = value.trim();
+        let v = v.strip_suffix('%').unwrap_or(v).trim();
+        let percent: f64 = v.parse().map_err(|_| format!("budget `{text}`: `{value}` is not a percentage"))?;
+        if !(0.0..=100.0).contains(&percent) {
+            return Err(format!("budget `{text}`: {percent}% is outside 0…100%"));
+        }
+        Ok(Self { measure, percent })
+    }
+}
+
+impl std::fmt::Display for Budget {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}={}%", self.measure.name(), self.percent)
+    }
+}
+
+/// What the planner may choose from, and the budgets it must meet.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PlanSpec {
-    /// Misclassified pixels allowed, percent of those facing the light.
-    pub budget_percent: f64,
-    /// Map sides to try, ascending.
+    /// Every budget the pick must meet (at least one; each measure once).
+    pub budgets: Vec<Budget>,
+    /// Algorithm variants (algorithm, bias, virtual samples, culling).
+    pub variants: Vec<Variant>,
+    /// Depth formats.
+    pub formats: Vec<DepthFormatKind>,
+    /// Map sides.
     pub map_sizes: Vec<u32>,
-    /// Filters to try.
+    /// Filters.
     pub filters: Vec<Filter>,
-    /// The architecture whose cost is minimised.
+    /// The architecture whose time is minimised.
     pub arch: Arch,
     /// Camera image the candidates are measured at.
     pub image: [u32; 2],
@@ -65,12 +195,19 @@ pub struct PlanSpec {
 }
 
 impl PlanSpec {
-    /// Map sizes 128…2048, point, bilinear and 3×3 box filters, the
-    /// Talisman preset, the scene's own image.
+    /// The quick sweep's algorithms and depth formats, map sides 128 to
+    /// 2048, the point, bilinear and 3×3 box filters, Talisman, the
+    /// scene's own image.
+    ///
+    /// # Panics
+    /// Never: the bundled sweep files are validated by the tests.
     #[must_use]
-    pub fn new(scene: &Scene, budget_percent: f64) -> Self {
+    pub fn new(scene: &Scene, budgets: Vec<Budget>) -> Self {
+        let quick = SweepFile::bundled("quick").and_then(|f| f.spec(&Limits::DEFAULT)).expect("the bundled sweep");
         Self {
-            budget_percent,
+            budgets,
+            variants: quick.variants,
+            formats: quick.formats,
             map_sizes: vec![128, 256, 512, 1024, 2048],
             filters: FILTERS[..3].to_vec(),
             arch: Arch::bundled("talisman").unwrap_or_default(),
@@ -78,83 +215,159 @@ impl PlanSpec {
             limits: Limits::DEFAULT,
         }
     }
-}
 
-/// Error and cost of one configuration.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct Figures {
-    /// Artifacts (acne, detachment and leaks, by their cause), percent
-    /// of the evaluated pixels: what the budget bounds.
-    pub artifact_percent: f64,
-    /// Every misclassified pixel, aliasing included, percent.
-    pub misclassified_percent: f64,
-    /// RMS area error.
-    pub rms_error: f64,
-    /// Mean boundary displacement, pixels.
-    pub displacement: f64,
-    /// Light plus camera bottleneck cycles.
-    pub cycles: u64,
-    /// DRAM bytes of both passes.
-    pub bytes: u64,
+    /// The space of a sweep: its algorithms, formats, map sides and
+    /// filters (its scenes, images and architectures are not the plan's).
+    #[must_use]
+    pub fn from_sweep(scene: &Scene, budgets: Vec<Budget>, sweep: &Spec) -> Self {
+        Self {
+            variants: sweep.variants.clone(),
+            formats: sweep.formats.clone(),
+            map_sizes: sweep.map_sizes.clone(),
+            filters: sweep.filters.clone(),
+            ..Self::new(scene, budgets)
+        }
+    }
+
+    /// How many candidates the space holds.
+    #[must_use]
+    pub fn candidates(&self) -> usize {
+        self.variants.len() * self.formats.len() * self.map_sizes.len() * self.filters.len()
+    }
+
+    /// The study that measures every candidate on `scene`.
+    fn study(&self, scene: &Scene) -> Spec {
+        let name = format!("plan of {}", scene.name);
+        Spec {
+            scenes: vec![scene.clone()],
+            variants: self.variants.clone(),
+            formats: self.formats.clone(),
+            map_sizes: self.map_sizes.clone(),
+            filters: self.filters.clone(),
+            archs: vec![self.arch.clone()],
+            arch_points: Vec::new(),
+            images: vec![self.image],
+            reference_rays: REFERENCE_RAYS,
+            budgets: self.budgets.iter().filter(|b| b.measure == Measure::Artifacts).map(|b| b.percent).collect(),
+            hash: crate::output::provenance::hash(name.as_bytes()),
+            name,
+            limits: self.limits,
+        }
+    }
 }
 
 /// One candidate as the planner measured it.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Candidate {
+    /// The configuration in words (`dual offset 0.005, d16, 256², point`).
+    pub label: String,
     /// Its algorithm, as `--algo` spells it.
     pub algorithm: String,
+    /// Depth format.
+    #[serde(with = "crate::base::text")]
+    pub format: DepthFormatKind,
     /// Map side, texels.
     pub map_size: u32,
     /// Filter.
     #[serde(with = "crate::base::text")]
     pub filter: Filter,
-    /// Its figures at the image.
-    pub figures: Figures,
+    /// Frame cycles on the architecture.
+    pub cycles: u64,
+    /// Frame time on the architecture, seconds.
+    pub seconds: f64,
+    /// DRAM bytes of the frame.
+    pub bytes: u64,
+    /// Every measure, percent of the evaluated pixels, in [`Measure::ALL`]
+    /// order.
+    #[serde(serialize_with = "by_measure")]
+    pub percent: [f64; 9],
+    /// RMS area error.
+    pub rms_error: f64,
+    /// The `umbra render` command that renders it.
+    pub command: String,
+}
+
+/// Per-measure figures as a map from the measure's name.
+fn by_measure<S: serde::Serializer>(v: &[f64; 9], s: S) -> Result<S::Ok, S::Error> {
+    s.collect_map(Measure::ALL.iter().map(|m| m.name()).zip(v))
+}
+
+impl Candidate {
+    /// One measure of it, percent.
+    #[must_use]
+    pub fn measure(&self, m: Measure) -> f64 {
+        self.percent[m as usize]
+    }
+
+    /// The budgets it misses, each as `acne 0.031% > 0.01%`.
+    fn misses(&self, budgets: &[Budget]) -> Vec<String> {
+        budgets
+            .iter()
+            .filter(|b| self.measure(b.measure) > b.percent)
+            .map(|b| format!("{} {:.3}% > {}%", b.measure.name(), self.measure(b.measure), b.percent))
+            .collect()
+    }
+
+    /// The worst ratio of a budgeted measure to its budget: at most 1
+    /// meets every budget.
+    fn worst(&self, budgets: &[Budget]) -> f64 {
+        budgets
+            .iter()
+            .map(|b| {
+                let v = self.measure(b.measure);
+                if v <= b.percent {
+                    0.0
+                } else if b.percent > 0.0 {
+                    v / b.percent
+                } else {
+                    f64::INFINITY
+                }
+            })
+            .fold(0.0, f64::max)
+    }
+}
+
+/// A candidate the pick beat, and why.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RunnerUp {
+    /// The candidate.
+    pub candidate: Candidate,
+    /// Whether it is cheaper than the pick (else dearer, or as cheap with
+    /// more DRAM bytes).
+    pub cheaper: bool,
+    /// Why it lost: the budgets it missed, or how much dearer it is.
+    pub lost: String,
 }
 
 /// A chosen configuration and why.
 #[derive(Clone, Debug, Serialize)]
 pub struct Plan {
+    /// The budgets it was planned for.
+    pub budgets: Vec<Budget>,
     /// The configuration, at the measurement's image size.
     pub config: RenderConfig,
-    /// Its algorithm, as `umbra render --algo` spells it.
-    pub algorithm: String,
-    /// Its filter.
-    #[serde(with = "crate::base::text")]
-    pub filter: Filter,
-    /// Its depth format's name.
-    pub format: String,
-    /// The architecture whose cost was minimised.
+    /// The pick, as measured.
+    pub pick: Candidate,
+    /// Whether the pick meets every budget.
+    pub meets: bool,
+    /// The architecture whose time was minimised.
     pub arch: String,
-    /// The `umbra render` command that renders the plan.
-    pub command: String,
     /// The thinnest gap between surfaces (1st percentile), in 16-bit steps.
     pub gap_lsbs: f64,
     /// Whether the scene has open surfaces.
     pub open_surfaces: bool,
-    /// The chosen candidate's measurement.
-    pub measured: Figures,
-    /// The same measured for the full configuration: the same test with
-    /// the dual unit and 24-bit depth, the same map size and filter.
-    pub full: Figures,
-    /// How many candidates there were.
+    /// How many candidates were measured.
     pub candidates: usize,
-    /// The candidates measured, cheapest first, up to the one chosen (all
-    /// of them when none meets the budget).
-    pub tried: Vec<Candidate>,
+    /// How many of them meet every budget.
+    pub meeting: usize,
+    /// The runners-up: the cheaper candidates nearest the pick (each
+    /// missing a budget), then the next dearer ones meeting every budget.
+    pub runners_up: Vec<RunnerUp>,
     /// The reasons, one line each.
     pub reasons: Vec<String>,
     /// The chosen map's storage under Reeves et al.'s schemes (Table 2),
     /// tiles of `REEVES_TILE`.
     pub storage: StorageBytes,
-}
-
-impl Plan {
-    /// Whether the measured artifacts meet the budget.
-    #[must_use]
-    pub fn meets(&self, budget_percent: f64) -> bool {
-        self.measured.artifact_percent <= budget_percent
-    }
 }
 
 /// Why planning failed.
@@ -163,7 +376,10 @@ pub enum PlanError {
     /// A render failed.
     #[error(transparent)]
     Render(#[from] RenderError),
-    /// The spec names no map size or filter, or an unknown filter.
+    /// The study of the candidates failed.
+    #[error(transparent)]
+    Study(#[from] StudyError),
+    /// The spec names no budget, no candidate, or a measure twice.
     #[error("plan: {0}")]
     Spec(String),
 }
@@ -202,217 +418,224 @@ pub(crate) fn thinnest_gap(scene: &Scene, map: u32) -> Result<f64, PlanError> {
     Ok(gaps[gaps.len() / 100])
 }
 
-fn figures(m: &Metrics, c: &CostReport) -> Figures {
-    Figures {
-        artifact_percent: m.artifact_percent,
-        misclassified_percent: m.misclassified_percent,
+/// Cheaper candidates the plan lists as runners-up, nearest the pick first.
+const CHEAPER: usize = 5;
+/// Dearer candidates meeting every budget the plan lists.
+const DEARER: usize = 3;
+
+/// A complete row as a candidate.
+fn candidate(spec: &Spec, row: &Row, scene: &Scene) -> Option<Candidate> {
+    let (m, c) = (row.metrics.as_ref()?, row.cost.as_ref()?);
+    let configs = spec.configs();
+    let cfg = render_config(spec, configs.get(row.config_index)?);
+    Some(Candidate {
+        label: row.render_label(),
+        algorithm: row.config.algorithm.clone(),
+        format: row.config.depth_format,
+        map_size: row.config.map_side_texels,
+        filter: row.config.filter_name,
+        cycles: c.total_cycles,
+        seconds: c.frame_seconds,
+        bytes: c.total_dram_bytes,
+        percent: Measure::ALL.map(|x| x.percent(m)),
         rms_error: m.rms_error,
-        displacement: m.displacement[0],
-        cycles: whole_cycles(c.cycles),
-        bytes: c.bytes,
-    }
+        command: cfg.command(&scene.source),
+    })
 }
 
-/// Error of `cfg` on `scene` against `truth` (the scene's reference at the
-/// configuration's image and rays), with its cost `c`, and the render.
-fn measure(
-    scene: &Scene,
-    cfg: &RenderConfig,
-    spec: &PlanSpec,
-    truth: &[Option<PixelTruth>],
-    c: &CostReport,
-) -> Result<(Figures, Render), PlanError> {
-    let r = render(&cfg.check(scene, &spec.limits)?, TruthSource::Given(truth.to_vec()))?;
-    Ok((figures(&r.metrics, c), r))
-}
-
-/// Plan `scene` within `spec`.
+/// Plan `scene` within `spec`: measure every candidate, pick the cheapest
+/// meeting every budget; `progress` ticks once per candidate.
 ///
 /// ```
 /// use umbra_core::shadow::Filter;
-/// use umbra_sim::{Limits, PlanSpec, Scene};
+/// use umbra_core::DepthFormatKind;
+/// use umbra_sim::experiment::study::Variant;
+/// use umbra_sim::{Algorithm, Limits, PlanSpec, Scene};
 /// let scene = Scene::open("weiskopf-l", &Limits::DEFAULT)?;
 /// let spec = PlanSpec {
+///     variants: vec![Variant::new(Algorithm::First, 0.005), Variant::new(Algorithm::Midpoint, 0.0)],
+///     formats: vec![DepthFormatKind::D16],
 ///     map_sizes: vec![128, 256],
 ///     filters: vec![Filter::Point, Filter::Bilinear],
 ///     image: [96, 72],
-///     ..PlanSpec::new(&scene, 1.0)
+///     ..PlanSpec::new(&scene, vec!["acne=1%".parse()?, "misclassified=5%".parse()?])
 /// };
-/// let plan = umbra_sim::plan(&scene, &spec)?;
+/// let plan = umbra_sim::plan(&scene, &spec, &indicatif::ProgressBar::hidden())?;
+/// assert_eq!(plan.candidates, 8);
 /// assert!(spec.map_sizes.contains(&plan.config.map_size));
-/// assert!(plan.config.command(&scene.source).starts_with("umbra render weiskopf-l"));
+/// assert!(plan.pick.command.starts_with("umbra render weiskopf-l"));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 ///
 /// # Errors
 /// See [`PlanError`].
-pub fn plan(scene: &Scene, spec: &PlanSpec) -> Result<Plan, PlanError> {
-    let filters = &spec.filters;
-    if spec.map_sizes.is_empty() || filters.is_empty() {
-        return Err(PlanError::Spec("no map size or no filter to choose from".into()));
+pub fn plan(scene: &Scene, spec: &PlanSpec, progress: &ProgressBar) -> Result<Plan, PlanError> {
+    if spec.budgets.is_empty() {
+        return Err(PlanError::Spec("no budget to meet".into()));
     }
-    let mut reasons = Vec::new();
-    let open_surfaces = scene.objects.iter().any(|o| !o.solid);
-    let algorithms = if open_surfaces {
-        let names: Vec<&str> = scene.objects.iter().filter(|o| !o.solid).map(|o| o.name.as_str()).collect();
-        reasons.push(format!(
-            "open surfaces ({}) have no back to cull: dual unit (z1, z2), Weiskopf & Ertl's dual test, solids back-face culled",
-            names.join(", ")
-        ));
-        vec![Algorithm::Dual { offset: DUAL_OFFSET }]
-    } else {
-        reasons.push(
-            "every object is a closed solid: second depth, by front-face culling into one depth buffer or from the dual unit's z2, whichever meets the budget more cheaply"
-                .into(),
-        );
-        vec![Algorithm::SecondFrontCulled, Algorithm::Second]
+    if let Some((i, b)) =
+        spec.budgets.iter().enumerate().find(|(i, b)| spec.budgets[..*i].iter().any(|a| a.measure == b.measure))
+    {
+        return Err(PlanError::Spec(format!("budget {i} ({b}) bounds {} a second time", b.measure.name())));
+    }
+    let n = spec.candidates();
+    if n == 0 {
+        return Err(PlanError::Spec("no algorithm, format, map side or filter to choose from".into()));
+    }
+    let study = spec.study(scene);
+    let rows = run(&study, Shard::ALL, progress)?;
+    let mut all: Vec<(Candidate, usize)> =
+        rows.iter().filter_map(|r| candidate(&study, r, scene).map(|c| (c, r.config_index))).collect();
+    // Cheapest first: cycles, then DRAM bytes, then the study's order.
+    all.sort_by(|(a, i), (b, j)| a.cycles.cmp(&b.cycles).then(a.bytes.cmp(&b.bytes)).then(i.cmp(j)));
+    let budgets = &spec.budgets;
+    let meeting = all.iter().filter(|(c, _)| c.misses(budgets).is_empty()).count();
+    let first_meeting = all.iter().position(|(c, _)| c.misses(budgets).is_empty());
+    let nearest = || {
+        all.iter()
+            .enumerate()
+            .min_by(|(_, (a, _)), (_, (b, _))| a.worst(budgets).total_cmp(&b.worst(budgets)))
+            .map(|x| x.0)
     };
+    let Some(at) = first_meeting.or_else(nearest) else {
+        return Err(PlanError::Spec(format!("none of the {n} candidates could be rendered at this image")));
+    };
+    let (pick, index) = all[at].clone();
+    let meets = first_meeting.is_some();
+    let mut runners_up: Vec<RunnerUp> = all[..at]
+        .iter()
+        .rev()
+        .take(CHEAPER)
+        .map(|(c, _)| {
+            let missed = c.misses(budgets);
+            let lost = if missed.is_empty() { "nearer every budget".to_owned() } else { missed.join(", ") };
+            RunnerUp { candidate: c.clone(), cheaper: true, lost }
+        })
+        .collect();
+    #[allow(clippy::cast_precision_loss, reason = "cycle counts far below 2^53")]
+    let dearer = |c: &Candidate| 100.0 * (c.cycles as f64 / pick.cycles.max(1) as f64 - 1.0);
+    runners_up.extend(all[at + 1..].iter().filter(|(c, _)| c.misses(budgets).is_empty()).take(DEARER).map(|(c, _)| {
+        let lost = if c.cycles == pick.cycles {
+            format!("meets every budget in as many cycles, {} more DRAM bytes", c.bytes.saturating_sub(pick.bytes))
+        } else {
+            format!("meets every budget, {:.1} % more cycles", dearer(c))
+        };
+        RunnerUp { candidate: c.clone(), cheaper: false, lost }
+    }));
+
+    let open_surfaces = scene.objects.iter().any(|o| !o.solid);
     let gap_map = spec.map_sizes.iter().copied().max().unwrap_or(512).min(1024);
     let gap_lsbs = thinnest_gap(scene, gap_map)?;
-    let format = if gap_lsbs >= GAP_LSBS {
-        reasons.push(format!(
-            "thinnest gaps between surfaces span {gap_lsbs:.0} 16-bit steps (1st percentile, {gap_map}² f32 map) ≥ {GAP_LSBS}: 16-bit depth"
-        ));
-        DepthFormatKind::D16
-    } else {
-        reasons.push(format!(
-            "thinnest gaps between surfaces span only {gap_lsbs:.1} 16-bit steps (1st percentile, {gap_map}² f32 map) < {GAP_LSBS}: 24-bit depth"
-        ));
-        DepthFormatKind::D24
-    };
-    let at = |image: [u32; 2], map: u32, filter: Filter, algorithm: Algorithm, format: DepthFormatKind, rays: u32| {
-        RenderConfig {
-            algorithm,
-            format,
-            map_size: map,
-            filter,
-            width: image[0],
-            height: image[1],
-            reference_rays: rays,
-            ..RenderConfig::DEFAULT
-        }
-    };
-    // Every candidate costed at the image, cheapest first; then measured
-    // in that order until one meets the budget.
-    let image_truth = truth(scene, spec.image[0], spec.image[1], 4, &ProgressBar::hidden())?;
-    let mut costed = Vec::new();
-    for &algorithm in &algorithms {
-        for &map in &spec.map_sizes {
-            for &filter in filters {
-                let cfg = at(spec.image, map, filter, algorithm, format, 4);
-                let c = cost(&cfg.check(scene, &spec.limits)?, &spec.arch)?;
-                costed.push((cfg, c));
-            }
-        }
-    }
-    costed.sort_by(|(_, a), (_, b)| a.cycles.total_cmp(&b.cycles).then(a.bytes.cmp(&b.bytes)));
-    let mut tried = Vec::new();
-    let mut chosen: Option<(Figures, Render, RenderConfig)> = None;
-    let mut most_accurate: Option<(Figures, Render, RenderConfig)> = None;
-    for (cfg, c) in &costed {
-        let (f, r) = measure(scene, cfg, spec, &image_truth, c)?;
-        tried.push(Candidate {
-            algorithm: cfg.algorithm.name().to_owned(),
-            map_size: cfg.map_size,
-            filter: cfg.filter,
-            figures: f,
-        });
-        if f.artifact_percent <= spec.budget_percent {
-            chosen = Some((f, r, *cfg));
-            break;
-        }
-        if most_accurate.as_ref().is_none_or(|(b, ..)| f.artifact_percent < b.artifact_percent) {
-            most_accurate = Some((f, r, *cfg));
-        }
-    }
-    let n = costed.len();
-    let meets = chosen.is_some();
-    let Some((measured, r, config)) = chosen.or(most_accurate) else {
-        return Err(PlanError::Spec("no candidate".into()));
-    };
-    let (map, filter) = (config.map_size, config.filter);
+    let list = budgets.iter().map(ToString::to_string).collect::<Vec<_>>().join(", ");
+    let mut reasons = vec![format!(
+        "{n} candidates ({} algorithm variants × {} depth formats × {} map sides × {} filters), each rendered at {}×{}, measured against the {REFERENCE_RAYS}×{REFERENCE_RAYS}-ray reference and costed on {}; {meeting} meet every budget ({list})",
+        spec.variants.len(),
+        spec.formats.len(),
+        spec.map_sizes.len(),
+        spec.filters.len(),
+        spec.image[0],
+        spec.image[1],
+        spec.arch.name
+    )];
     if meets {
         reasons.push(format!(
-            "{}, {map}² map with the {filter} filter: the cheapest of {n} candidates (algorithms × map sides × filters) to meet {}% on {}, {} of them measured cheapest first",
-            config.algorithm.name(),
-            spec.budget_percent,
+            "{}: the cheapest of them in cycles on {} ({} cycles, {:.3} ms), {} cheaper candidates missing a budget",
+            pick.label,
             spec.arch.name,
-            tried.len()
+            pick.cycles,
+            pick.seconds * 1e3,
+            at
         ));
     } else {
         reasons.push(format!(
-            "no candidate meets {}%: all {n} measured; the most accurate, {}, {map}² with the {filter} filter",
-            spec.budget_percent,
-            config.algorithm.name()
+            "no candidate meets every budget: {}, the nearest (its worst measure {:.2}× its budget), is taken",
+            pick.label,
+            pick.worst(budgets)
         ));
     }
+    if open_surfaces {
+        let names: Vec<&str> = scene.objects.iter().filter(|o| !o.solid).map(|o| o.name.as_str()).collect();
+        reasons.push(format!(
+            "open surfaces ({}) have no back: tests that take the second surface from culling front faces see through them where they are single",
+            names.join(", ")
+        ));
+    }
+    reasons.push(if gap_lsbs >= GAP_LSBS {
+        format!(
+            "thinnest gaps between surfaces span {gap_lsbs:.0} 16-bit steps (1st percentile, {gap_map}² f32 map) ≥ {GAP_LSBS}: 16-bit depth can hold the midpoint tests' reference"
+        )
+    } else {
+        format!(
+            "thinnest gaps between surfaces span only {gap_lsbs:.1} 16-bit steps (1st percentile, {gap_map}² f32 map) < {GAP_LSBS}: 16-bit depth cannot hold the midpoint tests' reference everywhere"
+        )
+    });
+    let configs = study.configs();
+    let config = render_config(&study, &configs[index]);
+    let r = render(&config.check(scene, &spec.limits)?, TruthSource::Quiet)?;
     let raster = r.maps.maps.config.raster;
     let shape = MapShape::of_format(raster.width(), raster.height(), r.maps.format);
     let storage = storage_bytes(&shape, &r.maps.buffers(), REEVES_TILE)
         .map_err(|e| PlanError::Spec(format!("map storage: {e}")))?;
-    // The same test with everything: the dual unit's own z2 and 24 bits.
-    let full_algorithm =
-        if config.algorithm == Algorithm::SecondFrontCulled { Algorithm::Second } else { config.algorithm };
-    let full_config = at(spec.image, map, filter, full_algorithm, DepthFormatKind::D24, 4);
-    let full_cost = cost(&full_config.check(scene, &spec.limits)?, &spec.arch)?;
-    let (full, _) = measure(scene, &full_config, spec, &image_truth, &full_cost)?;
     Ok(Plan {
+        budgets: budgets.clone(),
         config,
-        algorithm: config.algorithm.name().to_owned(),
-        filter,
-        format: format.name().to_owned(),
+        pick,
+        meets,
         arch: spec.arch.name.clone(),
-        command: config.command(&scene.source),
         gap_lsbs,
         open_surfaces,
-        measured,
-        full,
-        candidates: n,
-        tried,
+        candidates: all.len(),
+        meeting,
+        runners_up,
         reasons,
         storage,
     })
 }
 
 impl Plan {
-    /// The plan as Markdown: the choices, why, and the figures.
+    /// The plan as Markdown: the pick, why, its figures, the runners-up
+    /// and the map's storage.
     #[must_use]
-    pub fn markdown(&self, scene: &Scene, budget_percent: f64) -> String {
-        use std::fmt::Write as _;
+    pub fn markdown(&self, scene: &Scene) -> String {
         let mut s = String::new();
-        let c = &self.config;
+        let list = self.budgets.iter().map(|b| format!("{} ≤ {}%", b.measure.name(), b.percent)).collect::<Vec<_>>();
+        let p = &self.pick;
         let _ = writeln!(
             s,
-            "## Plan for `{}` (artifact budget {budget_percent}%, costed on `{}`)\n\n{}, {}, {}² map, {} filter\n\n`{}`\n",
-            scene.name, self.arch, self.algorithm, self.format, c.map_size, self.filter, self.command
+            "## Plan for `{}` ({}; costed on `{}`)\n\n{}\n\n`{}`\n",
+            scene.name,
+            list.join(", "),
+            self.arch,
+            p.label,
+            p.command
         );
         for r in &self.reasons {
             let _ = writeln!(s, "- {r}");
         }
+        let measures: Vec<Measure> = budget_columns(&self.budgets);
+        let heads: String = measures.iter().map(|m| format!(" {} % |", m.name())).collect();
+        let rules: String = measures.iter().map(|_| "---:|").collect();
         let _ = writeln!(
             s,
-            "\n| | artifacts % | misclassified % | RMS area error | displacement (px) | cycles | DRAM bytes |\n|---|---:|---:|---:|---:|---:|---:|"
+            "\n| candidate | cycles | time (ms) | DRAM bytes |{heads} why not |\n|---|---:|---:|---:|{rules}---|"
         );
-        for (name, f) in [("measured", self.measured), ("full: dual unit, 24-bit", self.full)] {
-            let _ = writeln!(
-                s,
-                "| {name} | {:.3} | {:.3} | {:.4} | {:.2} | {} | {} |",
-                f.artifact_percent, f.misclassified_percent, f.rms_error, f.displacement, f.cycles, f.bytes
-            );
+        let row = |s: &mut String, c: &Candidate, why: &str| {
+            let figures: String = measures.iter().map(|&m| format!(" {:.3} |", c.measure(m))).collect();
+            let _ =
+                writeln!(s, "| {} | {} | {:.3} | {} |{figures} {why} |", c.label, c.cycles, c.seconds * 1e3, c.bytes);
+        };
+        let pick = if self.meets { "the pick" } else { "the pick, nearest the budgets" };
+        let cheaper: Vec<&RunnerUp> = self.runners_up.iter().filter(|r| r.cheaper).collect();
+        for r in cheaper.iter().rev() {
+            row(&mut s, &r.candidate, &r.lost);
         }
-        let _ = writeln!(
-            s,
-            "\nCandidates measured, cheapest first ({} of {}):\n\n| algorithm | map | filter | artifacts % | cycles | DRAM bytes |\n|---|---:|---|---:|---:|---:|",
-            self.tried.len(),
-            self.candidates
-        );
-        for t in &self.tried {
-            let f = t.figures;
-            let _ = writeln!(
-                s,
-                "| {} | {} | {} | {:.3} | {} | {} |",
-                t.algorithm, t.map_size, t.filter, f.artifact_percent, f.cycles, f.bytes
-            );
+        let _ = write!(s, "| **{}** | **{}** | **{:.3}** | **{}** |", p.label, p.cycles, p.seconds * 1e3, p.bytes);
+        for &m in &measures {
+            let _ = write!(s, " **{:.3}** |", p.measure(m));
+        }
+        let _ = writeln!(s, " {pick} |");
+        for r in self.runners_up.iter().filter(|r| !r.cheaper) {
+            row(&mut s, &r.candidate, &r.lost);
         }
         let st = &self.storage;
         let _ = writeln!(
@@ -429,4 +652,16 @@ impl Plan {
         );
         s
     }
+}
+
+/// The measures a plan's table shows: the budgeted ones, then artifacts
+/// and misclassified pixels when not budgeted.
+fn budget_columns(budgets: &[Budget]) -> Vec<Measure> {
+    let mut out: Vec<Measure> = budgets.iter().map(|b| b.measure).collect();
+    for m in [Measure::Artifacts, Measure::Misclassified] {
+        if !out.contains(&m) {
+            out.push(m);
+        }
+    }
+    out
 }

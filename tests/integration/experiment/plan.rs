@@ -1,126 +1,166 @@
-//! The planner: for every bundled scene and two scenes of real meshes, the
-//! configuration it picks is the cheapest of its whole candidate set whose
-//! measured artifacts meet the budget (checked here by measuring every
-//! candidate), it costs no more than the full configuration (dual unit,
-//! 24-bit depth), and it says "no candidate" only when all were measured
-//! and missed.
+//! The planner: on two bundled scenes and a scene of shared meshes, under
+//! one budget and under several at once, its pick is the cheapest of its
+//! whole candidate set (algorithms with their biases and offsets, depth
+//! formats, map sides, filters) meeting every budget — checked here by
+//! rendering, measuring and costing every candidate on the direct path,
+//! each measure counted from the metrics' pixel classes by hand. When no
+//! candidate meets the budgets it says so and takes the nearest.
 
 use std::path::Path;
 
 use indicatif::ProgressBar;
+use umbra::core::DepthFormatKind;
+use umbra::core::shadow::Filter;
 use umbra::sim::Algorithm;
-use umbra::sim::experiment::plan::{Plan, PlanSpec, plan};
+use umbra::sim::experiment::plan::{Budget, Plan, PlanSpec, plan};
+use umbra::sim::experiment::study::Variant;
 use umbra::sim::input::limits::Limits;
-use umbra::sim::render::{TruthSource, cost, render, truth};
+use umbra::sim::render::{RenderConfig, TruthSource, cost, render, truth};
+use umbra::sim::truth::metrics::Metrics;
 use umbra::sim::world::scene::Scene;
-use umbra::sim::world::scene_file::BUNDLED;
+use umbra::sim::world::scene_file::shared_meshes;
 
 /// The image the tests plan at: at 192×108 one pixel is about 0.01 % of
 /// those evaluated.
 const IMAGE: [u32; 2] = [192, 108];
 
-/// One candidate as measured here: algorithm, map, filter, cycles, bytes,
-/// artifacts %.
-type Measured = (String, u32, String, f64, u64, f64);
+/// One candidate as measured here: its configuration, cycles, DRAM bytes,
+/// and the budgeted measures in percent.
+type Measured = (RenderConfig, u64, u64, Vec<f64>);
 
-/// Every candidate of `spec` measured, independently of the planner's walk:
-/// second depth by front-face culling and from the dual unit for a scene of
-/// solids, the dual test for one with open surfaces; every map and filter.
-fn every_candidate(scene: &Scene, spec: &PlanSpec, p: &Plan) -> Vec<Measured> {
-    let reference = truth(scene, IMAGE[0], IMAGE[1], 4, &ProgressBar::hidden()).expect("reference");
-    let algorithms = if scene.objects.iter().any(|o| !o.solid) {
-        vec![p.config.algorithm]
-    } else {
-        vec![Algorithm::SecondFrontCulled, Algorithm::Second]
+/// A measure of the metrics, percent of the evaluated pixels, counted
+/// from the pixel classes (not through the planner's `Measure`).
+#[allow(clippy::cast_precision_loss, reason = "pixel counts")]
+fn percent(m: &Metrics, measure: &str) -> f64 {
+    let px = match measure {
+        "acne" => m.acne,
+        "leaks" => m.leaks,
+        "detachment" => m.detachment,
+        "misclassified" => m.false_shadow + m.false_light,
+        "artifacts" => m.acne + m.detachment + m.leaks,
+        other => panic!("{other}"),
     };
+    100.0 * px as f64 / m.evaluated as f64
+}
+
+/// Every candidate of `spec`, rendered and costed on the direct path.
+fn every_candidate(scene: &Scene, spec: &PlanSpec) -> Vec<Measured> {
+    let reference = truth(scene, IMAGE[0], IMAGE[1], 4, &ProgressBar::hidden()).expect("reference");
     let mut out = Vec::new();
-    for algorithm in algorithms {
-        for &map in &spec.map_sizes {
-            for &filter in &spec.filters {
-                let cfg = umbra::sim::RenderConfig { algorithm, map_size: map, filter, ..p.config };
-                let r = cfg
-                    .check(scene, &Limits::DEFAULT)
-                    .and_then(|job| render(&job, TruthSource::Given(reference.clone())))
-                    .expect("renders");
-                let c = cfg.check(scene, &Limits::DEFAULT).and_then(|job| cost(&job, &spec.arch)).expect("costs");
-                let name = algorithm.name().to_owned();
-                out.push((name, map, filter.to_string(), c.cycles, c.bytes, r.metrics.artifact_percent));
+    for v in &spec.variants {
+        for &format in &spec.formats {
+            for &map_size in &spec.map_sizes {
+                for &filter in &spec.filters {
+                    let cfg = RenderConfig {
+                        algorithm: v.algorithm,
+                        bias: v.bias,
+                        virtual_samples: v.virtual_samples,
+                        culling: v.culling,
+                        format,
+                        map_size,
+                        filter,
+                        width: IMAGE[0],
+                        height: IMAGE[1],
+                        reference_rays: 4,
+                    };
+                    let job = cfg.check(scene, &Limits::DEFAULT).expect("valid");
+                    let r = render(&job, TruthSource::Given(reference.clone())).expect("renders");
+                    let c = cost(&job, &spec.arch).expect("costs");
+                    let measures = spec.budgets.iter().map(|b| percent(&r.metrics, b.measure.name())).collect();
+                    out.push((cfg, c.cycles.round() as u64, c.bytes, measures));
+                }
             }
         }
     }
     out
 }
 
-/// Plan `scene` at `budget` and hold the pick to the exhaustive answer.
-fn holds(scene: &Scene, budget: f64) -> Plan {
-    let mut spec = PlanSpec::new(scene, budget);
-    spec.image = IMAGE;
-    spec.map_sizes = vec![128, 256, 512];
-    let p = plan(scene, &spec).expect("plans");
+/// A space across the families: first depth at two biases, second depth
+/// by front-face culling, the midpoint, dual depth at offset 1 and at a
+/// small offset; 16- and 24-bit; two map sides; point and bilinear.
+fn spec(scene: &Scene, budgets: &[&str]) -> PlanSpec {
+    PlanSpec {
+        variants: vec![
+            Variant::new(Algorithm::First, 0.001),
+            Variant::new(Algorithm::First, 0.005),
+            Variant::new(Algorithm::SecondFrontCulled, 0.0),
+            Variant::new(Algorithm::Midpoint, 0.0),
+            Variant::new(Algorithm::Dual { offset: 1.0 }, 0.0),
+            Variant::new(Algorithm::Dual { offset: 0.005 }, 0.0),
+        ],
+        formats: vec![DepthFormatKind::D16, DepthFormatKind::D24],
+        map_sizes: vec![128, 512],
+        filters: vec![Filter::Point, Filter::Bilinear],
+        image: IMAGE,
+        ..PlanSpec::new(scene, budgets.iter().map(|b| b.parse::<Budget>().expect("a budget")).collect())
+    }
+}
+
+/// Plan `scene` under `budgets` and hold the pick to the exhaustive answer.
+fn holds(scene: &Scene, budgets: &[&str]) -> Plan {
+    let spec = spec(scene, budgets);
+    let p = plan(scene, &spec, &ProgressBar::hidden()).expect("plans");
     let name = &scene.name;
-    let all = every_candidate(scene, &spec, &p);
-    let cheapest = all
-        .iter()
-        .filter(|c| c.5 <= budget)
-        .min_by(|a, b| a.3.total_cmp(&b.3).then(a.4.cmp(&b.4)))
-        .map(|c| (c.0.clone(), c.1, c.2.clone()));
+    let all = every_candidate(scene, &spec);
+    assert_eq!(p.candidates, all.len(), "{name}: every candidate measured");
+    let meets = |c: &Measured| c.3.iter().zip(&spec.budgets).all(|(v, b)| *v <= b.percent);
+    let meeting: Vec<&Measured> = all.iter().filter(|c| meets(c)).collect();
+    assert_eq!(p.meeting, meeting.len(), "{name} under {budgets:?}");
+    let cheapest = meeting.iter().min_by(|a, b| a.1.cmp(&b.1).then(a.2.cmp(&b.2)));
     match cheapest {
         Some(pick) => {
-            assert!(p.meets(budget), "{name} at {budget} %: measured {} %", p.measured.artifact_percent);
-            let chosen = (p.algorithm.clone(), p.config.map_size, p.filter.to_string());
-            assert_eq!(chosen, pick, "{name} at {budget} %: {all:?}");
+            assert!(p.meets, "{name} under {budgets:?}");
+            assert_eq!((p.pick.cycles, p.pick.bytes), (pick.1, pick.2), "{name} under {budgets:?}: {:?}", p.pick);
+            let same = |c: &RenderConfig| (c.algorithm, c.bias.to_bits(), c.format, c.map_size, c.filter);
+            assert_eq!(same(&p.config), same(&pick.0), "{name} under {budgets:?}");
+            for (b, v) in spec.budgets.iter().zip(&pick.3) {
+                assert!((p.pick.measure(b.measure) - v).abs() < 1e-9, "{name}: {b}");
+            }
         }
         None => {
-            assert!(!p.meets(budget), "{name} at {budget} %");
-            assert_eq!(p.tried.len(), all.len(), "{name}: every candidate measured before giving up");
+            assert!(!p.meets && p.reasons.iter().any(|r| r.starts_with("no candidate meets")), "{name}");
         }
     }
-    assert_eq!(p.candidates, all.len());
-    // The full configuration at the same map and filter is a candidate
-    // too when it meets the budget: the pick is no dearer then.
-    if p.full.artifact_percent <= budget && p.meets(budget) {
-        assert!(p.measured.cycles <= p.full.cycles, "{name}: dearer than full: {:?} against {:?}", p.measured, p.full);
+    // Each cheaper runner-up misses a budget it names.
+    for r in p.runners_up.iter().filter(|r| r.cheaper) {
+        assert!(spec.budgets.iter().any(|b| r.lost.contains(b.measure.name())), "{name}: {}", r.lost);
     }
-    let open = scene.objects.iter().any(|o| !o.solid);
-    assert_eq!(
-        matches!(p.config.algorithm, Algorithm::Dual { .. }),
-        open,
-        "{name}: the dual test exactly for open surfaces"
-    );
     p
 }
 
-/// Every bundled scene at a loose budget (1 %) and at none (0 %), where
-/// the cheapest candidates miss and the walk must go on or give up.
+/// Two bundled scenes (solids only; open surfaces beside solids), each
+/// under one loose budget, under two at once, and under none it can meet.
 #[test]
-fn plans_pick_the_cheapest_candidate_that_meets_the_budget() {
-    let mut walked = 0;
-    for (name, _) in BUNDLED {
+fn plans_pick_the_cheapest_candidate_meeting_every_budget() {
+    let mut families = std::collections::BTreeSet::new();
+    for name in ["table-and-sphere", "weiskopf-l"] {
         let scene = Scene::bundled(name).expect("bundled");
-        for budget in [1.0, 0.0] {
-            let p = holds(&scene, budget);
-            walked += usize::from(p.tried.len() > 1);
+        // On table-and-sphere the cheapest candidate meeting the acne
+        // budget misses the misclassified one (dual at offset 1, 128²:
+        // acne 0.05 %, misclassified 1.18 %), so both must be read.
+        for budgets in [&["artifacts=1%"][..], &["acne=0.1%", "misclassified=1.1%"], &["misclassified=0%"]] {
+            let p = holds(&scene, budgets);
+            families.insert(p.pick.algorithm.clone());
         }
     }
-    // Measured: 2 plans walk past their cheapest candidate (at 0 %).
-    assert!(walked >= 1, "no plan went past its cheapest candidate");
+    // Not one family wins everywhere: the space matters.
+    assert!(families.len() >= 2, "{families:?}");
 }
 
-/// Two scenes of real meshes (the shared bunny and spot on a floor), at a
-/// budget where the cheapest candidates miss.
+/// A scene of shared meshes (the bunny and spot on a floor), when the
+/// meshes are present; said on the test's output when they are not.
 #[test]
-#[ignore = "needs the shared meshes in ../shared/meshes: run with `cargo test --test integration -- --ignored`"]
 fn plans_on_real_meshes() {
-    assert!(Path::new("../shared/meshes").is_dir(), "../shared/meshes is not present");
-    for mesh in ["bunny", "spot"] {
-        let text = format!(
-            "name = \"{mesh}-on-a-floor\"\nimage = [192, 108]\n[camera]\nposition = [0.0, 1.5, 3.0]\ntarget = [0.0, 0.3, 0.0]\n\
-             fov = 45.0\nnear = 0.3\nfar = 20.0\n[[lights]]\nkind = \"spot\"\nposition = [2.0, 3.0, 1.5]\n\
-             target = [0.0, 0.0, 0.0]\nfov = 60.0\nnear = 1.0\nfar = 10.0\n[[objects]]\n\
-             mesh = {{ box = {{ min = [-3.0, -0.1, -3.0], max = [3.0, 0.0, 3.0] }} }}\n[[objects]]\n\
-             mesh = {{ shared = \"{mesh}\" }}\n"
-        );
-        let scene = Scene::parse(&text, Path::new("probe.toml"), &Limits::DEFAULT).expect("a scene");
-        holds(&scene, 0.05);
+    if !shared_meshes().join("bunny.obj").is_file() {
+        eprintln!("SKIPPED plans_on_real_meshes: no shared meshes at {}", shared_meshes().display());
+        return;
     }
+    let text = "name = \"bunny-and-spot\"\nimage = [192, 108]\n[camera]\nposition = [0.0, 1.5, 3.0]\n\
+                target = [0.0, 0.3, 0.0]\nfov = 45.0\nnear = 0.3\nfar = 20.0\n[[lights]]\nkind = \"spot\"\n\
+                position = [2.0, 3.0, 1.5]\ntarget = [0.0, 0.0, 0.0]\nfov = 60.0\nnear = 1.0\nfar = 10.0\n\
+                [[objects]]\nmesh = { box = { min = [-3.0, -0.1, -3.0], max = [3.0, 0.0, 3.0] } }\n\
+                [[objects]]\nmesh = { shared = \"bunny\" }\ntranslate = [-0.6, 0.0, 0.0]\n\
+                [[objects]]\nmesh = { shared = \"spot\" }\ntranslate = [0.6, 0.0, 0.0]\n";
+    let scene = Scene::parse(text, Path::new("probe.toml"), &Limits::DEFAULT).expect("a scene");
+    holds(&scene, &["acne=0.1%", "misclassified=1.1%"]);
 }

@@ -138,7 +138,7 @@ pub fn no_repeats<'a>(flag: &str, items: impl IntoIterator<Item = &'a str>) -> R
 ///
 /// # Errors
 /// [`StudyError::Request`] naming the size.
-pub(crate) fn image_size(text: &str, limits: &Limits) -> Result<[u32; 2], StudyError> {
+pub fn image_size(text: &str, limits: &Limits) -> Result<[u32; 2], StudyError> {
     let bad = |why: String| StudyError::Request(format!("--image {text}: {why}"));
     let (w, h) = text
         .split_once(['x', '×'])
