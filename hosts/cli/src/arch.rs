@@ -7,7 +7,10 @@ use clap::Subcommand;
 use umbra_sim::Arch;
 use umbra_sim::cost::arch::PARAMS;
 use umbra_sim::cost::arch::derived::diff;
+use umbra_sim::experiment::attribution::attribute;
 use umbra_sim::input::limits::Limits;
+use umbra_sim::render::RenderConfig;
+use umbra_sim::world::scene::Scene;
 
 use crate::cost::OneArchArgs;
 use crate::say::say;
@@ -25,12 +28,21 @@ pub(super) enum ArchCommand {
     /// stated, and every key added since with the value that keeps the
     /// earlier behaviour, its meaning and unit as a comment.
     Upgrade(crate::upgrade::UpgradeArgs),
-    /// Two architectures key by key and derived figure by derived figure.
+    /// Two architectures key by key and derived figure by derived figure;
+    /// with `--scene`, the difference in time, energy and DRAM bytes by
+    /// purpose on that scene's render attributed to each key (one key
+    /// changed at a time from the first toward the second, plus the
+    /// remainder their interaction makes), ranked by effect.
     Diff {
         /// The first: a bundled name or an architecture file.
         a: String,
         /// The second.
         b: String,
+        /// A bundled scene or a scene file whose default render (the
+        /// scene's image, 1024² map, second depth, bilinear) the difference
+        /// is measured on.
+        #[arg(long)]
+        scene: Option<String>,
     },
 }
 
@@ -59,7 +71,7 @@ pub(super) fn arch(command: &ArchCommand, limits: &Limits) -> Result<()> {
             Ok(())
         }
         ArchCommand::Upgrade(args) => crate::upgrade::upgrade(crate::upgrade::Kind::Arch, args, limits),
-        ArchCommand::Diff { a, b } => {
+        ArchCommand::Diff { a, b, scene } => {
             let (a, b) = (Arch::open(a, limits)?, Arch::open(b, limits)?);
             if a.name == b.name && a == b {
                 bail!("`{}` and `{}` are the same architecture", a.name, b.name);
@@ -72,6 +84,12 @@ pub(super) fn arch(command: &ArchCommand, limits: &Limits) -> Result<()> {
             say!("\n| derived | {} | {} |\n|---|---:|---:|", a.name, b.name);
             for (k, x, y) in figures {
                 say!("| {k} | {x} | {y} |");
+            }
+            if let Some(scene) = scene {
+                let scene = Scene::open(scene, limits)?;
+                let cfg = RenderConfig { width: scene.image[0], height: scene.image[1], ..RenderConfig::DEFAULT };
+                let t = attribute(&cfg.check(&scene, limits)?, &a, &b)?;
+                say!("\n{}", t.markdown().trim_end());
             }
             Ok(())
         }

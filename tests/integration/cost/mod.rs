@@ -2,6 +2,7 @@
 
 mod arch;
 mod arch_file;
+mod attribution;
 mod bound;
 mod cache;
 mod correlation;

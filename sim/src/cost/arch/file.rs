@@ -268,6 +268,18 @@ impl Arch {
         from_text(p.unit, value).and_then(|v| p.assign(self, v))
     }
 
+    /// Take `key`'s value from `other`, then check the machine: one key
+    /// changed at a time, as an attribution changes them.
+    ///
+    /// # Errors
+    /// An unknown key, or the machine the change makes that cannot run:
+    /// the key and the problem.
+    pub(crate) fn take(&mut self, key: &str, other: &Self) -> Result<(), (String, Problem)> {
+        let p = PARAMS.iter().find(|p| p.key == key).ok_or_else(|| (key.to_owned(), Problem::Unknown))?;
+        p.assign(self, (p.get)(other)).map_err(|e| (key.to_owned(), e))?;
+        self.check().map_err(|(k, e)| (k.to_owned(), e))
+    }
+
     /// The value of one key.
     #[must_use]
     pub fn get(&self, key: &str) -> Option<Value> {

@@ -181,7 +181,7 @@ impl CostReport {
         let achieved = if seconds > 0.0 { bytes as f64 / seconds } else { 0.0 };
         let p_lookup = ratio(camera.reconstructed_pixels, pixels);
         let overdraw = ratio(ce.volume_fragments, fill);
-        let map = if cached { camera.dram.map_fetched } else { camera.dram.map_reads };
+        let map = camera.dram.map_as_fetched(cached);
         let lookups = ce.trivial_pixels() + ce.tangent_setups;
         #[allow(clippy::cast_precision_loss, reason = "a small count")]
         let sen = SenFigures {

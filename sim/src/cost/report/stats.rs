@@ -232,7 +232,7 @@ stats! {
         "frame.dram.bins_bytes" => dram_bin_bytes: u64, Bytes, "bins and setup records of both passes" = r.light_dram.bins + r.camera_dram.bins;
         "camera.dram.depth_bytes" => dram_camera_depth_bytes: u64, Bytes, "camera visibility depth, when off chip" = r.camera_dram.map_rmw_reads + r.camera_dram.depth_rmw;
         "camera.dram.map_reads_bytes" => dram_map_requested_bytes: u64, Bytes, "map bytes the shadow unit requested" = r.camera_dram.map_reads;
-        "camera.dram.map_as_fetched_bytes" => dram_map_fetched_bytes: u64, Bytes, "map bytes fetched through the map cache" = if r.arch.map_cache.size > 0 { r.camera_dram.map_fetched } else { r.camera_dram.map_reads };
+        "camera.dram.map_as_fetched_bytes" => dram_map_fetched_bytes: u64, Bytes, "map bytes fetched through the map cache" = r.camera_dram.map_as_fetched(r.arch.map_cache.size > 0);
         "frame.dram.silhouette_bytes" => dram_silhouette_bytes: u64, Bytes, "silhouette points written and read" = r.light_dram.silhouette_writes + r.camera_dram.silhouette_reads;
         "camera.dram.volume_depth_reads_bytes" => dram_volume_depth_bytes: u64, Bytes, "scene depth read by shadow-volume fragments" = r.camera_dram.volume_depth_reads;
         "camera.dram.stencil_bytes" => dram_stencil_bytes: u64, Bytes, "stencil read and written by shadow-volume fragments" = r.camera_dram.stencil;

@@ -454,6 +454,24 @@ pub struct Dram {
 }
 
 impl Dram {
+    /// The map bytes DRAM moved for the shadow unit: the lines fetched
+    /// through the map cache when there is one, else every byte requested.
+    #[must_use]
+    pub(crate) const fn map_as_fetched(&self, cached: bool) -> u64 {
+        if cached { self.map_fetched } else { self.map_reads }
+    }
+
+    /// The DRAM traffic by purpose with its name: every purpose, the map's
+    /// reads as fetched ([`Dram::map_as_fetched`]).
+    #[must_use]
+    pub(crate) fn traffic(&self, cached: bool) -> Vec<(&'static str, u64)> {
+        self.fields()
+            .into_iter()
+            .filter(|(name, _)| *name != "map_fetched")
+            .map(|(name, b)| if name == "map_reads" { (name, self.map_as_fetched(cached)) } else { (name, b) })
+            .collect()
+    }
+
     /// Every purpose's bytes with its name, in declaration order.
     #[must_use]
     pub(crate) const fn fields(&self) -> [(&'static str, u64); 11] {
