@@ -192,7 +192,8 @@ pub fn plan(
     progress: Option<&Bound<'_, PyAny>>,
     threads: Option<usize>,
 ) -> PyResult<String> {
-    let budgets = budgets.iter().map(|b| b.parse()).collect::<Result<Vec<Budget>, String>>().map_err(|e| bad("budget", e))?;
+    let budgets =
+        budgets.iter().map(|b| b.parse()).collect::<Result<Vec<Budget>, String>>().map_err(|e| bad("budget", e))?;
     let mut spec = match sweep {
         Some(name) => {
             let limits = Limits::DEFAULT;

@@ -44,6 +44,16 @@ pub struct Comparison {
     pub archs: Vec<Compared>,
 }
 
+/// A ratio as a reader compares it: three significant digits and `×`
+/// (`0.512×`, `1.24×`, `141×`).
+fn times(r: f64) -> String {
+    if !r.is_finite() || r <= 0.0 {
+        return format!("{r}×");
+    }
+    let digits = usize::try_from((2 - r.log10().floor() as i64).max(0)).unwrap_or(0);
+    format!("{r:.digits$}×")
+}
+
 /// `b` against `a`, a fraction (0 when `a` is 0).
 fn change(a: f64, b: f64) -> f64 {
     if a == 0.0 { 0.0 } else { (b - a) / a }
@@ -75,7 +85,9 @@ impl Comparison {
         Some(Self { one_clock, archs })
     }
 
-    /// The comparison as a Markdown table, with a line saying what ranks.
+    /// The comparison as a Markdown table ranked fastest first (ties in
+    /// the reports' order), each change as a ratio beside its percentage,
+    /// with a line saying what ranks.
     #[must_use]
     pub fn markdown(&self) -> String {
         let mut s = String::new();
@@ -85,15 +97,19 @@ impl Comparison {
         } else {
             "the clocks differ, so time ranks, not cycles"
         };
-        let _ =
-            writeln!(s, "### Compared against {first}\n\nRanked by frame time: {rank}. Changes are against {first}.\n");
+        let _ = writeln!(
+            s,
+            "### Compared against {first}\n\nRanked by frame time: {rank}. Changes are against {first}: the ratio, then the change in percent.\n"
+        );
         let _ = writeln!(
             s,
             "| rank | architecture | clock (MHz) | cycles | time (µs) | time change | DRAM bytes | bytes change | energy (µJ) | energy change | bottleneck |"
         );
         let _ = writeln!(s, "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---|");
-        let pct = |f: f64| format!("{:+.1} %", 100.0 * f);
-        for a in &self.archs {
+        let pct = |f: f64| format!("{} ({:+.1} %)", times(1.0 + f), 100.0 * f);
+        let mut ranked: Vec<&Compared> = self.archs.iter().collect();
+        ranked.sort_by_key(|a| a.rank);
+        for a in ranked {
             let _ = writeln!(
                 s,
                 "| {} | {} | {} | {:.0} | {:.3} | {} | {} | {} | {:.3} | {} | {} |",
