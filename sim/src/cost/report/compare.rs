@@ -50,7 +50,7 @@ fn times(r: f64) -> String {
     if !r.is_finite() || r <= 0.0 {
         return format!("{r}×");
     }
-    let digits = usize::try_from((2 - r.log10().floor() as i64).max(0)).unwrap_or(0);
+    let digits = [(100.0, 0), (10.0, 1), (1.0, 2)].into_iter().find(|&(at, _)| r >= at).map_or(3, |(_, d)| d);
     format!("{r:.digits$}×")
 }
 

@@ -1,22 +1,29 @@
 //! Frame time against architecture axes: the swept key on a numeric x
-//! axis, one line per base architecture and algorithm family (the fastest
-//! configuration within the loosest budget at each value), one panel per
-//! value of the other axes.
+//! axis (logarithmic for a geometric series of values, `16KiB, 32KiB,
+//! 64KiB`), one line per base architecture and algorithm family (the
+//! fastest configuration within the loosest budget at each value), what
+//! binds its frame written at each point, one panel per value of the other
+//! axes, titled with SI prefixes, every panel on one time scale.
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
-use super::{FAMILIES, Legend, marker, provenance};
-use crate::cost::arch::column;
-use crate::experiment::plot::{Figure, SIZE, both, colour, footnote};
+use super::{FAMILIES, Legend, marker, provenance, with_legend};
+use crate::cost::arch::{PARAMS, column};
+use crate::cost::work::Bottleneck;
+use crate::experiment::plot::{Figure, both, colour, footnote};
 use crate::experiment::study::rank::{TIME, cheapest};
 use crate::experiment::study::schema::axis_unit;
 use crate::experiment::study::{Manifest, Row, StudyError, distinct, loosest};
 use crate::output::folder::OutputFolder;
 
+/// One point: the axis value, the frame time in µs, what binds the frame.
+type Point = (f64, f64, Bottleneck);
+
 /// One panel: its label, and per series (index into the series names)
-/// its `(x, µs)` points.
-type Panel = (String, Vec<(usize, Vec<(f64, f64)>)>);
+/// its points.
+type Panel = (String, Vec<(usize, Vec<Point>)>);
 
 /// The panels of the plot.
 struct AxisPlot {
@@ -43,6 +50,29 @@ pub(crate) fn si(v: f64) -> String {
     format!("{}{p}", s.trim_end_matches('0').trim_end_matches('.'))
 }
 
+/// What binds a frame in two or three letters, as the points are marked.
+const fn short(b: Bottleneck) -> &'static str {
+    match b {
+        Bottleneck::Setup => "S",
+        Bottleneck::Raster => "R",
+        Bottleneck::Depth => "D",
+        Bottleneck::Shadow => "Sh",
+        Bottleneck::Shade => "Sd",
+        Bottleneck::DramBandwidth => "BW",
+        Bottleneck::DramLatency => "LAT",
+        Bottleneck::MapCacheMissesInFlight => "MC",
+        Bottleneck::DepthCacheMissesInFlight => "DC",
+    }
+}
+
+/// Whether `xs` (distinct, ascending) is a geometric series of three or
+/// more positive values: the axis is then logarithmic.
+fn geometric(xs: &[f64]) -> bool {
+    xs.len() >= 3
+        && xs[0] > 0.0
+        && xs.windows(3).all(|w| ((w[2] / w[1]) / (w[1] / w[0]) - 1.0).abs() < 1e-6 && w[1] / w[0] > 1.0)
+}
+
 /// A padded range over `values`.
 fn range(values: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
     let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
@@ -56,7 +86,9 @@ fn range(values: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
 impl Figure for AxisPlot {
     fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<(), String> {
         area.fill(&WHITE).map_err(|e| e.to_string())?;
-        let (plot, legend_area) = area.split_horizontally(SIZE.0 - 250);
+        let mut labels = self.names.clone();
+        labels.push(BOUND_KEY.to_owned());
+        let (plot, legend_area) = with_legend(area, &labels, 250);
         let plot = plot.titled(&self.title, ("sans-serif", 18)).map_err(|e| e.to_string())?;
         #[allow(
             clippy::cast_possible_truncation,
@@ -68,9 +100,16 @@ impl Figure for AxisPlot {
         let down = self.panels.len().div_ceil(across).max(1);
         let cells = plot.split_evenly((down, across));
         let n = self.names.len();
+        let all = || self.panels.iter().flat_map(|p| p.1.iter().flat_map(|s| s.1.iter()));
+        // One time scale for every panel, so that panels compare.
+        let yr = range(all().map(|p| p.1));
+        let mut xs: Vec<f64> = distinct(all().map(|p| p.0.to_bits())).into_iter().map(f64::from_bits).collect();
+        xs.sort_by(f64::total_cmp);
+        let log = geometric(&xs);
+        // A geometric series is drawn in log₂ of its values, labelled with
+        // the values themselves.
+        let at = |x: f64| if log { x.log2() } else { x };
         for ((label, series), cell) in self.panels.iter().zip(&cells) {
-            let xs = series.iter().flat_map(|s| s.1.iter().map(|p| p.0));
-            let ys = series.iter().flat_map(|s| s.1.iter().map(|p| p.1));
             let mut builder = ChartBuilder::on(cell);
             if !label.is_empty() {
                 builder.caption(label, ("sans-serif", 13));
@@ -79,28 +118,48 @@ impl Figure for AxisPlot {
                 .margin(10)
                 .x_label_area_size(40)
                 .y_label_area_size(60)
-                .build_cartesian_2d(range(xs), range(ys))
+                .build_cartesian_2d(range(xs.iter().map(|&x| at(x))), yr.clone())
                 .map_err(|e| e.to_string())?;
+            let x_desc = if log { format!("{} (log scale)", self.x_desc) } else { self.x_desc.clone() };
             chart
                 .configure_mesh()
-                .x_desc(&self.x_desc)
+                .x_desc(x_desc)
                 .y_desc("frame time, µs")
-                .x_labels(8)
+                .x_labels(if log { 0 } else { 8 })
                 .y_labels(6)
-                .x_label_formatter(&|x| si(*x))
-                .y_label_formatter(&|y| format!("{y:.1}"))
+                .x_label_formatter(&|x| si(if log { x.exp2() } else { *x }))
+                .y_label_formatter(&|y| si(*y))
                 .label_style(("sans-serif", 12))
                 .draw()
                 .map_err(|e| e.to_string())?;
+            if log {
+                // The values themselves label a geometric axis.
+                for &x in &xs {
+                    let (px, py) = chart.backend_coord(&(at(x), yr.start));
+                    area.draw(&PathElement::new(vec![(px, py), (px, py + 5)], BLACK)).map_err(|e| e.to_string())?;
+                    let centre_top = Pos::new(HPos::Center, VPos::Top);
+                    let label =
+                        Text::new(si(x), (px, py + 8), ("sans-serif", 12).into_text_style(area).pos(centre_top));
+                    area.draw(&label).map_err(|e| e.to_string())?;
+                }
+            }
             for (k, pts) in series {
                 let style = colour(*k, n).stroke_width(2);
-                chart.draw_series(LineSeries::new(pts.iter().copied(), style)).map_err(|e| e.to_string())?;
+                let line = pts.iter().map(|p| (at(p.0), p.1));
+                chart.draw_series(LineSeries::new(line, style)).map_err(|e| e.to_string())?;
                 for p in pts {
-                    marker(area, chart.backend_coord(p), self.family_of[*k], 4, style)?;
+                    let (px, py) = chart.backend_coord(&(at(p.0), p.1));
+                    marker(area, (px, py), self.family_of[*k], 4, style)?;
+                    area.draw(&Text::new(
+                        short(p.2),
+                        (px + 6, py - 14),
+                        ("sans-serif", 10).into_font().color(&style.color),
+                    ))
+                    .map_err(|e| e.to_string())?;
                 }
             }
         }
-        let mut legend = Legend::new(&legend_area, &self.names);
+        let mut legend = Legend::new(&legend_area, &labels);
         for (k, name) in self.names.iter().enumerate() {
             let style = colour(k, n).stroke_width(2);
             let f = self.family_of[k];
@@ -109,9 +168,13 @@ impl Figure for AxisPlot {
                 marker(l, (x, y), f, 4, style)
             })?;
         }
+        legend.entry(BOUND_KEY, &|_, _| Ok(()))?;
         footnote(&legend_area, &self.provenance)
     }
 }
+
+/// The legend's key to the letters beside each point.
+const BOUND_KEY: &str = "beside each point, what binds the frame: S setup, R raster, D depth, Sh shadow, Sd shade, BW DRAM bandwidth, LAT DRAM requests in flight, MC map cache misses in flight, DC depth cache misses in flight";
 
 /// The axis keys of rows, in the sweep file's order (from `arch_params`).
 fn axis_keys(rows: &[&Row]) -> Vec<String> {
@@ -152,10 +215,17 @@ pub(crate) fn arch_axes(
         keys[1..]
             .iter()
             .map(|k| {
-                format!(
-                    "{k} = {}",
-                    r.config.arch_axes.get(&column(k)).map_or_else(String::new, ToString::to_string).trim_matches('"')
-                )
+                let col = column(k);
+                // A number as the key's files write it (`16KiB`, `38.4GB/s`).
+                let unit = PARAMS.iter().find(|p| column(p.key) == col).map(|p| p.unit);
+                let value = match (r.config.arch_axes.get(&col), unit) {
+                    (Some(v), Some(unit)) if unit.symbol() != "-" => {
+                        v.as_f64().map_or_else(|| v.to_string(), |x| unit.write(x))
+                    }
+                    (Some(v), _) => v.as_f64().map_or_else(|| v.to_string().trim_matches('"').to_owned(), si),
+                    (None, _) => String::new(),
+                };
+                format!("{k} = {value}")
             })
             .collect::<Vec<_>>()
             .join(", ")
@@ -176,7 +246,7 @@ pub(crate) fn arch_axes(
                         .copied()
                         .filter(|r| &r.config.base_arch == base && r.config.family == *family && panel_of(r) == *p)
                         .collect();
-                    let mut pts: Vec<(f64, f64)> =
+                    let mut pts: Vec<Point> =
                         distinct(mine.iter().filter_map(|r| value(r, &x_col, &texts)).map(f64::to_bits))
                             .into_iter()
                             .filter_map(|bits| {
@@ -184,7 +254,13 @@ pub(crate) fn arch_axes(
                                 let at: Vec<&Row> =
                                     mine.iter().copied().filter(|r| value(r, &x_col, &texts) == Some(x)).collect();
                                 let (best, _) = cheapest(&at, budget, TIME)?;
-                                Some((x, best.cost.as_ref()?.frame_seconds * 1e6))
+                                let c = best.cost.as_ref()?;
+                                let bound = if c.light_cycles > c.camera_cycles {
+                                    c.light_bottleneck
+                                } else {
+                                    c.camera_bottleneck
+                                };
+                                Some((x, c.frame_seconds * 1e6, bound))
                             })
                             .collect();
                     pts.sort_by(|a, b| a.0.total_cmp(&b.0));

@@ -4,8 +4,8 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::{ERROR_FLOOR, Legend, marker};
-use crate::experiment::plot::{Figure, SIZE, both, colour, log_log_chart, log_range};
+use super::{ERROR_FLOOR, Legend, marker, with_legend};
+use crate::experiment::plot::{Figure, both, colour, log_log_chart, log_range};
 use crate::experiment::study::StudyError;
 use crate::output::folder::OutputFolder;
 
@@ -24,12 +24,12 @@ impl Figure for Lines<'_> {
     fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<(), String> {
         area.fill(&WHITE).map_err(|e| e.to_string())?;
         // The legend beside the chart, never over the data.
-        let (plot, legend_area) = area.split_horizontally(SIZE.0 - 300);
+        let labels: Vec<String> = self.series.iter().map(|s| s.0.clone()).collect();
+        let (plot, legend_area) = with_legend(area, &labels, 300);
         let xr = log_range(self.series.iter().flat_map(|s| s.1.iter().map(|p| p.0)), 1e-12);
         let yr = log_range(self.series.iter().flat_map(|s| s.1.iter().map(|p| p.1)), ERROR_FLOOR);
         let mut chart = log_log_chart(&plot, self.title, xr, yr, self.x_desc, self.y_desc)?;
         let n = self.series.len();
-        let labels: Vec<String> = self.series.iter().map(|s| s.0.clone()).collect();
         let mut legend = Legend::new(&legend_area, &labels);
         let mut ends = Vec::new();
         for (k, (name, pts)) in self.series.iter().enumerate() {

@@ -3,8 +3,8 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
-use super::{ERROR_FLOOR, FAMILIES, Legend, marker, pareto_front, provenance};
-use crate::experiment::plot::{Figure, SIZE, both, colour, footnote, log_log_chart, log_range};
+use super::{ERROR_FLOOR, FAMILIES, Legend, marker, pareto_front, provenance, with_legend};
+use crate::experiment::plot::{Figure, both, colour, footnote, log_log_chart, log_range};
 use crate::experiment::study::{Manifest, Row, RowCost, StudyError, distinct};
 use crate::output::folder::OutputFolder;
 
@@ -27,8 +27,13 @@ struct Pareto<'a> {
 impl Figure for Pareto<'_> {
     fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<(), String> {
         area.fill(&WHITE).map_err(|e| e.to_string())?;
-        // The legend beside the chart, never over the data.
-        let (plot, legend_area) = area.split_horizontally(SIZE.0 - 230);
+        // The legend: architectures by colour, the families drawn by
+        // marker; beside the chart, never over the data.
+        let families: Vec<usize> = (0..FAMILIES.len()).filter(|f| self.family_of.contains(f)).collect();
+        let mut labels = self.archs.clone();
+        labels.extend(["Pareto front".to_owned(), "budget".to_owned()]);
+        labels.extend(families.iter().map(|&f| FAMILIES[f].name().to_owned()));
+        let (plot, legend_area) = with_legend(area, &labels, 230);
         let xr = log_range(self.points.iter().map(|p| p.0), 1e-3);
         let yr = log_range(self.points.iter().map(|p| p.1).chain(self.budgets.iter().copied()), ERROR_FLOOR);
         let y_desc = format!("artifacts % (acne, detachment, leaks; 0 drawn at {ERROR_FLOOR})");
@@ -64,11 +69,6 @@ impl Figure for Pareto<'_> {
             stairs.push((x1, y));
         }
         chart.draw_series(LineSeries::new(stairs, BLACK.stroke_width(2))).map_err(|e| e.to_string())?;
-        // The legend: architectures by colour, the families drawn by marker.
-        let families: Vec<usize> = (0..FAMILIES.len()).filter(|f| self.family_of.contains(f)).collect();
-        let mut labels = self.archs.clone();
-        labels.extend(["Pareto front".to_owned(), "budget".to_owned()]);
-        labels.extend(families.iter().map(|&f| FAMILIES[f].name().to_owned()));
         let mut legend = Legend::new(&legend_area, &labels);
         for (k, arch) in self.archs.iter().enumerate() {
             let color = colour(k, n);
@@ -78,7 +78,11 @@ impl Figure for Pareto<'_> {
             l.draw(&PathElement::new(vec![(x - 9, y), (x + 9, y)], BLACK.stroke_width(2))).map_err(|e| e.to_string())
         })?;
         legend.entry("budget", &|l, (x, y)| {
-            l.draw(&PathElement::new(vec![(x - 9, y), (x + 9, y)], BLACK.mix(0.5))).map_err(|e| e.to_string())
+            // Dashed, as the chart draws it.
+            for x0 in [x - 10, x + 2] {
+                l.draw(&PathElement::new(vec![(x0, y), (x0 + 7, y)], BLACK.mix(0.5))).map_err(|e| e.to_string())?;
+            }
+            Ok(())
         })?;
         for f in families {
             legend.entry(FAMILIES[f].name(), &|l, c| marker(l, c, f, 5, BLACK.stroke_width(2)))?;

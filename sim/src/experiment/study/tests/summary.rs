@@ -208,8 +208,10 @@ fn scene_names_never_become_paths() {
 
 /// Two base architectures swept over three DRAM bandwidths: the
 /// architecture-axes plot draws one line of three points for each on a
-/// numeric axis whose ticks are bandwidths (read from the SVG's polylines
-/// and text), and the palette keeps twelve architectures apart.
+/// numeric axis whose ticks are bandwidths — 1, 2 and 4 GB/s, a
+/// geometric series, on a log scale labelled at its values — (read from
+/// the SVG's polylines and text), and the palette keeps twelve
+/// architectures apart.
 #[test]
 fn the_arch_axes_plot_is_numeric_with_a_line_per_base() {
     use crate::experiment::plot::{colour, log_ticks, tick_label};
@@ -254,10 +256,10 @@ fn the_arch_axes_plot_is_numeric_with_a_line_per_base() {
     }
     let texts: Vec<&str> =
         svg.split("<text").skip(1).filter_map(|t| Some(t.split('>').nth(1)?.split('<').next()?.trim())).collect();
-    for tick in ["1G", "2G", "3G", "4G"] {
+    for tick in ["1G", "2G", "4G"] {
         assert!(texts.contains(&tick), "{tick} not among {texts:?}");
     }
-    assert!(texts.iter().any(|t| t.contains("dram.bandwidth (B/s)")), "{texts:?}");
+    assert!(texts.iter().any(|t| t.contains("dram.bandwidth (B/s) (log scale)")), "{texts:?}");
     let _ = std::fs::remove_dir_all(&base);
     // Twelve colours, no two alike (each channel apart by more than a
     // rounding, summed over the channels).
@@ -275,4 +277,95 @@ fn the_arch_axes_plot_is_numeric_with_a_line_per_base() {
     assert_eq!(bold, [1e6, 2e6]);
     assert!(light.len() > bold.len());
     assert_eq!(bold.iter().map(|&v| tick_label(v)).collect::<Vec<_>>(), ["1e6", "2e6"]);
+}
+
+/// Every text element of an SVG: its x, y and content.
+fn texts(svg: &str) -> Vec<(f64, f64, String)> {
+    let attr = |t: &str, name: &str| -> f64 {
+        t.split(&format!(" {name}=\""))
+            .nth(1)
+            .and_then(|v| v.split('"').next())
+            .and_then(|v| v.parse().ok())
+            .expect("a coordinate")
+    };
+    svg.split("<text")
+        .skip(1)
+        .map(|t| {
+            let content = t.split('>').nth(1).and_then(|c| c.split('<').next()).unwrap_or("").trim().to_owned();
+            (attr(t, "x"), attr(t, "y"), content)
+        })
+        .collect()
+}
+
+/// Twelve base architectures (names as long as a sweep makes them), each
+/// at three DRAM bandwidths, in two panels of map-cache size: every plot
+/// a study writes keeps its legend inside the image and above its
+/// footnote (every text's coordinates read from the SVG), and each
+/// panel's title gives its value as a number with a prefix, as the key's
+/// files write it (`16KiB`), which reads back as the value.
+#[test]
+fn plots_of_twelve_architectures_keep_their_legends_and_read_in_si() {
+    let base = std::env::temp_dir().join(format!("umbra-twelve-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&base);
+    let mut rows = Vec::new();
+    for b in 0..12u64 {
+        for (k, gb) in [1u64, 2, 4].iter().enumerate() {
+            for (c, kib) in [16u64, 64].iter().enumerate() {
+                let arch = format!("an-architecture-of-our-own-number-{b}");
+                let params = format!("dram.bandwidth={gb}GB/s,map_cache.size={kib}KiB");
+                let name = format!("{arch}-dram_bandwidth-{gb}GB_s-map_cache_size-{kib}KiB");
+                let r = row(
+                    0,
+                    ("second-ffc", "second depth"),
+                    [100, 100],
+                    (&name, &params),
+                    0.01 * (1.0 + b as f64),
+                    (10_000 + 100 * b, 10_000 / gb + 10 * c as u64),
+                    1,
+                    1.0,
+                    "dram-bandwidth",
+                );
+                let mut axes = std::collections::BTreeMap::new();
+                axes.insert("arch_dram_bandwidth_bytes_per_second".to_owned(), serde_json::json!(*gb as f64 * 1e9));
+                axes.insert("arch_map_cache_size_bytes".to_owned(), serde_json::json!(*kib as f64 * 1024.0));
+                let config = RowConfig { base_arch: arch, arch_axes: axes, ..r.config };
+                rows.push(Row { arch_index: rows.len(), config, ..r });
+            }
+        }
+    }
+    crate::experiment::study::write_run(&base, &rows, &manifest()).expect("written");
+    let (w, h) = (f64::from(crate::experiment::plot::SIZE.0), f64::from(crate::experiment::plot::SIZE.1));
+    let mut plots = 0;
+    for entry in std::fs::read_dir(&base).expect("the folder") {
+        let path = entry.expect("an entry").path();
+        if path.extension().is_none_or(|e| e != "svg") {
+            continue;
+        }
+        plots += 1;
+        let all = texts(&std::fs::read_to_string(&path).expect("the plot"));
+        let footnote = all.iter().filter(|t| t.2.starts_with("sweep ")).map(|t| t.1).fold(h, f64::min);
+        for (x, y, text) in &all {
+            assert!((0.0..=w).contains(x) && (0.0..=h).contains(y), "{}: `{text}` at ({x}, {y})", path.display());
+        }
+        // The legend's last lines end above the footnote's.
+        let legend: Vec<&(f64, f64, String)> = all.iter().filter(|t| t.2.starts_with("an-architecture")).collect();
+        assert!(!legend.is_empty(), "{}: no legend", path.display());
+        for (_, y, text) in &legend {
+            assert!(*y < footnote - 20.0, "{}: `{text}` at {y} runs into the footnote at {footnote}", path.display());
+        }
+        if path.file_name().is_some_and(|n| n.to_string_lossy().starts_with("arch-axes")) {
+            let titles: Vec<&String> =
+                all.iter().map(|t| &t.2).filter(|t| t.starts_with("map_cache.size = ")).collect();
+            assert_eq!(titles.len(), 2, "{titles:?}");
+            // Each reads back, through the key's own unit, as its value.
+            let mut read: Vec<f64> = titles
+                .iter()
+                .map(|t| crate::cost::arch::Unit::Bytes.parse(t.trim_start_matches("map_cache.size = ")).expect(t))
+                .collect();
+            read.sort_by(f64::total_cmp);
+            assert_eq!(read, [16384.0, 65536.0], "{titles:?}");
+        }
+    }
+    assert!(plots >= 2, "{plots} plots");
+    let _ = std::fs::remove_dir_all(&base);
 }
