@@ -10,7 +10,7 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use super::{FAMILIES, Legend, marker, provenance, with_legend};
-use crate::cost::arch::{PARAMS, column};
+use crate::cost::arch::{PARAMS, Unit, column};
 use crate::cost::work::Bottleneck;
 use crate::experiment::plot::{Figure, both, colour, footnote};
 use crate::experiment::study::rank::{TIME, cheapest};
@@ -29,6 +29,8 @@ type Panel = (String, Vec<(usize, Vec<Point>)>);
 struct AxisPlot {
     title: String,
     x_desc: String,
+    /// The swept key's unit, which writes its values (`16KiB`).
+    x_unit: Option<Unit>,
     /// Series names: base architecture and family.
     names: Vec<String>,
     /// Each series' family (an index into [`FAMILIES`]), for its marker.
@@ -83,6 +85,13 @@ fn range(values: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
     (lo - pad)..(hi + pad)
 }
 
+impl AxisPlot {
+    /// An axis value as the key's files write it, else with an SI prefix.
+    fn x_text(&self, x: f64) -> String {
+        self.x_unit.filter(|u| u.symbol() != "-").map_or_else(|| si(x), |u| u.write(x))
+    }
+}
+
 impl Figure for AxisPlot {
     fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<(), String> {
         area.fill(&WHITE).map_err(|e| e.to_string())?;
@@ -127,7 +136,7 @@ impl Figure for AxisPlot {
                 .y_desc("frame time, µs")
                 .x_labels(if log { 0 } else { 8 })
                 .y_labels(6)
-                .x_label_formatter(&|x| si(if log { x.exp2() } else { *x }))
+                .x_label_formatter(&|x| self.x_text(if log { x.exp2() } else { *x }))
                 .y_label_formatter(&|y| si(*y))
                 .label_style(("sans-serif", 12))
                 .draw()
@@ -138,8 +147,11 @@ impl Figure for AxisPlot {
                     let (px, py) = chart.backend_coord(&(at(x), yr.start));
                     area.draw(&PathElement::new(vec![(px, py), (px, py + 5)], BLACK)).map_err(|e| e.to_string())?;
                     let centre_top = Pos::new(HPos::Center, VPos::Top);
-                    let label =
-                        Text::new(si(x), (px, py + 8), ("sans-serif", 12).into_text_style(area).pos(centre_top));
+                    let label = Text::new(
+                        self.x_text(x),
+                        (px, py + 8),
+                        ("sans-serif", 12).into_text_style(area).pos(centre_top),
+                    );
                     area.draw(&label).map_err(|e| e.to_string())?;
                 }
             }
@@ -274,6 +286,7 @@ pub(crate) fn arch_axes(
     let unit = axis_unit(&x_col);
     let fig = AxisPlot {
         title: format!("{scene}: fastest within {budget} % against {first}"),
+        x_unit: PARAMS.iter().find(|p| p.key == first.as_str()).map(|p| p.unit),
         x_desc: if unit == "-" { first.clone() } else { format!("{first} ({unit})") },
         names,
         family_of,

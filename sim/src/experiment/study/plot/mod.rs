@@ -78,13 +78,17 @@ type Swatch<'a, DB> = dyn Fn(&DrawingArea<DB, Shift>, (i32, i32)) -> Result<(), 
 const LEGEND_CHARS: usize = 24;
 
 /// `label` in lines of at most [`LEGEND_CHARS`], broken after a `:`, `,`,
-/// `=` or space where it can be.
+/// `=` or space where it can be, else after a `.`, `_` or `-`.
 fn wrap(label: &str) -> Vec<String> {
     let mut lines = Vec::new();
     let mut rest = label;
     while rest.chars().count() > LEGEND_CHARS {
         let head: String = rest.chars().take(LEGEND_CHARS).collect();
-        let cut = head.rfind([':', ',', '=', ' ']).filter(|&k| k > 0).map_or(head.len(), |k| k + 1);
+        let cut = head
+            .rfind([':', ',', '=', ' '])
+            .or_else(|| head.rfind(['.', '_', '-']))
+            .filter(|&k| k > 0)
+            .map_or(head.len(), |k| k + 1);
         lines.push(rest[..cut].trim_end().to_owned());
         rest = rest[cut..].trim_start();
     }

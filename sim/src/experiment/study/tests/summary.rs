@@ -256,7 +256,7 @@ fn the_arch_axes_plot_is_numeric_with_a_line_per_base() {
     }
     let texts: Vec<&str> =
         svg.split("<text").skip(1).filter_map(|t| Some(t.split('>').nth(1)?.split('<').next()?.trim())).collect();
-    for tick in ["1G", "2G", "4G"] {
+    for tick in ["1GB/s", "2GB/s", "4GB/s"] {
         assert!(texts.contains(&tick), "{tick} not among {texts:?}");
     }
     assert!(texts.iter().any(|t| t.contains("dram.bandwidth (B/s) (log scale)")), "{texts:?}");
