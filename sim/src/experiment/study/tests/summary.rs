@@ -309,7 +309,7 @@ fn plots_of_twelve_architectures_keep_their_legends_and_read_in_si() {
     let _ = std::fs::remove_dir_all(&base);
     let mut rows = Vec::new();
     for b in 0..12u64 {
-        for (k, gb) in [1u64, 2, 4].iter().enumerate() {
+        for gb in &[1u64, 2, 4] {
             for (c, kib) in [16u64, 64].iter().enumerate() {
                 let arch = format!("an-architecture-of-our-own-number-{b}");
                 let params = format!("dram.bandwidth={gb}GB/s,map_cache.size={kib}KiB");
