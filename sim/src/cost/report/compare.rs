@@ -45,12 +45,16 @@ pub struct Comparison {
 }
 
 /// A ratio as a reader compares it: three significant digits and `×`
-/// (`0.512×`, `1.24×`, `141×`).
+/// (`0.00142×`, `0.512×`, `1.24×`, `141×`).
 fn times(r: f64) -> String {
     if !r.is_finite() || r <= 0.0 {
         return format!("{r}×");
     }
-    let digits = [(100.0, 0), (10.0, 1), (1.0, 2)].into_iter().find(|&(at, _)| r >= at).map_or(3, |(_, d)| d);
+    let mut digits = [(100.0, 0), (10.0, 1), (1.0, 2)].into_iter().find(|&(at, _)| r >= at).map_or(2, |(_, d)| d);
+    let mut v = r;
+    while v < 1.0 && digits < 15 {
+        (v, digits) = (v * 10.0, digits + 1);
+    }
     format!("{r:.digits$}×")
 }
 
