@@ -299,6 +299,12 @@ impl Candidate {
         self.percent[m as usize]
     }
 
+    /// What it measured: cycles, bytes and every measure, exactly (two
+    /// candidates that render alike measure alike).
+    fn outcome(&self) -> (u64, u64, [u64; 9]) {
+        (self.cycles, self.bytes, self.percent.map(f64::to_bits))
+    }
+
     /// The budgets it misses, each as `acne 0.031% > 0.01%`.
     fn misses(&self, budgets: &[Budget]) -> Vec<String> {
         budgets
@@ -502,9 +508,18 @@ pub fn plan(scene: &Scene, spec: &PlanSpec, progress: &ProgressBar) -> Result<Pl
     };
     let (pick, index) = all[at].clone();
     let meets = first_meeting.is_some();
+    // Runners-up that render alike to one listed (a shadow volume's at
+    // every map side and filter) are listed once.
+    let mut seen = vec![pick.outcome()];
+    let mut fresh = |c: &Candidate| {
+        let new = !seen.contains(&c.outcome());
+        seen.push(c.outcome());
+        new
+    };
     let mut runners_up: Vec<RunnerUp> = all[..at]
         .iter()
         .rev()
+        .filter(|(c, _)| fresh(c))
         .take(CHEAPER)
         .map(|(c, _)| {
             let missed = c.misses(budgets);
@@ -514,7 +529,8 @@ pub fn plan(scene: &Scene, spec: &PlanSpec, progress: &ProgressBar) -> Result<Pl
         .collect();
     #[allow(clippy::cast_precision_loss, reason = "cycle counts far below 2^53")]
     let dearer = |c: &Candidate| 100.0 * (c.cycles as f64 / pick.cycles.max(1) as f64 - 1.0);
-    runners_up.extend(all[at + 1..].iter().filter(|(c, _)| c.misses(budgets).is_empty()).take(DEARER).map(|(c, _)| {
+    let meeting_dearer = all[at + 1..].iter().filter(|(c, _)| c.misses(budgets).is_empty() && fresh(c));
+    runners_up.extend(meeting_dearer.take(DEARER).map(|(c, _)| {
         let lost = if c.cycles == pick.cycles {
             format!("meets every budget in as many cycles, {} more DRAM bytes", c.bytes.saturating_sub(pick.bytes))
         } else {

@@ -377,8 +377,9 @@ fn a_silhouette_map_costs_its_four_corner_samples_whatever_the_filter() {
 }
 
 /// The timeline comes from the same model: the light pass's tile slices
-/// add up to its tiles' cycles at the clock, the stage tracks are named,
-/// and the file records its architecture.
+/// add up to its tiles' cycles at the clock, the camera pass's tiles' map
+/// cache misses to the cache's, the stage tracks are named, and the file
+/// records its architecture.
 #[test]
 fn the_timeline_is_the_timing_model() {
     let scene = Scene::bundled("table-and-sphere").expect("bundled");
@@ -409,6 +410,16 @@ fn the_timeline_is_the_timing_model() {
     let expected = r.light.tiles / arch.clock * 1e6;
     assert!((light_tiles - expected).abs() < 1e-6 * expected, "{light_tiles} µs against {expected}");
     assert!(events.iter().any(|e| e["ph"] == "C" && e["name"] == "DRAM GB/s"));
+    // The camera pass's tiles carry its map cache's misses, which the
+    // counter shows as misses in flight.
+    let misses: u64 = events
+        .iter()
+        .filter(|e| e["ph"] == "X" && e["cat"] == "camera" && e["name"].as_str().is_some_and(|n| n.contains(" tile (")))
+        .filter_map(|e| e["args"]["map cache misses"].as_u64())
+        .sum();
+    let cache = r.camera.map_cache.expect("talisman reads the map through a cache");
+    assert!(misses == cache.misses && misses > 0, "{misses} against {}", cache.misses);
+    assert!(events.iter().any(|e| e["ph"] == "C" && e["name"] == "map cache misses in flight"));
     assert_eq!(trace["metadata"][0]["arch"]["name"], "talisman");
     assert_timeline(events, 1, &r, slices[0]);
 }

@@ -45,9 +45,13 @@ impl CostReport {
     /// architecture overlaps them); each tile, named by its position (each
     /// draw, by its order), with its stages on their own tracks and its
     /// triangles, fragments, pixels, bytes and bound (memory told as
-    /// bandwidth or latency) in its arguments; the DRAM shared by the front
-    /// end and the tiles, when it outlasts them; and the units after the
-    /// tiles. A DRAM-bandwidth counter. Times in microseconds at the clock.
+    /// bandwidth or one of its queues, each queue's cycles, each cache's
+    /// misses) in its arguments, each stage slice its cycles (memory's its
+    /// bytes and misses too); the DRAM shared by the front end and the
+    /// tiles, when it outlasts them; and the units after the tiles.
+    /// Counters: the DRAM's bandwidth, and each cache's misses in flight on
+    /// average over a slice (Little's law). Times in microseconds at the
+    /// clock.
     pub(crate) fn timeline(&self, pid: usize, events: &mut Vec<Value>) -> usize {
         let a = &self.arch;
         let us = |cycles: f64| cycles / a.clock * 1e6;
@@ -63,20 +67,29 @@ impl CostReport {
             let cycles = w.stages(a);
             let Some((bound, dur)) = w.bottleneck(a) else { return 0.0 };
             let memory = w.memory(a);
+            let [dram_queue, map_queue, depth_queue] = memory.queue_cycles;
             let args = json!({
                 "triangles": w.triangles, "fragments": w.fragments, "pixels": w.pixels, "bytes": w.bytes,
                 "cycles": dur, "bound by": bound.name(), "setup cycles": cycles[Stage::Setup as usize],
                 "memory cycles at the bandwidth": memory.bandwidth_cycles,
                 "memory cycles at the latency": memory.latency_cycles,
+                "DRAM requests' cycles in flight": dram_queue,
+                "map cache misses": w.map_misses, "map cache misses' cycles in flight": map_queue,
+                "depth cache misses": w.depth_misses, "depth cache misses' cycles in flight": depth_queue,
             });
             events.push(json!({ "name": label, "cat": cat, "ph": "X", "ts": us(t), "dur": us(dur), "pid": pid, "tid": tid, "args": args }));
             if staged {
                 for (k, stage) in Stage::ALL[1..].iter().enumerate() {
                     let c = cycles[*stage as usize];
                     if c > 0.0 {
+                        let args = if *stage == Stage::Memory {
+                            json!({ "cycles": c, "bytes": w.bytes, "map cache misses": w.map_misses, "depth cache misses": w.depth_misses })
+                        } else {
+                            json!({ "cycles": c })
+                        };
                         events.push(json!({
                             "name": format!("{cat} {}", stage.name()), "cat": cat, "ph": "X",
-                            "ts": us(t), "dur": us(c), "pid": pid, "tid": k + TILES + 1,
+                            "ts": us(t), "dur": us(c), "pid": pid, "tid": k + TILES + 1, "args": args,
                         }));
                     }
                 }
@@ -84,6 +97,16 @@ impl CostReport {
                 let rate = w.bytes as f64 / (dur / a.clock) / 1e9;
                 events
                     .push(json!({ "name": "DRAM GB/s", "ph": "C", "ts": us(t), "pid": pid, "args": { "GB/s": rate } }));
+                // Each cache's misses outstanding on average over the slice
+                // (Little's law: misses × latency / time), against the
+                // misses it can keep in flight.
+                #[allow(clippy::cast_precision_loss, reason = "counts far below 2^53")]
+                let outstanding = |misses: u64| misses as f64 * a.latency_cycles() / dur;
+                for (name, misses) in
+                    [("map cache misses in flight", w.map_misses), ("depth cache misses in flight", w.depth_misses)]
+                {
+                    events.push(json!({ "name": name, "ph": "C", "ts": us(t), "pid": pid, "args": { "misses": outstanding(misses) } }));
+                }
             }
             dur
         };
@@ -135,6 +158,9 @@ impl CostReport {
             start += timing.cycles;
         }
         events.push(json!({ "name": "DRAM GB/s", "ph": "C", "ts": us(start), "pid": pid, "args": { "GB/s": 0.0 } }));
+        for name in ["map cache misses in flight", "depth cache misses in flight"] {
+            events.push(json!({ "name": name, "ph": "C", "ts": us(start), "pid": pid, "args": { "misses": 0.0 } }));
+        }
         tiles
     }
 }
