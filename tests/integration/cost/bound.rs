@@ -175,7 +175,8 @@ fn report(arch: &Arch) -> CostReport {
 /// Talisman with DRAM bytes at twice the energy. By hand: the second takes
 /// −50 % of the time with the same bytes and energy and ranks first; the
 /// third takes the same time (ranked second with the first) and its energy
-/// grows by the first's DRAM energy over its total.
+/// grows by the first's DRAM energy over its total. The table lists them
+/// by rank, the time change as 0.500× beside −50 %.
 #[test]
 fn time_ranks_architectures_of_different_clocks() {
     let a = bundled("talisman");
@@ -199,7 +200,14 @@ fn time_ranks_architectures_of_different_clocks() {
     assert!(close(hot.seconds_change, 0.0) && hot.dram_bytes_change == 0.0);
     let md = cmp.markdown();
     assert!(md.contains("the clocks differ, so time ranks, not cycles"), "{md}");
-    assert!(md.lines().any(|l| l.starts_with("| 1 | talisman-2x | 150 |") && l.contains("| -50.0 % |")), "{md}");
+    // Ranked rows, fastest first, each change a ratio beside its percent.
+    let ranks: Vec<&str> =
+        md.lines().filter(|l| l.starts_with("| ") && !l.starts_with("| rank")).map(|l| &l[2..3]).collect();
+    assert_eq!(ranks, ["1", "2", "2"], "{md}");
+    assert!(
+        md.lines().any(|l| l.starts_with("| 1 | talisman-2x | 150 |") && l.contains("| 0.500× (-50.0 %) |")),
+        "{md}"
+    );
     assert!(Comparison::new(&reports[..1]).is_none(), "one architecture compares with nothing");
 }
 
