@@ -378,8 +378,9 @@ fn a_silhouette_map_costs_its_four_corner_samples_whatever_the_filter() {
 
 /// The timeline comes from the same model: the light pass's tile slices
 /// add up to its tiles' cycles at the clock, the camera pass's tiles' map
-/// cache misses to the cache's, the stage tracks are named, and the file
-/// records its architecture.
+/// cache misses to the cache's, every slice's DRAM bytes by purpose to
+/// the pass's, the stage tracks are named, and the file records its
+/// architecture.
 #[test]
 fn the_timeline_is_the_timing_model() {
     let scene = Scene::bundled("table-and-sphere").expect("bundled");
@@ -420,6 +421,28 @@ fn the_timeline_is_the_timing_model() {
     let cache = r.camera.map_cache.expect("talisman reads the map through a cache");
     assert!(misses == cache.misses && misses > 0, "{misses} against {}", cache.misses);
     assert!(events.iter().any(|e| e["ph"] == "C" && e["name"] == "map cache misses in flight"));
+    // Every slice's bytes by purpose add up to the pass's by purpose.
+    let by_purpose = |pass: &str, purpose: &str| -> u64 {
+        events
+            .iter()
+            .filter(|e| e["ph"] == "X" && e["cat"] == pass && e["tid"] != 3 && e["tid"] != 7)
+            .filter_map(|e| e["args"]["bytes by purpose"][purpose].as_u64())
+            .sum()
+    };
+    for (pass, d) in [("light", &r.light_dram), ("camera", &r.camera_dram)] {
+        // Through the map cache, the map's reads are the lines it fetched.
+        let purposes = [
+            ("bins", d.bins),
+            ("map_writes", d.map_writes),
+            ("map_rmw_reads", d.map_rmw_reads),
+            ("colour", d.colour),
+            ("map_reads", d.map_fetched),
+        ];
+        for (purpose, bytes) in purposes {
+            assert_eq!(by_purpose(pass, purpose), bytes, "{pass}: {purpose}");
+        }
+    }
+    assert!(r.light_dram.map_writes > 0 && r.camera_dram.map_fetched > 0);
     assert_eq!(trace["metadata"][0]["arch"]["name"], "talisman");
     assert_timeline(events, 1, &r, slices[0]);
 }

@@ -17,8 +17,8 @@ use std::fmt::Write as _;
 use crate::cost::arch::Arch;
 use crate::cost::arch::derived::latency_ceiling;
 use crate::cost::cache::CacheStats;
-use crate::cost::timing::{ArchProbe, Dram};
-use crate::cost::work::{Bottleneck, EnergySplit, PassTiming, Work};
+use crate::cost::timing::ArchProbe;
+use crate::cost::work::{Bottleneck, Dram, EnergySplit, PassTiming, Work};
 use serde::Serialize;
 use umbra_core::probe::Totals;
 

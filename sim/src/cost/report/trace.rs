@@ -46,8 +46,8 @@ impl CostReport {
     /// draw, by its order), with its stages on their own tracks and its
     /// triangles, fragments, pixels, bytes and bound (memory told as
     /// bandwidth or one of its queues, each queue's cycles, each cache's
-    /// misses) in its arguments, each stage slice its cycles (memory's its
-    /// bytes and misses too); the DRAM shared by the front end and the
+    /// misses, its DRAM bytes by purpose) in its arguments, each stage
+    /// slice its cycles (memory's its bytes, by purpose, and misses too); the DRAM shared by the front end and the
     /// tiles, when it outlasts them; and the units after the tiles.
     /// Counters: the DRAM's bandwidth, and each cache's misses in flight on
     /// average over a slice (Little's law). Times in microseconds at the
@@ -68,9 +68,17 @@ impl CostReport {
             let Some((bound, dur)) = w.bottleneck(a) else { return 0.0 };
             let memory = w.memory(a);
             let [dram_queue, map_queue, depth_queue] = memory.queue_cycles;
+            // The bytes each purpose moved (those a purpose counts).
+            let purposes: serde_json::Map<String, Value> = w
+                .dram
+                .traffic(a.map_cache.size > 0)
+                .into_iter()
+                .filter(|&(_, b)| b > 0)
+                .map(|(name, b)| (name.to_owned(), json!(b)))
+                .collect();
             let args = json!({
                 "triangles": w.triangles, "fragments": w.fragments, "pixels": w.pixels, "bytes": w.bytes,
-                "cycles": dur, "bound by": bound.name(), "setup cycles": cycles[Stage::Setup as usize],
+                "bytes by purpose": purposes, "cycles": dur, "bound by": bound.name(), "setup cycles": cycles[Stage::Setup as usize],
                 "memory cycles at the bandwidth": memory.bandwidth_cycles,
                 "memory cycles at the latency": memory.latency_cycles,
                 "DRAM requests' cycles in flight": dram_queue,
@@ -83,7 +91,7 @@ impl CostReport {
                     let c = cycles[*stage as usize];
                     if c > 0.0 {
                         let args = if *stage == Stage::Memory {
-                            json!({ "cycles": c, "bytes": w.bytes, "map cache misses": w.map_misses, "depth cache misses": w.depth_misses })
+                            json!({ "cycles": c, "bytes": w.bytes, "bytes by purpose": purposes, "map cache misses": w.map_misses, "depth cache misses": w.depth_misses })
                         } else {
                             json!({ "cycles": c })
                         };

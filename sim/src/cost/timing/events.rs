@@ -33,6 +33,7 @@ impl<const D: bool> Probe for ArchProbe<D> {
                 let b =
                     n(tiles) * self.arch.bins.entry_bytes + self.arch.bins.setup_record_bytes * u64::from(tiles > 0);
                 self.dram.bins += b;
+                self.front.dram.bins += b;
                 self.front.bytes += b;
                 self.front.streamed += b;
             }
@@ -41,15 +42,13 @@ impl<const D: bool> Probe for ArchProbe<D> {
                 self.enter(Phase::Back);
                 self.select(tile);
                 let b = n(triangles) * (self.arch.bins.entry_bytes + self.arch.bins.setup_record_bytes);
-                self.dram.bins += b;
-                self.stream(b);
+                self.traffic(|d| &mut d.bins, b);
                 self.work().triangles += n(triangles);
             }
             Event::TileLoad { tile, bytes: b } => {
                 self.select(tile);
                 if on_chip {
-                    self.dram.map_rmw_reads += n(b);
-                    self.stream(n(b));
+                    self.traffic(|d| &mut d.map_rmw_reads, n(b));
                 }
             }
             Event::TileStore { tile, bytes: b, cleared } => {
@@ -59,8 +58,7 @@ impl<const D: bool> Probe for ArchProbe<D> {
                 if on_chip && self.kind == PassKind::Light && !cleared {
                     let written =
                         if self.arch.on_chip.resolve_test_value_only { n(b) / self.buffers.max(1) } else { n(b) };
-                    self.dram.map_writes += written;
-                    self.stream(written);
+                    self.traffic(|d| &mut d.map_writes, written);
                 }
             }
             Event::Fragments { tile, count } => {
@@ -71,6 +69,7 @@ impl<const D: bool> Probe for ArchProbe<D> {
                     let (b, requests) = (n(count) * bytes * self.buffers, n(count) * self.buffers);
                     self.dram.depth_rmw += b;
                     let w = self.work();
+                    w.dram.depth_rmw += b;
                     w.bytes += b;
                     w.requests += requests;
                 }
@@ -93,6 +92,7 @@ impl<const D: bool> Probe for ArchProbe<D> {
                     // Uncached: each texel written is its own request.
                     self.dram.depth_rmw += n(b);
                     let w = self.work();
+                    w.dram.depth_rmw += n(b);
                     w.bytes += n(b);
                     w.requests += n(texels);
                 }
@@ -111,6 +111,7 @@ impl<const D: bool> Probe for ArchProbe<D> {
             }
             Event::MapRead { texels, bytes: b, .. } => {
                 self.dram.map_reads += n(b);
+                self.work().dram.map_reads += n(b);
                 self.map_read(n(texels), n(b));
             }
             Event::LookupCulled { .. } => {
@@ -144,8 +145,7 @@ impl<const D: bool> Probe for ArchProbe<D> {
                 w.charge(Stage::Shade, shade);
                 w.charge(Stage::Shadow, lookup);
                 w.pixels += 1;
-                self.dram.colour += COLOUR_BYTES;
-                self.stream(COLOUR_BYTES);
+                self.traffic(|d| &mut d.colour, COLOUR_BYTES);
             }
             Event::SilhouetteFragments { fragments, bytes: b, .. } => {
                 // Conservative line rasterization at the scan converter's
@@ -159,6 +159,7 @@ impl<const D: bool> Probe for ArchProbe<D> {
                 self.accesses.raster_ops += n(fragments);
                 self.dram.silhouette_writes += n(b);
                 let w = &mut self.silhouette;
+                w.dram.silhouette_writes += n(b);
                 w.charge(Stage::Raster, raster);
                 w.fragments += n(fragments);
                 w.bytes += n(b);
@@ -169,6 +170,7 @@ impl<const D: bool> Probe for ArchProbe<D> {
                 self.reconstructed_pixels += u64::from(!self.reconstructed);
                 self.reconstructed = true;
                 self.dram.silhouette_reads += n(b);
+                self.work().dram.silhouette_reads += n(b);
                 self.map_read(n(points), n(b));
             }
             Event::VolumeFragments { tile, fragments, depth_bytes } => {
@@ -179,8 +181,7 @@ impl<const D: bool> Probe for ArchProbe<D> {
                 if self.arch.on_chip.stencil {
                     self.accesses.buffer += n(fragments);
                 } else {
-                    self.dram.volume_depth_reads += n(depth_bytes);
-                    self.stream(n(depth_bytes));
+                    self.traffic(|d| &mut d.volume_depth_reads, n(depth_bytes));
                 }
             }
             Event::StencilRead { tile, texels, bytes: b } | Event::StencilWrite { tile, texels, bytes: b } => {
@@ -188,8 +189,7 @@ impl<const D: bool> Probe for ArchProbe<D> {
                 if self.arch.on_chip.stencil {
                     self.accesses.buffer += n(texels);
                 } else {
-                    self.dram.stencil += n(b);
-                    self.stream(n(b));
+                    self.traffic(|d| &mut d.stencil, n(b));
                 }
             }
         }
@@ -221,6 +221,7 @@ impl<const D: bool> Probe for ArchProbe<D> {
             let line = m.cache.line();
             self.dram.map_fetched += line;
             let w = self.work();
+            w.dram.map_fetched += line;
             w.bytes += line;
             w.map_misses += 1;
         }

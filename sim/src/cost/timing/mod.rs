@@ -15,7 +15,7 @@ mod events;
 use crate::cost::arch::{Arch, CacheParams};
 use crate::cost::cache::{Cache, MapCache};
 use crate::cost::work::{Accesses, EnergySplit, PassTiming, Work};
-use crate::cost::work::{Bottleneck, MemoryLimit, Stage};
+use crate::cost::work::{Bottleneck, Dram, MemoryLimit, Stage};
 use serde::Serialize;
 use umbra_core::probe::Totals;
 use umbra_core::{DepthFormatKind, RasterConfig, TileId};
@@ -199,6 +199,14 @@ impl<const D: bool> ArchProbe<D> {
         w.streamed += bytes;
     }
 
+    /// `bytes` of DRAM traffic for one purpose streamed by the current
+    /// tile: counted for the pass and for the tile.
+    fn traffic(&mut self, purpose: fn(&mut Dram) -> &mut u64, bytes: u64) {
+        *purpose(&mut self.dram) += bytes;
+        *purpose(&mut self.work().dram) += bytes;
+        self.stream(bytes);
+    }
+
     #[allow(clippy::cast_precision_loss, reason = "counts far below 2^53")]
     fn per(count: u64, rate: f64) -> f64 {
         if rate > 0.0 { count as f64 / rate } else { 0.0 }
@@ -262,6 +270,7 @@ impl<const D: bool> ArchProbe<D> {
         }
         let rmw = if hit { 0 } else { line } + if writeback { line } else { 0 };
         self.dram.depth_rmw += rmw;
+        self.work().dram.depth_rmw += rmw;
     }
 
     /// Finish the pass: write back what the depth cache still holds dirty.
@@ -269,6 +278,7 @@ impl<const D: bool> ArchProbe<D> {
         if let Some(c) = self.depth_cache.as_mut() {
             let bytes = c.flush() * c.line();
             self.dram.depth_rmw += bytes;
+            self.drain.dram.depth_rmw += bytes;
             self.drain.bytes += bytes;
             self.drain.streamed += bytes;
         }
@@ -421,72 +431,5 @@ impl<const D: bool> ArchProbe<D> {
         if self.map_cache.is_none() {
             self.stream(bytes);
         }
-    }
-}
-
-/// DRAM traffic per buffer, bytes.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
-pub struct Dram {
-    /// Map texels written by the resolve.
-    pub map_writes: u64,
-    /// Tiles loaded back by a later flush.
-    pub map_rmw_reads: u64,
-    /// Off-chip depth (and ids) read and written per fragment: cache lines
-    /// fetched and written back, or each access when uncached.
-    pub depth_rmw: u64,
-    /// Map texels and silhouette points requested by the shadow unit
-    /// (before any cache).
-    pub map_reads: u64,
-    /// Map and silhouette lines fetched through the map cache.
-    pub map_fetched: u64,
-    /// Shaded pixels' colour written to the frame buffer.
-    pub colour: u64,
-    /// Bins and setup records written and read.
-    pub bins: u64,
-    /// Silhouette points written by the silhouette pass.
-    pub silhouette_writes: u64,
-    /// Silhouette points read by the camera pass.
-    pub silhouette_reads: u64,
-    /// Scene depth read by shadow-volume fragments.
-    pub volume_depth_reads: u64,
-    /// Stencil read and written by shadow-volume fragments.
-    pub stencil: u64,
-}
-
-impl Dram {
-    /// The map bytes DRAM moved for the shadow unit: the lines fetched
-    /// through the map cache when there is one, else every byte requested.
-    #[must_use]
-    pub(crate) const fn map_as_fetched(&self, cached: bool) -> u64 {
-        if cached { self.map_fetched } else { self.map_reads }
-    }
-
-    /// The DRAM traffic by purpose with its name: every purpose, the map's
-    /// reads as fetched ([`Dram::map_as_fetched`]).
-    #[must_use]
-    pub(crate) fn traffic(&self, cached: bool) -> Vec<(&'static str, u64)> {
-        self.fields()
-            .into_iter()
-            .filter(|(name, _)| *name != "map_fetched")
-            .map(|(name, b)| if name == "map_reads" { (name, self.map_as_fetched(cached)) } else { (name, b) })
-            .collect()
-    }
-
-    /// Every purpose's bytes with its name, in declaration order.
-    #[must_use]
-    pub(crate) const fn fields(&self) -> [(&'static str, u64); 11] {
-        [
-            ("map_writes", self.map_writes),
-            ("map_rmw_reads", self.map_rmw_reads),
-            ("depth_rmw", self.depth_rmw),
-            ("map_reads", self.map_reads),
-            ("map_fetched", self.map_fetched),
-            ("colour", self.colour),
-            ("bins", self.bins),
-            ("silhouette_writes", self.silhouette_writes),
-            ("silhouette_reads", self.silhouette_reads),
-            ("volume_depth_reads", self.volume_depth_reads),
-            ("stencil", self.stencil),
-        ]
     }
 }
