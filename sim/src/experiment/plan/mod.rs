@@ -24,18 +24,20 @@
 //! reference inside that gap, so it tells whether 16-bit depth can hold
 //! the scene (`GAP_LSBS` steps).
 
-use std::fmt::Write as _;
-use std::str::FromStr;
-
 use indicatif::ProgressBar;
 use serde::Serialize;
 use umbra_core::shadow::Filter;
 use umbra_core::{CullMode, DepthFormat, DepthFormatKind, DepthUnit, F32, LightPassConfig, RasterConfig};
 
+mod budget;
+mod report;
+
+pub use budget::{Budget, Measure};
+
 use crate::cost::arch::Arch;
 use crate::cost::storage::{MapShape, REEVES_TILE, StorageBytes, storage_bytes};
 use crate::experiment::presets::FILTERS;
-use crate::experiment::study::{Row, RowMetrics, Shard, Spec, StudyError, SweepFile, Variant, render_config, run};
+use crate::experiment::study::{Row, Shard, Spec, StudyError, SweepFile, Variant, render_config, run};
 use crate::input::limits::Limits;
 use crate::pass::light::{self, DEFAULT_BIN_CAPACITY, LightFrame, LightOptions};
 use crate::render::{RenderConfig, RenderError, TruthSource, render};
@@ -46,132 +48,6 @@ pub(crate) const GAP_LSBS: f64 = 8.0;
 
 /// Reference rays per pixel side the candidates are measured against.
 pub const REFERENCE_RAYS: u32 = 4;
-
-/// What a budget bounds: a class of the metrics' wrong pixels
-/// ([`crate::truth::metrics`]), percent of the evaluated pixels.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Measure {
-    /// Acne, detachment and leaks together.
-    Artifacts,
-    /// Every pixel the ½ verdict gets wrong, aliasing included.
-    Misclassified,
-    /// Too dark from the receiver's own surface.
-    Acne,
-    /// Too light because only the bias moved the test past an occluder.
-    Detachment,
-    /// Too light because the depth compared lies behind the receiver.
-    Leaks,
-    /// Wrong because the taps straddle a true edge or miss the occluder.
-    Aliasing,
-    /// A filter's own partial shade across a true edge.
-    Penumbra,
-    /// Shadowed by the ½ verdict, lit in truth.
-    FalseShadow,
-    /// Lit by the ½ verdict, shadowed in truth.
-    FalseLight,
-}
-
-impl Measure {
-    /// Every measure, in the order reports list them.
-    pub const ALL: [Self; 9] = [
-        Self::Artifacts,
-        Self::Misclassified,
-        Self::Acne,
-        Self::Detachment,
-        Self::Leaks,
-        Self::Aliasing,
-        Self::Penumbra,
-        Self::FalseShadow,
-        Self::FalseLight,
-    ];
-
-    /// Its one spelling, in `--budget` and in Python.
-    #[must_use]
-    pub const fn name(self) -> &'static str {
-        match self {
-            Self::Artifacts => "artifacts",
-            Self::Misclassified => "misclassified",
-            Self::Acne => "acne",
-            Self::Detachment => "detachment",
-            Self::Leaks => "leaks",
-            Self::Aliasing => "aliasing",
-            Self::Penumbra => "penumbra",
-            Self::FalseShadow => "false-shadow",
-            Self::FalseLight => "false-light",
-        }
-    }
-
-    /// Its value in a row's metrics: percent of the evaluated pixels.
-    #[must_use]
-    #[allow(clippy::cast_precision_loss, reason = "pixel counts far below 2^53")]
-    pub fn percent(self, m: &RowMetrics) -> f64 {
-        let of = |px: u64| if m.evaluated_px == 0 { 0.0 } else { 100.0 * px as f64 / m.evaluated_px as f64 };
-        match self {
-            Self::Artifacts => m.artifact_percent,
-            Self::Misclassified => m.misclassified_percent,
-            Self::Acne => of(m.acne_px),
-            Self::Detachment => of(m.detachment_px),
-            Self::Leaks => of(m.leaks_px),
-            Self::Aliasing => of(m.aliasing_px),
-            Self::Penumbra => of(m.penumbra_px),
-            Self::FalseShadow => of(m.false_shadow_px),
-            Self::FalseLight => of(m.false_light_px),
-        }
-    }
-}
-
-/// An error budget: a measure and the most of it allowed, percent of the
-/// evaluated pixels. Spelt `acne=0.01%` (the `%` optional), or a bare
-/// percentage for artifacts (`0.1%`), alike in `umbra plan --budget` and
-/// Python's `umbra.plan`.
-///
-/// ```
-/// use umbra_sim::experiment::plan::{Budget, Measure};
-/// let b: Budget = "misclassified=0.1%".parse()?;
-/// assert_eq!((b.measure, b.percent), (Measure::Misclassified, 0.1));
-/// assert_eq!("0.01".parse::<Budget>()?.measure, Measure::Artifacts);
-/// assert!("glare=1%".parse::<Budget>().is_err());
-/// # Ok::<(), String>(())
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct Budget {
-    /// What it bounds.
-    pub measure: Measure,
-    /// The most allowed, percent.
-    pub percent: f64,
-}
-
-impl FromStr for Budget {
-    type Err = String;
-
-    fn from_str(text: &str) -> Result<Self, String> {
-        let (measure, value) = match text.split_once('=') {
-            Some((m, v)) => {
-                let m = m.trim();
-                let measure = Measure::ALL.into_iter().find(|x| x.name() == m).ok_or_else(|| {
-                    let names: Vec<&str> = Measure::ALL.iter().map(|x| x.name()).collect();
-                    format!("budget `{text}`: `{m}` is not a measure (one of {})", names.join(", "))
-                })?;
-                (measure, v)
-            }
-            None => (Measure::Artifacts, text),
-        };
-        let v = value.trim();
-        let v = v.strip_suffix('%').unwrap_or(v).trim();
-        let percent: f64 = v.parse().map_err(|_| format!("budget `{text}`: `{value}` is not a percentage"))?;
-        if !(0.0..=100.0).contains(&percent) {
-            return Err(format!("budget `{text}`: {percent}% is outside 0…100%"));
-        }
-        Ok(Self { measure, percent })
-    }
-}
-
-impl std::fmt::Display for Budget {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{}={}%", self.measure.name(), self.percent)
-    }
-}
 
 /// What the planner may choose from, and the budgets it must meet.
 #[derive(Clone, Debug, PartialEq)]
@@ -606,78 +482,4 @@ pub fn plan(scene: &Scene, spec: &PlanSpec, progress: &ProgressBar) -> Result<Pl
         reasons,
         storage,
     })
-}
-
-impl Plan {
-    /// The plan as Markdown: the pick, why, its figures, the runners-up
-    /// and the map's storage.
-    #[must_use]
-    pub fn markdown(&self, scene: &Scene) -> String {
-        let mut s = String::new();
-        let list = self.budgets.iter().map(|b| format!("{} ≤ {}%", b.measure.name(), b.percent)).collect::<Vec<_>>();
-        let p = &self.pick;
-        let _ = writeln!(
-            s,
-            "## Plan for `{}` ({}; costed on `{}`)\n\n{}\n\n`{}`\n",
-            scene.name,
-            list.join(", "),
-            self.arch,
-            p.label,
-            p.command
-        );
-        for r in &self.reasons {
-            let _ = writeln!(s, "- {r}");
-        }
-        let measures: Vec<Measure> = budget_columns(&self.budgets);
-        let heads: String = measures.iter().map(|m| format!(" {} % |", m.name())).collect();
-        let rules: String = measures.iter().map(|_| "---:|").collect();
-        let _ = writeln!(
-            s,
-            "\n| candidate | cycles | time (ms) | DRAM bytes |{heads} why not |\n|---|---:|---:|---:|{rules}---|"
-        );
-        let row = |s: &mut String, c: &Candidate, why: &str| {
-            let figures: String = measures.iter().map(|&m| format!(" {:.3} |", c.measure(m))).collect();
-            let _ =
-                writeln!(s, "| {} | {} | {:.3} | {} |{figures} {why} |", c.label, c.cycles, c.seconds * 1e3, c.bytes);
-        };
-        let pick = if self.meets { "the pick" } else { "the pick, nearest the budgets" };
-        let cheaper: Vec<&RunnerUp> = self.runners_up.iter().filter(|r| r.cheaper).collect();
-        for r in cheaper.iter().rev() {
-            row(&mut s, &r.candidate, &r.lost);
-        }
-        let _ = write!(s, "| **{}** | **{}** | **{:.3}** | **{}** |", p.label, p.cycles, p.seconds * 1e3, p.bytes);
-        for &m in &measures {
-            let _ = write!(s, " **{:.3}** |", p.measure(m));
-        }
-        let _ = writeln!(s, " {pick} |");
-        for r in self.runners_up.iter().filter(|r| !r.cheaper) {
-            row(&mut s, &r.candidate, &r.lost);
-        }
-        let st = &self.storage;
-        let _ = writeln!(
-            s,
-            "\nMap storage (Reeves et al. Table 2), {} buffer(s):\n\n| scheme | bytes | holds |\n|---|---:|---|",
-            st.buffers
-        );
-        let _ = writeln!(s, "| raw | {} | every texel |", st.raw);
-        let _ = writeln!(s, "| bounding box | {} | {} texels of finite depth |", st.bounding_box, st.box_texels);
-        let _ = writeln!(
-            s,
-            "| {REEVES_TILE}×{REEVES_TILE} tiles | {} | {} of {} tiles that received geometry |",
-            st.tiles, st.stored_tiles, st.grid_tiles
-        );
-        s
-    }
-}
-
-/// The measures a plan's table shows: the budgeted ones, then artifacts
-/// and misclassified pixels when not budgeted.
-fn budget_columns(budgets: &[Budget]) -> Vec<Measure> {
-    let mut out: Vec<Measure> = budgets.iter().map(|b| b.measure).collect();
-    for m in [Measure::Artifacts, Measure::Misclassified] {
-        if !out.contains(&m) {
-            out.push(m);
-        }
-    }
-    out
 }
