@@ -216,8 +216,8 @@ fn main() -> Result<()> {
         Some(Command::Status(args)) => {
             let s = umbra_sim::experiment::study::status(&args.inputs, limits);
             say!("{}", s.markdown().trim_end());
-            if !s.complete() {
-                anyhow::bail!("not every shard is complete");
+            if !s.ready() {
+                anyhow::bail!("not ready to merge: {} problem(s), listed above", s.problems.len());
             }
             Ok(())
         }

@@ -1,6 +1,6 @@
 //! What the simulator writes out: output folders ([`folder`]), the formats
 //! maps and pictures are written in ([`formats`]), Markdown text
-//! ([`markdown`]), where an output came from ([`provenance`]), and why a
+//! ([`markdown`]), every table in Markdown or CSV ([`table`]), where an output came from ([`provenance`]), and why a
 //! file could not be written (`OutputError`).
 
 mod error;
@@ -8,5 +8,6 @@ pub mod folder;
 pub mod formats;
 pub mod markdown;
 pub mod provenance;
+pub mod table;
 
 pub use error::OutputError;

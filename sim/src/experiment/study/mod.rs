@@ -50,7 +50,7 @@ pub use run::{load_scenes, render_config, run};
 use shards::jsonl;
 #[cfg(test)]
 use shards::write_run;
-pub use shards::{Manifest, ShardFolder, ShardState, ShardStatus};
+pub use shards::{Manifest, ShardFolder, ShardProblem, ShardState, ShardStatus};
 pub(crate) use shards::{already_complete, finish, write_partial};
 pub use shards::{merge, read_rows, status};
 pub(crate) use summary::write_outputs;
@@ -160,14 +160,6 @@ pub enum StudyError {
         path: PathBuf,
         /// What is wrong.
         problem: String,
-    },
-    /// Two shards hold the same row.
-    #[error("row {index} ({arch}) appears twice among the merged files (overlapping shards?)")]
-    Duplicate {
-        /// The configuration index.
-        index: usize,
-        /// The preset.
-        arch: String,
     },
     /// CSV encoding failed.
     #[error("results.csv: {0}")]

@@ -71,7 +71,10 @@ fn merge_refuses_what_would_lie() {
     // A missing shard: 1 of 2.
     refused(&s[..1], &dir("out"), "shard 1/2");
     // A shard given twice.
-    refused(&[s[0].clone(), s[0].clone()], &s[0].join("manifest.json"), "given twice");
+    refused(&[s[0].clone(), s[0].clone()], &s[0], "given again");
+    // Two folders holding the same shard.
+    let again = shard(&spec, "again", 0, 2);
+    refused(&[s[0].clone(), again.clone(), s[1].clone()], &again.join("manifest.json"), "shard 0/2 is given twice");
     // A shard of another sweep.
     let other = shard(&tiny("bbbb"), "other", 1, 2);
     refused(&[s[0].clone(), other.clone()], &other.join("manifest.json"), "another sweep");
@@ -126,7 +129,7 @@ fn status_tells_every_shards_state_and_merge_refuses_the_unfinished() {
     let states: Vec<study::ShardState> = s.folders.iter().map(|f| f.state.clone()).collect();
     use study::ShardState::{Abandoned, Complete, Corrupt, Running};
     assert_eq!(states, [Complete, Complete, Abandoned, Running, Corrupt]);
-    assert_eq!((s.count, s.missing.clone(), s.complete()), (Some(4), vec![2, 3], false));
+    assert_eq!((s.count, s.missing.clone(), s.ready()), (Some(4), vec![2, 3], false));
     let md = s.markdown();
     assert!(md.contains("2 of 4 shards complete; not complete: 2/4, 3/4"), "{md}");
     refused(
@@ -146,4 +149,151 @@ fn status_tells_every_shards_state_and_merge_refuses_the_unfinished() {
     for d in done.into_iter().chain([abandoned, running, corrupt]) {
         let _ = std::fs::remove_dir_all(d);
     }
+}
+
+/// Copy a finished folder's files into a new folder `tag`.
+fn copy(from: &Path, tag: &str) -> PathBuf {
+    let d = dir(tag);
+    for e in std::fs::read_dir(from).expect("folder") {
+        let e = e.expect("entry");
+        std::fs::copy(e.path(), d.join(e.file_name())).expect("copy");
+    }
+    d
+}
+
+/// What the hostile round found, each example and two of ours per
+/// class: `status` said "ready" where `merge` refused. Now both refuse,
+/// naming the same problem.
+#[test]
+fn status_and_merge_refuse_the_same_sets() {
+    let spec = tiny("cccc");
+    let limits = Limits::DEFAULT;
+    let s: Vec<PathBuf> = (0..3).map(|i| shard(&spec, "same", i, 3)).collect();
+    let whole = shard(&spec, "same-whole", 0, 1);
+    let foreign = shard(&tiny("dddd"), "same-foreign", 1, 3);
+    let link = dir("same-link").join("s1");
+    std::os::unix::fs::symlink(&s[1], &link).expect("link");
+    let versioned = copy(&s[2], "same-version");
+    let record = versioned.join("manifest.json");
+    let text = std::fs::read_to_string(&record).expect("record");
+    let edited = text.replacen(
+        &format!("\"umbra_version\": \"{}\"", crate::output::provenance::version()),
+        "\"umbra_version\": \"0.0.0\"",
+        1,
+    );
+    assert_ne!(text, edited, "the record names its version");
+    std::fs::write(&record, edited).expect("edit");
+    let both = |inputs: &[PathBuf], what: &str| {
+        let st = study::status(inputs, &limits);
+        assert!(!st.ready(), "{what}: {}", st.markdown());
+        let md = st.markdown();
+        assert!(md.contains(what) && !md.contains(": ready to merge."), "{what}: {md}");
+        let e = study::merge(inputs, &dir("same-out"), &limits).expect_err(what).to_string();
+        assert!(e.contains(&st.problems[0].problem) && e.contains(what), "{what}: {e}");
+    };
+    let all = |extra: &PathBuf| vec![s[0].clone(), s[1].clone(), s[2].clone(), extra.clone()];
+    // The examples: a shard twice, once through a link, another sweep's,
+    // a whole run beside shards, a record whose two versions differ.
+    both(&[s[0].clone(), s[0].clone(), s[1].clone(), s[2].clone()], "given again");
+    both(&all(&link), "given again");
+    both(&all(&foreign), "another sweep");
+    both(&all(&whole), "never merged together");
+    both(&[s[0].clone(), s[1].clone(), versioned.clone()], "version 0.0.0");
+    // Ours: the same folder by its results file and through `..`; a
+    // whole run first, then shards; a shard of a run split another way
+    // after a missing one; a file that is not a results file; nothing.
+    both(&[s[0].clone(), s[1].join("results.jsonl"), s[1].clone(), s[2].clone()], "given again");
+    let dotted = s[2].join("..").join(s[2].file_name().expect("named"));
+    both(&[s[0].clone(), s[1].clone(), s[2].clone(), dotted], "given again");
+    both(&[whole.clone(), s[0].clone()], "never merged together");
+    both(&[s[0].clone(), shard(&spec, "same-four", 1, 4)], "4-ways");
+    both(&[s[0].clone(), s[1].join("manifest.json"), s[2].clone()], "is a file, not a study's folder");
+    both(&[s[0].clone(), s[1].join("nothing"), s[2].clone()], "does not exist");
+    both(&[], "no shard to merge");
+    // And the good sets are ready, and merge.
+    for good in [vec![s[2].clone(), link.clone(), s[0].join("results.jsonl")], vec![whole.clone()]] {
+        let st = study::status(&good, &limits);
+        assert!(st.ready() && st.markdown().contains(": ready to merge."), "{}", st.markdown());
+        let out = dir("same-merged");
+        assert_eq!(study::merge(&good, &out, &limits).expect("merges"), 2);
+    }
+}
+
+/// The property: for random lists of folders — good shards, repeats, links,
+/// results files, foreign shards, a whole run, unfinished, edited, absent —
+/// `status` is ready exactly when `merge` succeeds, and exactly when the
+/// list names each of one run's shards once (an independent rule, below).
+#[test]
+fn status_is_ready_exactly_when_merge_succeeds() {
+    use crate::output::folder::OutputFolder;
+    let spec = tiny("eeee");
+    let limits = Limits::DEFAULT;
+    let s: Vec<PathBuf> = (0..3).map(|i| shard(&spec, "prop", i, 3)).collect();
+    let whole = shard(&spec, "prop-whole", 0, 1);
+    let link = dir("prop-link").join("s1");
+    std::os::unix::fs::symlink(&s[1], &link).expect("link");
+    let abandoned = dir("prop-abandoned");
+    drop(OutputFolder::create(&abandoned).expect("opened"));
+    let edited = copy(&s[0], "prop-edited");
+    std::fs::write(edited.join("results.jsonl"), "{}\n").expect("edit");
+    // Each entry: a path, and which good run's shard it names (`None` for
+    // one no merge may take).
+    let pool: Vec<(PathBuf, Option<&str>)> = vec![
+        (s[0].clone(), Some("s0")),
+        (s[1].clone(), Some("s1")),
+        (s[2].clone(), Some("s2")),
+        (link, Some("s1")),
+        (s[2].join("results.jsonl"), Some("s2")),
+        (whole, Some("whole")),
+        (shard(&tiny("ffff"), "prop-foreign", 2, 3), None),
+        (shard(&spec, "prop-two", 1, 2), None),
+        (abandoned, None),
+        (edited, None),
+        (s[0].join("absent"), None),
+    ];
+    let ready_by_rule = |names: &[Option<&str>]| {
+        let mut named: Vec<&str> = names.iter().map(|n| n.unwrap_or("bad")).collect();
+        named.sort_unstable();
+        named == ["s0", "s1", "s2"] || named == ["whole"]
+    };
+    // A fixed xorshift: the same lists every run.
+    let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+    let mut next = |n: usize| {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        usize::try_from(x % n as u64).unwrap_or(0)
+    };
+    let (mut ready, mut refused) = (0, 0);
+    for case in 0..160 {
+        // Half the lists are permutations of the good shards, with maybe
+        // one more entry: the interesting edge.
+        let mut picks: Vec<usize> = if case % 2 == 0 {
+            let mut p = vec![0, 1, 2];
+            p.swap(next(3), next(3));
+            if next(2) == 0 {
+                p.insert(next(4), next(pool.len()));
+            }
+            p
+        } else {
+            (0..next(5)).map(|_| next(pool.len())).collect()
+        };
+        if case % 7 == 0 {
+            picks = vec![5];
+        }
+        let inputs: Vec<PathBuf> = picks.iter().map(|&i| pool[i].0.clone()).collect();
+        let names: Vec<Option<&str>> = picks.iter().map(|&i| pool[i].1).collect();
+        let st = study::status(&inputs, &limits);
+        let merged = study::merge(&inputs, &dir("prop-out"), &limits);
+        assert_eq!(st.ready(), merged.is_ok(), "{inputs:?}: {}\n{merged:?}", st.markdown());
+        assert_eq!(st.ready(), ready_by_rule(&names), "{inputs:?}: {}", st.markdown());
+        match merged {
+            Ok(_) => ready += 1,
+            Err(e) => {
+                assert!(e.to_string().contains(&st.problems[0].problem), "{e} / {:?}", st.problems);
+                refused += 1;
+            }
+        }
+    }
+    assert!(ready >= 20 && refused >= 60, "both sides are tried: {ready} ready, {refused} refused");
 }
