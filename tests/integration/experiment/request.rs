@@ -46,6 +46,10 @@ fn a_bad_request_names_its_flag() {
     assert!(err(Overrides { images: vec!["160by90".into()], ..Overrides::default() }).contains("--image `160by90`"));
     assert!(err(Overrides { maps: vec![256, 256], ..Overrides::default() }).contains("--maps `256` is given twice"));
     assert!(err(Overrides { maps: vec![1 << 20], ..Overrides::default() }).contains("--maps 1048576"));
+    // One size written two ways is one size.
+    let images = |a: &str, b: &str| Overrides { images: vec![a.into(), b.into()], ..Overrides::default() };
+    assert!(err(images("160x90", "160×90")).contains("`160x90` and `160×90` are one size"));
+    assert!(err(images("160x90", "160 x 90")).contains("are one size, 160x90"));
     assert!(err(Overrides { reference_rays: Some(17), ..Overrides::default() }).contains("--reference-rays 17"));
     assert!(err(Overrides { budgets: vec![0.0], ..Overrides::default() }).contains("--budgets"));
     let shard = Request { shard: Some("2/2".into()), ..request(Overrides::default()) };

@@ -193,3 +193,60 @@ fn a_bad_sweep_file_names_its_key() {
     }
     assert!(SweepFile::bundled("huge").is_err_and(|e| e.key == "(name)"));
 }
+
+/// Axis values are compared as the values they mean: two spellings of one
+/// value are refused naming both, and one key is one axis. Each case ran
+/// twice (two identical rows per configuration) before.
+#[test]
+fn one_value_under_two_spellings_is_refused() {
+    let d = dir("spellings");
+    let base = "name = \"s\"\nscenes = [\"table-and-sphere\"]\nimages = [[64, 36]]\nreference_rays = 1\nformats = [\"d16\"]\n\
+                maps = [128]\nfilters = [\"point\"]\narchs = [\"talisman\"]\nbudgets = [1.0]\n[[algorithms]]\nalgo = \"first\"\n";
+    let axis = |key: &str, values: &str| format!("[[arch_axes]]\nkey = \"{key}\"\nvalues = {values}\n");
+    for (extra, replace, key, both) in [
+        // The issue's examples: a bandwidth spelt with and without a space,
+        // and a count written whole and as a real.
+        (axis("dram.bandwidth", r#"["1GB/s", "1 GB/s"]"#), None, "arch_axes[0].values[1]", ["`1 GB/s`", "`1GB/s`"]),
+        (axis("dram.requests_in_flight", "[1, 1.0, 2]"), None, "arch_axes[0].values[1]", ["`1`", "repeats"]),
+        // Ours: one size in two units; one key as two axes; one filter as
+        // a name and as a table.
+        (axis("map_cache.size", r#"["16KiB", "16384B"]"#), None, "arch_axes[0].values[1]", ["`16384B`", "`16KiB`"]),
+        (
+            axis("dram.bandwidth", r#"["1GB/s"]"#) + &axis("dram.bandwidth", r#"["2GB/s"]"#),
+            None,
+            "arch_axes[1].key",
+            ["also arch_axes[0].key", "dram.bandwidth"],
+        ),
+        (String::new(), Some(("[\"point\"]", "[\"box3\", { box = 3 }]")), "filters[1]", ["box3", "repeats"]),
+    ] {
+        let mut text = format!("{base}{extra}");
+        if let Some((a, b)) = replace {
+            text = text.replace(a, b);
+        }
+        let f = d.join("spelt.toml");
+        std::fs::write(&f, &text).expect("write");
+        let e = SweepFile::open(f.to_str().expect("UTF-8"), &Limits::DEFAULT)
+            .and_then(|s| s.spec(&Limits::DEFAULT))
+            .expect_err(key);
+        assert!(e.key == key && both.iter().all(|w| e.problem.contains(w)), "{key}: {e}");
+    }
+    // Distinct values on one axis still load: 1 GB/s and 2 GB/s.
+    let f = d.join("fine.toml");
+    std::fs::write(&f, format!("{base}{}", axis("dram.bandwidth", r#"["1GB/s", "2 GB/s"]"#))).expect("write");
+    let spec = SweepFile::open(f.to_str().expect("UTF-8"), &Limits::DEFAULT)
+        .and_then(|s| s.spec(&Limits::DEFAULT))
+        .expect("two values");
+    assert_eq!(spec.archs.len(), 2);
+    // A `--set` of the key the axis varies would run one value while each
+    // row records another.
+    let request = |sets: Vec<String>| umbra::sim::experiment::study::Request {
+        sweep: f.to_str().expect("UTF-8").into(),
+        overrides: umbra::sim::experiment::study::Overrides { sets, ..Default::default() },
+        shard: None,
+        extremes: false,
+        out: "target/unused".into(),
+    };
+    let e = request(vec!["dram.bandwidth=3GB/s".into()]).prepare(&Limits::DEFAULT, 1).expect_err("swept key");
+    assert!(e.to_string().contains("arch_axes vary `dram.bandwidth`"), "{e}");
+    request(vec!["clock=2GHz".into()]).prepare(&Limits::DEFAULT, 1).expect("another key");
+}

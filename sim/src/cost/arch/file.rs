@@ -268,6 +268,17 @@ impl Arch {
         from_text(p.unit, value).and_then(|v| p.assign(self, v))
     }
 
+    /// The value `text` means for `key`, in the key's base unit: `1GB/s`,
+    /// `1 GB/s` and `1e9B/s` are one value. Not checked against the key's
+    /// range ([`Arch::assign`] checks that).
+    ///
+    /// # Errors
+    /// An unknown key, or text that is not a value of the key's unit.
+    pub(crate) fn value_of(key: &str, text: &str) -> Result<Value, Problem> {
+        let p = PARAMS.iter().find(|p| p.key == key).ok_or(Problem::Unknown)?;
+        from_text(p.unit, text)
+    }
+
     /// Take `key`'s value from `other`, then check the machine: one key
     /// changed at a time, as an attribution changes them.
     ///

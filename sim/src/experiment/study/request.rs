@@ -14,7 +14,7 @@ use umbra_core::RasterConfig;
 
 use super::{
     Manifest, Row, Shard, Spec, StudyError, SweepFile, already_complete, budgets_problem, extremes, finish,
-    load_scenes, run, summary, write_outputs, write_partial,
+    load_scenes, repeated, run, summary, write_outputs, write_partial,
 };
 use crate::cost::arch::Arch;
 use crate::input::limits::Limits;
@@ -206,7 +206,6 @@ impl Request {
     pub fn prepare_file(&self, file: SweepFile, limits: &Limits, threads: usize) -> Result<Prepared, StudyError> {
         let o = &self.overrides;
         no_repeats("scene", o.scenes.iter().map(String::as_str))?;
-        no_repeats("--image", o.images.iter().map(String::as_str))?;
         let maps: Vec<String> = o.maps.iter().map(u32::to_string).collect();
         no_repeats("--maps", maps.iter().map(String::as_str))?;
         let mut spec = file.spec(limits)?;
@@ -214,6 +213,16 @@ impl Request {
             spec.scenes = load_scenes(&o.scenes, limits)?;
         }
         if o.archs.is_empty() {
+            // A key the sweep's axes vary is theirs: a change to every point
+            // would leave each point's record naming a value it does not run.
+            for s in &o.sets {
+                let key = s.split_once('=').map_or(s.as_str(), |(k, _)| k.trim());
+                if spec.arch_points.iter().any(|p| p.assignments.iter().any(|(k, _)| k == key)) {
+                    return Err(StudyError::Request(format!(
+                        "--set {s}: the sweep's arch_axes vary `{key}`; change its values there"
+                    )));
+                }
+            }
             for arch in &mut spec.archs {
                 for s in &o.sets {
                     arch.set(s)?;
@@ -224,7 +233,15 @@ impl Request {
             spec.arch_points.clear();
         }
         if !o.images.is_empty() {
-            spec.images = o.images.iter().map(|i| image_size(i, limits)).collect::<Result<_, _>>()?;
+            let sizes: Vec<[u32; 2]> = o.images.iter().map(|i| image_size(i, limits)).collect::<Result<_, _>>()?;
+            if let Some((first, again)) = repeated(&sizes) {
+                let [w, h] = sizes[first];
+                return Err(StudyError::Request(format!(
+                    "--image `{}` and `{}` are one size, {w}x{h}: give it once",
+                    o.images[first], o.images[again]
+                )));
+            }
+            spec.images = sizes;
         }
         if let Some(n) = o.reference_rays {
             if !crate::render::RenderConfig::REFERENCE_RAYS.contains(&n) {

@@ -284,21 +284,18 @@ impl SweepFile {
         }
         // An axis that names one value twice would run every configuration
         // with it twice.
-        let names = |v: &[Filter]| v.iter().map(ToString::to_string).collect::<Vec<_>>();
+        // Each is compared as the value it means, and shown as written.
         if let Some((_, again, problem)) = super::same_names(&scenes) {
             return Err(self.err(format!("scenes[{again}]"), problem));
         }
-        for (key, twice) in [
-            ("images", repeated(&t.images)),
-            ("formats", repeated(&formats)),
-            ("maps", repeated(&t.maps)),
-            ("filters", repeated(&names(&filters))),
-            ("archs", repeated(&archs.iter().map(|a| a.name.clone()).collect::<Vec<_>>())),
-        ] {
-            if let Some((first, again)) = twice {
-                return Err(self.err(format!("{key}[{again}]"), format!("repeats {key}[{first}]")));
-            }
-        }
+        let shown = |v: &[String]| v.to_vec();
+        let images: Vec<String> = t.images.iter().map(|Exact([w, h])| format!("[{w}, {h}]")).collect();
+        let filter_names: Vec<String> = filters.iter().map(ToString::to_string).collect();
+        self.once("images", &t.images, &images)?;
+        self.once("formats", &formats, &shown(&t.formats))?;
+        self.once("maps", &t.maps, &t.maps.iter().map(u32::to_string).collect::<Vec<_>>())?;
+        self.once("filters", &filters, &filter_names)?;
+        self.once("archs", &archs.iter().map(|a| a.name.clone()).collect::<Vec<_>>(), &shown(&t.archs))?;
         if let Some((first, again)) = repeated(&variants) {
             return Err(self.err("algorithms", format!("variant {again} repeats variant {first}")));
         }
@@ -333,6 +330,19 @@ impl SweepFile {
             Some(problem) => Err(self.err("(axes)", problem)),
             None => Ok(spec),
         }
+    }
+
+    /// Refuse a value `key` lists twice: `parsed` compared as values,
+    /// `written` (the same length) shown as the file writes them.
+    fn once<T: PartialEq>(&self, key: &str, parsed: &[T], written: &[String]) -> Result<(), SweepError> {
+        let Some((first, again)) = repeated(parsed) else { return Ok(()) };
+        let (a, b) = (&written[first], &written[again]);
+        let problem = if a == b {
+            format!("`{b}` repeats {key}[{first}]: give each value once")
+        } else {
+            format!("`{b}` is {key}[{first}], `{a}`, written another way: give each value once")
+        };
+        Err(self.err(format!("{key}[{again}]"), problem))
     }
 
     /// Every list's length within [`MAX_AXIS_VALUES`], and the algorithm
@@ -445,8 +455,28 @@ impl SweepFile {
                 ));
             }
         }
+        // One axis per key, each value once as the value it means
+        // (`1GB/s` and `1 GB/s` are one): a point is one assignment per key.
         let values: Vec<Vec<String>> =
             t.arch_axes.iter().map(|a| a.values.iter().map(AxisValue::text).collect()).collect();
+        for (i, (axis, written)) in t.arch_axes.iter().zip(&values).enumerate() {
+            if let Some(j) = t.arch_axes[..i].iter().position(|a| a.key == axis.key) {
+                return Err(self.err(
+                    format!("arch_axes[{i}].key"),
+                    format!("`{}` is also arch_axes[{j}].key: one axis per key, every value on it", axis.key),
+                ));
+            }
+            let parsed = written
+                .iter()
+                .enumerate()
+                .map(|(k, v)| {
+                    Arch::value_of(&axis.key, v).map_err(|e| {
+                        self.err(format!("arch_axes[{i}].values[{k}]"), format!("{} = `{v}`: {e}", axis.key))
+                    })
+                })
+                .collect::<Result<Vec<_>, _>>()?;
+            self.once(&format!("arch_axes[{i}].values"), &parsed, written)?;
+        }
         let mut points: Vec<Vec<(usize, &str)>> = vec![Vec::new()];
         for (i, axis) in values.iter().enumerate() {
             points = points
