@@ -21,8 +21,10 @@ pub(super) enum ArchCommand {
     /// rates, achievable DRAM bandwidth and its latency ceiling, cache
     /// geometry, on-chip bytes a tile needs).
     Show(OneArchArgs),
-    /// The derived ceilings that make a key ineffective, each naming the
-    /// key; exits non-zero when the file is not a machine the model can run.
+    /// Every key that has no effect, each named with why: the derived
+    /// ceilings that cap another key, and the keys no unit of this machine
+    /// reads (a warning when set to do something, a note otherwise); exits
+    /// non-zero when the file is not a machine the model can run.
     Check(OneArchArgs),
     /// Rewrite an architecture file for the current format: the format
     /// stated, and every key added since with the value that keeps the
@@ -67,7 +69,17 @@ pub(super) fn arch(command: &ArchCommand, limits: &Limits) -> Result<()> {
             for (key, w) in &warnings {
                 say!("warning: {}: {key}: {w}", a.name);
             }
-            say!("{}: a machine the model can run; {} warning(s)", a.name, warnings.len());
+            // Every key no unit reads, set to something or not.
+            let unread = a.unread();
+            for u in unread.iter().filter(|u| !u.meant) {
+                say!("note: {}: {}: not read ({})", a.name, u.key, u.why);
+            }
+            say!(
+                "{}: a machine the model can run; {} warning(s); {} key(s) no unit reads",
+                a.name,
+                warnings.len(),
+                unread.len()
+            );
             Ok(())
         }
         ArchCommand::Upgrade(args) => crate::upgrade::upgrade(crate::upgrade::Kind::Arch, args, limits),

@@ -209,3 +209,31 @@ fn one_error_names_every_missing_and_unknown_key() {
     assert_eq!(keys, ["extra.knob", "clock", "dram.bandwidth"], "{e}");
     assert!(e.to_string().starts_with("old.toml: (file): 3 keys: extra.knob: unknown key; clock: missing"), "{e}");
 }
+
+/// A table the model does not know is refused as an unknown key is, even
+/// empty: the file of a million empty tables loaded before. Ours:
+/// one empty table alone, and an empty table of a known unit (which only
+/// leaves that unit's keys missing). The message lists 20 problems and
+/// counts the rest.
+#[test]
+fn an_unknown_table_is_refused_even_empty() {
+    let file = BUNDLED[0].1;
+    let e = Arch::parse(&format!("{file}\n[cache_tweaks]\n"), "t.toml").expect_err("an unknown table");
+    assert_eq!((e.key.as_str(), e.problem.to_string().starts_with("unknown key")), ("cache_tweaks", true), "{e}");
+    let nested = file.replace("[dram]", "[dram.timing]\n[dram]");
+    let e = Arch::parse(&nested, "t.toml").expect_err("an unknown inner table");
+    assert_eq!(e.key, "dram.timing", "{e}");
+    let million: String = (0..1_000_000).map(|i| format!("[t{i}]\n")).collect();
+    let e = Arch::parse(&format!("{file}\n{million}"), "m.toml").expect_err("a million unknown tables");
+    let text = e.to_string();
+    assert!(text.contains("1000000 keys: t0: unknown key") && text.ends_with("; and 999980 more"), "{}", &text[..200]);
+    assert!(text.len() < 2000, "the message stays short: {} bytes", text.len());
+    // An empty table of a known unit: its keys are missing, not unknown.
+    let emptied: String = file
+        .lines()
+        .skip_while(|l| *l != "[map_cache]")
+        .take_while(|l| !l.is_empty())
+        .fold(file.to_owned(), |t, l| if l.starts_with('[') { t } else { t.replace(&format!("{l}\n"), "") });
+    let e = Arch::parse(&emptied, "e.toml").expect_err("keys missing");
+    assert!(e.to_string().contains("map_cache.size: missing") && !e.to_string().contains("map_cache: unknown"), "{e}");
+}

@@ -7,5 +7,6 @@ mod bound;
 mod cache;
 mod correlation;
 mod derived;
+mod reads;
 mod shared;
 mod storage;

@@ -71,11 +71,19 @@ fn calibration(table: Option<toml::Value>) -> Result<Vec<Calibration>, (String, 
         .collect()
 }
 
-/// Every leaf key of a table, dotted.
+/// Every leaf key of a table, dotted, and every empty table no key lies
+/// under (`[cache_tweaks]` alone): a table the model does not know is
+/// named as an unknown key is.
 fn leaves(table: &toml::Table, prefix: &str, out: &mut Vec<String>) {
     for (k, v) in table {
         let key = if prefix.is_empty() { k.clone() } else { format!("{prefix}.{k}") };
         match v {
+            toml::Value::Table(t) if t.is_empty() => {
+                let known = PARAMS.iter().any(|p| p.key.strip_prefix(key.as_str()).is_some_and(|r| r.starts_with('.')));
+                if !known {
+                    out.push(key);
+                }
+            }
             toml::Value::Table(t) => leaves(t, &key, out),
             _ => out.push(key),
         }

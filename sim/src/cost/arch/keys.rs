@@ -133,13 +133,19 @@ pub fn column(key: &str) -> String {
 }
 
 /// Several keys' problems in one line, an unknown key without the list of
-/// every key.
+/// every key; past the first [`SHOWN`], only how many more.
 fn several(problems: &[(String, Problem)]) -> String {
-    let each = problems.iter().map(|(key, problem)| match problem {
+    /// The problems a message lists before it counts the rest.
+    const SHOWN: usize = 20;
+    let each = problems.iter().take(SHOWN).map(|(key, problem)| match problem {
         Problem::Unknown => format!("{key}: unknown key"),
         _ => format!("{key}: {problem}"),
     });
-    format!("{} keys: {}", problems.len(), each.collect::<Vec<_>>().join("; "))
+    let more = match problems.len().saturating_sub(SHOWN) {
+        0 => String::new(),
+        n => format!("; and {n} more"),
+    };
+    format!("{} keys: {}{more}", problems.len(), each.collect::<Vec<_>>().join("; "))
 }
 
 /// A key's value, read or to be written.
