@@ -169,7 +169,7 @@ pub fn study(
     let bar = ProgressBar::hidden();
     let rows = progress::run(py, &bar, progress, threads, || umbra_sim::study(&spec, Shard { index, count }, &bar))?
         .map_err(|e| error(&e))?;
-    let (csv, header) = table(&rows).map_err(|e| error(&e))?;
+    let (csv, header) = table(&rows);
     Ok((csv, schema_csv(&header)))
 }
 

@@ -9,6 +9,7 @@ use umbra_sim::cost::arch::PARAMS;
 use umbra_sim::cost::arch::derived::diff;
 use umbra_sim::experiment::attribution::attribute;
 use umbra_sim::input::limits::Limits;
+use umbra_sim::output::table::{Align, Table};
 use umbra_sim::render::RenderConfig;
 use umbra_sim::world::scene::Scene;
 
@@ -53,14 +54,19 @@ pub(super) fn arch(command: &ArchCommand, limits: &Limits) -> Result<()> {
     match command {
         ArchCommand::Show(which) => {
             let a = which.one("talisman", limits)?;
-            say!("# `{}`: {}\n\n| key | value | meaning |\n|---|---:|---|", a.name, a.description);
+            let columns = |first: &'static str, third: &'static str| {
+                [(first, Align::Left), ("value", Align::Right), (third, Align::Left)]
+            };
+            let mut keys = Table::new(&columns("key", "meaning"));
             for p in PARAMS {
-                say!("| `{}` | {} | {} |", p.key, p.written(&a), p.doc);
+                keys.row([format!("`{}`", p.key), p.written(&a), p.doc.to_owned()]);
             }
-            say!("\n| derived | value | how |\n|---|---:|---|");
+            let mut derived = Table::new(&columns("derived", "how"));
             for f in a.derived() {
-                say!("| {} | {} | {} |", f.name, f.text(), f.how);
+                derived.row([f.name.to_owned(), f.text(), f.how.to_owned()]);
             }
+            let title = umbra_sim::output::markdown::escape(&format!("# `{}`: {}", a.name, a.description));
+            say!("{title}\n\n{}\n{}", keys.markdown(), derived.markdown().trim_end());
             Ok(())
         }
         ArchCommand::Check(which) => {
@@ -89,14 +95,18 @@ pub(super) fn arch(command: &ArchCommand, limits: &Limits) -> Result<()> {
                 bail!("`{}` and `{}` are the same architecture", a.name, b.name);
             }
             let (keys, figures) = diff(&a, &b);
-            say!("| key | {} | {} |\n|---|---:|---:|", a.name, b.name);
+            let columns = |first: &str| {
+                [(first.to_owned(), Align::Left), (a.name.clone(), Align::Right), (b.name.clone(), Align::Right)]
+            };
+            let mut by_key = Table::new(&columns("key"));
             for (k, x, y) in keys {
-                say!("| `{k}` | {x} | {y} |");
+                by_key.row([format!("`{k}`"), x, y]);
             }
-            say!("\n| derived | {} | {} |\n|---|---:|---:|", a.name, b.name);
+            let mut by_figure = Table::new(&columns("derived"));
             for (k, x, y) in figures {
-                say!("| {k} | {x} | {y} |");
+                by_figure.row([k.to_owned(), x, y]);
             }
+            say!("{}\n{}", by_key.markdown(), by_figure.markdown().trim_end());
             if let Some(scene) = scene {
                 let scene = Scene::open(scene, limits)?;
                 let cfg = RenderConfig { width: scene.image[0], height: scene.image[1], ..RenderConfig::DEFAULT };

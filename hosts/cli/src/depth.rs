@@ -2,6 +2,7 @@
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+use umbra_sim::output::table::{Align, Table};
 
 use crate::say::say;
 use anyhow::{Context, Result, bail};
@@ -214,15 +215,26 @@ fn tile_report(scene: &Scene, maps: &RawMaps, c: &Counters, args: &DepthArgs) ->
     let mut s = String::new();
     let _ = writeln!(s, "# Light-pass tiles: {}\n", umbra_sim::output::markdown::escape(&scene.name));
     let _ = writeln!(s, "{}, cull {:?}; {}.\n", describe(maps), args.cull, scene.ignored());
-    let _ = writeln!(s, "| tile | triangles | fragments | culled | flushes | z1 min | z1 max | z2 min | z2 max |");
-    let _ = writeln!(s, "|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+    let mut columns = vec![("tile", Align::Left)];
+    columns.extend(
+        ["triangles", "fragments", "culled", "flushes", "z1 min", "z1 max", "z2 min", "z2 max"]
+            .map(|h| (h, Align::Right)),
+    );
+    let mut t = Table::new(&columns);
     for (i, (k, st)) in c.tiles.iter().zip(&maps.maps.tiles).enumerate() {
         let id = raster.tile_id(i);
-        let _ = writeln!(
-            s,
-            "| ({}, {}) | {} | {} | {} | {} | {} | {} | {} | {} |",
-            id.x, id.y, k.triangles, k.fragments, k.culled, k.flushes, st.z1_min, st.z1_max, st.z2_min, st.z2_max
-        );
+        t.row([
+            format!("({}, {})", id.x, id.y),
+            k.triangles.to_string(),
+            k.fragments.to_string(),
+            k.culled.to_string(),
+            k.flushes.to_string(),
+            st.z1_min.to_string(),
+            st.z1_max.to_string(),
+            st.z2_min.to_string(),
+            st.z2_max.to_string(),
+        ]);
     }
+    s.push_str(&t.markdown());
     s
 }

@@ -1,6 +1,7 @@
 //! `umbra render`: one shadow algorithm against the exact reference, with its pictures and metrics.
 
 use std::path::PathBuf;
+use umbra_sim::output::table::{Align, Table};
 
 use crate::say::say;
 use anyhow::Result;
@@ -143,16 +144,18 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
     if !scene.ignored().is_empty() {
         say!("the scene's OBJ files: {}", scene.ignored());
     }
-    say!("| pixels evaluated | false shadow | false light | misclassified | mean abs error |");
-    say!("|---:|---:|---:|---:|---:|");
-    say!(
-        "| {} | {:.3} % | {:.3} % | {:.3} % | {:.4} |",
-        m.evaluated,
-        m.false_shadow_percent,
-        m.false_light_percent,
-        m.misclassified_percent,
-        m.mean_abs_error
+    let mut table = Table::new(
+        &["pixels evaluated", "false shadow", "false light", "misclassified", "mean abs error"]
+            .map(|h| (h, Align::Right)),
     );
+    table.row([
+        m.evaluated.to_string(),
+        format!("{:.3} %", m.false_shadow_percent),
+        format!("{:.3} %", m.false_light_percent),
+        format!("{:.3} %", m.misclassified_percent),
+        format!("{:.4}", m.mean_abs_error),
+    ]);
+    say!("{}", table.markdown().trim_end());
     say!(
         "artifacts (wrong by their cause, shade off the reference by more than {} or on the wrong side of ½): {} acne ({} on terminators; {:.1} px of excess shadow), {} detachment ({:.1} px of missing shadow), {} leaks ({:.1} px of missing shadow): {:.3} % artifacts",
         SHADE_STEP,

@@ -13,6 +13,7 @@
 //! has no effect of its own: it is named, and its share is in the
 //! remainder.
 
+use crate::output::table::{Align, Table};
 use std::fmt::Write as _;
 
 use serde::Serialize;
@@ -210,39 +211,36 @@ impl Attribution {
             self.b_seconds * 1e3,
             self.config
         );
-        let heads: String = purposes.iter().map(|(_, n)| format!(" {n} bytes |")).collect();
-        let rules: String = purposes.iter().map(|_| "---:|").collect();
-        let _ = writeln!(
-            s,
-            "| change | time (µs) | time | energy (µJ) | DRAM bytes |{heads}\n|---|---:|---:|---:|---:|{rules}"
-        );
-        let row = |s: &mut String, what: &str, d: &Delta| {
-            let by: String = purposes.iter().map(|&(k, _)| format!(" {:+} |", d.bytes_by_purpose[k].1)).collect();
-            let _ = writeln!(
-                s,
-                "| {what} | {:+.3} | {:+.1} % | {:+.3} | {:+} |{by}",
-                d.seconds * 1e6,
-                100.0 * d.seconds / self.a_seconds.max(f64::MIN_POSITIVE),
-                d.joules * 1e6,
-                d.bytes
-            );
+        let mut columns = vec![
+            ("change".to_owned(), Align::Left),
+            ("time (µs)".to_owned(), Align::Right),
+            ("time".to_owned(), Align::Right),
+            ("energy (µJ)".to_owned(), Align::Right),
+            ("DRAM bytes".to_owned(), Align::Right),
+        ];
+        columns.extend(purposes.iter().map(|(_, n)| (format!("{n} bytes"), Align::Right)));
+        let mut t = Table::new(&columns);
+        let cells = |what: String, d: &Delta| {
+            let mut cells = vec![
+                what,
+                format!("{:+.3}", d.seconds * 1e6),
+                format!("{:+.1} %", 100.0 * d.seconds / self.a_seconds.max(f64::MIN_POSITIVE)),
+                format!("{:+.3}", d.joules * 1e6),
+                format!("{:+}", d.bytes),
+            ];
+            cells.extend(purposes.iter().map(|&(k, _)| format!("{:+}", d.bytes_by_purpose[k].1)));
+            cells
         };
         for share in &self.shares {
             let what = format!("`{}` {} → {}", share.key, share.values.0, share.values.1);
             match &share.effect {
-                Some(d) => row(&mut s, &what, d),
-                None => {
-                    let _ = writeln!(
-                        s,
-                        "| {what} ({}) | | | | |{}",
-                        share.alone.as_deref().unwrap_or(""),
-                        " |".repeat(purposes.len())
-                    );
-                }
+                Some(d) => t.row(cells(what, d)),
+                None => t.row([format!("{what} ({})", share.alone.as_deref().unwrap_or(""))]),
             }
         }
-        row(&mut s, "the keys' interaction (the remainder)", &self.remainder);
-        row(&mut s, "**all of them**", &self.total);
+        t.row(cells("the keys' interaction (the remainder)".to_owned(), &self.remainder));
+        t.row(cells("**all of them**".to_owned(), &self.total));
+        s.push_str(&t.markdown());
         s
     }
 }

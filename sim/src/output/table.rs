@@ -103,3 +103,64 @@ impl Table {
         String::from_utf8_lossy(&w.into_inner().unwrap_or_default()).into_owned()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{Align, Table};
+
+    /// The cell separators of a Markdown line: `|` not behind a backslash
+    /// (a backslash itself escaped counts as text).
+    fn separators(line: &str) -> usize {
+        let (mut n, mut escaped) = (0, false);
+        for c in line.chars() {
+            match (c, escaped) {
+                ('\\', false) => escaped = true,
+                ('|', false) => n += 1,
+                _ => escaped = false,
+            }
+        }
+        n
+    }
+
+    /// Cells of every troublesome character: each Markdown row is one line
+    /// of as many cells as the table has columns, and the CSV reads back,
+    /// through an independent reader, to the very cells written.
+    #[test]
+    fn no_cell_breaks_a_row_or_a_record() {
+        let parts = ["a", "|", "\n", "\r\n", "\"", ",", "\\", "<b>", "`x|y`", " ", "é", "\\|", "\t"];
+        let mut x: u32 = 12_345;
+        let mut next = || {
+            x = x.wrapping_mul(1_103_515_245).wrapping_add(12_345);
+            (x >> 16) as usize
+        };
+        let mut t = Table::new(&[("name | of\nit", Align::Left), ("b", Align::Right), ("c,\"", Align::Left)]);
+        let mut rows = Vec::new();
+        for _ in 0..200 {
+            let cell = |next: &mut dyn FnMut() -> usize| -> String {
+                (0..next() % 5).map(|_| parts[next() % parts.len()]).collect()
+            };
+            let row = vec![cell(&mut next), cell(&mut next), cell(&mut next)];
+            t.row(row.clone());
+            rows.push(row);
+        }
+        let md = t.markdown();
+        let lines: Vec<&str> = md.lines().collect();
+        assert_eq!(lines.len(), rows.len() + 2, "one line per row");
+        assert!(lines.iter().all(|l| separators(l) == 4), "four separators a line");
+        let csv = t.csv();
+        let mut r = csv::ReaderBuilder::new().has_headers(true).from_reader(csv.as_bytes());
+        assert_eq!(r.headers().expect("headers").iter().collect::<Vec<_>>(), ["name | of\nit", "b", "c,\""]);
+        let read: Vec<Vec<String>> =
+            r.records().map(|rec| rec.expect("a record").iter().map(str::to_owned).collect()).collect();
+        assert_eq!(read, rows);
+    }
+
+    /// A row too short is filled, one too long cut to the table's width.
+    #[test]
+    fn every_row_has_the_tables_width() {
+        let mut t = Table::new(&[("a", Align::Left), ("b", Align::Left)]);
+        t.row(["1"]);
+        t.row(["1", "2", "3"]);
+        assert_eq!(t.markdown(), "| a | b |\n|---|---|\n| 1 |  |\n| 1 | 2 |\n");
+    }
+}

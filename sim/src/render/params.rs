@@ -7,6 +7,7 @@
 //! are all made from this table; [`RenderConfig::DEFAULT`] holds the
 //! defaults.
 
+use crate::output::table::{Align, Table};
 use std::fmt::Write as _;
 
 use umbra_core::DepthFormatKind;
@@ -437,7 +438,7 @@ pub(super) fn flags(cfg: &RenderConfig) -> String {
 /// default, unit and the rows' column (`umbra schema render`).
 #[must_use]
 pub fn markdown() -> String {
-    let mut s = String::from("| flag | Python | values | default | unit | column |\n|---|---|---|---|---|---|\n");
+    let mut t = Table::new(&["flag", "Python", "values", "default", "unit", "column"].map(|h| (h, Align::Left)));
     for p in PARAMS {
         let default = match (p.kind, p.default_value()) {
             (Kind::Flag, Some(v)) if v == "true" => "on".to_owned(),
@@ -449,15 +450,14 @@ pub fn markdown() -> String {
             Kind::Whole { min, max } if max < SIDE => format!(", {min} to {max}"),
             _ => String::new(),
         };
-        let _ = writeln!(
-            s,
-            "| `{}` | `{}=` | {}{range} | {default} | {} | `{}` |",
-            p.flag(),
-            p.name,
-            p.values,
-            p.unit,
-            p.column
-        );
+        t.row([
+            format!("`{}`", p.flag()),
+            format!("`{}=`", p.name),
+            format!("{}{range}", p.values),
+            default,
+            p.unit.to_string(),
+            format!("`{}`", p.column),
+        ]);
     }
-    s
+    t.markdown()
 }

@@ -2,6 +2,7 @@
 //! cost common to every clock), DRAM bytes, energy and what binds, each
 //! against the first architecture.
 
+use crate::output::table::{Align, Table};
 use std::fmt::Write as _;
 
 use super::CostReport;
@@ -105,31 +106,39 @@ impl Comparison {
             s,
             "### Compared against {first}\n\nRanked by frame time: {rank}. Changes are against {first}: the ratio, then the change in percent.\n"
         );
-        let _ = writeln!(
-            s,
-            "| rank | architecture | clock (MHz) | cycles | time (µs) | time change | DRAM bytes | bytes change | energy (µJ) | energy change | bottleneck |"
-        );
-        let _ = writeln!(s, "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---|");
+        let (l, r) = (Align::Left, Align::Right);
+        let mut t = Table::new(&[
+            ("rank", r),
+            ("architecture", l),
+            ("clock (MHz)", r),
+            ("cycles", r),
+            ("time (µs)", r),
+            ("time change", r),
+            ("DRAM bytes", r),
+            ("bytes change", r),
+            ("energy (µJ)", r),
+            ("energy change", r),
+            ("bottleneck", l),
+        ]);
         let pct = |f: f64| format!("{} ({:+.1} %)", times(1.0 + f), 100.0 * f);
         let mut ranked: Vec<&Compared> = self.archs.iter().collect();
         ranked.sort_by_key(|a| a.rank);
         for a in ranked {
-            let _ = writeln!(
-                s,
-                "| {} | {} | {} | {:.0} | {:.3} | {} | {} | {} | {:.3} | {} | {} |",
-                a.rank,
-                a.arch,
-                a.clock_hertz / 1e6,
-                a.cycles,
-                a.seconds * 1e6,
+            t.row([
+                a.rank.to_string(),
+                a.arch.clone(),
+                (a.clock_hertz / 1e6).to_string(),
+                format!("{:.0}", a.cycles),
+                format!("{:.3}", a.seconds * 1e6),
                 pct(a.seconds_change),
-                a.dram_bytes,
+                a.dram_bytes.to_string(),
                 pct(a.dram_bytes_change),
-                a.energy_joules * 1e6,
+                format!("{:.3}", a.energy_joules * 1e6),
                 pct(a.energy_change),
-                a.bottleneck
-            );
+                a.bottleneck.to_string(),
+            ]);
         }
+        s.push_str(&t.markdown());
         s
     }
 }

@@ -12,6 +12,7 @@ mod trace;
 pub use compare::{Compared, Comparison};
 pub use trace::trace;
 
+use crate::output::table::{Align, Table};
 use std::fmt::Write as _;
 
 use crate::cost::arch::Arch;
@@ -263,30 +264,37 @@ impl CostReport {
         );
         let unit = if a.immediate() { "draws" } else { "tiles" };
         let bounds = Bottleneck::ALL.map(Bottleneck::name).join("/");
-        let _ = writeln!(
-            s,
-            "| pass | setup | raster | depth | shadow | shade | memory | memory at bandwidth / latency | pass cycles | bottleneck | DRAM achieved | {unit} bound ({bounds}) |"
-        );
-        let _ = writeln!(s, "|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---|");
+        let mut columns: Vec<(String, Align)> = [
+            "pass",
+            "setup",
+            "raster",
+            "depth",
+            "shadow",
+            "shade",
+            "memory",
+            "memory at bandwidth / latency",
+            "pass cycles",
+            "bottleneck",
+            "DRAM achieved",
+        ]
+        .iter()
+        .map(|h| ((*h).to_owned(), if matches!(*h, "pass" | "bottleneck") { Align::Left } else { Align::Right }))
+        .collect();
+        columns.push((format!("{unit} bound ({bounds})"), Align::Left));
+        let mut table = Table::new(&columns);
         for (name, t) in [("light", &self.light), ("camera", &self.camera)] {
-            let c = t.stages;
-            let b = t.bound.map(|n| n.to_string()).join("/");
-            let _ = writeln!(
-                s,
-                "| {name} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} | {:.0} / {:.0} | {:.0} | {} | {} | {b} |",
-                c[0],
-                c[1],
-                c[2],
-                c[3],
-                c[4],
-                c[5],
-                t.memory.bandwidth_cycles,
-                t.memory.latency_cycles,
-                t.cycles,
-                t.bottleneck,
+            let mut cells = vec![name.to_owned()];
+            cells.extend(t.stages.iter().map(|c| format!("{c:.0}")));
+            cells.extend([
+                format!("{:.0} / {:.0}", t.memory.bandwidth_cycles, t.memory.latency_cycles),
+                format!("{:.0}", t.cycles),
+                t.bottleneck.to_string(),
                 gb(t.achieved_bytes_per_second),
-            );
+                t.bound.map(|n| n.to_string()).join("/"),
+            ]);
+            table.row(cells);
         }
+        s.push_str(&table.markdown());
         let _ = writeln!(
             s,
             "\nDRAM: achieved {} over the frame, against a peak of {} and a latency ceiling of {} ({} requests in flight × {} B / {:.1} ns).",

@@ -18,6 +18,7 @@
 mod plot;
 mod stats;
 
+use crate::output::table::{Align, Table};
 use std::fmt::Write as _;
 
 use rayon::prelude::*;
@@ -413,19 +414,18 @@ fn value(v: f64) -> String {
     if v.abs() >= 1e4 { crate::experiment::plot::tick_label(v) } else { format!("{v:.1}") }
 }
 
-fn stats_cells(s: &Stats) -> String {
+fn stats_cells(s: &Stats) -> Vec<String> {
     let opt = |v: Option<f64>, f: &dyn Fn(f64) -> String| v.map_or_else(|| "—".to_owned(), f);
-    format!(
-        "{} | {:.1} % | {} | {} | {} | {} | {} | {}",
-        s.points,
-        s.mean_absolute_error_percent,
+    vec![
+        s.points.to_string(),
+        format!("{:.1} %", s.mean_absolute_error_percent),
         opt(s.pearson_r, &|r| format!("{r:.3}")),
         opt(s.nrmse_percent, &|n| format!("{n:.1} %")),
-        s.within_10_percent,
-        s.within_25_percent,
-        s.over,
-        s.under
-    )
+        s.within_10_percent.to_string(),
+        s.within_25_percent.to_string(),
+        s.over.to_string(),
+        s.under.to_string(),
+    ]
 }
 
 impl Correlation {
@@ -434,39 +434,61 @@ impl Correlation {
     #[must_use]
     pub fn markdown(&self) -> String {
         let mut s = String::new();
-        let head = "| points | mean abs. error | Pearson r | NRMSE | within 10 % | within 25 % | over | under |";
-        let _ = writeln!(s, "| dataset | kind {head}");
-        let _ = writeln!(s, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+        let (l, r) = (Align::Left, Align::Right);
+        let mut t = Table::new(&[
+            ("dataset", l),
+            ("kind", l),
+            ("points", r),
+            ("mean abs. error", r),
+            ("Pearson r", r),
+            ("NRMSE", r),
+            ("within 10 %", r),
+            ("within 25 %", r),
+            ("over", r),
+            ("under", r),
+        ]);
         for d in &self.datasets {
             let kind = serde_json::to_value(d.dataset.kind).ok().and_then(|v| v.as_str().map(str::to_owned));
-            let _ = writeln!(s, "| {} | {} | {} |", d.dataset.name, kind.unwrap_or_default(), stats_cells(&d.stats));
+            t.row([d.dataset.name.clone(), kind.unwrap_or_default()].into_iter().chain(stats_cells(&d.stats)));
         }
-        let _ = writeln!(s, "| **all validation points** | validation | {} |", stats_cells(&self.validation));
+        t.row(
+            ["**all validation points**".to_owned(), "validation".to_owned()]
+                .into_iter()
+                .chain(stats_cells(&self.validation)),
+        );
+        s.push_str(&t.markdown());
         for d in &self.datasets {
             let _ = writeln!(s, "\n**{}** — {}: {}.\n", d.dataset.name, d.dataset.source, d.dataset.what);
             if d.points.is_empty() {
                 let _ = writeln!(s, "No points: the model cannot speak to this source (its file says why).");
                 continue;
             }
-            let _ = writeln!(s, "| point | arch | measured | predicted | unit | error | role |");
-            let _ = writeln!(s, "|---|---|---:|---:|---|---:|---|");
+            let mut t = Table::new(&[
+                ("point", l),
+                ("arch", l),
+                ("measured", r),
+                ("predicted", r),
+                ("unit", l),
+                ("error", r),
+                ("role", l),
+            ]);
             for c in &d.points {
                 let role = match c.role {
                     Role::Calibration => format!("calibration ({})", c.fitted.join(", ")),
                     Role::Validation => "validation".into(),
                     Role::Sanity => "sanity".into(),
                 };
-                let _ = writeln!(
-                    s,
-                    "| {} | {} | {} | {} | {} | {:+.1} % | {role} |",
-                    c.what,
-                    c.arch,
+                t.row([
+                    c.what.to_string(),
+                    c.arch.to_string(),
                     value(c.measured),
                     value(c.predicted),
-                    c.unit,
-                    100.0 * c.error()
-                );
+                    c.unit.to_string(),
+                    format!("{:+.1} %", 100.0 * c.error()),
+                    role,
+                ]);
             }
+            s.push_str(&t.markdown());
         }
         s
     }

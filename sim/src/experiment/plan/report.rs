@@ -1,6 +1,7 @@
 //! The plan as a person reads it: the pick, why, its figures beside the
 //! runners-up, and the map's storage, in Markdown.
 
+use crate::output::table::{Align, Table};
 use std::fmt::Write as _;
 
 use super::{Budget, Candidate, Measure, Plan, RunnerUp};
@@ -28,43 +29,49 @@ impl Plan {
             let _ = writeln!(s, "- {r}");
         }
         let measures: Vec<Measure> = budget_columns(&self.budgets);
-        let heads: String = measures.iter().map(|m| format!(" {} % |", m.name())).collect();
-        let rules: String = measures.iter().map(|_| "---:|").collect();
-        let _ = writeln!(
-            s,
-            "\n| candidate | cycles | time (ms) | DRAM bytes |{heads} why not |\n|---|---:|---:|---:|{rules}---|"
-        );
-        let row = |s: &mut String, c: &Candidate, why: &str| {
-            let figures: String = measures.iter().map(|&m| format!(" {:.3} |", c.measure(m))).collect();
-            let _ =
-                writeln!(s, "| {} | {} | {:.3} | {} |{figures} {why} |", c.label, c.cycles, c.seconds * 1e3, c.bytes);
+        let mut columns: Vec<(String, Align)> = ["candidate", "cycles", "time (ms)", "DRAM bytes"]
+            .iter()
+            .enumerate()
+            .map(|(i, h)| ((*h).to_owned(), if i == 0 { Align::Left } else { Align::Right }))
+            .collect();
+        columns.extend(measures.iter().map(|m| (format!("{} %", m.name()), Align::Right)));
+        columns.push(("why not".to_owned(), Align::Left));
+        let mut t = Table::new(&columns);
+        let cells = |c: &Candidate, bold: bool| {
+            let b = |x: String| if bold { format!("**{x}**") } else { x };
+            let mut cells = vec![
+                b(c.label.clone()),
+                b(c.cycles.to_string()),
+                b(format!("{:.3}", c.seconds * 1e3)),
+                b(c.bytes.to_string()),
+            ];
+            cells.extend(measures.iter().map(|&m| b(format!("{:.3}", c.measure(m)))));
+            cells
         };
         let pick = if self.meets { "the pick" } else { "the pick, nearest the budgets" };
         let cheaper: Vec<&RunnerUp> = self.runners_up.iter().filter(|r| r.cheaper).collect();
         for r in cheaper.iter().rev() {
-            row(&mut s, &r.candidate, &r.lost);
+            t.row(cells(&r.candidate, false).into_iter().chain([r.lost.clone()]));
         }
-        let _ = write!(s, "| **{}** | **{}** | **{:.3}** | **{}** |", p.label, p.cycles, p.seconds * 1e3, p.bytes);
-        for &m in &measures {
-            let _ = write!(s, " **{:.3}** |", p.measure(m));
-        }
-        let _ = writeln!(s, " {pick} |");
+        t.row(cells(p, true).into_iter().chain([pick.to_owned()]));
         for r in self.runners_up.iter().filter(|r| !r.cheaper) {
-            row(&mut s, &r.candidate, &r.lost);
+            t.row(cells(&r.candidate, false).into_iter().chain([r.lost.clone()]));
         }
+        let _ = write!(s, "\n{}", t.markdown());
         let st = &self.storage;
-        let _ = writeln!(
-            s,
-            "\nMap storage (Reeves et al. Table 2), {} buffer(s):\n\n| scheme | bytes | holds |\n|---|---:|---|",
-            st.buffers
-        );
-        let _ = writeln!(s, "| raw | {} | every texel |", st.raw);
-        let _ = writeln!(s, "| bounding box | {} | {} texels of finite depth |", st.bounding_box, st.box_texels);
-        let _ = writeln!(
-            s,
-            "| {REEVES_TILE}×{REEVES_TILE} tiles | {} | {} of {} tiles that received geometry |",
-            st.tiles, st.stored_tiles, st.grid_tiles
-        );
+        let mut t = Table::new(&[("scheme", Align::Left), ("bytes", Align::Right), ("holds", Align::Left)]);
+        t.row(["raw".to_owned(), st.raw.to_string(), "every texel".to_owned()]);
+        t.row([
+            "bounding box".to_owned(),
+            st.bounding_box.to_string(),
+            format!("{} texels of finite depth", st.box_texels),
+        ]);
+        t.row([
+            format!("{REEVES_TILE}×{REEVES_TILE} tiles"),
+            st.tiles.to_string(),
+            format!("{} of {} tiles that received geometry", st.stored_tiles, st.grid_tiles),
+        ]);
+        let _ = write!(s, "\nMap storage (Reeves et al. Table 2), {} buffer(s):\n\n{}", st.buffers, t.markdown());
         s
     }
 }

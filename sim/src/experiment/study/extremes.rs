@@ -13,6 +13,7 @@
 //!
 //! None may panic; each must give a finite metric.
 
+use crate::output::table::{Align, Table};
 use std::fmt::Write as _;
 
 use glam::Vec3;
@@ -228,46 +229,46 @@ pub(crate) fn markdown(rows: &[Row]) -> String {
         rows.first().map_or(0, |r| r.config.image_height_px)
     );
     let _ = writeln!(s, "## Light near/far ratio (table-and-sphere scene, spot light)\n");
-    let _ = write!(s, "| algorithm | format |");
-    for r in RATIOS {
-        let _ = write!(s, " {r:.0e} |");
-    }
-    let _ = writeln!(s, " breaks down at |");
-    let _ = writeln!(s, "|---|---|{}---|", "---:|".repeat(RATIOS.len()));
+    let mut columns = vec![("algorithm".to_owned(), Align::Left), ("format".to_owned(), Align::Left)];
+    columns.extend(RATIOS.iter().map(|r| (format!("{r:.0e}"), Align::Right)));
+    columns.push(("breaks down at".to_owned(), Align::Left));
+    let mut t = Table::new(&columns);
     for v in variants() {
         for f in DepthFormatKind::ALL {
             let name = v.algorithm.name();
-            let _ = write!(s, "| {name} | {f} |");
-            for r in curve(rows, name, f).filter(|r| ratio_of(&r.config.scene).is_some()) {
-                let _ = write!(s, " {} |", cell(r));
-            }
+            let mut cells = vec![name.to_owned(), f.to_string()];
+            cells.extend(curve(rows, name, f).filter(|r| ratio_of(&r.config.scene).is_some()).map(cell));
+            cells.resize(2 + RATIOS.len(), String::new());
             let measured = curve(rows, name, f).any(|r| r.metrics.is_some());
-            let b = match breakdown(rows, name, f) {
+            cells.push(match breakdown(rows, name, f) {
                 Some(r) => format!("{r:.0e}"),
                 None if measured => "never (≤ 10⁶)".to_owned(),
                 None => "not measured".to_owned(),
-            };
-            let _ = writeln!(s, " {b} |");
+            });
+            t.row(cells);
         }
     }
+    s.push_str(&t.markdown());
     let _ = writeln!(s, "\n## Other extremes\n");
-    let _ = writeln!(s, "| case | algorithm | {} |", DepthFormatKind::ALL.map(|f| f.name()).join(" | "));
-    let _ = writeln!(s, "|---|---|---:|---:|---:|");
+    let mut columns = vec![("case".to_owned(), Align::Left), ("algorithm".to_owned(), Align::Left)];
+    columns.extend(DepthFormatKind::ALL.map(|f| (f.name().to_owned(), Align::Right)));
+    let mut t = Table::new(&columns);
     let cases =
         super::distinct(rows.iter().filter(|r| ratio_of(&r.config.scene).is_none()).map(|r| r.config.scene.as_str()));
     for case in cases {
         for v in variants() {
             let name = v.algorithm.name();
-            let _ = write!(s, "| {case} | {name} |");
+            let mut cells = vec![case.to_owned(), name.to_owned()];
             for f in DepthFormatKind::ALL {
                 let c = rows
                     .iter()
                     .find(|r| r.config.scene == case && r.config.algorithm == name && r.config.depth_format == f);
-                let _ = write!(s, " {} |", c.map_or_else(|| "–".to_owned(), cell));
+                cells.push(c.map_or_else(|| "–".to_owned(), cell));
             }
-            let _ = writeln!(s);
+            t.row(cells);
         }
     }
+    s.push_str(&t.markdown());
     s
 }
 

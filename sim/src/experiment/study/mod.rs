@@ -161,9 +161,6 @@ pub enum StudyError {
         /// What is wrong.
         problem: String,
     },
-    /// CSV encoding failed.
-    #[error("results.csv: {0}")]
-    Csv(#[from] csv::Error),
     /// A plot could not be drawn.
     #[error("plot {path}: {problem}")]
     Plot {

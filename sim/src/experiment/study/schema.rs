@@ -3,7 +3,7 @@
 //! rows as `schema.csv` so that a script needs no documentation to read
 //! them.
 
-use std::fmt::Write as _;
+use crate::output::table::{Align, Table};
 
 use super::RowCost;
 use super::row::RowMetrics;
@@ -92,34 +92,33 @@ pub(crate) fn axis_unit(column: &str) -> &'static str {
 /// an empty meaning.
 #[must_use]
 pub fn schema_csv(header: &[String]) -> String {
-    let mut w = csv::Writer::from_writer(Vec::new());
-    let mut row = |cells: [&str; 4]| {
-        // Writing to memory cannot fail.
-        let _ = w.write_record(cells);
-    };
-    row(["column", "type", "unit", "meaning"]);
+    let mut t = Table::new(&HEADINGS);
     let columns = columns();
     for h in header {
         match columns.iter().find(|c| c.0 == h) {
-            Some(c) => row([c.0, c.1, c.2, c.3]),
+            Some(c) => t.row([c.0, c.1, c.2, c.3]),
             None if h.starts_with("arch_") => {
                 let meaning = format!("the architecture axis {}, in SI base units (a flag or text as it is)", &h[5..]);
-                row([h, "number", axis_unit(h), &meaning]);
+                t.row([h.clone(), "number".to_owned(), axis_unit(h).to_owned(), meaning]);
             }
-            None => row([h, "text", "-", ""]),
+            None => t.row([h.as_str(), "text", "-", ""]),
         }
     }
-    String::from_utf8_lossy(&w.into_inner().unwrap_or_default()).into_owned()
+    t.csv()
 }
+
+/// The schema's headings, in `schema.csv` and the Markdown table alike.
+const HEADINGS: [(&str, Align); 4] =
+    [("column", Align::Left), ("type", Align::Left), ("unit", Align::Left), ("meaning", Align::Left)];
 
 /// The fixed columns as a Markdown table.
 #[must_use]
 pub fn markdown() -> String {
-    let mut s = String::from("| column | type | unit | meaning |\n|---|---|---|---|\n");
+    let mut t = Table::new(&HEADINGS);
     for (name, kind, unit, meaning) in columns() {
-        let _ = writeln!(s, "| `{name}` | {kind} | {unit} | {meaning} |");
+        t.row([format!("`{name}`"), kind.to_owned(), unit.to_owned(), meaning.to_owned()]);
     }
-    s
+    t.markdown()
 }
 
 #[cfg(test)]

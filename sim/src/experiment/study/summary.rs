@@ -5,6 +5,7 @@ use super::rank::{cheapest, keys, one_clock};
 use super::{Manifest, Row, RowCost, StudyError, distinct, jsonl, loosest, plot, sort_rows};
 use crate::output::folder::OutputFolder;
 use crate::output::markdown::escape;
+use crate::output::table::{Align, Table};
 use std::fmt::Write as _;
 
 /// Write `results.jsonl`, `results.csv`, the Pareto plots per scene and
@@ -17,7 +18,7 @@ pub(crate) fn write_outputs(folder: &mut OutputFolder, rows: &[Row], manifest: &
     let mut rows = rows.to_vec();
     sort_rows(&mut rows);
     folder.write_text("results.jsonl", &jsonl(&rows))?;
-    let (table, header) = table(&rows)?;
+    let (table, header) = table(&rows);
     folder.write_text("results.csv", &table)?;
     folder.write_text("schema.csv", &super::schema::schema_csv(&header))?;
     let scenes = scenes_of(&rows);
@@ -53,31 +54,23 @@ fn leaves(v: &serde_json::Value, key: &str, out: &mut Vec<(String, String)>) {
 /// The rows flat as `results.csv` holds them, and the header: one column
 /// per field of a row with every block (a skipped row's metric and cost
 /// columns empty).
-///
-/// # Errors
-/// [`StudyError::Csv`], which writing to memory does not give.
-pub fn table(rows: &[Row]) -> Result<(String, Vec<String>), StudyError> {
+#[must_use]
+pub fn table(rows: &[Row]) -> (String, Vec<String>) {
     let flat = |r: &Row| {
         let mut cells = Vec::new();
         // A Row holds only strings, numbers, booleans and options: it always serialises.
         leaves(&serde_json::to_value(r).unwrap_or_default(), "", &mut cells);
         cells
     };
-    let mut w = csv::Writer::from_writer(Vec::new());
-    let mut columns = Vec::new();
-    if let Some(first) = rows.first() {
-        let template =
-            Row { metrics: Some(super::RowMetrics::default()), cost: Some(RowCost::default()), ..first.clone() };
-        let header: Vec<String> = flat(&template).into_iter().map(|c| c.0).collect();
-        w.write_record(&header)?;
-        columns.clone_from(&header);
-        for r in rows {
-            let cells = flat(r);
-            w.write_record(header.iter().map(|h| cells.iter().find(|c| &c.0 == h).map_or("", |c| c.1.as_str())))?;
-        }
+    let Some(first) = rows.first() else { return (String::new(), Vec::new()) };
+    let template = Row { metrics: Some(super::RowMetrics::default()), cost: Some(RowCost::default()), ..first.clone() };
+    let header: Vec<String> = flat(&template).into_iter().map(|c| c.0).collect();
+    let mut t = Table::new(&header.iter().map(|h| (h.as_str(), Align::Left)).collect::<Vec<_>>());
+    for r in rows {
+        let cells = flat(r);
+        t.row(header.iter().map(|h| cells.iter().find(|c| &c.0 == h).map_or("", |c| c.1.as_str())));
     }
-    let bytes = w.into_inner().map_err(|e| StudyError::Csv(e.into_error().into()))?;
-    Ok((String::from_utf8_lossy(&bytes).into_owned(), columns))
+    (t.csv(), header)
 }
 
 /// A scene name as it may appear in a file name: letters, digits, `-` and
@@ -131,17 +124,11 @@ pub fn summary(rows: &[Row], manifest: &Manifest) -> String {
         scene_summary(&mut s, &mine, &manifest.budgets);
     }
     if !skipped.is_empty() {
-        let _ = writeln!(s, "## Skipped\n\n| row | configuration | reason |\n|---:|---|---|");
+        let mut t = Table::new(&[("row", Align::Right), ("configuration", Align::Left), ("reason", Align::Left)]);
         for r in skipped {
-            let _ = writeln!(
-                s,
-                "| {} | {} {} | {} |",
-                r.config_index,
-                escape(&r.config.scene),
-                r.label(),
-                escape(&r.reason)
-            );
+            t.row([r.config_index.to_string(), format!("{} {}", r.config.scene, r.label()), r.reason.clone()]);
         }
+        let _ = write!(s, "## Skipped\n\n{}", t.markdown());
     }
     s
 }
@@ -154,28 +141,35 @@ fn scene_summary(s: &mut String, rows: &[&Row], budgets: &[f64]) {
         p
     });
     let keys = keys(rows);
-    let _ = writeln!(s, "| artifact budget | cost | cheapest | cost | artifacts % | misclassified % |");
-    let _ = writeln!(s, "|---:|---|---|---:|---:|---:|");
+    let (l, r) = (Align::Left, Align::Right);
+    let mut t = Table::new(&[
+        ("artifact budget", r),
+        ("cost", l),
+        ("cheapest", l),
+        ("cost", r),
+        ("artifacts %", r),
+        ("misclassified %", r),
+    ]);
     for &budget in budgets {
         let flag = if pixel.is_some_and(|p| budget < p) { " (below one pixel)" } else { "" };
         for key in keys {
-            let cell = match cheapest(rows, budget, key) {
+            let cells = match cheapest(rows, budget, key) {
                 Some((r, ties)) => {
                     let m = r.metrics.unwrap_or_default();
                     let tie = if ties > 1 { format!(" ({ties} tie; the first in sweep order)") } else { String::new() };
-                    format!(
-                        "{}{tie} | {} | {:.4} | {:.4}",
-                        r.label(),
+                    [
+                        format!("{}{tie}", r.label()),
                         r.cost.as_ref().map_or_else(String::new, |c| (key.show)((key.value)(c))),
-                        m.artifact_percent,
-                        m.misclassified_percent
-                    )
+                        format!("{:.4}", m.artifact_percent),
+                        format!("{:.4}", m.misclassified_percent),
+                    ]
                 }
-                None => "none meets it | – | – | –".to_owned(),
+                None => ["none meets it", "–", "–", "–"].map(str::to_owned),
             };
-            let _ = writeln!(s, "| {budget} %{flag} | {} | {cell} |", key.name);
+            t.row([format!("{budget} %{flag}"), key.name.to_owned()].into_iter().chain(cells));
         }
     }
+    s.push_str(&t.markdown());
     if let Some(p) = pixel {
         let _ = writeln!(
             s,
@@ -185,27 +179,23 @@ fn scene_summary(s: &mut String, rows: &[&Row], budgets: &[f64]) {
     }
     let families = distinct(rows.iter().map(|r| r.config.family));
     for key in keys {
-        let _ = write!(s, "Cheapest per algorithm family in {}:\n\n| family |", key.name);
-        for b in budgets {
-            let _ = write!(s, " {b} % |");
-        }
-        let _ = writeln!(s, "\n|---|{}", "---|".repeat(budgets.len()));
+        let mut columns = vec![("family".to_owned(), Align::Left)];
+        columns.extend(budgets.iter().map(|b| (format!("{b} %"), Align::Left)));
+        let mut t = Table::new(&columns);
         for f in &families {
-            let _ = write!(s, "| {f} |");
             let fam: Vec<&Row> = rows.iter().copied().filter(|r| r.config.family == *f).collect();
-            for &b in budgets {
-                let cell = cheapest(&fam, b, key).map_or_else(
+            let cells = budgets.iter().map(|&b| {
+                cheapest(&fam, b, key).map_or_else(
                     || "–".to_owned(),
                     |(r, _)| {
                         let cost = r.cost.as_ref().map_or_else(String::new, |c| (key.show)((key.value)(c)));
                         format!("{} ({cost})", r.label())
                     },
-                );
-                let _ = write!(s, " {cell} |");
-            }
-            let _ = writeln!(s);
+                )
+            });
+            t.row([f.to_string()].into_iter().chain(cells));
         }
-        let _ = writeln!(s);
+        let _ = writeln!(s, "Cheapest per algorithm family in {}:\n\n{}", key.name, t.markdown());
     }
     crossovers(s, rows, budgets);
     bottlenecks(s, rows, budgets);
@@ -298,27 +288,37 @@ fn bottlenecks(s: &mut String, rows: &[&Row], budgets: &[f64]) {
     let _ = writeln!(
         s,
         "Bottlenecks (light pass / camera pass) of each configuration that wins within {loose} % at some \
-         architecture point, at every point:\n\n| configuration | architecture | parameters | cycles | time (µs) | DRAM achieved (GB/s) | DRAM latency ceiling (GB/s) | light pass | camera pass |\n|---|---|---|---:|---:|---:|---:|---|---|"
+         architecture point, at every point:\n"
     );
+    let (l, r) = (Align::Left, Align::Right);
+    let mut t = Table::new(&[
+        ("configuration", l),
+        ("architecture", l),
+        ("parameters", l),
+        ("cycles", r),
+        ("time (µs)", r),
+        ("DRAM achieved (GB/s)", r),
+        ("DRAM latency ceiling (GB/s)", r),
+        ("light pass", l),
+        ("camera pass", l),
+    ]);
     for w in winners {
         let mine: Vec<&Row> = rows.iter().copied().filter(|r| r.config_index == w).collect();
         let mut seen = Vec::new();
         for &p in &points {
             if let Some(c) = mine.iter().find(|r| at(r, p)).and_then(|r| Some((r, r.cost.as_ref()?))) {
                 let (r, c) = c;
-                let _ = writeln!(
-                    s,
-                    "| {} | {} | {} | {} | {:.3} | {:.1} | {:.1} | {} | {} |",
+                t.row([
                     r.render_label(),
-                    p.0,
-                    p.1,
-                    c.total_cycles,
-                    c.frame_seconds * 1e6,
-                    c.dram_achieved_bytes_per_second / 1e9,
-                    c.dram_latency_ceiling_bytes_per_second / 1e9,
-                    c.light_bottleneck,
-                    c.camera_bottleneck
-                );
+                    p.0.to_string(),
+                    p.1.to_string(),
+                    c.total_cycles.to_string(),
+                    format!("{:.3}", c.frame_seconds * 1e6),
+                    format!("{:.1}", c.dram_achieved_bytes_per_second / 1e9),
+                    format!("{:.1}", c.dram_latency_ceiling_bytes_per_second / 1e9),
+                    c.light_bottleneck.to_string(),
+                    c.camera_bottleneck.to_string(),
+                ]);
                 seen.push((c.light_bottleneck, c.camera_bottleneck));
             }
         }
@@ -326,8 +326,9 @@ fn bottlenecks(s: &mut String, rows: &[&Row], budgets: &[f64]) {
         if seen.len() > 1
             && let Some(r) = mine.first()
         {
-            let _ = writeln!(s, "| {}: the parameters move its bottleneck | | | | | | | | |", r.render_label());
+            t.row([format!("{}: the parameters move its bottleneck", r.render_label())]);
         }
     }
+    s.push_str(&t.markdown());
     let _ = writeln!(s);
 }

@@ -297,3 +297,22 @@ fn status_is_ready_exactly_when_merge_succeeds() {
     }
     assert!(ready >= 20 && refused >= 60, "both sides are tried: {ready} ready, {refused} refused");
 }
+
+/// The case: folder names with `|` and a newline broke `status`'s
+/// table (a row gained a column, or split). Ours: the same characters in
+/// a folder given twice, whose problem names the folder too.
+#[test]
+fn a_folder_of_any_name_keeps_the_status_table_whole() {
+    let spec = tiny("gggg");
+    let odd = shard(&spec, "odd|name\nwith | bars", 0, 1);
+    let s = study::status(&[odd.clone(), odd.clone()], &Limits::DEFAULT);
+    let md = s.markdown();
+    let table: Vec<&str> = md.lines().take_while(|l| l.starts_with('|')).collect();
+    assert_eq!(table.len(), 4, "a heading, a rule and two rows: {md}");
+    let unescaped = |l: &str| l.replace("\\\\", "").replace("\\|", "").matches('|').count();
+    assert!(table.iter().all(|l| unescaped(l) == 6), "{md}");
+    assert!(md.contains("odd\\|name\\u{a}with \\| bars"), "{md}");
+    let problems: Vec<&str> = md.lines().filter(|l| l.starts_with("- ")).collect();
+    assert_eq!(problems.len(), 1, "one line a problem: {md}");
+    let _ = std::fs::remove_dir_all(odd);
+}
