@@ -19,7 +19,7 @@ impl Arch {
     /// The bundled architecture `name`, or the architecture file at that path.
     #[new]
     fn new(name: &str) -> PyResult<Self> {
-        umbra_sim::Arch::open(name, &Limits::DEFAULT).map(|inner| Self { inner }).map_err(|e| error(&e))
+        umbra_sim::Arch::open(name, &Limits::for_machine()).map(|inner| Self { inner }).map_err(|e| error(&e))
     }
 
     /// A copy with `key` set to `value`, written as an architecture file

@@ -72,7 +72,7 @@ pub fn config(scene: &Scene, flags: Option<&Bound<'_, PyDict>>) -> PyResult<Conf
         request.set(&name, &text).map_err(|e| UmbraError::new_err(e.to_string()))?;
     }
     let cfg = request.config(scene.inner.image).map_err(|e| UmbraError::new_err(e.to_string()))?;
-    cfg.check(&scene.inner, &Limits::DEFAULT).map_err(|e| error(&e))?;
+    cfg.check(&scene.inner, &Limits::for_machine()).map_err(|e| error(&e))?;
     Ok(Config { inner: cfg })
 }
 
@@ -92,7 +92,7 @@ pub fn render<'py>(
     let bar = ProgressBar::hidden();
     bar.set_length(u64::from(config.inner.height));
     let r = progress::run(py, &bar, progress, threads, || {
-        let job = config.inner.check(&scene.inner, &Limits::DEFAULT)?;
+        let job = config.inner.check(&scene.inner, &Limits::for_machine())?;
         umbra_sim::render(&job, TruthSource::Build(&bar))
     })?
     .map_err(|e| error(&e))?;
@@ -129,7 +129,7 @@ pub fn render<'py>(
 #[pyfunction]
 pub fn cost(py: Python<'_>, scene: &Scene, config: &Config, arch: &Arch) -> PyResult<String> {
     let report = py
-        .detach(|| umbra_sim::cost(&config.inner.check(&scene.inner, &Limits::DEFAULT)?, &arch.inner))
+        .detach(|| umbra_sim::cost(&config.inner.check(&scene.inner, &Limits::for_machine())?, &arch.inner))
         .map_err(|e| error(&e))?;
     serde_json::to_string(&report).map_err(|e| error(&e))
 }
@@ -148,7 +148,7 @@ pub fn study(
     progress: Option<&Bound<'_, PyAny>>,
     threads: Option<usize>,
 ) -> PyResult<(String, String)> {
-    let limits = Limits::DEFAULT;
+    let limits = Limits::for_machine();
     let sweep = match (name, text) {
         (Some(name), None) => SweepFile::open(name, &limits).map_err(|e| error(&e))?,
         (None, Some(text)) => SweepFile { file: PathBuf::from(file), text, bundled: false },
@@ -196,7 +196,7 @@ pub fn plan(
         budgets.iter().map(|b| b.parse()).collect::<Result<Vec<Budget>, String>>().map_err(|e| bad("budget", e))?;
     let mut spec = match sweep {
         Some(name) => {
-            let limits = Limits::DEFAULT;
+            let limits = Limits::for_machine();
             let sweep = SweepFile::open(&name, &limits).and_then(|f| f.spec(&limits)).map_err(|e| error(&e))?;
             PlanSpec::from_sweep(&scene.inner, budgets, &sweep)
         }

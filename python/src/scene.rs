@@ -21,14 +21,14 @@ impl Scene {
     /// The bundled scene `name`, or the scene file at that path.
     #[new]
     fn new(name: &str) -> PyResult<Self> {
-        umbra_sim::Scene::open(name, &Limits::DEFAULT).map(|inner| Self { inner }).map_err(|e| error(&e))
+        umbra_sim::Scene::open(name, &Limits::for_machine()).map(|inner| Self { inner }).map_err(|e| error(&e))
     }
 
     /// A scene from the text of a scene file, named `file` in errors
     /// (relative OBJ paths are taken from `file`'s folder).
     #[staticmethod]
     fn from_toml(text: &str, file: &str) -> PyResult<Self> {
-        let mut inner = umbra_sim::Scene::parse(text, Path::new(file), &Limits::DEFAULT).map_err(|e| error(&e))?;
+        let mut inner = umbra_sim::Scene::parse(text, Path::new(file), &Limits::for_machine()).map_err(|e| error(&e))?;
         inner.source = file.to_owned();
         Ok(Self { inner })
     }

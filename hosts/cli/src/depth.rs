@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use umbra_sim::output::table::{Align, Table};
 
 use crate::say::say;
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use clap::ValueEnum;
 use umbra_core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, RasterConfig};
 use umbra_sim::base::counters::Counters;
@@ -13,9 +13,8 @@ use umbra_sim::glam::Mat4;
 use umbra_sim::input::limits::Limits;
 use umbra_sim::output::folder::OutputFolder;
 use umbra_sim::output::formats::{RawMap, write_npy, write_preview};
-use umbra_sim::pass::light::RawMaps;
-use umbra_sim::world::mesh::Mesh;
-use umbra_sim::world::scene::{Light, Object, Perspective, Scene, parse_matrix};
+use umbra_sim::pass::light::{EmptyMap, RawMaps};
+use umbra_sim::world::scene::{Scene, parse_matrix};
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub(super) enum Unit {
@@ -92,20 +91,7 @@ fn read_matrix(arg: &str, limits: &Limits) -> Result<Mat4> {
 pub(super) fn depth(args: &DepthArgs, limits: &Limits) -> Result<()> {
     limits.check_map(args.map).with_context(|| format!("--map {}", args.map))?;
     let scene = match &args.mesh {
-        Some(path) => {
-            let mesh = Mesh::load_obj(path, limits)?;
-            let light = Perspective::framing(&mesh).context("the mesh has no vertices")?;
-            let name = path.file_stem().map_or_else(|| "mesh".into(), |s| s.to_string_lossy().into_owned());
-            let lights = vec![Light::Spot(light)];
-            Scene {
-                name: name.clone(),
-                objects: vec![Object { name, mesh, solid: false }],
-                lights,
-                camera: light,
-                image: [512, 512],
-                source: path.display().to_string(),
-            }
-        }
+        Some(path) => Scene::of_obj(path, limits)?,
         None => Scene::default_scene(),
     };
     let matrix = match &args.matrix {
@@ -120,12 +106,10 @@ pub(super) fn depth(args: &DepthArgs, limits: &Limits) -> Result<()> {
     let (format, cull) = (args.depth, args.cull);
     let config = LightPassConfig { raster, unit, max_z_cull: !args.no_max_z_cull };
     let draws = scene.draws(matrix, cull);
-    let mut folder = OutputFolder::create(&args.out)?;
     let (maps, counters) = RawMaps::render(config, format, &draws, Counters::new(&raster))?;
-    if counters.totals.setups == 0 {
-        let view = if args.matrix.is_some() { "--matrix" } else { "lights[0]" };
-        bail!("{view}: the map receives no fragment: no triangle lies in the view between near and far");
-    }
+    let view = if args.matrix.is_some() { "--matrix" } else { "lights[0]" };
+    EmptyMap::check(&counters.totals, view)?;
+    let mut folder = OutputFolder::create(&args.out)?;
 
     write_maps(&mut folder, &maps)?;
     folder.write_text("tiles.md", &tile_report(&scene, &maps, &counters, args))?;

@@ -184,6 +184,15 @@ pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
         out: args.out.clone(),
     };
     let prepared = request.prepare(limits, rayon::current_num_threads())?;
+    // A bound past half the limit is said: the run is near the machine's edge.
+    let (renders, bound) = prepared.spec.memory(rayon::current_num_threads())?;
+    if bound > limits.max_memory / 2 {
+        say!(
+            "study: {renders} render(s) at once, bounded by {} MiB of the {} MiB --max-memory allows (a bound: peaks measure about half of it)",
+            bound >> 20,
+            limits.max_memory >> 20
+        );
+    }
     let progress = configurations_bar("study")?;
     let start = std::time::Instant::now();
     let outcome = prepared.run(&progress)?;

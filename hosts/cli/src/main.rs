@@ -67,9 +67,9 @@ struct LimitArgs {
     /// Most objects of a scene file.
     #[arg(long, global = true, default_value_t = Limits::DEFAULT.max_objects)]
     max_objects: u64,
-    /// Most memory a run may take, bytes or with a unit (16GiB): a render, a study's scenes, reference and renders at once, a TOML file's parse, each bounded before it starts.
-    #[arg(long, global = true, default_value = "16GiB", value_parser = memory)]
-    max_memory: u64,
+    /// Most memory a run may take, bytes or with a unit (16GiB): a render, a study's scenes, reference and renders at once, a TOML file's parse, each bounded before it starts [default: 3/4 of this machine's physical memory; 16GiB where the system does not say]
+    #[arg(long, global = true, value_parser = memory)]
+    max_memory: Option<u64>,
 }
 
 /// A `--max-memory` value: bytes, or a size as architecture files write
@@ -87,7 +87,7 @@ fn memory(text: &str) -> Result<u64, String> {
 }
 
 impl LimitArgs {
-    const fn limits(self) -> Limits {
+    fn limits(self) -> Limits {
         Limits {
             max_map_side: self.max_map_side,
             max_image_side: self.max_image_side,
@@ -96,7 +96,7 @@ impl LimitArgs {
             max_file_bytes: self.max_file_bytes,
             max_text_bytes: self.max_text_bytes,
             max_objects: self.max_objects,
-            max_memory: self.max_memory,
+            max_memory: self.max_memory.unwrap_or_else(|| Limits::for_machine().max_memory),
         }
     }
 }

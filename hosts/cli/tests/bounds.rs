@@ -364,3 +364,101 @@ fn a_results_line_that_is_not_utf8_is_refused() {
     assert!(err.to_string().contains("results.jsonl:1"), "{err}");
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// Degenerate inputs said once, the same way on every path. The issue's
+/// cases: a `--matrix` that squeezes the scene below a texel drew 0 of
+/// 4 096 texels and succeeded; `depth --mesh` of an OBJ with a vertex at
+/// 3.4·10³⁸ said only that the map was empty; a box with `min` equal to
+/// `max` named neither. Ours: a matrix whose every triangle lies beyond
+/// far, a render whose light sees only a speck (the render path's own
+/// empty map), an OBJ vertex just past 2⁴⁰, and an ell whose corners are
+/// swapped on one axis.
+#[test]
+fn degenerate_inputs_are_named_alike_on_every_path() {
+    let d = dir("degenerate");
+    std::fs::create_dir_all(&d).expect("dir");
+    let out = d.join("o");
+    let o = text(&out);
+    let empty = "the map receives no fragment";
+    let tiny = "[[1e-30,0,0,0],[0,1e-30,0,0],[0,0,0.5,0.5],[0,0,0,1]]";
+    refused(&["depth", "--map", "64", "--matrix", tiny, "--out", o], &["--matrix: ", empty]);
+    let beyond = "[[1,0,0,0],[0,1,0,0],[0,0,1,5],[0,0,0,1]]";
+    refused(&["depth", "--map", "64", "--matrix", beyond, "--out", o], &["--matrix: ", empty]);
+    std::fs::write(d.join("huge.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 3.4e38 0 0\nf 1 2 3\nf 1 2 4\n").expect("obj");
+    refused(&["depth", "--mesh", text(&d.join("huge.obj")), "--out", o], &["huge.obj: mesh: vertex 3 is at"]);
+    std::fs::write(d.join("past.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 2e12\nf 1 2 3\nf 1 2 4\n").expect("obj");
+    refused(&["depth", "--mesh", text(&d.join("past.obj")), "--out", o], &["past.obj: mesh: vertex 3", "beyond"]);
+    let speck =
+        scene(&d, "speck", "[[objects]]\nmesh = { box = { min = [0.3, 0.0, 0.3], max = [0.3001, 0.0001, 0.3001] } }\n");
+    refused(&["render", text(&speck), "--map", "64", "--out", o], &["lights[0]: ", empty]);
+    for (name, mesh, says) in [
+        ("flat-box", "box = { min = [0.0, 0.0, 0.0], max = [1.0, 0.0, 1.0] }", "max.y 0 is not above min.y 0"),
+        ("same-box", "box = { min = [1.0, 1.0, 1.0], max = [1.0, 1.0, 1.0] }", "max.x 1 is not above min.x 1"),
+        (
+            "swapped-ell",
+            "ell = { min = [0.0, 0.0, 1.0], max = [1.0, 1.0, 0.0], thickness = 0.1 }",
+            "max.z 0 is not above min.z 1",
+        ),
+    ] {
+        let file = scene(&d, name, &format!("[[objects]]\nmesh = {{ {mesh} }}\n"));
+        refused(&["render", text(&file), "--out", o], &[name, "objects[0].mesh.max: ", says]);
+    }
+    assert!(!out.exists(), "nothing written");
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// A study's stated bound (`Spec::memory`: its scenes, one reference, what
+/// configurations share, and the renders at once) against its measured
+/// peak, small and large, each run under `--max-memory` equal to the bound:
+/// the peak never passes it, and on the large run (1920×1080, a 4096² map)
+/// the bound is within 4× the peak (measured 3.2×: a 1326 MiB bound, a
+/// 416 MiB peak; the per-pixel and per-texel allowances are upper bounds,
+/// and the reference is allowed a render's pixels again), so what it
+/// refuses would at least have come within a quarter of the limit. The
+/// small run's margin is the process's base allowance (a 103 MiB bound, a
+/// 13 MiB peak).
+#[cfg(target_os = "linux")]
+#[test]
+fn a_studys_stated_bound_holds_its_peak_with_a_stated_margin() {
+    use umbra_sim::experiment::study::{Overrides, Request};
+    let d = dir("study-peak");
+    std::fs::create_dir_all(&d).expect("dir");
+    for (what, images, map, most) in [("small", "[[64, 36]]", 64, None), ("large", "[[1920, 1080]]", 4096, Some(4.0))] {
+        let sweep = write_sweep(&d, &format!("images = {images}"), "");
+        let body = std::fs::read_to_string(&sweep).expect("sweep").replace("maps = [64]", &format!("maps = [{map}]"));
+        let file = d.join(format!("{what}.toml"));
+        std::fs::write(&file, body).expect("sweep");
+        let request = Request {
+            sweep: text(&file).to_owned(),
+            overrides: Overrides::default(),
+            shard: None,
+            extremes: false,
+            out: d.join("unused"),
+        };
+        let prepared = request.prepare(&umbra_sim::Limits::DEFAULT, 1).expect("a study");
+        let (renders, bound) = prepared.spec.memory(1).expect("fits");
+        assert_eq!(renders, 1);
+        let out = d.join(what);
+        let args = [
+            "--threads",
+            "1",
+            "study",
+            "--sweep",
+            text(&file),
+            "--max-memory",
+            &bound.to_string(),
+            "--out",
+            text(&out),
+        ];
+        let (ok, err, peak) = peak(&args, &d);
+        assert!(ok, "{what}: {err}");
+        eprintln!("{what}: bound {} MiB, peak {} MiB", bound >> 20, peak >> 20);
+        assert!(peak <= bound, "{what}: peak {peak} B above the stated bound {bound} B");
+        if let Some(most) = most {
+            #[allow(clippy::cast_precision_loss, reason = "sizes far below 2^53")]
+            let margin = bound as f64 / peak as f64;
+            assert!(margin <= most, "{what}: the bound is {margin:.2}× the peak");
+        }
+    }
+    let _ = std::fs::remove_dir_all(&d);
+}

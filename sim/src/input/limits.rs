@@ -64,6 +64,21 @@ impl Limits {
         max_memory: 16 << 30,
     };
 
+    /// The share of the machine's physical memory a run may take by
+    /// default, `(numerator, denominator)`: three quarters, leaving the
+    /// rest to the system and whatever else runs.
+    pub const MACHINE_SHARE: (u64, u64) = (3, 4);
+
+    /// [`Limits::DEFAULT`] with [`Limits::max_memory`] at
+    /// [`Limits::MACHINE_SHARE`] of this machine's physical memory (18 GiB
+    /// of 24), or the default 16 GiB where it cannot be read.
+    #[must_use]
+    pub fn for_machine() -> Self {
+        let (n, d) = Self::MACHINE_SHARE;
+        let max_memory = physical_memory().map_or(Self::DEFAULT.max_memory, |bytes| bytes / d * n);
+        Self { max_memory, ..Self::DEFAULT }
+    }
+
     /// Check the memory a run will take, `footprint` bytes, before it starts.
     ///
     /// # Errors
@@ -278,6 +293,16 @@ pub enum LimitError {
     },
 }
 
+/// This machine's physical memory, bytes, where the system says
+/// (`MemTotal` of Linux's `/proc/meminfo`); `None` elsewhere.
+#[must_use]
+pub fn physical_memory() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let total = text.lines().find_map(|l| l.strip_prefix("MemTotal:"))?;
+    let kib: u64 = total.trim().strip_suffix("kB")?.trim().parse().ok()?;
+    kib.checked_mul(1024)
+}
+
 /// The memory model a run is bounded by: upper bounds, in bytes, of what
 /// the simulator keeps for each pixel, texel, triangle and byte of TOML,
 /// measured as peak resident memory (and held by the tests that run the
@@ -327,4 +352,24 @@ pub enum FileError {
     /// Larger than the limit.
     #[error(transparent)]
     Limit(LimitError),
+}
+
+#[cfg(test)]
+mod tests {
+    /// The default memory bound is three quarters of the memory the system
+    /// reports, read here independently (`getconf`'s pages × page size,
+    /// which counts a little more than `MemTotal`: the kernel's own
+    /// reservation).
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn the_default_memory_bound_follows_the_machine() {
+        let conf = |name: &str| -> Option<u64> {
+            let o = std::process::Command::new("getconf").arg(name).output().ok()?;
+            String::from_utf8_lossy(&o.stdout).trim().parse().ok()
+        };
+        let physical = conf("_PHYS_PAGES").zip(conf("PAGE_SIZE")).map(|(p, s)| p * s).expect("getconf reports memory");
+        let bound = super::Limits::for_machine().max_memory;
+        assert!(bound <= physical / 4 * 3, "{bound} of {physical}");
+        assert!(bound >= physical / 100 * 70, "{bound} of {physical}: MemTotal is within 7 % of the pages");
+    }
 }

@@ -128,6 +128,52 @@ pub struct OutputFolder {
     /// The permissions a new file gets under the process's umask.
     #[cfg(unix)]
     mode: u32,
+    /// What the folder was before this run, so that a run that ends
+    /// without writing a file (refused after the folder was opened)
+    /// leaves it as it found it.
+    before: Before,
+    /// `finish` ran.
+    finished: bool,
+}
+
+/// The folder as a run found it.
+#[derive(Debug, Default)]
+struct Before {
+    /// It did not exist.
+    absent: bool,
+    /// Its `manifest.json`, when it had one (of at most [`Before::MANIFEST_BYTES`]).
+    manifest: Option<Vec<u8>>,
+    /// It held a pending record.
+    pending: bool,
+}
+
+impl Before {
+    /// The largest manifest kept to be put back.
+    const MANIFEST_BYTES: u64 = 16 << 20;
+}
+
+impl Drop for OutputFolder {
+    /// A run that wrote no file leaves the folder as it found it: the
+    /// earlier manifest back, its own pending record gone, and a folder it
+    /// made removed (when nothing else is in it). A run that wrote a file
+    /// leaves its pending record, so the folder tells it did not finish.
+    fn drop(&mut self) {
+        if self.finished || !self.written.is_empty() {
+            return;
+        }
+        if let Some(bytes) = &self.before.manifest
+            && self.atomic(&self.dir.join(MANIFEST), bytes).is_err()
+        {
+            return;
+        }
+        if !self.before.pending {
+            let _ = std::fs::remove_file(self.dir.join(PENDING));
+        }
+        if self.before.absent {
+            let _ = std::fs::remove_file(self.dir.join(LOCK));
+            let _ = std::fs::remove_dir(&self.dir);
+        }
+    }
 }
 
 fn problem(path: &Path, problem: impl Into<String>) -> OutputError {
@@ -294,8 +340,18 @@ impl OutputFolder {
         if dir.exists() && !dir.is_dir() {
             return Err(problem(dir, "exists and is not a folder"));
         }
+        let absent = std::fs::symlink_metadata(dir).is_err();
         std::fs::create_dir_all(dir).map_err(io(dir))?;
         let lock = lock(dir)?;
+        let manifest = dir.join(MANIFEST);
+        let before = Before {
+            absent,
+            manifest: std::fs::symlink_metadata(&manifest)
+                .is_ok_and(|m| m.is_file() && m.len() <= Before::MANIFEST_BYTES)
+                .then(|| std::fs::read(&manifest).ok())
+                .flatten(),
+            pending: dir.join(PENDING).exists(),
+        };
         remove_dead_temporaries(dir);
         // A file created as `touch` creates one: its mode is the umask's.
         let probe_path = dir.join(format!(".umbra-probe-{}.tmp", std::process::id()));
@@ -317,6 +373,8 @@ impl OutputFolder {
             _lock: lock,
             #[cfg(unix)]
             mode: std::os::unix::fs::PermissionsExt::mode(&metadata.permissions()) & 0o777,
+            before,
+            finished: false,
         };
         folder.record_pending()?;
         match std::fs::remove_file(dir.join(MANIFEST)) {
@@ -389,7 +447,7 @@ impl OutputFolder {
     /// # Errors
     /// `OutputError::Io` naming the file that could not be removed or
     /// written.
-    pub fn finish(self, study: Option<serde_json::Value>) -> Result<RunManifest, OutputError> {
+    pub fn finish(mut self, study: Option<serde_json::Value>) -> Result<RunManifest, OutputError> {
         for old in &self.earlier {
             if self.written.iter().any(|f| f.path == old.path) {
                 continue;
@@ -418,6 +476,7 @@ impl OutputFolder {
         self.atomic(&self.dir.join(MANIFEST), text.as_bytes())?;
         let pending = self.dir.join(PENDING);
         std::fs::remove_file(&pending).map_err(io(&pending))?;
+        self.finished = true;
         Ok(manifest)
     }
 }

@@ -383,6 +383,29 @@ fn store_size<P: Probe>(config: &LightPassConfig, draws: &[Draw<'_>]) -> usize {
     triangles.clamp(1, most)
 }
 
+/// A light map no fragment reached: the view it was drawn from sees no
+/// triangle between near and far (or sees them only smaller than a
+/// texel's centre). Every path that draws a map — a render, a study row,
+/// `umbra depth` — refuses such a map with this one message, naming the
+/// view (`lights[0]`, `--matrix`).
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{view}: the map receives no fragment: no triangle lies in the view between near and far")]
+pub struct EmptyMap {
+    /// The view, as the user gave it.
+    pub view: String,
+}
+
+impl EmptyMap {
+    /// `Err` when the light pass whose events `totals` counted drew no
+    /// fragment.
+    ///
+    /// # Errors
+    /// [`EmptyMap`] naming `view`.
+    pub fn check(totals: &umbra_core::probe::Totals, view: &str) -> Result<(), Self> {
+        if totals.fragments == 0 { Err(Self { view: view.to_owned() }) } else { Ok(()) }
+    }
+}
+
 /// Maps of a format chosen at run time, texels widened to their raw `u32` bits.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct RawMaps {

@@ -87,8 +87,8 @@ pub enum RenderError {
     #[error("camera: the view shows no surface facing the light, so no pixel can be evaluated")]
     NothingEvaluated,
     /// The light's map receives no fragment: the light sees no object.
-    #[error("lights[0]: the light's map receives no fragment: no triangle lies in its view between near and far")]
-    EmptyMap,
+    #[error(transparent)]
+    EmptyMap(#[from] crate::pass::light::EmptyMap),
 }
 
 /// Everything a render produced.
@@ -295,8 +295,8 @@ pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
         &mut Tee(&mut camera_events, camera_also),
         Tiling::DEFAULT,
     )?;
-    if frame.maps().is_some() && light_events.totals.setups == 0 {
-        return Err(RenderError::EmptyMap);
+    if frame.maps().is_some() {
+        crate::pass::light::EmptyMap::check(&light_events.totals, "lights[0]")?;
     }
     let reference = Reference::of(scene)?;
     let ids: Vec<u32> = image.pixels.iter().map(|p| p.triangle).collect();

@@ -356,5 +356,5 @@ fn nothing_to_measure_is_an_error_not_a_perfect_score() {
     )
     .expect("valid");
     let err = run(aside).err().expect("the light's box misses the ball");
-    assert!(matches!(err, RenderError::EmptyMap) && err.to_string().starts_with("lights[0]:"), "{err}");
+    assert!(matches!(err, RenderError::EmptyMap(_)) && err.to_string().starts_with("lights[0]:"), "{err}");
 }

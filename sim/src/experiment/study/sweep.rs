@@ -137,6 +137,17 @@ impl Spec {
     /// # Errors
     /// [`LimitError::Memory`] when not even one render fits.
     pub(crate) fn renders_at_once(&self, threads: usize) -> Result<usize, LimitError> {
+        self.memory(threads).map(|(n, _)| n)
+    }
+
+    /// The renders [`Spec::renders_at_once`] allows and the memory the
+    /// study is then bounded by, bytes: its scenes, one reference, what
+    /// configurations share, and that many renders (an upper bound: see
+    /// [`Footprint`] for its margin over the peak measured).
+    ///
+    /// # Errors
+    /// [`LimitError::Memory`] when not even one render fits.
+    pub fn memory(&self, threads: usize) -> Result<(usize, u64), LimitError> {
         let pixels = self
             .images
             .iter()
@@ -164,7 +175,8 @@ impl Spec {
             self.limits
                 .check_memory("the study (its scenes, one reference and one render)", fixed.saturating_add(render))?;
         }
-        Ok(usize::try_from(room).unwrap_or(usize::MAX).clamp(1, threads.max(1)))
+        let n = usize::try_from(room).unwrap_or(usize::MAX).clamp(1, threads.max(1));
+        Ok((n, fixed.saturating_add(render.saturating_mul(n as u64))))
     }
 
     /// Every configuration, in the fixed order that numbers them: scene,

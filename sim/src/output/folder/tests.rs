@@ -180,3 +180,35 @@ fn files_are_as_readable_as_the_umask_allows() {
     }
     let _ = std::fs::remove_dir_all(&base);
 }
+
+/// A run refused after it opened its folder but before it wrote a file (an
+/// empty map, a bad scene found late) leaves the folder as it found it: a
+/// folder it made is gone, a finished run's folder is still complete, a
+/// user's own folder keeps its files and gains none. A run that wrote a
+/// file still leaves its pending record.
+#[test]
+fn a_run_that_wrote_nothing_leaves_the_folder_as_it_was() {
+    let base = scratch("folder-untouched");
+    let made = base.join("made");
+    drop(OutputFolder::create(&made).expect("folder"));
+    assert!(!made.exists(), "the folder it made is removed");
+    let done = base.join("done");
+    let mut first = OutputFolder::create(&done).expect("folder");
+    first.write("summary.md", b"whole").expect("written");
+    first.finish(None).expect("finished");
+    let record = std::fs::read(done.join(MANIFEST)).expect("a manifest");
+    drop(OutputFolder::create(&done).expect("folder"));
+    RunManifest::verify(&done, u64::MAX).expect("still complete");
+    assert_eq!(std::fs::read(done.join(MANIFEST)).expect("a manifest"), record, "the same record");
+    assert_eq!(names(&done), vec!["manifest.json", "summary.md"]);
+    let mine = base.join("mine");
+    std::fs::create_dir_all(&mine).expect("dir");
+    std::fs::write(mine.join("notes.txt"), "mine").expect("a user's file");
+    drop(OutputFolder::create(&mine).expect("folder"));
+    assert_eq!(names(&mine), vec!["notes.txt"]);
+    let mut partial = OutputFolder::create(&done).expect("folder");
+    partial.write("rows.jsonl", b"1").expect("written");
+    drop(partial);
+    assert!(done.join(PENDING).exists() && !done.join(MANIFEST).exists(), "a partial run is visible");
+    let _ = std::fs::remove_dir_all(&base);
+}

@@ -6,6 +6,7 @@ use super::{Check, MeshFile, Problem, SceneError, shared_meshes};
 use crate::input::exact::Exact;
 use crate::input::limits::Limits;
 use crate::world::mesh::Mesh;
+use glam::Vec3;
 
 /// The head's slices of a `figure` that does not say.
 const FIGURE_HEAD: u32 = 16;
@@ -83,13 +84,7 @@ pub(super) fn build_mesh(
         }
         MeshFile::Arrays { positions, triangles } => arrays(c, &field("arrays"), positions, triangles)?,
         MeshFile::Box { min, max } => {
-            let (lo, hi) = (c.vec3(&field("min"), *min)?, c.vec3(&field("max"), *max)?);
-            if !(lo.cmplt(hi).all()) {
-                return Err(c.err(
-                    field("max"),
-                    Problem::Size { value: f64::from((hi - lo).min_element()), min: 1e-9, max: 1e9 },
-                ));
-            }
+            let (lo, hi) = corners(c, &field, *min, *max)?;
             Mesh::cuboid(lo, hi)
         }
         MeshFile::Quad { corner, u, v } => {
@@ -132,15 +127,28 @@ pub(super) fn build_mesh(
             c.count(&field("head"), head.unwrap_or(FIGURE_HEAD))?.max(3),
         ),
         MeshFile::Ell { min, max, thickness } => {
-            let (lo, hi) = (c.vec3(&field("min"), *min)?, c.vec3(&field("max"), *max)?);
-            let room = f64::from((hi - lo).min_element());
-            if room <= 0.0 {
-                return Err(c.err(field("max"), Problem::Size { value: room, min: 1e-9, max: 1e9 }));
-            }
+            let (lo, hi) = corners(c, &field, *min, *max)?;
             // The upright and the base must leave a concave corner.
             let t =
                 c.range(&field("thickness"), *thickness, 1e-9, f64::from((hi.x - lo.x).min(hi.y - lo.y)) * 0.999)?;
             Mesh::ell(lo, hi, t)
         }
     })
+}
+
+/// A generator's `min` and `max` corners, `max` above `min` on every axis
+/// (a box of no room would have no volume: its faces would be of no area).
+fn corners(
+    c: &Check<'_>,
+    field: &dyn Fn(&str) -> String,
+    min: Exact<3>,
+    max: Exact<3>,
+) -> Result<(Vec3, Vec3), SceneError> {
+    let (lo, hi) = (c.vec3(&field("min"), min)?, c.vec3(&field("max"), max)?);
+    for (axis, (l, h)) in ['x', 'y', 'z'].into_iter().zip(lo.to_array().into_iter().zip(hi.to_array())) {
+        if h <= l {
+            return Err(c.err(field("max"), Problem::Corners { axis, min: l, max: h }));
+        }
+    }
+    Ok((lo, hi))
 }

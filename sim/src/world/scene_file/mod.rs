@@ -119,6 +119,22 @@ pub enum Problem {
         /// The position, f32.
         position: [f32; 3],
     },
+    /// A mesh file that holds no vertex.
+    #[error("the mesh has no vertices")]
+    NoVertices,
+    /// A box's (or an ell's) `max` corner not beyond its `min` corner on
+    /// some axis.
+    #[error(
+        "max.{axis} {max} is not above min.{axis} {min} (in f32, as the pipeline computes): `min` and `max` are opposite corners, each of max's coordinates above min's"
+    )]
+    Corners {
+        /// `x`, `y` or `z`.
+        axis: char,
+        /// `min` on that axis.
+        min: f32,
+        /// `max` on that axis.
+        max: f32,
+    },
     /// A size is zero, negative or absurd.
     #[error("{value} is outside {min}..={max}")]
     Size {
@@ -250,6 +266,31 @@ impl Scene {
             return Self::load(path, limits);
         }
         Self::from_bundle(name, limits)
+    }
+
+    /// One OBJ mesh as a scene (`umbra depth --mesh`): the mesh where it
+    /// is, not solid, seen by a spot light that frames it
+    /// ([`Perspective::framing`](crate::world::scene::Perspective::framing)),
+    /// the camera at the light. Checked as a scene file's mesh is: every
+    /// vertex finite and within reach of the pipeline's f32 products.
+    ///
+    /// # Errors
+    /// [`SceneError`] naming the file and `mesh` (or a vertex of it).
+    pub fn of_obj(path: &Path, limits: &Limits) -> Result<Self, SceneError> {
+        use crate::world::scene::{Light, Object, Perspective};
+        let c = Check { file: path };
+        let mesh = crate::world::mesh::Mesh::load_obj(path, limits).map_err(|e| c.err("mesh", Problem::Mesh(e)))?;
+        c.placed("mesh", &mesh, false)?;
+        let light = Perspective::framing(&mesh).ok_or_else(|| c.err("mesh", Problem::NoVertices))?;
+        let name = path.file_stem().map_or_else(|| "mesh".into(), |s| s.to_string_lossy().into_owned());
+        Ok(Self {
+            name: name.clone(),
+            objects: vec![Object { name, mesh, solid: false }],
+            lights: vec![Light::Spot(light)],
+            camera: light,
+            image: [512, 512],
+            source: path.display().to_string(),
+        })
     }
 
     /// One of the bundled scenes by name (see [`BUNDLED`]).

@@ -117,7 +117,9 @@ fn status_tells_every_shards_state_and_merge_refuses_the_unfinished() {
     let done: Vec<PathBuf> = (0..2).map(|i| shard(&spec, "status", i, 4)).collect();
     // Shard 2 killed mid-run: its folder opened, never finished.
     let abandoned = dir("status-2");
-    drop(OutputFolder::create(&abandoned).expect("opened"));
+    let mut killed = OutputFolder::create(&abandoned).expect("opened");
+    killed.write("results.jsonl", b"").expect("a partial file");
+    drop(killed);
     // Shard 3 under way: a run holds its folder.
     let running = dir("status-3");
     let held = OutputFolder::create(&running).expect("opened");
@@ -233,7 +235,9 @@ fn status_is_ready_exactly_when_merge_succeeds() {
     let link = dir("prop-link").join("s1");
     std::os::unix::fs::symlink(&s[1], &link).expect("link");
     let abandoned = dir("prop-abandoned");
-    drop(OutputFolder::create(&abandoned).expect("opened"));
+    let mut killed = OutputFolder::create(&abandoned).expect("opened");
+    killed.write("results.jsonl", b"").expect("a partial file");
+    drop(killed);
     let edited = copy(&s[0], "prop-edited");
     std::fs::write(edited.join("results.jsonl"), "{}\n").expect("edit");
     // Each entry: a path, and which good run's shard it names (`None` for
