@@ -166,6 +166,9 @@ fn shard_folder(input: &Path) -> Result<PathBuf, String> {
             _ => Err("is a file, not a study's folder: give the folder a study wrote, or its results.jsonl".into()),
         };
     }
+    if input.exists() {
+        return Err("is not a regular file or a folder: give the folder a study wrote, or its results.jsonl".into());
+    }
     if std::fs::symlink_metadata(input).is_ok() {
         return Err("is a symbolic link to nothing: give the folder a study wrote".into());
     }
