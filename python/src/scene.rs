@@ -28,7 +28,8 @@ impl Scene {
     /// (relative OBJ paths are taken from `file`'s folder).
     #[staticmethod]
     fn from_toml(text: &str, file: &str) -> PyResult<Self> {
-        let mut inner = umbra_sim::Scene::parse(text, Path::new(file), &Limits::for_machine()).map_err(|e| error(&e))?;
+        let mut inner =
+            umbra_sim::Scene::parse(text, Path::new(file), &Limits::for_machine()).map_err(|e| error(&e))?;
         inner.source = file.to_owned();
         Ok(Self { inner })
     }

@@ -453,6 +453,25 @@ fn a_studys_stated_bound_holds_its_peak_with_a_stated_margin() {
         let (ok, err, peak) = peak(&args, &d);
         assert!(ok, "{what}: {err}");
         eprintln!("{what}: bound {} MiB, peak {} MiB", bound >> 20, peak >> 20);
+        // Past half the limit the run says so; well within it, not.
+        if what == "small" {
+            let said = |limit: u64| {
+                let o = umbra(&[
+                    "--threads",
+                    "1",
+                    "study",
+                    "--sweep",
+                    text(&file),
+                    "--max-memory",
+                    &limit.to_string(),
+                    "--out",
+                    text(&out),
+                ]);
+                assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+                String::from_utf8_lossy(&o.stdout).contains(&format!("bounded by {} MiB", bound >> 20))
+            };
+            assert!(said(bound) && !said(bound * 3), "the bound is said exactly when it passes half the limit");
+        }
         assert!(peak <= bound, "{what}: peak {peak} B above the stated bound {bound} B");
         if let Some(most) = most {
             #[allow(clippy::cast_precision_loss, reason = "sizes far below 2^53")]

@@ -93,11 +93,23 @@ fn every_file_the_command_reads_is_a_regular_file_within_the_file_limit() {
     // A study's results to merge.
     let merged = out.join("merged");
     fails_saying(&umbra(&["merge", "/dev/zero", "--out", text(&merged)]), &["/dev/zero", "not a regular file"]);
+    // A lone results file is no shard: its folder holds no manifest.
     let rows = out.join("results.jsonl");
     std::fs::write(&rows, "x".repeat(100)).expect("write");
-    let o = umbra(&["merge", text(&rows), "--out", text(&merged), "--max-file-bytes", "99"]);
-    fails_saying(&o, &["results.jsonl", "100 bytes", "max_file_bytes"]);
-    fails_saying(&umbra(&["merge", text(&rows), "--out", text(&merged)]), &["results.jsonl:1", "not a study row"]);
+    fails_saying(&umbra(&["merge", text(&rows), "--out", text(&merged)]), &["manifest.json", "no run wrote it"]);
+    // A shard's files are read within the limit: its manifest's listing
+    // is checked before the file is.
+    let sweep = out.join("tiny.toml");
+    std::fs::write(
+        &sweep,
+        "name = \"tiny\"\nscenes = [\"table-and-sphere\"]\nimages = [[48, 27]]\nreference_rays = 1\n\
+         formats = [\"d16\"]\nmaps = [64]\nfilters = [\"point\"]\nbudgets = [1.0]\n[[algorithms]]\nalgo = \"second\"\n",
+    )
+    .expect("sweep");
+    let shard = out.join("shard");
+    succeeds(&umbra(&["study", "--sweep", text(&sweep), "--shard", "0/1", "--out", text(&shard)]));
+    let o = umbra(&["merge", text(&shard), "--out", text(&merged), "--max-file-bytes", "99"]);
+    fails_saying(&o, &["results.jsonl", "above the limit of 99"]);
     assert!(!merged.exists(), "nothing is written");
     let _ = std::fs::remove_dir_all(&out);
 }

@@ -22,7 +22,7 @@
 /// ```
 #[must_use]
 pub fn escape(text: &str) -> String {
-    let spans = text.matches('`').count() % 2 == 0;
+    let spans = text.matches('`').count().is_multiple_of(2);
     let mut out = String::with_capacity(text.len());
     let mut code = false;
     let mut chars = text.chars().peekable();

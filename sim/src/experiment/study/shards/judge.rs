@@ -210,7 +210,7 @@ fn examine(input: &Path, limits: &Limits) -> (ShardFolder, Result<Accepted, Shar
     }
     let as_problem = |e: StudyError| match e {
         StudyError::Merge { path, problem } => ShardProblem { path: Some(path), problem },
-        e => ShardProblem { path: None, problem: e.to_string() },
+        e => ShardProblem { path: Some(dir.clone()), problem: e.to_string() },
     };
     let (manifest_file, m) = match read_manifest(&dir, limits) {
         Ok(read) => read,
