@@ -188,7 +188,7 @@ pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
     let (renders, bound) = prepared.spec.memory(rayon::current_num_threads())?;
     if bound > limits.max_memory / 2 {
         say!(
-            "study: {renders} render(s) at once, bounded by {} MiB of the {} MiB --max-memory allows (a bound: peaks measure about half of it)",
+            "study: {renders} render(s) at once, bounded by {} MiB of the {} MiB --max-memory allows (an upper bound: measured peaks are 30–60 % of it)",
             bound >> 20,
             limits.max_memory >> 20
         );
