@@ -188,12 +188,11 @@ fn sections(elf: &Path) -> (u64, u64) {
 }
 
 #[test]
+#[ignore = "needs qemu-system-arm and the thumbv6m, thumbv7m and thumbv7em targets (docs/firmware.md): run with `cargo test --test integration firmware -- --ignored`"]
 fn firmware_under_qemu_matches_the_host_within_budget() {
     for board in &BOARDS {
         if let Some(why) = missing_tools(board.target) {
-            assert!(std::env::var("CI").as_deref() != Ok("true"), "CI=true but {why}");
-            eprintln!("SKIPPED firmware on {}: {why}", board.target);
-            continue;
+            panic!("firmware on {}: {why}", board.target);
         }
         let elf = build_firmware(board.target);
         let (status, got) = run_firmware(board, &elf);

@@ -30,7 +30,22 @@ impl ArchArgs {
     /// The chosen architectures with the overrides applied; `default` names
     /// them when `--arch` is not given.
     pub(super) fn resolve(&self, default: &[&str], limits: &Limits) -> Result<Vec<Arch>> {
-        Ok(umbra_sim::experiment::study::choose_archs(&self.arch, &self.set, default, limits)?)
+        let archs = umbra_sim::experiment::study::choose_archs(&self.arch, &self.set, default, limits)?;
+        // A file that calls itself by a bundled machine's name, but is not
+        // that machine, would have its outputs named after the original.
+        for file in self.arch.iter().filter(|a| !umbra_sim::cost::arch::BUNDLED.iter().any(|b| b.0 == *a)) {
+            if let Ok(arch) = Arch::open(file, limits)
+                && let Some(keys) = arch.namesake_differences()
+            {
+                eprintln!(
+                    "warning: {file} calls itself `{}`, as a bundled architecture does, but differs from it ({}): its outputs are named `{}`; give it a `name` of its own",
+                    arch.name,
+                    keys.join(", "),
+                    arch.name
+                );
+            }
+        }
+        Ok(archs)
     }
 }
 

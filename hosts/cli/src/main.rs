@@ -23,8 +23,10 @@ use say::say;
 
 /// Umbra: a bit-exact model of fixed-function shadow-mapping hardware.
 ///
-/// With no subcommand, renders the light-view maps of the bundled default
-/// scene into `out/depth/` and prints per-tile statistics.
+/// With no subcommand, does what `cargo umbra` shows a newcomer: the
+/// default scene's light-view maps into `out/depth/`, its render against
+/// the exact reference into `out/render/`, and the quick trade study into
+/// `out/study/`.
 #[derive(Parser, Debug)]
 #[command(version, about)]
 struct Cli {
@@ -181,7 +183,20 @@ fn clamp_threads() {
     }
 }
 
-fn main() -> Result<()> {
+/// Run the command; an error is one line on stderr and exit status 1 (a
+/// user's mistake is not a crash: no stack trace, whatever
+/// `RUST_BACKTRACE` says).
+fn main() -> std::process::ExitCode {
+    match run() {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("Error: {e:#}");
+            std::process::ExitCode::FAILURE
+        }
+    }
+}
+
+fn run() -> Result<()> {
     let cli = Cli::parse();
     if let Some(n) = cli.threads {
         // Only fails if a pool was built already, and none is before this.

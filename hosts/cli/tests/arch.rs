@@ -66,3 +66,28 @@ fn a_bad_architecture_names_its_file_and_key_and_writes_nothing() {
     let _ = std::fs::remove_dir_all(&input);
     let _ = std::fs::remove_dir_all(&out);
 }
+
+/// A copied file keeps its original's `name`: an exact copy costs without a
+/// word, an edited one is said to differ (naming the keys) and to be named
+/// after the original in its outputs.
+#[test]
+fn an_edited_copy_under_the_originals_name_is_said() {
+    let d = dir("namesake");
+    std::fs::create_dir_all(&d).expect("temp dir");
+    let original = include_str!("../../../arch/mobile-tbdr.toml");
+    let (copy, edited) = (d.join("copy.toml"), d.join("edited.toml"));
+    std::fs::write(&copy, original).expect("write");
+    let line = original.lines().find(|l| l.starts_with("bandwidth = ")).expect("a bandwidth");
+    std::fs::write(&edited, original.replace(line, "bandwidth = \"10GB/s\"")).expect("write");
+    let run = |file: &std::path::Path| {
+        let out = d.join("out");
+        let args = ["cost", "table-and-sphere", "--width", "64", "--height", "36", "--arch"];
+        let o = umbra(&[&args[..], &[file.to_str().expect("UTF-8"), "--out", out.to_str().expect("UTF-8")]].concat());
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8_lossy(&o.stderr).into_owned()
+    };
+    assert!(!run(&copy).contains("warning"), "an exact copy is the machine itself");
+    let said = run(&edited);
+    assert!(said.contains("calls itself `mobile-tbdr`") && said.contains("(dram.bandwidth)"), "{said}");
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -424,3 +424,21 @@ fn a_description_of_any_text_keeps_arch_show_whole() {
     assert!(rows.iter().any(|l| l.contains("description")) && rows.iter().all(|l| unescaped(l) == 4), "{out}");
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// A user's mistake is one line on stderr and exit status 1, never a stack
+/// trace, whatever `RUST_BACKTRACE` asks for.
+#[test]
+fn an_error_is_one_line_even_with_backtraces_asked_for() {
+    for value in ["1", "full"] {
+        let o = Command::new(env!("CARGO_BIN_EXE_umbra"))
+            .args(["render", "no-such-scene"])
+            .env("RUST_BACKTRACE", value)
+            .env("RUST_LIB_BACKTRACE", value)
+            .output()
+            .expect("runs");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.starts_with("Error: ") && err.contains("no bundled scene `no-such-scene`"), "{err}");
+    }
+}

@@ -167,7 +167,7 @@ fn each_bad_input_has_its_own_error() {
 /// A shared mesh placed by name: `../shared/meshes/` of the working
 /// directory (the package root under `cargo test`), only where it exists.
 #[test]
-#[ignore = "needs the shared meshes in ../shared/meshes: run with `cargo test --test integration -- --ignored`"]
+#[ignore = "needs the shared meshes in ../shared/meshes (or UMBRA_MESHES): run with `cargo test --test integration -- --ignored --skip firmware`"]
 fn shared_meshes_by_name() {
     assert!(Path::new("../shared/meshes").is_dir(), "../shared/meshes is not present");
     let s = with("mesh = { sphere", "mesh = { shared = \"bunny\" }\n#").unwrap_or_else(|e| panic!("{e}"));
@@ -211,4 +211,30 @@ fn a_mesh_given_as_arrays_is_the_generated_mesh() {
     );
     let e = parse(&text("[]")).expect_err("no triangles");
     assert_eq!(e.key, "objects[0].mesh.arrays.triangles");
+}
+
+/// `docs/scenes.md` lists every bundled scene once, in its table, and
+/// counts them in words as they are.
+#[test]
+fn the_scenes_page_lists_every_bundled_scene() {
+    let page = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/scenes.md")).expect("the page");
+    let table: Vec<&str> = page
+        .split("## The bundled scenes")
+        .nth(1)
+        .expect("the section")
+        .lines()
+        .skip_while(|l| !l.starts_with("| scene"))
+        .skip(2)
+        .take_while(|l| l.starts_with('|'))
+        .filter_map(|l| l.split('`').nth(1))
+        .collect();
+    let bundled: Vec<&str> = BUNDLED.iter().map(|(n, _)| *n).collect();
+    let mut sorted = (table.clone(), bundled.clone());
+    sorted.0.sort_unstable();
+    sorted.1.sort_unstable();
+    assert_eq!(sorted.0, sorted.1, "the table's scenes against the bundled ones");
+    let words = ["", "One", "Two", "Three", "Four", "Five", "Six", "Seven", "Eight", "Nine", "Ten", "Eleven", "Twelve"];
+    let words = [&words[..], &["Thirteen", "Fourteen", "Fifteen", "Sixteen", "Seventeen", "Eighteen", "Nineteen"]].concat();
+    let count = words.get(bundled.len()).expect("a number word");
+    assert!(page.contains(&format!("{count} scenes are bundled")), "the page counts {count}");
 }

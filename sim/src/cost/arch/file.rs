@@ -299,6 +299,25 @@ impl Arch {
         self.check().map_err(|(k, e)| (k.to_owned(), e))
     }
 
+    /// When this machine calls itself by a bundled architecture's name but
+    /// is not that machine (a copied file, edited): the keys that differ.
+    /// `None` for a name of its own, or the bundled machine itself.
+    ///
+    /// ```
+    /// use umbra_sim::Arch;
+    /// let mut copy = Arch::bundled("mobile-tbdr")?;
+    /// assert_eq!(copy.namesake_differences(), None);
+    /// copy.set("dram.bandwidth=10GB/s")?;
+    /// assert_eq!(copy.namesake_differences(), Some(vec!["dram.bandwidth"]));
+    /// # Ok::<(), umbra_sim::cost::arch::ArchError>(())
+    /// ```
+    #[must_use]
+    pub fn namesake_differences(&self) -> Option<Vec<&'static str>> {
+        let original = Self::bundled(&self.name).ok()?;
+        let keys: Vec<&'static str> = super::derived::diff(&original, self).0.into_iter().map(|d| d.0).collect();
+        (!keys.is_empty()).then_some(keys)
+    }
+
     /// The value of one key.
     #[must_use]
     pub fn get(&self, key: &str) -> Option<Value> {

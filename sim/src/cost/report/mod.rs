@@ -355,27 +355,49 @@ impl CostReport {
             self.lookups_culled_per_pixel,
             100.0 * self.virtual_sample_fraction
         );
+        // Sen et al.'s figures, each where the render has what it counts:
+        // P for a silhouette map, O for shadow volumes, map bytes for a map.
         let n = &self.sen;
-        let _ = writeln!(
-            s,
-            "Sen et al.: P = {:.4} as silhouette fill over scene fill (their Table 1), {:.4} as the fraction of covered pixels reconstructed (their bandwidth model); O = {:.2}.",
-            n.p_fill, n.p_lookup, n.overdraw
-        );
-        let _ = writeln!(
-            s,
-            "Their Table 1's columns: {} triangles, {} silhouette edges, scene fill {}, volume fill {}, silhouette fill {} (CROWD: 14 836, 4 800, 148.9 k, 22.96 M, 19.8 k).",
-            n.triangles, n.silhouette_edges, n.scene_fill, n.volume_fill, n.silhouette_fill
-        );
-        let _ = writeln!(
-            s,
-            "Per covered pixel: map {:.2} B simulated vs 4 B × samples = {:.1} B; silhouette points {:.2} B simulated vs 24·P = {:.2} B. Per scene-fill fragment: volumes {:.2} B simulated vs 5.5·O = {:.2} B.",
-            n.map_bytes_per_pixel,
-            n.model_map_bytes_per_pixel,
-            n.silhouette_bytes_per_pixel,
-            n.model_silhouette_bytes_per_pixel,
-            n.volume_bytes_per_fill,
-            n.model_volume_bytes_per_fill
-        );
+        let silhouette = n.silhouette_fill > 0 || n.silhouette_bytes_per_pixel > 0.0;
+        let volumes = n.volume_fill > 0;
+        if silhouette {
+            let _ = writeln!(
+                s,
+                "Sen et al.: P = {:.4} as silhouette fill over scene fill (their Table 1), {:.4} as the fraction of covered pixels reconstructed (their bandwidth model).",
+                n.p_fill, n.p_lookup
+            );
+        }
+        if volumes {
+            let _ = writeln!(s, "Sen et al.: O = {:.2} (shadow-volume fragments over scene fill).", n.overdraw);
+        }
+        if silhouette || volumes {
+            let _ = writeln!(
+                s,
+                "Their Table 1's columns: {} triangles, {} silhouette edges, scene fill {}, volume fill {}, silhouette fill {} (CROWD: 14 836, 4 800, 148.9 k, 22.96 M, 19.8 k).",
+                n.triangles, n.silhouette_edges, n.scene_fill, n.volume_fill, n.silhouette_fill
+            );
+        }
+        if volumes {
+            let _ = writeln!(
+                s,
+                "Per scene-fill fragment: volumes {:.2} B simulated vs 5.5·O = {:.2} B.",
+                n.volume_bytes_per_fill, n.model_volume_bytes_per_fill
+            );
+        } else {
+            let points = if silhouette {
+                format!(
+                    "; silhouette points {:.2} B simulated vs 24·P = {:.2} B",
+                    n.silhouette_bytes_per_pixel, n.model_silhouette_bytes_per_pixel
+                )
+            } else {
+                String::new()
+            };
+            let _ = writeln!(
+                s,
+                "Per covered pixel (Sen et al.'s bandwidth model): map {:.2} B simulated vs 4 B × samples = {:.1} B{points}.",
+                n.map_bytes_per_pixel, n.model_map_bytes_per_pixel
+            );
+        }
         s
     }
 
