@@ -234,7 +234,8 @@ fn the_scenes_page_lists_every_bundled_scene() {
     sorted.1.sort_unstable();
     assert_eq!(sorted.0, sorted.1, "the table's scenes against the bundled ones");
     let words = ["", "One", "Two", "Three", "Four", "Five", "Six", "Seven", "Eight", "Nine", "Ten", "Eleven", "Twelve"];
-    let words = [&words[..], &["Thirteen", "Fourteen", "Fifteen", "Sixteen", "Seventeen", "Eighteen", "Nineteen"]].concat();
+    let words =
+        [&words[..], &["Thirteen", "Fourteen", "Fifteen", "Sixteen", "Seventeen", "Eighteen", "Nineteen"]].concat();
     let count = words.get(bundled.len()).expect("a number word");
     assert!(page.contains(&format!("{count} scenes are bundled")), "the page counts {count}");
 }

@@ -149,7 +149,9 @@ pub enum Problem {
     #[error(transparent)]
     Mesh(MeshError),
     /// No shared mesh by that name.
-    #[error("no shared mesh `{name}` in {folder}")]
+    #[error(
+        "no shared mesh `{name}` in {folder}: shared meshes are third-party OBJ files laid out beside the checkout, not shipped with it; set UMBRA_MESHES to the folder that holds them, or use `obj = \"file.obj\"` or a generator"
+    )]
     UnknownShared {
         /// The name asked for.
         name: String,
