@@ -14,6 +14,7 @@ use umbra_sim::input::limits::Limits;
 use umbra_sim::output::folder::OutputFolder;
 use umbra_sim::output::formats::{RawMap, write_npy, write_preview};
 use umbra_sim::pass::light::{EmptyMap, RawMaps};
+use umbra_sim::render::files::map_title;
 use umbra_sim::world::scene::{Scene, parse_matrix};
 
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -111,7 +112,7 @@ pub(super) fn depth(args: &DepthArgs, limits: &Limits) -> Result<()> {
     EmptyMap::check(&counters.totals, view)?;
     let mut folder = OutputFolder::create(&args.out)?;
 
-    write_maps(&mut folder, &maps)?;
+    write_maps(&mut folder, &maps, &scene)?;
     folder.write_text("tiles.md", &tile_report(&scene, &maps, &counters, args))?;
     folder.write_text("counters.json", &serde_json::to_string_pretty(&counters.totals)?)?;
     let manifest = folder.finish(None)?;
@@ -119,15 +120,16 @@ pub(super) fn depth(args: &DepthArgs, limits: &Limits) -> Result<()> {
     crate::say::wrote(&args.out, &manifest)
 }
 
-fn write_maps(folder: &mut OutputFolder, maps: &RawMaps) -> Result<()> {
+fn write_maps(folder: &mut OutputFolder, maps: &RawMaps, scene: &Scene) -> Result<()> {
     let (w, h) = (maps.maps.config.raster.width(), maps.maps.config.raster.height());
+    let detail = format!("{}: {}", scene.name, describe(maps));
     for (name, data) in [("z1", &maps.maps.z1), ("z2", &maps.maps.z2)] {
         if data.is_empty() {
             continue;
         }
         let map = RawMap { format: maps.format, width: w, height: h, raw: data };
         write_npy(folder, &format!("{name}.npy"), &map)?;
-        write_preview(folder, &format!("{name}.png"), &map)?;
+        write_preview(folder, &format!("{name}.png"), &map, (&map_title(name), &detail))?;
     }
     Ok(())
 }

@@ -1,12 +1,13 @@
 //! What the simulator writes out: output folders ([`folder`]), the formats
 //! maps and pictures are written in ([`formats`]), Markdown text
-//! ([`markdown`]), every table in Markdown or CSV ([`table`]), where an output came from ([`provenance`]), and why a
+//! ([`markdown`]), pictures framed to explain themselves ([`picture`]), every table in Markdown or CSV ([`table`]), where an output came from ([`provenance`]), and why a
 //! file could not be written (`OutputError`).
 
 mod error;
 pub mod folder;
 pub mod formats;
 pub mod markdown;
+pub mod picture;
 pub mod provenance;
 pub mod table;
 

@@ -22,14 +22,15 @@ use crate::output::provenance::{command_line, version};
 /// `OutputError` for a file that could not be written.
 pub fn write_render(folder: &mut OutputFolder, job: &Checked<'_>, r: &Render) -> Result<(), OutputError> {
     let (scene, cfg) = (job.scene(), job.config());
-    write_shadow_image(folder, "shaded.png", &r.image, &r.truth)?;
-    write_shadow_term(folder, "shadow.png", &r.image)?;
-    write_error_image(folder, "error.png", &r.image, &r.verdicts, &r.truth)?;
+    let detail = format!("{}: {}", scene.name, cfg.describe());
+    write_shadow_image(folder, "shaded.png", &r.image, &r.truth, &detail)?;
+    write_shadow_term(folder, "shadow.png", &r.image, &detail)?;
+    write_error_image(folder, "error.png", &r.image, &r.verdicts, (&r.truth, &detail))?;
     let (w, h) = (r.maps.maps.config.raster.width(), r.maps.maps.config.raster.height());
     for (name, data) in r.maps.stored() {
         let map = RawMap { format: r.maps.format, width: w, height: h, raw: data };
         write_npy(folder, &format!("{name}.npy"), &map)?;
-        write_preview(folder, &format!("{name}.png"), &map)?;
+        write_preview(folder, &format!("{name}.png"), &map, (&map_title(name), &detail))?;
     }
     // Pixel by pixel, for scripts: the shadow term, the reference and the verdicts.
     let arrays = PixelArrays::of(r);
@@ -54,4 +55,15 @@ pub fn write_render(folder: &mut OutputFolder, job: &Checked<'_>, r: &Render) ->
     }
     folder.write_text("metrics.json", &serde_json::to_string_pretty(&record).unwrap_or_default())?;
     Ok(())
+}
+
+/// What a stored map's preview shows, by its name (`z1`, `z2`, …).
+#[must_use]
+pub fn map_title(name: &str) -> String {
+    let what = match name {
+        "z1" => "the nearest depth the light sees",
+        "z2" => "the second nearest depth",
+        _ => "a stored map",
+    };
+    format!("{name}: {what}, near dark, far light")
 }

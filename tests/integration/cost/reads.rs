@@ -115,3 +115,24 @@ fn arch_check_warns_of_a_key_set_to_no_effect() {
     pixelflow.set("depth_cache.size=16KiB").expect("a cache");
     assert!(pixelflow.warnings().iter().any(|(k, why)| *k == "depth_cache.size" && why.contains("on chip")));
 }
+
+/// Sen et al.'s figures only where the render has what they count: a
+/// plain shadow map's report gives its map bytes against their model and
+/// no `P` or `O` (it printed both as zeros); a silhouette map's gives `P`,
+/// shadow volumes' give `O`.
+#[test]
+fn sens_figures_only_where_they_apply() {
+    let scene = Scene::bundled("table-and-sphere").expect("bundled");
+    let talisman = Arch::bundled("talisman").expect("bundled");
+    let base = RenderConfig { width: 96, height: 54, map_size: 128, reference_rays: 1, ..RenderConfig::DEFAULT };
+    let report = |algorithm| {
+        let cfg = RenderConfig { algorithm, filter: Filter::Point, bias: 0.002, ..base };
+        cost(&cfg.check(&scene, &Limits::DEFAULT).expect("valid"), &talisman).expect("costs").markdown()
+    };
+    let plain = report(Algorithm::First);
+    assert!(!plain.contains("P = ") && !plain.contains("O = ") && plain.contains("4 B × samples"), "{plain}");
+    let silhouette = report(Algorithm::Silhouette { packed: false });
+    assert!(silhouette.contains("Sen et al.: P = ") && !silhouette.contains("O = "), "{silhouette}");
+    let volumes = report(Algorithm::Volumes);
+    assert!(volumes.contains("Sen et al.: O = ") && !volumes.contains("P = "), "{volumes}");
+}
