@@ -133,17 +133,28 @@ pub(crate) fn log_ticks(range: &std::ops::Range<f64>) -> (Vec<f64>, Vec<f64>) {
     (bold, light)
 }
 
-/// A tick's label: plain for 0.01 to 10 000, else `2e5`-style; three
-/// significant digits at most.
+/// A lone value's label: plain from 0.01 to 10 000, else `2e5`-style;
+/// three significant digits at most.
 #[must_use]
 pub(crate) fn tick_label(v: f64) -> String {
-    if v == 0.0 {
-        return "0".to_owned();
-    }
-    if (1e-2..1e4).contains(&v.abs()) {
+    axis_label(v, plain_axis(&[v]))
+}
+
+/// Whether an axis with labelled ticks `ticks` writes them plainly
+/// (`10`, `100`, `0.5`): when every one lies from 0.01 to 10 000; else
+/// every one in the `1e4` style, so that one axis has one style.
+#[must_use]
+pub(crate) fn plain_axis(ticks: &[f64]) -> bool {
+    ticks.iter().all(|v| (1e-2..1e4).contains(&v.abs()))
+}
+
+/// A tick's label in its axis's style ([`plain_axis`]): plain, or
+/// `2e5`-style; three significant digits at most.
+#[must_use]
+pub(crate) fn axis_label(v: f64, plain: bool) -> String {
+    if v == 0.0 || plain {
         let s = format!("{v:.3}");
-        let s = s.trim_end_matches('0').trim_end_matches('.');
-        return s.to_owned();
+        return s.trim_end_matches('0').trim_end_matches('.').to_owned();
     }
     let e = v.abs().log10().floor();
     let m = v / 10f64.powf(e);
@@ -151,10 +162,41 @@ pub(crate) fn tick_label(v: f64) -> String {
     format!("{}e{e}", m.trim_end_matches('0').trim_end_matches('.'))
 }
 
-/// A log axis over `range` with [`log_ticks`]'s ticks.
-fn log_axis(range: std::ops::Range<f64>) -> WithKeyPoints<LogCoord<f64>> {
-    let (bold, light) = log_ticks(&range);
-    range.log_scale().with_key_points(bold).with_light_points(light)
+/// Where a log axis of `values` draws 0: a fifth of the smallest positive
+/// value (of `floor` when none is), a row of its own below them all (its
+/// dashed line, at √10 times it, passes under every measured value).
+#[must_use]
+pub(crate) fn zero_row(values: impl Iterator<Item = f64>, floor: f64) -> f64 {
+    let least = values.filter(|v| *v > 0.0).fold(f64::INFINITY, f64::min);
+    (if least.is_finite() { least } else { floor }) / 5.0
+}
+
+/// Screen rows for labels wanted at `ys` (pixels, any order): each moved
+/// down as little as it can so that no two are closer than `gap`, the
+/// order kept. Returns the rows in the order given.
+#[must_use]
+pub(crate) fn spread(ys: &[i32], gap: i32) -> Vec<i32> {
+    let mut order: Vec<usize> = (0..ys.len()).collect();
+    order.sort_by_key(|&k| (ys[k], k));
+    let mut out = ys.to_vec();
+    let mut last: Option<i32> = None;
+    for k in order {
+        let y = last.map_or(ys[k], |l| ys[k].max(l + gap));
+        out[k] = y;
+        last = Some(y);
+    }
+    out
+}
+
+/// A log axis over `range` with [`log_ticks`]'s ticks, and `zero` among
+/// them when given.
+fn log_axis(range: std::ops::Range<f64>, zero: Option<f64>) -> (WithKeyPoints<LogCoord<f64>>, bool) {
+    let (mut bold, light) = log_ticks(&range);
+    // No decade's label crowds the zero row's.
+    bold.retain(|v| zero.is_none_or(|z| *v > z * 2.5));
+    let plain = plain_axis(&bold);
+    bold.extend(zero);
+    (range.log_scale().with_key_points(bold).with_light_points(light), plain)
 }
 
 /// A chart on log–log axes.
@@ -162,32 +204,48 @@ pub(crate) type LogLogChart<'a, DB> =
     ChartContext<'a, DB, Cartesian2d<WithKeyPoints<LogCoord<f64>>, WithKeyPoints<LogCoord<f64>>>>;
 
 /// A white area with a titled chart on log–log axes over `x` and `y`,
-/// its mesh and labels drawn.
+/// its mesh and labels drawn, each axis in one tick style. With `zero`,
+/// the y axis has a row of its own for 0 at that value ([`zero_row`]),
+/// labelled `0` and set off from the decades above by a dashed line.
 pub(crate) fn log_log_chart<'a, DB: DrawingBackend>(
     area: &'a DrawingArea<DB, Shift>,
     title: &str,
-    x: std::ops::Range<f64>,
-    y: std::ops::Range<f64>,
+    (x, y): (std::ops::Range<f64>, std::ops::Range<f64>),
     x_desc: &str,
     y_desc: &str,
+    zero: Option<f64>,
 ) -> Result<LogLogChart<'a, DB>, String> {
     area.fill(&WHITE).map_err(|e| e.to_string())?;
+    let y = match zero {
+        Some(z) => (z / 1.5).min(y.start)..y.end,
+        None => y,
+    };
+    let (x_axis, plain_x) = log_axis(x, None);
+    let (y_axis, plain_y) = log_axis(y, zero);
     let mut chart = ChartBuilder::on(area)
         .caption(title, ("sans-serif", 18))
         .margin(12)
         .x_label_area_size(45)
         .y_label_area_size(70)
-        .build_cartesian_2d(log_axis(x), log_axis(y))
+        .build_cartesian_2d(x_axis, y_axis)
         .map_err(|e| e.to_string())?;
+    let is_zero = move |v: f64| zero.is_some_and(|z| (v - z).abs() <= z * 1e-9);
     chart
         .configure_mesh()
         .x_desc(x_desc)
         .y_desc(y_desc)
-        .x_label_formatter(&|x| tick_label(*x))
-        .y_label_formatter(&|y| tick_label(*y))
+        .x_label_formatter(&|x| axis_label(*x, plain_x))
+        .y_label_formatter(&|y| if is_zero(*y) { "0".to_owned() } else { axis_label(*y, plain_y) })
         .label_style(("sans-serif", 14))
         .draw()
         .map_err(|e| e.to_string())?;
+    if let Some(z) = zero {
+        let (x0, x1) = (chart.x_range().start, chart.x_range().end);
+        let at = z * 10f64.sqrt();
+        chart
+            .draw_series(DashedLineSeries::new([(x0, at), (x1, at)], 3, 3, BLACK.mix(0.6).stroke_width(1)))
+            .map_err(|e| e.to_string())?;
+    }
     Ok(chart)
 }
 
@@ -202,4 +260,39 @@ pub(crate) fn footnote<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, lines:
             .map_err(|e| e.to_string())?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{axis_label, plain_axis, spread, zero_row};
+
+    /// One axis, one style: an axis whose ticks pass 10 000 writes every
+    /// tick in the `1e4` style (it wrote `5000` beside `1e4`), one within
+    /// 0.01 to 10 000 every tick plainly.
+    #[test]
+    fn an_axis_writes_its_ticks_in_one_style() {
+        let label = |ticks: &[f64]| ticks.iter().map(|&v| axis_label(v, plain_axis(ticks))).collect::<Vec<_>>();
+        assert_eq!(label(&[10.0, 100.0, 1000.0, 1e4]), ["1e1", "1e2", "1e3", "1e4"]);
+        assert_eq!(label(&[0.001, 0.01, 0.1]), ["1e-3", "1e-2", "1e-1"]);
+        assert_eq!(label(&[0.01, 0.1, 1.0, 2.0, 5000.0]), ["0.01", "0.1", "1", "2", "5000"]);
+    }
+
+    /// Zero's row sits below every positive value, its dashed line (at √10
+    /// times it) too; with no positive value, below the floor.
+    #[test]
+    fn zero_has_a_row_below_every_value() {
+        let z = zero_row([0.0, 0.03, 2.0, 0.0].into_iter(), 1e-3);
+        assert!(z * 10f64.sqrt() < 0.03 && z > 0.0, "{z}");
+        assert!(zero_row([0.0].into_iter(), 1e-3) < 1e-3);
+    }
+
+    /// Labels wanted on one row are spread `gap` apart, in their order;
+    /// labels already apart stay where they are.
+    #[test]
+    fn end_labels_are_spread_apart() {
+        assert_eq!(spread(&[100, 100, 104, 300], 12), [100, 112, 124, 300]);
+        assert_eq!(spread(&[50, 10], 12), [50, 10]);
+        let rows = spread(&[7, 7, 7, 7, 7], 11);
+        assert!(rows.windows(2).all(|w| w[1] - w[0] == 11), "{rows:?}");
+    }
 }

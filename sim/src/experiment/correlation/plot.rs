@@ -33,7 +33,7 @@ impl Figure for Correlated<'_> {
         let unit = units.join(" or ");
         let title = format!("{}: predicted against measured", self.d.dataset.name);
         let (x, y) = (format!("measured ({unit})"), format!("predicted ({unit})"));
-        let mut chart = log_log_chart(&plot, &title, r.clone(), r.clone(), &x, &y)?;
+        let mut chart = log_log_chart(&plot, &title, (r.clone(), r.clone()), &x, &y, None)?;
         let line = |k: f64| [(r.start, r.start * k), (r.end / k.max(1.0), r.end.min(r.end * k))];
         chart.draw_series(LineSeries::new(line(1.0), BLACK.stroke_width(1))).map_err(|e| e.to_string())?;
         for k in [1.25, 0.75] {

@@ -321,7 +321,7 @@ pub(crate) fn run_all(folder: &mut OutputFolder, limits: &Limits) -> Result<Stri
         "precision",
         "Depth precision against the light's far/near (table-and-sphere)",
         "light far / near (f32 lies on d24)",
-        "misclassified % (0 drawn at 1e-3)",
+        "misclassified %",
         &precision_series(&rows),
     )?;
     Ok(md)

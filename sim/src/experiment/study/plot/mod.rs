@@ -37,7 +37,8 @@ pub(crate) fn pareto_front(points: &[(f64, f64)]) -> Vec<usize> {
     front
 }
 
-/// Errors of zero are drawn at this floor on the log axis (percent).
+/// The smallest error a log axis spans (percent); zero has a row of its
+/// own below the values ([`zero_row`](crate::experiment::plot::zero_row)).
 pub(crate) const ERROR_FLOOR: f64 = 1e-3;
 
 /// The algorithm families in the order their markers are listed.

@@ -4,7 +4,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::{ERROR_FLOOR, FAMILIES, Legend, marker, pareto_front, provenance, with_legend};
-use crate::experiment::plot::{Figure, both, colour, footnote, log_log_chart, log_range};
+use crate::experiment::plot::{Figure, both, colour, footnote, log_log_chart, log_range, zero_row};
 use crate::experiment::study::{Manifest, Row, RowCost, StudyError, distinct};
 use crate::output::folder::OutputFolder;
 
@@ -30,34 +30,30 @@ impl Figure for Pareto<'_> {
         // The legend: architectures by colour, the families drawn by
         // marker; beside the chart, never over the data.
         let families: Vec<usize> = (0..FAMILIES.len()).filter(|f| self.family_of.contains(f)).collect();
+        let budgets = self.budgets.iter().map(|b| format!("{b} %")).collect::<Vec<_>>().join(", ");
+        let budget_label = format!("budgets: {budgets}");
         let mut labels = self.archs.clone();
-        labels.extend(["Pareto front".to_owned(), "budget".to_owned()]);
+        labels.extend(["Pareto front".to_owned(), budget_label.clone()]);
         labels.extend(families.iter().map(|&f| FAMILIES[f].name().to_owned()));
         let (plot, legend_area) = with_legend(area, &labels, 230);
         let xr = log_range(self.points.iter().map(|p| p.0), 1e-3);
-        let yr = log_range(self.points.iter().map(|p| p.1).chain(self.budgets.iter().copied()), ERROR_FLOOR);
-        let y_desc = format!("artifacts % (acne, detachment, leaks; 0 drawn at {ERROR_FLOOR})");
+        let ys = || self.points.iter().map(|p| p.1).chain(self.budgets.iter().copied());
+        // No artifact at all is a row of its own, below every measured value.
+        let zero = zero_row(ys(), ERROR_FLOOR);
+        let any_zero = self.points.iter().any(|p| p.1 <= 0.0);
+        let points: Vec<(f64, f64)> = self.points.iter().map(|&(x, y)| (x, if y > 0.0 { y } else { zero })).collect();
+        let yr = log_range(ys(), if any_zero { zero } else { ERROR_FLOOR });
+        let y_desc = "artifacts % (acne, detachment, leaks)";
         let (x0, x1) = (xr.start, xr.end);
-        let mut chart = log_log_chart(&plot, &self.title, xr, yr, self.axis, &y_desc)?;
+        let mut chart = log_log_chart(&plot, &self.title, (xr, yr), self.axis, y_desc, any_zero.then_some(zero))?;
+        // The budgets dashed, named in the legend: no label over a marker.
         for &b in self.budgets {
             chart
                 .draw_series(DashedLineSeries::new([(x0, b), (x1, b)], 6, 4, BLACK.mix(0.5).stroke_width(1)))
                 .map_err(|e| e.to_string())?;
-            chart
-                .draw_series(std::iter::once(Text::new(format!("{b} %"), (x0 * 1.05, b), ("sans-serif", 12))))
-                .map_err(|e| e.to_string())?;
         }
-        // Hollow markers of one size, each architecture its colour.
-        let n = self.archs.len();
-        for k in 0..n {
-            let color = colour(k, n);
-            for ((p, a), f) in self.points.iter().zip(&self.arch_of).zip(&self.family_of) {
-                if *a == k {
-                    marker(area, chart.backend_coord(p), *f, 5, color.stroke_width(2))?;
-                }
-            }
-        }
-        let front: Vec<(f64, f64)> = pareto_front(&self.points).iter().map(|&i| self.points[i]).collect();
+        // The front first, lighter, so that every marker shows over it.
+        let front: Vec<(f64, f64)> = pareto_front(&points).iter().map(|&i| points[i]).collect();
         let mut stairs = Vec::new();
         for (i, &(x, y)) in front.iter().enumerate() {
             if i > 0 {
@@ -68,16 +64,27 @@ impl Figure for Pareto<'_> {
         if let Some(&(_, y)) = front.last() {
             stairs.push((x1, y));
         }
-        chart.draw_series(LineSeries::new(stairs, BLACK.stroke_width(2))).map_err(|e| e.to_string())?;
+        chart.draw_series(LineSeries::new(stairs, BLACK.mix(0.55).stroke_width(2))).map_err(|e| e.to_string())?;
+        // Hollow markers of one size, each architecture its colour.
+        let n = self.archs.len();
+        for k in 0..n {
+            let color = colour(k, n);
+            for ((p, a), f) in points.iter().zip(&self.arch_of).zip(&self.family_of) {
+                if *a == k {
+                    marker(area, chart.backend_coord(p), *f, 5, color.stroke_width(2))?;
+                }
+            }
+        }
         let mut legend = Legend::new(&legend_area, &labels);
         for (k, arch) in self.archs.iter().enumerate() {
             let color = colour(k, n);
             legend.entry(arch, &|l, c| l.draw(&Circle::new(c, 5, color.filled())).map_err(|e| e.to_string()))?;
         }
         legend.entry("Pareto front", &|l, (x, y)| {
-            l.draw(&PathElement::new(vec![(x - 9, y), (x + 9, y)], BLACK.stroke_width(2))).map_err(|e| e.to_string())
+            l.draw(&PathElement::new(vec![(x - 9, y), (x + 9, y)], BLACK.mix(0.55).stroke_width(2)))
+                .map_err(|e| e.to_string())
         })?;
-        legend.entry("budget", &|l, (x, y)| {
+        legend.entry(&budget_label, &|l, (x, y)| {
             // Dashed, as the chart draws it.
             for x0 in [x - 10, x + 2] {
                 l.draw(&PathElement::new(vec![(x0, y), (x0 + 7, y)], BLACK.mix(0.5))).map_err(|e| e.to_string())?;
@@ -133,7 +140,7 @@ pub(crate) fn pareto(
         let points: Vec<(f64, f64)> = rows
             .iter()
             .filter_map(|r| Some((r.cost.as_ref()?, r.metrics.as_ref()?)))
-            .map(|(c, m)| (key(c).max(1e-3), m.artifact_percent.max(ERROR_FLOOR)))
+            .map(|(c, m)| (key(c).max(1e-3), m.artifact_percent))
             .collect();
         let fig = Pareto {
             title: format!("{scene}: artifacts against {what}"),
