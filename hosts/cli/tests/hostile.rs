@@ -442,3 +442,14 @@ fn an_error_is_one_line_even_with_backtraces_asked_for() {
         assert!(err.starts_with("Error: ") && err.contains("no bundled scene `no-such-scene`"), "{err}");
     }
 }
+
+/// The bare command's help says what the bare command does: the maps,
+/// the render and the quick study, each into its folder.
+#[test]
+fn the_help_says_what_the_bare_command_does() {
+    let o = command(&["--help"]).output().expect("runs");
+    let help = String::from_utf8_lossy(&o.stdout);
+    for folder in ["out/depth/", "out/render/", "out/study/"] {
+        assert!(help.contains(folder), "`umbra --help` does not name {folder}: {help}");
+    }
+}

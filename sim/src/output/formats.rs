@@ -1,5 +1,5 @@
 //! The formats maps and pictures are written in, files a person or another
-//! tool can open: NumPy arrays of raw texels, PNG images and previews, and
+//! tool can open: NumPy arrays of raw texels, PNG images, and
 //! the pictures' bundled font.
 
 use std::io::Write;
@@ -11,7 +11,6 @@ use umbra_core::DepthFormatKind;
 
 use super::error::OutputError;
 use super::folder::OutputFolder;
-use crate::base::maps::{raw_depth, raw_far};
 
 /// The pictures' font, DejaVu Sans (Bitstream Vera licence, `assets/DejaVuSans.LICENSE`), bundled so that
 /// no system font is needed.
@@ -108,50 +107,6 @@ fn npy_body<T: npyz::AutoSerialize>(
     let mut out = npyz::WriteOptions::<T>::new().default_dtype().shape(shape).writer(w).begin_nd()?;
     out.extend(data)?;
     out.finish()
-}
-
-/// Write a PNG preview of a map as `name` in `folder`: the depths present
-/// stretched over black (nearest) to light grey (farthest), the clear
-/// value (no surface) [`BACKGROUND`](super::picture::BACKGROUND); framed
-/// with `title` and `detail` and a depth scale whose ends are the nearest
-/// and farthest depths drawn.
-///
-/// # Errors
-/// `OutputError::Image`, `OutputError::Font` or `OutputError::Io` naming
-/// the file.
-pub fn write_preview(
-    folder: &mut OutputFolder,
-    name: &str,
-    map: &RawMap<'_>,
-    (title, detail): (&str, &str),
-) -> Result<PathBuf, OutputError> {
-    use super::picture::{BACKGROUND, Frame, Scale, write_framed};
-    let RawMap { format, width, height, raw } = *map;
-    let far = raw_far(format);
-    let depths = raw.iter().filter(|&&v| v != far).map(|&v| raw_depth(format, v));
-    let (lo, hi) = depths.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), d| (lo.min(d), hi.max(d)));
-    let span = if hi > lo { hi - lo } else { 1.0 };
-    let grey = |t: f64| {
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "clamped to 0..=230")]
-        let g = (t * 230.0).round().clamp(0.0, 230.0) as u8;
-        [g; 3]
-    };
-    let pixels: Vec<u8> = raw
-        .iter()
-        .flat_map(|&v| if v == far { BACKGROUND } else { grey((raw_depth(format, v) - lo) / span) })
-        .collect();
-    let (low, high) = if lo <= hi {
-        (format!("depth {lo:.4} (nearest)"), format!("{hi:.4} (farthest)"))
-    } else {
-        ("no depth drawn".to_owned(), String::new())
-    };
-    let frame = Frame {
-        title: title.to_owned(),
-        detail: detail.to_owned(),
-        scale: Some(Scale { colour: &grey, low, high }),
-        swatches: vec![(BACKGROUND, "clear: no surface".into())],
-    };
-    write_framed(folder, name, &pixels, (width, height), &frame)
 }
 
 pub(crate) fn save(

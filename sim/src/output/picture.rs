@@ -7,7 +7,8 @@ use std::path::PathBuf;
 
 use super::OutputError;
 use super::folder::OutputFolder;
-use super::formats::{font, save};
+use super::formats::{RawMap, font, save};
+use crate::base::maps::{raw_depth, raw_far};
 
 /// Rows of the caption band above the body, pixels: three lines of text.
 pub const CAPTION_BAND: u32 = 58;
@@ -170,6 +171,49 @@ pub fn write_framed(
     };
     drawn.map_err(|e| OutputError::Font { path, problem: e.to_string() })?;
     save(folder, name, &rgb, canvas, total, image::ColorType::Rgb8)
+}
+
+/// Write a PNG preview of a map as `name` in `folder`: the depths present
+/// stretched over black (nearest) to light grey (farthest), the clear
+/// value (no surface) [`BACKGROUND`]; framed
+/// with `title` and `detail` and a depth scale whose ends are the nearest
+/// and farthest depths drawn.
+///
+/// # Errors
+/// `OutputError::Image`, `OutputError::Font` or `OutputError::Io` naming
+/// the file.
+pub fn write_preview(
+    folder: &mut OutputFolder,
+    name: &str,
+    map: &RawMap<'_>,
+    (title, detail): (&str, &str),
+) -> Result<PathBuf, OutputError> {
+    let RawMap { format, width, height, raw } = *map;
+    let far = raw_far(format);
+    let depths = raw.iter().filter(|&&v| v != far).map(|&v| raw_depth(format, v));
+    let (lo, hi) = depths.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), d| (lo.min(d), hi.max(d)));
+    let span = if hi > lo { hi - lo } else { 1.0 };
+    let grey = |t: f64| {
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "clamped to 0..=230")]
+        let g = (t * 230.0).round().clamp(0.0, 230.0) as u8;
+        [g; 3]
+    };
+    let pixels: Vec<u8> = raw
+        .iter()
+        .flat_map(|&v| if v == far { BACKGROUND } else { grey((raw_depth(format, v) - lo) / span) })
+        .collect();
+    let (low, high) = if lo <= hi {
+        (format!("depth {lo:.4} (nearest)"), format!("{hi:.4} (farthest)"))
+    } else {
+        ("no depth drawn".to_owned(), String::new())
+    };
+    let frame = Frame {
+        title: title.to_owned(),
+        detail: detail.to_owned(),
+        scale: Some(Scale { colour: &grey, low, high }),
+        swatches: vec![(BACKGROUND, "clear: no surface".into())],
+    };
+    write_framed(folder, name, &pixels, (width, height), &frame)
 }
 
 #[cfg(test)]

@@ -12,7 +12,8 @@ use super::pictures::{write_error_image, write_shadow_image, write_shadow_term};
 use super::{Checked, Render};
 use crate::output::OutputError;
 use crate::output::folder::OutputFolder;
-use crate::output::formats::{RawMap, write_array, write_npy, write_preview};
+use crate::output::formats::{RawMap, write_array, write_npy};
+use crate::output::picture::write_preview;
 use crate::output::provenance::{command_line, version};
 
 /// Write render `r` of the checked `job` into `folder` (its manifest is

@@ -44,7 +44,7 @@ fn every_picture_carries_its_caption_and_key_and_tells_its_values_apart() {
     let png = image::open(dir.join("shadow.png")).expect("a PNG").to_rgb8();
     let (x0, y0) = body_origin(r.image.width);
     let at = |k: usize| png.get_pixel(x0 + (k as u32 % r.image.width), y0 + (k as u32 / r.image.width)).0;
-    let find = |f: &dyn Fn(&Shaded) -> bool| r.image.pixels.iter().position(|p| f(p)).expect("such a pixel");
+    let find = |f: &dyn Fn(&Shaded) -> bool| r.image.pixels.iter().position(f).expect("such a pixel");
     let none = at(find(&|p| p.triangle == umbra::core::NO_TRIANGLE));
     let shadowed = at(find(&|p| p.triangle != umbra::core::NO_TRIANGLE && p.shadow.to_num::<f64>() == 1.0));
     let lit = at(find(&|p| p.triangle != umbra::core::NO_TRIANGLE && p.shadow.to_num::<f64>() == 0.0));
