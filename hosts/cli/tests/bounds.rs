@@ -439,34 +439,18 @@ fn a_studys_stated_bound_holds_its_peak_with_a_stated_margin() {
         let (renders, bound) = prepared.spec.memory(1).expect("fits");
         assert_eq!(renders, 1);
         let out = d.join(what);
-        let args = [
-            "--threads",
-            "1",
-            "study",
-            "--sweep",
-            text(&file),
-            "--max-memory",
-            &bound.to_string(),
-            "--out",
-            text(&out),
-        ];
-        let (ok, err, peak) = peak(&args, &d);
+        let under = |limit: &str| {
+            ["--threads", "1", "study", "--sweep", text(&file), "--max-memory", limit, "--out", text(&out)]
+                .map(str::to_owned)
+        };
+        let args = under(&bound.to_string());
+        let (ok, err, peak) = peak(&args.each_ref().map(String::as_str), &d);
         assert!(ok, "{what}: {err}");
         eprintln!("{what}: bound {} MiB, peak {} MiB", bound >> 20, peak >> 20);
         // Past half the limit the run says so; well within it, not.
         if what == "small" {
             let said = |limit: u64| {
-                let o = umbra(&[
-                    "--threads",
-                    "1",
-                    "study",
-                    "--sweep",
-                    text(&file),
-                    "--max-memory",
-                    &limit.to_string(),
-                    "--out",
-                    text(&out),
-                ]);
+                let o = umbra(&under(&limit.to_string()).each_ref().map(String::as_str));
                 assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
                 String::from_utf8_lossy(&o.stdout).contains(&format!("bounded by {} MiB", bound >> 20))
             };

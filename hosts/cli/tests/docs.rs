@@ -156,8 +156,9 @@ fn every_documented_figure_is_what_the_code_prints() {
     assert!(update || stale.is_empty(), "stale (UPDATE_FIGURES=1 rewrites them):\n{}", stale.join("\n"));
 }
 
-/// The `cargo umbra …` lines of a page's shell blocks, without `cargo`.
-fn commands(text: &str) -> Vec<String> {
+/// The lines of a page's shell blocks, in order, each without its
+/// trailing comment.
+fn shell_lines(text: &str) -> Vec<&str> {
     let mut out = Vec::new();
     let mut shell = false;
     for line in text.lines() {
@@ -167,13 +168,18 @@ fn commands(text: &str) -> Vec<String> {
             continue;
         }
         if shell {
-            let t = t.split(" #").next().unwrap_or_default().trim();
-            if let Some(rest) = t.strip_prefix("cargo umbra") {
-                out.push(format!("umbra{rest}"));
-            }
+            out.push(t.split(" #").next().unwrap_or_default().trim());
         }
     }
     out
+}
+
+/// The `cargo umbra …` lines of a page's shell blocks, without `cargo`.
+fn commands(text: &str) -> Vec<String> {
+    shell_lines(text)
+        .into_iter()
+        .filter_map(|t| t.strip_prefix("cargo umbra").map(|rest| format!("umbra{rest}")))
+        .collect()
 }
 
 #[test]
@@ -299,17 +305,7 @@ fn every_documented_command_runs() {
         for shipped in ["examples", "arch", "scenes", "sweeps", "data"] {
             std::os::unix::fs::symlink(root().join(shipped), scratch.join(shipped)).expect("a link");
         }
-        let mut shell = false;
-        for line in text.lines() {
-            let t = line.trim();
-            if t.starts_with("```") {
-                shell = matches!(t, "```sh" | "```bash" | "```shell" | "```console");
-                continue;
-            }
-            if !shell || !(t.contains("cargo umbra") || t.starts_with("cp ")) {
-                continue;
-            }
-            let t = t.split(" #").next().unwrap_or_default().trim();
+        for t in shell_lines(&text).into_iter().filter(|t| t.contains("cargo umbra") || t.starts_with("cp ")) {
             for part in t.split("&&").map(str::trim) {
                 let words = shlex::split(part).unwrap_or_else(|| panic!("{}: `{part}` does not parse", page.display()));
                 match words.first().map(String::as_str) {
