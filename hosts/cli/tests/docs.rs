@@ -338,3 +338,47 @@ fn every_documented_command_runs() {
     }
     assert!(ran >= 60, "only {ran} documented commands ran");
 }
+
+/// `docs/study.md`'s table of what a study writes names every file a
+/// study writes: a study of the shipped sweep at small sizes, each file's
+/// name with its scene written `<scene>` and its architecture `<name>`,
+/// against the table's names (`a.svg/.png` standing for both).
+#[test]
+fn the_study_page_lists_every_file_a_study_writes() {
+    let out = common::dir("docs-study-files");
+    let sweep = root().join("examples/sweep.toml");
+    let args = ["study", "--sweep", sweep.to_str().expect("UTF-8"), "--image", "64x36", "--maps", "64"];
+    let o = common::umbra(&[&args[..], &["--reference-rays", "1", "--out", out.to_str().expect("UTF-8")]].concat());
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let page = std::fs::read_to_string(root().join("docs/study.md")).expect("the page");
+    let table = page.split("Under `out/study/`").nth(1).expect("the table");
+    let mut listed: Vec<String> = Vec::new();
+    for line in table.lines().skip_while(|l| !l.starts_with('|')).take_while(|l| l.starts_with('|')) {
+        let cell = line.split('|').nth(1).unwrap_or_default();
+        for name in cell.split('`').skip(1).step_by(2) {
+            match name.split_once("/.") {
+                Some((base, second)) => {
+                    let stem = base.rsplit_once('.').map_or(base, |(s, _)| s);
+                    listed.extend([base.to_owned(), format!("{stem}.{second}")]);
+                }
+                None => listed.push(name.to_owned()),
+            }
+        }
+    }
+    let mut names: Vec<String> = std::fs::read_dir(&out)
+        .expect("the folder")
+        .map(|e| e.expect("an entry").file_name().to_string_lossy().into_owned())
+        .filter(|n| !n.starts_with('.'))
+        .collect();
+    names.sort();
+    for name in names {
+        let shape = name.replace("table-and-sphere", "<scene>").replace("sphere-over-a-wall", "<scene>");
+        let shape = if shape.starts_with("arch-") && !shape.starts_with("arch-axes-") {
+            "arch-<name>.toml".to_owned()
+        } else {
+            shape
+        };
+        assert!(listed.contains(&shape), "{name} (as {shape}) is not in docs/study.md's table: {listed:?}");
+    }
+    let _ = std::fs::remove_dir_all(&out);
+}
