@@ -76,12 +76,9 @@ fn wrap(text: &str, chars: usize, lines: usize) -> Vec<String> {
         .collect()
 }
 
-/// Where a body of `width` pixels sits in its framed picture: `(x, y)` of
-/// its top-left pixel.
-#[must_use]
-pub const fn body_origin(_width: u32) -> (u32, u32) {
-    (0, CAPTION_BAND)
-}
+/// Where the body sits in its framed picture: `(x, y)` of its top-left
+/// pixel, under the caption at the canvas's left edge.
+pub const BODY_ORIGIN: (u32, u32) = (0, CAPTION_BAND);
 
 /// Write `body` (RGB, `width × height`) framed by `frame` as the PNG
 /// `name`: the caption above, the key below, the canvas at least
@@ -118,7 +115,7 @@ pub fn write_framed(
     let key_band = 10 + 26 * rows;
     let total = CAPTION_BAND + height + key_band;
     let mut rgb = vec![255u8; canvas as usize * total as usize * 3];
-    let (x0, y0) = body_origin(width);
+    let (x0, y0) = BODY_ORIGIN;
     for y in 0..height as usize {
         let from = &body[3 * width as usize * y..3 * width as usize * (y + 1)];
         let at = 3 * (canvas as usize * (y + y0 as usize) + x0 as usize);

@@ -136,7 +136,7 @@ pub(crate) const RINGS: usize = 2000;
 /// ([`ERROR_COLOURS`]), each artifact pixel ringed in its colour (up to
 /// `RINGS` of them), framed with `detail` and a key giving each class and
 /// its count. The body's pixel `(x, y)` is at
-/// [`body_origin`](crate::output::picture::body_origin) + `(x, y)`.
+/// [`BODY_ORIGIN`](crate::output::picture::BODY_ORIGIN) + `(x, y)`.
 ///
 /// # Errors
 /// `OutputError::Image`, `OutputError::Font` or `OutputError::Io` naming

@@ -6,7 +6,7 @@
 use umbra::core::shade::Shaded;
 use umbra::sim::input::limits::Limits;
 use umbra::sim::output::folder::OutputFolder;
-use umbra::sim::output::picture::{BACKGROUND, CAPTION_BAND, body_origin};
+use umbra::sim::output::picture::{BACKGROUND, BODY_ORIGIN, CAPTION_BAND};
 use umbra::sim::render::files::write_render;
 use umbra::sim::render::{RenderConfig, TruthSource, render};
 use umbra::sim::world::scene::Scene;
@@ -42,7 +42,7 @@ fn every_picture_carries_its_caption_and_key_and_tells_its_values_apart() {
     // fully and where it lights fully, three different colours, read back
     // at the render's own pixels.
     let png = image::open(dir.join("shadow.png")).expect("a PNG").to_rgb8();
-    let (x0, y0) = body_origin(r.image.width);
+    let (x0, y0) = BODY_ORIGIN;
     let at = |k: usize| png.get_pixel(x0 + (k as u32 % r.image.width), y0 + (k as u32 / r.image.width)).0;
     let find = |f: &dyn Fn(&Shaded) -> bool| r.image.pixels.iter().position(f).expect("such a pixel");
     let none = at(find(&|p| p.triangle == umbra::core::NO_TRIANGLE));

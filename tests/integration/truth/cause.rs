@@ -288,7 +288,7 @@ fn the_error_map_paints_each_class_its_colour() {
     let png = image::open(&path).expect("a PNG").to_rgb8();
     let _ = std::fs::remove_dir_all(&dir);
     let (w, h) = (r.image.width, r.image.height);
-    let (x0, y0) = umbra::sim::output::picture::body_origin(w);
+    let (x0, y0) = umbra::sim::output::picture::BODY_ORIGIN;
     assert!(png.width() >= w && png.height() > y0 + h, "the caption above, the key below the image");
     let pixel = |x: u32, y: u32| png.get_pixel(x0 + x, y0 + y).0;
     let colour = |c: Cause| ERROR_COLOURS.iter().find(|e| e.0 == c).expect("a colour").2;
