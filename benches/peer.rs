@@ -39,8 +39,15 @@ fn torus(rings: u32, sides: u32) -> Mesh {
 }
 
 fn light() -> Mat4 {
-    Perspective { position: Vec3::new(0.0, 2.2, 2.6), target: Vec3::ZERO, fov_degrees: 55.0, near: 1.0, far: 8.0 }
-        .view_projection()
+    Perspective {
+        position: Vec3::new(0.0, 2.2, 2.6),
+        target: Vec3::ZERO,
+        fov_degrees: 55.0,
+        near: 1.0,
+        far: 8.0,
+        up: Vec3::Y,
+    }
+    .view_projection()
 }
 
 fn umbra_config(size: u32, cull: bool) -> LightPassConfig {

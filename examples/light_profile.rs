@@ -70,6 +70,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 fov_degrees: 55.0,
                 near: 1.0,
                 far: 8.0,
+                up: Vec3::Y,
             }
             .view_projection(),
         ),

@@ -177,8 +177,14 @@ fn an_unwatched_pass_draws_the_maps_of_a_counted_one() {
     use umbra::sim::world::scene::Perspective;
     let mesh = Mesh::torus(Vec3::ZERO, 1.0, 0.4, 100, 50);
     assert_eq!(mesh.triangles.len(), 10_000);
-    let light =
-        Perspective { position: Vec3::new(0.0, 2.2, 2.6), target: Vec3::ZERO, fov_degrees: 55.0, near: 1.0, far: 8.0 };
+    let light = Perspective {
+        position: Vec3::new(0.0, 2.2, 2.6),
+        target: Vec3::ZERO,
+        fov_degrees: 55.0,
+        near: 1.0,
+        far: 8.0,
+        up: Vec3::Y,
+    };
     let draw = Draw {
         positions: &mesh.positions,
         triangles: &mesh.triangles,

@@ -92,7 +92,7 @@ pub(super) fn command_line() -> String {
 
 /// `umbra cost` and `umbra trace`.
 pub(super) fn cost(args: &CostArgs, trace: bool, limits: &Limits) -> Result<()> {
-    let scene = umbra_sim::world::scene::Scene::open(&args.render.scene, limits)?;
+    let scene = args.render.scene(limits)?;
     let job = job(&args.render, &scene, limits)?;
     let archs = args.archs.resolve(&BUNDLED.map(|b| b.0), limits)?;
     let own = if trace { "out/trace" } else { "out/cost" };

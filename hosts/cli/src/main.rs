@@ -17,6 +17,7 @@ mod depth;
 mod experiment;
 mod render;
 mod say;
+mod scene;
 mod upgrade;
 
 use say::say;
@@ -150,9 +151,10 @@ enum Command {
     /// earlier format.
     #[command(subcommand)]
     Arch(arch::ArchCommand),
-    /// Upgrade a scene file written for an earlier format.
+    /// Upgrade a scene file written for an earlier format, or generate a
+    /// glTF city.
     #[command(subcommand)]
-    Scene(upgrade::FileCommand),
+    Scene(scene::SceneCommand),
     /// Upgrade a sweep file written for an earlier format.
     #[command(subcommand)]
     Sweep(upgrade::FileCommand),
@@ -213,9 +215,7 @@ fn run() -> Result<()> {
         Some(Command::Study(args)) => study(&args, limits),
         Some(Command::Plan(args)) => plan(&args, limits),
         Some(Command::Arch(command)) => arch::arch(&command, limits),
-        Some(Command::Scene(upgrade::FileCommand::Upgrade(args))) => {
-            upgrade::upgrade(upgrade::Kind::Scene, &args, limits)
-        }
+        Some(Command::Scene(command)) => scene::scene(&command, limits),
         Some(Command::Sweep(upgrade::FileCommand::Upgrade(args))) => {
             upgrade::upgrade(upgrade::Kind::Sweep, &args, limits)
         }

@@ -20,8 +20,10 @@ use umbra_sim::world::scene_file::BUNDLED;
 /// ([`PARAMS`]): name, values, default and help.
 #[derive(Debug, Clone)]
 pub(super) struct RenderArgs {
-    /// A bundled scene by name or a scene file.
+    /// A bundled scene by name, a scene file or a glTF file.
     pub(super) scene: String,
+    /// A glTF file's camera, by name or index.
+    pub(super) camera: Option<String>,
     /// Each parameter given, by name, as written (a switch as `false`).
     pub(super) params: Vec<(&'static str, String)>,
     /// Output folder (default: the command's own).
@@ -30,7 +32,7 @@ pub(super) struct RenderArgs {
 
 impl Default for RenderArgs {
     fn default() -> Self {
-        Self { scene: DEFAULT_SCENE.to_owned(), params: Vec::new(), out: None }
+        Self { scene: DEFAULT_SCENE.to_owned(), camera: None, params: Vec::new(), out: None }
     }
 }
 
@@ -50,6 +52,7 @@ impl clap::FromArgMatches for RenderArgs {
         }
         Ok(Self {
             scene: m.get_one::<String>("scene").cloned().unwrap_or_else(|| DEFAULT_SCENE.to_owned()),
+            camera: m.get_one::<String>("camera").cloned(),
             params,
             out: m.get_one::<PathBuf>("out").cloned(),
         })
@@ -69,7 +72,13 @@ impl clap::Args for RenderArgs {
         let mut cmd = cmd.arg(
             Arg::new("scene")
                 .default_value(DEFAULT_SCENE)
-                .help(format!("A bundled scene by name ({scenes}) or a scene file")),
+                .help(format!("A bundled scene by name ({scenes}), a scene file, or a glTF file (.gltf, .glb)")),
+        );
+        cmd = cmd.arg(
+            Arg::new("camera")
+                .long("camera")
+                .value_name("NAME|INDEX")
+                .help("A glTF file's camera, by name or by index in the order of its nodes [default: its first]"),
         );
         for p in PARAMS {
             let flag = p.flag();
@@ -110,6 +119,17 @@ impl clap::Args for RenderArgs {
     }
 }
 
+impl RenderArgs {
+    /// The scene the arguments name, with its camera, its loader's notes printed.
+    pub(super) fn scene(&self, limits: &Limits) -> Result<Scene> {
+        let scene = Scene::open_with_camera(&self.scene, self.camera.as_deref(), limits)?;
+        for note in &scene.notes {
+            say!("note: {note}");
+        }
+        Ok(scene)
+    }
+}
+
 /// `text` with its first letter a capital.
 fn capitalised(text: &str) -> String {
     let mut c = text.chars();
@@ -128,7 +148,7 @@ pub(super) fn job<'s>(args: &RenderArgs, scene: &'s Scene, limits: &Limits) -> R
 
 /// `umbra render`: the pictures, the metrics and the events of one render.
 pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
-    let scene = Scene::open(&args.scene, limits)?;
+    let scene = args.scene(limits)?;
     let job = job(args, &scene, limits)?;
     let cfg = *job.config();
     let out = args.out.clone().unwrap_or_else(|| PathBuf::from("out/render"));
@@ -142,7 +162,7 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
     let t = &r.camera_events.totals;
     say!("render `{}`: {}", scene.name, cfg.describe());
     if !scene.ignored().is_empty() {
-        say!("the scene's OBJ files: {}", scene.ignored());
+        say!("the scene's mesh files: {}", scene.ignored());
     }
     let mut table = Table::new(
         &["pixels evaluated", "false shadow", "false light", "misclassified", "mean abs error"]

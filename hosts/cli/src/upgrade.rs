@@ -19,7 +19,7 @@ use crate::say::say;
 
 /// The file to upgrade.
 #[derive(clap::Args, Debug)]
-pub(super) struct UpgradeArgs {
+pub(crate) struct UpgradeArgs {
     /// The file.
     file: PathBuf,
     /// Replace the file with its upgraded text, instead of printing it.
@@ -27,7 +27,7 @@ pub(super) struct UpgradeArgs {
     in_place: bool,
 }
 
-/// `umbra scene …` and `umbra sweep …`.
+/// `umbra sweep …`.
 #[derive(Subcommand, Debug)]
 pub(super) enum FileCommand {
     /// Rewrite the file for the current file format: the format stated,
@@ -37,7 +37,7 @@ pub(super) enum FileCommand {
 
 /// The kinds of file an upgrade reads.
 #[derive(Clone, Copy, Debug)]
-pub(super) enum Kind {
+pub(crate) enum Kind {
     /// An architecture file.
     Arch,
     /// A scene file.
@@ -47,7 +47,7 @@ pub(super) enum Kind {
 }
 
 /// Upgrade `args.file`, a file of `kind`: it must load as it is first.
-pub(super) fn upgrade(kind: Kind, args: &UpgradeArgs, limits: &Limits) -> Result<()> {
+pub(crate) fn upgrade(kind: Kind, args: &UpgradeArgs, limits: &Limits) -> Result<()> {
     let path = &args.file;
     let bytes = limits.read_text_file(path).with_context(|| format!("{}", path.display()))?;
     let text = String::from_utf8(bytes).with_context(|| format!("{}: not UTF-8 text", path.display()))?;

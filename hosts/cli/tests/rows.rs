@@ -128,7 +128,7 @@ fn every_bundled_sweep_spells_commands_the_cli_reads() {
                 reference_rays: 1,
                 ..render_config(&spec, &c)
             };
-            let command = small.command(&scene.source);
+            let command = small.command(scene);
             let key = command.split_whitespace().skip(3).collect::<Vec<_>>().join(" ");
             if seen.insert(key, ()).is_some() {
                 continue;

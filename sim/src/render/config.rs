@@ -193,11 +193,10 @@ impl RenderConfig {
     }
 
     /// The `umbra render` command line that renders this configuration of
-    /// the scene `source` (a bundled name or a file) again, bit for bit.
+    /// `scene` (a bundled name or a file, and its camera) again, bit for bit.
     #[must_use]
-    pub fn command(&self, source: &str) -> String {
-        let quoted = crate::output::provenance::shell_word(source);
-        format!("umbra render {quoted} {}", super::params::flags(self))
+    pub fn command(&self, scene: &Scene) -> String {
+        format!("umbra render {} {}", scene.arguments(), super::params::flags(self))
     }
 
     /// This configuration checked for a render of `scene` within `limits`:

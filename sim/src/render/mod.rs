@@ -283,7 +283,7 @@ pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
     truth_from: TruthSource<'_>,
     (light_also, camera_also): (L, &mut C),
 ) -> Result<(Render, L), RenderError> {
-    let command = cfg.command(&scene.source);
+    let command = cfg.command(scene);
     let mut camera_events = Counters::new(&checked.image);
     let mut frame = LightFrame::new();
     let (Tee(light_events, light_also), image) = passes::<F, _, _>(

@@ -2,6 +2,7 @@
 //! meshes (OBJ files and generated shapes), and the occluders a scene
 //! casts shadows with (Sen et al.'s silhouette edges and volumes).
 
+pub mod gltf;
 pub mod mesh;
 pub(crate) mod occluders;
 pub mod scene;

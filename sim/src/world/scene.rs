@@ -29,6 +29,9 @@ pub struct Perspective {
     pub near: f32,
     /// Far plane distance.
     pub far: f32,
+    /// Which way is up in the view (`Vec3::Y` unless a glTF node turns
+    /// it); looking along it, `Vec3::Z` is up instead.
+    pub up: Vec3,
 }
 
 impl Perspective {
@@ -38,16 +41,24 @@ impl Perspective {
     /// mesh from. `None` for a mesh without vertices.
     #[must_use]
     pub fn framing(mesh: &crate::world::mesh::Mesh) -> Option<Self> {
+        Self::framing_along(mesh, Vec3::new(1.0, 2.0, 1.5))
+    }
+
+    /// A view framing `mesh` as [`Perspective::framing`] does, from the
+    /// side `towards` points to (from the mesh's centre).
+    #[must_use]
+    pub fn framing_along(mesh: &crate::world::mesh::Mesh, towards: Vec3) -> Option<Self> {
         let (lo, hi) = mesh.bounds()?;
         let center = (lo + hi) / 2.0;
         let radius = ((hi - lo).length() / 2.0).max(f32::MIN_POSITIVE);
         let distance = 3.0 * radius;
         Some(Self {
-            position: center + Vec3::new(1.0, 2.0, 1.5).normalize() * distance,
+            position: center + towards.normalize() * distance,
             target: center,
             fov_degrees: 2.0 * (radius / distance).asin().to_degrees() * 1.1,
             near: distance - 1.2 * radius,
             far: distance + 1.2 * radius,
+            up: Vec3::Y,
         })
     }
 
@@ -61,7 +72,7 @@ impl Perspective {
     /// is vertical).
     #[must_use]
     pub fn view_projection_aspect(&self, aspect: f32) -> Mat4 {
-        let view = look_at(self.position, self.target);
+        let view = look_at(self.position, self.target, self.up);
         let proj =
             glam::camera::rh::proj::directx::perspective(self.fov_degrees.to_radians(), aspect, self.near, self.far);
         proj * view
@@ -81,6 +92,49 @@ pub struct Orthographic {
     pub near: f32,
     /// Far plane distance.
     pub far: f32,
+    /// Which way is up in the view, as for [`Perspective::up`].
+    pub up: Vec3,
+}
+
+impl Orthographic {
+    /// World space to clip space for a target `aspect = width / height`:
+    /// `extent` is half the height, `extent · aspect` half the width.
+    #[must_use]
+    pub fn view_projection_aspect(&self, aspect: f32) -> Mat4 {
+        let (h, w) = (self.extent, self.extent * aspect);
+        glam::camera::rh::proj::directx::orthographic(-w, w, -h, h, self.near, self.far)
+            * look_at(self.position, self.target, self.up)
+    }
+}
+
+/// The camera: a perspective view, or an orthographic one (a glTF
+/// file's orthographic camera).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Camera {
+    /// A perspective camera.
+    Perspective(Perspective),
+    /// An orthographic camera.
+    Orthographic(Orthographic),
+}
+
+impl Camera {
+    /// World space to clip space for a target `aspect = width / height`.
+    #[must_use]
+    pub fn view_projection_aspect(&self, aspect: f32) -> Mat4 {
+        match self {
+            Self::Perspective(p) => p.view_projection_aspect(aspect),
+            Self::Orthographic(o) => o.view_projection_aspect(aspect),
+        }
+    }
+
+    /// A light where the camera is, looking where it looks.
+    #[must_use]
+    pub const fn as_light(&self) -> Light {
+        match *self {
+            Self::Perspective(p) => Light::Spot(p),
+            Self::Orthographic(o) => Light::Directional(o),
+        }
+    }
 }
 
 /// A light of the scene.
@@ -92,10 +146,11 @@ pub enum Light {
     Directional(Orthographic),
 }
 
-/// A view matrix looking from `eye` at `target` with a usable up vector.
-fn look_at(eye: Vec3, target: Vec3) -> Mat4 {
+/// A view matrix looking from `eye` at `target` with `up` up, or `Vec3::Z`
+/// when the view looks along `up`.
+fn look_at(eye: Vec3, target: Vec3, up: Vec3) -> Mat4 {
     let dir = (target - eye).normalize_or(Vec3::NEG_Y);
-    let up = if dir.cross(Vec3::Y).length_squared() < 1e-6 { Vec3::Z } else { Vec3::Y };
+    let up = if dir.cross(up).length_squared() < 1e-6 { Vec3::Z } else { up };
     glam::camera::rh::view::look_at_mat4(eye, target, up)
 }
 
@@ -105,11 +160,7 @@ impl Light {
     pub fn view_projection(&self) -> Mat4 {
         match self {
             Self::Spot(p) => p.view_projection(),
-            Self::Directional(o) => {
-                let e = o.extent;
-                glam::camera::rh::proj::directx::orthographic(-e, e, -e, e, o.near, o.far)
-                    * look_at(o.position, o.target)
-            }
+            Self::Directional(o) => o.view_projection_aspect(1.0),
         }
     }
 
@@ -142,12 +193,19 @@ pub struct Scene {
     /// The lights; the first casts the shadows the pipeline renders.
     pub lights: Vec<Light>,
     /// The camera.
-    pub camera: Perspective,
+    pub camera: Camera,
     /// Image width and height in pixels.
     pub image: [u32; 2],
     /// How `umbra` commands name it again: the bundled scene's name or the
     /// file it was loaded from (empty for a scene built in code).
     pub source: String,
+    /// The camera of a glTF file chosen by name or index (`--camera`),
+    /// which commands that name the scene again pass on; `None` for the
+    /// file's first, and for every other scene.
+    pub camera_choice: Option<String>,
+    /// What the scene's loader supplied that its file did not say (a
+    /// default camera or light), for hosts to print.
+    pub notes: Vec<String>,
 }
 
 impl Scene {
@@ -162,6 +220,17 @@ impl Scene {
         Self::bundled("table-and-sphere").expect("the bundled table-and-sphere scene is valid")
     }
 
+    /// The arguments of an `umbra` command that name this scene again:
+    /// its source, shell-quoted, and the `--camera` chosen.
+    #[must_use]
+    pub fn arguments(&self) -> String {
+        let quoted = crate::output::provenance::shell_word(&self.source);
+        match &self.camera_choice {
+            Some(c) => format!("{quoted} --camera {}", crate::output::provenance::shell_word(c)),
+            None => quoted,
+        }
+    }
+
     /// The light whose shadows the pipeline renders: the first.
     ///
     /// # Panics
@@ -169,7 +238,7 @@ impl Scene {
     /// validate that there is a light.
     #[must_use]
     pub fn light(&self) -> Light {
-        self.lights.first().copied().unwrap_or(Light::Spot(self.camera))
+        self.lights.first().copied().unwrap_or_else(|| self.camera.as_light())
     }
 
     /// The polyline segments and points the scene's OBJ files held,

@@ -84,6 +84,7 @@ fn shared_meshes_all_render() {
             fov_degrees: 45.0,
             near: 1.5 * r,
             far: 4.5 * r,
+            up: umbra::core::glam::Vec3::Y,
         };
         let draw = Draw {
             positions: &mesh.positions,

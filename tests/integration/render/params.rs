@@ -36,8 +36,9 @@ fn the_render_again_command_reads_back_as_the_configuration() {
         RenderConfig { virtual_samples: false, culling: Culling::OFF, reference_rays: 16, ..d },
         RenderConfig { filter: "jitter8,res-factor=1.5".parse().expect("a filter"), width: 7, height: 9, ..d },
     ];
+    let crowd = umbra::sim::Scene::bundled("crowd").expect("bundled");
     for cfg in configs {
-        let command = cfg.command("crowd");
+        let command = cfg.command(&crowd);
         let words: Vec<&str> = command.split_whitespace().collect();
         assert_eq!(&words[..3], ["umbra", "render", "crowd"], "{command}");
         let mut request = RenderRequest::DEFAULT;

@@ -9,7 +9,7 @@ use umbra::sim::Algorithm;
 use umbra::sim::input::limits::Limits;
 use umbra::sim::render::{Render, RenderConfig, TruthSource, render};
 use umbra::sim::world::mesh::Mesh;
-use umbra::sim::world::scene::{Light, Object, Orthographic, Perspective, Scene};
+use umbra::sim::world::scene::{Camera, Light, Object, Orthographic, Perspective, Scene};
 
 /// World units per texel of the maps below: the light covers `[−2, 2]²`.
 const EXTENT: f32 = 2.0;
@@ -20,17 +20,31 @@ fn scene(occluders: Vec<Mesh>) -> Scene {
     let floor = Mesh::quad(Vec3::new(-3.0, 0.0, 3.0), Vec3::new(6.0, 0.0, 0.0), Vec3::new(0.0, 0.0, -6.0));
     let mut objects = vec![Object { name: "floor".into(), mesh: floor, solid: false }];
     objects.extend(occluders.into_iter().map(|mesh| Object { name: "occluder".into(), mesh, solid: true }));
-    let light =
-        Orthographic { position: Vec3::new(0.0, 5.0, 0.0), target: Vec3::ZERO, extent: EXTENT, near: 1.0, far: 10.0 };
-    let camera =
-        Perspective { position: Vec3::new(0.0, 4.0, 0.6), target: Vec3::ZERO, fov_degrees: 34.0, near: 0.5, far: 20.0 };
+    let light = Orthographic {
+        position: Vec3::new(0.0, 5.0, 0.0),
+        target: Vec3::ZERO,
+        extent: EXTENT,
+        near: 1.0,
+        far: 10.0,
+        up: Vec3::Y,
+    };
+    let camera = Perspective {
+        position: Vec3::new(0.0, 4.0, 0.6),
+        target: Vec3::ZERO,
+        fov_degrees: 34.0,
+        near: 0.5,
+        far: 20.0,
+        up: Vec3::Y,
+    };
     Scene {
         name: "square".into(),
         objects,
         lights: vec![Light::Directional(light)],
-        camera,
+        camera: Camera::Perspective(camera),
         image: [320, 240],
         source: String::new(),
+        camera_choice: None,
+        notes: Vec::new(),
     }
 }
 
@@ -174,8 +188,14 @@ fn shadow_volumes_are_exact_away_from_boundaries() {
         Mesh::torus(Vec3::new(0.0, 1.6, -0.8), 0.45, 0.12, 24, 12),
     ];
     let mut s = scene(occluders);
-    let spot =
-        Perspective { position: Vec3::new(1.5, 6.0, 2.0), target: Vec3::ZERO, fov_degrees: 60.0, near: 1.0, far: 20.0 };
+    let spot = Perspective {
+        position: Vec3::new(1.5, 6.0, 2.0),
+        target: Vec3::ZERO,
+        fov_degrees: 60.0,
+        near: 1.0,
+        far: 20.0,
+        up: Vec3::Y,
+    };
     for light in [s.lights[0], Light::Spot(spot)] {
         s.lights = vec![light];
         let mut cfg = config(Algorithm::Volumes, 8, &s);

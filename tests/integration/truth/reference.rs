@@ -11,7 +11,7 @@ use umbra::sim::truth::metrics::{Fields, compare};
 use umbra::sim::truth::reference::{PixelTruth, Reference};
 use umbra::sim::world::mesh::Mesh;
 use umbra::sim::world::scene::LightSource;
-use umbra::sim::world::scene::{Light, Object, Perspective, Scene};
+use umbra::sim::world::scene::{Camera, Light, Object, Perspective, Scene};
 
 /// A sphere of radius ½ centred 1 above the plane y = 0, under a light
 /// straight down: its shadow is the disc x² + z² < ¼. Every plane pixel
@@ -21,8 +21,14 @@ fn a_sphere_casts_a_disc_under_a_directional_light() {
     let (r, slices) = (0.5f64, 96u32);
     let plane = Mesh::quad(Vec3::new(-3.0, 0.0, 3.0), Vec3::new(6.0, 0.0, 0.0), Vec3::new(0.0, 0.0, -6.0));
     let sphere = Mesh::sphere(Vec3::new(0.0, 1.0, 0.0), r as f32, 48, slices);
-    let view =
-        Perspective { position: Vec3::new(0.4, 4.0, 1.5), target: Vec3::ZERO, fov_degrees: 50.0, near: 0.5, far: 20.0 };
+    let view = Perspective {
+        position: Vec3::new(0.4, 4.0, 1.5),
+        target: Vec3::ZERO,
+        fov_degrees: 50.0,
+        near: 0.5,
+        far: 20.0,
+        up: Vec3::Y,
+    };
     let scene = Scene {
         name: "disc".into(),
         objects: vec![
@@ -30,9 +36,11 @@ fn a_sphere_casts_a_disc_under_a_directional_light() {
             Object { name: "sphere".into(), mesh: sphere, solid: true },
         ],
         lights: vec![Light::Spot(view)],
-        camera: view,
+        camera: Camera::Perspective(view),
         image: [160, 120],
         source: String::new(),
+        camera_choice: None,
+        notes: Vec::new(),
     };
     let (w, h) = (160u32, 120u32);
     let mut frame = CameraFrame::default();

@@ -1,4 +1,5 @@
 //! Scenes, scene files and meshes: the bundled scenes and hostile inputs.
 
+mod gltf;
 mod hostile_scenes;
 mod scenes;

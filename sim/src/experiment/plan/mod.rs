@@ -321,7 +321,7 @@ fn candidate(spec: &Spec, row: &Row, scene: &Scene) -> Option<Candidate> {
         bytes: c.total_dram_bytes,
         percent: Measure::ALL.map(|x| x.percent(m)),
         rms_error: m.rms_error,
-        command: cfg.command(&scene.source),
+        command: cfg.command(scene),
     })
 }
 

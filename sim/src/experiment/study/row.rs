@@ -243,7 +243,7 @@ impl Row {
                 image_width_px: cfg.width,
                 image_height_px: cfg.height,
                 reference_rays: cfg.reference_rays,
-                command: cfg.command(&spec.scenes[c.scene].source),
+                command: cfg.command(&spec.scenes[c.scene]),
                 umbra_version: crate::output::provenance::version(),
                 sweep_hash: spec.hash.clone(),
             },

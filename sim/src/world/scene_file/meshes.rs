@@ -17,7 +17,7 @@ pub(super) fn generated_triangles(c: &Check<'_>, key: &str, m: &MeshFile) -> Res
     let field = |f: &str| format!("{key}.{f}");
     let count = |f: &str, v: u32| c.count(&field(f), v).map(u64::from);
     Ok(match m {
-        MeshFile::Obj(_) | MeshFile::Shared(_) => 0,
+        MeshFile::Obj(_) | MeshFile::Shared(_) | MeshFile::Gltf { .. } => 0,
         MeshFile::Arrays { triangles, .. } => u64::try_from(triangles.len()).unwrap_or(u64::MAX),
         MeshFile::Quad { .. } => 2,
         MeshFile::Box { .. } => 12,
@@ -40,7 +40,7 @@ impl MeshFile {
     /// A mesh read from a file or given as arrays, not generated: its
     /// triangles are taken as they are (one of no area draws nothing).
     pub(super) const fn loaded(&self) -> bool {
-        matches!(self, Self::Obj(_) | Self::Shared(_) | Self::Arrays { .. })
+        matches!(self, Self::Obj(_) | Self::Shared(_) | Self::Arrays { .. } | Self::Gltf { .. })
     }
 }
 
@@ -82,6 +82,7 @@ pub(super) fn build_mesh(
             }
             Mesh::load_obj(&path, limits).map_err(|e| c.err(key, Problem::Mesh(e)))?
         }
+        MeshFile::Gltf { file, node } => super::gltf::gltf_mesh(c, key, (file, node.as_deref()), dir, limits)?,
         MeshFile::Arrays { positions, triangles } => arrays(c, &field("arrays"), positions, triangles)?,
         MeshFile::Box { min, max } => {
             let (lo, hi) = corners(c, &field, *min, *max)?;

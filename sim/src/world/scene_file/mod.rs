@@ -40,10 +40,11 @@ use glam::{EulerRot, Mat4, Quat, Vec3};
 
 use crate::input::limits::{FileError, LimitError, Limits};
 use crate::world::mesh::MeshError;
-use crate::world::scene::{Light, Object, Orthographic, Scene};
+use crate::world::scene::{Camera, Light, Object, Orthographic, Scene};
 use meshes::{build_mesh, generated_triangles};
 use schema::{Check, LightFile, MeshFile, SceneFile, ViewFile};
 
+mod gltf;
 mod meshes;
 mod schema;
 
@@ -197,6 +198,15 @@ pub enum Problem {
         /// The vertices there are.
         vertices: usize,
     },
+    /// The glTF file is malformed, or holds what Umbra cannot take.
+    #[error(transparent)]
+    Gltf(crate::world::gltf::GltfProblem),
+    /// A glTF file a mesh names is malformed (its file and JSON path named).
+    #[error(transparent)]
+    GltfMesh(Box<crate::world::gltf::GltfError>),
+    /// `--camera` for a scene that has no cameras to choose from.
+    #[error("`--camera {0}` chooses among a glTF file's cameras; this scene has one camera")]
+    CameraChoice(String),
     /// A scene needs at least one light and one object.
     #[error("a scene needs at least one {0}")]
     Missing(&'static str),
@@ -262,8 +272,25 @@ impl Scene {
     /// # Errors
     /// [`SceneError`] naming the file, the key and the problem.
     pub fn open(name: &str, limits: &Limits) -> Result<Self, SceneError> {
+        Self::open_with_camera(name, None, limits)
+    }
+
+    /// [`Scene::open`], and for a glTF file (`.gltf` or `.glb`,
+    /// [`Scene::of_gltf`]) the camera `camera` names; a scene of another
+    /// kind refuses a `camera`.
+    ///
+    /// # Errors
+    /// [`SceneError`] naming the file, the key and the problem.
+    pub fn open_with_camera(name: &str, camera: Option<&str>, limits: &Limits) -> Result<Self, SceneError> {
         let path = Path::new(name);
-        let names_a_file = path.extension().is_some_and(|e| e == "toml") || path.components().count() > 1;
+        let extension = path.extension().map(|e| e.to_ascii_lowercase());
+        if extension.as_ref().is_some_and(|e| e == "gltf" || e == "glb") {
+            return Self::of_gltf(path, camera, limits);
+        }
+        if let Some(camera) = camera {
+            return Err(Check { file: path }.err("--camera", Problem::CameraChoice(camera.to_owned())));
+        }
+        let names_a_file = extension.is_some_and(|e| e == "toml") || path.components().count() > 1;
         if path.is_file() || names_a_file {
             return Self::load(path, limits);
         }
@@ -289,9 +316,11 @@ impl Scene {
             name: name.clone(),
             objects: vec![Object { name, mesh, solid: false }],
             lights: vec![Light::Spot(light)],
-            camera: light,
+            camera: Camera::Perspective(light),
             image: [512, 512],
             source: path.display().to_string(),
+            camera_choice: None,
+            notes: Vec::new(),
         })
     }
 
@@ -359,6 +388,7 @@ impl Scene {
                         extent: c.range(&format!("{key}.extent"), *extent, 1e-6, 1e6)?,
                         near,
                         far,
+                        up: Vec3::Y,
                     })
                 }
             });
@@ -405,7 +435,16 @@ impl Scene {
         let name = parsed
             .name
             .unwrap_or_else(|| file.file_stem().map_or_else(String::new, |s| s.to_string_lossy().into_owned()));
-        Ok(Self { name, objects, lights, camera, image, source: String::new() })
+        Ok(Self {
+            name,
+            objects,
+            lights,
+            camera: Camera::Perspective(camera),
+            image,
+            source: String::new(),
+            camera_choice: None,
+            notes: Vec::new(),
+        })
     }
 }
 

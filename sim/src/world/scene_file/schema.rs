@@ -43,6 +43,7 @@ pub(super) enum LightFile {
 #[serde(deny_unknown_fields)]
 pub(super) struct ObjectFile {
     pub(super) name: Option<String>,
+    #[serde(deserialize_with = "mesh_file")]
     pub(super) mesh: MeshFile,
     pub(super) translate: Option<Exact<3>>,
     pub(super) rotate: Option<Exact<3>>,
@@ -55,15 +56,84 @@ pub(super) struct ObjectFile {
 pub(super) enum MeshFile {
     Obj(String),
     Shared(String),
-    Box { min: Exact<3>, max: Exact<3> },
-    Quad { corner: Exact<3>, u: Exact<3>, v: Exact<3> },
-    Sphere { center: Exact<3>, radius: f64, stacks: u32, slices: u32 },
-    Torus { center: Exact<3>, major: f64, minor: f64, rings: u32, sides: u32 },
-    Table { width: f64, depth: f64, height: f64, top: f64, leg: f64 },
-    Sheet { center: Exact<3>, width: f64, height: f64, bend: f64, nx: u32, ny: u32 },
-    Figure { feet: Exact<3>, height: f64, head: Option<u32> },
-    Ell { min: Exact<3>, max: Exact<3>, thickness: f64 },
-    Arrays { positions: Vec<Exact<3>>, triangles: Vec<Exact<3, u32>> },
+    Box {
+        min: Exact<3>,
+        max: Exact<3>,
+    },
+    Quad {
+        corner: Exact<3>,
+        u: Exact<3>,
+        v: Exact<3>,
+    },
+    Sphere {
+        center: Exact<3>,
+        radius: f64,
+        stacks: u32,
+        slices: u32,
+    },
+    Torus {
+        center: Exact<3>,
+        major: f64,
+        minor: f64,
+        rings: u32,
+        sides: u32,
+    },
+    Table {
+        width: f64,
+        depth: f64,
+        height: f64,
+        top: f64,
+        leg: f64,
+    },
+    Sheet {
+        center: Exact<3>,
+        width: f64,
+        height: f64,
+        bend: f64,
+        nx: u32,
+        ny: u32,
+    },
+    Figure {
+        feet: Exact<3>,
+        height: f64,
+        head: Option<u32>,
+    },
+    Ell {
+        min: Exact<3>,
+        max: Exact<3>,
+        thickness: f64,
+    },
+    Arrays {
+        positions: Vec<Exact<3>>,
+        triangles: Vec<Exact<3, u32>>,
+    },
+    /// `{ gltf = "file.glb", node = "name" }`: two keys, which an
+    /// externally tagged variant cannot be, so [`mesh_file`] reads it.
+    #[serde(skip)]
+    Gltf {
+        file: String,
+        node: Option<String>,
+    },
+}
+
+/// A glTF file's meshes, or those at and under one of its nodes.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct GltfFile {
+    gltf: String,
+    node: Option<String>,
+}
+
+/// An object's `mesh`: a table with a `gltf` key is a [`GltfFile`], any
+/// other a [`MeshFile`]; either's error is reported at the `mesh` value.
+fn mesh_file<'de, D: serde::Deserializer<'de>>(d: D) -> Result<MeshFile, D::Error> {
+    use serde::de::Error;
+    let value = toml::Value::deserialize(d)?;
+    if value.as_table().is_some_and(|t| t.contains_key("gltf")) {
+        let g: GltfFile = value.try_into().map_err(|e| D::Error::custom(e.message().trim()))?;
+        return Ok(MeshFile::Gltf { file: g.gltf, node: g.node });
+    }
+    value.try_into().map_err(|e: toml::de::Error| D::Error::custom(e.message().trim()))
 }
 
 /// Checks with the file and the key at hand.
@@ -153,6 +223,7 @@ impl Check<'_> {
             fov_degrees: self.range(&format!("{key}.fov"), v.fov, 1.0, 170.0)?,
             near,
             far,
+            up: Vec3::Y,
         })
     }
 }
