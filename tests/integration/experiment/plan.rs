@@ -149,8 +149,8 @@ fn plans_pick_the_cheapest_candidate_meeting_every_budget() {
 
 /// A scene of shared meshes (the bunny and spot on a floor).
 #[test]
-#[ignore = "needs the shared meshes in ../shared/meshes (or UMBRA_MESHES): run with `cargo test --test integration -- --ignored --skip firmware`"]
-fn plans_on_real_meshes() {
+#[ignore = "needs the shared meshes in ../shared/meshes (or UMBRA_MESHES): run with `cargo test --test integration shared_mesh -- --ignored`"]
+fn plans_on_the_shared_meshes() {
     assert!(shared_meshes().join("bunny.obj").is_file(), "no shared meshes at {}", shared_meshes().display());
     let text = "name = \"bunny-and-spot\"\nimage = [192, 108]\n[camera]\nposition = [0.0, 1.5, 3.0]\n\
                 target = [0.0, 0.3, 0.0]\nfov = 45.0\nnear = 0.3\nfar = 20.0\n[[lights]]\nkind = \"spot\"\n\

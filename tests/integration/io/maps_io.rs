@@ -62,7 +62,7 @@ fn mesh_errors_name_the_file_and_the_problem() {
 /// Every real mesh renders in every format: fragments land, `z1 ≤ z2`, and
 /// the coarser format never claims more precision than the finer one.
 #[test]
-#[ignore = "needs the shared meshes in ../shared/meshes (or UMBRA_MESHES): run with `cargo test --test integration -- --ignored --skip firmware`"]
+#[ignore = "needs the shared meshes in ../shared/meshes (or UMBRA_MESHES): run with `cargo test --test integration shared_mesh -- --ignored`"]
 fn shared_meshes_all_render() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/meshes");
     assert!(dir.is_dir(), "{} is not present", dir.display());

@@ -360,7 +360,7 @@ const MODELS: &str = "/usr/share/assimp/models/glTF2";
 
 /// The package's deliberately broken models, each refused by name.
 #[test]
-#[ignore = "needs Debian's assimp-testmodels (installed by .ci/run)"]
+#[ignore = "needs Debian's assimp-testmodels: run with `cargo test --test integration -- --ignored --skip firmware --skip shared_mesh`"]
 fn the_packages_broken_models_are_refused_by_name() {
     for (file, at, kind) in [
         ("IndexOutOfRange/IndexOutOfRange.gltf", "meshes[0].primitives[0].indices", "index"),
@@ -390,7 +390,7 @@ fn the_packages_broken_models_are_refused_by_name() {
 
 /// The package's engine renders, and its file of two cameras gives both.
 #[test]
-#[ignore = "needs Debian's assimp-testmodels (installed by .ci/run)"]
+#[ignore = "needs Debian's assimp-testmodels: run with `cargo test --test integration -- --ignored --skip firmware --skip shared_mesh`"]
 fn the_packages_engine_renders_and_its_cameras_are_both_read() {
     use umbra::sim::render::{RenderConfig, TruthSource, render};
     let engine = format!("{MODELS}/2CylinderEngine-glTF-Binary/2CylinderEngine.glb");
@@ -410,7 +410,7 @@ fn the_packages_engine_renders_and_its_cameras_are_both_read() {
 /// The same mesh converted from OBJ to glTF by an independent tool
 /// (`assimp export`) draws the same light-view maps, bit for bit.
 #[test]
-#[ignore = "needs Debian's assimp-utils (installed by .ci/run)"]
+#[ignore = "needs Debian's assimp-utils: run with `cargo test --test integration -- --ignored --skip firmware --skip shared_mesh`"]
 fn an_obj_converted_by_assimp_draws_the_same_maps() {
     use umbra::core::{CullMode, DepthUnit, LightPassConfig, RasterConfig};
     use umbra::sim::pass::light::{self, LightFrame, LightOptions};
@@ -446,4 +446,20 @@ fn an_obj_converted_by_assimp_draws_the_same_maps() {
     let (za, zb) = (maps(&a), maps(&b));
     assert!(za.0.iter().any(|&z| z != za.0[0]), "the torus is in view");
     assert!(za == zb, "the converted file draws other maps");
+}
+
+/// The full Stanford bunny from Debian's `glmark2-data` (69 666 faces):
+/// read, every face a triangle, and rendered.
+#[test]
+#[ignore = "needs Debian's glmark2-data: run with `cargo test --test integration -- --ignored --skip firmware --skip shared_mesh`"]
+fn the_full_bunny_from_glmark2_renders() {
+    use umbra::sim::render::{RenderConfig, TruthSource, render};
+    let bunny = Path::new("/usr/share/glmark2/models/bunny.obj");
+    let scene = Scene::of_obj(bunny, &Limits::DEFAULT).expect("reads");
+    assert_eq!(scene.objects[0].mesh.triangles.len(), 69_666);
+    let cfg = RenderConfig { width: 128, height: 128, map_size: 256, reference_rays: 1, ..RenderConfig::DEFAULT };
+    let r = render(&cfg.check(&scene, &Limits::DEFAULT).expect("fits"), TruthSource::Quiet).expect("renders");
+    // 2840 pixels measured: the bunny, framed, covers a sixth of the image
+    // and faces the light on most of it; an empty or unlit render has none.
+    assert!(r.metrics.evaluated > 2000, "{}", r.metrics.evaluated);
 }

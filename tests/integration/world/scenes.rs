@@ -167,7 +167,7 @@ fn each_bad_input_has_its_own_error() {
 /// A shared mesh placed by name: `../shared/meshes/` of the working
 /// directory (the package root under `cargo test`), only where it exists.
 #[test]
-#[ignore = "needs the shared meshes in ../shared/meshes (or UMBRA_MESHES): run with `cargo test --test integration -- --ignored --skip firmware`"]
+#[ignore = "needs the shared meshes in ../shared/meshes (or UMBRA_MESHES): run with `cargo test --test integration shared_mesh -- --ignored`"]
 fn shared_meshes_by_name() {
     assert!(Path::new("../shared/meshes").is_dir(), "../shared/meshes is not present");
     let s = with("mesh = { sphere", "mesh = { shared = \"bunny\" }\n#").unwrap_or_else(|e| panic!("{e}"));
