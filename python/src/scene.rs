@@ -18,10 +18,21 @@ pub struct Scene {
 
 #[pymethods]
 impl Scene {
-    /// The bundled scene `name`, or the scene file at that path.
+    /// The bundled scene `name`, or the scene file or glTF file at that
+    /// path; for a glTF file, `camera` chooses its camera by name or index.
     #[new]
-    fn new(name: &str) -> PyResult<Self> {
-        umbra_sim::Scene::open(name, &Limits::for_machine()).map(|inner| Self { inner }).map_err(|e| error(&e))
+    #[pyo3(signature = (name, camera=None))]
+    fn new(name: &str, camera: Option<&str>) -> PyResult<Self> {
+        umbra_sim::Scene::open_with_camera(name, camera, &Limits::for_machine())
+            .map(|inner| Self { inner })
+            .map_err(|e| error(&e))
+    }
+
+    /// What the scene's loader supplied that its file did not say (a
+    /// default camera or light).
+    #[getter]
+    fn notes(&self) -> Vec<String> {
+        self.inner.notes.clone()
     }
 
     /// A scene from the text of a scene file, named `file` in errors

@@ -178,6 +178,23 @@ def test_a_scene_from_numpy_arrays_is_the_scene_from_its_file():
     assert a["misclassified_percent"] == b["misclassified_percent"]
 
 
+def test_a_gltf_file_renders_as_the_cli_renders_it(tmp_path):
+    made = cli("scene", "city", "--out", str(tmp_path / "city"))
+    assert made.returncode == 0, made.stderr
+    glb = tmp_path / "city" / "city.glb"
+    out = tmp_path / "render"
+    done = cli("render", str(glb), "--camera", "0", *flags(**SMALL), "--out", str(out))
+    assert done.returncode == 0, done.stderr
+    s = umbra.scene(glb, camera="0")
+    assert any("first casts" in n for n in s.notes), s.notes
+    r = umbra.render(s, **SMALL)
+    for name in ["shadow", "reference", "verdict", "z1", "z2"]:
+        assert r[name].tobytes() == np.load(out / f"{name}.npy").tobytes(), name
+    with pytest.raises(umbra.UmbraError) as e:
+        umbra.scene(glb, camera="9")
+    assert "no camera `9`" in str(e.value)
+
+
 def test_plan_names_a_configuration_within_its_budgets():
     p = umbra.plan(
         "weiskopf-l", ["acne=5%", "misclassified=50"], "talisman", sweep="quick", maps=[128], image=(96, 54)

@@ -103,9 +103,13 @@ def _toml(parts: Mapping[str, Any], what: str) -> str:
     return _umbra.toml_from_json(json.dumps(_plain(parts, what), allow_nan=True), what)
 
 
-def scene(source: Union[str, Path, Mapping[str, Any], Scene], name: str = "(scene dict)") -> Scene:
-    """A scene: a bundled scene's name, a scene file's path, or a dict with
-    the scene file's keys (``image``, ``camera``, ``lights``, ``objects``).
+def scene(
+    source: Union[str, Path, Mapping[str, Any], Scene], name: str = "(scene dict)", camera: Optional[str] = None
+) -> Scene:
+    """A scene: a bundled scene's name, a scene file's path, a glTF file's
+    path (``.gltf`` or ``.glb``; ``camera`` chooses its camera by name or
+    index, its first by default), or a dict with the scene file's keys
+    (``image``, ``camera``, ``lights``, ``objects``).
 
     An object's ``mesh`` is a generator (``{"sphere": {...}}``), an OBJ file
     (``{"obj": "bunny.obj"}``) or arrays (``{"arrays": {"positions": P,
@@ -116,7 +120,7 @@ def scene(source: Union[str, Path, Mapping[str, Any], Scene], name: str = "(scen
         return source
     if isinstance(source, Mapping):
         return Scene.from_toml(_toml(source, name), name)
-    return Scene(str(source))
+    return Scene(str(source), camera)
 
 
 def arch(source: Union[str, Path, Arch]) -> Arch:

@@ -59,6 +59,15 @@ pub trait Probe {
     fn tap(&mut self, tap: Tap) {
         let _ = tap;
     }
+
+    /// The shadow unit is pointed at light `light`'s map (its base
+    /// address): the texels read from here on are that map's, until the
+    /// next. A camera pass that tests several lights binds each in turn;
+    /// one that tests one never calls this (light 0's map is bound).
+    #[inline(always)]
+    fn map_bound(&mut self, light: u16) {
+        let _ = light;
+    }
 }
 
 /// The probe that does nothing and costs nothing.
@@ -83,6 +92,11 @@ impl<P: Probe + ?Sized> Probe for &mut P {
     #[inline(always)]
     fn fragment(&mut self, fragment: Fragment) {
         (**self).fragment(fragment);
+    }
+
+    #[inline(always)]
+    fn map_bound(&mut self, light: u16) {
+        (**self).map_bound(light);
     }
 
     #[inline(always)]

@@ -41,6 +41,12 @@ macro_rules! totals {
             /// What each field is counted in, in declaration order.
             pub const UNITS: [Counted; NAMES.len()] = [$(Counted::$unit),+];
 
+            /// Both counts added, field by field (two passes' totals as one).
+            #[must_use]
+            pub const fn plus(&self, o: &Self) -> Self {
+                Self { $($name: self.$name.saturating_add(o.$name),)+ }
+            }
+
             /// Every field with its name, in declaration order (the names
             /// the firmware prints).
             #[must_use]

@@ -158,23 +158,43 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
     progress.finish_and_clear();
     umbra_sim::render::files::write_render(&mut folder, &job, &r)?;
     let manifest = folder.finish(None)?;
-    let m = &r.metrics;
+    let m = r.frame_metrics();
     let t = &r.camera_events.totals;
     say!("render `{}`: {}", scene.name, cfg.describe());
     if !scene.ignored().is_empty() {
         say!("the scene's mesh files: {}", scene.ignored());
     }
-    let mut table = Table::new(
-        &["pixels evaluated", "false shadow", "false light", "misclassified", "mean abs error"]
-            .map(|h| (h, Align::Right)),
-    );
-    table.row([
-        m.evaluated.to_string(),
-        format!("{:.3} %", m.false_shadow_percent),
-        format!("{:.3} %", m.false_light_percent),
-        format!("{:.3} %", m.misclassified_percent),
-        format!("{:.4}", m.mean_abs_error),
-    ]);
+    let several = !r.more.is_empty();
+    let mut heads = vec![("pixels evaluated", Align::Right)];
+    if several {
+        heads.insert(0, ("light", Align::Left));
+    }
+    heads.extend(["false shadow", "false light", "misclassified", "mean abs error"].map(|h| (h, Align::Right)));
+    if several {
+        heads.push(("artifacts", Align::Right));
+    }
+    let mut table = Table::new(&heads);
+    let row = |light: Option<String>, m: &umbra_sim::truth::metrics::Metrics| {
+        light
+            .into_iter()
+            .chain([
+                m.evaluated.to_string(),
+                format!("{:.3} %", m.false_shadow_percent),
+                format!("{:.3} %", m.false_light_percent),
+                format!("{:.3} %", m.misclassified_percent),
+                format!("{:.4}", m.mean_abs_error),
+            ])
+            .chain(several.then(|| format!("{:.3} %", m.artifact_percent)))
+            .collect::<Vec<_>>()
+    };
+    if several {
+        for (k, part) in r.parts().enumerate() {
+            table.row(row(Some(Scene::light_key(k)), part.metrics));
+        }
+        table.row(row(Some("the frame (pixel, light pairs)".to_owned()), &m));
+    } else {
+        table.row(row(None, &m));
+    }
     say!("{}", table.markdown().trim_end());
     say!(
         "artifacts (wrong by their cause, shade off the reference by more than {} or on the wrong side of ½): {} acne ({} on terminators; {:.1} px of excess shadow), {} detachment ({:.1} px of missing shadow), {} leaks ({:.1} px of missing shadow): {:.3} % artifacts",

@@ -36,6 +36,12 @@ impl<A: Probe, B: Probe> Probe for Tee<A, B> {
         self.0.tap(t);
         self.1.tap(t);
     }
+
+    #[inline]
+    fn map_bound(&mut self, light: u16) {
+        self.0.map_bound(light);
+        self.1.map_bound(light);
+    }
 }
 
 /// Every event to each of several probes, in order.
@@ -56,6 +62,11 @@ impl<P: Probe> Probe for Fan<P> {
     #[inline]
     fn fragment(&mut self, f: Fragment) {
         self.0.iter_mut().for_each(|p| p.fragment(f));
+    }
+
+    #[inline]
+    fn map_bound(&mut self, light: u16) {
+        self.0.iter_mut().for_each(|p| p.map_bound(light));
     }
 
     #[inline]

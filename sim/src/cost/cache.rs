@@ -94,6 +94,22 @@ impl CacheStats {
             ..self
         }
     }
+
+    /// Two streams' counts added (two passes through caches of one
+    /// geometry), the hit rate of the two.
+    #[must_use]
+    #[allow(clippy::cast_precision_loss, reason = "counts far below 2^53")]
+    pub(crate) fn plus(self, o: Self) -> Self {
+        let (accesses, hits) = (self.accesses + o.accesses, self.hits + o.hits);
+        Self {
+            accesses,
+            hits,
+            misses: self.misses + o.misses,
+            hit_rate: if accesses == 0 { 0.0 } else { hits as f64 / accesses as f64 },
+            fetched_bytes: self.fetched_bytes + o.fetched_bytes,
+            written_back_bytes: self.written_back_bytes + o.written_back_bytes,
+        }
+    }
 }
 
 impl Cache {
@@ -226,7 +242,14 @@ pub struct MapCache {
     buffers: u64,
     bytes: u64,
     silhouette_bytes: u64,
+    /// Where the bound light's maps start: light `k`'s at `k · LIGHT_STRIDE`.
+    base: u64,
 }
+
+/// The address space each light's maps (and silhouette map) take: 2⁴²
+/// bytes, above any map's depths and its silhouette map
+/// (`SILHOUETTE_BASE`), so that two lights' maps never share a line.
+const LIGHT_STRIDE: u64 = 1 << 42;
 
 /// Where the silhouette map starts (above any map's depths).
 const SILHOUETTE_BASE: u64 = 1 << 40;
@@ -262,7 +285,7 @@ impl MapCache {
     /// `bytes`-byte texels.
     #[must_use]
     pub fn new(cache: Cache, buffers: u32, bytes: u32) -> Self {
-        Self { cache, buffers: u64::from(buffers.max(1)), bytes: u64::from(bytes), silhouette_bytes: 4 }
+        Self { cache, buffers: u64::from(buffers.max(1)), bytes: u64::from(bytes), silhouette_bytes: 4, base: 0 }
     }
 
     /// With a silhouette map of `bytes`-byte points.
@@ -276,16 +299,20 @@ impl MapCache {
     #[must_use]
     pub fn address(&self, r: TexelRead) -> u64 {
         let plane = match r.buffer {
-            Buffer::Silhouette => return SILHOUETTE_BASE + morton(r.x, r.y) * self.silhouette_bytes,
+            Buffer::Silhouette => return self.base + SILHOUETTE_BASE + morton(r.x, r.y) * self.silhouette_bytes,
             Buffer::Z2 if self.buffers > 1 => 1,
             _ => 0,
         };
-        (morton(r.x, r.y) * self.buffers + plane) * self.bytes
+        self.base + (morton(r.x, r.y) * self.buffers + plane) * self.bytes
     }
 }
 
 impl Probe for MapCache {
     const TEXELS: bool = true;
+
+    fn map_bound(&mut self, light: u16) {
+        self.base = u64::from(light) * LIGHT_STRIDE;
+    }
 
     fn texel_read(&mut self, read: TexelRead) {
         let a = self.address(read);

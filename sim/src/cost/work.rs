@@ -460,6 +460,40 @@ impl PassTiming {
     pub fn serial(&self) -> f64 {
         self.overhead + self.stages.iter().sum::<f64>()
     }
+
+    /// This pass, then `next` (a further light's pass), as one: cycles,
+    /// bytes, energy and counts added; bound by the bottleneck of the one
+    /// that takes longer; the achieved bandwidth over both at `clock`.
+    #[must_use]
+    pub(crate) fn then(&self, next: &Self, clock: f64) -> Self {
+        let mut stages = self.stages;
+        stages.iter_mut().zip(next.stages).for_each(|(a, b)| *a += b);
+        let mut bound = self.bound;
+        bound.iter_mut().zip(next.bound).for_each(|(a, b)| *a += b);
+        let cycles = self.cycles + next.cycles;
+        let bytes = self.bytes + next.bytes;
+        let seconds = cycles / clock;
+        let cache = |a: Option<CacheStats>, b: Option<CacheStats>| match (a, b) {
+            (Some(a), Some(b)) => Some(a.plus(b)),
+            (a, b) => a.or(b),
+        };
+        Self {
+            stages,
+            front: self.front + next.front,
+            tiles: self.tiles + next.tiles,
+            cycles,
+            overhead: self.overhead + next.overhead,
+            bound,
+            bottleneck: if next.cycles > self.cycles { next.bottleneck } else { self.bottleneck },
+            memory: self.memory.plus(&next.memory),
+            bytes,
+            #[allow(clippy::cast_precision_loss, reason = "bytes far below 2^53")]
+            achieved_bytes_per_second: if seconds > 0.0 { bytes as f64 / seconds } else { 0.0 },
+            map_cache: cache(self.map_cache, next.map_cache),
+            depth_cache: cache(self.depth_cache, next.depth_cache),
+            energy: self.energy.plus(&next.energy),
+        }
+    }
 }
 
 /// DRAM traffic per buffer, bytes.
@@ -492,6 +526,24 @@ pub struct Dram {
 }
 
 impl Dram {
+    /// Both passes' bytes added, purpose by purpose.
+    #[must_use]
+    pub(crate) const fn plus(&self, o: &Self) -> Self {
+        Self {
+            map_writes: self.map_writes + o.map_writes,
+            map_rmw_reads: self.map_rmw_reads + o.map_rmw_reads,
+            depth_rmw: self.depth_rmw + o.depth_rmw,
+            map_reads: self.map_reads + o.map_reads,
+            map_fetched: self.map_fetched + o.map_fetched,
+            colour: self.colour + o.colour,
+            bins: self.bins + o.bins,
+            silhouette_writes: self.silhouette_writes + o.silhouette_writes,
+            silhouette_reads: self.silhouette_reads + o.silhouette_reads,
+            volume_depth_reads: self.volume_depth_reads + o.volume_depth_reads,
+            stencil: self.stencil + o.stencil,
+        }
+    }
+
     /// Every purpose `k` times.
     #[must_use]
     pub(crate) const fn times(&self, k: u64) -> Self {

@@ -313,33 +313,64 @@ pub fn streamed<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
     Ok(CameraImage { width, height, pixels: image, camera })
 }
 
+/// The shading unit over `frame`'s last [`visibility`] pass against
+/// `view` with shadow unit `unit` for `scene`'s light, its pixels as an
+/// image (the frame's own pixels left as they were): a camera pass that
+/// tests several lights shades once per light over one visibility pass.
+///
+/// # Errors
+/// As [`render`].
+pub(crate) fn shade_visible<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
+    frame: &mut CameraFrame,
+    scene: &Scene,
+    view: &MapView<'_, F>,
+    unit: &U,
+    options: &CameraOptions,
+    probe: &mut P,
+) -> Result<CameraImage, PassError> {
+    let mut pixels = Vec::new();
+    let CameraFrame { ids, shade_setups, camera, size, .. } = frame;
+    shade(scene, (ids, *camera), view, unit, options, probe, &mut pixels, shade_setups)?;
+    Ok(CameraImage { width: size.0, height: size.1, pixels, camera: *camera })
+}
+
 /// The camera pass of depth-fail shadow volumes into `frame`: the
-/// visibility unit (walking the image as `tiling` says), then the stencil unit over every occluder's volume; a
-/// pixel is in shadow where its stencil is non-zero.
+/// visibility unit (walking the image as `tiling` says), then, for each
+/// of `lit` (the scene lit by each of its lights in turn), the stencil
+/// unit over every occluder's volume; a pixel is in shadow where its
+/// stencil is non-zero. One image per light.
 ///
 /// # Errors
 /// [`PassError`] for an unusable size or a malformed mesh.
 pub(crate) fn volumes<P: Probe>(
     frame: &mut CameraFrame,
-    scene: &Scene,
+    (scene, lit): (&Scene, &[&Scene]),
     size: (u32, u32),
     tiling: Tiling,
     probe: &mut P,
-) -> Result<(), PassError> {
+) -> Result<Vec<CameraImage>, PassError> {
     let vis = visibility(frame, scene, size, tiling, probe)?;
-    let occluders = crate::world::occluders::Occluders::new(scene);
-    let stencil =
-        crate::pass::occluders::stencil::<D24, _>(scene, &occluders, &vis.camera, vis.raster, &frame.z, probe)?;
     let triangles = scene.triangles();
-    frame.pixels.clear();
-    frame.pixels.extend(frame.ids.iter().zip(&stencil).map(|(&id, &s)| match triangles.get(id as usize) {
-        Some(t) => Shaded {
-            triangle: id,
-            light: None,
-            normal: t.normals[0],
-            shadow: if s == 0 { Shadow::ZERO } else { Shadow::ONE },
-        },
-        None => Shaded::BACKGROUND,
-    }));
-    Ok(())
+    let mut images = Vec::with_capacity(lit.len());
+    for one in lit {
+        let occluders = crate::world::occluders::Occluders::new(one);
+        let stencil =
+            crate::pass::occluders::stencil::<D24, _>(one, &occluders, &vis.camera, vis.raster, &frame.z, probe)?;
+        let pixels = frame
+            .ids
+            .iter()
+            .zip(&stencil)
+            .map(|(&id, &s)| match triangles.get(id as usize) {
+                Some(t) => Shaded {
+                    triangle: id,
+                    light: None,
+                    normal: t.normals[0],
+                    shadow: if s == 0 { Shadow::ZERO } else { Shadow::ONE },
+                },
+                None => Shaded::BACKGROUND,
+            })
+            .collect();
+        images.push(CameraImage { width: size.0, height: size.1, pixels, camera: vis.camera });
+    }
+    Ok(images)
 }

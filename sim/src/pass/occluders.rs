@@ -48,7 +48,7 @@ pub(crate) fn volume_light(scene: &Scene, camera: &Mat4) -> VolumeLight {
     let light = scene.light();
     let clip4 = |v: glam::Vec4| (*camera * v).to_array().map(f64::from);
     match light {
-        Light::Spot(s) => {
+        Light::Spot(s) | Light::Cone(s) => {
             let l = s.position.as_dvec3();
             let (near, far) = points.fold((f64::INFINITY, 0.0f64), |(lo, hi), p| {
                 let d = (p - l).length();

@@ -1,7 +1,7 @@
 //! A render's results pixel by pixel, as arrays: what `umbra render`
 //! writes as `.npy` files beside its pictures, and what a script reads.
 
-use super::Render;
+use super::{PartRef, Render};
 use crate::truth::cause::Cause;
 use crate::truth::metrics::Verdict;
 
@@ -60,16 +60,22 @@ impl PixelArrays {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     #[must_use]
-    #[allow(clippy::cast_possible_truncation, reason = "a fraction in [0, 1], kept as f32")]
     pub fn of(render: &Render) -> Self {
-        let image = &render.image;
+        Self::of_part(render.parts().next().unwrap_or_else(|| unreachable!("a render has a first light")))
+    }
+
+    /// The arrays of one light's part of a render.
+    #[must_use]
+    #[allow(clippy::cast_possible_truncation, reason = "a fraction in [0, 1], kept as f32")]
+    pub fn of_part(part: PartRef<'_>) -> Self {
+        let image = part.image;
         let shadow = image
             .pixels
             .iter()
             .map(|p| if p.triangle == umbra_core::NO_TRIANGLE { f32::NAN } else { p.shadow.to_num::<f32>() })
             .collect();
-        let reference = render.truth.iter().map(|t| t.map_or(f32::NAN, |t| (1.0 - t.visibility) as f32)).collect();
-        let verdict = render.verdicts.iter().copied().map(Verdict::code).collect();
+        let reference = part.truth.iter().map(|t| t.map_or(f32::NAN, |t| (1.0 - t.visibility) as f32)).collect();
+        let verdict = part.verdicts.iter().copied().map(Verdict::code).collect();
         Self { width: image.width, height: image.height, shadow, reference, verdict }
     }
 }

@@ -21,7 +21,6 @@ use crate::cost::timing::{ArchProbe, PassKind};
 use crate::input::limits::Limits;
 use crate::pass::algorithm::{MapKind, Units};
 use crate::pass::camera::{CameraFrame, visibility};
-use crate::pass::light::LightFrame;
 use crate::world::occluders::Occluders;
 use crate::world::scene::Scene;
 
@@ -85,20 +84,23 @@ pub(super) fn reading<const C: bool>(
     probe.reading(units.unit.buffers(), cfg.format.bytes(), sil, lookup_samples(cfg))
 }
 
-/// The two passes' probes of `archs` for `cfg` on `checked`.
+/// The passes' probes of `archs` for `cfg` on `checked`: each light
+/// pass's (one per of `lights`), the camera pass's.
 fn probes<F: DepthFormat, const L: bool, const C: bool>(
     cfg: &RenderConfig,
     checked: Targets,
-    archs: &[&Arch],
+    (archs, lights): (&[&Arch], usize),
     shadowed: bool,
-) -> (Fan<ArchProbe<L>>, Fan<ArchProbe<C>>) {
+) -> (Vec<Fan<ArchProbe<L>>>, Fan<ArchProbe<C>>) {
     let units = cfg.algorithm.units::<F>(cfg.bias);
-    let light = archs
-        .iter()
-        .map(|a| ArchProbe::<L>::new(a, PassKind::Light, checked.map, cfg.format, units.unit.buffers()))
-        .collect();
+    let light = || {
+        Fan(archs
+            .iter()
+            .map(|a| ArchProbe::<L>::new(a, PassKind::Light, checked.map, cfg.format, units.unit.buffers()))
+            .collect())
+    };
     let camera = archs.iter().map(|a| camera_probe::<C>(a, cfg, checked.image, &units, shadowed)).collect();
-    (Fan(light), Fan(camera))
+    ((0..lights.max(1)).map(|_| light()).collect(), Fan(camera))
 }
 
 /// What a cost report says of the scene beside its passes: its triangles
@@ -117,17 +119,18 @@ impl SceneCounts {
     }
 }
 
-/// The report of one architecture's two probes, once the passes have run.
+/// The report of one architecture's probes (each light pass's, the
+/// camera pass's), once the passes have run.
 pub(super) fn report<const L: bool, const C: bool>(
     (scene, counts): (&str, SceneCounts),
     cfg: &RenderConfig,
     config: &str,
-    mut light: ArchProbe<L>,
+    mut lights: Vec<ArchProbe<L>>,
     mut camera: ArchProbe<C>,
 ) -> CostReport {
-    light.finish();
+    lights.iter_mut().for_each(ArchProbe::finish);
     camera.finish();
-    let mut r = CostReport::new((scene, config.to_owned()), &light, &camera, lookup_samples(cfg).0);
+    let mut r = CostReport::new((scene, config.to_owned()), &lights, &camera, lookup_samples(cfg).0);
     r.sen.triangles = counts.triangles;
     r.sen.silhouette_edges = counts.silhouette_edges;
     r
@@ -138,14 +141,19 @@ fn reports<const L: bool, const C: bool>(
     scene: &Scene,
     cfg: &RenderConfig,
     config: &str,
-    Fan(light): Fan<ArchProbe<L>>,
+    lights: Vec<Fan<ArchProbe<L>>>,
     Fan(camera): Fan<ArchProbe<C>>,
 ) -> Vec<CostReport> {
-    if light.is_empty() {
+    if camera.is_empty() {
         return Vec::new();
     }
     let counts = SceneCounts::of(scene);
-    light.into_iter().zip(camera).map(|(l, c)| report((&scene.name, counts), cfg, config, l, c)).collect()
+    // Per light, per architecture: per architecture, per light.
+    let mut per_arch: Vec<Vec<ArchProbe<L>>> = camera.iter().map(|_| Vec::with_capacity(lights.len())).collect();
+    for Fan(probes) in lights {
+        per_arch.iter_mut().zip(probes).for_each(|(mine, p)| mine.push(p));
+    }
+    per_arch.into_iter().zip(camera).map(|(l, c)| report((&scene.name, counts), cfg, config, l, c)).collect()
 }
 
 /// The cost of a render, checked for its scene ([`RenderConfig::check`]),
@@ -220,11 +228,12 @@ fn cost_in<F: DepthFormat, const L: bool, const C: bool>(
     archs: &[&Arch],
     shadowed: bool,
 ) -> Result<Vec<CostReport>, RenderError> {
-    let (mut light, mut camera) = probes::<F, L, C>(cfg, checked, archs, shadowed);
+    let lights = if shadowed { scene.lights.len() } else { 1 };
+    let (mut light, mut camera) = probes::<F, L, C>(cfg, checked, (archs, lights), shadowed);
     let drawing = archs.first().map_or(Tiling::DEFAULT, |a| a.tiling());
     let config = if shadowed {
-        let frame = &mut LightFrame::new();
-        light = passes::<F, _, _>(scene, cfg, checked, frame, light, &mut camera, drawing)?.0;
+        let frames = &mut Vec::new();
+        light = passes::<F, _, _>(scene, cfg, checked, frames, light, &mut camera, drawing)?.0;
         cfg.describe()
     } else {
         let mut frame = CameraFrame::default();
@@ -261,7 +270,7 @@ pub fn render_costed(
     let checked = job.targets(RasterConfig::DEFAULT_TILE_SIZE)?;
     let shared: Vec<&Arch> = archs.iter().filter(|a| shape(a) == own).collect();
     let (render, costed) = with_format!(cfg.format, F => {
-        let (light, mut camera) = probes::<F, false, false>(cfg, checked, &shared, true);
+        let (light, mut camera) = probes::<F, false, false>(cfg, checked, (&shared, scene.lights.len()), true);
         let (render, light) = render_in::<F, _, _>(scene, cfg, checked, truth_from, (light, &mut camera))?;
         (render, reports(scene, cfg, &cfg.describe(), light, camera))
     });

@@ -15,33 +15,49 @@ use crate::output::folder::OutputFolder;
 use crate::output::formats::{RawMap, write_array, write_npy};
 use crate::output::picture::write_preview;
 use crate::output::provenance::{command_line, version};
+use crate::world::scene::Scene;
 
 /// Write render `r` of the checked `job` into `folder` (its manifest is
-/// the caller's to finish).
+/// the caller's to finish). A scene of several shadow-casting lights
+/// writes the frame's `shaded.png` and `metrics.json` (the frame's
+/// metrics, and each light's under `lights`), and every other file once
+/// per light, named for it: `shadow-light1.png`, `z1-light1.npy`.
 ///
 /// # Errors
 /// `OutputError` for a file that could not be written.
 pub fn write_render(folder: &mut OutputFolder, job: &Checked<'_>, r: &Render) -> Result<(), OutputError> {
     let (scene, cfg) = (job.scene(), job.config());
     let detail = format!("{}: {}", scene.name, cfg.describe());
-    write_shadow_image(folder, "shaded.png", &r.image, &r.truth, &detail)?;
-    write_shadow_term(folder, "shadow.png", &r.image, &detail)?;
-    write_error_image(folder, "error.png", &r.image, &r.verdicts, (&r.truth, &detail))?;
-    let (w, h) = (r.maps.maps.config.raster.width(), r.maps.maps.config.raster.height());
-    for (name, data) in r.maps.stored() {
-        let map = RawMap { format: r.maps.format, width: w, height: h, raw: data };
-        write_npy(folder, &format!("{name}.npy"), &map)?;
-        write_preview(folder, &format!("{name}.png"), &map, (&map_title(name), &detail))?;
+    let lights: Vec<_> = r.parts().map(|p| (p.image, p.truth)).collect();
+    write_shadow_image(folder, "shaded.png", (&r.image, &lights), &detail)?;
+    let several = !r.more.is_empty();
+    for (k, part) in r.parts().enumerate() {
+        let (named, detail) = if several {
+            let light = Scene::light_key(k);
+            (format!("-light{k}"), format!("{}: {light}: {}", scene.name, cfg.describe()))
+        } else {
+            (String::new(), detail.clone())
+        };
+        let file = |stem: &str, ext: &str| format!("{stem}{named}.{ext}");
+        write_shadow_term(folder, &file("shadow", "png"), part.image, &detail)?;
+        write_error_image(folder, &file("error", "png"), part.image, part.verdicts, (part.truth, &detail))?;
+        let maps = part.maps;
+        let (w, h) = (maps.maps.config.raster.width(), maps.maps.config.raster.height());
+        for (name, data) in maps.stored() {
+            let map = RawMap { format: maps.format, width: w, height: h, raw: data };
+            write_npy(folder, &file(name, "npy"), &map)?;
+            write_preview(folder, &file(name, "png"), &map, (&map_title(name), &detail))?;
+        }
+        // Pixel by pixel, for scripts: the shadow term, the reference and the verdicts.
+        let arrays = PixelArrays::of_part(part);
+        let size = (arrays.width, arrays.height);
+        write_array(folder, &file("shadow", "npy"), size, &arrays.shadow)?;
+        write_array(folder, &file("reference", "npy"), size, &arrays.reference)?;
+        write_array(folder, &file("verdict", "npy"), size, &arrays.verdict)?;
     }
-    // Pixel by pixel, for scripts: the shadow term, the reference and the verdicts.
-    let arrays = PixelArrays::of(r);
-    let size = (arrays.width, arrays.height);
-    write_array(folder, "shadow.npy", size, &arrays.shadow)?;
-    write_array(folder, "reference.npy", size, &arrays.reference)?;
-    write_array(folder, "verdict.npy", size, &arrays.verdict)?;
     // The metrics, with what made them. Numbers and strings only: these
     // serialise without fail.
-    let mut record = serde_json::to_value(r.metrics).unwrap_or(Value::Null);
+    let mut record = serde_json::to_value(r.frame_metrics()).unwrap_or(Value::Null);
     if let Some(fields) = record.as_object_mut() {
         for (k, v) in [
             ("umbra_version", version()),
@@ -53,6 +69,10 @@ pub fn write_render(folder: &mut OutputFolder, job: &Checked<'_>, r: &Render) ->
             fields.insert(k.to_owned(), Value::String(v));
         }
         fields.insert("configuration".to_owned(), serde_json::to_value(cfg).unwrap_or(Value::Null));
+        if several {
+            let each = r.parts().map(|p| serde_json::to_value(p.metrics).unwrap_or(Value::Null)).collect();
+            fields.insert("lights".to_owned(), Value::Array(each));
+        }
     }
     folder.write_text("metrics.json", &serde_json::to_string_pretty(&record).unwrap_or_default())?;
     Ok(())

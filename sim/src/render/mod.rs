@@ -14,6 +14,8 @@ pub mod replay;
 mod request;
 pub(crate) mod shared;
 
+use std::borrow::Cow;
+
 use indicatif::ProgressBar;
 use umbra_core::depth::Texel;
 use umbra_core::shade::{MapUnit, SilhouetteUnit};
@@ -34,7 +36,7 @@ use crate::input::limits::LimitError;
 use crate::pass::PassError;
 use crate::pass::algorithm::MapKind;
 pub(crate) use crate::pass::algorithm::{Algorithm, Culling};
-use crate::pass::camera::{self, CameraFrame, CameraImage, CameraOptions, map_view, visibility, volumes};
+use crate::pass::camera::{CameraFrame, CameraImage, CameraOptions, map_view, shade_visible, visibility, volumes};
 use crate::pass::light::{self, DEFAULT_BIN_CAPACITY, LightFrame, LightMaps, LightOptions, RawMaps};
 use crate::pass::occluders::silhouette_map;
 use crate::truth::metrics::{Fields, Metrics, Verdict};
@@ -89,37 +91,139 @@ pub enum RenderError {
     /// The light's map receives no fragment: the light sees no object.
     #[error(transparent)]
     EmptyMap(#[from] crate::pass::light::EmptyMap),
+    /// One of several lights faces no surface the camera sees.
+    #[error("{0}: the view shows no surface facing this light, so none of its pixels can be evaluated")]
+    NothingEvaluatedFor(String),
+    /// References given for another number of lights.
+    #[error("{found} references were given for the scene's {lights} shadow-casting lights")]
+    Truths {
+        /// The scene's shadow-casting lights.
+        lights: usize,
+        /// The references given.
+        found: usize,
+    },
+    /// A problem of one of several lights' parts.
+    #[error("{light}: {source}")]
+    OfLight {
+        /// The light, `lights[k]`.
+        light: String,
+        /// What went wrong.
+        source: Box<RenderError>,
+    },
 }
 
-/// Everything a render produced.
+impl RenderError {
+    /// This error as light `k`'s.
+    #[must_use]
+    pub fn of_light(self, k: usize) -> Self {
+        Self::OfLight { light: Scene::light_key(k), source: Box::new(self) }
+    }
+}
+
+/// Everything a render produced: its first light's part in its own
+/// fields, each further shadow-casting light's in [`Render::more`].
 pub struct Render {
-    /// The camera pass.
+    /// The camera pass's shading against the first light.
     pub image: CameraImage,
-    /// The light pass's maps, raw bits.
+    /// The first light's maps, raw bits.
     pub maps: RawMaps,
-    /// The exact reference per pixel.
+    /// The exact reference per pixel for the first light.
     pub truth: Vec<Option<PixelTruth>>,
-    /// The render against the reference.
+    /// The render against the reference, for the first light.
     pub metrics: Metrics,
-    /// Each pixel's verdict, wrong ones by their cause.
+    /// Each pixel's verdict for the first light, wrong ones by their cause.
     pub verdicts: Vec<Verdict>,
-    /// Events of the light pass.
+    /// Events of the first light's pass.
     pub light_events: Counters,
-    /// Events of the camera pass.
+    /// Events of the camera pass: its visibility once, its shading once
+    /// per light.
     pub camera_events: Counters,
     /// The `umbra render` command line that renders it again, bit for bit
     /// ([`RenderConfig::command`]).
     pub command: String,
+    /// The parts of the scene's second and further shadow-casting lights,
+    /// in order (empty for a scene of one light).
+    pub more: Vec<LightPart>,
+}
+
+/// What a render produced for one of its lights: the maps its light pass
+/// drew, the camera pass's shading against them, the exact reference for
+/// that light and the metrics between them.
+pub struct LightPart {
+    /// The camera pass's shading against this light.
+    pub image: CameraImage,
+    /// Its light pass's maps, raw bits.
+    pub maps: RawMaps,
+    /// The exact reference per pixel for this light.
+    pub truth: Vec<Option<PixelTruth>>,
+    /// The render against the reference, for this light.
+    pub metrics: Metrics,
+    /// Each pixel's verdict for this light.
+    pub verdicts: Vec<Verdict>,
+    /// Events of its light pass.
+    pub light_events: Counters,
+}
+
+impl Render {
+    /// Every light's part, the first's first: its shading, maps,
+    /// reference, metrics, verdicts and light-pass events.
+    pub fn parts(&self) -> impl Iterator<Item = PartRef<'_>> {
+        let first = PartRef {
+            image: &self.image,
+            maps: &self.maps,
+            truth: &self.truth,
+            metrics: &self.metrics,
+            verdicts: &self.verdicts,
+            light_events: &self.light_events,
+        };
+        core::iter::once(first).chain(self.more.iter().map(|p| PartRef {
+            image: &p.image,
+            maps: &p.maps,
+            truth: &p.truth,
+            metrics: &p.metrics,
+            verdicts: &p.verdicts,
+            light_events: &p.light_events,
+        }))
+    }
+
+    /// The frame's metrics: for one light, its own; for several, every
+    /// light's summed over (pixel, light) pairs ([`Metrics::of_lights`]).
+    #[must_use]
+    pub fn frame_metrics(&self) -> Metrics {
+        if self.more.is_empty() {
+            return self.metrics;
+        }
+        Metrics::of_lights(&self.parts().map(|p| *p.metrics).collect::<Vec<_>>())
+    }
+}
+
+/// One light's part of a [`Render`], borrowed.
+#[derive(Clone, Copy)]
+pub struct PartRef<'r> {
+    /// The camera pass's shading against this light.
+    pub image: &'r CameraImage,
+    /// Its maps.
+    pub maps: &'r RawMaps,
+    /// The exact reference for this light.
+    pub truth: &'r [Option<PixelTruth>],
+    /// Its metrics.
+    pub metrics: &'r Metrics,
+    /// Its verdicts.
+    pub verdicts: &'r [Verdict],
+    /// Its light pass's events.
+    pub light_events: &'r Counters,
 }
 
 /// Where a render's exact reference comes from.
 pub enum TruthSource<'p> {
     /// Built for this render, showing no progress.
     Quiet,
-    /// Built for this render; the bar ticks once per reference row.
+    /// Built for this render; the bar ticks once per reference row and
+    /// light.
     Build(&'p ProgressBar),
-    /// Built before ([`truth`]) for the same scene, image size and rays.
-    Given(Vec<Option<PixelTruth>>),
+    /// Built before ([`truth`]) for the same scene, image size and rays:
+    /// one per shadow-casting light.
+    Given(Vec<Vec<Option<PixelTruth>>>),
 }
 
 /// Render the configuration `job` checked for its scene
@@ -142,39 +246,54 @@ pub enum TruthSource<'p> {
 pub fn render(job: &Checked<'_>, truth_from: TruthSource<'_>) -> Result<Render, RenderError> {
     let (scene, cfg) = (job.scene(), job.config());
     let checked = job.targets(RasterConfig::DEFAULT_TILE_SIZE)?;
-    let none = (umbra_core::NoProbe, &mut umbra_core::NoProbe);
+    let none = (vec![umbra_core::NoProbe; scene.lights.len().max(1)], &mut umbra_core::NoProbe);
     Ok(with_format!(cfg.format, F => render_in::<F, _, _>(scene, cfg, checked, truth_from, none)?.0))
 }
 
-/// The reference `truth_from` names for the render's `image`, of the
-/// configuration's image size: one built is cast through the triangles the
-/// render's own camera pass saw (the visibility of [`truth`], bit for bit).
-fn truth_of(
+/// The references `truth_from` names for the render's image, one per
+/// light, of the configuration's image size: one built is cast through the
+/// triangles the render's own camera pass saw (the visibility of
+/// [`truth`], bit for bit).
+fn truths_of(
     cfg: &RenderConfig,
     truth_from: TruthSource<'_>,
     (ids, camera): (&[u32], umbra_core::glam::Mat4),
-    (reference, light): (&Reference, &LightSource),
-) -> Result<Vec<Option<PixelTruth>>, RenderError> {
+    (reference, lights): (&Reference, &[LightSource]),
+) -> Result<Vec<Vec<Option<PixelTruth>>>, RenderError> {
     let build = |progress: &ProgressBar| {
-        reference.image(ids, &camera, cfg.width, cfg.height, light, cfg.reference_rays, progress)
+        lights
+            .iter()
+            .map(|light| reference.image(ids, &camera, cfg.width, cfg.height, light, cfg.reference_rays, progress))
+            .collect::<Vec<_>>()
     };
-    let truth = match truth_from {
+    let truths = match truth_from {
         TruthSource::Quiet => build(&ProgressBar::hidden()),
         TruthSource::Build(progress) => build(progress),
         TruthSource::Given(t) => t,
     };
-    if truth.len() as u64 != u64::from(cfg.width) * u64::from(cfg.height) {
-        return Err(RenderError::Truth { width: cfg.width, height: cfg.height, found: truth.len() });
+    let pixels = u64::from(cfg.width) * u64::from(cfg.height);
+    if truths.len() != lights.len() {
+        return Err(RenderError::Truths { lights: lights.len(), found: truths.len() });
     }
-    if !truth.iter().flatten().any(|t| t.faces_light) {
-        return Err(RenderError::NothingEvaluated);
+    for (k, truth) in truths.iter().enumerate() {
+        if truth.len() as u64 != pixels {
+            return Err(RenderError::Truth { width: cfg.width, height: cfg.height, found: truth.len() });
+        }
+        if !truth.iter().flatten().any(|t| t.faces_light) {
+            return Err(if lights.len() == 1 {
+                RenderError::NothingEvaluated
+            } else {
+                RenderError::NothingEvaluatedFor(Scene::light_key(k))
+            });
+        }
     }
-    Ok(truth)
+    Ok(truths)
 }
 
 /// The exact reference of `scene` seen from its camera at `width × height`
-/// with `samples²` rays per pixel (see [`Reference::image`]). It depends on
-/// nothing else, so a sweep builds it once per scene and image.
+/// with `samples²` rays per pixel (see [`Reference::image`]), one per
+/// shadow-casting light. It depends on nothing else, so a sweep builds it
+/// once per scene and image.
 ///
 /// # Errors
 /// See [`RenderError`].
@@ -184,12 +303,37 @@ pub fn truth(
     height: u32,
     samples: u32,
     progress: &ProgressBar,
-) -> Result<Vec<Option<PixelTruth>>, RenderError> {
+) -> Result<Vec<Vec<Option<PixelTruth>>>, RenderError> {
     let mut frame = CameraFrame::default();
     let vis = visibility(&mut frame, scene, (width, height), Tiling::DEFAULT, &mut umbra_core::NoProbe)?;
     let reference = Reference::of(scene)?;
-    let light = scene.light().source();
-    Ok(reference.image(frame.ids(), &vis.camera, width, height, &light, samples, progress))
+    let lights = light_sources(scene);
+    Ok(lights.iter().map(|l| reference.image(frame.ids(), &vis.camera, width, height, l, samples, progress)).collect())
+}
+
+/// Each shadow-casting light as the exact reference sees it.
+fn light_sources(scene: &Scene) -> Vec<LightSource> {
+    match scene.lights.as_slice() {
+        [] => vec![scene.light().source()],
+        lights => lights.iter().map(crate::world::scene::Light::source).collect(),
+    }
+}
+
+/// The scene lit by each of its lights in turn: itself when it has one.
+pub(crate) fn lit_scenes(scene: &Scene) -> Vec<Cow<'_, Scene>> {
+    if scene.lights.len() <= 1 {
+        vec![Cow::Borrowed(scene)]
+    } else {
+        (0..scene.lights.len()).map(|k| Cow::Owned(scene.lit_by(k))).collect()
+    }
+}
+
+/// Tell `probe` that the shadow unit reads light `k`'s map, when the pass
+/// tests more than one of `lights`.
+fn bind<P: Probe>(probe: &mut P, k: usize, lights: usize) {
+    if lights > 1 {
+        probe.map_bound(u16::try_from(k).unwrap_or(u16::MAX));
+    }
 }
 
 /// The camera pass's options for `cfg`, whose algorithm uses `units`, at
@@ -212,112 +356,160 @@ pub(crate) fn camera_options(
     })
 }
 
-/// The light pass and the camera pass of a render, reporting to the two
-/// probes: the maps, the light probe and the camera image.
+/// The passes of a render: a light pass per shadow-casting light, each
+/// reporting to its own of `light_probes` (one per light) and drawing into
+/// its own of `frames` (with its silhouette pass, for a silhouette map),
+/// then the camera pass: the visibility unit once and the shading unit
+/// once per light against that light's map (the probe told which map it
+/// reads), or the stencil unit once per light for shadow volumes. The
+/// light probes, and one camera image per light.
 pub(super) fn passes<F: DepthFormat, L: Probe, C: Probe>(
     scene: &Scene,
     cfg: &RenderConfig,
     checked: Targets,
-    frame: &mut LightFrame<F::Texel>,
-    light_probe: L,
+    frames: &mut Vec<LightFrame<F::Texel>>,
+    light_probes: Vec<L>,
     camera_probe: &mut C,
     tiling: Tiling,
-) -> Result<(L, CameraImage), RenderError> {
+) -> Result<(Vec<L>, Vec<CameraImage>), RenderError> {
     let units = cfg.algorithm.units::<F>(cfg.bias);
     let light_config = LightPassConfig { raster: checked.map, unit: units.unit, max_z_cull: true };
     let mut camera = CameraFrame::default();
     let size = (checked.image.width(), checked.image.height());
+    let lit = lit_scenes(scene);
+    let lit: Vec<&Scene> = lit.iter().map(AsRef::as_ref).collect();
+    debug_assert_eq!(light_probes.len(), lit.len(), "one light probe per light");
     if units.map == MapKind::Volumes {
-        volumes(&mut camera, scene, size, tiling, camera_probe)?;
-        return Ok((light_probe, camera.take_image()));
+        let images = volumes(&mut camera, (scene, &lit), size, tiling, camera_probe)?;
+        return Ok((light_probes, images));
     }
-    let draws = scene.draws_culled(scene.light().view_projection(), |solid| units.cull(solid, cfg.culling));
-    let (maps, mut light_probe) = light::render::<F, _, DEFAULT_BIN_CAPACITY>(
-        frame,
-        light_config,
-        &draws,
-        LightOptions { per_draw: tiling.per_draw, ..LightOptions::default() },
-        light_probe,
-    )?;
+    frames.resize_with(lit.len(), LightFrame::new);
+    let drawing = LightOptions { per_draw: tiling.per_draw, ..LightOptions::default() };
+    let mut views = Vec::with_capacity(lit.len());
+    let mut probes = Vec::with_capacity(lit.len());
+    for ((one, frame), probe) in lit.iter().zip(frames.iter_mut()).zip(light_probes) {
+        let draws = one.draws_culled(one.light().view_projection(), |solid| units.cull(solid, cfg.culling));
+        let (maps, probe) = light::render::<F, _, DEFAULT_BIN_CAPACITY>(frame, light_config, &draws, drawing, probe)?;
+        views.push(map_view::<F>(maps, units.front_culled)?);
+        probes.push(probe);
+    }
     let options = camera_options(cfg, &units, size, tiling)?;
-    let view = map_view::<F>(maps, units.front_culled)?;
-    match units.map {
+    let seen = (scene, lit.as_slice(), views.as_slice());
+    let images = match units.map {
         MapKind::Silhouette { packed: true } => {
-            silhouette::<Packed, F, _, _>(&mut camera, scene, &view, &options, &mut light_probe, camera_probe)?
+            silhouettes::<Packed, F, _, _>(&mut camera, seen, &options, &mut probes, camera_probe)?
         }
         MapKind::Silhouette { packed: false } => {
-            silhouette::<SilPoint, F, _, _>(&mut camera, scene, &view, &options, &mut light_probe, camera_probe)?
+            silhouettes::<SilPoint, F, _, _>(&mut camera, seen, &options, &mut probes, camera_probe)?
         }
         MapKind::Depth | MapKind::Volumes => {
-            camera::render(&mut camera, scene, &view, &MapUnit, &options, camera_probe)?
+            visibility(&mut camera, scene, size, tiling, camera_probe)?;
+            let mut images = Vec::with_capacity(lit.len());
+            for (k, (one, view)) in lit.iter().zip(&views).enumerate() {
+                bind(camera_probe, k, lit.len());
+                images.push(shade_visible(&mut camera, one, view, &MapUnit, &options, camera_probe)?);
+            }
+            images
         }
-    }
-    Ok((light_probe, camera.take_image()))
+    };
+    Ok((probes, images))
 }
 
-/// The silhouette pass over the map (events to `light_probe`, as part of
-/// the light side) and the camera pass with the silhouette unit.
-fn silhouette<S: SilStore, F: DepthFormat, L: Probe, C: Probe>(
-    frame: &mut CameraFrame,
-    scene: &Scene,
-    view: &MapView<'_, F>,
+/// Each light's silhouette pass over its map (events to its light probe,
+/// as part of the light side), then the camera pass: visibility once, and
+/// the silhouette unit once per light.
+fn silhouettes<S: SilStore, F: DepthFormat, L: Probe, C: Probe>(
+    camera: &mut CameraFrame,
+    (scene, lit, views): (&Scene, &[&Scene], &[MapView<'_, F>]),
     options: &CameraOptions,
-    light_probe: &mut L,
+    light_probes: &mut [L],
     camera_probe: &mut C,
-) -> Result<(), RenderError> {
-    let light = scene.light().view_projection();
-    let texels = silhouette_map::<S, F, _>(&Occluders::new(scene), &light, view, options.shadow, light_probe)
-        .map_err(PassError::from)?;
-    let raster = view.raster();
-    let sil = SilhouetteMap::view(raster.width(), raster.height(), &texels).map_err(PassError::from)?;
-    camera::render(frame, scene, view, &SilhouetteUnit(&sil), options, camera_probe)?;
-    Ok(())
+) -> Result<Vec<CameraImage>, RenderError> {
+    let mut stores = Vec::with_capacity(lit.len());
+    for ((one, view), probe) in lit.iter().zip(views).zip(light_probes.iter_mut()) {
+        let light = one.light().view_projection();
+        let texels = silhouette_map::<S, F, _>(&Occluders::new(one), &light, view, options.shadow, probe)
+            .map_err(PassError::from)?;
+        stores.push(texels);
+    }
+    visibility(camera, scene, (options.width, options.height), options.tiling, camera_probe)?;
+    let mut images = Vec::with_capacity(lit.len());
+    for (k, ((one, view), texels)) in lit.iter().zip(views).zip(&stores).enumerate() {
+        let raster = view.raster();
+        let sil = SilhouetteMap::view(raster.width(), raster.height(), texels).map_err(PassError::from)?;
+        bind(camera_probe, k, lit.len());
+        images.push(shade_visible(camera, one, view, &SilhouetteUnit(&sil), options, camera_probe)?);
+    }
+    Ok(images)
 }
 
-/// The render of `cfg`, its events counted, and reporting to two more
-/// probes besides (the architectures costed from the same passes).
+/// The render of `cfg`, its events counted, and reporting to more probes
+/// besides (the architectures costed from the same passes): one per light
+/// for the light passes, one for the camera pass.
 pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
     scene: &Scene,
     cfg: &RenderConfig,
     checked: Targets,
     truth_from: TruthSource<'_>,
-    (light_also, camera_also): (L, &mut C),
-) -> Result<(Render, L), RenderError> {
+    (light_also, camera_also): (Vec<L>, &mut C),
+) -> Result<(Render, Vec<L>), RenderError> {
     let command = cfg.command(scene);
     let mut camera_events = Counters::new(&checked.image);
-    let mut frame = LightFrame::new();
-    let (Tee(light_events, light_also), image) = passes::<F, _, _>(
+    let mut frames = Vec::new();
+    let light_probes = light_also.into_iter().map(|also| Tee(Counters::new(&checked.map), also)).collect();
+    let (probes, images) = passes::<F, _, _>(
         scene,
         cfg,
         checked,
-        &mut frame,
-        Tee(Counters::new(&checked.map), light_also),
+        &mut frames,
+        light_probes,
         &mut Tee(&mut camera_events, camera_also),
         Tiling::DEFAULT,
     )?;
-    if frame.maps().is_some() {
-        crate::pass::light::EmptyMap::check(&light_events.totals, "lights[0]")?;
+    let (light_events, light_also): (Vec<Counters>, Vec<L>) = probes.into_iter().map(|Tee(a, b)| (a, b)).unzip();
+    let several = light_events.len() > 1;
+    for (k, (frame, events)) in frames.iter().zip(&light_events).enumerate() {
+        if frame.maps().is_some() {
+            crate::pass::light::EmptyMap::check(&events.totals, &Scene::light_key(k))?;
+        }
     }
     let reference = Reference::of(scene)?;
-    let ids: Vec<u32> = image.pixels.iter().map(|p| p.triangle).collect();
-    let truth = truth_of(cfg, truth_from, (&ids, image.camera), (&reference, &scene.light().source()))?;
-    let fields = Fields::new(&truth, image.width);
+    let Some(seen) = images.first() else { return Err(RenderError::NothingEvaluated) };
+    let ids: Vec<u32> = seen.pixels.iter().map(|p| p.triangle).collect();
+    let truths = truths_of(cfg, truth_from, (&ids, seen.camera), (&reference, &light_sources(scene)))?;
     let units = cfg.algorithm.units::<F>(cfg.bias);
-    let options = camera_options(cfg, &units, (image.width, image.height), Tiling::DEFAULT)?;
-    let view = frame.maps().map(|maps| map_view::<F>(maps, units.front_culled)).transpose()?;
-    let inputs =
-        PassInputs { scene, seen: (&ids, image.camera), view: view.as_ref(), options: &options, kind: units.map };
-    let (metrics, verdicts) = judged(&inputs, &image.pixels, (&truth, &fields, &reference))?;
-    let maps = frame.maps().map_or_else(
-        // Shadow volumes draw no map: one far texel stands for it.
-        || LightMaps {
-            config: LightPassConfig { raster: checked.map, unit: DepthUnit::Single, max_z_cull: true },
-            z1: vec![F::Texel::to_raw(F::FAR)],
-            z2: Vec::new(),
-            tiles: vec![TileState::cleared(F::Texel::to_raw(F::FAR), 1)],
-        },
-        light::widen,
-    );
-    let maps = RawMaps { format: cfg.format, maps };
-    Ok((Render { image, maps, truth, metrics, verdicts, light_events, camera_events, command }, light_also))
+    let options = camera_options(cfg, &units, (seen.width, seen.height), Tiling::DEFAULT)?;
+    let lit = lit_scenes(scene);
+    let mut parts = Vec::with_capacity(images.len());
+    for (k, ((image, truth), events)) in images.into_iter().zip(truths).zip(light_events).enumerate() {
+        let fields = Fields::new(&truth, image.width);
+        let maps = frames.get(k).and_then(LightFrame::maps);
+        let view = maps.map(|m| map_view::<F>(m, units.front_culled)).transpose()?;
+        let one = lit.get(k).map_or(scene, AsRef::as_ref);
+        let inputs = PassInputs {
+            scene: one,
+            seen: (&ids, image.camera),
+            view: view.as_ref(),
+            options: &options,
+            kind: units.map,
+        };
+        let (metrics, verdicts) = judged(&inputs, &image.pixels, (&truth, &fields, &reference))
+            .map_err(|e| if several { RenderError::Pass(e).of_light(k) } else { RenderError::Pass(e) })?;
+        let maps = maps.map_or_else(
+            // Shadow volumes draw no map: one far texel stands for it.
+            || LightMaps {
+                config: LightPassConfig { raster: checked.map, unit: DepthUnit::Single, max_z_cull: true },
+                z1: vec![F::Texel::to_raw(F::FAR)],
+                z2: Vec::new(),
+                tiles: vec![TileState::cleared(F::Texel::to_raw(F::FAR), 1)],
+            },
+            light::widen,
+        );
+        let maps = RawMaps { format: cfg.format, maps };
+        parts.push(LightPart { image, maps, truth, metrics, verdicts, light_events: events });
+    }
+    let first = parts.remove(0);
+    let LightPart { image, maps, truth, metrics, verdicts, light_events } = first;
+    let render = Render { image, maps, truth, metrics, verdicts, light_events, camera_events, command, more: parts };
+    Ok((render, light_also))
 }

@@ -18,26 +18,30 @@ fn lambert(truth: &[Option<PixelTruth>], k: usize) -> f64 {
     truth.get(k).copied().flatten().map_or(0.0, |t| t.light_cos.max(0.0))
 }
 
+/// One light's shading of the camera image and its exact reference.
+pub(crate) type LitBy<'a> = (&'a CameraImage, &'a [Option<PixelTruth>]);
+
 /// Write the camera pass as a picture a person can read: surfaces grey by
-/// their facing to the light (the cosine to the light at each pixel's
-/// surface point, from the exact reference `truth`; faces turned away are
-/// dark), shadowed parts dark in proportion to the shadow fraction, where
-/// there is no surface [`BACKGROUND`]. The picture is exposed so that
-/// the brightest tenth of the surfaces facing the light is white: a scene
-/// lit at grazing (every surface's cosine a few hundredths) still shows
-/// its lit surfaces apart from its shadows. Framed with `detail` (the
-/// scene and configuration) and its key.
+/// their facing to each light (the cosine to the light at each pixel's
+/// surface point, from that light's exact reference; faces turned away
+/// are dark), shadowed parts dark in proportion to that light's shadow
+/// fraction, the lights' contributions summed; where there is no surface
+/// [`BACKGROUND`]. `image` is the camera pass (its size and which pixels
+/// hold a surface), `lights` each light's shading and reference. The
+/// picture is exposed so that the brightest tenth of the surfaces facing
+/// a light is white: a scene lit at grazing (every surface's cosine a few
+/// hundredths) still shows its lit surfaces apart from its shadows. Framed
+/// with `detail` (the scene and configuration) and its key.
 ///
 /// # Errors
 /// [`OutputError::Image`] or [`OutputError::Font`].
 pub(crate) fn write_shadow_image(
     folder: &mut OutputFolder,
     name: &str,
-    image: &CameraImage,
-    truth: &[Option<PixelTruth>],
+    (image, lights): (&CameraImage, &[LitBy<'_>]),
     detail: &str,
 ) -> Result<PathBuf, OutputError> {
-    let lambert = |k: usize| lambert(truth, k);
+    let lambert = |k: usize| lights.iter().map(|(_, truth)| lambert(truth, k)).sum::<f64>();
     let mut facing: Vec<f64> = (0..image.pixels.len()).map(lambert).filter(|&l| l > 0.0).collect();
     let brightest = if facing.is_empty() {
         1.0
@@ -59,12 +63,26 @@ pub(crate) fn write_shadow_image(
             if p.triangle == umbra_core::NO_TRIANGLE {
                 return BACKGROUND;
             }
-            let lit = 1.0 - p.shadow.to_num::<f64>();
-            grey((lit * lambert(k) * exposure).min(1.0))
+            let shaded: f64 = lights
+                .iter()
+                .map(|(light, truth)| {
+                    let lit = light.pixels.get(k).map_or(0.0, |q| 1.0 - q.shadow.to_num::<f64>());
+                    lit * self::lambert(truth, k)
+                })
+                .sum();
+            grey((shaded * exposure).min(1.0))
         })
         .collect();
+    let title = if lights.len() == 1 {
+        "shaded: grey by each surface's facing to the light, darker where the render shadows it".to_owned()
+    } else {
+        format!(
+            "shaded: {} lights, each surface grey by its facing to each, darker where the render shadows it, summed",
+            lights.len()
+        )
+    };
     let frame = Frame {
-        title: "shaded: grey by each surface's facing to the light, darker where the render shadows it".into(),
+        title,
         detail: detail.to_owned(),
         scale: Some(Scale {
             colour: &grey,

@@ -162,7 +162,7 @@ impl Reference {
     /// `None` when the surface faces away from it.
     #[must_use]
     pub(crate) fn sees_light(&self, p: DVec3, n: DVec3, light: &LightSource) -> Option<bool> {
-        if n.dot(light.towards(p).0) <= 0.0 {
+        if n.dot(light.towards(p).0) <= 0.0 || !light.reaches(p) {
             return None;
         }
         let (ray, max) = self.towards_light(p, light);
@@ -248,7 +248,7 @@ impl Reference {
                     faces_light: centre.is_some(),
                     lit: centre == Some(true),
                     visibility,
-                    light_cos: nrm.normalize_or_zero().dot(light.towards(p).0),
+                    light_cos: if light.reaches(p) { nrm.normalize_or_zero().dot(light.towards(p).0) } else { 0.0 },
                 })
             })
             .collect()

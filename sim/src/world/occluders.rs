@@ -39,7 +39,7 @@ fn facing(light: &Light, p: &[Vec3; 3]) -> f64 {
     let [a, b, c] = p.map(|v| v.as_dvec3());
     let n = (b - a).cross(c - a);
     let towards = match light {
-        Light::Spot(s) => s.position.as_dvec3() - (a + b + c) / 3.0,
+        Light::Spot(s) | Light::Cone(s) => s.position.as_dvec3() - (a + b + c) / 3.0,
         Light::Directional(_) => -light.direction().as_dvec3(),
     };
     n.dot(towards)

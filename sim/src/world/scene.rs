@@ -1,6 +1,6 @@
 //! Scenes: objects in world space, lights and a camera.
 
-use glam::{DVec3, Mat4, Vec3};
+use glam::{DMat4, DVec3, Mat4, Vec3};
 use umbra_core::CullMode;
 
 use crate::world::mesh::Mesh;
@@ -140,8 +140,14 @@ impl Camera {
 /// A light of the scene.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Light {
-    /// A perspective spot light.
+    /// A perspective spot light as the papers set theirs up (a scene
+    /// file's `spot`): a point light of which the map sees what its
+    /// frustum holds; the exact reference lights every way from it.
     Spot(Perspective),
+    /// A spot light with a cone (a glTF file's): it lights what its
+    /// frustum holds and nothing else, so a surface outside it is not
+    /// lit by it, nor measured against it.
+    Cone(Perspective),
     /// An orthographic directional light.
     Directional(Orthographic),
 }
@@ -159,7 +165,7 @@ impl Light {
     #[must_use]
     pub fn view_projection(&self) -> Mat4 {
         match self {
-            Self::Spot(p) => p.view_projection(),
+            Self::Spot(p) | Self::Cone(p) => p.view_projection(),
             Self::Directional(o) => o.view_projection_aspect(1.0),
         }
     }
@@ -168,7 +174,7 @@ impl Light {
     #[must_use]
     pub(crate) fn direction(&self) -> Vec3 {
         match self {
-            Self::Spot(p) => p.target - p.position,
+            Self::Spot(p) | Self::Cone(p) => p.target - p.position,
             Self::Directional(o) => o.target - o.position,
         }
     }
@@ -178,6 +184,9 @@ impl Light {
     pub fn source(&self) -> LightSource {
         match self {
             Self::Spot(p) => LightSource::Point(p.position.as_dvec3()),
+            Self::Cone(p) => {
+                LightSource::Spot { position: p.position.as_dvec3(), frustum: p.view_projection().as_dmat4() }
+            }
             Self::Directional(_) => LightSource::Directional(self.direction().as_dvec3()),
         }
     }
@@ -229,6 +238,20 @@ impl Scene {
             Some(c) => format!("{quoted} --camera {}", crate::output::provenance::shell_word(c)),
             None => quoted,
         }
+    }
+
+    /// The scene as light `k` alone lights it: the same objects and
+    /// camera, `lights` that light only. A render of several lights draws
+    /// each light's passes from its own.
+    #[must_use]
+    pub fn lit_by(&self, k: usize) -> Self {
+        Self { lights: self.lights.get(k).copied().into_iter().collect(), ..self.clone() }
+    }
+
+    /// Each light's name in files and messages: `lights[k]`.
+    #[must_use]
+    pub fn light_key(k: usize) -> String {
+        format!("lights[{k}]")
     }
 
     /// The light whose shadows the pipeline renders: the first.
@@ -365,8 +388,17 @@ pub struct Draw<'a> {
 /// Where the light comes from.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum LightSource {
-    /// A point (spot) light at this position.
+    /// A point light at this position, shining every way.
     Point(DVec3),
+    /// A spot light at `position` that lights what its frustum holds (the
+    /// view its map is drawn through, `frustum` its view-projection): a
+    /// point outside it is not lit by this light at all.
+    Spot {
+        /// Where the light is.
+        position: DVec3,
+        /// World to the light's clip space.
+        frustum: DMat4,
+    },
     /// A directional light shining along this direction.
     Directional(DVec3),
 }
@@ -375,11 +407,24 @@ impl LightSource {
     /// The unit direction from `p` towards the light and the distance to it.
     pub(crate) fn towards(&self, p: DVec3) -> (DVec3, f64) {
         match *self {
-            Self::Point(l) => {
+            Self::Point(l) | Self::Spot { position: l, .. } => {
                 let d = l - p;
                 (d.normalize_or_zero(), d.length())
             }
             Self::Directional(dir) => (-dir.normalize_or_zero(), f64::INFINITY),
+        }
+    }
+
+    /// Whether the light reaches `p` at all: a spot light only inside its
+    /// frustum (between its near and far planes, within its field of
+    /// view); every other light everywhere.
+    pub(crate) fn reaches(&self, p: DVec3) -> bool {
+        match *self {
+            Self::Spot { frustum, .. } => {
+                let c = frustum * p.extend(1.0);
+                c.w > 0.0 && c.x.abs() <= c.w && c.y.abs() <= c.w && (0.0..=c.w).contains(&c.z)
+            }
+            Self::Point(_) | Self::Directional(_) => true,
         }
     }
 }

@@ -46,7 +46,7 @@ fn a_shared_pass_costs_each_architecture_as_alone() {
             .expect("renders");
         let (shared, costs) = cfg
             .check(&s, &limits)
-            .and_then(|job| render_costed(&job, TruthSource::Given(alone.truth.clone()), &archs))
+            .and_then(|job| render_costed(&job, TruthSource::Given(vec![alone.truth.clone()]), &archs))
             .expect("renders");
         assert_eq!(shared.image.pixels, alone.image.pixels, "{scene}");
         assert_eq!(shared.metrics, alone.metrics, "{scene}");

@@ -24,7 +24,7 @@ fn sweep(scene: &str, variants: Vec<Variant>, maps: &[u32], filters: Vec<Filter>
 fn lit_from(mut scene: Scene, position: [f32; 3]) -> Scene {
     let p = umbra::core::glam::Vec3::from_array(position);
     match &mut scene.lights[0] {
-        Light::Spot(view) => view.position = p,
+        Light::Spot(view) | Light::Cone(view) => view.position = p,
         Light::Directional(view) => view.position = p,
     }
     scene.name = format!("{} lit from {position:?}", scene.name);

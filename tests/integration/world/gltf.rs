@@ -218,7 +218,7 @@ fn cameras_and_lights_follow_gltf_conventions() {
     };
     let (got, want) = (scene.camera.view_projection_aspect(2.0), by_hand.view_projection_aspect(2.0));
     assert!(got.abs_diff_eq(want, 1e-5), "{got} ≠ {want}");
-    let Some(Light::Spot(spot)) = scene.lights.first() else { panic!("a spot light: {:?}", scene.lights) };
+    let Some(Light::Cone(spot)) = scene.lights.first() else { panic!("a spot light: {:?}", scene.lights) };
     assert!((spot.fov_degrees - 1.0f32.to_degrees()).abs() < 1e-4, "{}", spot.fov_degrees);
     assert_eq!(spot.far, 9.0);
     assert!((spot.target - spot.position).normalize().abs_diff_eq(Vec3::NEG_Y, 1e-6), "straight down");
@@ -462,4 +462,19 @@ fn the_full_bunny_from_glmark2_renders() {
     // 2840 pixels measured: the bunny, framed, covers a sixth of the image
     // and faces the light on most of it; an empty or unlit render has none.
     assert!(r.metrics.evaluated > 2000, "{}", r.metrics.evaluated);
+}
+
+/// `examples/city.glb` is what `umbra scene city` writes at its default
+/// size, byte for byte; every building closed (solid), both lights read.
+#[test]
+fn the_bundled_city_is_the_generated_one() {
+    use umbra::sim::world::gltf::City;
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/city.glb");
+    let shipped = std::fs::read(&path).expect("examples/city.glb");
+    assert!(shipped == City::SMALL.glb().expect("generates"), "regenerate it: cargo umbra scene city --out out/city");
+    let scene = Scene::open(path.to_str().expect("utf-8"), &Limits::DEFAULT).expect("opens");
+    let buildings: Vec<_> = scene.objects.iter().filter(|o| o.name.starts_with("building")).collect();
+    assert_eq!(buildings.len(), 9);
+    assert!(buildings.iter().all(|o| o.solid && o.mesh.triangles.len() as u64 == City::SMALL.building_triangles()));
+    assert!(matches!(scene.lights.as_slice(), [Light::Directional(_), Light::Cone(_)]), "{:?}", scene.lights);
 }

@@ -129,20 +129,44 @@ pub struct CostReport {
     pub light_events: Totals,
     /// Every event of the camera pass.
     pub camera_events: Totals,
-    /// Per tile of each pass (light, camera), for the timeline.
+    /// Each light's pass, in the scene's order, when there are several
+    /// (the light pass above is their sum: they run one after another).
+    #[serde(rename = "light_passes", skip_serializing_if = "Vec::is_empty")]
+    pub light_passes: Vec<PassTiming>,
+    /// Every pass in the order the frame runs them (each light's, then
+    /// the camera's), for the timeline.
     #[serde(skip)]
-    pub tiles: [Vec<Work>; 2],
-    /// The units after each pass's tiles (light, camera), named, for the
-    /// timeline.
-    #[serde(skip)]
-    pub tail: [[(&'static str, Work); 3]; 2],
-    /// Tiles a row of each pass's target (light, camera); `None` for a
-    /// pass timed per draw. For the timeline.
-    #[serde(skip)]
-    pub tiles_across: [Option<usize>; 2],
-    /// The front ends' work (light, camera), for the timeline.
-    #[serde(skip)]
-    pub front: [Work; 2],
+    pub timeline: Vec<PassTimeline>,
+}
+
+/// What the timeline draws of one pass.
+#[derive(Clone, Debug)]
+pub struct PassTimeline {
+    /// Its name: `light`, `light lights[1]`, `camera`.
+    pub name: String,
+    /// Its time.
+    pub timing: PassTiming,
+    /// Per tile (per draw on an immediate-mode machine).
+    pub tiles: Vec<Work>,
+    /// The units after its tiles, named.
+    pub tail: [(&'static str, Work); 3],
+    /// Tiles a row of its target; `None` for a pass timed per draw.
+    pub tiles_across: Option<usize>,
+    /// Its front end's work.
+    pub front: Work,
+}
+
+impl PassTimeline {
+    fn of<const D: bool>(name: String, probe: &ArchProbe<D>, timing: PassTiming) -> Self {
+        Self {
+            name,
+            timing,
+            tiles: probe.tiles.clone(),
+            tail: probe.tail(),
+            tiles_across: probe.tiles_across(),
+            front: probe.front,
+        }
+    }
 }
 
 #[allow(clippy::cast_precision_loss, reason = "ratios of counts")]
@@ -162,13 +186,34 @@ impl CostReport {
     #[must_use]
     pub(crate) fn new<const L: bool, const C: bool>(
         (scene, config): (&str, String),
-        light: &ArchProbe<L>,
+        lights: &[ArchProbe<L>],
         camera: &ArchProbe<C>,
         samples_per_pixel: u64,
     ) -> Self {
-        let arch = light.arch.clone();
-        let (lt, ct) = (light.timing(), camera.timing());
-        let (le, ce) = (light.events, camera.events);
+        let arch = camera.arch.clone();
+        // The light passes run one after another: their times, bytes,
+        // energy and events add.
+        let each: Vec<PassTiming> = lights.iter().map(ArchProbe::timing).collect();
+        let lt = each.iter().skip(1).fold(each.first().cloned().unwrap_or_default(), |a, b| a.then(b, arch.clock));
+        let ct = camera.timing();
+        let le = lights.iter().fold(Totals::ZERO, |a, l| a.plus(&l.events));
+        let ce = camera.events;
+        let light_dram = lights.iter().fold(Dram::default(), |a, l| a.plus(&l.dram));
+        let several = lights.len() > 1;
+        let mut timeline: Vec<PassTimeline> = lights
+            .iter()
+            .zip(&each)
+            .enumerate()
+            .map(|(k, (l, t))| {
+                let name = if several {
+                    format!("light {}", crate::world::scene::Scene::light_key(k))
+                } else {
+                    "light".to_owned()
+                };
+                PassTimeline::of(name, l, t.clone())
+            })
+            .collect();
+        timeline.push(PassTimeline::of("camera".to_owned(), camera, ct.clone()));
         let cached = arch.map_cache.size > 0;
         let pixels = ce.pixels_shaded;
         let fill = ce.fragments;
@@ -215,9 +260,9 @@ impl CostReport {
             achieved_bytes_per_second: achieved,
             dram_peak_bytes_per_second: arch.dram.bandwidth,
             dram_latency_ceiling_bytes_per_second: arch.dram_latency_ceiling(),
-            light_dram: light.dram,
+            light_dram,
             camera_dram: camera.dram,
-            on_chip_bytes: light.on_chip_bytes(),
+            on_chip_bytes: lights.iter().map(ArchProbe::on_chip_bytes).max().unwrap_or(0),
             max_z_cull_rate: [
                 ratio(culled(&le), culled(&le) + le.rasterized),
                 ratio(culled(&ce), culled(&ce) + ce.rasterized),
@@ -229,10 +274,8 @@ impl CostReport {
             sen,
             light_events: le,
             camera_events: ce,
-            tiles: [light.tiles.clone(), camera.tiles.clone()],
-            tail: [light.tail(), camera.tail()],
-            tiles_across: [light.tiles_across(), camera.tiles_across()],
-            front: [light.front, camera.front],
+            light_passes: if several { each } else { Vec::new() },
+            timeline,
             light: lt,
             camera: ct,
             arch,

@@ -125,8 +125,8 @@ impl CostReport {
         }
         let mut start = self.host_cycles;
         let mut tiles = 0;
-        for (p, pass) in ["light", "camera"].into_iter().enumerate() {
-            let timing = if p == 0 { &self.light } else { &self.camera };
+        for p in &self.timeline {
+            let (pass, timing) = (p.name.as_str(), &p.timing);
             let args = json!({
                 "cycles": timing.cycles, "bottleneck": timing.bottleneck.name(), "bytes": timing.bytes,
                 "achieved GB/s": timing.achieved_bytes_per_second / 1e9,
@@ -138,10 +138,10 @@ impl CostReport {
                 events.push(json!({ "name": label, "cat": pass, "ph": "X", "ts": us(start), "dur": us(timing.overhead), "pid": pid, "tid": 1 }));
             }
             let body_start = start + timing.overhead;
-            let front = slice(events, pass, format!("{pass} front end"), &self.front[p], body_start, 1, false);
+            let front = slice(events, pass, format!("{pass} front end"), &p.front, body_start, 1, false);
             let mut t = body_start + if a.front.overlap { 0.0 } else { front };
-            for (i, w) in self.tiles[p].iter().enumerate() {
-                let label = match self.tiles_across[p] {
+            for (i, w) in p.tiles.iter().enumerate() {
+                let label = match p.tiles_across {
                     Some(across) => format!("{pass} tile ({}, {})", i % across.max(1), i / across.max(1)),
                     None => format!("{pass} draw {i}"),
                 };
@@ -150,7 +150,8 @@ impl CostReport {
                 t += dur;
             }
             // The units after the tiles end the pass.
-            let tail: Vec<(String, f64)> = self.tail[p]
+            let tail: Vec<(String, f64)> = p
+                .tail
                 .iter()
                 .map(|(name, w)| (format!("{pass}: {name}"), w.bottleneck(a).map_or(0.0, |b| b.1)))
                 .collect();
@@ -160,7 +161,7 @@ impl CostReport {
                 events.push(json!({ "name": label, "cat": pass, "ph": "X", "ts": us(t), "dur": us(body_end - t), "pid": pid, "tid": TILES }));
             }
             t = body_end;
-            for ((label, _), (_, w)) in tail.into_iter().zip(&self.tail[p]) {
+            for ((label, _), (_, w)) in tail.into_iter().zip(&p.tail) {
                 t += slice(events, pass, label, w, t, TILES, true);
             }
             start += timing.cycles;

@@ -212,6 +212,12 @@ impl<const D: bool> Probe for ArchProbe<D> {
         }
     }
 
+    fn map_bound(&mut self, light: u16) {
+        if let Some(m) = self.map_cache.as_mut() {
+            m.map_bound(light);
+        }
+    }
+
     #[inline]
     fn texel_read(&mut self, r: TexelRead) {
         let Some(m) = self.map_cache.as_mut() else { return };

@@ -59,7 +59,8 @@ pub(crate) fn run_config(spec: &Spec, c: &Config, truth: &Truth) -> Vec<Row> {
             .map_err(|e| e.to_string()),
         Err(e) => Err(format!("reference: {e}")),
     };
-    let done = done.map(|(r, costs)| (RowMetrics::new(&r.metrics, tangent_share(&r.camera_events.totals)), costs));
+    let done =
+        done.map(|(r, costs)| (RowMetrics::new(&r.frame_metrics(), tangent_share(&r.camera_events.totals)), costs));
     rows_of(spec, c, &done)
 }
 
@@ -109,8 +110,9 @@ fn run_shared<F: DepthFormat>(
     Some(rows_of(spec, c, &Ok((RowMetrics::new(&metrics, tangent_share(&camera)), costs.collect()))))
 }
 
-/// A scene's exact reference at the study's image size, or why there is none.
-pub(crate) type Truth = Result<Vec<Option<PixelTruth>>, String>;
+/// A scene's exact reference at the study's image size, one per
+/// shadow-casting light, or why there is none.
+pub(crate) type Truth = Result<Vec<Vec<Option<PixelTruth>>>, String>;
 
 /// The exact reference of scene `scene` at image size `image` of `spec`,
 /// built in parallel: it depends only on the scene, the image size and the
@@ -235,7 +237,11 @@ fn run_with(spec: &Spec, shard: Shard, progress: &ProgressBar, share: bool) -> R
             let rendered: Vec<&Config> = (0..group.len()).filter(|&i| first[i] == i).map(|i| group[i]).collect();
             let [w, h] = spec.images[image];
             let shared = match &truth {
-                Ok(t) if share => ImageShare::new(&spec.scenes[scene], (w, h), t, &spec.archs, &spec.limits),
+                // The shared path renders scenes of one light; a scene of
+                // several renders each configuration on its own.
+                Ok(t) if share && t.len() == 1 => {
+                    ImageShare::new(&spec.scenes[scene], (w, h), &t[0], &spec.archs, &spec.limits)
+                }
                 _ => None,
             };
             let mut done: Vec<Vec<Row>> = Vec::with_capacity(rendered.len());

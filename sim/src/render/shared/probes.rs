@@ -55,10 +55,10 @@ impl Kept {
         camera: Self,
     ) -> CostReport {
         match (light, camera) {
-            (Self::Plain(l), Self::Plain(c)) => report(names, cfg, config, l, c),
-            (Self::Plain(l), Self::Detail(c)) => report(names, cfg, config, l, c),
-            (Self::Detail(l), Self::Plain(c)) => report(names, cfg, config, l, c),
-            (Self::Detail(l), Self::Detail(c)) => report(names, cfg, config, l, c),
+            (Self::Plain(l), Self::Plain(c)) => report(names, cfg, config, vec![l], c),
+            (Self::Plain(l), Self::Detail(c)) => report(names, cfg, config, vec![l], c),
+            (Self::Detail(l), Self::Plain(c)) => report(names, cfg, config, vec![l], c),
+            (Self::Detail(l), Self::Detail(c)) => report(names, cfg, config, vec![l], c),
         }
     }
 }

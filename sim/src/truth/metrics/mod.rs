@@ -34,6 +34,7 @@ use crate::truth::reference::PixelTruth;
 
 mod fields;
 mod footprint;
+mod lights;
 
 pub use self::fields::Fields;
 use self::fields::boundary;

@@ -121,7 +121,7 @@ fn light(l: &Placed<Lamp>, sphere: Sphere) -> Result<Light, (String, crate::worl
                     format!("the range {far} leaves no depth before the light's near plane"),
                 ));
             }
-            Ok(Light::Spot(Perspective { position, target, fov_degrees, near: f32_of(near), far: f32_of(far), up }))
+            Ok(Light::Cone(Perspective { position, target, fov_degrees, near: f32_of(near), far: f32_of(far), up }))
         }
         Lamp::Directional => {
             let r = sphere.radius.max(1e-6);

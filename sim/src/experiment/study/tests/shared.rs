@@ -51,7 +51,7 @@ fn a_shared_render_is_its_own_render() {
     assert!(archs.iter().any(|a| !shares(a)), "an architecture that keeps passes of its own");
     let (w, h) = (80, 45);
     let t = truth(&scene, w, h, 2, &indicatif::ProgressBar::hidden()).expect("a reference");
-    let image = ImageShare::new(&scene, (w, h), &t, &archs, &limits).expect("the scene faces the light");
+    let image = ImageShare::new(&scene, (w, h), &t[0], &archs, &limits).expect("the scene faces the light");
     let mut scratch = Scratch::default();
     let mut compared = 0;
     for v in variants() {
