@@ -49,7 +49,10 @@ pub(crate) fn write_shadow_image(
         let at = facing.len() * 9 / 10;
         *facing.select_nth_unstable_by(at, f64::total_cmp).1
     };
-    let exposure = 1.0 / brightest.clamp(0.02, 1.0);
+    // Within the sum's range: each light's cosine at most 1.
+    #[allow(clippy::cast_precision_loss, reason = "a few lights")]
+    let most = lights.len().max(1) as f64;
+    let exposure = 1.0 / brightest.clamp(0.02 * most, most);
     let grey = |t: f64| {
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "clamped to 40..=255")]
         let g = (40.0 + 215.0 * t.clamp(0.0, 1.0)).round() as u8;

@@ -20,6 +20,7 @@ use crate::cost::arch::derived::latency_ceiling;
 use crate::cost::cache::CacheStats;
 use crate::cost::timing::ArchProbe;
 use crate::cost::work::{Bottleneck, Dram, EnergySplit, PassTiming, Work};
+use crate::world::scene::Scene;
 use serde::Serialize;
 use umbra_core::probe::Totals;
 
@@ -325,8 +326,12 @@ impl CostReport {
         .collect();
         columns.push((format!("{unit} bound ({bounds})"), Align::Left));
         let mut table = Table::new(&columns);
-        for (name, t) in [("light", &self.light), ("camera", &self.camera)] {
-            let mut cells = vec![name.to_owned()];
+        // Each light's pass when there are several, then their sum.
+        let each = self.light_passes.iter().enumerate().map(|(k, t)| (format!("light {}", Scene::light_key(k)), t));
+        let light = if self.light_passes.is_empty() { "light" } else { "light, every pass" };
+        let rows = each.chain([(light.to_owned(), &self.light), ("camera".to_owned(), &self.camera)]);
+        for (name, t) in rows {
+            let mut cells = vec![name];
             cells.extend(t.stages.iter().map(|c| format!("{c:.0}")));
             cells.extend([
                 format!("{:.0} / {:.0}", t.memory.bandwidth_cycles, t.memory.latency_cycles),

@@ -206,9 +206,10 @@ impl Scene {
         if lights.is_empty() {
             notes.push("the file has no KHR_lights_punctual light: a spot light framing the scene from above casts the shadows".to_owned());
             lights.push(Light::Spot(Perspective::framing(&all).ok_or_else(|| c.err("meshes", Problem::NoVertices))?));
-        } else if lights.len() > 1 {
-            let names: Vec<&str> = gltf.lights.iter().map(|l| l.name.as_str()).collect();
-            notes.push(format!("the file's lights are {}; the first casts the rendered shadows", names.join(", ")));
+        } else {
+            let names: Vec<String> =
+                gltf.lights.iter().enumerate().map(|(k, l)| format!("{} `{}`", Scene::light_key(k), l.name)).collect();
+            notes.push(format!("lights: {}", names.join(", ")));
         }
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "clamped to 1..=the largest side")]
         let width = aspect.filter(|a| a.is_finite() && *a > 0.0).map_or(960, |a| {
