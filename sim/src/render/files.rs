@@ -29,7 +29,7 @@ pub fn write_render(folder: &mut OutputFolder, job: &Checked<'_>, r: &Render) ->
     let (scene, cfg) = (job.scene(), job.config());
     let detail = format!("{}: {}", scene.name, cfg.describe());
     let lights: Vec<_> = r.parts().map(|p| (p.image, p.truth)).collect();
-    write_shadow_image(folder, "shaded.png", (&r.image, &lights), &detail)?;
+    write_shadow_image(folder, "shaded.png", (&r.image, &lights, &r.shadowless), &detail)?;
     let several = !r.more.is_empty();
     for (k, part) in r.parts().enumerate() {
         let (named, detail) = if several {

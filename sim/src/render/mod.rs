@@ -144,6 +144,9 @@ pub struct Render {
     /// The parts of the scene's second and further shadow-casting lights,
     /// in order (empty for a scene of one light).
     pub more: Vec<LightPart>,
+    /// Each light that casts no shadow's cosine at each pixel's surface
+    /// ([`Reference::facing`]), for the shaded picture.
+    pub shadowless: Vec<Vec<f64>>,
 }
 
 /// What a render produced for one of its lights: the maps its light pass
@@ -510,6 +513,10 @@ pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
     }
     let first = parts.remove(0);
     let LightPart { image, maps, truth, metrics, verdicts, light_events } = first;
-    let render = Render { image, maps, truth, metrics, verdicts, light_events, camera_events, command, more: parts };
+    let size = (image.width, image.height);
+    let shadowless =
+        scene.shadowless.iter().map(|l| reference.facing(&ids, &image.camera, size, &l.source())).collect();
+    let render =
+        Render { image, maps, truth, metrics, verdicts, light_events, camera_events, command, more: parts, shadowless };
     Ok((render, light_also))
 }

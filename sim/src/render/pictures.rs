@@ -27,7 +27,9 @@ pub(crate) type LitBy<'a> = (&'a CameraImage, &'a [Option<PixelTruth>]);
 /// are dark), shadowed parts dark in proportion to that light's shadow
 /// fraction, the lights' contributions summed; where there is no surface
 /// [`BACKGROUND`]. `image` is the camera pass (its size and which pixels
-/// hold a surface), `lights` each light's shading and reference. The
+/// hold a surface), `lights` each shadow-casting light's shading and
+/// reference, `shadowless` each other light's cosine per pixel (it lights
+/// without shadows). The
 /// picture is exposed so that the brightest tenth of the surfaces facing
 /// a light is white: a scene lit at grazing (every surface's cosine a few
 /// hundredths) still shows its lit surfaces apart from its shadows. Framed
@@ -38,10 +40,11 @@ pub(crate) type LitBy<'a> = (&'a CameraImage, &'a [Option<PixelTruth>]);
 pub(crate) fn write_shadow_image(
     folder: &mut OutputFolder,
     name: &str,
-    (image, lights): (&CameraImage, &[LitBy<'_>]),
+    (image, lights, shadowless): (&CameraImage, &[LitBy<'_>], &[Vec<f64>]),
     detail: &str,
 ) -> Result<PathBuf, OutputError> {
-    let lambert = |k: usize| lights.iter().map(|(_, truth)| lambert(truth, k)).sum::<f64>();
+    let unshadowed = |k: usize| shadowless.iter().map(|c| c.get(k).copied().unwrap_or(0.0)).sum::<f64>();
+    let lambert = |k: usize| lights.iter().map(|(_, truth)| lambert(truth, k)).sum::<f64>() + unshadowed(k);
     let mut facing: Vec<f64> = (0..image.pixels.len()).map(lambert).filter(|&l| l > 0.0).collect();
     let brightest = if facing.is_empty() {
         1.0
@@ -51,7 +54,7 @@ pub(crate) fn write_shadow_image(
     };
     // Within the sum's range: each light's cosine at most 1.
     #[allow(clippy::cast_precision_loss, reason = "a few lights")]
-    let most = lights.len().max(1) as f64;
+    let most = (lights.len() + shadowless.len()).max(1) as f64;
     let exposure = 1.0 / brightest.clamp(0.02 * most, most);
     let grey = |t: f64| {
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "clamped to 40..=255")]
@@ -72,16 +75,17 @@ pub(crate) fn write_shadow_image(
                     let lit = light.pixels.get(k).map_or(0.0, |q| 1.0 - q.shadow.to_num::<f64>());
                     lit * self::lambert(truth, k)
                 })
-                .sum();
+                .sum::<f64>()
+                + unshadowed(k);
             grey((shaded * exposure).min(1.0))
         })
         .collect();
-    let title = if lights.len() == 1 {
+    let title = if lights.len() + shadowless.len() == 1 {
         "shaded: grey by each surface's facing to the light, darker where the render shadows it".to_owned()
     } else {
         format!(
             "shaded: {} lights, each surface grey by its facing to each, darker where the render shadows it, summed",
-            lights.len()
+            lights.len() + shadowless.len()
         )
     };
     let frame = Frame {

@@ -255,6 +255,29 @@ impl Reference {
     }
 }
 
+impl Reference {
+    /// Each pixel's cosine to `light` at its surface point (the pixel
+    /// centre's, on the triangle `ids` names), 0 for the background, for a
+    /// surface facing away and for one the light does not reach: how a
+    /// light that casts no shadow lights the picture.
+    #[must_use]
+    pub fn facing(&self, ids: &[u32], camera: &Mat4, (width, height): (u32, u32), light: &LightSource) -> Vec<f64> {
+        let inverse: DMat4 = camera.as_dmat4().inverse();
+        let (w, h) = (f64::from(width), f64::from(height));
+        let row = (width as usize).max(1);
+        ids.par_iter()
+            .enumerate()
+            .map(|(i, &id)| {
+                let Some(tri) = self.triangles.get(usize::try_from(id).unwrap_or(usize::MAX)) else { return 0.0 };
+                let centre = ((i % row) as f64 + 0.5, (i / row) as f64 + 0.5);
+                surface_point(&inverse, centre, (w, h), tri).map_or(0.0, |(p, n)| {
+                    if light.reaches(p) { n.normalize_or_zero().dot(light.towards(p).0).max(0.0) } else { 0.0 }
+                })
+            })
+            .collect()
+    }
+}
+
 /// The ray through screen point `(sx, sy)` of a `(w, h)` target seen
 /// through `inverse`, the inverse of a view-projection (the camera's, or
 /// the light's with the map as the target): its points on the near and

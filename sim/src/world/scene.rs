@@ -199,8 +199,12 @@ pub struct Scene {
     pub name: String,
     /// The objects.
     pub objects: Vec<Object>,
-    /// The lights; the first casts the shadows the pipeline renders.
+    /// The lights that cast shadows: each gets a light pass and a map, and
+    /// the camera pass tests each.
     pub lights: Vec<Light>,
+    /// Lights that cast no shadows (a scene file's `shadows = false`):
+    /// they light the shaded picture, with no pass and no lookup.
+    pub shadowless: Vec<Light>,
     /// The camera.
     pub camera: Camera,
     /// Image width and height in pixels.
@@ -245,7 +249,7 @@ impl Scene {
     /// each light's passes from its own.
     #[must_use]
     pub fn lit_by(&self, k: usize) -> Self {
-        Self { lights: self.lights.get(k).copied().into_iter().collect(), ..self.clone() }
+        Self { lights: self.lights.get(k).copied().into_iter().collect(), shadowless: Vec::new(), ..self.clone() }
     }
 
     /// Each light's name in files and messages: `lights[k]`.

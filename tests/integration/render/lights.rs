@@ -114,3 +114,43 @@ fn the_same_light_twice_costs_two_passes_and_pictures_as_one() {
     assert_eq!(metrics["lights"].as_array().map(Vec::len), Some(2));
     assert_eq!(metrics["evaluated_px"], 2 * metrics["lights"][0]["evaluated_px"].as_u64().expect("a count"));
 }
+
+/// A light with `shadows = false` draws no pass and no lookup: the
+/// render's metrics and events are those of the scene without it; it only
+/// lights the picture, by its cosine at each surface, which is the cosine
+/// the exact reference gives the same light when it casts shadows.
+#[test]
+fn a_light_without_shadows_only_lights_the_picture() {
+    let text = crate::world::scenes::GOOD;
+    let second = "\n[[lights]]\nkind = \"spot\"\nposition = [3.0, 4.0, 2.0]\ntarget = [0.0, 0.0, 0.0]\nfov = 60.0\nnear = 1.0\nfar = 20.0\n";
+    let with = |extra: &str| {
+        let at = text.find("[[objects]]").expect("objects");
+        Scene::parse(
+            &format!("{}{extra}\n{}", &text[..at], &text[at..]),
+            std::path::Path::new("s.toml"),
+            &Limits::DEFAULT,
+        )
+        .expect("parses")
+    };
+    let (alone, quiet, loud) = (with(""), with(&format!("{second}shadows = false\n")), with(second));
+    assert_eq!((quiet.lights.len(), quiet.shadowless.len(), loud.lights.len()), (1, 1, 2));
+    let (a, q, l) = (rendered(&alone, SMALL), rendered(&quiet, SMALL), rendered(&loud, SMALL));
+    assert_eq!(q.metrics, a.metrics);
+    assert_eq!((q.light_events.totals, q.camera_events.totals), (a.light_events.totals, a.camera_events.totals));
+    assert!(q.more.is_empty() && q.shadowless.len() == 1);
+    let cosines = &q.shadowless[0];
+    let truth = l.more[0].truth.as_slice();
+    let mut compared = 0;
+    for (k, t) in truth.iter().enumerate() {
+        if let Some(t) = t.filter(|t| t.faces_light) {
+            assert!((cosines[k] - t.light_cos).abs() < 1e-9, "pixel {k}: {} against {}", cosines[k], t.light_cos);
+            compared += 1;
+        }
+    }
+    // 235 measured: the probe scene's ball at 160×90, on the lit side.
+    assert!(compared > 100, "{compared}");
+    // Every light `shadows = false` is a scene that casts none: refused.
+    let none = text.replace("far = 10.0\n", "far = 10.0\nshadows = false\n");
+    let e = Scene::parse(&none, std::path::Path::new("s.toml"), &Limits::DEFAULT).expect_err("no shadows");
+    assert!(e.to_string().contains("casts shadows"), "{e}");
+}

@@ -40,6 +40,7 @@ fn a_sphere_casts_a_disc_under_a_directional_light() {
         image: [160, 120],
         source: String::new(),
         camera_choice: None,
+        shadowless: Vec::new(),
         notes: Vec::new(),
     };
     let (w, h) = (160u32, 120u32);

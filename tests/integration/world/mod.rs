@@ -2,4 +2,4 @@
 
 mod gltf;
 mod hostile_scenes;
-mod scenes;
+pub(crate) mod scenes;

@@ -241,6 +241,7 @@ impl Scene {
             image,
             source: path.display().to_string(),
             camera_choice: camera_choice.map(str::to_owned),
+            shadowless: Vec::new(),
             notes,
         })
     }

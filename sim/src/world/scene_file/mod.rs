@@ -16,6 +16,7 @@
 //!
 //! [[lights]]
 //! kind = "spot"          # or "directional" with `extent` instead of `fov`
+//! shadows = true         # optional: `false` lights the picture, casts no shadow
 //! position = [-5.0, 3.0, 2.0]
 //! target = [0.0, 1.0, 0.0]
 //! fov = 60.0
@@ -320,6 +321,7 @@ impl Scene {
             image: [512, 512],
             source: path.display().to_string(),
             camera_choice: None,
+            shadowless: Vec::new(),
             notes: Vec::new(),
         })
     }
@@ -371,15 +373,19 @@ impl Scene {
         if parsed.lights.is_empty() {
             return Err(c.err("lights", Problem::Missing("light")));
         }
-        let mut lights = Vec::new();
+        if !parsed.lights.iter().any(LightFile::casts) {
+            return Err(c.err("lights", Problem::Missing("light that casts shadows (`shadows = false` on every one)")));
+        }
+        let (mut lights, mut shadowless) = (Vec::new(), Vec::new());
         for (i, l) in parsed.lights.iter().enumerate() {
             let key = format!("lights[{i}]");
-            lights.push(match l {
-                LightFile::Spot { position, target, fov, near, far } => Light::Spot(c.view(
+            let into = if l.casts() { &mut lights } else { &mut shadowless };
+            into.push(match l {
+                LightFile::Spot { position, target, fov, near, far, .. } => Light::Spot(c.view(
                     &key,
                     &ViewFile { position: *position, target: *target, fov: *fov, near: *near, far: *far },
                 )?),
-                LightFile::Directional { position, target, extent, near, far } => {
+                LightFile::Directional { position, target, extent, near, far, .. } => {
                     let (near, far) = c.near_far(&key, *near, *far)?;
                     let (position, target) = c.eye(&key, *position, *target)?;
                     Light::Directional(Orthographic {
@@ -443,6 +449,7 @@ impl Scene {
             image,
             source: String::new(),
             camera_choice: None,
+            shadowless,
             notes: Vec::new(),
         })
     }

@@ -35,8 +35,17 @@ pub(super) struct ViewFile {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields, tag = "kind", rename_all = "lowercase")]
 pub(super) enum LightFile {
-    Spot { position: Exact<3>, target: Exact<3>, fov: f64, near: f64, far: f64 },
-    Directional { position: Exact<3>, target: Exact<3>, extent: f64, near: f64, far: f64 },
+    Spot { position: Exact<3>, target: Exact<3>, fov: f64, near: f64, far: f64, shadows: Option<bool> },
+    Directional { position: Exact<3>, target: Exact<3>, extent: f64, near: f64, far: f64, shadows: Option<bool> },
+}
+
+impl LightFile {
+    /// Whether the light casts shadows (`shadows`, true unless it says not).
+    pub(super) const fn casts(&self) -> bool {
+        match self {
+            Self::Spot { shadows, .. } | Self::Directional { shadows, .. } => !matches!(shadows, Some(false)),
+        }
+    }
 }
 
 #[derive(Deserialize)]
