@@ -90,13 +90,22 @@ pub fn render<'py>(
     threads: Option<usize>,
 ) -> PyResult<(String, Bound<'py, PyDict>)> {
     let bar = ProgressBar::hidden();
-    bar.set_length(u64::from(config.inner.height));
+    let lights = scene.inner.lights.len().max(1) as u64;
+    bar.set_length(u64::from(config.inner.height) * lights);
     let r = progress::run(py, &bar, progress, threads, || {
         let job = config.inner.check(&scene.inner, &Limits::for_machine())?;
         umbra_sim::render(&job, TruthSource::Build(&bar))
     })?
     .map_err(|e| error(&e))?;
-    let metrics = serde_json::to_string(&r.metrics).map_err(|e| error(&e))?;
+    // The frame's metrics, and with several lights each light's, as
+    // `metrics.json` holds them; the arrays are the first light's.
+    let mut record = serde_json::to_value(r.frame_metrics()).map_err(|e| error(&e))?;
+    if let (false, Some(fields)) = (r.more.is_empty(), record.as_object_mut()) {
+        let each =
+            r.parts().map(|p| serde_json::to_value(p.metrics)).collect::<Result<Vec<_>, _>>().map_err(|e| error(&e))?;
+        fields.insert("lights".to_owned(), serde_json::Value::Array(each));
+    }
+    let metrics = record.to_string();
     let arrays = PixelArrays::of(&r);
     let out = PyDict::new(py);
     let (w, h) = (arrays.width as usize, arrays.height as usize);

@@ -153,7 +153,8 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
     let cfg = *job.config();
     let out = args.out.clone().unwrap_or_else(|| PathBuf::from("out/render"));
     let mut folder = OutputFolder::create(&out)?;
-    let progress = ProgressBar::new(u64::from(cfg.height)).with_message("reference rays");
+    let progress =
+        ProgressBar::new(u64::from(cfg.height) * scene.lights.len().max(1) as u64).with_message("reference rays");
     let r = umbra_sim::render::render(&job, TruthSource::Build(&progress))?;
     progress.finish_and_clear();
     umbra_sim::render::files::write_render(&mut folder, &job, &r)?;

@@ -327,15 +327,28 @@ impl Footprint {
     /// A byte of a TOML file while it is parsed.
     pub(crate) const PER_TEXT_BYTE: u64 = 96;
 
+    /// A further light's share of a scene triangle: the scene lit by it
+    /// alone (its meshes copied) and the shading unit's triangle list.
+    pub(crate) const PER_LIGHT_TRIANGLE: u64 = 128;
+
     /// One render (or costing) of `pixels` camera pixels, a map of side
     /// `map_side` and `triangles`, its reference included.
     #[must_use]
     pub const fn render(pixels: u64, map_side: u32, triangles: u64) -> u64 {
+        Self::render_lit(pixels, map_side, triangles, 1)
+    }
+
+    /// [`Footprint::render`] of a scene of `lights` lights: each a map, a
+    /// shading and a reference of its own, and a copy of the scene.
+    #[must_use]
+    pub const fn render_lit(pixels: u64, map_side: u32, triangles: u64, lights: u64) -> u64 {
         let texels = map_side as u64 * map_side as u64;
+        let lights = if lights == 0 { 1 } else { lights };
         Self::BASE
-            .saturating_add(pixels.saturating_mul(Self::PER_PIXEL))
-            .saturating_add(texels.saturating_mul(Self::PER_TEXEL))
+            .saturating_add(pixels.saturating_mul(Self::PER_PIXEL).saturating_mul(lights))
+            .saturating_add(texels.saturating_mul(Self::PER_TEXEL).saturating_mul(lights))
             .saturating_add(triangles.saturating_mul(Self::PER_TRIANGLE))
+            .saturating_add(triangles.saturating_mul(Self::PER_LIGHT_TRIANGLE).saturating_mul(lights - 1))
     }
 }
 

@@ -225,7 +225,8 @@ impl RenderConfig {
         let triangles = u64::try_from(triangles).unwrap_or(u64::MAX);
         limits.check_triangles(triangles)?;
         let pixels = u64::from(self.width) * u64::from(self.height);
-        limits.check_memory("the render", Footprint::render(pixels, self.map_size, triangles))?;
+        let lights = (scene.lights.len() + scene.shadowless.len()) as u64;
+        limits.check_memory("the render", Footprint::render_lit(pixels, self.map_size, triangles, lights))?;
         let checked = Checked { scene, config: self };
         checked.targets(RasterConfig::DEFAULT_TILE_SIZE)?;
         Ok(checked)

@@ -222,7 +222,7 @@ fn cameras_and_lights_follow_gltf_conventions() {
     assert!((spot.fov_degrees - 1.0f32.to_degrees()).abs() < 1e-4, "{}", spot.fov_degrees);
     assert_eq!(spot.far, 9.0);
     assert!((spot.target - spot.position).normalize().abs_diff_eq(Vec3::NEG_Y, 1e-6), "straight down");
-    assert!(scene.notes.is_empty(), "{:?}", scene.notes);
+    assert_eq!(scene.notes, ["lights: lights[0] `lamp`"], "the light is named, no view stood in");
     assert!(matches!(scene.camera, Camera::Perspective(_)));
 }
 

@@ -159,8 +159,9 @@ impl Spec {
         let triangles = |s: &Scene| s.objects.iter().map(|o| o.mesh.triangles.len() as u64).sum::<u64>();
         let held = self.scenes.iter().map(triangles).fold(0u64, u64::saturating_add);
         let most = self.scenes.iter().map(triangles).max().unwrap_or(0);
-        let reference = Footprint::render(pixels, 0, most) - Footprint::BASE;
-        let render = Footprint::render(pixels, map, most) - Footprint::BASE;
+        let lights = self.scenes.iter().map(|s| (s.lights.len() + s.shadowless.len()) as u64).max().unwrap_or(1);
+        let reference = Footprint::render_lit(pixels, 0, most, lights) - Footprint::BASE;
+        let render = Footprint::render_lit(pixels, map, most, lights) - Footprint::BASE;
         // What the configurations of a scene and image share: its
         // visibility in each tiling, and a block's light passes (one a
         // point on the algorithm axis at most).
