@@ -2,8 +2,9 @@
 //! The glTF loader against the OBJ loader on the same triangles: a
 //! generated city (one building mesh placed by a node per building) as a
 //! `.glb`, and the same triangles, placed, written out as an OBJ file.
-//! Each is timed from the file to the scene's world-space meshes, and
-//! reported per triangle (criterion's throughput in elements).
+//! Each is timed from the file to its world-space meshes, and to the scene
+//! (every object checked, its closedness decided), and reported per
+//! triangle (criterion's throughput in elements).
 //!
 //! `cargo bench --bench loaders`; `CITY_SIDE` sets the buildings along a
 //! side (28 by default: 1 003 522 triangles).
@@ -12,9 +13,9 @@ use std::fmt::Write as _;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use std::hint::black_box;
-use umbra::sim::Limits;
 use umbra::sim::world::gltf::{City, Gltf};
 use umbra::sim::world::mesh::Mesh;
+use umbra::sim::{Limits, Scene};
 
 fn loaders(c: &mut Criterion) {
     let side = std::env::var("CITY_SIDE").ok().and_then(|s| s.parse().ok()).unwrap_or(City::MILLION.side);
@@ -39,13 +40,21 @@ fn loaders(c: &mut Criterion) {
     }
     let obj_path = dir.join("city.obj");
     std::fs::write(&obj_path, obj).expect("written");
+    let size = |p: &std::path::Path| std::fs::metadata(p).map_or(0, |m| m.len());
+    eprintln!("city.glb {} bytes, city.obj {} bytes", size(&glb), size(&obj_path));
     let triangles: u64 = read.instances.iter().map(|i| i.mesh.triangles.len() as u64).sum();
     assert_eq!(triangles, city.triangles());
     let mut group = c.benchmark_group("load");
     group.sample_size(10);
     group.throughput(Throughput::Elements(triangles));
+    // The loaders alone: world-space meshes from the file.
     group.bench_function("gltf", |b| b.iter(|| black_box(Gltf::read(&glb, None, &limits).expect("reads"))));
     group.bench_function("obj", |b| b.iter(|| black_box(Mesh::load_obj(&obj_path, &limits).expect("reads"))));
+    // The scenes: each object checked and its closedness decided (a
+    // closed building each for the glTF, one open mesh for the OBJ).
+    let (glb_name, obj_name) = (glb.to_str().expect("UTF-8"), obj_path.as_path());
+    group.bench_function("gltf scene", |b| b.iter(|| black_box(Scene::open(glb_name, &limits).expect("opens"))));
+    group.bench_function("obj scene", |b| b.iter(|| black_box(Scene::of_obj(obj_name, &limits).expect("opens"))));
     group.finish();
     let _ = std::fs::remove_dir_all(&dir);
 }
