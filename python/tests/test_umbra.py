@@ -188,8 +188,12 @@ def test_a_gltf_file_renders_as_the_cli_renders_it(tmp_path):
     s = umbra.scene(glb, camera="0")
     assert s.notes == ["lights: lights[0] `sun`, lights[1] `street lamp`"], s.notes
     r = umbra.render(s, **SMALL)
+    # Two lights: the files are each light's; the arrays the first light's.
     for name in ["shadow", "reference", "verdict", "z1", "z2"]:
-        assert r[name].tobytes() == np.load(out / f"{name}.npy").tobytes(), name
+        assert r[name].tobytes() == np.load(out / f"{name}-light0.npy").tobytes(), name
+    written = json.loads((out / "metrics.json").read_text())
+    assert len(r["lights"]) == 2 and r["lights"] == written["lights"]
+    assert r["evaluated_px"] == written["evaluated_px"] == sum(l["evaluated_px"] for l in r["lights"])
     with pytest.raises(umbra.UmbraError) as e:
         umbra.scene(glb, camera="9")
     assert "no camera `9`" in str(e.value)

@@ -5,6 +5,7 @@
 
 pub mod arch;
 pub mod cache;
+pub mod dram;
 pub mod report;
 pub mod storage;
 pub mod timing;

@@ -10,6 +10,7 @@ mod costed;
 pub mod files;
 pub mod params;
 pub mod pictures;
+mod produced;
 pub mod replay;
 mod request;
 pub(crate) mod shared;
@@ -27,6 +28,7 @@ pub(crate) use self::config::Targets;
 pub use self::config::{Checked, RenderConfig, RenderConfigError};
 pub use self::costed::{cost, render_costed};
 pub(crate) use self::costed::{cost_others, cost_unshadowed};
+pub use self::produced::{LightPart, PartRef, Render};
 use self::replay::{PassInputs, judged};
 pub use self::request::RenderRequest;
 use crate::base::counters::Counters;
@@ -39,7 +41,7 @@ pub(crate) use crate::pass::algorithm::{Algorithm, Culling};
 use crate::pass::camera::{CameraFrame, CameraImage, CameraOptions, map_view, shade_visible, visibility, volumes};
 use crate::pass::light::{self, DEFAULT_BIN_CAPACITY, LightFrame, LightMaps, LightOptions, RawMaps};
 use crate::pass::occluders::silhouette_map;
-use crate::truth::metrics::{Fields, Metrics, Verdict};
+use crate::truth::metrics::Fields;
 use crate::truth::reference::{PixelTruth, Reference, ReferenceError};
 use crate::world::occluders::Occluders;
 use crate::world::scene::{LightSource, Scene};
@@ -118,103 +120,6 @@ impl RenderError {
     pub fn of_light(self, k: usize) -> Self {
         Self::OfLight { light: Scene::light_key(k), source: Box::new(self) }
     }
-}
-
-/// Everything a render produced: its first light's part in its own
-/// fields, each further shadow-casting light's in [`Render::more`].
-pub struct Render {
-    /// The camera pass's shading against the first light.
-    pub image: CameraImage,
-    /// The first light's maps, raw bits.
-    pub maps: RawMaps,
-    /// The exact reference per pixel for the first light.
-    pub truth: Vec<Option<PixelTruth>>,
-    /// The render against the reference, for the first light.
-    pub metrics: Metrics,
-    /// Each pixel's verdict for the first light, wrong ones by their cause.
-    pub verdicts: Vec<Verdict>,
-    /// Events of the first light's pass.
-    pub light_events: Counters,
-    /// Events of the camera pass: its visibility once, its shading once
-    /// per light.
-    pub camera_events: Counters,
-    /// The `umbra render` command line that renders it again, bit for bit
-    /// ([`RenderConfig::command`]).
-    pub command: String,
-    /// The parts of the scene's second and further shadow-casting lights,
-    /// in order (empty for a scene of one light).
-    pub more: Vec<LightPart>,
-    /// Each light that casts no shadow's cosine at each pixel's surface
-    /// ([`Reference::facing`]), for the shaded picture.
-    pub shadowless: Vec<Vec<f64>>,
-}
-
-/// What a render produced for one of its lights: the maps its light pass
-/// drew, the camera pass's shading against them, the exact reference for
-/// that light and the metrics between them.
-pub struct LightPart {
-    /// The camera pass's shading against this light.
-    pub image: CameraImage,
-    /// Its light pass's maps, raw bits.
-    pub maps: RawMaps,
-    /// The exact reference per pixel for this light.
-    pub truth: Vec<Option<PixelTruth>>,
-    /// The render against the reference, for this light.
-    pub metrics: Metrics,
-    /// Each pixel's verdict for this light.
-    pub verdicts: Vec<Verdict>,
-    /// Events of its light pass.
-    pub light_events: Counters,
-}
-
-impl Render {
-    /// Every light's part, the first's first: its shading, maps,
-    /// reference, metrics, verdicts and light-pass events.
-    pub fn parts(&self) -> impl Iterator<Item = PartRef<'_>> {
-        let first = PartRef {
-            image: &self.image,
-            maps: &self.maps,
-            truth: &self.truth,
-            metrics: &self.metrics,
-            verdicts: &self.verdicts,
-            light_events: &self.light_events,
-        };
-        core::iter::once(first).chain(self.more.iter().map(|p| PartRef {
-            image: &p.image,
-            maps: &p.maps,
-            truth: &p.truth,
-            metrics: &p.metrics,
-            verdicts: &p.verdicts,
-            light_events: &p.light_events,
-        }))
-    }
-
-    /// The frame's metrics: for one light, its own; for several, every
-    /// light's summed over (pixel, light) pairs ([`Metrics::of_lights`]).
-    #[must_use]
-    pub fn frame_metrics(&self) -> Metrics {
-        if self.more.is_empty() {
-            return self.metrics;
-        }
-        Metrics::of_lights(&self.parts().map(|p| *p.metrics).collect::<Vec<_>>())
-    }
-}
-
-/// One light's part of a [`Render`], borrowed.
-#[derive(Clone, Copy)]
-pub struct PartRef<'r> {
-    /// The camera pass's shading against this light.
-    pub image: &'r CameraImage,
-    /// Its maps.
-    pub maps: &'r RawMaps,
-    /// The exact reference for this light.
-    pub truth: &'r [Option<PixelTruth>],
-    /// Its metrics.
-    pub metrics: &'r Metrics,
-    /// Its verdicts.
-    pub verdicts: &'r [Verdict],
-    /// Its light pass's events.
-    pub light_events: &'r Counters,
 }
 
 /// Where a render's exact reference comes from.

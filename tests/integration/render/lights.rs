@@ -84,6 +84,8 @@ fn the_same_light_twice_costs_two_passes_and_pictures_as_one() {
     assert_eq!(b.light_events.fragments, 2 * a.light_events.fragments);
     assert_eq!(b.camera_events.fragments, a.camera_events.fragments, "visibility runs once");
     assert_eq!(b.camera_events.pixels_shaded, 2 * a.camera_events.pixels_shaded, "shading runs per light");
+    assert_eq!(b.pixels, a.pixels, "the covered pixels are the same pixels");
+    assert_eq!(b.sen.model_map_bytes_per_pixel, 2.0 * a.sen.model_map_bytes_per_pixel, "a lookup per light");
     let (ma, mb) = (a.camera.map_cache.expect("a map cache"), b.camera.map_cache.expect("a map cache"));
     assert!(ma.misses > 0 && mb.misses >= 2 * ma.misses, "{} misses alone, {} twice", ma.misses, mb.misses);
     // The pictures: the shaded body alike, pixel for pixel.

@@ -18,8 +18,9 @@ use std::fmt::Write as _;
 use crate::cost::arch::Arch;
 use crate::cost::arch::derived::latency_ceiling;
 use crate::cost::cache::CacheStats;
+use crate::cost::dram::Dram;
 use crate::cost::timing::ArchProbe;
-use crate::cost::work::{Bottleneck, Dram, EnergySplit, PassTiming, Work};
+use crate::cost::work::{Bottleneck, EnergySplit, PassTiming, Work};
 use crate::world::scene::Scene;
 use serde::Serialize;
 use umbra_core::probe::Totals;
@@ -51,7 +52,7 @@ pub struct SenFigures {
     /// Simulated map bytes (as fetched) per covered pixel.
     pub map_bytes_per_pixel: f64,
     /// Their shadow-map figure per covered pixel: 4 bytes per depth sample
-    /// the filter takes.
+    /// the filter takes, per light the pixel is tested against.
     pub model_map_bytes_per_pixel: f64,
     /// Simulated silhouette-point bytes read per covered pixel.
     pub silhouette_bytes_per_pixel: f64,
@@ -216,7 +217,9 @@ impl CostReport {
             .collect();
         timeline.push(PassTimeline::of("camera".to_owned(), camera, ct.clone()));
         let cached = arch.map_cache.size > 0;
-        let pixels = ce.pixels_shaded;
+        // The shading unit shades each covered pixel once per light.
+        let looked_up = lights.len().max(1) as u64;
+        let pixels = ce.pixels_shaded / looked_up;
         let fill = ce.fragments;
         let drew = le.submitted + ce.submitted > 0;
         let host_cycles = if drew { arch.front.frame_overhead_cycles } else { 0.0 };
@@ -241,7 +244,7 @@ impl CostReport {
             p_lookup,
             overdraw,
             map_bytes_per_pixel: ratio(map, pixels),
-            model_map_bytes_per_pixel: 4.0 * samples_per_pixel as f64,
+            model_map_bytes_per_pixel: 4.0 * (samples_per_pixel * looked_up) as f64,
             silhouette_bytes_per_pixel: ratio(camera.dram.silhouette_reads, pixels),
             model_silhouette_bytes_per_pixel: 24.0 * p_lookup,
             volume_bytes_per_fill: ratio(ce.volume_depth_bytes + ce.stencil_read_bytes + ce.stencil_write_bytes, fill),

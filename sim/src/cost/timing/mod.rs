@@ -14,8 +14,9 @@ mod events;
 
 use crate::cost::arch::{Arch, CacheParams};
 use crate::cost::cache::{Cache, MapCache};
+use crate::cost::dram::Dram;
 use crate::cost::work::{Accesses, EnergySplit, PassTiming, Work};
-use crate::cost::work::{Bottleneck, Dram, MemoryLimit, Stage};
+use crate::cost::work::{Bottleneck, MemoryLimit, Stage};
 use serde::Serialize;
 use umbra_core::probe::Totals;
 use umbra_core::{DepthFormatKind, RasterConfig, TileId};

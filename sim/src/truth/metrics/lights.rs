@@ -52,15 +52,9 @@ impl Metrics {
                 largest(&mut m.displacement_texels[k], l.displacement_texels[k]);
             }
         }
+        m.rates(abs_error, square_error);
         if m.evaluated > 0 {
             let n = m.evaluated as f64;
-            let (fs, fl) = (m.false_shadow as f64, m.false_light as f64);
-            m.false_shadow_percent = 100.0 * fs / n;
-            m.false_light_percent = 100.0 * fl / n;
-            m.misclassified_percent = 100.0 * (fs + fl) / n;
-            m.artifact_percent = 100.0 * (m.acne + m.detachment + m.leaks) as f64 / n;
-            m.mean_abs_error = abs_error / n;
-            m.rms_error = (square_error / n).sqrt();
             m.displacement[0] = displacement / n;
             m.displacement_texels[0] = texels / n;
         }

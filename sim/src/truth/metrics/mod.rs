@@ -366,15 +366,26 @@ pub(crate) fn measure(
     m.penumbra_width = quantiles(penumbra_width);
     m.displacement = summary(&mut pixels);
     m.displacement_texels = summary(&mut texels);
-    if m.evaluated > 0 {
-        let n = m.evaluated as f64;
-        let (fs, fl) = (m.false_shadow as f64, m.false_light as f64);
-        m.false_shadow_percent = 100.0 * fs / n;
-        m.false_light_percent = 100.0 * fl / n;
-        m.misclassified_percent = 100.0 * (fs + fl) / n;
-        m.artifact_percent = 100.0 * (m.acne + m.detachment + m.leaks) as f64 / n;
-        m.mean_abs_error = abs_error / n;
-        m.rms_error = (square_error / n).sqrt();
-    }
+    m.rates(abs_error, square_error);
     m
+}
+
+impl Metrics {
+    /// The percentages of the evaluated pixels, and the mean and RMS
+    /// errors from the summed `abs_error` and `square_error` (nothing for
+    /// no pixel evaluated).
+    #[allow(clippy::cast_precision_loss, reason = "pixel counts far below 2^53")]
+    fn rates(&mut self, abs_error: f64, square_error: f64) {
+        if self.evaluated == 0 {
+            return;
+        }
+        let n = self.evaluated as f64;
+        let (fs, fl) = (self.false_shadow as f64, self.false_light as f64);
+        self.false_shadow_percent = 100.0 * fs / n;
+        self.false_light_percent = 100.0 * fl / n;
+        self.misclassified_percent = 100.0 * (fs + fl) / n;
+        self.artifact_percent = 100.0 * (self.acne + self.detachment + self.leaks) as f64 / n;
+        self.mean_abs_error = abs_error / n;
+        self.rms_error = (square_error / n).sqrt();
+    }
 }

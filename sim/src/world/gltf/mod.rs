@@ -272,6 +272,36 @@ fn placed(mesh: &Mesh, world: &DMat4) -> Mesh {
     Mesh { positions, triangles, ignored: mesh.ignored }
 }
 
+/// The `KHR_lights_punctual` light `node` places, if any: its JSON path,
+/// its name and what it is (read from the JSON, whose spot parameters the
+/// `gltf` crate would unwrap); a point light is refused by name.
+fn lamp(json: &gltf::json::Root, node: &gltf::Node<'_>) -> Result<Option<(String, String, Lamp)>, Fault> {
+    use gltf::json::extensions::scene::khr_lights_punctual::Type;
+    use gltf::json::validation::Checked;
+    let at = format!("nodes[{}]", node.index());
+    let placed =
+        json.nodes.get(node.index()).and_then(|n| n.extensions.as_ref()).and_then(|e| e.khr_lights_punctual.as_ref());
+    let Some(placed) = placed else { return Ok(None) };
+    let k = placed.light.value();
+    let path = format!("extensions.KHR_lights_punctual.lights[{k}]");
+    let defined = json.extensions.as_ref().and_then(|e| e.khr_lights_punctual.as_ref()).and_then(|e| e.lights.get(k));
+    let Some(light) = defined else {
+        let problem = format!("names light {k}, which the file does not define");
+        return Err((format!("{at}.extensions.KHR_lights_punctual.light"), GltfProblem::Nodes(problem)));
+    };
+    let name = name_of(light.name.as_deref().or(node.name()), &path);
+    let what = match light.type_ {
+        Checked::Valid(Type::Directional) => Lamp::Directional,
+        Checked::Valid(Type::Spot) => Lamp::Spot {
+            outer: light.spot.as_ref().map_or(std::f32::consts::FRAC_PI_4, |s| s.outer_cone_angle),
+            range: light.range,
+        },
+        Checked::Valid(Type::Point) => return Err((path, GltfProblem::PointLight(name))),
+        Checked::Invalid => return Err((format!("{path}.type"), GltfProblem::Invalid("an unknown light type".into()))),
+    };
+    Ok(Some((path, name, what)))
+}
+
 /// A node's name, else its path.
 fn name_of(name: Option<&str>, path: &str) -> String {
     name.filter(|n| !n.is_empty()).map_or_else(|| path.to_owned(), str::to_owned)
@@ -360,36 +390,7 @@ impl Gltf {
                 let name = name_of(c.name().or(node.name()), &path);
                 out.cameras.push(Placed { path, name, what: lens, position, forward, up });
             }
-            let light =
-                json.nodes.get(w.node).and_then(|n| n.extensions.as_ref()).and_then(|e| e.khr_lights_punctual.as_ref());
-            if let Some(l) = light {
-                let k = l.light.value();
-                let path = format!("extensions.KHR_lights_punctual.lights[{k}]");
-                let lamp = json
-                    .extensions
-                    .as_ref()
-                    .and_then(|e| e.khr_lights_punctual.as_ref())
-                    .and_then(|e| e.lights.get(k))
-                    .ok_or_else(|| {
-                        (
-                            format!("{at}.extensions.KHR_lights_punctual.light"),
-                            GltfProblem::Nodes(format!("names light {k}, which the file does not define")),
-                        )
-                    })?;
-                let name = name_of(lamp.name.as_deref().or(node.name()), &path);
-                use gltf::json::extensions::scene::khr_lights_punctual::Type;
-                use gltf::json::validation::Checked;
-                let what = match lamp.type_ {
-                    Checked::Valid(Type::Directional) => Lamp::Directional,
-                    Checked::Valid(Type::Spot) => Lamp::Spot {
-                        outer: lamp.spot.as_ref().map_or(std::f32::consts::FRAC_PI_4, |s| s.outer_cone_angle),
-                        range: lamp.range,
-                    },
-                    Checked::Valid(Type::Point) => return Err((path, GltfProblem::PointLight(name))),
-                    Checked::Invalid => {
-                        return Err((format!("{path}.type"), GltfProblem::Invalid("an unknown light type".into())));
-                    }
-                };
+            if let Some((path, name, what)) = lamp(json, node)? {
                 out.lights.push(Placed { path, name, what, position, forward, up });
             }
         }
