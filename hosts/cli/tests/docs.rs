@@ -141,7 +141,7 @@ fn every_documented_figure_is_what_the_code_prints() {
 
 /// The figures of Debian's scene data, which the test above leaves out.
 #[test]
-#[ignore = "needs Debian's assimp-testmodels: run with `cargo test -p umbra-cli --test docs -- --ignored`"]
+#[ignore = "needs Debian's assimp-testmodels: run with `cargo test --workspace --test docs -- --ignored`"]
 fn the_figures_of_debian_scene_data_are_what_the_code_prints() {
     check_figures(true);
 }
