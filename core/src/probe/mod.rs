@@ -68,6 +68,44 @@ pub trait Probe {
     fn map_bound(&mut self, light: u16) {
         let _ = light;
     }
+
+    /// An event of only some of the tilings a shadow unit tests its
+    /// lookups against ([`MapView::with_tilings`](crate::shadow::MapView::with_tilings)):
+    /// a lookup that one tiling's stored bounds cull and another's do not.
+    /// A probe that models one tiling keeps the events of its own; the
+    /// default is tiling 0's, the map's own.
+    #[inline(always)]
+    fn event_for(&mut self, tilings: Tilings, event: Event) {
+        if tilings.has(0) {
+            self.event(event);
+        }
+    }
+
+    /// A texel read for only some tilings, as [`Probe::event_for`].
+    #[inline(always)]
+    fn texel_read_for(&mut self, tilings: Tilings, read: TexelRead) {
+        if tilings.has(0) {
+            self.texel_read(read);
+        }
+    }
+}
+
+/// A set of the tilings a shadow unit tests a lookup against (at most
+/// [`Tilings::MAX`]): tiling 0 is the map's own, the others are those of
+/// [`MapView::with_tilings`](crate::shadow::MapView::with_tilings), in order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct Tilings(pub u8);
+
+impl Tilings {
+    /// The most tilings a lookup is tested against.
+    pub const MAX: usize = 8;
+
+    /// Whether tiling `k` is in the set.
+    #[must_use]
+    #[inline(always)]
+    pub const fn has(self, k: usize) -> bool {
+        k < Self::MAX && self.0 & (1 << k) != 0
+    }
 }
 
 /// The probe that does nothing and costs nothing.
@@ -107,5 +145,49 @@ impl<P: Probe + ?Sized> Probe for &mut P {
     #[inline(always)]
     fn tap(&mut self, tap: Tap) {
         (**self).tap(tap);
+    }
+
+    #[inline(always)]
+    fn event_for(&mut self, tilings: Tilings, event: Event) {
+        (**self).event_for(tilings, event);
+    }
+
+    #[inline(always)]
+    fn texel_read_for(&mut self, tilings: Tilings, read: TexelRead) {
+        (**self).texel_read_for(tilings, read);
+    }
+}
+
+/// A probe that sees a shadow unit's events as those of `tilings` only:
+/// the reads of a lookup that the other tilings' bounds culled.
+pub(crate) struct For<P> {
+    pub(crate) probe: P,
+    pub(crate) tilings: Tilings,
+}
+
+impl<P: Probe> Probe for For<P> {
+    const FRAGMENTS: bool = P::FRAGMENTS;
+    const TEXELS: bool = P::TEXELS;
+    const TAPS: bool = P::TAPS;
+    const EVENTS: bool = P::EVENTS;
+
+    #[inline(always)]
+    fn event(&mut self, event: Event) {
+        self.probe.event_for(self.tilings, event);
+    }
+
+    #[inline(always)]
+    fn texel_read(&mut self, read: TexelRead) {
+        self.probe.texel_read_for(self.tilings, read);
+    }
+
+    #[inline(always)]
+    fn event_for(&mut self, tilings: Tilings, event: Event) {
+        self.probe.event_for(Tilings(tilings.0 & self.tilings.0), event);
+    }
+
+    #[inline(always)]
+    fn texel_read_for(&mut self, tilings: Tilings, read: TexelRead) {
+        self.probe.texel_read_for(Tilings(tilings.0 & self.tilings.0), read);
     }
 }

@@ -2,12 +2,12 @@
 
 use super::{
     AllFilters, Bias, Built, DepthTest, Filter, HALF, Lookup, MapCoord, MapView, Shadow, ShadowConfig, Slope, Texels,
-    floor, jitter_grid, reference_bounds,
+    TileBounds, floor, jitter_grid, reference_bounds,
 };
 use crate::budget::MAP_FRACTION_BITS;
 use crate::depth::{DepthFormat, PlaneZ};
 use crate::grid::TileRect;
-use crate::probe::{Event, Probe};
+use crate::probe::{Event, For, Probe, Tilings};
 
 /// Shadow a lookup: the fraction of its samples in shadow.
 pub fn shadow<F: DepthFormat, P: Probe>(map: &MapView<'_, F>, cfg: &ShadowConfig, l: &Lookup, probe: &mut P) -> Shadow {
@@ -59,16 +59,59 @@ pub(crate) fn lookup<F: DepthFormat, P: Probe, K: Built>(
         } else {
             (l.z.to_bits(), l.z.to_bits())
         };
-        let (r_lo, r_hi) = reference_bounds(map, cfg.test, &inside_map);
-        if at_format::<F>(z_hi.saturating_sub(bias_lo)) <= r_lo {
-            probe.event(Event::LookupCulled { texels: footprint.count() });
-            return Shadow::ZERO;
-        }
-        if whole && at_format::<F>(z_lo.saturating_sub(bias_hi)) > r_hi {
-            probe.event(Event::LookupCulled { texels: footprint.count() });
-            return Shadow::ONE;
+        let lit_from = at_format::<F>(z_hi.saturating_sub(bias_lo));
+        let shadowed_above = at_format::<F>(z_lo.saturating_sub(bias_hi));
+        let cull = |tiles: &TileBounds<'_, F::Texel>| {
+            let (r_lo, r_hi) = reference_bounds(map, tiles, cfg.test, &inside_map);
+            if lit_from <= r_lo { Some(Shadow::ZERO) } else { (whole && shadowed_above > r_hi).then_some(Shadow::ONE) }
+        };
+        let own = cull(&map.bounds);
+        let culled = Event::LookupCulled { texels: footprint.count() };
+        if map.others.is_empty() {
+            if let Some(shadow) = own {
+                probe.event(culled);
+                return shadow;
+            }
+        } else {
+            // Each tiling's bounds tested; the texels are read once for
+            // the tilings that do not cull, and reported to them alone.
+            let (mut by, mut result) = (Tilings(u8::from(own.is_some())), own);
+            for (k, tiles) in map.others.iter().enumerate() {
+                if let Some(shadow) = cull(tiles) {
+                    by.0 |= 1 << (k + 1);
+                    result = Some(shadow);
+                }
+            }
+            let all = Tilings(u8::MAX >> (Tilings::MAX - 1 - map.others.len()));
+            match result {
+                Some(shadow) if by == all => {
+                    probe.event(culled);
+                    return shadow;
+                }
+                Some(_) => {
+                    probe.event_for(by, culled);
+                    let mut rest = For { probe: &mut *probe, tilings: Tilings(all.0 & !by.0) };
+                    return read::<F, _, K>(map, cfg, l, slope, (footprint, inside_map, whole), grid, &mut rest);
+                }
+                None => {}
+            }
         }
     }
+    read::<F, P, K>(map, cfg, l, slope, (footprint, inside_map, whole), grid, probe)
+}
+
+/// A lookup's samples read, once no tiling's bounds decided it: the
+/// footprint, its part on the map, and whether that is all of it.
+#[inline(always)]
+fn read<F: DepthFormat, P: Probe, K: Built>(
+    map: &MapView<'_, F>,
+    cfg: &ShadowConfig,
+    l: &Lookup,
+    slope: Option<Slope>,
+    (footprint, inside_map, whole): (Texels, TileRect, bool),
+    grid: Option<([MapCoord; 2], [u32; 2])>,
+    probe: &mut P,
+) -> Shadow {
     if let (Filter::Box { .. }, true, None, Bias::Constant(b), true, false) =
         (cfg.filter, whole, slope, cfg.bias, K::BOX, P::TAPS)
     {

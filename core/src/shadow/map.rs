@@ -13,11 +13,43 @@ pub struct MapView<'a, F: DepthFormat> {
     pub(super) raster: RasterConfig,
     z1: &'a [F::Texel],
     z2: &'a [F::Texel],
-    pub(super) tiles: &'a [TileState<F::Texel>],
-    /// Tiles in a row of the map.
-    pub(super) across: usize,
+    /// The map's own tiles' stored bounds (tiling 0).
+    pub(super) bounds: TileBounds<'a, F::Texel>,
+    /// Other tilings' bounds over the same texels, each tested too.
+    pub(super) others: &'a [TileBounds<'a, F::Texel>],
     /// The second depth is the single buffer of a front-face-culled pass.
     second_in_z1: bool,
+}
+
+/// The stored bounds of a map's tiles in one tiling: what lookup culling
+/// reads. The same texels drawn in tiles of another side (PixelFlow's 128
+/// against Talisman's 32) have other bounds; a shadow unit given several
+/// ([`MapView::with_tilings`]) reports each tiling's culls and reads from
+/// one lookup.
+#[derive(Clone, Copy, Debug)]
+pub struct TileBounds<'a, T> {
+    /// log₂ of the tile side.
+    pub(super) shift: u32,
+    /// Tiles in a row of the map.
+    pub(super) across: usize,
+    pub(super) tiles: &'a [TileState<T>],
+}
+
+impl<'a, T> TileBounds<'a, T> {
+    /// The bounds of `raster`'s tiles.
+    ///
+    /// # Errors
+    /// [`crate::ConfigError::BufferLength`] when `tiles` is not one state a tile.
+    pub fn new(raster: RasterConfig, tiles: &'a [TileState<T>]) -> Result<Self, crate::ConfigError> {
+        if tiles.len() != raster.tile_count() {
+            return Err(crate::ConfigError::BufferLength {
+                buffer: "tiles",
+                expected: raster.tile_count(),
+                found: tiles.len(),
+            });
+        }
+        Ok(Self { shift: raster.tile_shift(), across: raster.tiles().0 as usize, tiles })
+    }
 }
 
 impl<'a, F: DepthFormat> MapView<'a, F> {
@@ -45,10 +77,25 @@ impl<'a, F: DepthFormat> MapView<'a, F> {
         if !z2.is_empty() && z2.len() != texels {
             return Err(wrong("z2", texels, z2.len()));
         }
-        if tiles.len() != raster.tile_count() {
-            return Err(wrong("tiles", raster.tile_count(), tiles.len()));
+        let bounds = TileBounds::new(raster, tiles)?;
+        Ok(Self { raster, z1, z2, bounds, others: &[], second_in_z1: false })
+    }
+
+    /// The same view, its lookups also tested against `others`: the
+    /// bounds of the same texels in other tilings (tiling `k + 1` is
+    /// `others[k]`). A lookup that some tilings cull and others do not
+    /// reads its texels for those that do not, reported to them alone
+    /// ([`Probe::event_for`]); the shadow is the same whichever culls.
+    ///
+    /// # Errors
+    /// [`crate::ConfigError::BufferLength`] naming `tilings` when there are
+    /// more than [`Tilings::MAX`](crate::probe::Tilings::MAX) in all.
+    pub fn with_tilings(self, others: &'a [TileBounds<'a, F::Texel>]) -> Result<Self, crate::ConfigError> {
+        let most = crate::probe::Tilings::MAX - 1;
+        if others.len() > most {
+            return Err(crate::ConfigError::BufferLength { buffer: "tilings", expected: most, found: others.len() });
         }
-        Ok(Self { raster, z1, z2, tiles, across: raster.tiles().0 as usize, second_in_z1: false })
+        Ok(Self { others, ..self })
     }
 
     /// View the map of a single-depth pass with front-face culling: its one

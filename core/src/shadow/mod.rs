@@ -63,7 +63,7 @@ pub use filter::shadow;
 pub(crate) use footprint::mul_shift;
 pub use footprint::{Lookup, Slope, jitter_grid};
 use footprint::{Texels, floor};
-pub use map::MapView;
+pub use map::{MapView, TileBounds};
 pub(crate) use tangent::virtual_samples;
 pub use tangent::{TangentPlane, shadow_with_virtual_samples};
 

@@ -1,7 +1,7 @@
 //! Probes that pass the core's events on: to two probes ([`Tee`]) or to
 //! each of several ([`Fan`]).
 
-use umbra_core::probe::{Event, Fragment, Probe, Tap, TexelRead};
+use umbra_core::probe::{Event, Fragment, Probe, Tap, TexelRead, Tilings};
 
 /// Forwards every event, fragment and texel read to two probes.
 #[derive(Clone, Debug, Default)]
@@ -42,6 +42,18 @@ impl<A: Probe, B: Probe> Probe for Tee<A, B> {
         self.0.map_bound(light);
         self.1.map_bound(light);
     }
+
+    #[inline]
+    fn event_for(&mut self, tilings: Tilings, e: Event) {
+        self.0.event_for(tilings, e);
+        self.1.event_for(tilings, e);
+    }
+
+    #[inline]
+    fn texel_read_for(&mut self, tilings: Tilings, r: TexelRead) {
+        self.0.texel_read_for(tilings, r);
+        self.1.texel_read_for(tilings, r);
+    }
 }
 
 /// Every event to each of several probes, in order.
@@ -77,5 +89,15 @@ impl<P: Probe> Probe for Fan<P> {
     #[inline]
     fn tap(&mut self, t: Tap) {
         self.0.iter_mut().for_each(|p| p.tap(t));
+    }
+
+    #[inline]
+    fn event_for(&mut self, tilings: Tilings, e: Event) {
+        self.0.iter_mut().for_each(|p| p.event_for(tilings, e));
+    }
+
+    #[inline]
+    fn texel_read_for(&mut self, tilings: Tilings, r: TexelRead) {
+        self.0.iter_mut().for_each(|p| p.texel_read_for(tilings, r));
     }
 }

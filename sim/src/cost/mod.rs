@@ -7,6 +7,7 @@ pub mod arch;
 pub mod cache;
 pub mod dram;
 pub mod report;
+pub mod stack;
 pub mod storage;
 pub mod timing;
 pub mod work;

@@ -9,4 +9,5 @@ mod correlation;
 mod derived;
 mod reads;
 mod shared;
+mod stack;
 mod storage;

@@ -4,7 +4,7 @@
 use super::{ArchProbe, COLOUR_BYTES, PassKind, Phase};
 use crate::cost::cache::morton;
 use crate::cost::work::Stage;
-use umbra_core::probe::{Buffer, Event, Fragment, TexelRead};
+use umbra_core::probe::{Buffer, Event, Fragment, TexelRead, Tilings};
 use umbra_core::{Probe, TileId};
 
 impl<const D: bool> Probe for ArchProbe<D> {
@@ -215,6 +215,20 @@ impl<const D: bool> Probe for ArchProbe<D> {
     fn map_bound(&mut self, light: u16) {
         if let Some(m) = self.map_cache.as_mut() {
             m.map_bound(light);
+        }
+    }
+
+    #[inline]
+    fn event_for(&mut self, tilings: Tilings, e: Event) {
+        if tilings.has(self.tiling) {
+            self.event(e);
+        }
+    }
+
+    #[inline]
+    fn texel_read_for(&mut self, tilings: Tilings, r: TexelRead) {
+        if tilings.has(self.tiling) {
+            self.texel_read(r);
         }
     }
 

@@ -96,6 +96,10 @@ pub struct ArchProbe<const FRAGMENT_DETAIL: bool = false> {
     pub events: Totals,
     map_cache: Option<MapCache>,
     depth_cache: Option<Cache>,
+    /// Which of the tilings a shadow unit tests its lookups against is
+    /// this architecture's ([`umbra_core::probe::Tilings`]): 0, the map's
+    /// own, unless a shared shading says otherwise.
+    pub(crate) tiling: usize,
 }
 
 /// A cache of `c`'s geometry, or none when its size is 0.
@@ -143,6 +147,7 @@ impl<const D: bool> ArchProbe<D> {
             // Without each fragment's address the cache cannot be modelled:
             // every access is then charged as uncached.
             depth_cache: if D { cache(&arch.depth_cache) } else { None },
+            tiling: 0,
         }
     }
 

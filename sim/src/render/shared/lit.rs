@@ -22,6 +22,9 @@ pub(super) struct Lit<T> {
     /// The first pass (this one or an earlier) whose maps shade alike:
     /// the same texels and the same tile bounds.
     pub(super) class: usize,
+    /// The first pass whose maps hold the same texels, whatever their
+    /// tiles: one shading tests a lookup against each tiling's bounds.
+    pub(super) texels: usize,
     pub(super) maps: LightMaps<T>,
 }
 
@@ -44,10 +47,15 @@ pub(crate) struct LightShare<T> {
 fn alike<T: PartialEq + Copy>(a: &LightMaps<T>, b: &LightMaps<T>) -> bool {
     let bounds = |t: &TileState<T>| [t.z1_min, t.z1_max, t.z2_min, t.z2_max];
     a.config.raster == b.config.raster
-        && a.z1 == b.z1
-        && a.z2 == b.z2
+        && same_texels(a, b)
         && a.tiles.len() == b.tiles.len()
         && a.tiles.iter().zip(&b.tiles).all(|(x, y)| bounds(x) == bounds(y))
+}
+
+/// Whether two maps hold the same texels (in tiles of any side).
+fn same_texels<T: PartialEq>(a: &LightMaps<T>, b: &LightMaps<T>) -> bool {
+    let (ra, rb) = (a.config.raster, b.config.raster);
+    (ra.width(), ra.height()) == (rb.width(), rb.height()) && a.z1 == b.z1 && a.z2 == b.z2
 }
 
 /// One light pass into new maps, as [`Reporting`].
@@ -103,7 +111,8 @@ impl<T: umbra_core::depth::Texel> LightShare<T> {
                 setups = totals.setups;
             }
             let class = lit.iter().position(|l| alike(&l.maps, &maps)).unwrap_or(k);
-            lit.push(Lit { class, maps });
+            let texels = lit.iter().position(|l| same_texels(&l.maps, &maps)).unwrap_or(k);
+            lit.push(Lit { class, texels, maps });
         }
         kept.sort_by_key(|(i, _)| *i);
         Some(Self { lit, lit_by, probes: kept, setups })

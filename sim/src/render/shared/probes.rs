@@ -46,6 +46,16 @@ impl Kept {
         }
     }
 
+    /// The probe as that of tiling `tiling` among those a shared shading's
+    /// lookups are tested against.
+    pub(super) fn in_tiling(mut self, tiling: usize) -> Self {
+        match &mut self {
+            Self::Plain(p) => p.tiling = tiling,
+            Self::Detail(p) => p.tiling = tiling,
+        }
+        self
+    }
+
     /// The report of a `light` and a `camera` probe, once the passes have run.
     pub(super) fn report(
         names: (&str, SceneCounts),

@@ -5,7 +5,7 @@
 use glam::Mat4;
 use umbra_core::probe::{Probe, Totals};
 use umbra_core::shade::{MapUnit, PixelResult, ShadeSetup, Shaded, ShadowUnit, SilhouetteUnit};
-use umbra_core::shadow::{MapView, Shadow};
+use umbra_core::shadow::{MapView, Shadow, TileBounds};
 use umbra_core::silhouette::{Packed, SilPoint, SilStore, SilhouetteMap};
 use umbra_core::{DepthFormat, RasterConfig};
 
@@ -60,29 +60,24 @@ pub(crate) fn render_shared<F: DepthFormat>(
     }
     let units = cfg.algorithm.units::<F>(cfg.bias);
     let options = camera_options(cfg, &units, image.size, Tiling::DEFAULT).ok()?;
-    // The shading classes, the functional render's first: each a pair of
-    // visibility and map classes, and the architectures that drew it.
-    let class_of = |i: usize| Some((image.seen[image.seen_by[i]?].class, light.lit[light.lit_by[i]?].class));
-    let mut classes: Vec<((usize, usize), Vec<usize>)> = vec![((image.seen[0].class, light.lit[0].class), vec![])];
-    for i in 0..image.archs.len() {
-        let Some(key) = class_of(i) else { continue };
-        match classes.iter_mut().find(|c| c.0 == key) {
-            Some(c) => c.1.push(i),
-            None => classes.push((key, vec![i])),
-        }
-    }
+    let classes = classes(image, light)?;
     let mut costs: Vec<Option<Result<CostReport, RenderError>>> = (0..image.archs.len()).map(|_| None).collect();
     let mut camera_totals = image.seen[0].totals;
     let config = cfg.describe();
     let Scratch { pixels, others, setups } = scratch;
     let mut metrics = None;
-    for (k, ((seen, lit), members)) in classes.into_iter().enumerate() {
+    for (k, Class { seen, bounds, members }) in classes.into_iter().enumerate() {
         let (mut lights, mut cameras) = (Probes::default(), Probes::default());
-        for &i in &members {
+        for &(i, tiling) in &members {
             lights.push(i, copy_of(&light.probes, i)?);
-            cameras.push(i, copy_of(&image.seen[image.seen_by[i]?].probes, i)?.reading(cfg, &units));
+            cameras.push(i, copy_of(&image.seen[image.seen_by[i]?].probes, i)?.reading(cfg, &units).in_tiling(tiling));
         }
-        let view = map_view::<F>(&light.lit[lit].maps, units.front_culled).ok()?;
+        let tilings = bounds[1..]
+            .iter()
+            .map(|&b| TileBounds::new(light.lit[b].maps.config.raster, &light.lit[b].maps.tiles))
+            .collect::<Result<Vec<_>, _>>()
+            .ok()?;
+        let view = map_view::<F>(&light.lit[bounds[0]].maps, units.front_culled).ok()?.with_tilings(&tilings).ok()?;
         let seen = &image.seen[seen];
         let seen = (seen.frame.ids(), seen.camera);
         let done = if k == 0 {
@@ -105,6 +100,44 @@ pub(crate) fn render_shared<F: DepthFormat>(
         }
     }
     Some((metrics?, camera_totals, costs))
+}
+
+/// One shading of a configuration: the visibility it shades (its first
+/// pass), the light passes whose tiles' bounds its lookups are tested
+/// against (their first passes, the map's own first: each holds the same
+/// texels), and the architectures that drew it, each with the index of its
+/// tiling among them.
+struct Class {
+    seen: usize,
+    bounds: Vec<usize>,
+    members: Vec<(usize, usize)>,
+}
+
+/// The shadings of a configuration, the functional render's first (the
+/// default tiling's visibility and map, its bounds the map's own).
+fn classes<T>(image: &ImageShare<'_>, light: &LightShare<T>) -> Option<Vec<Class>> {
+    let first = &light.lit[0];
+    let mut classes = vec![Class { seen: image.seen[0].class, bounds: vec![first.class], members: vec![] }];
+    let mut texels = vec![first.texels];
+    for i in 0..image.archs.len() {
+        let (Some(seen), Some(lit)) = (image.seen_by[i], light.lit_by[i]) else { continue };
+        let (seen, lit) = (image.seen[seen].class, &light.lit[lit]);
+        let k = match classes.iter().zip(&texels).position(|(c, &t)| c.seen == seen && t == lit.texels) {
+            Some(k) => k,
+            None => {
+                classes.push(Class { seen, bounds: vec![], members: vec![] });
+                texels.push(lit.texels);
+                classes.len() - 1
+            }
+        };
+        let class = classes.get_mut(k)?;
+        let tiling = class.bounds.iter().position(|&b| b == lit.class).unwrap_or_else(|| {
+            class.bounds.push(lit.class);
+            class.bounds.len() - 1
+        });
+        class.members.push((i, tiling));
+    }
+    Some(classes)
 }
 
 /// One shading of a configuration: the map it reads, the visibility it
