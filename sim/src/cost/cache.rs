@@ -141,6 +141,13 @@ impl Cache {
         })
     }
 
+    /// Its geometry: size in bytes, line bytes, ways.
+    #[must_use]
+    pub(crate) const fn geometry(&self) -> (u64, u32, u32) {
+        #[allow(clippy::cast_possible_truncation, reason = "built from a u32 line and ways")]
+        (self.sets * self.ways as u64 * self.line(), self.line() as u32, self.ways as u32)
+    }
+
     /// Bytes of one line.
     #[must_use]
     pub(crate) const fn line(&self) -> u64 {

@@ -1,7 +1,7 @@
 //! The timing probe's account of each event: an exhaustive match, so an
 //! event without a charge does not compile.
 
-use super::{ArchProbe, COLOUR_BYTES, PassKind, Phase};
+use super::{ArchProbe, COLOUR_BYTES, PassKind, Phase, ShadeCounts};
 use crate::cost::cache::morton;
 use crate::cost::work::Stage;
 use umbra_core::probe::{Buffer, Event, Fragment, TexelRead, Tilings};
@@ -117,20 +117,16 @@ impl<const D: bool> Probe for ArchProbe<D> {
             Event::LookupCulled { .. } => {
                 // One compare against the tiles' bounds.
                 self.accesses.shadow_ops += 1;
-                let spc = self.arch.shadow.samples_per_clock;
-                self.work().charge(Stage::Shadow, Self::per(1, spc));
+                self.shaded(&ShadeCounts { culled: 1, ..ShadeCounts::default() });
             }
             Event::VirtualSamples { count } => {
                 // Forward differences: an add and a compare per sample.
                 self.accesses.shadow_ops += n(count);
-                let spc = self.arch.shadow.samples_per_clock;
-                self.work().charge(Stage::Shadow, Self::per(n(count), spc));
+                self.shaded(&ShadeCounts { virtual_samples: n(count), ..ShadeCounts::default() });
             }
             Event::TangentSetup => {
                 // A division occupies one of the dividers for its latency.
-                #[allow(clippy::cast_precision_loss, reason = "a small count")]
-                let d = self.arch.shadow.divider_cycles / self.arch.shadow.dividers.max(1) as f64;
-                self.work().charge(Stage::Shadow, d);
+                self.shaded(&ShadeCounts { tangents: 1, ..ShadeCounts::default() });
             }
             // Counted in `events`: decisions about work charged above.
             Event::TangentFallback | Event::TrivialPixel { .. } => {}
@@ -140,11 +136,8 @@ impl<const D: bool> Probe for ArchProbe<D> {
                 let s = self.raster.tile_shift();
                 #[allow(clippy::cast_possible_truncation, reason = "at most 2^14 / 8 tiles per side")]
                 self.select(TileId { x: (x >> s) as u16, y: (y >> s) as u16 });
-                let (shade, lookup) = if self.arch.shade.per_fragment { (0.0, 0.0) } else { self.program() };
-                let w = self.work();
-                w.charge(Stage::Shade, shade);
-                w.charge(Stage::Shadow, lookup);
-                w.pixels += 1;
+                self.shaded(&ShadeCounts { pixels: 1, ..ShadeCounts::default() });
+                self.work().pixels += 1;
                 self.traffic(|d| &mut d.colour, COLOUR_BYTES);
             }
             Event::SilhouetteFragments { fragments, bytes: b, .. } => {

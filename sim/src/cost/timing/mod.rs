@@ -11,6 +11,7 @@
 //! latency the architecture cannot hide.
 
 mod events;
+mod tally;
 
 use crate::cost::arch::{Arch, CacheParams};
 use crate::cost::cache::{Cache, MapCache};
@@ -18,6 +19,10 @@ use crate::cost::dram::Dram;
 use crate::cost::work::{Accesses, EnergySplit, PassTiming, Work};
 use crate::cost::work::{Bottleneck, MemoryLimit, Stage};
 use serde::Serialize;
+use tally::ShadeCounts;
+pub(crate) use tally::Tally;
+#[cfg(test)]
+pub(crate) use tally::charges_event_by_event;
 use umbra_core::probe::Totals;
 use umbra_core::{DepthFormatKind, RasterConfig, TileId};
 
@@ -100,6 +105,11 @@ pub struct ArchProbe<const FRAGMENT_DETAIL: bool = false> {
     /// this architecture's ([`umbra_core::probe::Tilings`]): 0, the map's
     /// own, unless a shared shading says otherwise.
     pub(crate) tiling: usize,
+    /// Per unit of `tiles`, the shading's events tallied, charged when
+    /// the pass is finished.
+    shading: Vec<ShadeCounts>,
+    /// Charge the shading event by event instead (the tallies' reference).
+    event_by_event: bool,
 }
 
 /// A cache of `c`'s geometry, or none when its size is 0.
@@ -148,6 +158,8 @@ impl<const D: bool> ArchProbe<D> {
             // every access is then charged as uncached.
             depth_cache: if D { cache(&arch.depth_cache) } else { None },
             tiling: 0,
+            shading: Vec::new(),
+            event_by_event: tally::event_by_event(),
         }
     }
 
@@ -190,11 +202,16 @@ impl<const D: bool> ArchProbe<D> {
         self.phase = phase;
     }
 
-    fn work(&mut self) -> &mut Work {
-        let i = self.current.min(self.tiles.len().saturating_sub(1));
+    /// The index of the unit being worked on (one is opened if there is none).
+    fn unit(&mut self) -> usize {
         if self.tiles.is_empty() {
             self.tiles.push(Work::default());
         }
+        self.current.min(self.tiles.len() - 1)
+    }
+
+    fn work(&mut self) -> &mut Work {
+        let i = self.unit();
         &mut self.tiles[i]
     }
 
@@ -279,8 +296,10 @@ impl<const D: bool> ArchProbe<D> {
         self.work().dram.depth_rmw += rmw;
     }
 
-    /// Finish the pass: write back what the depth cache still holds dirty.
+    /// Finish the pass: charge the shading's tallies as cycles, and write
+    /// back what the depth cache still holds dirty.
     pub fn finish(&mut self) {
+        self.charge_tallies();
         if let Some(c) = self.depth_cache.as_mut() {
             let bytes = c.flush() * c.line();
             self.dram.depth_rmw += bytes;
@@ -429,11 +448,8 @@ impl<const D: bool> ArchProbe<D> {
 
     fn map_read(&mut self, texels: u64, bytes: u64) {
         self.accesses.shadow_ops += texels;
-        if !self.arch.shade.per_fragment {
-            // A machine shading per fragment fetches in its program.
-            let spc = self.arch.shadow.samples_per_clock;
-            self.work().charge(Stage::Shadow, Self::per(texels, spc));
-        }
+        // A machine shading per fragment fetches in its program.
+        self.shaded(&ShadeCounts { samples: texels, ..ShadeCounts::default() });
         if self.map_cache.is_none() {
             self.stream(bytes);
         }

@@ -7,8 +7,9 @@ use umbra_core::{DepthFormatKind, RasterConfig};
 use super::super::costed::{SceneCounts, reading, report};
 use crate::base::probes::{Fan, Tee};
 use crate::cost::arch::Arch;
+use crate::cost::arch::CacheParams;
 use crate::cost::report::CostReport;
-use crate::cost::timing::{ArchProbe, PassKind};
+use crate::cost::timing::{ArchProbe, PassKind, Tally};
 use crate::pass::algorithm::Units;
 use crate::render::RenderConfig;
 
@@ -116,6 +117,29 @@ impl Probes {
         self.plain = a.into_iter().zip(plain).collect();
         self.detail = b.into_iter().zip(detail).collect();
         out
+    }
+
+    /// A tally for a shading of an image of `size` that these probes read:
+    /// per tile of the finest of their tilings, for each of their tilings,
+    /// through each of their map caches.
+    pub(super) fn tally(&self, (width, height): (u32, u32)) -> Tally {
+        let needs: Vec<_> = self
+            .plain
+            .iter()
+            .map(|(_, p)| (p.tiling, p.tallied_as()))
+            .chain(self.detail.iter().map(|(_, p)| (p.tiling, p.tallied_as())))
+            .collect();
+        let shift = needs.iter().map(|(_, (s, ..))| *s).min().unwrap_or(5);
+        let tilings = needs.iter().map(|(t, _)| t + 1).max().unwrap_or(1);
+        let caches: Vec<&CacheParams> = needs.iter().map(|(_, (_, c, _))| *c).collect();
+        let addressing = needs.iter().find_map(|(_, (_, _, m))| m.cloned());
+        Tally::new((width, height, shift), tilings, &caches, addressing)
+    }
+
+    /// Each probe's share of `tally`, added.
+    pub(super) fn absorb(&mut self, tally: &Tally) {
+        self.plain.iter_mut().for_each(|(_, p)| p.absorb(tally, p.tiling));
+        self.detail.iter_mut().for_each(|(_, p)| p.absorb(tally, p.tiling));
     }
 
     /// The probes, by architecture.

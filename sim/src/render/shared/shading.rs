@@ -165,8 +165,26 @@ impl<F: DepthFormat, R: PixelResult> Shading<'_, '_, F, R> {
         match map {
             MapKind::Silhouette { packed: true } => self.silhouette::<Packed, P>(lights, cameras, also),
             MapKind::Silhouette { packed: false } => self.silhouette::<SilPoint, P>(lights, cameras, also),
-            MapKind::Depth | MapKind::Volumes => cameras.run(Unit { shading: self, unit: &MapUnit, also }),
+            MapKind::Depth | MapKind::Volumes => self.tallied(&MapUnit, cameras, also),
         }
+    }
+
+    /// The shading with shadow unit `unit`, its events to `also` and
+    /// tallied once for every camera probe, each probe then costed from the
+    /// tally.
+    fn tallied<U: ShadowUnit<F>, P: Probe>(
+        self,
+        unit: &U,
+        cameras: &mut Probes,
+        also: &mut P,
+    ) -> Result<(), RenderError> {
+        let mut tally = cameras.tally(self.image.size);
+        Unit { shading: self, unit, also }.run(&mut tally)?;
+        if tally.unexpected {
+            return Err(RenderError::Cost("the shading reported an event its tally does not count".into()));
+        }
+        cameras.absorb(&tally);
+        Ok(())
     }
 
     fn silhouette<S: SilStore, P: Probe>(
@@ -178,7 +196,7 @@ impl<F: DepthFormat, R: PixelResult> Shading<'_, '_, F, R> {
         let texels = lights.run(Silhouettes::<S, F, R> { shading: &self, store: core::marker::PhantomData })?;
         let raster = self.view.raster();
         let sil = SilhouetteMap::view(raster.width(), raster.height(), &texels).map_err(PassError::from)?;
-        cameras.run(Unit { shading: self, unit: &SilhouetteUnit(&sil), also })
+        self.tallied(&SilhouetteUnit(&sil), cameras, also)
     }
 }
 

@@ -6,3 +6,4 @@ mod merge;
 mod shared;
 mod study;
 mod summary;
+mod tallies;

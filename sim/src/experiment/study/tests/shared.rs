@@ -19,7 +19,7 @@ use umbra_core::shadow::Filter;
 /// Every algorithm of the full sweep, one parameter each, and the
 /// variants that change only the shading (virtual samples off) or only
 /// the light pass (culling off).
-fn variants() -> Vec<Variant> {
+pub(super) fn variants() -> Vec<Variant> {
     vec![
         Variant::new(Algorithm::First, 0.002),
         Variant::new(Algorithm::First, 0.0),

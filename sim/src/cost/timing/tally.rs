@@ -1,0 +1,427 @@
+//! The shading's events tallied: integer counts per tile, charged as
+//! cycles once, when the pass is finished, rather than event by event; and
+//! one shading's tallies and texel addresses recorded once ([`Tally`]) for
+//! every architecture that reads them, each costed from them at the end.
+//!
+//! An architecture's probe tallies the shading unit's events of each tile
+//! ([`ShadeCounts`]) and turns them into cycles in [`ArchProbe::finish`]:
+//! `pixels × (shade, lookup program)`, `samples ÷ samples a clock`, and so
+//! on, one product a count. Event by event, the same charges were sums of
+//! one term an event; the two differ only in the rounding of those sums
+//! (see [`charges_event_by_event`]). A [`Tally`] counts the same integers
+//! once for several architectures, per tile of the finest of their
+//! tilings, with each tiling's lookups and culls ([`umbra_core::probe::Tilings`]),
+//! and sends each texel address once through every map cache the
+//! architectures name (one pass of stack distances for several sizes of
+//! one line, [`crate::cost::stack`]); [`ArchProbe::absorb`] adds an
+//! architecture's share, tile by tile, to what its own passes left. The
+//! integers it adds are those its own probe would have counted, so a report
+//! costed from a tally is its own render's, bit for bit.
+
+use umbra_core::TileId;
+use umbra_core::probe::{Event, Probe, TexelRead, Tilings, Totals};
+
+use super::{ArchProbe, COLOUR_BYTES, Phase, cache};
+use crate::cost::arch::CacheParams;
+use crate::cost::cache::{Cache, MapCache};
+use crate::cost::stack::StackDistances;
+use crate::cost::work::Stage;
+
+/// The shading unit's events of one tile, counted: what its shade and
+/// shadow cycles are charged from.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct ShadeCounts {
+    /// Pixels shaded (each one shading program and one lookup's).
+    pub(crate) pixels: u64,
+    /// Depth samples and silhouette points read.
+    pub(crate) samples: u64,
+    /// Lookups culled by the tiles' bounds (one compare each).
+    pub(crate) culled: u64,
+    /// Virtual samples (an add and a compare each).
+    pub(crate) virtual_samples: u64,
+    /// Tangent-plane setups (a division each).
+    pub(crate) tangents: u64,
+}
+
+impl ShadeCounts {
+    fn add(&mut self, o: &Self) {
+        self.pixels += o.pixels;
+        self.samples += o.samples;
+        self.culled += o.culled;
+        self.virtual_samples += o.virtual_samples;
+        self.tangents += o.tangents;
+    }
+}
+
+#[cfg(test)]
+thread_local! {
+    /// Charge the shading's cycles event by event, as the tallies' reference.
+    static EVENT_BY_EVENT: core::cell::Cell<bool> = const { core::cell::Cell::new(false) };
+}
+
+/// Run `f` with every architecture probe made on this thread charging the
+/// shading's cycles event by event (the reference the tallies are held to).
+#[cfg(test)]
+pub(crate) fn charges_event_by_event<T>(f: impl FnOnce() -> T) -> T {
+    EVENT_BY_EVENT.with(|e| e.set(true));
+    let out = f();
+    EVENT_BY_EVENT.with(|e| e.set(false));
+    out
+}
+
+/// Whether probes made now charge event by event.
+pub(super) fn event_by_event() -> bool {
+    #[cfg(test)]
+    return EVENT_BY_EVENT.with(core::cell::Cell::get);
+    #[cfg(not(test))]
+    false
+}
+
+impl<const D: bool> ArchProbe<D> {
+    /// The shade and shadow cycles of `n`: the shading program and the
+    /// lookup's own instructions per pixel (none on a machine shading per
+    /// fragment, which charges them per fragment), each sample read at the
+    /// shadow unit's rate (fetched in the program when shading per
+    /// fragment), a compare per culled lookup and per virtual sample, and a
+    /// divider's occupancy per tangent setup.
+    #[allow(clippy::cast_precision_loss, reason = "counts far below 2^53")]
+    fn shading_cycles(&self, n: &ShadeCounts) -> (f64, f64) {
+        let a = &self.arch;
+        let spc = a.shadow.samples_per_clock;
+        let (shade, lookup) = if a.shade.per_fragment { (0.0, 0.0) } else { self.program() };
+        let samples = if a.shade.per_fragment { 0.0 } else { Self::per(n.samples, spc) };
+        let divide = a.shadow.divider_cycles / a.shadow.dividers.max(1) as f64;
+        let shadow = n.pixels as f64 * lookup
+            + samples
+            + Self::per(n.culled, spc)
+            + Self::per(n.virtual_samples, spc)
+            + n.tangents as f64 * divide;
+        (n.pixels as f64 * shade, shadow)
+    }
+
+    /// Count the shading's `n` in the current tile: tallied, or (for the
+    /// tallies' reference) charged at once.
+    pub(super) fn shaded(&mut self, n: &ShadeCounts) {
+        if self.event_by_event {
+            let (shade, shadow) = self.shading_cycles(n);
+            let w = self.work();
+            w.charge(Stage::Shade, shade);
+            w.charge(Stage::Shadow, shadow);
+            return;
+        }
+        let i = self.unit();
+        if self.shading.len() < self.tiles.len() {
+            self.shading.resize(self.tiles.len(), ShadeCounts::default());
+        }
+        self.shading[i].add(n);
+    }
+
+    /// Charge each tile's tallied shading as cycles (once, when the pass is finished).
+    pub(super) fn charge_tallies(&mut self) {
+        let tallies = core::mem::take(&mut self.shading);
+        for (i, n) in tallies.iter().enumerate() {
+            let (shade, shadow) = self.shading_cycles(n);
+            if let Some(w) = self.tiles.get_mut(i) {
+                w.charge(Stage::Shade, shade);
+                w.charge(Stage::Shadow, shadow);
+            }
+        }
+    }
+
+    /// What a tally of the shading this camera probe reads needs of it:
+    /// its tiles' shift, its map cache's parameters, how it addresses texels.
+    pub(crate) fn tallied_as(&self) -> (u32, &CacheParams, Option<&MapCache>) {
+        (self.raster.tile_shift(), &self.arch.map_cache, self.map_cache.as_ref())
+    }
+
+    /// Add to this camera probe the shading `tally` recorded, as tiling
+    /// `tiling` of the tally saw it: every tile's counts, its traffic, and
+    /// the misses of the tally's cache of this probe's geometry, when it has
+    /// a map cache. The same integers, tile by tile, as this probe would
+    /// have counted from the events themselves.
+    pub(crate) fn absorb(&mut self, tally: &Tally, tiling: usize) {
+        let Some(part) = tally.parts.get(tiling) else { return };
+        self.events = self.events.plus(&part.totals);
+        self.reconstructed_pixels += part.reconstructed_pixels;
+        let geometry = self.map_cache.as_ref().and_then(|m| tally.geometry(&m.cache));
+        let line = self.map_cache.as_ref().map_or(0, |m| m.cache.line());
+        if part.pixels > 0 {
+            self.enter(Phase::Shade);
+        }
+        let shift = tally.shift;
+        let per = tally.geometries.len();
+        let (mut hits, mut misses) = (0, 0);
+        for (i, t) in part.tiles.iter().enumerate().filter(|(_, t)| t.counts.pixels > 0 || t.reads > 0) {
+            // The fine tile's first pixel, in this probe's tiles.
+            let s = self.raster.tile_shift();
+            let (fx, fy) = ((i % tally.across) << shift, (i / tally.across) << shift);
+            #[allow(clippy::cast_possible_truncation, reason = "at most 2^14 / 8 tiles per side")]
+            self.select(TileId { x: (fx >> s) as u16, y: (fy >> s) as u16 });
+            self.shaded(&t.counts);
+            let pixels = t.counts.pixels;
+            self.accesses.shadow_ops += t.counts.samples + t.counts.culled + t.counts.virtual_samples;
+            self.dram.colour += COLOUR_BYTES * pixels;
+            self.dram.map_reads += t.map_bytes;
+            self.dram.silhouette_reads += t.silhouette_bytes;
+            let cached = self.map_cache.is_some();
+            let missed = geometry.map_or(0, |g| u64::from(part.misses[i * per + g]));
+            if cached {
+                self.accesses.cache += t.reads;
+                self.dram.map_fetched += missed * line;
+                (hits, misses) = (hits + t.reads - missed, misses + missed);
+            }
+            let w = self.work();
+            w.pixels += pixels;
+            w.dram.colour += COLOUR_BYTES * pixels;
+            w.dram.map_reads += t.map_bytes;
+            w.dram.silhouette_reads += t.silhouette_bytes;
+            let streamed = COLOUR_BYTES * pixels + if cached { 0 } else { t.map_bytes + t.silhouette_bytes };
+            w.bytes += streamed + missed * line;
+            w.streamed += streamed;
+            w.dram.map_fetched += missed * line;
+            w.map_misses += missed;
+        }
+        if let Some(m) = self.map_cache.as_mut() {
+            m.cache.hits += hits;
+            m.cache.misses += misses;
+        }
+    }
+}
+
+/// One tile's tally: the shading's counts, its map traffic, and its reads
+/// through the map cache.
+#[derive(Clone, Copy, Debug, Default)]
+struct TileTally {
+    counts: ShadeCounts,
+    map_bytes: u64,
+    silhouette_bytes: u64,
+    reads: u64,
+}
+
+/// What one tiling saw of a shading: its events' totals, its tiles'
+/// tallies, and each map cache's misses per tile.
+#[derive(Clone, Debug, Default)]
+struct Part {
+    totals: Totals,
+    tiles: Vec<TileTally>,
+    /// Per tile, per geometry.
+    misses: Vec<u32>,
+    pixels: u64,
+    reconstructed_pixels: u64,
+    reconstructed: bool,
+    caches: Vec<Caches>,
+}
+
+/// The map caches one tiling's texel reads go through: one cache for a
+/// geometry of its own, or one pass of stack distances for several sizes
+/// of one line.
+#[derive(Clone, Debug)]
+enum Caches {
+    /// Geometry `.1`, simulated directly.
+    Direct(Cache, usize),
+    /// Geometries `.1` (each with its level and ways), from stack distances.
+    Stack(StackDistances, Vec<(usize, usize, u32)>),
+}
+
+/// A shading's events and texel reads, recorded once for every
+/// architecture that reads it: per tile of the finest of their tilings
+/// (tiles `1 << shift` pixels on a side, `across` to a row), for each
+/// tiling the shadow unit tested its lookups against.
+#[derive(Clone, Debug)]
+pub(crate) struct Tally {
+    shift: u32,
+    across: usize,
+    current: usize,
+    parts: Vec<Part>,
+    /// The map caches' geometries: size, line, ways.
+    geometries: Vec<(u64, u32, u32)>,
+    /// How a texel's address is formed (`None` when no architecture has a map cache).
+    addressing: Option<MapCache>,
+    /// An event the tally cannot cost: a shading reports none.
+    pub(crate) unexpected: bool,
+}
+
+impl Tally {
+    /// A tally of an image of `width × height` pixels in tiles of
+    /// `1 << shift`, for `tilings` tilings and the map caches of `caches`
+    /// (the architectures' map-cache parameters), texel addresses formed as
+    /// `addressing` forms them.
+    pub(crate) fn new(
+        (width, height, shift): (u32, u32, u32),
+        tilings: usize,
+        caches: &[&CacheParams],
+        addressing: Option<MapCache>,
+    ) -> Self {
+        let across = width.div_ceil(1 << shift) as usize;
+        let tiles = across * height.div_ceil(1 << shift) as usize;
+        let mut geometries: Vec<(u64, u32, u32)> = Vec::new();
+        for c in caches {
+            if let Some(g) = cache(c).map(|c| geometry_of(&c)).filter(|g| !geometries.contains(g)) {
+                geometries.push(g);
+            }
+        }
+        let part = Part {
+            tiles: vec![TileTally::default(); tiles],
+            misses: vec![0; tiles * geometries.len()],
+            caches: banks(&geometries),
+            ..Part::default()
+        };
+        Self { shift, across, current: 0, parts: vec![part; tilings.max(1)], geometries, addressing, unexpected: false }
+    }
+
+    /// The index of `cache`'s geometry among the tally's.
+    fn geometry(&self, cache: &Cache) -> Option<usize> {
+        let g = geometry_of(cache);
+        self.geometries.iter().position(|&o| o == g)
+    }
+
+    /// Record `e` for the tilings in `tilings`.
+    fn record(&mut self, tilings: Tilings, e: Event) {
+        if let Event::PixelShaded { x, y } = e {
+            self.current = (y >> self.shift) as usize * self.across + (x >> self.shift) as usize;
+        }
+        let current = self.current;
+        let mut unexpected = false;
+        for (_, part) in self.parts.iter_mut().enumerate().filter(|(k, _)| tilings.has(*k)) {
+            part.totals.add(e);
+            let Some(t) = part.tiles.get_mut(current) else {
+                unexpected = true;
+                continue;
+            };
+            let n = u64::from;
+            match e {
+                Event::PixelShaded { .. } => {
+                    part.reconstructed = false;
+                    part.pixels += 1;
+                    t.counts.pixels += 1;
+                }
+                Event::MapRead { texels, bytes, .. } => {
+                    t.counts.samples += n(texels);
+                    t.map_bytes += n(bytes);
+                }
+                Event::SilhouetteRead { points, bytes } => {
+                    part.reconstructed_pixels += u64::from(!part.reconstructed);
+                    part.reconstructed = true;
+                    t.counts.samples += n(points);
+                    t.silhouette_bytes += n(bytes);
+                }
+                Event::LookupCulled { .. } => t.counts.culled += 1,
+                Event::VirtualSamples { count } => t.counts.virtual_samples += n(count),
+                Event::TangentSetup => t.counts.tangents += 1,
+                Event::TangentFallback | Event::TrivialPixel { .. } => {}
+                _ => unexpected = true,
+            }
+        }
+        self.unexpected |= unexpected;
+    }
+
+    /// Record a texel read for the tilings in `tilings`: counted, and its
+    /// address sent through each map cache.
+    fn read(&mut self, tilings: Tilings, r: TexelRead) {
+        let Some(address) = self.addressing.as_ref().map(|m| m.address(r)) else { return };
+        let (current, per) = (self.current, self.geometries.len());
+        for (_, part) in self.parts.iter_mut().enumerate().filter(|(k, _)| tilings.has(*k)) {
+            if let Some(t) = part.tiles.get_mut(current) {
+                t.reads += 1;
+            }
+            let misses = part.misses.get_mut(current * per..(current + 1) * per).unwrap_or_default();
+            for bank in &mut part.caches {
+                match bank {
+                    Caches::Direct(c, g) => {
+                        if !c.access(address) {
+                            misses[*g] += 1;
+                        }
+                    }
+                    Caches::Stack(s, geometries) => {
+                        let d = s.access(address);
+                        for &(g, level, ways) in geometries.iter() {
+                            if d[level] >= ways {
+                                misses[g] += 1;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// A cache's geometry: size, line, ways.
+fn geometry_of(c: &Cache) -> (u64, u32, u32) {
+    c.geometry()
+}
+
+/// The caches for `geometries`: those of one line whose sets are all a
+/// power of two share one pass of stack distances when there are several;
+/// any other is simulated directly.
+fn banks(geometries: &[(u64, u32, u32)]) -> Vec<Caches> {
+    let mut banks = Vec::new();
+    let sets = |&(size, line, ways): &(u64, u32, u32)| size / (u64::from(line) * u64::from(ways));
+    let mut done = vec![false; geometries.len()];
+    for (g, geometry) in geometries.iter().enumerate() {
+        if done[g] {
+            continue;
+        }
+        let line = geometry.1;
+        let alike: Vec<usize> = (g..geometries.len())
+            .filter(|&o| !done[o] && geometries[o].1 == line && sets(&geometries[o]).is_power_of_two())
+            .collect();
+        let stack = if alike.len() > 1 && alike.contains(&g) {
+            let most_sets = alike.iter().map(|&o| sets(&geometries[o])).max().unwrap_or(1);
+            let most_ways = alike.iter().map(|&o| geometries[o].2).max().unwrap_or(1);
+            StackDistances::new(line, most_sets, most_ways).ok().and_then(|s| {
+                let levels: Option<Vec<_>> = alike
+                    .iter()
+                    .map(|&o| s.level(sets(&geometries[o])).map(|level| (o, level, geometries[o].2)))
+                    .collect();
+                levels.map(|l| (s, l))
+            })
+        } else {
+            None
+        };
+        match stack {
+            Some((s, members)) => {
+                members.iter().for_each(|&(o, _, _)| done[o] = true);
+                banks.push(Caches::Stack(s, members));
+            }
+            None => {
+                let (size, line, ways) = *geometry;
+                if let Ok(c) = Cache::new(size, line, ways) {
+                    banks.push(Caches::Direct(c, g));
+                }
+                done[g] = true;
+            }
+        }
+    }
+    banks
+}
+
+impl Probe for Tally {
+    const TEXELS: bool = true;
+
+    #[inline]
+    fn event(&mut self, e: Event) {
+        self.record(Tilings(u8::MAX), e);
+    }
+
+    #[inline]
+    fn event_for(&mut self, tilings: Tilings, e: Event) {
+        self.record(tilings, e);
+    }
+
+    #[inline]
+    fn texel_read(&mut self, r: TexelRead) {
+        self.read(Tilings(u8::MAX), r);
+    }
+
+    #[inline]
+    fn texel_read_for(&mut self, tilings: Tilings, r: TexelRead) {
+        self.read(tilings, r);
+    }
+
+    fn map_bound(&mut self, light: u16) {
+        if let Some(m) = self.addressing.as_mut() {
+            m.map_bound(light);
+        }
+    }
+}
