@@ -305,12 +305,18 @@ impl MapCache {
     /// The byte address of a texel.
     #[must_use]
     pub fn address(&self, r: TexelRead) -> u64 {
+        self.address_at(r, morton(r.x, r.y))
+    }
+
+    /// The byte address of a texel whose Morton index is `m`.
+    #[must_use]
+    pub(crate) const fn address_at(&self, r: TexelRead, m: u64) -> u64 {
         let plane = match r.buffer {
-            Buffer::Silhouette => return self.base + SILHOUETTE_BASE + morton(r.x, r.y) * self.silhouette_bytes,
+            Buffer::Silhouette => return self.base + SILHOUETTE_BASE + m * self.silhouette_bytes,
             Buffer::Z2 if self.buffers > 1 => 1,
             _ => 0,
         };
-        self.base + (morton(r.x, r.y) * self.buffers + plane) * self.bytes
+        self.base + (m * self.buffers + plane) * self.bytes
     }
 }
 

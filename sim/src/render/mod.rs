@@ -401,7 +401,7 @@ pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
             options: &options,
             kind: units.map,
         };
-        let (metrics, verdicts) = judged(&inputs, &image.pixels, (&truth, &fields, &reference))
+        let (metrics, verdicts) = judged(&inputs, &image.pixels, (&truth, &fields, &reference), None)
             .map_err(|e| if several { RenderError::Pass(e).of_light(k) } else { RenderError::Pass(e) })?;
         let maps = maps.map_or_else(
             // Shadow volumes draw no map: one far texel stands for it.

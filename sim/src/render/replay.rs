@@ -15,7 +15,7 @@ use crate::pass::algorithm::MapKind;
 use crate::pass::camera::{CameraOptions, shade_config};
 use crate::pass::occluders::silhouette_map;
 use crate::truth::cause::{Cause, Judge, Rays, Receiver, Taps};
-use crate::truth::metrics::{Attribution, Fields, Metrics, Verdict, compare};
+use crate::truth::metrics::{Attribution, Fields, Footprints, Metrics, Verdict, compare_with};
 use crate::truth::reference::{PixelTruth, Reference, surface_point};
 use crate::world::occluders::Occluders;
 use crate::world::scene::{LightSource, Scene};
@@ -48,17 +48,21 @@ pub(crate) fn judged<F: DepthFormat>(
     what: &PassInputs<'_, F>,
     pixels: &[Shaded],
     (truth, fields, reference): (&[Option<PixelTruth>], &Fields, &Reference),
+    footprints: Option<&Footprints>,
 ) -> Result<(Metrics, Vec<Verdict>), PassError> {
+    let measured = (truth, fields, footprints);
     Ok(match (what.kind, what.view) {
-        (MapKind::Volumes, _) | (_, None) => compare(pixels, truth, fields, &mut |_, _: &_, _| Cause::Aliasing),
+        (MapKind::Volumes, _) | (_, None) => {
+            compare_with(pixels, truth, fields, &mut |_, _: &_, _| Cause::Aliasing, footprints)
+        }
         (MapKind::Silhouette { packed: true }, Some(view)) => {
-            silhouettes::<Packed, F>(what, view, pixels, (truth, fields, reference))?
+            silhouettes::<Packed, F>(what, view, pixels, measured, reference)?
         }
         (MapKind::Silhouette { packed: false }, Some(view)) => {
-            silhouettes::<SilPoint, F>(what, view, pixels, (truth, fields, reference))?
+            silhouettes::<SilPoint, F>(what, view, pixels, measured, reference)?
         }
         (MapKind::Depth, Some(view)) => {
-            compare(pixels, truth, fields, &mut Replay::new(what, view, &MapUnit, reference))
+            compare_with(pixels, truth, fields, &mut Replay::new(what, view, &MapUnit, reference), footprints)
         }
     })
 }
@@ -68,14 +72,17 @@ fn silhouettes<S: SilStore, F: DepthFormat>(
     what: &PassInputs<'_, F>,
     view: &MapView<'_, F>,
     pixels: &[Shaded],
-    (truth, fields, reference): (&[Option<PixelTruth>], &Fields, &Reference),
+    (truth, fields, footprints): (&[Option<PixelTruth>], &Fields, Option<&Footprints>),
+    reference: &Reference,
 ) -> Result<(Metrics, Vec<Verdict>), PassError> {
     let light = what.scene.light().view_projection();
     let occluders = Occluders::new(what.scene);
     let texels = silhouette_map::<S, F, _>(&occluders, &light, view, what.options.shadow, &mut umbra_core::NoProbe)?;
     let raster = view.raster();
     let sil = SilhouetteMap::view(raster.width(), raster.height(), &texels)?;
-    Ok(compare(pixels, truth, fields, &mut Replay::new(what, view, &SilhouetteUnit(&sil), reference)))
+    let unit = SilhouetteUnit(&sil);
+    let judge = &mut Replay::new(what, view, &unit, reference);
+    Ok(compare_with(pixels, truth, fields, judge, footprints))
 }
 
 /// The wrong pixels' judge: shades each run of them along a row again

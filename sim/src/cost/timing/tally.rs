@@ -23,7 +23,7 @@ use umbra_core::probe::{Event, Probe, TexelRead, Tilings, Totals};
 
 use super::{ArchProbe, COLOUR_BYTES, Phase, cache};
 use crate::cost::arch::CacheParams;
-use crate::cost::cache::{Cache, MapCache};
+use crate::cost::cache::{Cache, MapCache, morton};
 use crate::cost::stack::StackDistances;
 use crate::cost::work::Stage;
 
@@ -210,6 +210,8 @@ struct Part {
     reconstructed_pixels: u64,
     reconstructed: bool,
     caches: Vec<Caches>,
+    /// The line (of the smallest line size) read last.
+    last: Option<u64>,
 }
 
 /// The map caches one tiling's texel reads go through: one cache for a
@@ -237,6 +239,10 @@ pub(crate) struct Tally {
     geometries: Vec<(u64, u32, u32)>,
     /// How a texel's address is formed (`None` when no architecture has a map cache).
     addressing: Option<MapCache>,
+    /// The texel read last and its Morton index.
+    texel: (u32, u32, u64),
+    /// log₂ of the smallest line of the geometries.
+    line_shift: u32,
     /// An event the tally cannot cost: a shading reports none.
     pub(crate) unexpected: bool,
 }
@@ -266,7 +272,18 @@ impl Tally {
             caches: banks(&geometries),
             ..Part::default()
         };
-        Self { shift, across, current: 0, parts: vec![part; tilings.max(1)], geometries, addressing, unexpected: false }
+        let line_shift = geometries.iter().map(|g| g.1.trailing_zeros()).min().unwrap_or(0);
+        Self {
+            shift,
+            across,
+            current: 0,
+            parts: vec![part; tilings.max(1)],
+            geometries,
+            addressing,
+            texel: (u32::MAX, u32::MAX, morton(u32::MAX, u32::MAX)),
+            line_shift,
+            unexpected: false,
+        }
     }
 
     /// The index of `cache`'s geometry among the tally's.
@@ -318,12 +335,24 @@ impl Tally {
     /// Record a texel read for the tilings in `tilings`: counted, and its
     /// address sent through each map cache.
     fn read(&mut self, tilings: Tilings, r: TexelRead) {
-        let Some(address) = self.addressing.as_ref().map(|m| m.address(r)) else { return };
+        let Some(addressing) = self.addressing.as_ref() else { return };
+        // Both depths of a texel are read in turn: its Morton index once.
+        if (r.x, r.y) != (self.texel.0, self.texel.1) {
+            self.texel = (r.x, r.y, morton(r.x, r.y));
+        }
+        let address = addressing.address_at(r, self.texel.2);
+        let line = address >> self.line_shift;
         let (current, per) = (self.current, self.geometries.len());
         for (_, part) in self.parts.iter_mut().enumerate().filter(|(k, _)| tilings.has(*k)) {
             if let Some(t) = part.tiles.get_mut(current) {
                 t.reads += 1;
             }
+            // The line read last, again: a hit in every cache, and already
+            // the most recent in its set (its LRU order unchanged).
+            if part.last == Some(line) {
+                continue;
+            }
+            part.last = Some(line);
             let misses = part.misses.get_mut(current * per..(current + 1) * per).unwrap_or_default();
             for bank in &mut part.caches {
                 match bank {
@@ -423,5 +452,6 @@ impl Probe for Tally {
         if let Some(m) = self.addressing.as_mut() {
             m.map_bound(light);
         }
+        self.parts.iter_mut().for_each(|p| p.last = None);
     }
 }

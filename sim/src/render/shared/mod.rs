@@ -100,10 +100,11 @@ impl LightKey {
 
 /// Bytes an [`ImageShare`] holds beside its reference, at most, for an
 /// image of `pixels` drawn in `tilings` tilings: each tiling's depth and
-/// ids, and the reference's fields.
+/// ids, the reference's fields, and the footprints it keeps (a map
+/// position of 12 bytes a pixel each).
 #[must_use]
 pub(crate) const fn image_bytes(pixels: u64, tilings: u64) -> u64 {
-    pixels * (8 * tilings + 32)
+    pixels * (8 * tilings + 32 + 12 * seen::KEPT_FOOTPRINTS as u64)
 }
 
 /// Bytes a [`LightShare`] holds, at most, for maps of `texels` texels

@@ -1,9 +1,12 @@
 //! The camera's visibility, drawn once per tiling for every configuration
 //! of a scene and image.
 
+use std::sync::{Arc, Mutex};
+
 use glam::Mat4;
 use rayon::prelude::*;
 use umbra_core::probe::{Probe, Totals};
+use umbra_core::shade::Shaded;
 use umbra_core::{DepthFormatKind, RasterConfig};
 
 use super::assign;
@@ -16,7 +19,7 @@ use crate::input::limits::Limits;
 use crate::pass::PassError;
 use crate::pass::camera::{CameraFrame, Visibility, visibility};
 use crate::render::costed::{SceneCounts, shape};
-use crate::truth::metrics::Fields;
+use crate::truth::metrics::{Fields, Footprints};
 use crate::truth::reference::{PixelTruth, Reference};
 use crate::world::occluders::Occluders;
 use crate::world::scene::Scene;
@@ -54,7 +57,14 @@ pub(crate) struct ImageShare<'s> {
     pub(super) seen_by: Vec<Option<usize>>,
     pub(super) counts: SceneCounts,
     pub(super) occluders: Occluders,
+    /// The map's footprints over renders of this image, kept for the
+    /// configurations whose visible points on the map are the same (at
+    /// most [`KEPT_FOOTPRINTS`]: one a map side).
+    footprints: Mutex<Vec<Arc<Footprints>>>,
 }
+
+/// The most footprints an [`ImageShare`] keeps.
+pub(crate) const KEPT_FOOTPRINTS: usize = 4;
 
 /// The visibility unit over a scene into a frame, as [`Reporting`].
 struct Draw<'a> {
@@ -127,6 +137,24 @@ impl<'s> ImageShare<'s> {
             seen_by,
             counts: SceneCounts::of(scene),
             occluders: Occluders::new(scene),
+            footprints: Mutex::new(Vec::new()),
         })
+    }
+
+    /// The map's footprint over `render`, a render of this image: one kept
+    /// from an earlier configuration when it fits (the same points on the
+    /// map), or worked out, and kept while there is room.
+    pub(super) fn footprints(&self, render: &[Shaded]) -> Arc<Footprints> {
+        let kept = self.footprints.lock().map(|k| k.clone()).unwrap_or_default();
+        if let Some(f) = kept.iter().find(|f| f.fits(render, self.truth)) {
+            return Arc::clone(f);
+        }
+        let f = Arc::new(Footprints::of(render, self.truth, self.size.0 as usize));
+        if let Ok(mut k) = self.footprints.lock()
+            && k.len() < KEPT_FOOTPRINTS
+        {
+            k.push(Arc::clone(&f));
+        }
+        f
     }
 }

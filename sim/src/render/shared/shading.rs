@@ -92,7 +92,9 @@ pub(crate) fn render_shared<F: DepthFormat>(
             // The functional render's metrics, each wrong pixel judged by
             // replaying it.
             let inputs = PassInputs { scene, seen, view: Some(&view), options: &options, kind: units.map };
-            metrics = Some(judged(&inputs, pixels, (image.truth, &image.fields, &image.reference)).ok()?.0);
+            let footprints = image.footprints(pixels);
+            let measures = (image.truth, &image.fields, &image.reference);
+            metrics = Some(judged(&inputs, pixels, measures, Some(&footprints)).ok()?.0);
         }
         let names = (image.scene.name.as_str(), image.counts);
         for ((i, l), (_, c)) in lights.into_kept().into_iter().zip(cameras.into_kept()) {

@@ -1,11 +1,13 @@
 //! The map's footprint on screen: how far the light-space point moves
-//! from one pixel to the next.
+//! from one pixel to the next. It depends on the visible surfaces' points
+//! on the map, not on how the map is filtered or tested, so renders of
+//! one visibility and one map side share it ([`Footprints`]).
 
 use glam::DVec2;
 use umbra_core::shade::Shaded;
 
-use super::evaluated;
 use super::fields::neighbour;
+use super::{evaluated, quantiles};
 use crate::truth::reference::PixelTruth;
 
 /// Neighbouring pixels whose light-space points are farther apart than
@@ -71,5 +73,50 @@ impl Points {
         let (x, y) = (k % self.width, k / self.width);
         let n = |dx, dy| neighbour(x, y, dx, dy, self.width, self.height);
         (derivative(n(-1, 0), n(1, 0)), derivative(n(0, -1), n(0, 1)))
+    }
+}
+
+/// The map's footprint over a render: the median and 95th percentile of
+/// its derivatives' lengths along x and along y, texels per pixel, and
+/// the light-space points (exactly, in map coordinates' bits) they come
+/// from, so that a render with the same points takes them as they are.
+#[derive(Debug)]
+pub(crate) struct Footprints {
+    points: Vec<Option<[i32; 2]>>,
+    pub(super) x: [f64; 2],
+    pub(super) y: [f64; 2],
+}
+
+/// Each evaluated pixel's light-space point in map coordinates' bits.
+fn exact_points<'r>(
+    render: &'r [Shaded],
+    truth: &'r [Option<PixelTruth>],
+) -> impl Iterator<Item = Option<[i32; 2]>> + 'r {
+    render.iter().zip(truth).map(|(s, t)| {
+        evaluated(t)?;
+        s.light.map(|l| [l.x.to_bits(), l.y.to_bits()])
+    })
+}
+
+impl Footprints {
+    /// The footprint of a `width`-wide render.
+    #[must_use]
+    pub(crate) fn of(render: &[Shaded], truth: &[Option<PixelTruth>], width: usize) -> Self {
+        let points = Points::new(render, truth, width);
+        let (mut along_x, mut along_y) = (Vec::new(), Vec::new());
+        for k in 0..render.len() {
+            let (x, y) = points.footprint(k);
+            along_x.extend(x.map(DVec2::length));
+            along_y.extend(y.map(DVec2::length));
+        }
+        points.recycle();
+        Self { points: exact_points(render, truth).collect(), x: quantiles(along_x), y: quantiles(along_y) }
+    }
+
+    /// Whether `render`'s evaluated pixels lie at exactly these points on
+    /// the map (so its footprint is this one).
+    #[must_use]
+    pub(crate) fn fits(&self, render: &[Shaded], truth: &[Option<PixelTruth>]) -> bool {
+        render.len() == self.points.len() && exact_points(render, truth).eq(self.points.iter().copied())
     }
 }

@@ -24,7 +24,6 @@
 //! displacement of the rendered boundary from the exact one are reported
 //! besides.
 
-use glam::DVec2;
 use serde::Serialize;
 use umbra_core::shade::Shaded;
 use umbra_core::shadow::Shadow;
@@ -38,7 +37,7 @@ mod lights;
 
 pub use self::fields::Fields;
 use self::fields::boundary;
-use self::footprint::Points;
+pub(crate) use self::footprint::Footprints;
 
 /// The smallest difference between a pixel's filtered shadow fraction and
 /// the reference's area-averaged shadow that counts as an artifact: 0.1.
@@ -285,11 +284,25 @@ pub fn compare(
     fields: &Fields,
     causes: &mut impl Attribution,
 ) -> (Metrics, Vec<Verdict>) {
-    let verdicts = verdicts(render, truth, causes);
-    (measure(render, truth, fields, &verdicts), verdicts)
+    compare_with(render, truth, fields, causes, None)
 }
 
-/// The metrics of a render whose pixels' verdicts are known.
+/// [`compare`], with the map's footprint over the render when it is known
+/// already ([`measure`]).
+pub(crate) fn compare_with(
+    render: &[Shaded],
+    truth: &[Option<PixelTruth>],
+    fields: &Fields,
+    causes: &mut impl Attribution,
+    footprints: Option<&Footprints>,
+) -> (Metrics, Vec<Verdict>) {
+    let verdicts = verdicts(render, truth, causes);
+    (measure(render, truth, fields, &verdicts, footprints), verdicts)
+}
+
+/// The metrics of a render whose pixels' verdicts are known, with the
+/// map's footprint over it when that is known already (it is checked to
+/// fit the render's points, and worked out otherwise).
 #[must_use]
 #[allow(
     clippy::cast_precision_loss,
@@ -302,19 +315,16 @@ pub(crate) fn measure(
     truth: &[Option<PixelTruth>],
     fields: &Fields,
     verdicts: &[Verdict],
+    footprints: Option<&Footprints>,
 ) -> Metrics {
     let width = fields.width;
-    let points = Points::new(render, truth, width);
     let rendered: Vec<Option<bool>> =
         render.iter().zip(truth).map(|(s, t)| evaluated(t).map(|_| shadowed(s))).collect();
     let mut m = Metrics::default();
     let (mut abs_error, mut square_error) = (0.0, 0.0);
-    let (mut along_x, mut along_y, mut penumbra_width) = (Vec::new(), Vec::new(), Vec::new());
+    let mut penumbra_width = Vec::new();
     for (k, ((s, t), v)) in render.iter().zip(truth).zip(verdicts).enumerate() {
         let Some(t) = evaluated(t) else { continue };
-        let footprint = points.footprint(k);
-        along_x.extend(footprint.0.map(DVec2::length));
-        along_y.extend(footprint.1.map(DVec2::length));
         m.evaluated += 1;
         m.ties += u64::from(s.shadow == Shadow::from_bits(1 << 15));
         m.false_shadow += u64::from(shadowed(s) && t.lit);
@@ -360,9 +370,15 @@ pub(crate) fn measure(
             texels.push((a.0 - b.0).hypot(a.1 - b.1));
         }
     }
-    points.recycle();
-    m.footprint_x = quantiles(along_x);
-    m.footprint_y = quantiles(along_y);
+    let worked;
+    let footprints = match footprints.filter(|f| f.fits(render, truth)) {
+        Some(f) => f,
+        None => {
+            worked = Footprints::of(render, truth, width);
+            &worked
+        }
+    };
+    (m.footprint_x, m.footprint_y) = (footprints.x, footprints.y);
     m.penumbra_width = quantiles(penumbra_width);
     m.displacement = summary(&mut pixels);
     m.displacement_texels = summary(&mut texels);
