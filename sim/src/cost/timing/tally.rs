@@ -12,7 +12,7 @@
 //! once for several architectures, per tile of the finest of their
 //! tilings, with each tiling's lookups and culls ([`umbra_core::probe::Tilings`]),
 //! and sends each texel address once through every map cache the
-//! architectures name (one pass of stack distances for several sizes of
+//! architectures name (one pass of stack distances for every geometry of
 //! one line, [`crate::cost::stack`]); [`ArchProbe::absorb`] adds an
 //! architecture's share, tile by tile, to what its own passes left. The
 //! integers it adds are those its own probe would have counted, so a report
@@ -212,18 +212,15 @@ struct Part {
     caches: Vec<Caches>,
     /// The line (of the smallest line size) read last.
     last: Option<u64>,
+    /// Reads since the last pixel, not yet counted in its tile.
+    pending_reads: u64,
 }
 
-/// The map caches one tiling's texel reads go through: one cache for a
-/// geometry of its own, or one pass of stack distances for several sizes
-/// of one line.
+/// The map caches of one line size that one tiling's texel reads go
+/// through, in one pass of stack distances: each geometry's index, its
+/// number of sets' place in the pass, and its ways.
 #[derive(Clone, Debug)]
-enum Caches {
-    /// Geometry `.1`, simulated directly.
-    Direct(Cache, usize),
-    /// Geometries `.1` (each with its level and ways), from stack distances.
-    Stack(StackDistances, Vec<(usize, usize, u32)>),
-}
+struct Caches(StackDistances, Vec<(usize, usize, u32)>);
 
 /// A shading's events and texel reads, recorded once for every
 /// architecture that reads it: per tile of the finest of their tilings
@@ -255,29 +252,39 @@ impl Tally {
     pub(crate) fn new(
         (width, height, shift): (u32, u32, u32),
         tilings: usize,
-        caches: &[&CacheParams],
+        caches: &[(usize, &CacheParams)],
         addressing: Option<MapCache>,
     ) -> Self {
         let across = width.div_ceil(1 << shift) as usize;
         let tiles = across * height.div_ceil(1 << shift) as usize;
         let mut geometries: Vec<(u64, u32, u32)> = Vec::new();
-        for c in caches {
-            if let Some(g) = cache(c).map(|c| geometry_of(&c)).filter(|g| !geometries.contains(g)) {
+        let mut read_by: Vec<Vec<usize>> = vec![Vec::new(); tilings.max(1)];
+        for &(tiling, c) in caches {
+            let Some(g) = cache(c).map(|c| geometry_of(&c)) else { continue };
+            let k = geometries.iter().position(|&o| o == g).unwrap_or_else(|| {
                 geometries.push(g);
+                geometries.len() - 1
+            });
+            if let Some(wanted) = read_by.get_mut(tiling).filter(|w| !w.contains(&k)) {
+                wanted.push(k);
             }
         }
-        let part = Part {
-            tiles: vec![TileTally::default(); tiles],
-            misses: vec![0; tiles * geometries.len()],
-            caches: banks(&geometries),
-            ..Part::default()
-        };
+        // Each tiling's reads go through the caches of its own architectures.
+        let parts = read_by
+            .iter()
+            .map(|wanted| Part {
+                tiles: vec![TileTally::default(); tiles],
+                misses: vec![0; tiles * geometries.len()],
+                caches: banks(&geometries, wanted),
+                ..Part::default()
+            })
+            .collect();
         let line_shift = geometries.iter().map(|g| g.1.trailing_zeros()).min().unwrap_or(0);
         Self {
             shift,
             across,
             current: 0,
-            parts: vec![part; tilings.max(1)],
+            parts,
             geometries,
             addressing,
             texel: (u32::MAX, u32::MAX, morton(u32::MAX, u32::MAX)),
@@ -295,6 +302,7 @@ impl Tally {
     /// Record `e` for the tilings in `tilings`.
     fn record(&mut self, tilings: Tilings, e: Event) {
         if let Event::PixelShaded { x, y } = e {
+            self.settle_reads();
             self.current = (y >> self.shift) as usize * self.across + (x >> self.shift) as usize;
         }
         let current = self.current;
@@ -336,16 +344,24 @@ impl Tally {
     /// address sent through each map cache.
     fn read(&mut self, tilings: Tilings, r: TexelRead) {
         let Some(addressing) = self.addressing.as_ref() else { return };
-        // Both depths of a texel are read in turn: its Morton index once.
-        if (r.x, r.y) != (self.texel.0, self.texel.1) {
-            self.texel = (r.x, r.y, morton(r.x, r.y));
+        // Both depths of a texel are read in turn, and a row's texels one
+        // after another: the Morton index of the last, or one step along x.
+        let (x, y, m) = self.texel;
+        if (r.x, r.y) != (x, y) {
+            let along = r.y == y && r.x == x.wrapping_add(1);
+            self.texel = (r.x, r.y, if along { morton_next_x(m) } else { morton(r.x, r.y) });
         }
         let address = addressing.address_at(r, self.texel.2);
         let line = address >> self.line_shift;
         let (current, per) = (self.current, self.geometries.len());
-        for (_, part) in self.parts.iter_mut().enumerate().filter(|(k, _)| tilings.has(*k)) {
-            if let Some(t) = part.tiles.get_mut(current) {
-                t.reads += 1;
+        for k in 0..self.parts.len() {
+            if !tilings.has(k) {
+                continue;
+            }
+            let part = &mut self.parts[k];
+            part.pending_reads += 1;
+            if part.caches.is_empty() {
+                continue;
             }
             // The line read last, again: a hit in every cache, and already
             // the most recent in its set (its LRU order unchanged).
@@ -354,25 +370,41 @@ impl Tally {
             }
             part.last = Some(line);
             let misses = part.misses.get_mut(current * per..(current + 1) * per).unwrap_or_default();
-            for bank in &mut part.caches {
-                match bank {
-                    Caches::Direct(c, g) => {
-                        if !c.access(address) {
-                            misses[*g] += 1;
-                        }
-                    }
-                    Caches::Stack(s, geometries) => {
-                        let d = s.access(address);
-                        for &(g, level, ways) in geometries.iter() {
-                            if d[level] >= ways {
-                                misses[g] += 1;
-                            }
-                        }
+            for Caches(stack, geometries) in &mut part.caches {
+                let d = stack.access(address);
+                for &(g, k, ways) in geometries.iter() {
+                    if d[k] >= ways {
+                        misses[g] += 1;
                     }
                 }
             }
         }
     }
+
+    /// Count each tiling's reads since the last pixel in the current tile.
+    fn settle_reads(&mut self) {
+        let current = self.current;
+        for part in &mut self.parts {
+            if let Some(t) = part.tiles.get_mut(current) {
+                t.reads += part.pending_reads;
+            }
+            part.pending_reads = 0;
+        }
+    }
+
+    /// The tally once the shading is over: every read counted in its tile.
+    #[must_use]
+    pub(crate) fn closed(mut self) -> Self {
+        self.settle_reads();
+        self
+    }
+}
+
+/// The Morton index one step along x from `m` (y unchanged): the x bits,
+/// the odd ones filled so that the carry runs through them.
+const fn morton_next_x(m: u64) -> u64 {
+    const X: u64 = 0x5555_5555_5555_5555;
+    (((m | !X).wrapping_add(1)) & X) | (m & !X)
 }
 
 /// A cache's geometry: size, line, ways.
@@ -380,49 +412,31 @@ fn geometry_of(c: &Cache) -> (u64, u32, u32) {
     c.geometry()
 }
 
-/// The caches for `geometries`: those of one line whose sets are all a
-/// power of two share one pass of stack distances when there are several;
-/// any other is simulated directly.
-fn banks(geometries: &[(u64, u32, u32)]) -> Vec<Caches> {
-    let mut banks = Vec::new();
-    let sets = |&(size, line, ways): &(u64, u32, u32)| size / (u64::from(line) * u64::from(ways));
-    let mut done = vec![false; geometries.len()];
-    for (g, geometry) in geometries.iter().enumerate() {
-        if done[g] {
-            continue;
-        }
-        let line = geometry.1;
-        let alike: Vec<usize> = (g..geometries.len())
-            .filter(|&o| !done[o] && geometries[o].1 == line && sets(&geometries[o]).is_power_of_two())
-            .collect();
-        let stack = if alike.len() > 1 && alike.contains(&g) {
-            let most_sets = alike.iter().map(|&o| sets(&geometries[o])).max().unwrap_or(1);
-            let most_ways = alike.iter().map(|&o| geometries[o].2).max().unwrap_or(1);
-            StackDistances::new(line, most_sets, most_ways).ok().and_then(|s| {
-                let levels: Option<Vec<_>> = alike
-                    .iter()
-                    .map(|&o| s.level(sets(&geometries[o])).map(|level| (o, level, geometries[o].2)))
-                    .collect();
-                levels.map(|l| (s, l))
-            })
-        } else {
-            None
-        };
-        match stack {
-            Some((s, members)) => {
-                members.iter().for_each(|&(o, _, _)| done[o] = true);
-                banks.push(Caches::Stack(s, members));
-            }
-            None => {
-                let (size, line, ways) = *geometry;
-                if let Ok(c) = Cache::new(size, line, ways) {
-                    banks.push(Caches::Direct(c, g));
-                }
-                done[g] = true;
-            }
-        }
-    }
-    banks
+/// The caches for the geometries `wanted` of `geometries`: one pass of
+/// stack distances for each line size, for every number of sets and up to
+/// the most ways its geometries name.
+fn banks(geometries: &[(u64, u32, u32)], wanted: &[usize]) -> Vec<Caches> {
+    let sets = |g: usize| {
+        let (size, line, ways) = geometries[g];
+        size / (u64::from(line) * u64::from(ways))
+    };
+    let mut lines: Vec<u32> = wanted.iter().map(|&g| geometries[g].1).collect();
+    lines.sort_unstable();
+    lines.dedup();
+    lines
+        .into_iter()
+        .filter_map(|line| {
+            let of_line: Vec<usize> = wanted.iter().copied().filter(|&g| geometries[g].1 == line).collect();
+            let mut counts: Vec<u64> = of_line.iter().map(|&g| sets(g)).collect();
+            counts.sort_unstable();
+            counts.dedup();
+            let most_ways = of_line.iter().map(|&g| geometries[g].2).max().unwrap_or(1);
+            let stack = StackDistances::new(line, &counts, most_ways).ok()?;
+            let members: Option<Vec<_>> =
+                of_line.iter().map(|&g| Some((g, stack.index(sets(g))?, geometries[g].2))).collect();
+            members.map(|m| Caches(stack, m))
+        })
+        .collect()
 }
 
 impl Probe for Tally {

@@ -131,7 +131,7 @@ impl Probes {
             .collect();
         let shift = needs.iter().map(|(_, (s, ..))| *s).min().unwrap_or(5);
         let tilings = needs.iter().map(|(t, _)| t + 1).max().unwrap_or(1);
-        let caches: Vec<&CacheParams> = needs.iter().map(|(_, (_, c, _))| *c).collect();
+        let caches: Vec<(usize, &CacheParams)> = needs.iter().map(|(t, (_, c, _))| (*t, *c)).collect();
         let addressing = needs.iter().find_map(|(_, (_, _, m))| m.cloned());
         Tally::new((width, height, shift), tilings, &caches, addressing)
     }

@@ -185,7 +185,7 @@ impl<F: DepthFormat, R: PixelResult> Shading<'_, '_, F, R> {
         if tally.unexpected {
             return Err(RenderError::Cost("the shading reported an event its tally does not count".into()));
         }
-        cameras.absorb(&tally);
+        cameras.absorb(&tally.closed());
         Ok(())
     }
 

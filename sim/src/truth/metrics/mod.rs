@@ -301,8 +301,8 @@ pub(crate) fn compare_with(
 }
 
 /// The metrics of a render whose pixels' verdicts are known, with the
-/// map's footprint over it when that is known already (it is checked to
-/// fit the render's points, and worked out otherwise).
+/// map's footprint over it when that is known already (one that
+/// [`Footprints::fits`] the render; it is worked out otherwise).
 #[must_use]
 #[allow(
     clippy::cast_precision_loss,
@@ -371,7 +371,8 @@ pub(crate) fn measure(
         }
     }
     let worked;
-    let footprints = match footprints.filter(|f| f.fits(render, truth)) {
+    debug_assert!(footprints.is_none_or(|f| f.fits(render, truth)), "a footprint of other points");
+    let footprints = match footprints {
         Some(f) => f,
         None => {
             worked = Footprints::of(render, truth, width);
