@@ -146,7 +146,7 @@ impl<'s> ImageShare<'s> {
     /// map), or worked out, and kept while there is room.
     pub(super) fn footprints(&self, render: &[Shaded]) -> Arc<Footprints> {
         let kept = self.footprints.lock().map(|k| k.clone()).unwrap_or_default();
-        if let Some(f) = kept.iter().find(|f| f.fits(render, self.truth)) {
+        if let Some(f) = kept.iter().find(|f| f.fits(render)) {
             return Arc::clone(f);
         }
         let f = Arc::new(Footprints::of(render, self.truth, self.size.0 as usize));

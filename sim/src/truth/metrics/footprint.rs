@@ -78,8 +78,9 @@ impl Points {
 
 /// The map's footprint over a render: the median and 95th percentile of
 /// its derivatives' lengths along x and along y, texels per pixel, and
-/// the light-space points (exactly, in map coordinates' bits) they come
-/// from, so that a render with the same points takes them as they are.
+/// every pixel's light-space point (exactly, in map coordinates' bits)
+/// they come from, so that a render of the same image, against the same
+/// reference, with the same points takes them as they are.
 #[derive(Debug)]
 pub(crate) struct Footprints {
     points: Vec<Option<[i32; 2]>>,
@@ -87,15 +88,9 @@ pub(crate) struct Footprints {
     pub(super) y: [f64; 2],
 }
 
-/// Each evaluated pixel's light-space point in map coordinates' bits.
-fn exact_points<'r>(
-    render: &'r [Shaded],
-    truth: &'r [Option<PixelTruth>],
-) -> impl Iterator<Item = Option<[i32; 2]>> + 'r {
-    render.iter().zip(truth).map(|(s, t)| {
-        evaluated(t)?;
-        s.light.map(|l| [l.x.to_bits(), l.y.to_bits()])
-    })
+/// A pixel's light-space point in map coordinates' bits.
+fn exact(s: &Shaded) -> Option<[i32; 2]> {
+    s.light.map(|l| [l.x.to_bits(), l.y.to_bits()])
 }
 
 impl Footprints {
@@ -110,13 +105,13 @@ impl Footprints {
             along_y.extend(y.map(DVec2::length));
         }
         points.recycle();
-        Self { points: exact_points(render, truth).collect(), x: quantiles(along_x), y: quantiles(along_y) }
+        Self { points: render.iter().map(exact).collect(), x: quantiles(along_x), y: quantiles(along_y) }
     }
 
-    /// Whether `render`'s evaluated pixels lie at exactly these points on
-    /// the map (so its footprint is this one).
+    /// Whether `render`'s pixels lie at exactly these points on the map (so
+    /// that, against the same reference, its footprint is this one).
     #[must_use]
-    pub(crate) fn fits(&self, render: &[Shaded], truth: &[Option<PixelTruth>]) -> bool {
-        render.len() == self.points.len() && exact_points(render, truth).eq(self.points.iter().copied())
+    pub(crate) fn fits(&self, render: &[Shaded]) -> bool {
+        render.len() == self.points.len() && render.iter().zip(&self.points).all(|(s, p)| exact(s) == *p)
     }
 }

@@ -302,7 +302,8 @@ pub(crate) fn compare_with(
 
 /// The metrics of a render whose pixels' verdicts are known, with the
 /// map's footprint over it when that is known already (one that
-/// [`Footprints::fits`] the render; it is worked out otherwise).
+/// [`Footprints::fits`] the render, against the same reference; it is
+/// worked out otherwise).
 #[must_use]
 #[allow(
     clippy::cast_precision_loss,
@@ -371,7 +372,7 @@ pub(crate) fn measure(
         }
     }
     let worked;
-    debug_assert!(footprints.is_none_or(|f| f.fits(render, truth)), "a footprint of other points");
+    debug_assert!(footprints.is_none_or(|f| f.fits(render)), "a footprint of other points");
     let footprints = match footprints {
         Some(f) => f,
         None => {
