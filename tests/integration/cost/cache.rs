@@ -28,7 +28,7 @@ fn lru_by_hand() {
 
 /// Records every texel read (to count the distinct lines independently).
 #[derive(Default)]
-struct Reads(Vec<TexelRead>);
+pub(super) struct Reads(pub(super) Vec<TexelRead>);
 
 impl Probe for Reads {
     const TEXELS: bool = true;

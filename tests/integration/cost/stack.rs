@@ -4,7 +4,6 @@
 //! counts access by access; and for numbers of sets that are not a power
 //! of two, as the desktop machine's 2 560 are not.
 
-use umbra::core::probe::{Probe, TexelRead};
 use umbra::core::shadow::{Bias, DepthTest, Filter, ShadowConfig};
 use umbra::core::{CullMode, D24, DepthUnit, LightPassConfig, RasterConfig};
 use umbra::sim::cost::cache::{Cache, MapCache};
@@ -13,18 +12,8 @@ use umbra::sim::pass::camera::CameraFrame;
 use umbra::sim::pass::light::{LightMaps, LightOptions};
 use umbra::sim::world::scene::Scene;
 
+use super::cache::Reads;
 use crate::common::camera_image;
-
-/// Records every texel read.
-#[derive(Default)]
-struct Reads(Vec<TexelRead>);
-
-impl Probe for Reads {
-    const TEXELS: bool = true;
-    fn texel_read(&mut self, r: TexelRead) {
-        self.0.push(r);
-    }
-}
 
 /// The byte addresses of a camera pass's map reads: a 64² dual map of
 /// 4-byte texels (32 KiB, 512 lines of 64 bytes), a 3×3 box at 80×45.
