@@ -164,7 +164,7 @@ impl<const D: bool> ArchProbe<D> {
             self.dram.map_reads += t.map_bytes;
             self.dram.silhouette_reads += t.silhouette_bytes;
             let cached = self.map_cache.is_some();
-            let missed = geometry.map_or(0, |g| u64::from(part.misses[i * per + g]));
+            let missed = geometry.and_then(|g| part.misses.get(i * per + g)).map_or(0, |&m| u64::from(m));
             if cached {
                 self.accesses.cache += t.reads;
                 self.dram.map_fetched += missed * line;
