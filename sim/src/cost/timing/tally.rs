@@ -141,17 +141,22 @@ impl<const D: bool> ArchProbe<D> {
     /// have counted from the events themselves.
     pub(crate) fn absorb(&mut self, tally: &Tally, tiling: usize) {
         let Some(part) = tally.parts.get(tiling) else { return };
-        self.events = self.events.plus(&part.totals);
-        self.reconstructed_pixels += part.reconstructed_pixels;
+        let (common, own) = (&tally.common, &part.own);
+        self.events = self.events.plus(&common.totals).plus(&own.totals);
+        self.reconstructed_pixels += common.reconstructed_pixels + own.reconstructed_pixels;
         let geometry = self.map_cache.as_ref().and_then(|m| tally.geometry(&m.cache));
         let line = self.map_cache.as_ref().map_or(0, |m| m.cache.line());
-        if part.pixels > 0 {
+        if common.pixels + own.pixels > 0 {
             self.enter(Phase::Shade);
         }
         let shift = tally.shift;
         let per = tally.geometries.len();
         let (mut hits, mut misses) = (0, 0);
-        for (i, t) in part.tiles.iter().enumerate().filter(|(_, t)| t.counts.pixels > 0 || t.reads > 0) {
+        for (i, (c, o)) in common.tiles.iter().zip(&own.tiles).enumerate() {
+            let t = c.plus(o);
+            if t.counts.pixels == 0 && t.reads == 0 {
+                continue;
+            }
             // The fine tile's first pixel, in this probe's tiles.
             let s = self.raster.tile_shift();
             let (fx, fy) = ((i % tally.across) << shift, (i / tally.across) << shift);
@@ -198,22 +203,82 @@ struct TileTally {
     reads: u64,
 }
 
-/// What one tiling saw of a shading: its events' totals, its tiles'
-/// tallies, and each map cache's misses per tile.
+impl TileTally {
+    /// Both tallies added.
+    fn plus(&self, o: &Self) -> Self {
+        let mut counts = self.counts;
+        counts.add(&o.counts);
+        Self {
+            counts,
+            map_bytes: self.map_bytes + o.map_bytes,
+            silhouette_bytes: self.silhouette_bytes + o.silhouette_bytes,
+            reads: self.reads + o.reads,
+        }
+    }
+}
+
+/// What a shading's events count: their totals, each tile's tally, the
+/// pixels shaded and those that read silhouette points, and the reads
+/// since the last pixel (not yet counted in its tile).
 #[derive(Clone, Debug, Default)]
-struct Part {
+struct Counts {
     totals: Totals,
     tiles: Vec<TileTally>,
-    /// Per tile, per geometry.
-    misses: Vec<u32>,
     pixels: u64,
     reconstructed_pixels: u64,
     reconstructed: bool,
+    pending_reads: u64,
+}
+
+impl Counts {
+    /// Count `e` in tile `current`; whether the tally can cost it.
+    fn count(&mut self, e: Event, current: usize) -> bool {
+        self.totals.add(e);
+        let Some(t) = self.tiles.get_mut(current) else { return false };
+        let n = u64::from;
+        match e {
+            Event::PixelShaded { .. } => {
+                self.pixels += 1;
+                t.counts.pixels += 1;
+            }
+            Event::MapRead { texels, bytes, .. } => {
+                t.counts.samples += n(texels);
+                t.map_bytes += n(bytes);
+            }
+            Event::SilhouetteRead { points, bytes } => {
+                self.reconstructed_pixels += u64::from(!self.reconstructed);
+                self.reconstructed = true;
+                t.counts.samples += n(points);
+                t.silhouette_bytes += n(bytes);
+            }
+            Event::LookupCulled { .. } => t.counts.culled += 1,
+            Event::VirtualSamples { count } => t.counts.virtual_samples += n(count),
+            Event::TangentSetup => t.counts.tangents += 1,
+            Event::TangentFallback | Event::TrivialPixel { .. } => {}
+            _ => return false,
+        }
+        true
+    }
+
+    /// Count the pending reads in tile `current`.
+    fn settle_reads(&mut self, current: usize) {
+        if let Some(t) = self.tiles.get_mut(current) {
+            t.reads += self.pending_reads;
+        }
+        self.pending_reads = 0;
+    }
+}
+
+/// What only one tiling saw of a shading (the lookups other tilings'
+/// bounds culled), and its map caches' misses per tile.
+#[derive(Clone, Debug, Default)]
+struct Part {
+    own: Counts,
+    /// Per tile, per geometry.
+    misses: Vec<u32>,
     caches: Vec<Caches>,
     /// The line (of the smallest line size) read last.
     last: Option<u64>,
-    /// Reads since the last pixel, not yet counted in its tile.
-    pending_reads: u64,
 }
 
 /// The map caches of one line size that one tiling's texel reads go
@@ -231,7 +296,11 @@ pub(crate) struct Tally {
     shift: u32,
     across: usize,
     current: usize,
+    /// What every tiling saw, counted once.
+    common: Counts,
     parts: Vec<Part>,
+    /// Every tiling's bit.
+    all: Tilings,
     /// The map caches' geometries: size, line, ways.
     geometries: Vec<(u64, u32, u32)>,
     /// How a texel's address is formed (`None` when no architecture has a map cache).
@@ -270,13 +339,14 @@ impl Tally {
             }
         }
         // Each tiling's reads go through the caches of its own architectures.
-        let parts = read_by
+        let counts = Counts { tiles: vec![TileTally::default(); tiles], ..Counts::default() };
+        let parts: Vec<Part> = read_by
             .iter()
             .map(|wanted| Part {
-                tiles: vec![TileTally::default(); tiles],
+                own: counts.clone(),
                 misses: vec![0; tiles * geometries.len()],
                 caches: banks(&geometries, wanted),
-                ..Part::default()
+                last: None,
             })
             .collect();
         let line_shift = geometries.iter().map(|g| g.1.trailing_zeros()).min().unwrap_or(0);
@@ -284,6 +354,8 @@ impl Tally {
             shift,
             across,
             current: 0,
+            common: counts,
+            all: Tilings(u8::MAX >> (Tilings::MAX - parts.len().min(Tilings::MAX))),
             parts,
             geometries,
             addressing,
@@ -299,45 +371,26 @@ impl Tally {
         self.geometries.iter().position(|&o| o == g)
     }
 
-    /// Record `e` for the tilings in `tilings`.
+    /// Record `e` for the tilings in `tilings`: once for all of them, or
+    /// for each of those it is theirs alone.
     fn record(&mut self, tilings: Tilings, e: Event) {
         if let Event::PixelShaded { x, y } = e {
             self.settle_reads();
             self.current = (y >> self.shift) as usize * self.across + (x >> self.shift) as usize;
+            self.common.reconstructed = false;
+            self.parts.iter_mut().for_each(|p| p.own.reconstructed = false);
         }
         let current = self.current;
-        let mut unexpected = false;
-        for (_, part) in self.parts.iter_mut().enumerate().filter(|(k, _)| tilings.has(*k)) {
-            part.totals.add(e);
-            let Some(t) = part.tiles.get_mut(current) else {
-                unexpected = true;
-                continue;
-            };
-            let n = u64::from;
-            match e {
-                Event::PixelShaded { .. } => {
-                    part.reconstructed = false;
-                    part.pixels += 1;
-                    t.counts.pixels += 1;
-                }
-                Event::MapRead { texels, bytes, .. } => {
-                    t.counts.samples += n(texels);
-                    t.map_bytes += n(bytes);
-                }
-                Event::SilhouetteRead { points, bytes } => {
-                    part.reconstructed_pixels += u64::from(!part.reconstructed);
-                    part.reconstructed = true;
-                    t.counts.samples += n(points);
-                    t.silhouette_bytes += n(bytes);
-                }
-                Event::LookupCulled { .. } => t.counts.culled += 1,
-                Event::VirtualSamples { count } => t.counts.virtual_samples += n(count),
-                Event::TangentSetup => t.counts.tangents += 1,
-                Event::TangentFallback | Event::TrivialPixel { .. } => {}
-                _ => unexpected = true,
+        let counted = if tilings.0 & self.all.0 == self.all.0 {
+            self.common.count(e, current)
+        } else {
+            let mut all = true;
+            for (_, part) in self.parts.iter_mut().enumerate().filter(|(k, _)| tilings.has(*k)) {
+                all &= part.own.count(e, current);
             }
-        }
-        self.unexpected |= unexpected;
+            all
+        };
+        self.unexpected |= !counted;
     }
 
     /// Record a texel read for the tilings in `tilings`: counted, and its
@@ -354,12 +407,14 @@ impl Tally {
         let address = addressing.address_at(r, self.texel.2);
         let line = address >> self.line_shift;
         let (current, per) = (self.current, self.geometries.len());
+        let every = tilings.0 & self.all.0 == self.all.0;
+        self.common.pending_reads += u64::from(every);
         for k in 0..self.parts.len() {
             if !tilings.has(k) {
                 continue;
             }
             let part = &mut self.parts[k];
-            part.pending_reads += 1;
+            part.own.pending_reads += u64::from(!every);
             if part.caches.is_empty() {
                 continue;
             }
@@ -384,12 +439,8 @@ impl Tally {
     /// Count each tiling's reads since the last pixel in the current tile.
     fn settle_reads(&mut self) {
         let current = self.current;
-        for part in &mut self.parts {
-            if let Some(t) = part.tiles.get_mut(current) {
-                t.reads += part.pending_reads;
-            }
-            part.pending_reads = 0;
-        }
+        self.common.settle_reads(current);
+        self.parts.iter_mut().for_each(|p| p.own.settle_reads(current));
     }
 
     /// The tally once the shading is over: every read counted in its tile.
