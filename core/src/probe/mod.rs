@@ -160,11 +160,13 @@ impl<P: Probe + ?Sized> Probe for &mut P {
 
 /// A probe that sees a shadow unit's events as those of `tilings` only:
 /// the reads of a lookup that the other tilings' bounds culled.
+#[cfg(feature = "tilings")]
 pub(crate) struct For<P> {
     pub(crate) probe: P,
     pub(crate) tilings: Tilings,
 }
 
+#[cfg(feature = "tilings")]
 impl<P: Probe> Probe for For<P> {
     const FRAGMENTS: bool = P::FRAGMENTS;
     const TEXELS: bool = P::TEXELS;

@@ -7,7 +7,9 @@ use super::{
 use crate::budget::MAP_FRACTION_BITS;
 use crate::depth::{DepthFormat, PlaneZ};
 use crate::grid::TileRect;
-use crate::probe::{Event, For, Probe, Tilings};
+use crate::probe::{Event, Probe};
+#[cfg(feature = "tilings")]
+use crate::probe::{For, Tilings};
 
 /// Shadow a lookup: the fraction of its samples in shadow.
 pub fn shadow<F: DepthFormat, P: Probe>(map: &MapView<'_, F>, cfg: &ShadowConfig, l: &Lookup, probe: &mut P) -> Shadow {
@@ -67,12 +69,8 @@ pub(crate) fn lookup<F: DepthFormat, P: Probe, K: Built>(
         };
         let own = cull(&map.bounds);
         let culled = Event::LookupCulled { texels: footprint.count() };
-        if map.others.is_empty() {
-            if let Some(shadow) = own {
-                probe.event(culled);
-                return shadow;
-            }
-        } else {
+        #[cfg(feature = "tilings")]
+        if !map.others.is_empty() {
             // Each tiling's bounds tested; the texels are read once for
             // the tilings that do not cull, and reported to them alone.
             let (mut by, mut result) = (Tilings(u8::from(own.is_some())), own);
@@ -93,8 +91,12 @@ pub(crate) fn lookup<F: DepthFormat, P: Probe, K: Built>(
                     let mut rest = For { probe: &mut *probe, tilings: Tilings(all.0 & !by.0) };
                     return read::<F, _, K>(map, cfg, l, slope, (footprint, inside_map, whole), grid, &mut rest);
                 }
-                None => {}
+                None => return read::<F, P, K>(map, cfg, l, slope, (footprint, inside_map, whole), grid, probe),
             }
+        }
+        if let Some(shadow) = own {
+            probe.event(culled);
+            return shadow;
         }
     }
     read::<F, P, K>(map, cfg, l, slope, (footprint, inside_map, whole), grid, probe)

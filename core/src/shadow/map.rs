@@ -16,6 +16,7 @@ pub struct MapView<'a, F: DepthFormat> {
     /// The map's own tiles' stored bounds (tiling 0).
     pub(super) bounds: TileBounds<'a, F::Texel>,
     /// Other tilings' bounds over the same texels, each tested too.
+    #[cfg(feature = "tilings")]
     pub(super) others: &'a [TileBounds<'a, F::Texel>],
     /// The second depth is the single buffer of a front-face-culled pass.
     second_in_z1: bool,
@@ -78,7 +79,15 @@ impl<'a, F: DepthFormat> MapView<'a, F> {
             return Err(wrong("z2", texels, z2.len()));
         }
         let bounds = TileBounds::new(raster, tiles)?;
-        Ok(Self { raster, z1, z2, bounds, others: &[], second_in_z1: false })
+        Ok(Self {
+            raster,
+            z1,
+            z2,
+            bounds,
+            #[cfg(feature = "tilings")]
+            others: &[],
+            second_in_z1: false,
+        })
     }
 
     /// The same view, its lookups also tested against `others`: the
@@ -87,9 +96,13 @@ impl<'a, F: DepthFormat> MapView<'a, F> {
     /// reads its texels for those that do not, reported to them alone
     /// ([`Probe::event_for`]); the shadow is the same whichever culls.
     ///
+    /// A datapath the simulator builds in (the `tilings` feature, which
+    /// costs the firmware's flash budget some 700 bytes it does not have).
+    ///
     /// # Errors
     /// [`crate::ConfigError::BufferLength`] naming `tilings` when there are
     /// more than [`Tilings::MAX`](crate::probe::Tilings::MAX) in all.
+    #[cfg(feature = "tilings")]
     pub fn with_tilings(self, others: &'a [TileBounds<'a, F::Texel>]) -> Result<Self, crate::ConfigError> {
         let most = crate::probe::Tilings::MAX - 1;
         if others.len() > most {
