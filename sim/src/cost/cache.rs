@@ -287,6 +287,13 @@ pub fn morton(x: u32, y: u32) -> u64 {
     spread(x) | (spread(y) << 1)
 }
 
+/// The Morton index one step along x from `m` (y unchanged): the x bits,
+/// the odd ones filled so that the carry runs through them.
+pub(crate) const fn morton_next_x(m: u64) -> u64 {
+    const X: u64 = 0x5555_5555_5555_5555;
+    (((m | !X).wrapping_add(1)) & X) | (m & !X)
+}
+
 impl MapCache {
     /// Model the reads of a map of `buffers` buffers (1 or 2) of
     /// `bytes`-byte texels.

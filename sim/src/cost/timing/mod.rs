@@ -11,6 +11,7 @@
 //! latency the architecture cannot hide.
 
 mod events;
+mod shading;
 mod tally;
 
 use crate::cost::arch::{Arch, CacheParams};
@@ -19,10 +20,10 @@ use crate::cost::dram::Dram;
 use crate::cost::work::{Accesses, EnergySplit, PassTiming, Work};
 use crate::cost::work::{Bottleneck, MemoryLimit, Stage};
 use serde::Serialize;
-use tally::ShadeCounts;
-pub(crate) use tally::Tally;
+use shading::ShadeCounts;
 #[cfg(test)]
-pub(crate) use tally::charges_event_by_event;
+pub(crate) use shading::charges_event_by_event;
+pub(crate) use tally::Tally;
 use umbra_core::probe::Totals;
 use umbra_core::{DepthFormatKind, RasterConfig, TileId};
 
@@ -159,7 +160,7 @@ impl<const D: bool> ArchProbe<D> {
             depth_cache: if D { cache(&arch.depth_cache) } else { None },
             tiling: 0,
             shading: Vec::new(),
-            event_by_event: tally::event_by_event(),
+            event_by_event: shading::event_by_event(),
         }
     }
 
