@@ -36,8 +36,9 @@ use crate::depth::DepthFormat;
 use crate::front::clip::{ClipVertex, Clipped, DepthClip, Polygon, clip_triangle_with};
 use crate::front::setup::Setup;
 use crate::front::snap::{SnappedVertex, snap_beyond_far};
-use crate::grid::TileId;
+use crate::grid::{TileId, TileRect};
 use crate::probe::{Event, Probe, RejectReason};
+use crate::raster::mask::{LANE_GROUP, LANES, Lanes, RowMask, Serial, WIDEST};
 
 /// Pixel bounds `(x0, y0, x1, y1)`, half-open.
 type Rect = (u32, u32, u32, u32);
@@ -135,24 +136,23 @@ impl<'a, F: DepthFormat> StencilPass<'a, F> {
     }
 
     /// Count one set-up volume triangle's fragments in `[x0, x1) × [y0, y1)`
-    /// of `tile`.
+    /// of `tile`: the coverage-mask unit ([`crate::raster::mask`]) finds the
+    /// covered pixels a row at a time, in strips at most [`WIDEST`] wide
+    /// (a side quad's bounding box is mostly empty), and each is compared
+    /// with the scene depth.
     fn count_in<P: Probe>(&mut self, setup: &Setup, step: u8, (x0, y0, x1, y1): Rect, tile: TileId, probe: &mut P) {
         let (mut fragments, mut writes) = (0u32, 0u32);
-        let width = self.raster.width() as usize;
-        for py in y0..y1 {
-            for px in x0..x1 {
-                let (x, y) = (i64::from(px), i64::from(py));
-                if !setup.covers(x, y) {
-                    continue;
-                }
-                fragments += 1;
-                let k = py as usize * width + px as usize;
-                let (Some(&scene), Some(s)) = (self.depth.get(k), self.stencil.get_mut(k)) else { continue };
-                if F::texel(setup.plane.at(x, y)) >= scene {
-                    *s = s.wrapping_add(step);
-                    writes += 1;
-                }
-            }
+        let mut strip = x0;
+        while strip < x1 {
+            let rect = TileRect { x0: strip, y0, x1: x1.min(strip.saturating_add(WIDEST)), y1 };
+            let lanes = if LANES { Lanes::<{ (WIDEST / LANE_GROUP) as usize }>::new(setup, &rect) } else { None };
+            let counted = match lanes {
+                Some(masks) => self.count_rows(setup, step, &rect, masks),
+                None => self.count_rows(setup, step, &rect, Serial::new(setup, &rect)),
+            };
+            fragments += counted.0;
+            writes += counted.1;
+            strip = rect.x1;
         }
         if fragments > 0 {
             probe.event(Event::VolumeFragments { tile, fragments, depth_bytes: fragments * F::KIND.bytes() });
@@ -161,6 +161,29 @@ impl<'a, F: DepthFormat> StencilPass<'a, F> {
         if writes > 0 {
             probe.event(Event::StencilWrite { tile, texels: writes, bytes: writes * STENCIL_BYTES });
         }
+    }
+
+    /// The fragments of `rect` whose rows `masks` cover, and the stencil
+    /// texels they wrote (where the volume lies at or behind the scene).
+    #[inline(always)]
+    fn count_rows<M: RowMask>(&mut self, setup: &Setup, step: u8, rect: &TileRect, mut masks: M) -> (u32, u32) {
+        let (mut fragments, mut writes) = (0u32, 0u32);
+        let width = self.raster.width() as usize;
+        for py in rect.y0..rect.y1 {
+            let mut mask = masks.next_row();
+            fragments += mask.count_ones();
+            while mask != 0 {
+                let px = rect.x0 + mask.trailing_zeros();
+                mask &= mask - 1;
+                let k = py as usize * width + px as usize;
+                let (Some(&scene), Some(s)) = (self.depth.get(k), self.stencil.get_mut(k)) else { continue };
+                if F::texel(setup.plane.at(i64::from(px), i64::from(py))) >= scene {
+                    *s = s.wrapping_add(step);
+                    writes += 1;
+                }
+            }
+        }
+        (fragments, writes)
     }
 
     /// The stencil: non-zero where the pixel is in shadow.

@@ -1,14 +1,18 @@
 //! The camera pass over owned buffers: the visibility unit with the camera's
 //! matrix, then the shading unit against a light pass's maps.
 
+use core::ops::Range;
+
 use glam::Mat4;
 use umbra_core::front::setup::Setup;
 use umbra_core::raster::bin::Bin;
-use umbra_core::shade::{Normals, PixelResult, ShadeConfig, ShadeInputs, ShadeSetup, Shaded, ShadowUnit, shade_with};
+use umbra_core::shade::{
+    Normals, PixelResult, ShadeConfig, ShadeInputs, ShadeSetup, Shaded, ShadowUnit, shade_rect, shade_with,
+};
 use umbra_core::shadow::{MapView, Shadow, ShadowConfig};
 use umbra_core::{
     CullMode, D24, DepthFormat, DepthUnit, LightBuffers, LightPass, LightPassConfig, NO_TRIANGLE, Probe, RasterConfig,
-    TileState,
+    TileRect, TileState,
 };
 
 use super::PassError;
@@ -217,19 +221,30 @@ pub fn render_into<F: DepthFormat, U: ShadowUnit<F>, R: PixelResult, P: Probe>(
 ) -> Result<(), PassError> {
     let Visibility { camera, .. } = visibility(frame, scene, (options.width, options.height), options.tiling, probe)?;
     let CameraFrame { ids, shade_setups, .. } = frame;
-    shade(scene, (ids, camera), view, unit, options, probe, out, shade_setups)
+    shade(scene, (ids, camera), view, unit, options, probe, out, shade_setups, None)
+}
+
+/// What reads a shading's pixels as the shading writes them: told, after
+/// each band of `rows` rows of the image, the band's pixels (indices into
+/// the image) and the image as far as it is written.
+pub(crate) struct Bands<'b, R> {
+    /// Rows a band.
+    pub rows: u32,
+    /// What reads each band.
+    pub then: &'b mut dyn FnMut(Range<usize>, &[R]),
 }
 
 /// The shading unit alone over a visibility pass's `ids` seen through
 /// `camera` (a [`visibility`] pass drawn before, for any number of
 /// shadings: its ids do not depend on the tiling), against `view` with
 /// shadow unit `unit`, into `out` (row-major) with the setup store
-/// `setups`, reporting every event to `probe`. Its events are those the
-/// shading of [`render_into`] reports, in the same order.
+/// `setups`, reporting every event to `probe`, and `bands` told of each
+/// band of rows as it is written. Its events are those the shading of
+/// [`render_into`] reports, in the same order, band or none.
 ///
 /// # Errors
 /// As [`render`].
-#[allow(clippy::too_many_arguments, reason = "the unit's inputs, its store and its probe")]
+#[allow(clippy::too_many_arguments, reason = "the unit's inputs, its store, its probe and its reader")]
 pub(crate) fn shade<F: DepthFormat, U: ShadowUnit<F>, R: PixelResult, P: Probe>(
     scene: &Scene,
     (ids, camera): (&[u32], Mat4),
@@ -239,6 +254,7 @@ pub(crate) fn shade<F: DepthFormat, U: ShadowUnit<F>, R: PixelResult, P: Probe>(
     probe: &mut P,
     out: &mut Vec<R>,
     setups: &mut Vec<ShadeSetup>,
+    bands: Option<Bands<'_, R>>,
 ) -> Result<(), PassError> {
     let cfg = shade_config(scene, camera, options);
     let triangles = scene.triangles();
@@ -246,7 +262,29 @@ pub(crate) fn shade<F: DepthFormat, U: ShadowUnit<F>, R: PixelResult, P: Probe>(
     // Every pixel is written: the fill only sizes a new frame.
     out.resize(ids.len(), R::BACKGROUND);
     setups.resize(SHADE_SETUPS, ShadeSetup::EMPTY);
-    shade_with(&ShadeInputs { cfg: &cfg, map: view, scene: &source, unit }, ids, out, setups, probe)?;
+    let inputs = ShadeInputs { cfg: &cfg, map: view, scene: &source, unit };
+    let Some(Bands { rows, then }) = bands else {
+        shade_with(&inputs, ids, out, setups, probe)?;
+        return Ok(());
+    };
+    // Each band a rectangle of whole rows: the same pixels, bit for bit,
+    // and the same events in the same order as the whole image.
+    let width = cfg.width as usize;
+    let expected = width.saturating_mul(cfg.height as usize);
+    if ids.len() != expected {
+        return Err(umbra_core::ConfigError::BufferLength { buffer: "ids", expected, found: ids.len() }.into());
+    }
+    let mut y0 = 0;
+    while y0 < cfg.height {
+        let y1 = cfg.height.min(y0.saturating_add(rows.max(1)));
+        let pixels = y0 as usize * width..y1 as usize * width;
+        let rect = TileRect { x0: 0, y0, x1: cfg.width, y1 };
+        let (ids, band) =
+            (ids.get(pixels.clone()).unwrap_or_default(), out.get_mut(pixels.clone()).unwrap_or_default());
+        shade_rect(&inputs, rect, ids, band, setups, probe)?;
+        then(pixels, out);
+        y0 = y1;
+    }
     Ok(())
 }
 
@@ -330,7 +368,7 @@ pub(crate) fn shade_visible<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
 ) -> Result<CameraImage, PassError> {
     let mut pixels = Vec::new();
     let CameraFrame { ids, shade_setups, camera, size, .. } = frame;
-    shade(scene, (ids, *camera), view, unit, options, probe, &mut pixels, shade_setups)?;
+    shade(scene, (ids, *camera), view, unit, options, probe, &mut pixels, shade_setups, None)?;
     Ok(CameraImage { width: size.0, height: size.1, pixels, camera: *camera })
 }
 

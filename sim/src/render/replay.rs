@@ -37,10 +37,7 @@ pub(crate) struct PassInputs<'a, F: DepthFormat> {
 }
 
 /// The render's metrics and verdicts, each wrong pixel judged by replaying
-/// it through the shadow unit that shaded it (a silhouette map is drawn
-/// again for it, bit for bit the camera pass's). Shadow volumes compare
-/// no depth: each of their wrong pixels is the volume's rasterized edge,
-/// aliasing.
+/// it through the shadow unit that shaded it ([`with_judge`]).
 ///
 /// # Errors
 /// [`PassError`] when the silhouette map cannot be drawn again.
@@ -50,39 +47,46 @@ pub(crate) fn judged<F: DepthFormat>(
     (truth, fields, reference): (&[Option<PixelTruth>], &Fields, &Reference),
     footprints: Option<&Footprints>,
 ) -> Result<(Metrics, Vec<Verdict>), PassError> {
-    let measured = (truth, fields, footprints);
+    with_judge(what, reference, |judge| compare_with(pixels, truth, fields, judge, footprints))
+}
+
+/// `then` with the judge of a render's wrong pixels, which replays each
+/// through the shadow unit that shaded it (a silhouette map is drawn again
+/// for it, bit for bit the camera pass's). Shadow volumes compare no
+/// depth: each of their wrong pixels is the volume's rasterized edge,
+/// aliasing.
+///
+/// # Errors
+/// [`PassError`] when the silhouette map cannot be drawn again.
+pub(crate) fn with_judge<F: DepthFormat, T>(
+    what: &PassInputs<'_, F>,
+    reference: &Reference,
+    then: impl FnOnce(&mut dyn Attribution) -> T,
+) -> Result<T, PassError> {
     Ok(match (what.kind, what.view) {
-        (MapKind::Volumes, _) | (_, None) => {
-            compare_with(pixels, truth, fields, &mut |_, _: &_, _| Cause::Aliasing, footprints)
-        }
-        (MapKind::Silhouette { packed: true }, Some(view)) => {
-            silhouettes::<Packed, F>(what, view, pixels, measured, reference)?
-        }
+        (MapKind::Volumes, _) | (_, None) => then(&mut |_: usize, _: &Shaded, _: bool| Cause::Aliasing),
+        (MapKind::Silhouette { packed: true }, Some(view)) => silhouettes::<Packed, F, T>(what, view, reference, then)?,
         (MapKind::Silhouette { packed: false }, Some(view)) => {
-            silhouettes::<SilPoint, F>(what, view, pixels, measured, reference)?
+            silhouettes::<SilPoint, F, T>(what, view, reference, then)?
         }
-        (MapKind::Depth, Some(view)) => {
-            compare_with(pixels, truth, fields, &mut Replay::new(what, view, &MapUnit, reference), footprints)
-        }
+        (MapKind::Depth, Some(view)) => then(&mut Replay::new(what, view, &MapUnit, reference)),
     })
 }
 
-/// [`judged`] with a silhouette unit over the map drawn again.
-fn silhouettes<S: SilStore, F: DepthFormat>(
+/// [`with_judge`] with a silhouette unit over the map drawn again.
+fn silhouettes<S: SilStore, F: DepthFormat, T>(
     what: &PassInputs<'_, F>,
     view: &MapView<'_, F>,
-    pixels: &[Shaded],
-    (truth, fields, footprints): (&[Option<PixelTruth>], &Fields, Option<&Footprints>),
     reference: &Reference,
-) -> Result<(Metrics, Vec<Verdict>), PassError> {
+    then: impl FnOnce(&mut dyn Attribution) -> T,
+) -> Result<T, PassError> {
     let light = what.scene.light().view_projection();
     let occluders = Occluders::new(what.scene);
     let texels = silhouette_map::<S, F, _>(&occluders, &light, view, what.options.shadow, &mut umbra_core::NoProbe)?;
     let raster = view.raster();
     let sil = SilhouetteMap::view(raster.width(), raster.height(), &texels)?;
     let unit = SilhouetteUnit(&sil);
-    let judge = &mut Replay::new(what, view, &unit, reference);
-    Ok(compare_with(pixels, truth, fields, judge, footprints))
+    Ok(then(&mut Replay::new(what, view, &unit, reference)))
 }
 
 /// The wrong pixels' judge: shades each run of them along a row again

@@ -244,20 +244,19 @@ fn run_with(spec: &Spec, shard: Shard, progress: &ProgressBar, share: bool) -> R
                 }
                 _ => None,
             };
-            let mut done: Vec<Vec<Row>> = Vec::with_capacity(rendered.len());
-            // Blocks of one format and map side, in the order their first
-            // comes: each block's light passes drawn at once, in parallel,
-            // then every configuration of the block in parallel.
-            let mut blocks: Vec<((DepthFormatKind, u32), Vec<&Config>)> = Vec::new();
-            for &c in &rendered {
-                match blocks.iter_mut().find(|b| b.0 == (c.format, c.map_size)) {
-                    Some(b) => b.1.push(c),
-                    None => blocks.push(((c.format, c.map_size), vec![c])),
-                }
-            }
-            for ((format, _), members) in blocks {
-                let mut rows = match &shared {
-                    Some(image) => with_format!(format, F => {
+            // The configurations that render on their own (shadow volumes,
+            // which draw no map; every one when nothing is shared), and
+            // blocks of one format and map side of the others, in the order
+            // their first comes: each block's light passes drawn at once,
+            // in parallel, then every configuration of the block in
+            // parallel.
+            let (alone, blocks) = blocks(spec, &rendered, shared.is_some());
+            let alone = || run_waves(&alone, at_once, progress, |c| run_config(spec, c, &truth));
+            let blocks = || {
+                let mut done: Vec<Vec<Row>> = Vec::with_capacity(rendered.len());
+                for ((format, _), members) in blocks {
+                    let Some(image) = &shared else { continue };
+                    let mut rows = with_format!(format, F => {
                         let lights = light_shares::<F>(spec, image, &members);
                         run_waves(&members, at_once, progress, |c| {
                             let cfg = render_config(spec, c);
@@ -273,11 +272,22 @@ fn run_with(spec: &Spec, shard: Shard, progress: &ProgressBar, share: bool) -> R
                             }
                             rows
                         })
-                    }),
-                    None => run_waves(&members, at_once, progress, |c| run_config(spec, c, &truth)),
-                };
-                done.append(&mut rows);
-            }
+                    });
+                    done.append(&mut rows);
+                }
+                done
+            };
+            // A configuration on its own takes as long as many shared ones
+            // (a shadow volume's stencil pass): with room for a render a
+            // thread, those run beside the blocks rather than after them,
+            // so that no thread waits alone at the end.
+            let (mut done, mut own) = if at_once >= rayon::current_num_threads() {
+                let (own, done) = rayon::join(alone, blocks);
+                (done, own)
+            } else {
+                (blocks(), alone())
+            };
+            done.append(&mut own);
             done.sort_by_key(|r| r.first().map(|r| r.config_index));
             for (i, c) in group.iter().enumerate() {
                 if first[i] != i {
@@ -294,6 +304,30 @@ fn run_with(spec: &Spec, shard: Shard, progress: &ProgressBar, share: bool) -> R
     }
     sort_rows(&mut rows);
     Ok(rows)
+}
+
+/// The configurations of `rendered` (of one scene and image) that render on
+/// their own (all of them unless `shared`), and the others in blocks of one
+/// format and map side, in the order each block's first comes.
+#[allow(clippy::type_complexity, reason = "a block's key and its configurations")]
+fn blocks<'c>(
+    spec: &Spec,
+    rendered: &[&'c Config],
+    shared: bool,
+) -> (Vec<&'c Config>, Vec<((DepthFormatKind, u32), Vec<&'c Config>)>) {
+    let mut alone = Vec::new();
+    let mut blocks: Vec<((DepthFormatKind, u32), Vec<&Config>)> = Vec::new();
+    for &c in rendered {
+        if !shared || LightKey::of(&render_config(spec, c)).is_none() {
+            alone.push(c);
+            continue;
+        }
+        match blocks.iter_mut().find(|b| b.0 == (c.format, c.map_size)) {
+            Some(b) => b.1.push(c),
+            None => blocks.push(((c.format, c.map_size), vec![c])),
+        }
+    }
+    (alone, blocks)
 }
 
 /// The light passes of `configs` (of one format `F` and map side), one

@@ -141,12 +141,16 @@ impl<'s> ImageShare<'s> {
         })
     }
 
-    /// The map's footprint over `render`, a render of this image: one kept
-    /// from an earlier configuration when it fits (the same points on the
-    /// map), or worked out, and kept while there is room.
-    pub(super) fn footprints(&self, render: &[Shaded]) -> Arc<Footprints> {
-        let kept = self.footprints.lock().map(|k| k.clone()).unwrap_or_default();
-        if let Some(f) = kept.iter().find(|f| f.fits(render)) {
+    /// The footprints kept from earlier configurations of this image.
+    pub(super) fn kept_footprints(&self) -> Vec<Arc<Footprints>> {
+        self.footprints.lock().map(|k| k.clone()).unwrap_or_default()
+    }
+
+    /// The map's footprint over `render`, a render of this image: `fits`,
+    /// one kept that fits it (the same points on the map), or worked out,
+    /// and kept while there is room.
+    pub(super) fn footprints(&self, render: &[Shaded], fits: Option<&Arc<Footprints>>) -> Arc<Footprints> {
+        if let Some(f) = fits {
             return Arc::clone(f);
         }
         let f = Arc::new(Footprints::of(render, self.truth, self.size.0 as usize));

@@ -112,6 +112,15 @@ impl Footprints {
     /// that, against the same reference, its footprint is this one).
     #[must_use]
     pub(crate) fn fits(&self, render: &[Shaded]) -> bool {
-        render.len() == self.points.len() && render.iter().zip(&self.points).all(|(s, p)| exact(s) == *p)
+        render.len() == self.points.len() && self.fits_in(0..render.len(), render)
+    }
+
+    /// Whether the pixels `band` of `render` lie at exactly these points.
+    #[must_use]
+    pub(crate) fn fits_in(&self, band: core::ops::Range<usize>, render: &[Shaded]) -> bool {
+        match (render.get(band.clone()), self.points.get(band)) {
+            (Some(r), Some(p)) => r.iter().zip(p).all(|(s, p)| exact(s) == *p),
+            _ => false,
+        }
     }
 }

@@ -34,10 +34,11 @@ use crate::truth::reference::PixelTruth;
 mod fields;
 mod footprint;
 mod lights;
+mod sums;
 
 pub use self::fields::Fields;
-use self::fields::boundary;
 pub(crate) use self::footprint::Footprints;
+pub(crate) use self::sums::Sums;
 
 /// The smallest difference between a pixel's filtered shadow fraction and
 /// the reference's area-averaged shadow that counts as an artifact: 0.1.
@@ -236,31 +237,6 @@ fn wrong(s: &Shaded, t: &PixelTruth) -> Option<bool> {
     if excess.abs() > SHADE_STEP { Some(excess > 0.0) } else { (shadowed(s) == t.lit).then_some(t.lit) }
 }
 
-/// Each pixel's verdict: right, unevaluated, or wrong for the cause
-/// `causes` gives.
-#[must_use]
-pub(crate) fn verdicts(render: &[Shaded], truth: &[Option<PixelTruth>], causes: &mut impl Attribution) -> Vec<Verdict> {
-    let mut verdicts: Vec<Verdict> = Vec::with_capacity(render.len());
-    let mut wrongs = Vec::new();
-    for (k, (s, t)) in render.iter().zip(truth).enumerate() {
-        verdicts.push(match evaluated(t) {
-            None => Verdict::Unevaluated,
-            Some(t) => match wrong(s, &t) {
-                None => Verdict::Right,
-                Some(dark) => {
-                    wrongs.push((k, dark));
-                    // Judged below.
-                    Verdict::Wrong(Cause::Aliasing)
-                }
-            },
-        });
-    }
-    for (&(k, _), cause) in wrongs.iter().zip(causes.causes(&wrongs, render)) {
-        verdicts[k] = Verdict::Wrong(cause);
-    }
-    verdicts
-}
-
 /// How much darker the pipeline shades a pixel than the reference: its
 /// shadow fraction less the reference's shadowed area fraction.
 fn excess_shadow(s: &Shaded, t: &PixelTruth) -> f64 {
@@ -288,104 +264,18 @@ pub fn compare(
 }
 
 /// [`compare`], with the map's footprint over the render when it is known
-/// already ([`measure`]).
+/// already (one that [`Footprints::fits`] the render, against the same
+/// reference; it is worked out otherwise).
 pub(crate) fn compare_with(
     render: &[Shaded],
     truth: &[Option<PixelTruth>],
     fields: &Fields,
-    causes: &mut impl Attribution,
+    causes: &mut dyn Attribution,
     footprints: Option<&Footprints>,
 ) -> (Metrics, Vec<Verdict>) {
-    let verdicts = verdicts(render, truth, causes);
-    (measure(render, truth, fields, &verdicts, footprints), verdicts)
-}
-
-/// The metrics of a render whose pixels' verdicts are known, with the
-/// map's footprint over it when that is known already (one that
-/// [`Footprints::fits`] the render, against the same reference; it is
-/// worked out otherwise).
-#[must_use]
-#[allow(
-    clippy::cast_precision_loss,
-    clippy::cast_possible_wrap,
-    clippy::cast_sign_loss,
-    reason = "pixel counts and coordinates"
-)]
-pub(crate) fn measure(
-    render: &[Shaded],
-    truth: &[Option<PixelTruth>],
-    fields: &Fields,
-    verdicts: &[Verdict],
-    footprints: Option<&Footprints>,
-) -> Metrics {
-    let width = fields.width;
-    let rendered: Vec<Option<bool>> =
-        render.iter().zip(truth).map(|(s, t)| evaluated(t).map(|_| shadowed(s))).collect();
-    let mut m = Metrics::default();
-    let (mut abs_error, mut square_error) = (0.0, 0.0);
-    let mut penumbra_width = Vec::new();
-    for (k, ((s, t), v)) in render.iter().zip(truth).zip(verdicts).enumerate() {
-        let Some(t) = evaluated(t) else { continue };
-        m.evaluated += 1;
-        m.ties += u64::from(s.shadow == Shadow::from_bits(1 << 15));
-        m.false_shadow += u64::from(shadowed(s) && t.lit);
-        m.false_light += u64::from(!shadowed(s) && !t.lit);
-        let e = excess_shadow(s, &t);
-        match v {
-            Verdict::Wrong(Cause::Aliasing) => {
-                m.aliasing += 1;
-                m.aliasing_area += e.abs();
-            }
-            Verdict::Wrong(Cause::Penumbra) => {
-                m.penumbra += 1;
-                m.penumbra_area += e.abs();
-                penumbra_width.push(f64::from(fields.to_edge.get(k).copied().unwrap_or(u32::MAX)));
-            }
-            Verdict::Wrong(Cause::Acne) => {
-                m.acne += 1;
-                m.acne_area += e.abs();
-                let turning = fields.to_away.get(k).is_some_and(|&d| d <= TERMINATOR_REACH);
-                m.terminator_acne += u64::from(t.light_cos < GRAZING_COS && turning);
-            }
-            Verdict::Wrong(Cause::Detachment) => {
-                m.detachment += 1;
-                m.detachment_area += e.abs();
-            }
-            Verdict::Wrong(Cause::Leak) => {
-                m.leaks += 1;
-                m.leak_area += e.abs();
-            }
-            Verdict::Right | Verdict::Unevaluated => {}
-        }
-        abs_error += e.abs();
-        square_error += e * e;
-    }
-    // The rendered boundary's distance from the exact one, lit side to lit
-    // side; in map texels between the two pixels' light-space points.
-    let texel = |k: usize| render.get(k).and_then(|s| s.light).map(|l| (l.x.to_num::<f64>(), l.y.to_num::<f64>()));
-    let (mut pixels, mut texels) = (Vec::new(), Vec::new());
-    for (k, on) in boundary(&rendered, width, true).iter().enumerate() {
-        let Some(&(d, site)) = fields.to_lit_edge.get(k).filter(|(d, _)| *on && *d != u32::MAX) else { continue };
-        pixels.push(f64::from(d));
-        if let (Some(a), Some(b)) = (texel(k), texel(site)) {
-            texels.push((a.0 - b.0).hypot(a.1 - b.1));
-        }
-    }
-    let worked;
-    debug_assert!(footprints.is_none_or(|f| f.fits(render)), "a footprint of other points");
-    let footprints = match footprints {
-        Some(f) => f,
-        None => {
-            worked = Footprints::of(render, truth, width);
-            &worked
-        }
-    };
-    (m.footprint_x, m.footprint_y) = (footprints.x, footprints.y);
-    m.penumbra_width = quantiles(penumbra_width);
-    m.displacement = summary(&mut pixels);
-    m.displacement_texels = summary(&mut texels);
-    m.rates(abs_error, square_error);
-    m
+    let mut sums = Sums::new(render.len());
+    sums.add(0..render.len(), render, truth, fields, causes);
+    sums.finish(render, truth, fields, footprints)
 }
 
 impl Metrics {
