@@ -34,7 +34,7 @@ pub use volume::{Volume, VolumeLight};
 use crate::config::{ConfigError, CullMode, RasterConfig};
 use crate::depth::DepthFormat;
 use crate::front::clip::{ClipVertex, Clipped, DepthClip, Polygon, clip_triangle_with};
-use crate::front::setup::Setup;
+use crate::front::setup::{Coverage, Setup};
 use crate::front::snap::{SnappedVertex, snap_beyond_far};
 use crate::grid::{TileId, TileRect};
 use crate::probe::{Event, Probe, RejectReason};
@@ -145,10 +145,24 @@ impl<'a, F: DepthFormat> StencilPass<'a, F> {
         let mut strip = x0;
         while strip < x1 {
             let rect = TileRect { x0: strip, y0, x1: x1.min(strip.saturating_add(WIDEST)), y1 };
-            let lanes = if LANES { Lanes::<{ (WIDEST / LANE_GROUP) as usize }>::new(setup, &rect) } else { None };
-            let counted = match lanes {
-                Some(masks) => self.count_rows(setup, step, &rect, masks),
-                None => self.count_rows(setup, step, &rect, Serial::new(setup, &rect)),
+            let width = rect.width();
+            let counted = match setup.classify(&rect) {
+                Coverage::Empty => (0, 0),
+                // Every pixel: a mask of the strip's columns on every row.
+                Coverage::Full => self.count_rows(setup, step, &rect, Whole(u64::MAX >> (u64::BITS - width))),
+                Coverage::Partial if !LANES => self.count_rows(setup, step, &rect, Serial::new(setup, &rect)),
+                Coverage::Partial => {
+                    let lanes = if width <= LANE_GROUP {
+                        Lanes::<1>::new(setup, &rect).map(|m| self.count_rows(setup, step, &rect, m))
+                    } else if width <= 2 * LANE_GROUP {
+                        Lanes::<2>::new(setup, &rect).map(|m| self.count_rows(setup, step, &rect, m))
+                    } else if width <= 4 * LANE_GROUP {
+                        Lanes::<4>::new(setup, &rect).map(|m| self.count_rows(setup, step, &rect, m))
+                    } else {
+                        Lanes::<8>::new(setup, &rect).map(|m| self.count_rows(setup, step, &rect, m))
+                    };
+                    lanes.unwrap_or_else(|| self.count_rows(setup, step, &rect, Serial::new(setup, &rect)))
+                }
             };
             fragments += counted.0;
             writes += counted.1;
@@ -190,5 +204,18 @@ impl<'a, F: DepthFormat> StencilPass<'a, F> {
     #[must_use]
     pub fn stencil(&self) -> &[u8] {
         self.stencil
+    }
+}
+
+/// A strip every one of whose pixels the triangle covers: the same mask
+/// on every row.
+struct Whole(u64);
+
+impl RowMask for Whole {
+    const WIDTH: u32 = WIDEST;
+
+    #[inline(always)]
+    fn next_row(&mut self) -> u64 {
+        self.0
     }
 }

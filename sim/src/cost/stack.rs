@@ -52,8 +52,11 @@ pub struct StackDistances {
     distances: Vec<u32>,
     /// The line accessed last (at distance 0 in every set order).
     last: u64,
-    /// Accesses to the line accessed last.
+    /// Accesses at distance 0 in every set order: to the line accessed
+    /// last, or to the most recent line of its set in the fewest sets.
     repeats: u64,
+    /// The fewest sets, when every other number asked is a multiple of it.
+    coarsest: Option<usize>,
 }
 
 impl StackDistances {
@@ -83,6 +86,12 @@ impl StackDistances {
             distances: vec![0; sets.len()],
             last: EMPTY,
             repeats: 0,
+            coarsest: sets
+                .iter()
+                .enumerate()
+                .min_by_key(|&(_, &s)| s)
+                .filter(|&(_, &fewest)| sets.iter().all(|s| s % fewest == 0))
+                .map(|(k, _)| k),
         })
     }
 
@@ -99,8 +108,19 @@ impl StackDistances {
         }
         self.last = x;
         let depth = self.depth as usize;
+        // With sets nested (each number of sets a multiple of the fewest),
+        // a set of more sets holds some of the lines of one set of the
+        // fewest: a line the most recent of its set there is the most
+        // recent of its set in every order, which it leaves as they are.
+        if let Some(k) = self.coarsest
+            && self.orders[k][set_of(x, self.sets[k]) * depth] == x
+        {
+            self.repeats += 1;
+            self.distances.fill(0);
+            return &self.distances;
+        }
         for (k, (&sets, order)) in self.sets.iter().zip(&mut self.orders).enumerate() {
-            let set = usize::try_from(if sets.is_power_of_two() { x & (sets - 1) } else { x % sets }).unwrap_or(0);
+            let set = set_of(x, sets);
             let lines = &mut order[set * depth..(set + 1) * depth];
             let at = lines.iter().position(|&l| l == x || l == EMPTY);
             let d = match at {
@@ -130,4 +150,9 @@ impl StackDistances {
     pub fn index(&self, sets: u64) -> Option<usize> {
         self.sets.iter().position(|&s| s == sets)
     }
+}
+
+/// The set of line `x` among `sets` sets: its low bits for a power of two.
+fn set_of(x: u64, sets: u64) -> usize {
+    usize::try_from(if sets.is_power_of_two() { x & (sets - 1) } else { x % sets }).unwrap_or(0)
 }

@@ -34,6 +34,9 @@ pub(crate) struct PassInputs<'a, F: DepthFormat> {
     pub options: &'a CameraOptions,
     /// The map the shadow unit reads (a depth map, or a silhouette map over it).
     pub kind: MapKind,
+    /// The scene's occluders, when they are at hand: a silhouette map's
+    /// judge draws the map again from them (from the scene otherwise).
+    pub occluders: Option<&'a Occluders>,
 }
 
 /// The render's metrics and verdicts, each wrong pixel judged by replaying
@@ -81,8 +84,15 @@ fn silhouettes<S: SilStore, F: DepthFormat, T>(
     then: impl FnOnce(&mut dyn Attribution) -> T,
 ) -> Result<T, PassError> {
     let light = what.scene.light().view_projection();
-    let occluders = Occluders::new(what.scene);
-    let texels = silhouette_map::<S, F, _>(&occluders, &light, view, what.options.shadow, &mut umbra_core::NoProbe)?;
+    let found;
+    let occluders = match what.occluders {
+        Some(o) => o,
+        None => {
+            found = Occluders::new(what.scene);
+            &found
+        }
+    };
+    let texels = silhouette_map::<S, F, _>(occluders, &light, view, what.options.shadow, &mut umbra_core::NoProbe)?;
     let raster = view.raster();
     let sil = SilhouetteMap::view(raster.width(), raster.height(), &texels)?;
     let unit = SilhouetteUnit(&sil);

@@ -1,8 +1,9 @@
 //! Stack distances against direct simulation: one pass gives, for every
 //! capacity from one line to the whole map and every associativity (1, 2,
 //! 4 ways and fully associative), the hits a cache of that geometry
-//! counts access by access; and for numbers of sets that are not a power
-//! of two, as the desktop machine's 2 560 are not.
+//! counts access by access; for numbers of sets that are not a power of
+//! two, as the desktop machine's 2 560 are not; and for passes whose fewest
+//! sets are several, nested or not.
 
 use umbra::core::shadow::{Bias, DepthTest, Filter, ShadowConfig};
 use umbra::core::{CullMode, D24, DepthUnit, LightPassConfig, RasterConfig};
@@ -82,6 +83,19 @@ fn stack_distances_count_what_each_cache_counts() {
         for (sets, ways) in [(3, 2), (3, 4), (24, 1), (24, 4)] {
             let expected = direct(&addresses, sets * u64::from(ways), ways);
             assert_eq!(stack.hits(sets, ways), Some(expected), "{name}: {sets} sets, {ways} ways");
+        }
+        // Passes whose fewest sets are more than one: nested (each number a
+        // multiple of the fewest, so that a line the most recent of its set
+        // there is the most recent in every order) and not.
+        for pass in [vec![4, 8, 16, 64], vec![3, 24], vec![3, 4, 24]] {
+            let mut stack = StackDistances::new(64, &pass, 4).expect("valid");
+            addresses.iter().for_each(|&a| {
+                stack.access(a);
+            });
+            for (&sets, ways) in pass.iter().flat_map(|s| [1, 2, 4].map(|w| (s, w))) {
+                let expected = direct(&addresses, sets * u64::from(ways), ways);
+                assert_eq!(stack.hits(sets, ways), Some(expected), "{name}: {sets} sets of {pass:?}, {ways} ways");
+            }
         }
         // One line to the whole map: 10 capacities for the map, 13 scattered;
         // each direct-mapped, 2-way, 4-way and fully associative where they differ.

@@ -327,6 +327,18 @@ fn blocks<'c>(
             None => blocks.push(((c.format, c.map_size), vec![c])),
         }
     }
+    // The filters that compare the most samples first, so that a block
+    // does not end waiting on one of them alone (the rows are sorted
+    // afterwards).
+    let samples = |c: &&Config| match spec.filters.get(c.filter) {
+        Some(Filter::Jittered(j)) => 8 * u32::from(j.num_samples),
+        Some(Filter::Box { size }) => u32::from(*size) * u32::from(*size),
+        Some(Filter::Bilinear) => 4,
+        Some(Filter::Point) | None => 1,
+    };
+    for (_, members) in &mut blocks {
+        members.sort_by_key(|c| core::cmp::Reverse(samples(c)));
+    }
     (alone, blocks)
 }
 

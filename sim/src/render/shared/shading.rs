@@ -86,7 +86,8 @@ pub(crate) fn render_shared<F: DepthFormat>(
             // The functional render, its metrics summed band by band as it
             // is shaded, each wrong pixel judged by replaying it; the map's
             // footprint one kept when the pixels' points are its own.
-            let inputs = PassInputs { scene, seen, view: Some(&view), options: &options, kind: units.map };
+            let occluders = Some(&image.occluders);
+            let inputs = PassInputs { scene, seen, view: Some(&view), options: &options, kind: units.map, occluders };
             let mut sums = Sums::new(pixels.len());
             let kept = image.kept_footprints();
             let mut fit = vec![true; kept.len()];
