@@ -43,11 +43,14 @@ pub struct StackDistances {
     /// longer one, or a first use, is a miss for every cache asked.
     depth: u32,
     /// For each number of sets, each set's lines, most recent first
-    /// (`depth` slots a set).
-    orders: Vec<Vec<u64>>,
-    /// `counts[k][d]`: accesses with `d` lines of their set (of `sets[k]`)
-    /// used since their line's last use; `d = depth` for farther or none.
-    counts: Vec<Vec<u64>>,
+    /// (`depth` slots a set), one order after the other.
+    orders: Vec<u64>,
+    /// Where each number of sets' order starts in `orders`.
+    starts: Vec<usize>,
+    /// `counts[k * (depth + 1) + d]`: accesses with `d` lines of their set
+    /// (of `sets[k]`) used since their line's last use; `d = depth` for
+    /// farther or none.
+    counts: Vec<u64>,
     /// This access's distance for each number of sets.
     distances: Vec<u32>,
     /// The line accessed last (at distance 0 in every set order).
@@ -71,18 +74,21 @@ impl StackDistances {
         if !line.is_power_of_two() || sets.is_empty() || sets.contains(&0) || ways == 0 {
             return Err(CacheError::Geometry { size: most * u64::from(line) * u64::from(ways), line, ways });
         }
-        let slots = |s: u64| usize::try_from(s * u64::from(ways)).map(|n| vec![EMPTY; n]);
-        let orders = sets
-            .iter()
-            .map(|&s| slots(s))
-            .collect::<Result<Vec<_>, _>>()
-            .map_err(|_| CacheError::Geometry { size: most * u64::from(line) * u64::from(ways), line, ways })?;
+        let too_many = || CacheError::Geometry { size: most * u64::from(line) * u64::from(ways), line, ways };
+        let mut starts = Vec::with_capacity(sets.len());
+        let mut slots = 0usize;
+        for &s in sets {
+            starts.push(slots);
+            let n = s.checked_mul(u64::from(ways)).and_then(|n| usize::try_from(n).ok()).ok_or_else(too_many)?;
+            slots = slots.checked_add(n).ok_or_else(too_many)?;
+        }
         Ok(Self {
             line_shift: line.trailing_zeros(),
             sets: sets.to_vec(),
             depth: ways,
-            orders,
-            counts: vec![vec![0; ways as usize + 1]; sets.len()],
+            orders: vec![EMPTY; slots],
+            starts,
+            counts: vec![0; (ways as usize + 1) * sets.len()],
             distances: vec![0; sets.len()],
             last: EMPTY,
             repeats: 0,
@@ -113,25 +119,28 @@ impl StackDistances {
         // fewest: a line the most recent of its set there is the most
         // recent of its set in every order, which it leaves as they are.
         if let Some(k) = self.coarsest
-            && self.orders[k][set_of(x, self.sets[k]) * depth] == x
+            && self.orders[self.starts[k] + set_of(x, self.sets[k]) * depth] == x
         {
             self.repeats += 1;
             self.distances.fill(0);
             return &self.distances;
         }
-        for (k, (&sets, order)) in self.sets.iter().zip(&mut self.orders).enumerate() {
-            let set = set_of(x, sets);
-            let lines = &mut order[set * depth..(set + 1) * depth];
+        for (k, (&sets, &start)) in self.sets.iter().zip(&self.starts).enumerate() {
+            let at = start + set_of(x, sets) * depth;
+            let lines = &mut self.orders[at..at + depth];
             let at = lines.iter().position(|&l| l == x || l == EMPTY);
             let d = match at {
                 Some(p) if lines[p] == x => p,
                 _ => depth,
             };
-            // To the front: the lines above it move down one, the last falls out.
-            lines[..=d.min(depth - 1)].rotate_right(1);
-            lines[0] = x;
+            // To the front: the lines above it move down one, the last falls
+            // out (by hand: a rotation of a few slots is a call to memmove).
+            let mut carry = x;
+            for slot in &mut lines[..=d.min(depth - 1)] {
+                core::mem::swap(slot, &mut carry);
+            }
             self.distances[k] = u32::try_from(d).unwrap_or(self.depth);
-            self.counts[k][d] += 1;
+            self.counts[k * (depth + 1) + d] += 1;
         }
         &self.distances
     }
@@ -141,7 +150,8 @@ impl StackDistances {
     #[must_use]
     pub fn hits(&self, sets: u64, ways: u32) -> Option<u64> {
         let k = self.index(sets)?;
-        (ways <= self.depth).then(|| self.repeats + self.counts[k][..ways as usize].iter().sum::<u64>())
+        let at = k * (self.depth as usize + 1);
+        (ways <= self.depth).then(|| self.repeats + self.counts[at..at + ways as usize].iter().sum::<u64>())
     }
 
     /// Where `sets` is among the numbers of sets asked, for reading
