@@ -107,20 +107,16 @@ impl StackDistances {
     /// first use).
     pub fn access(&mut self, address: u64) -> &[u32] {
         let x = address >> self.line_shift;
-        if x == self.last {
-            self.repeats += 1;
-            self.distances.fill(0);
-            return &self.distances;
-        }
-        self.last = x;
         let depth = self.depth as usize;
-        // With sets nested (each number of sets a multiple of the fewest),
-        // a set of more sets holds some of the lines of one set of the
-        // fewest: a line the most recent of its set there is the most
-        // recent of its set in every order, which it leaves as they are.
-        if let Some(k) = self.coarsest
-            && self.orders[self.starts[k] + set_of(x, self.sets[k]) * depth] == x
-        {
+        // The line accessed last, again; or, with sets nested (each number
+        // of sets a multiple of the fewest), where a set of more sets holds
+        // some of the lines of one set of the fewest, a line the most
+        // recent of its set there: the most recent of its set in every
+        // order, which it leaves as they are.
+        let again = x == self.last
+            || self.coarsest.is_some_and(|k| self.orders[self.starts[k] + set_of(x, self.sets[k]) * depth] == x);
+        self.last = x;
+        if again {
             self.repeats += 1;
             self.distances.fill(0);
             return &self.distances;
