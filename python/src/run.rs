@@ -172,6 +172,7 @@ pub fn study(
         shard: Some(format!("{index}/{count}")),
         extremes: false,
         out: PathBuf::new(),
+        replace: false,
     };
     let at_once = threads.unwrap_or_else(rayon::current_num_threads);
     let spec = request.prepare_file(sweep, &limits, at_once).map_err(|e| error(&e))?.spec;

@@ -7,7 +7,7 @@ use umbra_sim::cost::arch::Arch;
 use umbra_sim::cost::arch::BUNDLED;
 use umbra_sim::cost::report::files;
 use umbra_sim::input::limits::Limits;
-use umbra_sim::output::folder::OutputFolder;
+use umbra_sim::output::folder::{Claim, OutputFolder, RunKind};
 
 /// Which architectures, and what to change in them.
 #[derive(clap::Args, Debug, Clone, Default)]
@@ -97,7 +97,8 @@ pub(super) fn cost(args: &CostArgs, trace: bool, limits: &Limits) -> Result<()> 
     let archs = args.archs.resolve(&BUNDLED.map(|b| b.0), limits)?;
     let own = if trace { "out/trace" } else { "out/cost" };
     let out = args.render.out.clone().unwrap_or_else(|| std::path::PathBuf::from(own));
-    let mut folder = OutputFolder::create(&out)?;
+    let kind = if trace { RunKind::Trace } else { RunKind::Cost };
+    let mut folder = OutputFolder::create(&out, Claim::new(kind).replacing(args.render.replace))?;
     let reports = archs.iter().map(|arch| umbra_sim::render::cost(&job, arch)).collect::<Result<Vec<_>, _>>()?;
     if trace {
         let slices = files::write_trace(&mut folder, &reports)?;
@@ -114,8 +115,8 @@ pub(super) fn cost(args: &CostArgs, trace: bool, limits: &Limits) -> Result<()> 
             say!("{}", c.markdown());
         }
     }
-    let manifest = folder.finish(None)?;
-    crate::say::wrote(&out, &manifest)
+    let (manifest, replaced) = folder.finish_replacing(None)?;
+    crate::say::wrote(&out, &manifest, &replaced)
 }
 
 #[derive(clap::Args, Debug)]
@@ -136,6 +137,9 @@ pub(super) struct CorrelateArgs {
     /// Output folder.
     #[arg(long, default_value = "out/correlate")]
     pub(super) out: std::path::PathBuf,
+    /// Replace another command's results in --out deliberately.
+    #[arg(long, help = crate::REPLACE_HELP)]
+    pub(super) replace: bool,
 }
 
 /// `umbra correlate`: every dataset's points simulated against their
@@ -163,7 +167,7 @@ pub(super) fn correlate(args: &CorrelateArgs, limits: &Limits) -> Result<()> {
         }
         Ok(arch)
     };
-    let mut folder = OutputFolder::create(&args.out)?;
+    let mut folder = OutputFolder::create(&args.out, Claim::new(RunKind::Correlation).replacing(args.replace))?;
     let c = correlation::run(&datasets, &resolve, limits).map_err(anyhow::Error::msg)?;
     let md = c.markdown();
     say!("{}", md.trim_end());
@@ -183,6 +187,6 @@ pub(super) fn correlate(args: &CorrelateArgs, limits: &Limits) -> Result<()> {
         let arch = resolve(&name, &[]).map_err(anyhow::Error::msg)?;
         folder.write_text(&format!("arch-{name}.toml"), &arch.to_toml())?;
     }
-    let manifest = folder.finish(None)?;
-    crate::say::wrote(&args.out, &manifest)
+    let (manifest, replaced) = folder.finish_replacing(None)?;
+    crate::say::wrote(&args.out, &manifest, &replaced)
 }

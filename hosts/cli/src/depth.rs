@@ -11,7 +11,7 @@ use umbra_core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, RasterCo
 use umbra_sim::base::counters::Counters;
 use umbra_sim::glam::Mat4;
 use umbra_sim::input::limits::Limits;
-use umbra_sim::output::folder::OutputFolder;
+use umbra_sim::output::folder::{Claim, OutputFolder, RunKind};
 use umbra_sim::output::formats::{RawMap, write_npy};
 use umbra_sim::output::picture::write_preview;
 use umbra_sim::pass::light::{EmptyMap, RawMaps};
@@ -59,6 +59,9 @@ pub(super) struct DepthArgs {
     /// Output folder.
     #[arg(long, default_value = "out/depth")]
     pub(super) out: PathBuf,
+    /// Replace another command's results in --out deliberately.
+    #[arg(long, help = crate::REPLACE_HELP)]
+    pub(super) replace: bool,
 }
 
 impl Default for DepthArgs {
@@ -74,6 +77,7 @@ impl Default for DepthArgs {
             subpixel_bits: RasterConfig::DEFAULT_SUBPIXEL_BITS,
             no_max_z_cull: false,
             out: PathBuf::from("out/depth"),
+            replace: false,
         }
     }
 }
@@ -111,14 +115,14 @@ pub(super) fn depth(args: &DepthArgs, limits: &Limits) -> Result<()> {
     let (maps, counters) = RawMaps::render(config, format, &draws, Counters::new(&raster))?;
     let view = if args.matrix.is_some() { "--matrix" } else { "lights[0]" };
     EmptyMap::check(&counters.totals, view)?;
-    let mut folder = OutputFolder::create(&args.out)?;
+    let mut folder = OutputFolder::create(&args.out, Claim::new(RunKind::Depth).replacing(args.replace))?;
 
     write_maps(&mut folder, &maps, &scene)?;
     folder.write_text("tiles.md", &tile_report(&scene, &maps, &counters, args))?;
     folder.write_text("counters.json", &serde_json::to_string_pretty(&counters.totals)?)?;
-    let manifest = folder.finish(None)?;
+    let (manifest, replaced) = folder.finish_replacing(None)?;
     say!("{}", summary(&maps, &counters, scene.ignored()));
-    crate::say::wrote(&args.out, &manifest)
+    crate::say::wrote(&args.out, &manifest, &replaced)
 }
 
 fn write_maps(folder: &mut OutputFolder, maps: &RawMaps, scene: &Scene) -> Result<()> {

@@ -7,7 +7,7 @@ use crate::say::say;
 use anyhow::{Context, Result};
 use indicatif::ProgressBar;
 use umbra_sim::input::limits::Limits;
-use umbra_sim::output::folder::OutputFolder;
+use umbra_sim::output::folder::{Claim, OutputFolder, RunKind};
 use umbra_sim::render::RenderConfig;
 use umbra_sim::world::scene::Scene;
 
@@ -47,6 +47,9 @@ pub(super) struct PlanArgs {
     /// Output folder for plan.md and plan.json.
     #[arg(long, default_value = "out/plan")]
     pub(super) out: PathBuf,
+    /// Replace another command's results in --out deliberately.
+    #[arg(long, help = crate::REPLACE_HELP)]
+    pub(super) replace: bool,
 }
 
 /// A `--budget` value, read as the library (and Python) reads it.
@@ -98,6 +101,9 @@ pub(super) struct StudyArgs {
     /// Output folder.
     #[arg(long, default_value = "out/study")]
     pub(super) out: PathBuf,
+    /// Replace another command's results in --out deliberately.
+    #[arg(long, help = crate::REPLACE_HELP)]
+    pub(super) replace: bool,
 }
 
 #[derive(clap::Args, Debug)]
@@ -115,6 +121,9 @@ pub(super) struct MergeArgs {
     /// Output folder.
     #[arg(long, default_value = "out/study")]
     pub(super) out: PathBuf,
+    /// Replace another command's results in --out deliberately.
+    #[arg(long, help = crate::REPLACE_HELP)]
+    pub(super) replace: bool,
 }
 
 /// `umbra plan`.
@@ -141,7 +150,7 @@ pub(super) fn plan(args: &PlanArgs, limits: &Limits) -> Result<()> {
     if let Some(image) = &args.image {
         spec.image = image_size(image, limits)?;
     }
-    let mut folder = OutputFolder::create(&args.out)?;
+    let mut folder = OutputFolder::create(&args.out, Claim::new(RunKind::Plan).replacing(args.replace))?;
     let bar = configurations_bar("plan")?;
     let p = plan(&scene, &spec, &bar)?;
     bar.finish_and_clear();
@@ -150,8 +159,8 @@ pub(super) fn plan(args: &PlanArgs, limits: &Limits) -> Result<()> {
     folder.write_text("plan.md", &md)?;
     folder.write_text("plan.json", &serde_json::to_string_pretty(&p)?)?;
     folder.write_text(&format!("arch-{}.toml", spec.arch.name), &spec.arch.to_toml())?;
-    let manifest = folder.finish(None)?;
-    crate::say::wrote(&args.out, &manifest)
+    let (manifest, replaced) = folder.finish_replacing(None)?;
+    crate::say::wrote(&args.out, &manifest, &replaced)
 }
 
 /// A bar of configurations run, on stderr (hidden when it is not a
@@ -182,6 +191,7 @@ pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
         shard: args.shard.clone(),
         extremes: args.extremes,
         out: args.out.clone(),
+        replace: args.replace,
     };
     let prepared = request.prepare(limits, rayon::current_num_threads())?;
     // A bound past half the limit is said: the run is near the machine's edge.
@@ -201,7 +211,7 @@ pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
         Outcome::AlreadyComplete(m) => {
             say!("study: shard {} in {} is already complete and verified: not recomputed", m.shard, args.out.display());
         }
-        Outcome::Ran { rows, summary, extremes, .. } => {
+        Outcome::Ran { rows, summary, extremes, replaced, .. } => {
             if let Some(summary) = summary {
                 say!("{summary}");
             }
@@ -216,6 +226,7 @@ pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
                 args.out.display(),
                 args.out.join(umbra_sim::output::folder::MANIFEST).display()
             );
+            crate::say::replacements(&args.out, &replaced)?;
             // The wall time varies with the machine: not part of the results.
             eprintln!("study took {:.1} s", start.elapsed().as_secs_f64());
         }

@@ -75,6 +75,9 @@ struct LimitArgs {
     max_memory: Option<u64>,
 }
 
+/// The help of every command's `--replace`.
+const REPLACE_HELP: &str = "Replace what --out holds when it is another command's results or files no run of umbra wrote there (a new, empty or same-command folder needs no flag); files this run reads are kept, and none umbra did not write is deleted";
+
 /// A `--max-memory` value: bytes, or a size as architecture files write
 /// one (`16GiB`, `512MB`, `1TiB`: the one reader of sizes, [`Unit::Bytes`]).
 fn memory(text: &str) -> Result<u64, String> {
@@ -237,7 +240,7 @@ fn run() -> Result<()> {
             Ok(())
         }
         Some(Command::Merge(args)) => {
-            let n = umbra_sim::experiment::study::merge(&args.inputs, &args.out, limits)?;
+            let n = umbra_sim::experiment::study::merge_replacing(&args.inputs, (&args.out, args.replace), limits)?;
             say!("merged {n} rows into {}", args.out.display());
             Ok(())
         }
@@ -257,6 +260,7 @@ fn run() -> Result<()> {
                     maps: Vec::new(),
                     archs: cost::ArchArgs::default(),
                     out: PathBuf::from("out/study"),
+                    replace: false,
                 },
                 limits,
             )

@@ -7,7 +7,7 @@ use crate::say::say;
 use anyhow::Result;
 use indicatif::ProgressBar;
 use umbra_sim::input::limits::Limits;
-use umbra_sim::output::folder::OutputFolder;
+use umbra_sim::output::folder::{Claim, OutputFolder, RunKind};
 use umbra_sim::render::params::Kind;
 use umbra_sim::render::params::PARAMS;
 use umbra_sim::render::{Checked, RenderRequest, TruthSource};
@@ -28,11 +28,13 @@ pub(super) struct RenderArgs {
     pub(super) params: Vec<(&'static str, String)>,
     /// Output folder (default: the command's own).
     pub(super) out: Option<PathBuf>,
+    /// Replace another command's results in the output folder.
+    pub(super) replace: bool,
 }
 
 impl Default for RenderArgs {
     fn default() -> Self {
-        Self { scene: DEFAULT_SCENE.to_owned(), camera: None, params: Vec::new(), out: None }
+        Self { scene: DEFAULT_SCENE.to_owned(), camera: None, params: Vec::new(), out: None, replace: false }
     }
 }
 
@@ -55,6 +57,7 @@ impl clap::FromArgMatches for RenderArgs {
             camera: m.get_one::<String>("camera").cloned(),
             params,
             out: m.get_one::<PathBuf>("out").cloned(),
+            replace: m.get_flag("replace"),
         })
     }
 
@@ -112,6 +115,7 @@ impl clap::Args for RenderArgs {
                 .value_parser(clap::value_parser!(PathBuf))
                 .help("Output folder (default: the command's own, out/render, out/cost or out/trace, so that one command's run never replaces another's)"),
         )
+        .arg(Arg::new("replace").long("replace").action(ArgAction::SetTrue).help(crate::REPLACE_HELP))
     }
 
     fn augment_args_for_update(cmd: clap::Command) -> clap::Command {
@@ -152,13 +156,13 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
     let job = job(args, &scene, limits)?;
     let cfg = *job.config();
     let out = args.out.clone().unwrap_or_else(|| PathBuf::from("out/render"));
-    let mut folder = OutputFolder::create(&out)?;
+    let mut folder = OutputFolder::create(&out, Claim::new(RunKind::Render).replacing(args.replace))?;
     let progress =
         ProgressBar::new(u64::from(cfg.height) * scene.lights.len().max(1) as u64).with_message("reference rays");
     let r = umbra_sim::render::render(&job, TruthSource::Build(&progress))?;
     progress.finish_and_clear();
     umbra_sim::render::files::write_render(&mut folder, &job, &r)?;
-    let manifest = folder.finish(None)?;
+    let (manifest, replaced) = folder.finish_replacing(None)?;
     let m = r.frame_metrics();
     let t = &r.camera_events.totals;
     say!("render `{}`: {}", scene.name, cfg.describe());
@@ -244,5 +248,5 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
         t.lookups_culled,
         t.map_read_bytes
     );
-    crate::say::wrote(&out, &manifest)
+    crate::say::wrote(&out, &manifest, &replaced)
 }

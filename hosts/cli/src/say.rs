@@ -8,7 +8,7 @@ use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use anyhow::{Result, anyhow};
-use umbra_sim::output::folder::{MANIFEST, RunManifest};
+use umbra_sim::output::folder::{MANIFEST, Replaced, RunManifest};
 
 /// Set once stdout is found closed.
 static CLOSED: AtomicBool = AtomicBool::new(false);
@@ -41,14 +41,41 @@ macro_rules! say {
 }
 pub(crate) use say;
 
-/// Print the files a finished folder holds, its manifest last.
+/// Print the files a finished folder holds, its manifest last, and what
+/// the run replaced there.
 ///
 /// # Errors
 /// As [`line()`].
-pub(crate) fn wrote(dir: &Path, manifest: &RunManifest) -> Result<()> {
+pub(crate) fn wrote(dir: &Path, manifest: &RunManifest, replaced: &Replaced) -> Result<()> {
     for f in &manifest.files {
         say!("wrote {}", dir.join(&f.path).display());
     }
     say!("wrote {}", dir.join(MANIFEST).display());
+    replacements(dir, replaced)
+}
+
+/// Say what a run replaced in `dir`: the earlier run's files it removed
+/// or wrote anew, and files no run wrote that it wrote over.
+///
+/// # Errors
+/// As [`line()`].
+pub(crate) fn replacements(dir: &Path, replaced: &Replaced) -> Result<()> {
+    if let Some(command) = &replaced.command
+        && !(replaced.removed.is_empty() && replaced.rewritten.is_empty())
+    {
+        let removed = if replaced.removed.is_empty() {
+            String::new()
+        } else {
+            format!("; removed {}", replaced.removed.join(", "))
+        };
+        say!(
+            "replaced in {}: {} file(s) of the earlier `{command}`{removed}",
+            dir.display(),
+            replaced.rewritten.len() + replaced.removed.len()
+        );
+    }
+    if !replaced.overwritten.is_empty() {
+        say!("replaced in {} (--replace): {}, which no run of umbra wrote", dir.display(), replaced.overwritten.join(", "));
+    }
     Ok(())
 }

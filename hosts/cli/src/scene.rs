@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::Subcommand;
 use umbra_sim::input::limits::Limits;
-use umbra_sim::output::folder::OutputFolder;
+use umbra_sim::output::folder::{Claim, OutputFolder, RunKind};
 use umbra_sim::world::gltf::City;
 
 use crate::say::say;
@@ -37,8 +37,11 @@ pub(super) struct CityArgs {
     #[arg(long, default_value_t = City::SMALL.storeys)]
     storeys: u32,
     /// Output folder.
-    #[arg(long, default_value = "out/city")]
+    #[arg(long, default_value = "out/scene-city")]
     out: PathBuf,
+    /// Replace another command's results in --out deliberately.
+    #[arg(long, help = crate::REPLACE_HELP)]
+    replace: bool,
 }
 
 /// Run `umbra scene …`.
@@ -48,16 +51,16 @@ pub(super) fn scene(command: &SceneCommand, limits: &Limits) -> Result<()> {
         SceneCommand::City(args) => {
             let city = City { side: args.side, columns: args.columns, storeys: args.storeys };
             let bytes = city.glb()?;
-            let mut folder = OutputFolder::create(&args.out)?;
+            let mut folder = OutputFolder::create(&args.out, Claim::new(RunKind::Scene).replacing(args.replace))?;
             let path = folder.write("city.glb", &bytes)?;
-            folder.finish(None)?;
+            let (_, replaced) = folder.finish_replacing(None)?;
             say!(
                 "a city of {0} × {0} buildings, {1} triangles: wrote {2}",
                 city.side,
                 city.triangles(),
                 path.display()
             );
-            Ok(())
+            crate::say::replacements(&args.out, &replaced)
         }
     }
 }

@@ -434,6 +434,7 @@ fn a_studys_stated_bound_holds_its_peak_with_a_stated_margin() {
             shard: None,
             extremes: false,
             out: d.join("unused"),
+            replace: false,
         };
         let prepared = request.prepare(&umbra_sim::Limits::DEFAULT, 1).expect("a study");
         let (renders, bound) = prepared.spec.memory(1).expect("fits");

@@ -131,7 +131,10 @@ fn no_stale_output_survives() {
     assert!(umbra(&["depth", "--map", "64", "--unit", "dual", "--out", text(&out)]).status.success());
     assert!(out.join("z2.png").exists() && out.join("z2.npy").exists());
     std::fs::write(out.join("notes.txt"), "mine").expect("a user's file");
-    assert!(umbra(&["depth", "--map", "64", "--unit", "single", "--out", text(&out)]).status.success());
+    let single = ["depth", "--map", "64", "--unit", "single", "--out", text(&out)];
+    fails_saying(&umbra(&single), &["notes.txt", "--replace"]);
+    assert!(out.join("z2.png").exists(), "a refused run removed a file");
+    assert!(umbra(&[&single[..], &["--replace"]].concat()).status.success());
     assert!(!out.join("z2.png").exists() && !out.join("z2.npy").exists(), "stale z2");
     assert!(out.join("notes.txt").exists(), "a file Umbra did not write was removed");
     RunManifest::verify(&out, u64::MAX).expect("complete");
@@ -144,6 +147,42 @@ fn no_stale_output_survives() {
     assert!(!study.join("summary.md").exists() && !study.join("pareto-table-and-sphere-time.png").exists());
     let m = RunManifest::verify(&study, u64::MAX).expect("complete");
     assert_eq!(m.study.and_then(|s| s.get("shard").cloned()), Some(serde_json::json!("0/2")));
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// No run deletes its input or another command's results: a render of
+/// the city `scene city` wrote, into the same folder, is refused (naming
+/// the file and `--replace`) and with `--replace` keeps the model; a study
+/// into a render's folder and a render into a study's are refused, and
+/// nothing is deleted.
+#[test]
+fn no_run_loses_its_input_or_another_commands_results() {
+    let d = dir("inputs");
+    let city = d.join("scene-city");
+    let o = umbra(&["scene", "city", "--side", "2", "--columns", "2", "--storeys", "2", "--out", text(&city)]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let model = city.join("city.glb");
+    let glb = std::fs::read(&model).expect("the model");
+    let small = ["--width", "96", "--height", "54", "--map", "128", "--reference-rays", "1"];
+    let render = |scene: &Path, out: &Path, more: &[&str]| {
+        umbra(&[&["render", text(scene)][..], &small[..], &["--out", text(out)], more].concat())
+    };
+    fails_saying(&render(&model, &city, &[]), &["city.glb", "a generated scene", "umbra scene city", "--replace"]);
+    let o = render(&model, &city, &["--replace"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(std::fs::read(&model).expect("kept"), glb, "the render's own input");
+    let o = render(&model, &city, &[]);
+    assert!(o.status.success(), "a render again, its input beside it: {}", String::from_utf8_lossy(&o.stderr));
+    assert!(model.exists() && city.join("shaded.png").exists());
+    let sweep = tiny_sweep(&d, r#"["table-and-sphere"]"#);
+    let study = d.join("study");
+    assert!(umbra(&["study", "--sweep", text(&sweep), "--out", text(&study)]).status.success());
+    let before = RunManifest::verify(&study, u64::MAX).expect("complete");
+    let table = Path::new("table-and-sphere");
+    fails_saying(&render(table, &study, &[]), &["a study", "results.csv", "--replace"]);
+    assert_eq!(RunManifest::verify(&study, u64::MAX).expect("untouched"), before);
+    fails_saying(&umbra(&["study", "--sweep", text(&sweep), "--out", text(&city)]), &["a render", "--replace"]);
+    RunManifest::verify(&city, u64::MAX).expect("the render's folder untouched");
     let _ = std::fs::remove_dir_all(&d);
 }
 

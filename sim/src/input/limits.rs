@@ -177,6 +177,7 @@ impl Limits {
         #[cfg(unix)]
         std::os::unix::fs::OpenOptionsExt::custom_flags(&mut options, libc::O_NONBLOCK);
         let file = options.open(path)?;
+        super::reads::note(path);
         let meta = file.metadata()?;
         if !meta.is_file() {
             return Err(FileError::NotAFile);

@@ -11,6 +11,16 @@
 //! run may have left, so a killed run's folder is visibly incomplete and
 //! the next run still knows what to clean.
 //!
+//! A folder holds one command's results. A run opens a folder that is
+//! new, empty, or holds an earlier run of its own [`RunKind`] and nothing
+//! else; a folder holding another command's results, or files no
+//! manifest of its own lists, is refused, naming them, unless the run is
+//! told to replace them ([`Claim::replace`]: the `umbra` command's
+//! `--replace`). Even then it never deletes a file no run of Umbra wrote,
+//! nor a file this process read ([`crate::input::reads`]): a render whose
+//! model lies in its output folder keeps it, and a run never writes over
+//! its own input. [`OutputFolder::replaced`] names what a run replaces.
+//!
 //! The folder trusts nothing it did not write and verify: a file an
 //! earlier record lists is removed only if its path lies inside the folder
 //! without passing through a symbolic link and its contents still hash to
@@ -21,16 +31,20 @@
 //! created as the process's umask allows (as `touch` would), not private.
 //!
 //! ```
-//! use umbra_sim::output::folder::{OutputFolder, RunManifest};
+//! use umbra_sim::output::folder::{Claim, OutputFolder, RunKind, RunManifest};
 //! let scratch = tempfile::tempdir()?;
 //! let out = scratch.path().join("out");
-//! let mut folder = OutputFolder::create(&out)?;
+//! let mut folder = OutputFolder::create(&out, Claim::new(RunKind::Render))?;
 //! folder.write("notes.txt", b"hello")?;
 //! assert!(!out.join("manifest.json").exists(), "not yet finished");
 //! let manifest = folder.finish(None)?;
 //! assert_eq!(manifest.files.len(), 1);
 //! // The folder as it is on disk, checked against its manifest.
 //! assert_eq!(RunManifest::verify(&out, u64::MAX)?, manifest);
+//! // A study into the render's folder is refused, and nothing is deleted.
+//! let refused = OutputFolder::create(&out, Claim::new(RunKind::Study)).unwrap_err();
+//! assert!(refused.to_string().contains("--replace"), "{refused}");
+//! assert!(out.join("notes.txt").exists());
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
@@ -61,6 +75,112 @@ pub struct FileRecord {
     pub sha256: String,
 }
 
+/// The results a folder holds: which command wrote them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+#[non_exhaustive]
+pub enum RunKind {
+    /// Light-view maps (`umbra depth`).
+    Depth,
+    /// A render against the reference (`umbra render`).
+    Render,
+    /// Costs on architectures (`umbra cost`).
+    Cost,
+    /// A timeline (`umbra trace`).
+    Trace,
+    /// The model against measured hardware (`umbra correlate`).
+    Correlation,
+    /// A study, a shard of one, or shards merged (`umbra study`, `umbra merge`).
+    Study,
+    /// A plan (`umbra plan`).
+    Plan,
+    /// A generated scene (`umbra scene city`).
+    Scene,
+}
+
+impl RunKind {
+    /// Every kind.
+    pub const ALL: [Self; 8] =
+        [Self::Depth, Self::Render, Self::Cost, Self::Trace, Self::Correlation, Self::Study, Self::Plan, Self::Scene];
+
+    /// What a folder of this kind holds, as a message names it.
+    #[must_use]
+    pub const fn describe(self) -> &'static str {
+        match self {
+            Self::Depth => "light-view maps",
+            Self::Render => "a render",
+            Self::Cost => "a cost report",
+            Self::Trace => "a trace",
+            Self::Correlation => "a correlation",
+            Self::Study => "a study",
+            Self::Plan => "a plan",
+            Self::Scene => "a generated scene",
+        }
+    }
+
+    /// The `umbra` subcommands that write it.
+    const fn words(self) -> &'static [&'static str] {
+        match self {
+            Self::Depth => &["depth"],
+            Self::Render => &["render"],
+            Self::Cost => &["cost"],
+            Self::Trace => &["trace"],
+            Self::Correlation => &["correlate"],
+            Self::Study => &["study", "merge"],
+            Self::Plan => &["plan"],
+            Self::Scene => &["scene"],
+        }
+    }
+
+    /// The kind a manifest written before manifests named it holds: the
+    /// first word of its command line that is a subcommand's; `None` for
+    /// the bare `umbra` (which writes maps, a render and a study).
+    fn of_command(command: &str) -> Option<Self> {
+        command.split_whitespace().skip(1).find_map(|w| Self::ALL.into_iter().find(|k| k.words().contains(&w)))
+    }
+}
+
+/// What a run asks of its output folder.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Claim {
+    /// The results it writes.
+    pub kind: RunKind,
+    /// Replace another command's results, or files no run of Umbra
+    /// wrote, deliberately (`--replace`). Files it does not rewrite are
+    /// removed only if an earlier run listed them as it wrote them; files
+    /// no run wrote, and files this process read, are never removed.
+    pub replace: bool,
+}
+
+impl Claim {
+    /// A run of `kind` that replaces nothing of another's.
+    #[must_use]
+    pub const fn new(kind: RunKind) -> Self {
+        Self { kind, replace: false }
+    }
+
+    /// The same, replacing what is there when `replace`.
+    #[must_use]
+    pub const fn replacing(self, replace: bool) -> Self {
+        Self { replace, ..self }
+    }
+}
+
+/// What a run replaces in its folder: the earlier run's files, and the
+/// files no run listed that `--replace` let it write over.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Replaced {
+    /// The earlier run's command line, when the folder held a run.
+    pub command: Option<String>,
+    /// The files the earlier run listed that this one removed (it did not
+    /// rewrite them).
+    pub removed: Vec<String>,
+    /// The files the earlier run listed that this one wrote anew.
+    pub rewritten: Vec<String>,
+    /// Files no run listed that this one wrote over (only with `--replace`).
+    pub overwritten: Vec<String>,
+}
+
 /// `manifest.json`: what made the folder and every file in it.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -69,6 +189,10 @@ pub struct RunManifest {
     pub umbra_version: String,
     /// The command line.
     pub command: String,
+    /// The results it holds (absent in manifests of versions before 0.1.1:
+    /// read from the command line).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kind: Option<RunKind>,
     /// Every file the run wrote, in the order written.
     pub files: Vec<FileRecord>,
     /// The study's own record (sweep, shard, row counts), for `merge`.
@@ -110,6 +234,12 @@ struct Pending {
     /// Files an earlier or the current run may have left, each with the
     /// hash of the contents that run wrote (or was about to write).
     files: Vec<FileRecord>,
+    /// The results the run under way writes, and the command line (absent
+    /// in records of earlier versions).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    kind: Option<RunKind>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    command: Option<String>,
 }
 
 /// The folder's lock file: held (an OS lock) for the whole run.
@@ -119,10 +249,16 @@ pub(crate) const LOCK: &str = ".umbra-lock";
 #[derive(Debug)]
 pub struct OutputFolder {
     dir: PathBuf,
+    /// What this run writes.
+    claim: Claim,
     /// Files earlier runs listed, with the hashes they recorded (removed at
     /// the end unless rewritten, and only if they still match).
     earlier: Vec<FileRecord>,
+    /// The earlier run's command line.
+    earlier_command: Option<String>,
     written: Vec<FileRecord>,
+    /// Files no run listed that this one wrote over (with `--replace`).
+    overwritten: Vec<String>,
     /// The lock, released when the folder is dropped.
     _lock: std::fs::File,
     /// The permissions a new file gets under the process's umask.
@@ -224,17 +360,93 @@ fn read_small_limit(path: &Path, max: u64) -> std::io::Result<Vec<u8>> {
     Ok(bytes)
 }
 
-/// The files an earlier run's record in `file` lists, with their hashes,
-/// if it is one of ours; anything else lists nothing (and so is never
-/// acted on).
-fn listed(file: &Path, dir: &Path) -> Vec<FileRecord> {
-    let Ok(bytes) = read_small(file) else { return Vec::new() };
-    let files = if file.ends_with(MANIFEST) {
-        serde_json::from_slice::<RunManifest>(&bytes).map(|m| m.files)
-    } else {
-        serde_json::from_slice::<Pending>(&bytes).map(|p| p.files)
-    };
-    files.unwrap_or_default().into_iter().filter(|f| checked_name(dir, &f.path).is_ok()).collect()
+/// What earlier runs left in a folder: the files their records list,
+/// with their hashes, the results they hold and the command that wrote
+/// them, as far as the records are ours; anything else lists nothing (and
+/// so is never acted on).
+#[derive(Debug, Default)]
+struct Earlier {
+    files: Vec<FileRecord>,
+    kind: Option<RunKind>,
+    command: Option<String>,
+}
+
+impl Earlier {
+    /// The records in `dir`: its manifest, then its pending record.
+    fn read(dir: &Path) -> Self {
+        let mut earlier = Self::default();
+        if let Ok(m) = read_small(&dir.join(MANIFEST)).and_then(|b| Ok(serde_json::from_slice::<RunManifest>(&b)?)) {
+            earlier.kind = m.kind.or_else(|| RunKind::of_command(&m.command));
+            earlier.command = Some(m.command);
+            earlier.files = m.files;
+        }
+        if let Ok(p) = read_small(&dir.join(PENDING)).and_then(|b| Ok(serde_json::from_slice::<Pending>(&b)?)) {
+            earlier.kind = earlier.kind.or(p.kind);
+            earlier.command = earlier.command.or(p.command);
+            for f in p.files {
+                if !earlier.files.contains(&f) {
+                    earlier.files.push(f);
+                }
+            }
+        }
+        earlier.files.retain(|f| checked_name(dir, &f.path).is_ok());
+        earlier
+    }
+
+    /// Whether `name` (`/`-separated, inside the folder) is a file the
+    /// records list or a folder one of them lies in.
+    fn covers(&self, name: &str) -> bool {
+        self.files.iter().any(|f| f.path == name || f.path.strip_prefix(name).is_some_and(|r| r.starts_with('/')))
+    }
+}
+
+/// The entries of `dir` (its sub-folders too, where the records list a
+/// file inside them) that no run of Umbra wrote: not the folder's own
+/// records, lock or temporaries, not listed by `earlier`, and not a file
+/// this process read. At most `max` entries are looked at.
+fn foreign(dir: &Path, earlier: &Earlier, max: usize) -> Vec<String> {
+    let mut found = Vec::new();
+    let mut stack = vec![String::new()];
+    let mut looked = 0usize;
+    while let Some(prefix) = stack.pop() {
+        let Ok(entries) = std::fs::read_dir(dir.join(&prefix)) else { continue };
+        let mut names: Vec<(String, bool)> = entries
+            .flatten()
+            .map(|e| {
+                let name = e.file_name().to_string_lossy().into_owned();
+                (name, e.file_type().is_ok_and(|t| t.is_dir()))
+            })
+            .collect();
+        names.sort();
+        for (name, is_dir) in names {
+            looked += 1;
+            if looked > max {
+                return found;
+            }
+            let own = prefix.is_empty() && [MANIFEST, PENDING, LOCK].contains(&name.as_str());
+            if own || (name.starts_with(".umbra-") && name.ends_with(".tmp")) {
+                continue;
+            }
+            let path = format!("{prefix}{name}");
+            if earlier.files.iter().any(|f| f.path == path) || crate::input::reads::was_read(&dir.join(&path)) {
+                continue;
+            }
+            if is_dir && earlier.covers(&path) {
+                stack.push(format!("{path}/"));
+            } else {
+                found.push(path);
+            }
+        }
+    }
+    found
+}
+
+/// `names` as a message lists them: the first few, and how many more.
+fn list(names: &[String]) -> String {
+    const SHOWN: usize = 4;
+    let shown: Vec<&str> = names.iter().take(SHOWN).map(String::as_str).collect();
+    let more = names.len().saturating_sub(SHOWN);
+    if more > 0 { format!("{} and {more} more", shown.join(", ")) } else { shown.join(", ") }
 }
 
 /// Whether `name` lies inside `dir` with no symbolic link on the way: each
@@ -282,12 +494,15 @@ fn lock(dir: &Path) -> Result<std::fs::File, OutputError> {
 }
 
 impl OutputFolder {
-    /// Open `dir` for a run: create it, prove it writable, and mark it
-    /// under way (its `manifest.json` is gone until [`finish`](Self::finish)).
+    /// Open `dir` for a run that writes what `claim` says: create it,
+    /// prove it writable, and mark it under way (its `manifest.json` is
+    /// gone until [`finish`](Self::finish)).
     ///
     /// # Errors
-    /// `OutputError::Io` or `OutputError::Folder` naming the folder.
-    pub fn create(dir: &Path) -> Result<Self, OutputError> {
+    /// `OutputError::Io` or `OutputError::Folder` naming the folder; a
+    /// folder that holds another command's results, or files no run of
+    /// Umbra wrote, is refused (naming them) unless `claim.replace`.
+    pub fn create(dir: &Path, claim: Claim) -> Result<Self, OutputError> {
         if std::fs::symlink_metadata(dir).is_ok_and(|m| m.file_type().is_symlink()) && !dir.exists() {
             return Err(problem(dir, "is a symbolic link to nothing (dangling, or a loop): give a folder"));
         }
@@ -296,7 +511,16 @@ impl OutputFolder {
         }
         let absent = std::fs::symlink_metadata(dir).is_err();
         std::fs::create_dir_all(dir).map_err(io(dir))?;
+        let had_lock = dir.join(LOCK).exists();
         let lock = lock(dir)?;
+        let earlier = Earlier::read(dir);
+        if let Err(e) = Self::admit(dir, claim, &earlier) {
+            drop(lock);
+            if !had_lock {
+                let _ = std::fs::remove_file(dir.join(LOCK));
+            }
+            return Err(e);
+        }
         let manifest = dir.join(MANIFEST);
         let before = Before {
             absent,
@@ -314,16 +538,13 @@ impl OutputFolder {
         let _ = std::fs::remove_file(&probe_path);
         #[cfg_attr(not(unix), allow(unused_variables))]
         let metadata = written.map_err(io(dir))?;
-        let mut earlier = listed(&dir.join(MANIFEST), dir);
-        for f in listed(&dir.join(PENDING), dir) {
-            if !earlier.contains(&f) {
-                earlier.push(f);
-            }
-        }
         let folder = Self {
             dir: dir.to_owned(),
-            earlier,
+            claim,
+            earlier: earlier.files,
+            earlier_command: earlier.command,
             written: Vec::new(),
+            overwritten: Vec::new(),
             _lock: lock,
             #[cfg(unix)]
             mode: std::os::unix::fs::PermissionsExt::mode(&metadata.permissions()) & 0o777,
@@ -338,6 +559,53 @@ impl OutputFolder {
         Ok(folder)
     }
 
+    /// Whether a run of `claim` may write into `dir`, which holds what
+    /// `earlier` records: a folder of another command's results, one with
+    /// files no run of Umbra wrote, and one whose earlier run wrote a file
+    /// this process read (the run would write it again) are refused,
+    /// the first two unless the claim replaces them.
+    fn admit(dir: &Path, claim: Claim, earlier: &Earlier) -> Result<(), OutputError> {
+        let names: Vec<String> = earlier.files.iter().map(|f| f.path.clone()).collect();
+        let by = earlier.command.as_deref().map_or_else(String::new, |c| format!(", written by `{c}`"));
+        let inputs: Vec<String> =
+            names.iter().filter(|n| crate::input::reads::was_read(&dir.join(n))).cloned().collect();
+        if !inputs.is_empty() && earlier.kind == Some(claim.kind) {
+            return Err(problem(
+                dir,
+                format!(
+                    "holds {}{by}, whose file {} this run reads and would write again: copy it elsewhere first, or choose another --out",
+                    claim.kind.describe(),
+                    list(&inputs)
+                ),
+            ));
+        }
+        if claim.replace {
+            return Ok(());
+        }
+        if let Some(kind) = earlier.kind.filter(|&k| k != claim.kind && !names.is_empty()) {
+            return Err(problem(
+                dir,
+                format!(
+                    "holds {}{by} ({}), not {}: choose another --out, or add --replace to replace it deliberately (files this run reads are kept)",
+                    kind.describe(),
+                    list(&names),
+                    claim.kind.describe()
+                ),
+            ));
+        }
+        let foreign = foreign(dir, earlier, 10_000);
+        if !foreign.is_empty() {
+            return Err(problem(
+                dir,
+                format!(
+                    "holds files no run of umbra wrote here ({}): choose another --out (a new or empty folder), or add --replace to write beside them (a file of the same name is replaced; none is deleted)",
+                    list(&foreign)
+                ),
+            ));
+        }
+        Ok(())
+    }
+
     /// The folder.
     #[must_use]
     pub(crate) fn dir(&self) -> &Path {
@@ -348,7 +616,12 @@ impl OutputFolder {
         let mut files = self.earlier.clone();
         files.extend(self.written.iter().filter(|f| !self.earlier.contains(f)).cloned());
         // Strings and numbers always serialise.
-        let text = serde_json::to_string_pretty(&Pending { files }).unwrap_or_default();
+        let pending = Pending {
+            files,
+            kind: Some(self.claim.kind),
+            command: Some(super::provenance::command_line()),
+        };
+        let text = serde_json::to_string_pretty(&pending).unwrap_or_default();
         self.atomic(&self.dir.join(PENDING), text.as_bytes())
     }
 
@@ -373,6 +646,13 @@ impl OutputFolder {
             return Err(problem(&self.dir, format!("`{name}` is the folder's own record")));
         }
         let path = self.dir.join(relative);
+        if crate::input::reads::was_read(&path) {
+            return Err(problem(&path, "is a file this run read: a run never writes over its input; choose another --out"));
+        }
+        let listed = self.earlier.iter().chain(&self.written).any(|f| f.path == name);
+        if !listed && std::fs::symlink_metadata(&path).is_ok() && !self.overwritten.iter().any(|n| n == name) {
+            self.overwritten.push(name.to_owned());
+        }
         let record = FileRecord { path: name.to_owned(), bytes: bytes.len() as u64, sha256: sha256(bytes) };
         self.written.retain(|f| f.path != name);
         self.written.push(record);
@@ -401,27 +681,51 @@ impl OutputFolder {
     /// # Errors
     /// `OutputError::Io` naming the file that could not be removed or
     /// written.
-    pub fn finish(mut self, study: Option<serde_json::Value>) -> Result<RunManifest, OutputError> {
+    pub fn finish(self, study: Option<serde_json::Value>) -> Result<RunManifest, OutputError> {
+        self.finish_replacing(study).map(|(manifest, _)| manifest)
+    }
+
+    /// [`finish`](Self::finish), and what the run replaced: the earlier
+    /// run's files it removed or wrote anew, and the files no run listed
+    /// that it wrote over.
+    ///
+    /// # Errors
+    /// As [`finish`](Self::finish).
+    pub fn finish_replacing(mut self, study: Option<serde_json::Value>) -> Result<(RunManifest, Replaced), OutputError> {
+        let mut replaced = Replaced {
+            command: self.earlier_command.clone(),
+            overwritten: std::mem::take(&mut self.overwritten),
+            ..Replaced::default()
+        };
         for old in &self.earlier {
             if self.written.iter().any(|f| f.path == old.path) {
+                if !replaced.rewritten.contains(&old.path) {
+                    replaced.rewritten.push(old.path.clone());
+                }
                 continue;
             }
             let name = Path::new(&old.path);
             let path = self.dir.join(name);
             // Only a regular file inside the folder, reached through no link,
-            // whose contents are still what a run of ours wrote.
-            if !plainly_inside(&self.dir, name) || !std::fs::symlink_metadata(&path).is_ok_and(|m| m.is_file()) {
+            // whose contents are still what a run of ours wrote, and which
+            // this process did not read.
+            if !plainly_inside(&self.dir, name)
+                || !std::fs::symlink_metadata(&path).is_ok_and(|m| m.is_file())
+                || crate::input::reads::was_read(&path)
+            {
                 continue;
             }
             let ours = read_small_limit(&path, old.bytes)
                 .is_ok_and(|data| data.len() as u64 == old.bytes && sha256(&data) == old.sha256);
             if ours {
                 std::fs::remove_file(&path).map_err(io(&path))?;
+                replaced.removed.push(old.path.clone());
             }
         }
         let manifest = RunManifest {
             umbra_version: super::provenance::version(),
             command: super::provenance::command_line(),
+            kind: Some(self.claim.kind),
             files: self.written.clone(),
             study,
         };
@@ -431,7 +735,7 @@ impl OutputFolder {
         let pending = self.dir.join(PENDING);
         std::fs::remove_file(&pending).map_err(io(&pending))?;
         self.finished = true;
-        Ok(manifest)
+        Ok((manifest, replaced))
     }
 }
 

@@ -245,6 +245,7 @@ fn one_value_under_two_spellings_is_refused() {
         shard: None,
         extremes: false,
         out: "target/unused".into(),
+        replace: false,
     };
     let e = request(vec!["dram.bandwidth=3GB/s".into()]).prepare(&Limits::DEFAULT, 1).expect_err("swept key");
     assert!(e.to_string().contains("arch_axes vary `dram.bandwidth`"), "{e}");

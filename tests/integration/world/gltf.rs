@@ -471,7 +471,7 @@ fn the_bundled_city_is_the_generated_one() {
     use umbra::sim::world::gltf::City;
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/city.glb");
     let shipped = std::fs::read(&path).expect("examples/city.glb");
-    assert!(shipped == City::SMALL.glb().expect("generates"), "regenerate it: cargo umbra scene city --out out/city");
+    assert!(shipped == City::SMALL.glb().expect("generates"), "regenerate it: cargo umbra scene city --out out/scene-city");
     let scene = Scene::open(path.to_str().expect("utf-8"), &Limits::DEFAULT).expect("opens");
     let buildings: Vec<_> = scene.objects.iter().filter(|o| o.name.starts_with("building")).collect();
     assert_eq!(buildings.len(), 9);

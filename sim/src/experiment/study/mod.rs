@@ -52,7 +52,7 @@ use shards::jsonl;
 use shards::write_run;
 pub use shards::{Manifest, ShardFolder, ShardProblem, ShardState, ShardStatus};
 pub(crate) use shards::{already_complete, finish, write_partial};
-pub use shards::{merge, read_rows, status};
+pub use shards::{merge, merge_replacing, read_rows, status};
 pub(crate) use summary::write_outputs;
 pub use summary::{summary, table};
 #[cfg(test)]

@@ -18,7 +18,7 @@ use super::{
 };
 use crate::cost::arch::Arch;
 use crate::input::limits::Limits;
-use crate::output::folder::OutputFolder;
+use crate::output::folder::{Claim, OutputFolder, Replaced, RunKind};
 use crate::output::provenance::hash;
 
 /// The axes a host replaces in a sweep file, each empty (or `None`) to
@@ -82,6 +82,9 @@ pub struct Request {
     pub extremes: bool,
     /// The output folder.
     pub out: PathBuf,
+    /// Replace another command's results in `out`, or files no run of
+    /// Umbra wrote there, deliberately ([`Claim::replace`]).
+    pub replace: bool,
 }
 
 /// A request checked: the sweep, every axis it replaces, the shard and
@@ -99,6 +102,8 @@ pub struct Prepared {
     pub extremes: bool,
     /// The output folder.
     pub out: PathBuf,
+    /// Replace what is in it ([`Request::replace`]).
+    pub replace: bool,
 }
 
 /// What a prepared study did.
@@ -117,6 +122,8 @@ pub enum Outcome {
         summary: Option<String>,
         /// The extremes' report, when asked for.
         extremes: Option<String>,
+        /// What it replaced in its folder.
+        replaced: Replaced,
     },
 }
 
@@ -276,7 +283,7 @@ impl Request {
         }
         let shard = self.shard.as_deref().map(Shard::parse).transpose()?.unwrap_or(Shard::ALL);
         spec.renders_at_once(threads)?;
-        Ok(Prepared { file, spec, shard, extremes: self.extremes, out: self.out.clone() })
+        Ok(Prepared { file, spec, shard, extremes: self.extremes, out: self.out.clone(), replace: self.replace })
     }
 }
 
@@ -294,7 +301,7 @@ impl Prepared {
         if shard != Shard::ALL && already_complete(out, &expected, &spec.limits) {
             return Ok(Outcome::AlreadyComplete(expected));
         }
-        let mut folder = OutputFolder::create(out)?;
+        let mut folder = OutputFolder::create(out, Claim::new(RunKind::Study).replacing(self.replace))?;
         let rows = run(spec, shard, progress)?;
         let manifest = Manifest::new(spec, shard, rows.len());
         if shard == Shard::ALL {
@@ -308,8 +315,8 @@ impl Prepared {
             folder.write_text(&format!("arch-{}.toml", arch.name), &arch.to_toml())?;
         }
         let extremes = if self.extremes { Some(extremes::run_all(&mut folder, &spec.limits)?) } else { None };
-        finish(folder, &manifest)?;
+        let (_, replaced) = finish(folder, &manifest)?;
         let summary = (shard == Shard::ALL).then(|| summary(&rows, &manifest));
-        Ok(Outcome::Ran { rows, manifest, summary, extremes })
+        Ok(Outcome::Ran { rows, manifest, summary, extremes, replaced })
     }
 }

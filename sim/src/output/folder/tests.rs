@@ -4,7 +4,10 @@
 
 use std::path::Path;
 
-use super::{LOCK, MANIFEST, OutputFolder, PENDING, RunManifest, sha256, write_all_synced};
+use super::{Claim, LOCK, MANIFEST, OutputFolder, PENDING, RunKind, RunManifest, sha256, write_all_synced};
+
+/// A render's claim on its folder.
+const RENDER: Claim = Claim::new(RunKind::Render);
 
 /// A fresh directory of this test, kept for the test to remove.
 fn scratch(name: &str) -> std::path::PathBuf {
@@ -34,7 +37,7 @@ fn a_full_disk_is_an_error() {
 #[test]
 fn names_outside_the_folder_are_refused() {
     let base = scratch("folder-names");
-    let mut f = OutputFolder::create(&base.join("out")).expect("folder");
+    let mut f = OutputFolder::create(&base.join("out"), RENDER).expect("folder");
     for bad in ["../escaped.txt", "/tmp/escaped.txt", "a/../../b", "", "a\\b", MANIFEST, PENDING] {
         assert!(f.write(bad, b"x").is_err(), "`{bad}` accepted");
     }
@@ -50,12 +53,14 @@ fn names_outside_the_folder_are_refused() {
 fn no_stale_file_survives_and_foreign_files_are_kept() {
     let base = scratch("folder-stale");
     let dir = base.join("out");
-    let mut first = OutputFolder::create(&dir).expect("folder");
+    let mut first = OutputFolder::create(&dir, RENDER).expect("folder");
     first.write("z1.png", b"one").and_then(|_| first.write("z2.png", b"two")).expect("written");
     first.finish(None).expect("finished");
     std::fs::write(dir.join("notes.txt"), "mine").expect("a user's file");
     std::fs::write(base.join("outside.txt"), "mine too").expect("a file beside the folder");
-    let mut second = OutputFolder::create(&dir).expect("folder");
+    let err = OutputFolder::create(&dir, RENDER).expect_err("a file no run wrote");
+    assert!(err.to_string().contains("notes.txt") && err.to_string().contains("--replace"), "{err}");
+    let mut second = OutputFolder::create(&dir, RENDER.replacing(true)).expect("folder");
     second.write("z1.png", b"ONE").expect("written");
     let m = second.finish(None).expect("finished");
     assert_eq!(names(&dir), vec!["manifest.json", "notes.txt", "z1.png"]);
@@ -64,7 +69,7 @@ fn no_stale_file_survives_and_foreign_files_are_kept() {
     // A manifest that lists a path outside the folder is never acted on.
     let forged = std::fs::read_to_string(dir.join(MANIFEST)).expect("manifest").replace("z1.png", "../outside.txt");
     std::fs::write(dir.join(MANIFEST), forged).expect("forged");
-    OutputFolder::create(&dir).and_then(|f| f.finish(None)).expect("a run");
+    OutputFolder::create(&dir, RENDER.replacing(true)).and_then(|f| f.finish(None)).expect("a run");
     assert!(base.join("outside.txt").exists(), "a file outside the folder was removed");
     assert!(dir.join("notes.txt").exists(), "a file Umbra did not write was removed");
     let _ = std::fs::remove_dir_all(&base);
@@ -77,17 +82,17 @@ fn no_stale_file_survives_and_foreign_files_are_kept() {
 fn an_unfinished_run_is_visibly_incomplete() {
     let base = scratch("folder-killed");
     let dir = base.join("out");
-    let mut done = OutputFolder::create(&dir).expect("folder");
+    let mut done = OutputFolder::create(&dir, RENDER).expect("folder");
     done.write("results.jsonl", b"1008 rows").expect("written");
     done.finish(None).expect("finished");
     RunManifest::verify(&dir, u64::MAX).expect("complete");
-    let mut killed = OutputFolder::create(&dir).expect("folder");
+    let mut killed = OutputFolder::create(&dir, RENDER).expect("folder");
     killed.write("partial.jsonl", b"336 rows").expect("written");
     drop(killed);
     let err = RunManifest::verify(&dir, u64::MAX).expect_err("incomplete");
     assert!(err.to_string().contains("did not finish"), "{err}");
     assert!(dir.join(PENDING).exists());
-    let mut next = OutputFolder::create(&dir).expect("folder");
+    let mut next = OutputFolder::create(&dir, RENDER).expect("folder");
     next.write("summary.md", b"whole").expect("written");
     next.finish(None).expect("finished");
     assert_eq!(names(&dir), vec!["manifest.json", "summary.md"], "both earlier runs' files are gone");
@@ -109,7 +114,7 @@ fn a_listed_file_is_removed_only_inside_and_only_if_ours() {
     let (dir, elsewhere) = (base.join("out"), base.join("elsewhere"));
     std::fs::create_dir_all(&elsewhere).expect("dir");
     std::fs::write(elsewhere.join("precious.txt"), "x").expect("a file outside");
-    let mut first = OutputFolder::create(&dir).expect("folder");
+    let mut first = OutputFolder::create(&dir, RENDER).expect("folder");
     first.write("notes.md", b"x").expect("written");
     first.write("old.png", b"x").expect("written");
     first.finish(None).expect("finished");
@@ -121,12 +126,12 @@ fn a_listed_file_is_removed_only_inside_and_only_if_ours() {
     std::fs::write(dir.join(MANIFEST), text.replace("\"old.png\"", "\"sub/precious.txt\"")).expect("forged");
     let mut pending = format!(r#"{{"files":[{{"path":"old.png","bytes":1,"sha256":"{}"}}]}}"#, sha256(b"x"));
     std::fs::write(dir.join(PENDING), &pending).expect("a pending record");
-    OutputFolder::create(&dir).and_then(|f| f.finish(None)).expect("a run");
+    OutputFolder::create(&dir, RENDER.replacing(true)).and_then(|f| f.finish(None)).expect("a run");
     assert!(elsewhere.join("precious.txt").exists(), "a file through a link was deleted");
     assert_eq!(std::fs::read_to_string(dir.join("notes.md")).ok().as_deref(), Some("my own notes"));
     assert!(!dir.join("old.png").exists(), "a file of ours, as written, is removed");
     // Nor does a run write through the link.
-    let mut f = OutputFolder::create(&dir).expect("folder");
+    let mut f = OutputFolder::create(&dir, RENDER.replacing(true)).expect("folder");
     let err = f.write("sub/new.txt", b"x").expect_err("refused");
     assert!(err.to_string().contains("symbolic link"), "{err}");
     assert!(!elsewhere.join("new.txt").exists());
@@ -141,8 +146,8 @@ fn a_listed_file_is_removed_only_inside_and_only_if_ours() {
 fn a_folder_in_use_is_refused_and_dead_temporaries_removed() {
     let base = scratch("folder-lock");
     let dir = base.join("out");
-    let first = OutputFolder::create(&dir).expect("folder");
-    let err = OutputFolder::create(&dir).expect_err("in use");
+    let first = OutputFolder::create(&dir, RENDER).expect("folder");
+    let err = OutputFolder::create(&dir, RENDER).expect_err("in use");
     assert!(err.to_string().contains("in use") && err.to_string().contains("out"), "{err}");
     drop(first);
     std::fs::create_dir_all(dir.join("sub")).expect("dir");
@@ -150,7 +155,7 @@ fn a_folder_in_use_is_refused_and_dead_temporaries_removed() {
         std::fs::write(dir.join(t), "half a file").expect("a dead run's temporary");
     }
     std::fs::write(dir.join("mine.tmp"), "a user's").expect("a user's file");
-    let f = OutputFolder::create(&dir).expect("free again");
+    let f = OutputFolder::create(&dir, RENDER.replacing(true)).expect("free again");
     assert!(!dir.join(".umbra-ab12.tmp").exists() && !dir.join("sub/.umbra-cd34.tmp").exists());
     assert!(dir.join("mine.tmp").exists());
     f.finish(None).expect("finished");
@@ -170,7 +175,7 @@ fn files_are_as_readable_as_the_umask_allows() {
     let touched = std::fs::metadata(base.join("touched")).expect("meta").permissions().mode() & 0o777;
     assert_ne!(touched, 0o600, "this test needs a umask that lets others read (022 makes 0644)");
     for _ in 0..2 {
-        let mut f = OutputFolder::create(&dir).expect("folder");
+        let mut f = OutputFolder::create(&dir, RENDER).expect("folder");
         f.write("a.txt", b"x").expect("written");
         f.finish(None).expect("finished");
         for n in ["a.txt", MANIFEST] {
@@ -190,25 +195,95 @@ fn files_are_as_readable_as_the_umask_allows() {
 fn a_run_that_wrote_nothing_leaves_the_folder_as_it_was() {
     let base = scratch("folder-untouched");
     let made = base.join("made");
-    drop(OutputFolder::create(&made).expect("folder"));
+    drop(OutputFolder::create(&made, RENDER).expect("folder"));
     assert!(!made.exists(), "the folder it made is removed");
     let done = base.join("done");
-    let mut first = OutputFolder::create(&done).expect("folder");
+    let mut first = OutputFolder::create(&done, RENDER).expect("folder");
     first.write("summary.md", b"whole").expect("written");
     first.finish(None).expect("finished");
     let record = std::fs::read(done.join(MANIFEST)).expect("a manifest");
-    drop(OutputFolder::create(&done).expect("folder"));
+    drop(OutputFolder::create(&done, RENDER).expect("folder"));
     RunManifest::verify(&done, u64::MAX).expect("still complete");
     assert_eq!(std::fs::read(done.join(MANIFEST)).expect("a manifest"), record, "the same record");
     assert_eq!(names(&done), vec!["manifest.json", "summary.md"]);
     let mine = base.join("mine");
     std::fs::create_dir_all(&mine).expect("dir");
     std::fs::write(mine.join("notes.txt"), "mine").expect("a user's file");
-    drop(OutputFolder::create(&mine).expect("folder"));
+    OutputFolder::create(&mine, RENDER).expect_err("a folder of files no run wrote");
+    assert_eq!(names(&mine), vec!["notes.txt"], "nothing left behind, the lock included");
+    assert!(!mine.join(LOCK).exists());
+    drop(OutputFolder::create(&mine, RENDER.replacing(true)).expect("folder"));
     assert_eq!(names(&mine), vec!["notes.txt"]);
-    let mut partial = OutputFolder::create(&done).expect("folder");
+    let mut partial = OutputFolder::create(&done, RENDER).expect("folder");
     partial.write("rows.jsonl", b"1").expect("written");
     drop(partial);
     assert!(done.join(PENDING).exists() && !done.join(MANIFEST).exists(), "a partial run is visible");
+    let _ = std::fs::remove_dir_all(&base);
+}
+
+/// A folder holds one command's results: a study into a render's folder
+/// (and a render into a study's) is refused, naming the earlier command
+/// and its files, and deletes nothing; `--replace` replaces them and says
+/// which; a manifest of an earlier version, without its kind, is read by
+/// its command line.
+#[test]
+fn another_commands_results_are_refused_unless_replaced() {
+    let base = scratch("folder-kinds");
+    let dir = base.join("out");
+    let mut render = OutputFolder::create(&dir, RENDER).expect("folder");
+    render.write("shaded.png", b"pixels").and_then(|_| render.write("metrics.json", b"{}")).expect("written");
+    render.finish(None).expect("finished");
+    let study = Claim::new(RunKind::Study);
+    let err = OutputFolder::create(&dir, study).expect_err("a render's folder").to_string();
+    for word in ["a render", "shaded.png", "metrics.json", "--replace", "a study"] {
+        assert!(err.contains(word), "`{word}` not in: {err}");
+    }
+    assert_eq!(names(&dir), vec!["manifest.json", "metrics.json", "shaded.png"], "nothing deleted");
+    RunManifest::verify(&dir, u64::MAX).expect("still complete");
+    let mut replacing = OutputFolder::create(&dir, study.replacing(true)).expect("replaced deliberately");
+    replacing.write("summary.md", b"rows").expect("written");
+    let (m, replaced) = replacing.finish_replacing(None).expect("finished");
+    assert_eq!(m.kind, Some(RunKind::Study));
+    assert_eq!(replaced.removed, vec!["shaded.png", "metrics.json"]);
+    assert_eq!(names(&dir), vec!["manifest.json", "summary.md"]);
+    // A manifest without its kind (an earlier version's) names its command.
+    let text = std::fs::read_to_string(dir.join(MANIFEST)).expect("manifest");
+    let legacy: serde_json::Value = serde_json::from_str(&text).expect("JSON");
+    let mut legacy = legacy.as_object().expect("an object").clone();
+    legacy.remove("kind");
+    legacy.insert("command".into(), "./umbra study --quick --out out".into());
+    std::fs::write(dir.join(MANIFEST), serde_json::to_string(&legacy).expect("JSON")).expect("legacy");
+    let err = OutputFolder::create(&dir, RENDER).expect_err("a study's folder").to_string();
+    assert!(err.contains("a study") && err.contains("umbra study --quick"), "{err}");
+    OutputFolder::create(&dir, study).expect("a study into a study's folder").finish(None).expect("finished");
+    let _ = std::fs::remove_dir_all(&base);
+}
+
+/// A file this process read is never removed nor written over, whatever
+/// an earlier run's manifest lists: a render of a model another command
+/// wrote into the same folder keeps it; a run of the kind that wrote it
+/// (which would write it again) is refused before it starts.
+#[test]
+fn a_file_the_run_read_is_kept() {
+    let base = scratch("folder-input");
+    let dir = base.join("out");
+    let mut scene = OutputFolder::create(&dir, Claim::new(RunKind::Scene)).expect("folder");
+    let model = scene.write("city.glb", b"a model").expect("written");
+    scene.finish(None).expect("finished");
+    crate::input::limits::Limits::DEFAULT.read_file(&model).expect("the run reads its model");
+    let err = OutputFolder::create(&dir, Claim::new(RunKind::Scene)).expect_err("would write it again").to_string();
+    assert!(err.contains("city.glb") && err.contains("reads"), "{err}");
+    let err = OutputFolder::create(&dir, RENDER).expect_err("a scene's folder").to_string();
+    assert!(err.contains("city.glb") && err.contains("--replace"), "{err}");
+    let mut render = OutputFolder::create(&dir, RENDER.replacing(true)).expect("replaced deliberately");
+    let err = render.write("city.glb", b"over").expect_err("its own input").to_string();
+    assert!(err.contains("read"), "{err}");
+    render.write("shaded.png", b"pixels").expect("written");
+    let (_, replaced) = render.finish_replacing(None).expect("finished");
+    assert!(replaced.removed.is_empty(), "{replaced:?}");
+    assert_eq!(std::fs::read(&model).expect("kept"), b"a model");
+    // The model, now a file no manifest lists, is still this run's input.
+    OutputFolder::create(&dir, RENDER).expect("its input is no stranger").finish(None).expect("finished");
+    assert!(model.exists());
     let _ = std::fs::remove_dir_all(&base);
 }

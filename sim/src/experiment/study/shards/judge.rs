@@ -406,6 +406,15 @@ pub fn status(inputs: &[PathBuf], limits: &Limits) -> ShardStatus {
 /// # Errors
 /// See [`StudyError`].
 pub fn merge(inputs: &[PathBuf], out: &Path, limits: &Limits) -> Result<usize, StudyError> {
+    merge_replacing(inputs, (out, false), limits)
+}
+
+/// [`merge`] into `out`, replacing another command's results there, or
+/// files no run of Umbra wrote, when `replace` (`--replace`).
+///
+/// # Errors
+/// See [`StudyError`].
+pub fn merge_replacing(inputs: &[PathBuf], (out, replace): (&Path, bool), limits: &Limits) -> Result<usize, StudyError> {
     // The output is written while the inputs are read: never one of them.
     let same = |a: &Path, b: &Path| a.canonicalize().ok().zip(b.canonicalize().ok()).is_some_and(|(a, b)| a == b);
     if let Some(input) = inputs.iter().find(|i| same(i, out) || same(&shard_folder(i).unwrap_or_default(), out)) {
@@ -426,6 +435,6 @@ pub fn merge(inputs: &[PathBuf], out: &Path, limits: &Limits) -> Result<usize, S
     sort_rows(&mut rows);
     let whole =
         Manifest { shard: "0/1".into(), rows: rows.len(), command: crate::output::provenance::command_line(), ..m };
-    write_run_with(out, &rows, &whole, &beside)?;
+    write_run_with((out, replace), &rows, &whole, &beside)?;
     Ok(rows.len())
 }

@@ -3,7 +3,7 @@
 
 mod judge;
 
-pub use judge::{ShardFolder, ShardProblem, ShardState, ShardStatus, merge, status};
+pub use judge::{ShardFolder, ShardProblem, ShardState, ShardStatus, merge, merge_replacing, status};
 
 use std::path::{Path, PathBuf};
 
@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize};
 
 use super::{Layout, Row, Shard, Spec, Status, StudyError, write_outputs};
 use crate::input::limits::Limits;
-use crate::output::folder::{OutputFolder, RunManifest};
+use crate::output::folder::{Claim, OutputFolder, Replaced, RunKind, RunManifest};
 
 /// What a study run (whole or one shard) wrote: enough to tell whether
 /// shards belong together and are complete.
@@ -84,9 +84,9 @@ pub fn write_partial(folder: &mut OutputFolder, rows: &[Row]) -> Result<(), Stud
 ///
 /// # Errors
 /// [`StudyError::Output`].
-pub fn finish(folder: OutputFolder, manifest: &Manifest) -> Result<RunManifest, StudyError> {
+pub fn finish(folder: OutputFolder, manifest: &Manifest) -> Result<(RunManifest, Replaced), StudyError> {
     // A Manifest holds only strings and numbers: it always serialises.
-    Ok(folder.finish(serde_json::to_value(manifest).ok())?)
+    Ok(folder.finish_replacing(serde_json::to_value(manifest).ok())?)
 }
 
 #[cfg(test)]
@@ -96,19 +96,19 @@ pub fn finish(folder: OutputFolder, manifest: &Manifest) -> Result<RunManifest, 
 /// # Errors
 /// See [`StudyError`].
 pub(crate) fn write_run(dir: &Path, rows: &[Row], manifest: &Manifest) -> Result<RunManifest, StudyError> {
-    write_run_with(dir, rows, manifest, &[])
+    write_run_with((dir, false), rows, manifest, &[])
 }
 
 /// Write a whole run's files (or, for a shard, its rows) into a fresh
 /// folder `dir`, then `extra` files (name, bytes) after the outputs, and
 /// finish it.
 fn write_run_with(
-    dir: &Path,
+    (dir, replace): (&Path, bool),
     rows: &[Row],
     manifest: &Manifest,
     extra: &[(String, Vec<u8>)],
 ) -> Result<RunManifest, StudyError> {
-    let mut folder = OutputFolder::create(dir)?;
+    let mut folder = OutputFolder::create(dir, Claim::new(RunKind::Study).replacing(replace))?;
     if manifest.shard == "0/1" {
         write_outputs(&mut folder, rows, manifest)?;
     } else {
@@ -117,7 +117,7 @@ fn write_run_with(
     for (name, bytes) in extra {
         folder.write(name, bytes)?;
     }
-    finish(folder, manifest)
+    finish(folder, manifest).map(|(m, _)| m)
 }
 
 /// The files a study's command writes beside its rows — the sweep file and

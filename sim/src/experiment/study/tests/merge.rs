@@ -111,18 +111,18 @@ fn merge_refuses_what_would_lie() {
 /// shard by its folder; a complete shard is recognised for a rerun to skip.
 #[test]
 fn status_tells_every_shards_state_and_merge_refuses_the_unfinished() {
-    use crate::output::folder::OutputFolder;
+    use crate::output::folder::{Claim, OutputFolder, RunKind};
     let spec = tiny("status");
     let limits = Limits::DEFAULT;
     let done: Vec<PathBuf> = (0..2).map(|i| shard(&spec, "status", i, 4)).collect();
     // Shard 2 killed mid-run: its folder opened, never finished.
     let abandoned = dir("status-2");
-    let mut killed = OutputFolder::create(&abandoned).expect("opened");
+    let mut killed = OutputFolder::create(&abandoned, Claim::new(RunKind::Study)).expect("opened");
     killed.write("results.jsonl", b"").expect("a partial file");
     drop(killed);
     // Shard 3 under way: a run holds its folder.
     let running = dir("status-3");
-    let held = OutputFolder::create(&running).expect("opened");
+    let held = OutputFolder::create(&running, Claim::new(RunKind::Study)).expect("opened");
     // A complete folder whose results were edited since.
     let corrupt = shard(&spec, "status-edited", 1, 4);
     std::fs::write(corrupt.join("results.jsonl"), "{}\n").expect("edit");
@@ -227,7 +227,7 @@ fn status_and_merge_refuse_the_same_sets() {
 /// list names each of one run's shards once (an independent rule, below).
 #[test]
 fn status_is_ready_exactly_when_merge_succeeds() {
-    use crate::output::folder::OutputFolder;
+    use crate::output::folder::{Claim, OutputFolder, RunKind};
     let spec = tiny("eeee");
     let limits = Limits::DEFAULT;
     let s: Vec<PathBuf> = (0..3).map(|i| shard(&spec, "prop", i, 3)).collect();
@@ -235,7 +235,7 @@ fn status_is_ready_exactly_when_merge_succeeds() {
     let link = dir("prop-link").join("s1");
     std::os::unix::fs::symlink(&s[1], &link).expect("link");
     let abandoned = dir("prop-abandoned");
-    let mut killed = OutputFolder::create(&abandoned).expect("opened");
+    let mut killed = OutputFolder::create(&abandoned, Claim::new(RunKind::Study)).expect("opened");
     killed.write("results.jsonl", b"").expect("a partial file");
     drop(killed);
     let edited = copy(&s[0], "prop-edited");

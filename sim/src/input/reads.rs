@@ -1,0 +1,41 @@
+//! The files this process has read as input, so that no output folder
+//! removes or writes over one of them: a render whose model lies in its
+//! output folder keeps it, whatever an earlier run's manifest lists.
+//!
+//! Every input file is read through [`Limits`](super::limits::Limits),
+//! which notes it here (its canonical path) once it is open; an output
+//! folder asks [`was_read`] before it removes or replaces a file.
+//!
+//! ```
+//! use umbra_sim::Limits;
+//! use umbra_sim::input::reads::was_read;
+//! let dir = tempfile::tempdir()?;
+//! let model = dir.path().join("model.obj");
+//! std::fs::write(&model, "v 0 0 0\n")?;
+//! assert!(!was_read(&model));
+//! Limits::DEFAULT.read_file(&model)?;
+//! assert!(was_read(&model) && was_read(&dir.path().join(".").join("model.obj")));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+/// The canonical paths read so far.
+static READ: Mutex<BTreeSet<PathBuf>> = Mutex::new(BTreeSet::new());
+
+/// Note that `path` (an existing file) was read.
+pub(crate) fn note(path: &Path) {
+    if let Ok(canonical) = std::fs::canonicalize(path) {
+        READ.lock().unwrap_or_else(std::sync::PoisonError::into_inner).insert(canonical);
+    }
+}
+
+/// Whether this process read the file at `path` (the same file, by
+/// whatever path it was named).
+#[must_use]
+pub fn was_read(path: &Path) -> bool {
+    std::fs::canonicalize(path)
+        .is_ok_and(|c| READ.lock().unwrap_or_else(std::sync::PoisonError::into_inner).contains(&c))
+}
