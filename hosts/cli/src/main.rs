@@ -41,6 +41,11 @@ struct Cli {
     /// `--threads $SLURM_CPUS_PER_TASK`.
     #[arg(long, global = true, value_parser = clap::value_parser!(u16).range(1..=256))]
     threads: Option<u16>,
+    /// A folder a glTF model may read its buffers from besides its own
+    /// (by default a model reads only files in its own folder and below).
+    /// Repeat for several.
+    #[arg(long = "allow-read", global = true, value_name = "FOLDER")]
+    allow_read: Vec<PathBuf>,
 }
 
 /// What the simulator accepts, each checked before anything of that size is
@@ -208,6 +213,10 @@ fn run() -> Result<()> {
         let _ = rayon::ThreadPoolBuilder::new().num_threads(usize::from(n)).build_global();
     }
     clamp_threads();
+    for dir in &cli.allow_read {
+        umbra_sim::input::reads::allow_folder(dir)
+            .map_err(|e| anyhow::anyhow!("--allow-read {}: {e}", dir.display()))?;
+    }
     let limits = &cli.limits.limits();
     match cli.command {
         Some(Command::Depth(args)) => depth(&args, limits),

@@ -75,7 +75,11 @@ pub(crate) fn replacements(dir: &Path, replaced: &Replaced) -> Result<()> {
         );
     }
     if !replaced.overwritten.is_empty() {
-        say!("replaced in {} (--replace): {}, which no run of umbra wrote", dir.display(), replaced.overwritten.join(", "));
+        say!(
+            "replaced in {} (--replace): {}, which no run of umbra wrote",
+            dir.display(),
+            replaced.overwritten.join(", ")
+        );
     }
     Ok(())
 }

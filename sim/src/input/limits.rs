@@ -328,6 +328,19 @@ impl Footprint {
     /// A byte of a TOML file while it is parsed.
     pub(crate) const PER_TEXT_BYTE: u64 = 96;
 
+    /// A glTF vertex as an accessor is decoded: its position read (12
+    /// bytes) and its new number once the unused are dropped (4).
+    pub(crate) const PER_VERTEX_DECODED: u64 = 16;
+    /// A glTF index as an accessor is decoded.
+    pub(crate) const PER_INDEX_DECODED: u64 = 4;
+    /// A vertex a mesh keeps: its position.
+    pub(crate) const PER_VERTEX: u64 = 12;
+    /// A triangle a mesh keeps: its three indices.
+    pub(crate) const PER_MESH_TRIANGLE: u64 = 12;
+    /// A glTF node as the walk of its tree keeps it (its world transform
+    /// and its place on the stack).
+    pub(crate) const PER_GLTF_NODE: u64 = 512;
+
     /// A further light's share of a scene triangle: the scene lit by it
     /// alone (its meshes copied) and the shading unit's triangle list.
     pub(crate) const PER_LIGHT_TRIANGLE: u64 = 128;

@@ -1,6 +1,8 @@
 //! The files this process has read as input, so that no output folder
 //! removes or writes over one of them: a render whose model lies in its
-//! output folder keeps it, whatever an earlier run's manifest lists.
+//! output folder keeps it, whatever an earlier run's manifest lists. And
+//! the folders beyond its own a model may read its buffers from
+//! ([`allow_folder`]: the `umbra` command's `--allow-read`).
 //!
 //! Every input file is read through [`Limits`](super::limits::Limits),
 //! which notes it here (its canonical path) once it is open; an output
@@ -24,6 +26,30 @@ use std::sync::Mutex;
 
 /// The canonical paths read so far.
 static READ: Mutex<BTreeSet<PathBuf>> = Mutex::new(BTreeSet::new());
+
+/// The folders (canonical) a model's buffers may come from besides its own.
+static ALLOWED: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// Let every model read files in `dir` and below (a shared folder of
+/// buffers or textures), besides its own folder.
+///
+/// # Errors
+/// The OS error when `dir` does not exist or cannot be resolved.
+pub fn allow_folder(dir: &Path) -> std::io::Result<()> {
+    let canonical = std::fs::canonicalize(dir)?;
+    if !canonical.is_dir() {
+        return Err(std::io::Error::other(format!("{} is not a folder", dir.display())));
+    }
+    ALLOWED.lock().unwrap_or_else(std::sync::PoisonError::into_inner).push(canonical);
+    Ok(())
+}
+
+/// Whether `canonical` (a canonical path) lies in a folder
+/// [`allow_folder`] allowed.
+#[must_use]
+pub(crate) fn allowed(canonical: &Path) -> bool {
+    ALLOWED.lock().unwrap_or_else(std::sync::PoisonError::into_inner).iter().any(|d| canonical.starts_with(d))
+}
 
 /// Note that `path` (an existing file) was read.
 pub(crate) fn note(path: &Path) {

@@ -616,11 +616,7 @@ impl OutputFolder {
         let mut files = self.earlier.clone();
         files.extend(self.written.iter().filter(|f| !self.earlier.contains(f)).cloned());
         // Strings and numbers always serialise.
-        let pending = Pending {
-            files,
-            kind: Some(self.claim.kind),
-            command: Some(super::provenance::command_line()),
-        };
+        let pending = Pending { files, kind: Some(self.claim.kind), command: Some(super::provenance::command_line()) };
         let text = serde_json::to_string_pretty(&pending).unwrap_or_default();
         self.atomic(&self.dir.join(PENDING), text.as_bytes())
     }
@@ -647,7 +643,10 @@ impl OutputFolder {
         }
         let path = self.dir.join(relative);
         if crate::input::reads::was_read(&path) {
-            return Err(problem(&path, "is a file this run read: a run never writes over its input; choose another --out"));
+            return Err(problem(
+                &path,
+                "is a file this run read: a run never writes over its input; choose another --out",
+            ));
         }
         let listed = self.earlier.iter().chain(&self.written).any(|f| f.path == name);
         if !listed && std::fs::symlink_metadata(&path).is_ok() && !self.overwritten.iter().any(|n| n == name) {
@@ -691,7 +690,10 @@ impl OutputFolder {
     ///
     /// # Errors
     /// As [`finish`](Self::finish).
-    pub fn finish_replacing(mut self, study: Option<serde_json::Value>) -> Result<(RunManifest, Replaced), OutputError> {
+    pub fn finish_replacing(
+        mut self,
+        study: Option<serde_json::Value>,
+    ) -> Result<(RunManifest, Replaced), OutputError> {
         let mut replaced = Replaced {
             command: self.earlier_command.clone(),
             overwritten: std::mem::take(&mut self.overwritten),

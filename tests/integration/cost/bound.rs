@@ -309,7 +309,11 @@ fn the_stats_file_has_one_convention() {
 fn cost_json_holds_the_stats_files_statistics() {
     let r = report(&bundled("desktop-imr"));
     let dir = crate::common::scratch("cost-json");
-    let mut folder = OutputFolder::create(&dir.join("out"), umbra::sim::output::folder::Claim::new(umbra::sim::output::folder::RunKind::Cost)).expect("a folder");
+    let mut folder = OutputFolder::create(
+        &dir.join("out"),
+        umbra::sim::output::folder::Claim::new(umbra::sim::output::folder::RunKind::Cost),
+    )
+    .expect("a folder");
     write_costs(&mut folder, std::slice::from_ref(&r)).expect("written");
     folder.finish(None).expect("finished");
     let stats = std::fs::read_to_string(dir.join("out/stats-desktop-imr.txt")).expect("the stats file");

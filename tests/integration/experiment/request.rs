@@ -5,7 +5,14 @@ use umbra::sim::Limits;
 use umbra::sim::experiment::study::{Overrides, Request, StudyError};
 
 fn request(overrides: Overrides) -> Request {
-    Request { sweep: "quick".into(), overrides, shard: None, extremes: false, out: "target/unused".into(), replace: false }
+    Request {
+        sweep: "quick".into(),
+        overrides,
+        shard: None,
+        extremes: false,
+        out: "target/unused".into(),
+        replace: false,
+    }
 }
 
 /// The replaced axes are hashed from one canonical text, written here by

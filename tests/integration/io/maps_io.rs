@@ -114,7 +114,11 @@ fn npy_holds_raw_texels() {
     let cfg = LightPassConfig { raster, unit: DepthUnit::Dual, max_z_cull: true };
     let draws = scene.draws(scene.light().view_projection(), CullMode::None);
     let dir = scratch("npy");
-    let mut folder = umbra::sim::output::folder::OutputFolder::create(&dir, umbra::sim::output::folder::Claim::new(umbra::sim::output::folder::RunKind::Depth)).expect("folder");
+    let mut folder = umbra::sim::output::folder::OutputFolder::create(
+        &dir,
+        umbra::sim::output::folder::Claim::new(umbra::sim::output::folder::RunKind::Depth),
+    )
+    .expect("folder");
     for (format, descr, bytes) in [(DepthFormatKind::D16, "<u2", 2usize), (DepthFormatKind::D24, "<u4", 4)] {
         let (maps, _) = RawMaps::render(cfg, format, &draws, umbra::core::NoProbe).expect("renders");
         let map = RawMap { format, width: 48, height: 32, raw: &maps.maps.z1 };

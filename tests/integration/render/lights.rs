@@ -92,7 +92,11 @@ fn the_same_light_twice_costs_two_passes_and_pictures_as_one() {
     let picture = |s: &Scene, name: &str| {
         let r = rendered(s, cfg);
         let dir = scratch("lights-twice").join(name);
-        let mut folder = OutputFolder::create(&dir, umbra::sim::output::folder::Claim::new(umbra::sim::output::folder::RunKind::Render)).expect("folder");
+        let mut folder = OutputFolder::create(
+            &dir,
+            umbra::sim::output::folder::Claim::new(umbra::sim::output::folder::RunKind::Render),
+        )
+        .expect("folder");
         write_render(&mut folder, &job(s, cfg), &r).expect("writes");
         folder.finish(None).expect("finishes");
         image::open(dir.join("shaded.png")).expect("a PNG").to_rgb8()

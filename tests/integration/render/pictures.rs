@@ -19,7 +19,9 @@ fn every_picture_carries_its_caption_and_key_and_tells_its_values_apart() {
     let r = render(&job, TruthSource::Build(&indicatif::ProgressBar::hidden())).expect("renders");
     let dir = std::env::temp_dir().join(format!("umbra-pictures-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
-    let mut folder = OutputFolder::create(&dir, umbra::sim::output::folder::Claim::new(umbra::sim::output::folder::RunKind::Render)).expect("folder");
+    let mut folder =
+        OutputFolder::create(&dir, umbra::sim::output::folder::Claim::new(umbra::sim::output::folder::RunKind::Render))
+            .expect("folder");
     write_render(&mut folder, &job, &r).expect("written");
     folder.finish(None).expect("finished");
     for name in ["shaded.png", "shadow.png", "error.png", "z1.png", "z2.png"] {

@@ -282,7 +282,11 @@ fn the_error_map_paints_each_class_its_colour() {
     let r = rendered(&scene, (Algorithm::First, 0.03, "point"), 512, (256, 256));
     let dir = std::env::temp_dir().join(format!("umbra-error-map-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
-    let mut folder = umbra::sim::output::folder::OutputFolder::create(&dir, umbra::sim::output::folder::Claim::new(umbra::sim::output::folder::RunKind::Render)).expect("folder");
+    let mut folder = umbra::sim::output::folder::OutputFolder::create(
+        &dir,
+        umbra::sim::output::folder::Claim::new(umbra::sim::output::folder::RunKind::Render),
+    )
+    .expect("folder");
     let path = write_error_image(&mut folder, "error.png", &r.image, &r.verdicts, (&r.truth, "wang-molnar-4"))
         .expect("written");
     let png = image::open(&path).expect("a PNG").to_rgb8();

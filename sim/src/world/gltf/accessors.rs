@@ -88,7 +88,7 @@ fn elements<T: Copy + Default>(
         for k in 0..n {
             let target = index_at(&at[k * width..(k + 1) * width]) as usize;
             let slot = out.get_mut(target).ok_or_else(|| {
-                fault(index, format!("sparse index {target} (entry {k}) is beyond the accessor's {count} elements"))
+                fault(index, format!("sparse entry {k}'s index is past the accessor's {count} elements"))
             })?;
             *slot = read(&vals[k * size..(k + 1) * size]);
         }
@@ -116,8 +116,8 @@ pub(super) fn positions(buffers: &[Vec<u8>], a: &gltf::Accessor<'_>, max: usize)
     }
     let f = |b: &[u8]| f32::from_le_bytes([b[0], b[1], b[2], b[3]]);
     let points = elements(buffers, a, (12, max), |b| [f(&b[0..4]), f(&b[4..8]), f(&b[8..12])])?;
-    if let Some((element, p)) = points.iter().enumerate().find(|(_, p)| !p.iter().all(|c| c.is_finite())) {
-        return Err((format!("accessors[{}]", a.index()), GltfProblem::NonFinite { element, position: *p }));
+    if let Some(element) = points.iter().position(|p| !p.iter().all(|c| c.is_finite())) {
+        return Err((format!("accessors[{}]", a.index()), GltfProblem::NonFinite { element }));
     }
     Ok(points)
 }

@@ -5,22 +5,29 @@
 //! `KHR_lights_punctual` lights its nodes place.
 //!
 //! A mesh several nodes place is read from its buffers once and placed
-//! once per node. Every count is checked against the [`Limits`] before
-//! anything of that size is read, every byte range before it is read, and
-//! every problem is named with the file and the JSON path of what is wrong.
+//! once per node, each placement holding only the vertices its triangles
+//! use. The file is treated as an adversary wrote it: nothing the `gltf`
+//! crate would index unchecked reaches it, the specification's rules it
+//! leaves out are checked ([`spec`]), a buffer is read only from the
+//! model's own folder, every count is checked against the [`Limits`] and
+//! the memory the whole read takes is estimated from the counts the file
+//! declares ([`estimate`]) before any buffer is read, every byte range is
+//! checked before it is read, and every problem is named with the file and
+//! the JSON path of what is wrong, never with bytes of a file.
 
 use std::path::{Path, PathBuf};
 
 use glam::{DMat4, DVec3, Vec3};
 use gltf::mesh::Mode;
 
-use crate::input::limits::{LimitError, Limits};
+use crate::input::limits::{Footprint, LimitError, Limits};
 use crate::world::mesh::{Ignored, Mesh};
 
 mod accessors;
 mod buffers;
 mod city;
 mod nodes;
+mod spec;
 
 pub use city::{City, CityError};
 
@@ -66,26 +73,31 @@ pub enum GltfProblem {
     /// A buffer or buffer view that does not hold what it declares.
     #[error("{0}")]
     Buffer(String),
+    /// A buffer's URI that leads out of the model's folder, or to a
+    /// scheme or a system file: refused before any byte is read.
+    #[error("{0}")]
+    Outside(String),
+    /// What the glTF specification forbids and the `gltf` crate lets
+    /// through (a camera's planes, a node's transform, a stride).
+    #[error("{0}")]
+    Spec(String),
     /// An accessor of the wrong type, or one reaching past its data.
     #[error("{0}")]
     Accessor(String),
-    /// A triangle's index names no vertex.
-    #[error("index {index} (element {element}) names no vertex: POSITION has {vertices}")]
+    /// A triangle's index names no vertex (its value is not shown: an
+    /// error never echoes a file's bytes).
+    #[error("element {element} is an index past the last vertex: POSITION has {vertices}")]
     Index {
-        /// The index.
-        index: u32,
         /// Where it is among the primitive's indices.
         element: usize,
         /// The vertices there are.
         vertices: usize,
     },
     /// A vertex coordinate that is NaN or infinite.
-    #[error("element {element} is {position:?}, not finite")]
+    #[error("element {element} is not finite (a coordinate is NaN or infinite)")]
     NonFinite {
         /// The element.
         element: usize,
-        /// Its coordinates.
-        position: [f32; 3],
     },
     /// Nodes that do not form a tree, or a transform that is not finite.
     #[error("{0}")]
@@ -212,11 +224,43 @@ fn drawn(p: &gltf::Primitive<'_>) -> u64 {
     p.indices().or_else(|| p.get(&gltf::Semantic::Positions)).map_or(0, |a| a.count() as u64)
 }
 
+/// The indices of `order` that `mode` draws triangles from (a list's
+/// whole triples, a strip's or fan's every index once there are three).
+fn drawn_indices(mode: Mode, order: &[u32]) -> &[u32] {
+    match mode {
+        Mode::Triangles => &order[..order.len() / 3 * 3],
+        _ if order.len() >= 3 => order,
+        _ => &[],
+    }
+}
+
+/// `points` cut to the vertices `used` names (each index below
+/// `points.len()`), in their order, and each of `used` renumbered to
+/// match: a primitive holds only the vertices it draws (all of them, bit
+/// for bit, when it draws every one).
+fn compacted(points: &[[f32; 3]], used: &mut [u32]) -> Vec<Vec3> {
+    let mut remap = vec![u32::MAX; points.len()];
+    for &i in used.iter() {
+        remap[i as usize] = 0;
+    }
+    let mut kept = Vec::new();
+    for (slot, p) in remap.iter_mut().zip(points) {
+        if *slot == 0 {
+            *slot = u32::try_from(kept.len()).unwrap_or(u32::MAX);
+            kept.push(Vec3::from_array(*p));
+        }
+    }
+    for i in used.iter_mut() {
+        *i = remap.get(*i as usize).copied().unwrap_or(u32::MAX);
+    }
+    kept
+}
+
 /// Mesh `m` in its own space: every triangle primitive's triangles (strips
-/// and fans made triangles as the glTF specification numbers them), its
-/// other primitives counted in [`Mesh::ignored`]; at most `max` vertices
-/// an accessor.
-fn local_mesh(loaded: &buffers::Loaded, m: &gltf::Mesh<'_>, max: usize) -> Result<Mesh, Fault> {
+/// and fans made triangles as the glTF specification numbers them), with
+/// the vertices they use, its other primitives counted in
+/// [`Mesh::ignored`]; at most `max` vertices an accessor.
+fn local_mesh(buffers: &[Vec<u8>], m: &gltf::Mesh<'_>, max: usize) -> Result<Mesh, Fault> {
     let mut mesh = Mesh::default();
     for p in m.primitives() {
         let path = format!("meshes[{}].primitives[{}]", m.index(), p.index());
@@ -230,16 +274,19 @@ fn local_mesh(loaded: &buffers::Loaded, m: &gltf::Mesh<'_>, max: usize) -> Resul
             let problem = "has no POSITION attribute (a Draco-compressed primitive is refused by name when required)";
             return Err((path, GltfProblem::Accessor(problem.into())));
         };
-        let points = accessors::positions(&loaded.buffers, &positions, max)?;
-        let order: Vec<u32> = match p.indices() {
-            Some(a) => accessors::indices(&loaded.buffers, &a, max)?,
+        let points = accessors::positions(buffers, &positions, max)?;
+        let mut order: Vec<u32> = match p.indices() {
+            Some(a) => accessors::indices(buffers, &a, max)?,
             None => (0..u32::try_from(points.len()).unwrap_or(u32::MAX)).collect(),
         };
-        if let Some((element, &index)) = order.iter().enumerate().find(|(_, i)| **i as usize >= points.len()) {
-            return Err((format!("{path}.indices"), GltfProblem::Index { index, element, vertices: points.len() }));
+        if let Some(element) = order.iter().position(|i| *i as usize >= points.len()) {
+            return Err((format!("{path}.indices"), GltfProblem::Index { element, vertices: points.len() }));
         }
+        order.truncate(drawn_indices(p.mode(), &order).len());
+        let kept = compacted(&points, &mut order);
+        drop(points);
         let base = u32::try_from(mesh.positions.len()).unwrap_or(u32::MAX);
-        mesh.positions.extend(points.iter().map(|&p| Vec3::from_array(p)));
+        mesh.positions.extend(kept);
         let v = |k: usize| base + order[k];
         match p.mode() {
             Mode::TriangleStrip => {
@@ -255,6 +302,46 @@ fn local_mesh(loaded: &buffers::Loaded, m: &gltf::Mesh<'_>, max: usize) -> Resul
         }
     }
     Ok(mesh)
+}
+
+/// What reading the meshes the chosen nodes place takes, from the counts
+/// the file declares: its JSON held, its buffers, the nodes walked, each
+/// mesh decoded once (its accessors' positions and indices, the vertices
+/// renumbered) and kept, and each placement's copy twice over (the scene's
+/// objects and, for a scene file's mesh, their merge); an upper bound of
+/// the read's peak, checked against [`Limits::max_memory`] before a buffer
+/// is read.
+fn estimate(document: &gltf::Document, chosen: &[&nodes::Placed], json_bytes: u64) -> u64 {
+    let all: Vec<gltf::Node<'_>> = document.nodes().collect();
+    let buffers: u64 = document.buffers().map(|b| b.length() as u64).sum();
+    let mut decoded = vec![false; document.meshes().len()];
+    let mut total = buffers::parse_footprint(json_bytes)
+        .saturating_add(buffers)
+        .saturating_add((all.len() as u64).saturating_mul(Footprint::PER_GLTF_NODE));
+    for w in chosen {
+        let Some(m) = all[w.node].mesh() else { continue };
+        let first = !std::mem::replace(&mut decoded[m.index()], true);
+        for p in m.primitives() {
+            if !matches!(p.mode(), Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan) {
+                continue;
+            }
+            let vertices = p.get(&gltf::Semantic::Positions).map_or(0, |a| a.count() as u64);
+            let indices = drawn(&p);
+            let (triangles, _) = primitives(p.mode(), indices);
+            let kept = vertices
+                .min(indices)
+                .saturating_mul(Footprint::PER_VERTEX)
+                .saturating_add(triangles.saturating_mul(Footprint::PER_MESH_TRIANGLE));
+            if first {
+                total = total
+                    .saturating_add(vertices.saturating_mul(Footprint::PER_VERTEX_DECODED))
+                    .saturating_add(indices.saturating_mul(Footprint::PER_INDEX_DECODED))
+                    .saturating_add(kept);
+            }
+            total = total.saturating_add(kept.saturating_mul(2));
+        }
+    }
+    total
 }
 
 /// `mesh` placed by `world`: positions transformed in f64 and rounded to
@@ -329,8 +416,8 @@ impl Gltf {
     }
 
     fn read_faults(path: &Path, under: Option<&str>, limits: &Limits) -> Result<Self, Fault> {
-        let loaded = buffers::load(path, limits)?;
-        let document = &loaded.document;
+        let mut parsed = buffers::parse(path, limits)?;
+        let document = &parsed.document;
         let target = match under {
             Some(name) => {
                 Some(node_named(document, name).filter(|&n| n < document.nodes().len()).ok_or_else(|| {
@@ -346,8 +433,9 @@ impl Gltf {
         }
         let chosen: Vec<&nodes::Placed> = walked.iter().filter(|w| target.is_none() || w.inside).collect();
         let all: Vec<gltf::Node<'_>> = document.nodes().collect();
-        // Every instance's triangles and other primitives, counted against
-        // the limits before any buffer is read.
+        // Every instance's triangles and other primitives, and the memory
+        // the read takes, counted against the limits before any buffer is
+        // read.
         let mut counted = 0u64;
         for w in &chosen {
             for p in all[w.node].mesh().iter().flat_map(gltf::Mesh::primitives) {
@@ -357,6 +445,10 @@ impl Gltf {
         }
         let over = |l| ("meshes".to_owned(), GltfProblem::Limit(l));
         limits.check_triangles(counted).map_err(over)?;
+        limits
+            .check_memory("reading the glTF file's meshes", estimate(document, &chosen, parsed.json_bytes))
+            .map_err(over)?;
+        let buffers = buffers::load(document, &mut parsed.blob, path, limits)?;
         let max = usize::try_from(limits.max_triangles.saturating_mul(3)).unwrap_or(usize::MAX);
         let mut meshes: Vec<Option<Mesh>> = vec![None; document.meshes().len()];
         let mut out = Self::default();
@@ -370,14 +462,24 @@ impl Gltf {
             if let Some(m) = node.mesh() {
                 let local = match &mut meshes[m.index()] {
                     Some(mesh) => mesh,
-                    slot => slot.insert(local_mesh(&loaded, &m, max)?),
+                    slot => slot.insert(local_mesh(&buffers, &m, max)?),
                 };
                 if !local.triangles.is_empty() || !local.ignored.is_empty() {
                     let name = name_of(node.name(), &at);
                     out.instances.push(Instance { name, node: at.clone(), mesh: placed(local, &w.world) });
                 }
             }
+            let aimless = forward == DVec3::ZERO || up == DVec3::ZERO || forward.cross(up).length() < 1e-6;
+            let aimed = |what: String| {
+                let problem = format!(
+                    "places {what} with a transform that leaves it no direction (its −Z or +Y is zero, a zero scale, or the two are parallel)"
+                );
+                (at.clone(), GltfProblem::Nodes(problem))
+            };
             if let Some(c) = node.camera() {
+                if aimless {
+                    return Err(aimed(format!("cameras[{}]", c.index())));
+                }
                 let lens = match c.projection() {
                     gltf::camera::Projection::Perspective(p) => {
                         Lens::Perspective { yfov: p.yfov(), znear: p.znear(), zfar: p.zfar(), aspect: p.aspect_ratio() }
@@ -391,6 +493,9 @@ impl Gltf {
                 out.cameras.push(Placed { path, name, what: lens, position, forward, up });
             }
             if let Some((path, name, what)) = lamp(json, node)? {
+                if aimless {
+                    return Err(aimed(path));
+                }
                 out.lights.push(Placed { path, name, what, position, forward, up });
             }
         }

@@ -138,13 +138,26 @@ fn light(l: &Placed<Lamp>, sphere: Sphere) -> Result<Light, (String, crate::worl
     }
 }
 
-/// Every instance's meshes as one.
-fn merged(gltf: &Gltf) -> Mesh {
+/// Every instance's meshes as one, each moved in turn.
+fn merged(gltf: Gltf) -> Mesh {
     let mut all = Mesh::default();
-    for i in &gltf.instances {
-        all.append(&i.mesh);
+    for i in gltf.instances {
+        if all.positions.is_empty() && all.triangles.is_empty() {
+            all = i.mesh;
+        } else {
+            all.append(&i.mesh);
+        }
     }
     all
+}
+
+/// Every instance's bounds as the two corners of a mesh: what
+/// [`Perspective::framing`] and [`sphere_of`] read, without a copy of the
+/// scene.
+fn bounds_of(gltf: &Gltf) -> Mesh {
+    let corners =
+        gltf.instances.iter().filter_map(|i| i.mesh.bounds()).reduce(|(lo, hi), (l, h)| (lo.min(l), hi.max(h)));
+    Mesh { positions: corners.map(|(lo, hi)| vec![lo, hi]).unwrap_or_default(), ..Mesh::default() }
 }
 
 /// The sphere round a mesh's bounds.
@@ -172,7 +185,7 @@ impl Scene {
         let fault = |(key, problem)| SceneError { file: path.to_owned(), key, problem: Problem::Gltf(problem) };
         let objects = u64::try_from(gltf.instances.len()).unwrap_or(u64::MAX);
         limits.check_objects(objects).map_err(|l| c.err("nodes", Problem::Limit(l)))?;
-        let all = merged(&gltf);
+        let all = bounds_of(&gltf);
         let sphere = sphere_of(&all).ok_or_else(|| c.err("meshes", Problem::NoVertices))?;
         let mut notes = Vec::new();
         let chosen = match camera_choice {
@@ -211,12 +224,26 @@ impl Scene {
                 gltf.lights.iter().enumerate().map(|(k, l)| format!("{} `{}`", Scene::light_key(k), l.name)).collect();
             notes.push(format!("lights: {}", names.join(", ")));
         }
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "clamped to 1..=the largest side")]
-        let width = aspect.filter(|a| a.is_finite() && *a > 0.0).map_or(960, |a| {
-            (f64::from(a) * f64::from(HEIGHT)).round().clamp(1.0, f64::from(limits.max_image_side)) as u32
-        });
+        // The width the camera's aspect ratio makes, within the limits (a
+        // ratio past them is the file's camera's, named).
+        let camera_key = chosen.map_or_else(|| "cameras".to_owned(), |k| k.path.clone());
+        let wide = aspect.map_or(960.0, |a| (f64::from(a) * f64::from(HEIGHT)).round());
+        if !(1.0..=f64::from(limits.max_image_side)).contains(&wide) {
+            let problem = format!(
+                "its aspect ratio {} makes an image {wide} pixels wide at {HEIGHT} high; the limit is 1 to {} (`--max-image-side`)",
+                aspect.unwrap_or_default(),
+                limits.max_image_side
+            );
+            return Err(c.err(&camera_key, Problem::Gltf(crate::world::gltf::GltfProblem::View(problem))));
+        }
+        #[allow(
+            clippy::cast_possible_truncation,
+            clippy::cast_sign_loss,
+            reason = "checked within 1..=the largest side"
+        )]
+        let width = wide as u32;
         let image = [width, HEIGHT];
-        limits.check_image(width, HEIGHT).map_err(|l| c.err("cameras", Problem::Limit(l)))?;
+        limits.check_image(width, HEIGHT).map_err(|l| c.err(&camera_key, Problem::Limit(l)))?;
         let mut objects: Vec<Object> = Vec::new();
         let mut ignored = crate::world::mesh::Ignored::default();
         for i in gltf.instances {
@@ -258,5 +285,5 @@ pub(super) fn gltf_mesh(
     limits: &Limits,
 ) -> Result<Mesh, SceneError> {
     let gltf = Gltf::read(&dir.join(file), node, limits).map_err(|e| c.err(key, Problem::GltfMesh(Box::new(e))))?;
-    Ok(merged(&gltf))
+    Ok(merged(gltf))
 }

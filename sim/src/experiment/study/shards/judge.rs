@@ -414,7 +414,11 @@ pub fn merge(inputs: &[PathBuf], out: &Path, limits: &Limits) -> Result<usize, S
 ///
 /// # Errors
 /// See [`StudyError`].
-pub fn merge_replacing(inputs: &[PathBuf], (out, replace): (&Path, bool), limits: &Limits) -> Result<usize, StudyError> {
+pub fn merge_replacing(
+    inputs: &[PathBuf],
+    (out, replace): (&Path, bool),
+    limits: &Limits,
+) -> Result<usize, StudyError> {
     // The output is written while the inputs are read: never one of them.
     let same = |a: &Path, b: &Path| a.canonicalize().ok().zip(b.canonicalize().ok()).is_some_and(|(a, b)| a == b);
     if let Some(input) = inputs.iter().find(|i| same(i, out) || same(&shard_folder(i).unwrap_or_default(), out)) {

@@ -290,7 +290,11 @@ fn extremes_give_finite_metrics() {
 fn extremes_keep_to_their_limits() {
     let out = dir("extremes-limits");
     let limits = Limits { max_map_side: 256, ..Limits::DEFAULT };
-    let mut folder = crate::output::folder::OutputFolder::create(&out, crate::output::folder::Claim::new(crate::output::folder::RunKind::Study)).expect("folder");
+    let mut folder = crate::output::folder::OutputFolder::create(
+        &out,
+        crate::output::folder::Claim::new(crate::output::folder::RunKind::Study),
+    )
+    .expect("folder");
     let md = extremes::run_all(&mut folder, &limits).expect("runs");
     folder.finish(None).expect("finished");
     let rows = study::read_rows(&out.join("extremes.jsonl"), &Limits::DEFAULT).expect("written");
