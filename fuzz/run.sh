@@ -10,7 +10,7 @@ seconds="${1:-60}"
 shift || true
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
-    targets=(scene_file obj light_pass shadow)
+    targets=(scene_file obj gltf light_pass shadow)
 fi
 for t in "${targets[@]}"; do
     mkdir -p "fuzz/corpus/$t"

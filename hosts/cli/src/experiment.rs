@@ -143,8 +143,7 @@ pub(super) fn plan(args: &PlanArgs, limits: &Limits) -> Result<()> {
     spec.limits = *limits;
     spec.arch = args.archs.one("talisman", limits)?;
     if !args.maps.is_empty() {
-        let sides: Vec<String> = args.maps.iter().map(ToString::to_string).collect();
-        crate::no_repeats("--maps", sides.iter().map(String::as_str))?;
+        umbra_sim::experiment::study::map_sides("--maps", &args.maps, limits)?;
         spec.map_sizes.clone_from(&args.maps);
     }
     if let Some(image) = &args.image {

@@ -27,7 +27,8 @@ pub(super) enum SceneCommand {
 /// The city's size and where it goes.
 #[derive(clap::Args, Debug)]
 pub(super) struct CityArgs {
-    /// Buildings along each side (1 to 1024).
+    /// Buildings along each side (at least 1; at most what the limits allow
+    /// a render to read back: --max-triangles, --max-text-bytes, --max-memory).
     #[arg(long, default_value_t = City::SMALL.side)]
     side: u32,
     /// Window columns along each wall (a power of two).
@@ -50,7 +51,7 @@ pub(super) fn scene(command: &SceneCommand, limits: &Limits) -> Result<()> {
         SceneCommand::Upgrade(args) => upgrade::upgrade(upgrade::Kind::Scene, args, limits),
         SceneCommand::City(args) => {
             let city = City { side: args.side, columns: args.columns, storeys: args.storeys };
-            let bytes = city.glb()?;
+            let bytes = city.glb_within(limits)?;
             let mut folder = OutputFolder::create(&args.out, Claim::new(RunKind::Scene).replacing(args.replace))?;
             let path = folder.write("city.glb", &bytes)?;
             let (_, replaced) = folder.finish_replacing(None)?;

@@ -3,7 +3,8 @@
 //! format stated, the keys added since with the values that keep what the
 //! file meant, each with its meaning as a comment). The upgraded text goes
 //! to stdout, or with `--in-place` replaces the file (through a new file
-//! renamed over it, and only when it changes).
+//! renamed over it, and only when it changes), keeping its permissions,
+//! owner and line endings, at a link's target.
 
 use std::path::{Path, PathBuf};
 
@@ -67,20 +68,78 @@ pub(crate) fn upgrade(kind: Kind, args: &UpgradeArgs, limits: &Limits) -> Result
         say!("{}", new.trim_end());
         return Ok(());
     }
+    let new = with_line_endings_of(&new, &text);
     if new == text {
         eprintln!("{name}: already in the current format; left as it is");
         return Ok(());
     }
-    replace(path, &new)?;
-    eprintln!("{name}: upgraded in place");
+    let target = replace(path, &new)?;
+    if std::fs::symlink_metadata(path).is_ok_and(|m| m.file_type().is_symlink()) {
+        eprintln!("{name}: upgraded in place, at the link's target {}", target.display());
+    } else {
+        eprintln!("{name}: upgraded in place");
+    }
     Ok(())
 }
 
-/// Write `text` to a new file beside `path`, then rename it over `path`:
-/// the file is whole, old or new, whenever it is read.
-fn replace(path: &Path, text: &str) -> Result<()> {
-    let file = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-    let new = path.with_file_name(format!(".{file}.upgrading"));
-    std::fs::write(&new, text).with_context(|| format!("{}", new.display()))?;
-    std::fs::rename(&new, path).with_context(|| format!("{}", path.display()))
+/// Replace the file at `path` with `text`, keeping what the file was: a
+/// link is followed to its target (the link stays a link), the new file
+/// is created beside the target under a fresh random name, exclusively
+/// (never through a link planted there), with the original's permissions
+/// and owner, flushed to the disk, then renamed over the
+/// target: the file is whole, old or new, whenever it is read (`text` has
+/// the original's line endings already). A file the
+/// user may not write (its write bit off, or not theirs to write) is
+/// refused, naming it.
+fn replace(path: &Path, text: &str) -> Result<PathBuf> {
+    use std::io::Write as _;
+    let target = std::fs::canonicalize(path).with_context(|| format!("{}", path.display()))?;
+    let meta = std::fs::metadata(&target).with_context(|| format!("{}", target.display()))?;
+    if !meta.is_file() {
+        anyhow::bail!("{}: not a regular file; --in-place replaces a file", target.display());
+    }
+    if meta.permissions().readonly() {
+        anyhow::bail!(
+            "{}: read-only; make it writable to upgrade it in place, or print the upgrade without --in-place",
+            target.display()
+        );
+    }
+    std::fs::OpenOptions::new().write(true).open(&target).with_context(|| {
+        format!("{}: cannot be written; --in-place replaces only a file you may write", target.display())
+    })?;
+    let dir = target.parent().unwrap_or_else(|| Path::new("."));
+    let name = target.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let mut new = tempfile::Builder::new()
+        .prefix(&format!(".{name}."))
+        .suffix(".upgrading")
+        .tempfile_in(dir)
+        .with_context(|| format!("{}: a new file beside it", target.display()))?;
+    new.as_file().set_permissions(meta.permissions()).with_context(|| format!("{}", new.path().display()))?;
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        let mine = new.as_file().metadata().with_context(|| format!("{}", new.path().display()))?;
+        if (mine.uid(), mine.gid()) != (meta.uid(), meta.gid()) {
+            std::os::unix::fs::fchown(new.as_file(), Some(meta.uid()), Some(meta.gid())).with_context(|| {
+                format!(
+                    "{}: cannot keep its owner {}:{}; upgrade it as its owner",
+                    target.display(),
+                    meta.uid(),
+                    meta.gid()
+                )
+            })?;
+        }
+    }
+    new.write_all(text.as_bytes())
+        .and_then(|()| new.as_file().sync_all())
+        .with_context(|| format!("{}", new.path().display()))?;
+    new.persist(&target).map_err(|e| e.error).with_context(|| format!("{}", target.display()))?;
+    Ok(target)
+}
+
+/// `text` with the line endings of `original`: CRLF throughout when the
+/// original's first line ends in CRLF, else as it is.
+fn with_line_endings_of(text: &str, original: &str) -> String {
+    let crlf = original.find('\n').is_some_and(|k| original[..k].ends_with('\r'));
+    if crlf { text.replace("\r\n", "\n").replace('\n', "\r\n") } else { text.to_owned() }
 }

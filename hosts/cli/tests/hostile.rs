@@ -492,3 +492,64 @@ fn the_help_says_what_the_bare_command_does() {
         assert!(help.contains(folder), "`umbra --help` does not name {folder}: {help}");
     }
 }
+
+/// `--in-place` writes nowhere but its file and keeps what it replaces: a
+/// link planted at the old fixed temporary name is left alone (and its
+/// target unchanged), the file's permissions and CRLF line endings are
+/// kept, a link is upgraded at its target and stays a link, and a
+/// read-only file is refused and left as it was.
+#[cfg(unix)]
+#[test]
+fn an_in_place_upgrade_keeps_what_it_replaces() {
+    use std::os::unix::fs::PermissionsExt;
+    let d = dir("in-place");
+    let sub = d.join("sub");
+    std::fs::create_dir_all(&sub).expect("dir");
+    let old = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/first-release-gpu.toml"))
+        .expect("an earlier release's file");
+    assert!(!old.starts_with("format = "), "the example states no format");
+    let upgrade = |file: &Path| umbra(&["arch", "upgrade", "--in-place", text(file)]);
+    let upgraded = |file: &Path| std::fs::read_to_string(file).expect("read").replace("\r\n", "\n");
+    let mode = |file: &Path| std::fs::metadata(file).expect("meta").permissions().mode() & 0o777;
+    // A link planted where the old code wrote its temporary.
+    let (file, victim) = (sub.join("x.toml"), d.join("v.txt"));
+    std::fs::write(&file, &old).expect("file");
+    std::fs::write(&victim, "the user's").expect("victim");
+    std::os::unix::fs::symlink("../v.txt", sub.join(".x.toml.upgrading")).expect("a planted link");
+    std::fs::set_permissions(&file, std::fs::Permissions::from_mode(0o600)).expect("private");
+    let o = upgrade(&file);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(std::fs::read_to_string(&victim).expect("victim"), "the user's", "written through the link");
+    assert!(std::fs::symlink_metadata(sub.join(".x.toml.upgrading")).expect("link").file_type().is_symlink());
+    assert!(std::fs::symlink_metadata(&file).expect("file").file_type().is_file(), "the file became a link");
+    assert!(upgraded(&file).starts_with("format = 2\n"), "upgraded");
+    assert_eq!(mode(&file), 0o600, "a private file stays private");
+    let names: Vec<_> = std::fs::read_dir(&sub).expect("dir").map(|e| e.expect("entry").file_name()).collect();
+    assert_eq!(names.len(), 2, "no temporary left: {names:?}");
+    // An executable file and CRLF line endings.
+    let crlf = sub.join("crlf.toml");
+    std::fs::write(&crlf, old.replace('\n', "\r\n")).expect("file");
+    std::fs::set_permissions(&crlf, std::fs::Permissions::from_mode(0o755)).expect("mode");
+    assert!(upgrade(&crlf).status.success());
+    let bytes = std::fs::read(&crlf).expect("read");
+    assert!(bytes.starts_with(b"format = 2\r\n"), "CRLF kept");
+    assert!(bytes.windows(2).filter(|w| w[1] == b'\n').all(|w| w[0] == b'\r'), "every line ends in CRLF");
+    assert_eq!(mode(&crlf), 0o755);
+    let again = upgrade(&crlf);
+    assert!(String::from_utf8_lossy(&again.stderr).contains("already in the current format"), "an upgraded CRLF file");
+    // A link: upgraded at its target, and still a link.
+    let (real, link) = (d.join("real.toml"), sub.join("link.toml"));
+    std::fs::write(&real, &old).expect("file");
+    std::os::unix::fs::symlink(&real, &link).expect("a link");
+    let o = upgrade(&link);
+    assert!(o.status.success() && String::from_utf8_lossy(&o.stderr).contains("real.toml"), "names the target");
+    assert!(std::fs::symlink_metadata(&link).expect("link").file_type().is_symlink(), "the link stays a link");
+    assert!(upgraded(&real).starts_with("format = 2\n"), "its target upgraded");
+    // A read-only file is refused, and left as it was.
+    let locked = sub.join("locked.toml");
+    std::fs::write(&locked, &old).expect("file");
+    std::fs::set_permissions(&locked, std::fs::Permissions::from_mode(0o444)).expect("read-only");
+    fails_saying(&upgrade(&locked), &["locked.toml", "read-only"]);
+    assert_eq!(std::fs::read_to_string(&locked).expect("read"), old);
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -9,7 +9,8 @@
 //! ```
 //! use umbra_sim::input::format::{ARCH, SWEEP};
 //! assert_eq!(ARCH.stated(None), Ok(1));
-//! assert!(SWEEP.stated(Some(SWEEP.current + 1)).is_err());
+//! assert!(SWEEP.stated(Some(i64::from(SWEEP.current) + 1)).is_err());
+//! assert!(SWEEP.stated(Some(-1)).unwrap_err().contains("format -1"));
 //! let text = SWEEP.upgrade("name = \"mine\" # my sweep\n", &[]).expect("TOML");
 //! assert_eq!(text, format!("format = {}\nname = \"mine\" # my sweep\n", SWEEP.current));
 //! ```
@@ -48,18 +49,20 @@ pub struct Added {
 }
 
 impl Format {
-    /// The version a file states (`format`), 1 when it states none.
+    /// The version a file states (`format`, as written), 1 when it
+    /// states none.
     ///
     /// # Errors
-    /// The problem, for a version 0 or one newer than this build reads.
-    pub fn stated(&self, format: Option<u32>) -> Result<u32, String> {
+    /// The problem, naming the version as written, for a version below 1
+    /// or one newer than this build reads.
+    pub fn stated(&self, format: Option<i64>) -> Result<u32, String> {
         match format.unwrap_or(1) {
-            0 => Err("format versions start at 1".to_owned()),
-            v if v > self.current => Err(format!(
+            v if v < 1 => Err(format!("format {v}: format versions start at 1")),
+            v if v > i64::from(self.current) => Err(format!(
                 "the file is written for {} file format {v}; this umbra reads formats 1 to {} (a later release reads it)",
                 self.kind, self.current
             )),
-            v => Ok(v),
+            v => Ok(u32::try_from(v).unwrap_or(u32::MAX)),
         }
     }
 

@@ -87,9 +87,18 @@ pub enum RenderError {
     #[error(transparent)]
     Limit(#[from] LimitError),
     /// The camera sees no surface facing the light: there is no pixel to
-    /// measure (never a result of 0 % error).
-    #[error("camera: the view shows no surface facing the light, so no pixel can be evaluated")]
-    NothingEvaluated,
+    /// measure (never a result of 0 % error). Its near and far planes are
+    /// named: a near plane far below the far one leaves the f32 depth no
+    /// room to tell a surface from the far plane.
+    #[error(
+        "camera: the view shows no surface facing the light (its near plane {near:e}, far {far}: check them, its direction, and the light), so no pixel can be evaluated"
+    )]
+    NothingEvaluated {
+        /// The camera's near plane.
+        near: f32,
+        /// Its far plane.
+        far: f32,
+    },
     /// The light's map receives no fragment: the light sees no object.
     #[error(transparent)]
     EmptyMap(#[from] crate::pass::light::EmptyMap),
@@ -115,6 +124,15 @@ pub enum RenderError {
 }
 
 impl RenderError {
+    /// [`RenderError::NothingEvaluated`] of `scene`'s camera.
+    fn nothing_evaluated(scene: &Scene) -> Self {
+        let (near, far) = match scene.camera {
+            crate::world::scene::Camera::Perspective(p) => (p.near, p.far),
+            crate::world::scene::Camera::Orthographic(o) => (o.near, o.far),
+        };
+        Self::NothingEvaluated { near, far }
+    }
+
     /// This error as light `k`'s.
     #[must_use]
     pub fn of_light(self, k: usize) -> Self {
@@ -167,6 +185,7 @@ fn truths_of(
     truth_from: TruthSource<'_>,
     (ids, camera): (&[u32], umbra_core::glam::Mat4),
     (reference, lights): (&Reference, &[LightSource]),
+    scene: &Scene,
 ) -> Result<Vec<Vec<Option<PixelTruth>>>, RenderError> {
     let build = |progress: &ProgressBar| {
         lights
@@ -189,7 +208,7 @@ fn truths_of(
         }
         if !truth.iter().flatten().any(|t| t.faces_light) {
             return Err(if lights.len() == 1 {
-                RenderError::NothingEvaluated
+                RenderError::nothing_evaluated(scene)
             } else {
                 RenderError::NothingEvaluatedFor(Scene::light_key(k))
             });
@@ -382,9 +401,9 @@ pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
         }
     }
     let reference = Reference::of(scene)?;
-    let Some(seen) = images.first() else { return Err(RenderError::NothingEvaluated) };
+    let Some(seen) = images.first() else { return Err(RenderError::nothing_evaluated(scene)) };
     let ids: Vec<u32> = seen.pixels.iter().map(|p| p.triangle).collect();
-    let truths = truths_of(cfg, truth_from, (&ids, seen.camera), (&reference, &light_sources(scene)))?;
+    let truths = truths_of(cfg, truth_from, (&ids, seen.camera), (&reference, &light_sources(scene)), scene)?;
     let units = cfg.algorithm.units::<F>(cfg.bias);
     let options = camera_options(cfg, &units, (seen.width, seen.height), Tiling::DEFAULT)?;
     let lit = lit_scenes(scene);

@@ -388,6 +388,58 @@ fn the_packages_broken_models_are_refused_by_name() {
     }
 }
 
+/// Every model of the package outside the broken ones above opens as a
+/// scene, or is refused for what Umbra states it does not read (an
+/// extension it does not decode, a point light, no triangle); none is
+/// refused by the checks of hostile input (a buffer outside the folder,
+/// the specification's rules, the memory bound).
+#[test]
+#[ignore = "needs Debian's assimp-testmodels: run with `cargo test --test integration -- --ignored --skip firmware --skip shared_mesh`"]
+fn every_valid_model_of_the_package_still_opens() {
+    // The package's deliberately broken models: those above, and those
+    // whose JSON breaks the schema (each refused by the `gltf` crate).
+    let broken = [
+        "IndexOutOfRange",
+        "RecursiveNodes",
+        "MissingBin",
+        "BoxWithInfinites",
+        "SchemaFailures",
+        "TestNoRootNode",
+        "IncorrectVertexArrays",
+        "wrongTypes",
+    ];
+    let mut files = Vec::new();
+    let mut stack = vec![PathBuf::from(MODELS)];
+    while let Some(dir) = stack.pop() {
+        for e in std::fs::read_dir(&dir).expect("the package's folder").flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                stack.push(p);
+            } else if p.extension().is_some_and(|x| x == "gltf" || x == "glb") {
+                files.push(p);
+            }
+        }
+    }
+    files.sort();
+    let (mut opened, mut stated, mut wrong) = (0, Vec::new(), Vec::new());
+    for f in files.iter().filter(|f| !broken.iter().any(|b| f.to_string_lossy().contains(b))) {
+        match Scene::of_gltf(f, None, &Limits::DEFAULT) {
+            Ok(_) => opened += 1,
+            Err(SceneError { problem: Problem::Gltf(p), key, .. })
+                if matches!(p, GltfProblem::Unsupported(_) | GltfProblem::PointLight(_) | GltfProblem::Empty) =>
+            {
+                stated.push(format!("{}: {key}: {p}", f.display()));
+            }
+            Err(e) => wrong.push(e.to_string()),
+        }
+    }
+    eprintln!("{opened} opened; refused as stated: {stated:#?}");
+    assert!(wrong.is_empty(), "valid models refused: {wrong:#?}");
+    // 22 open with Debian 12's package (and 10 are refused as stated): a
+    // walk that found nothing, or a loader that refuses many, fails here.
+    assert!(opened >= 20, "{opened} of {} opened", files.len());
+}
+
 /// The package's engine renders, and its file of two cameras gives both.
 #[test]
 #[ignore = "needs Debian's assimp-testmodels: run with `cargo test --test integration -- --ignored --skip firmware --skip shared_mesh`"]

@@ -350,7 +350,7 @@ fn nothing_to_measure_is_an_error_not_a_perfect_score() {
     };
     let away = with("target = [0.0, 0.0, 0.0]\nfov", "target = [0.0, 2.0, 10.0]\nfov").expect("valid");
     let err = run(away).err().expect("the camera looks away from the ball");
-    assert!(matches!(err, RenderError::NothingEvaluated) && err.to_string().starts_with("camera:"), "{err}");
+    assert!(matches!(err, RenderError::NothingEvaluated { .. }) && err.to_string().starts_with("camera:"), "{err}");
     let aside = with(
         "position = [0.0, 5.0, 0.0]\ntarget = [0.0, 0.0, 0.0]",
         "position = [9.0, 5.0, 0.0]\ntarget = [9.0, 0.0, 0.0]",

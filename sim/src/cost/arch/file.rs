@@ -105,7 +105,7 @@ impl Arch {
         })?;
         let format = match table.remove("format") {
             None => None,
-            Some(toml::Value::Integer(v)) => Some(u32::try_from(v).unwrap_or(u32::MAX)),
+            Some(toml::Value::Integer(v)) => Some(v),
             Some(_) => return Err(err("format", Problem::Type("a whole number, the file format version"))),
         };
         let format = ARCH.stated(format).map_err(|e| err("format", Problem::Format(e)))?;

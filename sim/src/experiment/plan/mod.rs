@@ -360,6 +360,8 @@ pub fn plan(scene: &Scene, spec: &PlanSpec, progress: &ProgressBar) -> Result<Pl
     {
         return Err(PlanError::Spec(format!("budget {i} ({b}) bounds {} a second time", b.measure.name())));
     }
+    crate::experiment::study::map_sides("map sides", &spec.map_sizes, &spec.limits)
+        .map_err(|e| PlanError::Spec(e.to_string()))?;
     let n = spec.candidates();
     if n == 0 {
         return Err(PlanError::Spec("no algorithm, format, map side or filter to choose from".into()));

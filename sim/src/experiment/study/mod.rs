@@ -41,7 +41,7 @@ mod sweep;
 mod sweep_file;
 
 pub use crate::cost::report::stats::RowCost;
-pub use request::{Outcome, Overrides, Prepared, Request, choose_archs, image_size, no_repeats};
+pub use request::{Outcome, Overrides, Prepared, Request, choose_archs, image_size, map_sides, no_repeats};
 pub use row::{Row, RowConfig, RowMetrics, Status};
 #[cfg(test)]
 use run::run_unshared;

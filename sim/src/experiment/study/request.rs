@@ -12,6 +12,7 @@ use std::path::PathBuf;
 use indicatif::ProgressBar;
 use umbra_core::RasterConfig;
 
+use super::sweep_file::MAX_AXIS_VALUES;
 use super::{
     Manifest, Row, Shard, Spec, StudyError, SweepFile, already_complete, budgets_problem, extremes, finish,
     load_scenes, repeated, run, summary, write_outputs, write_partial,
@@ -127,16 +128,46 @@ pub enum Outcome {
     },
 }
 
-/// `flag`'s `items` with none given twice.
+/// `flag`'s `items`, at most 4096 of them (as a sweep file's axis), with
+/// none given twice.
 ///
 /// # Errors
-/// [`StudyError::Request`] naming the flag and the item.
+/// [`StudyError::Request`] naming the flag and the item, or the count.
 pub fn no_repeats<'a>(flag: &str, items: impl IntoIterator<Item = &'a str>) -> Result<(), StudyError> {
     let mut seen = std::collections::BTreeSet::new();
     for item in items {
+        if seen.len() == MAX_AXIS_VALUES {
+            return Err(StudyError::Request(format!(
+                "{flag}: more than {MAX_AXIS_VALUES} values; a list has at most {MAX_AXIS_VALUES}, as a sweep's axis"
+            )));
+        }
         if !seen.insert(item) {
             return Err(StudyError::Request(format!("{flag} `{item}` is given twice")));
         }
+    }
+    Ok(())
+}
+
+/// Map sides a study or plan sweeps: a list within [`no_repeats`], each
+/// side within the limits and a map the rasterizer takes.
+///
+/// # Errors
+/// [`StudyError::Request`] naming `flag`, the side and the limit
+/// (`--max-map-side`) it breaks.
+pub fn map_sides(flag: &str, sides: &[u32], limits: &Limits) -> Result<(), StudyError> {
+    if sides.len() > MAX_AXIS_VALUES {
+        return Err(StudyError::Request(format!(
+            "{flag}: {} values; a list has at most {MAX_AXIS_VALUES}, as a sweep's axis",
+            sides.len()
+        )));
+    }
+    let names: Vec<String> = sides.iter().map(u32::to_string).collect();
+    no_repeats(flag, names.iter().map(String::as_str))?;
+    for &side in sides {
+        let bad = |why: String| StudyError::Request(format!("{flag} {side}: {why}"));
+        limits.check_map(side).map_err(|e| bad(format!("{e}; raise it with --max-map-side")))?;
+        RasterConfig::new(side, side, RasterConfig::DEFAULT_TILE_SIZE, RasterConfig::DEFAULT_SUBPIXEL_BITS)
+            .map_err(|e| bad(e.to_string()))?;
     }
     Ok(())
 }
@@ -213,8 +244,8 @@ impl Request {
     pub fn prepare_file(&self, file: SweepFile, limits: &Limits, threads: usize) -> Result<Prepared, StudyError> {
         let o = &self.overrides;
         no_repeats("scene", o.scenes.iter().map(String::as_str))?;
-        let maps: Vec<String> = o.maps.iter().map(u32::to_string).collect();
-        no_repeats("--maps", maps.iter().map(String::as_str))?;
+        map_sides("--maps", &o.maps, limits)?;
+        no_repeats("--image", o.images.iter().map(String::as_str))?;
         let mut spec = file.spec(limits)?;
         if !o.scenes.is_empty() {
             spec.scenes = load_scenes(&o.scenes, limits)?;
@@ -262,12 +293,6 @@ impl Request {
                 return Err(StudyError::Request(format!("--budgets: {problem}")));
             }
             spec.budgets.clone_from(&o.budgets);
-        }
-        for &side in &o.maps {
-            let bad = |why: String| StudyError::Request(format!("--maps {side}: {why}"));
-            limits.check_map(side).map_err(|e| bad(e.to_string()))?;
-            RasterConfig::new(side, side, RasterConfig::DEFAULT_TILE_SIZE, RasterConfig::DEFAULT_SUBPIXEL_BITS)
-                .map_err(|e| bad(e.to_string()))?;
         }
         if !o.maps.is_empty() {
             spec.map_sizes.clone_from(&o.maps);

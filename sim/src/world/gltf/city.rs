@@ -23,6 +23,8 @@ use std::borrow::Cow;
 use glam::Vec3;
 use serde_json::json;
 
+use crate::input::limits::{Footprint, Limits};
+
 /// A city of `side × side` buildings, each a box whose four walls are cut
 /// into `columns` across and `storeys` up, its roof and floor
 /// `columns × columns`; both counts powers of two, so that the walls'
@@ -40,7 +42,9 @@ pub struct City {
 /// Why a city cannot be generated.
 #[derive(Debug, thiserror::Error)]
 pub enum CityError {
-    /// A count of zero, or not a power of two, or a mesh past u16 indices.
+    /// A count of zero, or not a power of two, a building past u16
+    /// indices, or a city past the limits: the options named, with the
+    /// largest value allowed.
     #[error("{0}")]
     Counts(String),
     /// The `gltf` crate could not write the binary file.
@@ -114,22 +118,113 @@ impl City {
         self.side as u64 * self.side as u64 * self.building_triangles() + 2
     }
 
-    /// The city as a binary glTF file.
+    /// Vertices of one building: each wall's and the roof's and floor's
+    /// grid of corners.
+    #[must_use]
+    pub const fn building_vertices(&self) -> u64 {
+        let (c, s) = (self.columns as u64 + 1, self.storeys as u64 + 1);
+        4 * c * s + 2 * c * c
+    }
+
+    /// The most bytes a building's node takes in the file's JSON (its
+    /// name, mesh, translation and scale, and its place in the scene's
+    /// list; about 120 written).
+    pub const JSON_PER_BUILDING: u64 = 160;
+
+    /// The JSON besides the buildings' nodes, at most.
+    const JSON_BASE: u64 = 4096;
+
+    /// The largest of `n` powers of two (1, 2, 4, …) for which `fits`.
+    fn largest_power(fits: impl Fn(u32) -> bool) -> Option<u32> {
+        (0..16).map(|k| 1u32 << k).take_while(|&n| fits(n)).last()
+    }
+
+    /// Whether the city can be generated, and read back by a render within
+    /// `limits`, checked before any of it is built: a side of at least 1,
+    /// columns and storeys powers of two, a building within the 2¹⁶
+    /// vertices its u16 indices number, and the whole within the
+    /// triangles, the JSON and the memory `limits` allow. Each refusal
+    /// names the options (`--side`, `--columns`, `--storeys`) and the
+    /// largest value allowed.
     ///
     /// # Errors
-    /// [`CityError`] for counts of zero or not powers of two, or a
-    /// building of more than 2¹⁶ vertices.
-    pub fn glb(&self) -> Result<Vec<u8>, CityError> {
+    /// [`CityError::Counts`] naming what is wrong.
+    pub fn check(&self, limits: &Limits) -> Result<(), CityError> {
         let Self { side, columns, storeys } = *self;
-        if side == 0 || side > 1024 || !columns.is_power_of_two() || !storeys.is_power_of_two() {
-            return Err(CityError::Counts(format!(
-                "side {side} must be 1 to 1024, columns {columns} and storeys {storeys} powers of two"
-            )));
+        let counts = |m: String| Err(CityError::Counts(m));
+        if side == 0 || side > Self::MAX_SIDE || !columns.is_power_of_two() || !storeys.is_power_of_two() {
+            return counts(format!(
+                "--side {side} must be 1 to {}, --columns {columns} and --storeys {storeys} powers of two",
+                Self::MAX_SIDE
+            ));
         }
+        let u16_vertices = u64::from(u16::MAX);
+        if self.building_vertices() > u16_vertices {
+            let with = |c: u32, s: u32| Self { side, columns: c, storeys: s }.building_vertices() <= u16_vertices;
+            let most = |flag: &str, n: Option<u32>, (other, value): (&str, u32)| match n {
+                Some(n) => format!("with {other} {value}, {flag} is at most {n}"),
+                None => format!("with {other} {value}, no {flag} fits"),
+            };
+            return counts(format!(
+                "--columns {columns} and --storeys {storeys} make a building of {} vertices, past the {u16_vertices} its 16-bit indices number: {}; {}",
+                self.building_vertices(),
+                most("--columns", Self::largest_power(|c| with(c, storeys)), ("--storeys", storeys)),
+                most("--storeys", Self::largest_power(|s| with(columns, s)), ("--columns", columns)),
+            ));
+        }
+        // The largest side every limit allows, for these buildings.
+        let per = self.building_triangles();
+        let by_triangles = ((limits.max_triangles.saturating_sub(2)) / per).isqrt();
+        let by_text = (limits.max_text_bytes.saturating_sub(Self::JSON_BASE) / Self::JSON_PER_BUILDING).isqrt();
+        let by_memory = (limits.max_memory.saturating_sub(Footprint::BASE) / Self::MEMORY_PER_BUILDING).isqrt();
+        let most = by_triangles.min(by_text).min(by_memory);
+        if u64::from(side) > most {
+            let (what, limit) = if most == by_triangles {
+                (format!("{} triangles", self.triangles()), format!("{} (`--max-triangles`)", limits.max_triangles))
+            } else if most == by_text {
+                (
+                    format!("{} bytes of JSON", u64::from(side).pow(2) * Self::JSON_PER_BUILDING + Self::JSON_BASE),
+                    format!("{} a render reads (`--max-text-bytes`)", limits.max_text_bytes),
+                )
+            } else {
+                (
+                    format!("{} MiB to generate", (u64::from(side).pow(2) * Self::MEMORY_PER_BUILDING) >> 20),
+                    format!("{} MiB (`--max-memory`)", limits.max_memory >> 20),
+                )
+            };
+            return counts(format!(
+                "--side {side} makes {what}, above the limit of {limit}: with --columns {columns} and --storeys {storeys}, --side is at most {most}"
+            ));
+        }
+        Ok(())
+    }
+
+    /// The largest side, whatever the limits: its buildings' places exact
+    /// in f32.
+    pub const MAX_SIDE: u32 = 4096;
+
+    /// The most memory a building's node takes while the file is written
+    /// (its JSON value, its text and its copy in the file).
+    const MEMORY_PER_BUILDING: u64 = 4096;
+
+    /// The city as a binary glTF file, within the default limits
+    /// ([`City::glb_within`]).
+    ///
+    /// # Errors
+    /// As [`City::glb_within`].
+    pub fn glb(&self) -> Result<Vec<u8>, CityError> {
+        self.glb_within(&Limits::DEFAULT)
+    }
+
+    /// The city as a binary glTF file, if [`City::check`] finds it within
+    /// `limits`.
+    ///
+    /// # Errors
+    /// [`CityError`] from [`City::check`], or from writing the file.
+    pub fn glb_within(&self, limits: &Limits) -> Result<Vec<u8>, CityError> {
+        let Self { side, columns, storeys } = *self;
+        self.check(limits)?;
         let (positions, triangles) = building(columns, storeys);
-        if positions.len() > usize::from(u16::MAX) {
-            return Err(CityError::Counts(format!("a building of {} vertices is past u16 indices", positions.len())));
-        }
         let ground = [
             Vec3::new(-1.0, 0.0, 1.0),
             Vec3::new(1.0, 0.0, 1.0),
@@ -170,12 +265,12 @@ impl City {
         // Buildings on a grid of unit-spaced blocks centred on the origin,
         // each 0.5 to 0.8 of its block wide and 0.4 to 2.4 tall; the
         // ground reaches a block past the outer ones.
-        #[allow(clippy::cast_precision_loss, reason = "a side of at most 1024, exact in f32")]
+        #[allow(clippy::cast_precision_loss, reason = "a side of at most 4096, exact in f32")]
         let half = side as f32 / 2.0;
         let mut nodes = vec![json!({ "name": "ground", "mesh": 1, "scale": [half + 1.0, 1.0, half + 1.0] })];
         for k in 0..side * side {
             let (i, j) = (k % side, k / side);
-            #[allow(clippy::cast_precision_loss, reason = "at most 1024, exact in f32")]
+            #[allow(clippy::cast_precision_loss, reason = "at most 4096, exact in f32")]
             let (x, z) = (i as f32 - half + 0.5, j as f32 - half + 0.5);
             let (w, d, h) = (0.5 + 0.3 * hashed(3 * k), 0.5 + 0.3 * hashed(3 * k + 1), 0.4 + 2.0 * hashed(3 * k + 2));
             nodes.push(

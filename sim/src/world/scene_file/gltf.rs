@@ -20,6 +20,12 @@ impl From<GltfError> for SceneError {
     }
 }
 
+/// The largest far / near ratio a camera's f32 projection keeps: beyond
+/// 2²⁵ its depth term `(far + near) / (far − near)` rounds to 1 in f32, and
+/// no surface is told from the far plane (a render of such a camera
+/// names its planes).
+const DEPTH_RANGE: f64 = 33_554_432.0;
+
 /// The image height a glTF scene is rendered at; its width follows the
 /// camera's aspect ratio (16:9 where it gives none).
 const HEIGHT: u32 = 540;
@@ -90,6 +96,17 @@ fn camera(
                     format!("znear {znear} must be positive and below the far plane {far}"),
                 ));
             }
+            // The f32 depth of the camera pass tells surfaces apart only
+            // while far / near stays within its 24 bits of mantissa.
+            if f64::from(far) / f64::from(znear) > DEPTH_RANGE {
+                return Err(view_fault(
+                    &format!("{}.perspective.znear", c.path),
+                    format!(
+                        "znear {znear:e} is below the far plane {far} / 2^25 = {:.3e}: the camera's f32 depth cannot tell a surface from the far plane, and the view shows none; raise znear",
+                        f64::from(far) / DEPTH_RANGE
+                    ),
+                ));
+            }
             Ok((Camera::Perspective(Perspective { position, target, fov_degrees, near: znear, far, up }), aspect))
         }
         Lens::Orthographic { xmag, ymag, znear, zfar } => {
@@ -113,6 +130,15 @@ fn light(l: &Placed<Lamp>, sphere: Sphere) -> Result<Light, (String, crate::worl
         Lamp::Spot { outer, range } => {
             let fov_degrees = fov(&l.path, "twice the outer cone angle", 2.0 * f64::from(outer).to_degrees())?;
             let (near, far) = hugging(sphere, l.position);
+            if let Some(range) = range.filter(|&r| f64::from(r) <= sphere.reach(l.position).0.max(0.0)) {
+                return Err(view_fault(
+                    &format!("{}.range", l.path),
+                    format!(
+                        "range {range} ends before the nearest of the scene ({:.4} away): the light's map would receive nothing",
+                        sphere.reach(l.position).0
+                    ),
+                ));
+            }
             let far = range.map_or(far, f64::from);
             let near = near.min(far * 0.5);
             if !(near > 0.0 && far > near) {

@@ -361,7 +361,9 @@ impl Scene {
             let key = e.span().map_or_else(|| "(file)".to_owned(), |s| crate::input::at_line(text, s.start));
             c.err(key, Problem::Syntax(e.message().trim().to_owned()))
         })?;
-        crate::input::format::SCENE.stated(parsed.format).map_err(|e| c.err("format", Problem::Syntax(e)))?;
+        crate::input::format::SCENE
+            .stated(parsed.format.map(i64::from))
+            .map_err(|e| c.err("format", Problem::Syntax(e)))?;
         // Whole pixels (integers, read as such); then the limits, which
         // name themselves.
         let image = parsed.image.0;

@@ -240,7 +240,7 @@ impl SweepFile {
                 .map_or_else(|| "(syntax)".to_owned(), |s| format!("({})", crate::input::at_line(&self.text, s.start)));
             self.err(key, e.message().trim().to_owned())
         })?;
-        crate::input::format::SWEEP.stated(t.format).map_err(|e| self.err("format", e))?;
+        crate::input::format::SWEEP.stated(t.format.map(i64::from)).map_err(|e| self.err("format", e))?;
         self.lengths(&t)?;
         let mut scenes = Vec::new();
         for (i, s) in t.scenes.iter().enumerate() {
