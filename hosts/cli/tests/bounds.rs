@@ -466,3 +466,51 @@ fn a_studys_stated_bound_holds_its_peak_with_a_stated_margin() {
     }
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// A glTF model that declares far more than it draws is bounded before
+/// its buffers are read: a kilobyte file whose sparse `POSITION` declares
+/// twelve million vertices, of which one triangle is drawn, placed by ten
+/// nodes, renders
+/// under a gibibyte with its peak within the bound (the loader before
+/// kept a copy of every vertex per node: 2.9 GB), and under a bound below
+/// its read's estimate is refused before any folder is made.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_gltf_models_declared_counts_are_bounded_before_its_read() {
+    let d = dir("gltf-declared");
+    std::fs::create_dir_all(&d).expect("dir");
+    let mut bin: Vec<u8> = [1u32, 2].iter().flat_map(|i| i.to_le_bytes()).collect();
+    bin.extend([1.0f32, 0.0, 0.0, 0.0, 0.0, 1.0].iter().flat_map(|c| c.to_le_bytes()));
+    bin.extend([0u32, 2, 1].iter().flat_map(|i| i.to_le_bytes()));
+    std::fs::write(d.join("small.bin"), &bin).expect("buffer");
+    // Ten copies stacked a tenth apart: each shadows the one below.
+    let nodes: Vec<String> =
+        (0..10).map(|k| format!("{{\"mesh\":0,\"translation\":[0,{},0]}}", f64::from(k) / 10.0)).collect();
+    let json = format!(
+        "{{\"asset\":{{\"version\":\"2.0\"}},\"scenes\":[{{\"nodes\":[0,1,2,3,4,5,6,7,8,9]}}],\"nodes\":[{}],\
+         \"meshes\":[{{\"primitives\":[{{\"attributes\":{{\"POSITION\":0}},\"indices\":1}}]}}],\
+         \"buffers\":[{{\"uri\":\"small.bin\",\"byteLength\":{}}}],\
+         \"bufferViews\":[{{\"buffer\":0,\"byteLength\":8}},{{\"buffer\":0,\"byteOffset\":8,\"byteLength\":24}},{{\"buffer\":0,\"byteOffset\":32,\"byteLength\":12}}],\
+         \"accessors\":[{{\"componentType\":5126,\"count\":12000000,\"type\":\"VEC3\",\"min\":[0,0,0],\"max\":[1,0,1],\
+         \"sparse\":{{\"count\":2,\"indices\":{{\"bufferView\":0,\"componentType\":5125}},\"values\":{{\"bufferView\":1}}}}}},\
+         {{\"bufferView\":2,\"componentType\":5125,\"count\":3,\"type\":\"SCALAR\"}}]}}",
+        nodes.join(","),
+        bin.len()
+    );
+    let model = d.join("sparse.gltf");
+    std::fs::write(&model, &json).expect("model");
+    assert!(json.len() < 1200, "{} bytes", json.len());
+    let out = d.join("out");
+    let args = ["render", text(&model), "--width", "64", "--height", "36", "--map", "128", "--reference-rays", "1"];
+    let (ok, err, peak) = peak(&[&args[..], &["--max-memory", "1GiB", "--out", text(&out)]].concat(), &d);
+    assert!(ok, "{err}");
+    eprintln!("peak {} MiB", peak >> 20);
+    assert!(peak <= 1 << 30, "peak {} MiB above the 1 GiB bound", peak >> 20);
+    let never = d.join("never");
+    refused(
+        &[&args[..], &["--max-memory", "200MiB", "--out", text(&never)]].concat(),
+        &["reading the glTF file's meshes would take up to", "max_memory"],
+    );
+    assert!(!never.exists(), "nothing written");
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -553,3 +553,51 @@ fn an_in_place_upgrade_keeps_what_it_replaces() {
     assert_eq!(std::fs::read_to_string(&locked).expect("read"), old);
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// A glTF file whose primitive names an accessor it does not have (the
+/// `gltf` crate's validation indexes it unchecked) is an error naming the
+/// attribute, never a panic: as a model, as a scene file's mesh and as
+/// `arch diff --scene`.
+#[test]
+fn a_gltf_file_never_panics_the_command() {
+    let d = dir("gltf-panic");
+    std::fs::create_dir_all(&d).expect("dir");
+    let model = d.join("p.gltf");
+    std::fs::write(&model, r#"{"asset":{"version":"2.0"},"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}]}"#)
+        .expect("model");
+    let table = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/table-and-sphere.toml"))
+        .expect("the bundled table");
+    let scene = d.join("s.toml");
+    let mesh = table.lines().find(|l| l.trim_start().starts_with("mesh = ")).expect("a mesh line");
+    std::fs::write(&scene, table.replacen(mesh, "mesh = { gltf = \"p.gltf\" }", 1)).expect("scene");
+    let out = d.join("out");
+    for args in [
+        vec!["render", text(&model), "--out", text(&out)],
+        vec!["render", text(&scene), "--out", text(&out)],
+        vec!["arch", "diff", "talisman", "pixelflow", "--scene", text(&model)],
+    ] {
+        let o = umbra(&args);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
+        fails_saying(&o, &["attributes.POSITION", "names accessors[0]"]);
+    }
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// Every list and size is bounded before work, naming the option: a plan
+/// over 4097 map sides or a side past `--max-map-side`, a study over 4097,
+/// a city past the triangles a render reads or past a building's 16-bit
+/// indices (each with the largest allowed).
+#[test]
+fn lists_and_generated_sizes_are_bounded_before_work() {
+    let d = dir("lists");
+    let many: String = (1000..=5096).map(|s| s.to_string()).collect::<Vec<_>>().join(",");
+    let plan = |maps: &str| umbra(&["plan", "table-and-sphere", "--image", "64x36", "--maps", maps, "--out", text(&d)]);
+    fails_saying(&plan(&many), &["--maps", "4097 values", "at most 4096"]);
+    fails_saying(&plan("16384"), &["--maps 16384", "8192", "--max-map-side"]);
+    fails_saying(&umbra(&["study", "--quick", "--maps", &many, "--out", text(&d)]), &["--maps", "at most 4096"]);
+    let city = |a: &[&str]| umbra(&[&["scene", "city"][..], a, &["--out", text(&d)]].concat());
+    fails_saying(&city(&["--side", "1024"]), &["--side 1024", "335544322 triangles", "--max-triangles", "at most 114"]);
+    fails_saying(&city(&["--columns", "1024"]), &["--columns 1024", "16-bit", "--columns is at most 128"]);
+    fails_saying(&city(&["--columns", "8192", "--storeys", "8192"]), &["no --columns fits"]);
+    assert!(!d.exists(), "nothing written");
+}
