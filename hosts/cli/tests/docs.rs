@@ -420,3 +420,48 @@ fn the_study_page_lists_every_file_a_study_writes() {
     }
     let _ = std::fs::remove_dir_all(&out);
 }
+
+/// The README's and the guide's commands, run one after another in any
+/// order, lose no file: no folder is written by two kinds of command
+/// (which the second would refuse, or with `--replace` replace). Each
+/// command's folder is its `--out`, else its own default.
+#[test]
+fn no_two_documented_commands_of_different_kinds_share_a_folder() {
+    use std::collections::BTreeMap;
+    // The results each subcommand writes, and where by default.
+    let kinds = [
+        ("depth", "maps", "out/depth"),
+        ("render", "render", "out/render"),
+        ("cost", "cost", "out/cost"),
+        ("trace", "trace", "out/trace"),
+        ("correlate", "correlation", "out/correlate"),
+        ("study", "study", "out/study"),
+        ("merge", "study", "out/study"),
+        ("plan", "plan", "out/plan"),
+        ("scene", "scene", "out/scene-city"),
+    ];
+    let mut folders: BTreeMap<String, (String, String)> = BTreeMap::new();
+    let mut seen = 0;
+    for page in pages() {
+        let text = std::fs::read_to_string(&page).expect("a page");
+        for command in commands(&text) {
+            let words: Vec<&str> = command.split_whitespace().collect();
+            let Some(&(_, kind, default)) = kinds.iter().find(|(sub, ..)| words.get(1) == Some(sub)) else { continue };
+            if words.get(2) == Some(&"upgrade") {
+                continue;
+            }
+            let folder = out_folder(&command).unwrap_or(default).trim_end_matches('/').to_owned();
+            seen += 1;
+            if let Some((other, first)) = folders.get(&folder) {
+                assert!(
+                    other == kind,
+                    "{folder} is written by `{first}` ({other}) and by `{command}` ({kind}) in {}",
+                    page.display()
+                );
+            } else {
+                folders.insert(folder, (kind.to_owned(), command.clone()));
+            }
+        }
+    }
+    assert!(seen >= 40, "only {seen} documented commands write a folder");
+}
