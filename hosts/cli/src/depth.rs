@@ -114,7 +114,7 @@ pub(super) fn depth(args: &DepthArgs, limits: &Limits) -> Result<()> {
     let draws = scene.draws(matrix, cull);
     let (maps, counters) = RawMaps::render(config, format, &draws, Counters::new(&raster))?;
     let view = if args.matrix.is_some() { "--matrix" } else { "lights[0]" };
-    EmptyMap::check(&counters.totals, view)?;
+    EmptyMap::check(&counters.totals, view, None)?;
     let mut folder = OutputFolder::create(&args.out, Claim::new(RunKind::Depth).replacing(args.replace))?;
 
     write_maps(&mut folder, &maps, &scene)?;

@@ -387,12 +387,20 @@ fn store_size<P: Probe>(config: &LightPassConfig, draws: &[Draw<'_>]) -> usize {
 /// triangle between near and far (or sees them only smaller than a
 /// texel's centre). Every path that draws a map — a render, a study row,
 /// `umbra depth` — refuses such a map with this one message, naming the
-/// view (`lights[0]`, `--matrix`).
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("{view}: the map receives no fragment: no triangle lies in the view between near and far")]
+/// view (`lights[0]`, `--matrix`) and, where the view has them, its near
+/// and far planes.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{}: the map receives no fragment: no triangle lies in the view between {}", .view, between(*.planes))]
 pub struct EmptyMap {
     /// The view, as the user gave it.
     pub view: String,
+    /// Its near and far planes, where it has them (a light; not a matrix).
+    pub planes: Option<(f32, f32)>,
+}
+
+/// The planes a message names.
+fn between(planes: Option<(f32, f32)>) -> String {
+    planes.map_or_else(|| "near and far".to_owned(), |(near, far)| format!("near {near:e} and far {far}"))
 }
 
 impl EmptyMap {
@@ -400,9 +408,9 @@ impl EmptyMap {
     /// fragment.
     ///
     /// # Errors
-    /// [`EmptyMap`] naming `view`.
-    pub fn check(totals: &umbra_core::probe::Totals, view: &str) -> Result<(), Self> {
-        if totals.fragments == 0 { Err(Self { view: view.to_owned() }) } else { Ok(()) }
+    /// [`EmptyMap`] naming `view` and its `planes`.
+    pub fn check(totals: &umbra_core::probe::Totals, view: &str, planes: Option<(f32, f32)>) -> Result<(), Self> {
+        if totals.fragments == 0 { Err(Self { view: view.to_owned(), planes }) } else { Ok(()) }
     }
 }
 

@@ -397,7 +397,7 @@ pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
     let several = light_events.len() > 1;
     for (k, (frame, events)) in frames.iter().zip(&light_events).enumerate() {
         if frame.maps().is_some() {
-            crate::pass::light::EmptyMap::check(&events.totals, &Scene::light_key(k))?;
+            crate::pass::light::EmptyMap::check(&events.totals, &Scene::light_key(k), Some(scene.lights[k].planes()))?;
         }
     }
     let reference = Reference::of(scene)?;

@@ -161,6 +161,15 @@ fn look_at(eye: Vec3, target: Vec3, up: Vec3) -> Mat4 {
 }
 
 impl Light {
+    /// Its near and far planes.
+    #[must_use]
+    pub const fn planes(&self) -> (f32, f32) {
+        match self {
+            Self::Spot(p) | Self::Cone(p) => (p.near, p.far),
+            Self::Directional(o) => (o.near, o.far),
+        }
+    }
+
     /// World space to light clip space.
     #[must_use]
     pub fn view_projection(&self) -> Mat4 {

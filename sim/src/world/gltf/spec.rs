@@ -121,7 +121,8 @@ fn node(i: usize, n: &gltf::json::Node) -> Result<(), Fault> {
     }
     if let Some(r) = &n.rotation {
         let length = r.0.iter().map(|&x| f64::from(x) * f64::from(x)).sum::<f64>().sqrt();
-        if !((length - 1.0).abs() <= UNIT_TOLERANCE) {
+        let unit = (length - 1.0).abs() <= UNIT_TOLERANCE;
+        if !unit {
             let problem = format!("has length {length:.6}; a rotation is a unit quaternion (within {UNIT_TOLERANCE})");
             return Err(fault(at(".rotation"), problem));
         }
