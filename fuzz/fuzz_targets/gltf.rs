@@ -42,5 +42,5 @@ fuzz_target!(|data: &[u8]| {
         }
         let _ = (scene.light().view_projection(), scene.camera.view_projection_aspect(1.5));
     }
-    assert!(!umbra_sim::input::reads::was_read(&dir.join("outside.bin")), "a file outside the model's folder was read");
+    assert!(!umbra_sim::base::reads::was_read(&dir.join("outside.bin")), "a file outside the model's folder was read");
 });

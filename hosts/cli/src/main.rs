@@ -214,7 +214,7 @@ fn run() -> Result<()> {
     }
     clamp_threads();
     for dir in &cli.allow_read {
-        umbra_sim::input::reads::allow_folder(dir)
+        umbra_sim::base::reads::allow_folder(dir)
             .map_err(|e| anyhow::anyhow!("--allow-read {}: {e}", dir.display()))?;
     }
     let limits = &cli.limits.limits();

@@ -54,11 +54,13 @@ pub(crate) fn wrote(dir: &Path, manifest: &RunManifest, replaced: &Replaced) -> 
     replacements(dir, replaced)
 }
 
-/// Say what a run replaced in `dir`: the earlier run's files it removed
-/// or wrote anew, and files no run wrote that it wrote over.
+/// Say what a run replaced in `dir`, on stderr (beside the progress; the
+/// results on stdout do not depend on what the folder held before): the
+/// earlier run's files it removed or wrote anew, and files no run wrote
+/// that it wrote over.
 ///
 /// # Errors
-/// As [`line()`].
+/// None: a closed stderr is not an error of the run.
 pub(crate) fn replacements(dir: &Path, replaced: &Replaced) -> Result<()> {
     if let Some(command) = &replaced.command
         && !(replaced.removed.is_empty() && replaced.rewritten.is_empty())
@@ -68,14 +70,14 @@ pub(crate) fn replacements(dir: &Path, replaced: &Replaced) -> Result<()> {
         } else {
             format!("; removed {}", replaced.removed.join(", "))
         };
-        say!(
+        eprintln!(
             "replaced in {}: {} file(s) of the earlier `{command}`{removed}",
             dir.display(),
             replaced.rewritten.len() + replaced.removed.len()
         );
     }
     if !replaced.overwritten.is_empty() {
-        say!(
+        eprintln!(
             "replaced in {} (--replace): {}, which no run of umbra wrote",
             dir.display(),
             replaced.overwritten.join(", ")

@@ -150,6 +150,17 @@ impl Limits {
     /// [`FileError::NotAFile`] for a directory, device, socket or pipe,
     /// [`FileError::Limit`] when it is larger than the limit.
     pub fn read_file(&self, path: &Path) -> Result<Vec<u8>, FileError> {
+        crate::base::reads::note(path);
+        Self::read_within(path, self.max_file_bytes, |bytes, max| LimitError::FileBytes { bytes, max })
+    }
+
+    /// [`Limits::read_file`] of a file a run of Umbra wrote (a study's
+    /// rows read back to merge or resume), which, unlike an input, a later
+    /// run may replace: not noted as read ([`crate::base::reads`]).
+    ///
+    /// # Errors
+    /// As [`Limits::read_file`].
+    pub(crate) fn read_output(&self, path: &Path) -> Result<Vec<u8>, FileError> {
         Self::read_within(path, self.max_file_bytes, |bytes, max| LimitError::FileBytes { bytes, max })
     }
 
@@ -162,6 +173,7 @@ impl Limits {
     /// [`LimitError::Memory`] when its parse would not fit
     /// [`Limits::max_memory`].
     pub fn read_text_file(&self, path: &Path) -> Result<Vec<u8>, FileError> {
+        crate::base::reads::note(path);
         let bytes = Self::read_within(path, self.max_text_bytes, |bytes, max| LimitError::TextBytes { bytes, max })?;
         let parse = (bytes.len() as u64).saturating_mul(Footprint::PER_TEXT_BYTE).saturating_add(Footprint::BASE);
         self.check_memory("parsing the TOML file", parse).map_err(FileError::Limit)?;
@@ -177,7 +189,6 @@ impl Limits {
         #[cfg(unix)]
         std::os::unix::fs::OpenOptionsExt::custom_flags(&mut options, libc::O_NONBLOCK);
         let file = options.open(path)?;
-        super::reads::note(path);
         let meta = file.metadata()?;
         if !meta.is_file() {
             return Err(FileError::NotAFile);

@@ -1,11 +1,10 @@
 //! What the simulator reads in: the limits every input is read within
-//! ([`limits`]), the files' format versions ([`format`]), the files this
-//! process read ([`reads`]), and fixed-length arrays read exactly (`exact`).
+//! ([`limits`]), the files' format versions ([`format`]), and
+//! fixed-length arrays read exactly (`exact`).
 
 pub(crate) mod exact;
 pub mod format;
 pub mod limits;
-pub mod reads;
 
 /// Where byte `offset` of a file's `text` is, as an error names it: the
 /// line (from 1) and the line's text, so that a message names the key and

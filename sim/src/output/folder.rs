@@ -17,7 +17,7 @@
 //! manifest of its own lists, is refused, naming them, unless the run is
 //! told to replace them ([`Claim::replace`]: the `umbra` command's
 //! `--replace`). Even then it never deletes a file no run of Umbra wrote,
-//! nor a file this process read ([`crate::input::reads`]): a render whose
+//! nor a file this process read ([`crate::base::reads`]): a render whose
 //! model lies in its output folder keeps it, and a run never writes over
 //! its own input. [`OutputFolder::replaced`] names what a run replaces.
 //!
@@ -428,7 +428,7 @@ fn foreign(dir: &Path, earlier: &Earlier, max: usize) -> Vec<String> {
                 continue;
             }
             let path = format!("{prefix}{name}");
-            if earlier.files.iter().any(|f| f.path == path) || crate::input::reads::was_read(&dir.join(&path)) {
+            if earlier.files.iter().any(|f| f.path == path) || crate::base::reads::was_read(&dir.join(&path)) {
                 continue;
             }
             if is_dir && earlier.covers(&path) {
@@ -568,7 +568,7 @@ impl OutputFolder {
         let names: Vec<String> = earlier.files.iter().map(|f| f.path.clone()).collect();
         let by = earlier.command.as_deref().map_or_else(String::new, |c| format!(", written by `{c}`"));
         let inputs: Vec<String> =
-            names.iter().filter(|n| crate::input::reads::was_read(&dir.join(n))).cloned().collect();
+            names.iter().filter(|n| crate::base::reads::was_read(&dir.join(n))).cloned().collect();
         if !inputs.is_empty() && earlier.kind == Some(claim.kind) {
             return Err(problem(
                 dir,
@@ -642,7 +642,7 @@ impl OutputFolder {
             return Err(problem(&self.dir, format!("`{name}` is the folder's own record")));
         }
         let path = self.dir.join(relative);
-        if crate::input::reads::was_read(&path) {
+        if crate::base::reads::was_read(&path) {
             return Err(problem(
                 &path,
                 "is a file this run read: a run never writes over its input; choose another --out",
@@ -713,7 +713,7 @@ impl OutputFolder {
             // this process did not read.
             if !plainly_inside(&self.dir, name)
                 || !std::fs::symlink_metadata(&path).is_ok_and(|m| m.is_file())
-                || crate::input::reads::was_read(&path)
+                || crate::base::reads::was_read(&path)
             {
                 continue;
             }

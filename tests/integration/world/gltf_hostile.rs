@@ -8,8 +8,8 @@
 use std::path::{Path, PathBuf};
 
 use serde_json::{Value, json};
+use umbra::sim::base::reads::{allow_folder, was_read};
 use umbra::sim::input::limits::{LimitError, Limits};
-use umbra::sim::input::reads::{allow_folder, was_read};
 use umbra::sim::world::gltf::{Gltf, GltfProblem};
 use umbra::sim::world::scene::Scene;
 use umbra::sim::world::scene_file::Problem;

@@ -270,7 +270,7 @@ fn a_file_the_run_read_is_kept() {
     let mut scene = OutputFolder::create(&dir, Claim::new(RunKind::Scene)).expect("folder");
     let model = scene.write("city.glb", b"a model").expect("written");
     scene.finish(None).expect("finished");
-    crate::input::limits::Limits::DEFAULT.read_file(&model).expect("the run reads its model");
+    crate::base::reads::note(&model); // as reading it through the limits notes it
     let err = OutputFolder::create(&dir, Claim::new(RunKind::Scene)).expect_err("would write it again").to_string();
     assert!(err.contains("city.glb") && err.contains("reads"), "{err}");
     let err = OutputFolder::create(&dir, RENDER).expect_err("a scene's folder").to_string();

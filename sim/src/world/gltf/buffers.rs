@@ -7,7 +7,7 @@
 //! checked against the length it declares, all within the limits.
 //!
 //! A buffer's file is confined to the model's folder (or a folder the
-//! user allowed, [`crate::input::reads::allow_folder`]): its URI is
+//! user allowed, [`crate::base::reads::allow_folder`]): its URI is
 //! percent-decoded and normalised, and an absolute path, a `..` that
 //! climbs out, a scheme other than `data:`, a symbolic link that leads
 //! out, or a system file (`/proc`, `/sys`) is refused by name before a
@@ -306,7 +306,7 @@ pub(super) fn confined(uri: &str, dir: &Path) -> Result<PathBuf, GltfProblem> {
     if ["/proc", "/sys"].iter().any(|s| real.starts_with(s)) {
         return Err(refuse(&format!("leads to {}, a system file", real.display())));
     }
-    if !real.starts_with(&root) && !crate::input::reads::allowed(&real) {
+    if !real.starts_with(&root) && !crate::base::reads::allowed(&real) {
         return Err(refuse("leads out of the model's folder through a symbolic link"));
     }
     Ok(real)

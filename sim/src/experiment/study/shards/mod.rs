@@ -130,7 +130,7 @@ fn beside_rows(dir: &Path, limits: &Limits) -> Result<Vec<(String, Vec<u8>)>, St
         .filter(|f| f.path == "sweep.toml" || (f.path.starts_with("arch-") && f.path.ends_with(".toml")))
         .map(|f| {
             let path = dir.join(&f.path);
-            let bytes = limits.read_file(&path).map_err(|source| StudyError::Read { path, source })?;
+            let bytes = limits.read_output(&path).map_err(|source| StudyError::Read { path, source })?;
             Ok((f.path.clone(), bytes))
         })
         .collect()
@@ -144,7 +144,7 @@ fn beside_rows(dir: &Path, limits: &Limits) -> Result<Vec<(String, Vec<u8>)>, St
 /// (a line that is not UTF-8 is not a row).
 pub fn read_rows(path: &Path, limits: &Limits) -> Result<Vec<Row>, StudyError> {
     let file = if path.is_dir() { path.join("results.jsonl") } else { path.to_owned() };
-    let bytes = limits.read_file(&file).map_err(|source| StudyError::Read { path: file.clone(), source })?;
+    let bytes = limits.read_output(&file).map_err(|source| StudyError::Read { path: file.clone(), source })?;
     // Line by line as bytes: a line that is not UTF-8 is refused by the
     // parser, never read with a replacement character as another scene.
     bytes

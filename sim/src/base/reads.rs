@@ -4,13 +4,14 @@
 //! the folders beyond its own a model may read its buffers from
 //! ([`allow_folder`]: the `umbra` command's `--allow-read`).
 //!
-//! Every input file is read through [`Limits`](super::limits::Limits),
-//! which notes it here (its canonical path) once it is open; an output
+//! Every input file is read through the limits (`Limits::read_file`; a
+//! study's own rows, read back to merge, are not inputs and not noted),
+//! which notes it here (its canonical path) as it reads it; an output
 //! folder asks [`was_read`] before it removes or replaces a file.
 //!
 //! ```
 //! use umbra_sim::Limits;
-//! use umbra_sim::input::reads::was_read;
+//! use umbra_sim::base::reads::was_read;
 //! let dir = tempfile::tempdir()?;
 //! let model = dir.path().join("model.obj");
 //! std::fs::write(&model, "v 0 0 0\n")?;
