@@ -394,6 +394,37 @@ pub enum FileError {
 
 #[cfg(test)]
 mod tests {
+    use super::Footprint;
+
+    /// `docs/reliability.md` states the allowances the memory bounds use:
+    /// each as the constant it names, so the page cannot go stale.
+    #[test]
+    fn the_reliability_page_states_the_allowances() {
+        let page = include_str!("../../../docs/reliability.md").split_whitespace().collect::<Vec<_>>().join(" ");
+        for stated in [
+            format!("{} MiB, plus {} bytes a camera pixel", Footprint::BASE >> 20, Footprint::PER_PIXEL),
+            format!("{} a map texel and {} a triangle", Footprint::PER_TEXEL, Footprint::PER_TRIANGLE),
+            format!(
+                "the {} MiB base, the JSON held ({} bytes a byte)",
+                Footprint::BASE >> 20,
+                Footprint::PER_TEXT_BYTE
+            ),
+            format!(
+                "{} bytes a node, {} bytes a declared vertex and {} an index",
+                Footprint::PER_GLTF_NODE,
+                Footprint::PER_VERTEX_DECODED,
+                Footprint::PER_INDEX_DECODED
+            ),
+            format!(
+                "{} bytes a vertex it keeps and {} a triangle",
+                Footprint::PER_VERTEX,
+                Footprint::PER_MESH_TRIANGLE
+            ),
+        ] {
+            assert!(page.contains(&stated), "docs/reliability.md does not say `{stated}`");
+        }
+    }
+
     /// The default memory bound is three quarters of the memory the system
     /// reports, read here independently (`getconf`'s pages × page size,
     /// which counts a little more than `MemTotal`: the kernel's own
