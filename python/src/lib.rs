@@ -46,6 +46,14 @@ fn toml_from_json(text: &str, what: &str) -> PyResult<String> {
     toml::to_string(&value).map_err(|e| UmbraError::new_err(format!("{what}: {e}")))
 }
 
+/// Let glTF models read their buffers from `folder` too, besides their
+/// own folder (the command's `--allow-read`).
+#[pyfunction]
+fn allow_read(folder: std::path::PathBuf) -> PyResult<()> {
+    umbra_sim::base::reads::allow_folder(&folder)
+        .map_err(|e| UmbraError::new_err(format!("allow_read {}: {e}", folder.display())))
+}
+
 /// The extension module.
 #[pymodule]
 fn _umbra(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -55,6 +63,7 @@ fn _umbra(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<arch::Arch>()?;
     m.add_class::<run::Config>()?;
     m.add_function(wrap_pyfunction!(toml_from_json, m)?)?;
+    m.add_function(wrap_pyfunction!(allow_read, m)?)?;
     m.add_function(wrap_pyfunction!(scene::bundled_scenes, m)?)?;
     m.add_function(wrap_pyfunction!(arch::bundled_archs, m)?)?;
     m.add_function(wrap_pyfunction!(run::config, m)?)?;

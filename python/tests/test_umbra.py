@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import os
+import struct
 import subprocess
 from pathlib import Path
 
@@ -197,6 +198,37 @@ def test_a_gltf_file_renders_as_the_cli_renders_it(tmp_path):
     with pytest.raises(umbra.UmbraError) as e:
         umbra.scene(glb, camera="9")
     assert "no camera `9`" in str(e.value)
+
+
+def test_a_gltf_buffer_outside_its_folder_is_read_only_where_allowed(tmp_path):
+    made = cli("scene", "city", "--side", "2", "--columns", "2", "--storeys", "2", "--out", str(tmp_path / "city"))
+    assert made.returncode == 0, made.stderr
+    glb = (tmp_path / "city" / "city.glb").read_bytes()
+    # The .glb's JSON with its binary chunk as a file one folder up.
+    (json_length,) = struct.unpack("<I", glb[12:16])
+    doc = json.loads(glb[20 : 20 + json_length])
+    bin_at = 20 + json_length
+    (bin_length,) = struct.unpack("<I", glb[bin_at : bin_at + 4])
+    shared = tmp_path / "shared"
+    shared.mkdir()
+    (shared / "city.bin").write_bytes(glb[bin_at + 8 : bin_at + 8 + bin_length])
+    doc["buffers"][0]["uri"] = "../shared/city.bin"
+    model = tmp_path / "model"
+    model.mkdir()
+    (model / "city.gltf").write_text(json.dumps(doc))
+    with pytest.raises(umbra.UmbraError) as e:
+        umbra.scene(model / "city.gltf")
+    assert "buffers[0].uri" in str(e.value) and "umbra.allow_read" in str(e.value), str(e.value)
+    # Through a link in its folder, once the shared folder is allowed.
+    (model / "city.bin").symlink_to(shared / "city.bin")
+    doc["buffers"][0]["uri"] = "city.bin"
+    (model / "city.gltf").write_text(json.dumps(doc))
+    with pytest.raises(umbra.UmbraError) as e:
+        umbra.scene(model / "city.gltf")
+    assert "symbolic link" in str(e.value), str(e.value)
+    umbra.allow_read(shared)
+    s = umbra.scene(model / "city.gltf")
+    assert s.notes == ["lights: lights[0] `sun`, lights[1] `street lamp`"], s.notes
 
 
 def test_plan_names_a_configuration_within_its_budgets():

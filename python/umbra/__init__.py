@@ -35,6 +35,7 @@ __all__ = [
     "Scene",
     "UmbraError",
     "VERSION",
+    "allow_read",
     "arch",
     "bundled_archs",
     "bundled_scenes",
@@ -121,6 +122,13 @@ def scene(
     if isinstance(source, Mapping):
         return Scene.from_toml(_toml(source, name), name)
     return Scene(str(source), camera)
+
+
+def allow_read(folder: Union[str, Path]) -> None:
+    """Let glTF models read their buffers from ``folder`` too: by default a
+    model reads only files in its own folder and below (``umbra
+    --allow-read``)."""
+    _umbra.allow_read(Path(folder))
 
 
 def arch(source: Union[str, Path, Arch]) -> Arch:

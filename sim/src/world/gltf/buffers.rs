@@ -268,7 +268,7 @@ fn uri_bytes(uri: &str, dir: &Path, limits: &Limits) -> Result<Vec<u8>, GltfProb
 pub(super) fn confined(uri: &str, dir: &Path) -> Result<PathBuf, GltfProblem> {
     let refuse = |why: &str| {
         GltfProblem::Outside(format!(
-            "`{uri}` {why}; a buffer is a data: URI or a file in the model's folder (allow another folder with --allow-read)"
+            "`{uri}` {why}; a buffer is a data: URI or a file in the model's folder (allow another folder with --allow-read, in Python umbra.allow_read)"
         ))
     };
     let scheme = uri.split_once(':').map(|(s, _)| s).filter(|s| {
