@@ -290,11 +290,18 @@ pub fn raw<T: Texel>(v: &[T]) -> Vec<u32> {
     v.iter().map(|t| t.to_raw()).collect()
 }
 
-/// A scratch directory of this test process, `name` apart from the others.
-pub fn scratch(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("umbra-test-{}-{name}", std::process::id()));
+pub use crate::scratch::Scratch;
+
+/// A new scratch directory of this test process, named for `name` and
+/// apart from every other (each call its own, though two tests give one
+/// name).
+pub fn scratch(name: &str) -> Scratch {
+    static MADE: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let n = MADE.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = std::env::temp_dir().join(format!("umbra-test-{}-{n}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
+    Scratch(dir)
 }
 
 /// The point of the plane `y = 0` seen at the centre of pixel `i` of a

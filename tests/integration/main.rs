@@ -9,6 +9,7 @@
 
 mod common;
 mod mock_map;
+mod scratch;
 
 mod firmware;
 

@@ -9,7 +9,7 @@ mod common;
 use common::{dir, umbra};
 
 /// `dir(name)`, made, holding `file` with `contents`; the file's path.
-fn input(name: &str, file: &str, contents: &str) -> (PathBuf, PathBuf) {
+fn input(name: &str, file: &str, contents: &str) -> (common::Scratch, PathBuf) {
     let d = dir(name);
     std::fs::create_dir_all(&d).expect("temp dir");
     let path = d.join(file);

@@ -49,198 +49,9 @@
 //! ```
 
 use std::io::Write;
-use std::path::{Component, Path, PathBuf};
-
-use serde::{Deserialize, Serialize};
-use sha2::{Digest, Sha256};
+use std::path::{Path, PathBuf};
 
 use super::error::OutputError;
-
-/// The manifest of a finished run.
-pub const MANIFEST: &str = "manifest.json";
-/// The record of a run under way (or killed).
-pub const PENDING: &str = "manifest.pending.json";
-/// Largest manifest read back (an earlier run's), bytes.
-const MAX_MANIFEST_BYTES: u64 = 16 << 20;
-
-/// One file a run wrote.
-#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct FileRecord {
-    /// Its path inside the folder, `/`-separated.
-    pub path: String,
-    /// Its size.
-    pub bytes: u64,
-    /// Its SHA-256, lower-case hex.
-    pub sha256: String,
-}
-
-/// The results a folder holds: which command wrote them.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-#[non_exhaustive]
-pub enum RunKind {
-    /// Light-view maps (`umbra depth`).
-    Depth,
-    /// A render against the reference (`umbra render`).
-    Render,
-    /// Costs on architectures (`umbra cost`).
-    Cost,
-    /// A timeline (`umbra trace`).
-    Trace,
-    /// The model against measured hardware (`umbra correlate`).
-    Correlation,
-    /// A study, a shard of one, or shards merged (`umbra study`, `umbra merge`).
-    Study,
-    /// A plan (`umbra plan`).
-    Plan,
-    /// A generated scene (`umbra scene city`).
-    Scene,
-}
-
-impl RunKind {
-    /// Every kind.
-    pub const ALL: [Self; 8] =
-        [Self::Depth, Self::Render, Self::Cost, Self::Trace, Self::Correlation, Self::Study, Self::Plan, Self::Scene];
-
-    /// What a folder of this kind holds, as a message names it.
-    #[must_use]
-    pub const fn describe(self) -> &'static str {
-        match self {
-            Self::Depth => "light-view maps",
-            Self::Render => "a render",
-            Self::Cost => "a cost report",
-            Self::Trace => "a trace",
-            Self::Correlation => "a correlation",
-            Self::Study => "a study",
-            Self::Plan => "a plan",
-            Self::Scene => "a generated scene",
-        }
-    }
-
-    /// The `umbra` subcommands that write it.
-    const fn words(self) -> &'static [&'static str] {
-        match self {
-            Self::Depth => &["depth"],
-            Self::Render => &["render"],
-            Self::Cost => &["cost"],
-            Self::Trace => &["trace"],
-            Self::Correlation => &["correlate"],
-            Self::Study => &["study", "merge"],
-            Self::Plan => &["plan"],
-            Self::Scene => &["scene"],
-        }
-    }
-
-    /// The kind a manifest written before manifests named it holds: the
-    /// first word of its command line that is a subcommand's; `None` for
-    /// the bare `umbra` (which writes maps, a render and a study).
-    fn of_command(command: &str) -> Option<Self> {
-        command.split_whitespace().skip(1).find_map(|w| Self::ALL.into_iter().find(|k| k.words().contains(&w)))
-    }
-}
-
-/// What a run asks of its output folder.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Claim {
-    /// The results it writes.
-    pub kind: RunKind,
-    /// Replace another command's results, or files no run of Umbra
-    /// wrote, deliberately (`--replace`). Files it does not rewrite are
-    /// removed only if an earlier run listed them as it wrote them; files
-    /// no run wrote, and files this process read, are never removed.
-    pub replace: bool,
-}
-
-impl Claim {
-    /// A run of `kind` that replaces nothing of another's.
-    #[must_use]
-    pub const fn new(kind: RunKind) -> Self {
-        Self { kind, replace: false }
-    }
-
-    /// The same, replacing what is there when `replace`.
-    #[must_use]
-    pub const fn replacing(self, replace: bool) -> Self {
-        Self { replace, ..self }
-    }
-}
-
-/// What a run replaces in its folder: the earlier run's files, and the
-/// files no run listed that `--replace` let it write over.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub struct Replaced {
-    /// The earlier run's command line, when the folder held a run.
-    pub command: Option<String>,
-    /// The files the earlier run listed that this one removed (it did not
-    /// rewrite them).
-    pub removed: Vec<String>,
-    /// The files the earlier run listed that this one wrote anew.
-    pub rewritten: Vec<String>,
-    /// Files no run listed that this one wrote over (only with `--replace`).
-    pub overwritten: Vec<String>,
-}
-
-/// `manifest.json`: what made the folder and every file in it.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RunManifest {
-    /// The version that wrote it (with its git revision).
-    pub umbra_version: String,
-    /// The command line.
-    pub command: String,
-    /// The results it holds (absent in manifests of versions before 0.1.1:
-    /// read from the command line).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub kind: Option<RunKind>,
-    /// Every file the run wrote, in the order written.
-    pub files: Vec<FileRecord>,
-    /// The study's own record (sweep, shard, row counts), for `merge`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub study: Option<serde_json::Value>,
-}
-
-impl RunManifest {
-    /// Read the manifest of `dir` and check every file it lists (each at
-    /// most `max_bytes`) against its size and hash.
-    ///
-    /// # Errors
-    /// `OutputError::Folder` naming the manifest or the file that does
-    /// not match: a folder without a matching manifest is incomplete.
-    pub fn verify(dir: &Path, max_bytes: u64) -> Result<Self, OutputError> {
-        let path = dir.join(MANIFEST);
-        let bytes = read_small(&path)
-            .map_err(|e| problem(&path, format!("no manifest: the run that wrote this folder did not finish ({e})")))?;
-        let m: Self = serde_json::from_slice(&bytes).map_err(|e| problem(&path, format!("not a manifest: {e}")))?;
-        for f in &m.files {
-            let file = dir.join(checked_name(&path, &f.path)?);
-            if f.bytes > max_bytes {
-                return Err(problem(&file, format!("listed at {} bytes, above the limit of {max_bytes}", f.bytes)));
-            }
-            let data = read_small_limit(&file, f.bytes.saturating_add(1))
-                .map_err(|e| problem(&file, format!("listed in the manifest but unreadable: {e}")))?;
-            if data.len() as u64 != f.bytes || sha256(&data) != f.sha256 {
-                return Err(problem(&file, "differs from the manifest (truncated or changed since it was written)"));
-            }
-        }
-        Ok(m)
-    }
-}
-
-/// What `manifest.pending.json` holds.
-#[derive(Debug, Default, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct Pending {
-    /// Files an earlier or the current run may have left, each with the
-    /// hash of the contents that run wrote (or was about to write).
-    files: Vec<FileRecord>,
-    /// The results the run under way writes, and the command line (absent
-    /// in records of earlier versions).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    kind: Option<RunKind>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    command: Option<String>,
-}
 
 /// The folder's lock file: held (an OS lock) for the whole run.
 pub(crate) const LOCK: &str = ".umbra-lock";
@@ -320,135 +131,6 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> OutputError + '_ {
     move |source| OutputError::Io { path: path.to_owned(), source }
 }
 
-/// SHA-256 of `bytes` in lower-case hex.
-#[must_use]
-pub(crate) fn sha256(bytes: &[u8]) -> String {
-    Sha256::digest(bytes).iter().fold(String::with_capacity(64), |mut s, b| {
-        use std::fmt::Write as _;
-        let _ = write!(s, "{b:02x}");
-        s
-    })
-}
-
-/// `name` as a path inside a folder: relative, plain components only (no
-/// `..`, no root, no prefix), not empty.
-fn checked_name<'a>(context: &Path, name: &'a str) -> Result<&'a Path, OutputError> {
-    let path = Path::new(name);
-    let plain = path.components().all(|c| matches!(c, Component::Normal(_)));
-    if name.is_empty() || !plain || name.contains('\\') {
-        return Err(problem(context, format!("`{name}` is not a file name inside the output folder")));
-    }
-    Ok(path)
-}
-
-/// Read a small regular file whole, refusing special files before opening
-/// them.
-fn read_small(path: &Path) -> std::io::Result<Vec<u8>> {
-    read_small_limit(path, MAX_MANIFEST_BYTES)
-}
-
-fn read_small_limit(path: &Path, max: u64) -> std::io::Result<Vec<u8>> {
-    use std::io::Read;
-    if !std::fs::metadata(path)?.is_file() {
-        return Err(std::io::Error::other("not a regular file"));
-    }
-    let mut bytes = Vec::new();
-    std::fs::File::open(path)?.take(max.saturating_add(1)).read_to_end(&mut bytes)?;
-    if bytes.len() as u64 > max {
-        return Err(std::io::Error::other(format!("larger than the {max} bytes it may be")));
-    }
-    Ok(bytes)
-}
-
-/// What earlier runs left in a folder: the files their records list,
-/// with their hashes, the results they hold and the command that wrote
-/// them, as far as the records are ours; anything else lists nothing (and
-/// so is never acted on).
-#[derive(Debug, Default)]
-struct Earlier {
-    files: Vec<FileRecord>,
-    kind: Option<RunKind>,
-    command: Option<String>,
-}
-
-impl Earlier {
-    /// The records in `dir`: its manifest, then its pending record.
-    fn read(dir: &Path) -> Self {
-        let mut earlier = Self::default();
-        if let Ok(m) = read_small(&dir.join(MANIFEST)).and_then(|b| Ok(serde_json::from_slice::<RunManifest>(&b)?)) {
-            earlier.kind = m.kind.or_else(|| RunKind::of_command(&m.command));
-            earlier.command = Some(m.command);
-            earlier.files = m.files;
-        }
-        if let Ok(p) = read_small(&dir.join(PENDING)).and_then(|b| Ok(serde_json::from_slice::<Pending>(&b)?)) {
-            earlier.kind = earlier.kind.or(p.kind);
-            earlier.command = earlier.command.or(p.command);
-            for f in p.files {
-                if !earlier.files.contains(&f) {
-                    earlier.files.push(f);
-                }
-            }
-        }
-        earlier.files.retain(|f| checked_name(dir, &f.path).is_ok());
-        earlier
-    }
-
-    /// Whether `name` (`/`-separated, inside the folder) is a file the
-    /// records list or a folder one of them lies in.
-    fn covers(&self, name: &str) -> bool {
-        self.files.iter().any(|f| f.path == name || f.path.strip_prefix(name).is_some_and(|r| r.starts_with('/')))
-    }
-}
-
-/// The entries of `dir` (its sub-folders too, where the records list a
-/// file inside them) that no run of Umbra wrote: not the folder's own
-/// records, lock or temporaries, not listed by `earlier`, and not a file
-/// this process read. At most `max` entries are looked at.
-fn foreign(dir: &Path, earlier: &Earlier, max: usize) -> Vec<String> {
-    let mut found = Vec::new();
-    let mut stack = vec![String::new()];
-    let mut looked = 0usize;
-    while let Some(prefix) = stack.pop() {
-        let Ok(entries) = std::fs::read_dir(dir.join(&prefix)) else { continue };
-        let mut names: Vec<(String, bool)> = entries
-            .flatten()
-            .map(|e| {
-                let name = e.file_name().to_string_lossy().into_owned();
-                (name, e.file_type().is_ok_and(|t| t.is_dir()))
-            })
-            .collect();
-        names.sort();
-        for (name, is_dir) in names {
-            looked += 1;
-            if looked > max {
-                return found;
-            }
-            let own = prefix.is_empty() && [MANIFEST, PENDING, LOCK].contains(&name.as_str());
-            if own || (name.starts_with(".umbra-") && name.ends_with(".tmp")) {
-                continue;
-            }
-            let path = format!("{prefix}{name}");
-            if earlier.files.iter().any(|f| f.path == path) || crate::base::reads::was_read(&dir.join(&path)) {
-                continue;
-            }
-            if is_dir && earlier.covers(&path) {
-                stack.push(format!("{path}/"));
-            } else {
-                found.push(path);
-            }
-        }
-    }
-    found
-}
-
-/// `names` as a message lists them: the first few, and how many more.
-fn list(names: &[String]) -> String {
-    const SHOWN: usize = 4;
-    let shown: Vec<&str> = names.iter().take(SHOWN).map(String::as_str).collect();
-    let more = names.len().saturating_sub(SHOWN);
-    if more > 0 { format!("{} and {more} more", shown.join(", ")) } else { shown.join(", ") }
-}
-
 /// Whether `name` lies inside `dir` with no symbolic link on the way: each
 /// part of it that exists a real folder or file, not a link (a part that
 /// does not exist yet is created as a real folder).
@@ -514,7 +196,7 @@ impl OutputFolder {
         let had_lock = dir.join(LOCK).exists();
         let lock = lock(dir)?;
         let earlier = Earlier::read(dir);
-        if let Err(e) = Self::admit(dir, claim, &earlier) {
+        if let Err(e) = admit(dir, claim, &earlier) {
             drop(lock);
             if !had_lock {
                 let _ = std::fs::remove_file(dir.join(LOCK));
@@ -557,53 +239,6 @@ impl OutputFolder {
             _ => {}
         }
         Ok(folder)
-    }
-
-    /// Whether a run of `claim` may write into `dir`, which holds what
-    /// `earlier` records: a folder of another command's results, one with
-    /// files no run of Umbra wrote, and one whose earlier run wrote a file
-    /// this process read (the run would write it again) are refused,
-    /// the first two unless the claim replaces them.
-    fn admit(dir: &Path, claim: Claim, earlier: &Earlier) -> Result<(), OutputError> {
-        let names: Vec<String> = earlier.files.iter().map(|f| f.path.clone()).collect();
-        let by = earlier.command.as_deref().map_or_else(String::new, |c| format!(", written by `{c}`"));
-        let inputs: Vec<String> =
-            names.iter().filter(|n| crate::base::reads::was_read(&dir.join(n))).cloned().collect();
-        if !inputs.is_empty() && earlier.kind == Some(claim.kind) {
-            return Err(problem(
-                dir,
-                format!(
-                    "holds {}{by}, whose file {} this run reads and would write again: copy it elsewhere first, or choose another --out",
-                    claim.kind.describe(),
-                    list(&inputs)
-                ),
-            ));
-        }
-        if claim.replace {
-            return Ok(());
-        }
-        if let Some(kind) = earlier.kind.filter(|&k| k != claim.kind && !names.is_empty()) {
-            return Err(problem(
-                dir,
-                format!(
-                    "holds {}{by} ({}), not {}: choose another --out, or add --replace to replace it deliberately (files this run reads are kept)",
-                    kind.describe(),
-                    list(&names),
-                    claim.kind.describe()
-                ),
-            ));
-        }
-        let foreign = foreign(dir, earlier, 10_000);
-        if !foreign.is_empty() {
-            return Err(problem(
-                dir,
-                format!(
-                    "holds files no run of umbra wrote here ({}): choose another --out (a new or empty folder), or add --replace to write beside them (a file of the same name is replaced; none is deleted)",
-                    list(&foreign)
-                ),
-            ));
-        }
-        Ok(())
     }
 
     /// The folder.
@@ -771,8 +406,15 @@ pub(crate) fn write_all_synced(sink: &mut std::fs::File, bytes: &[u8]) -> std::i
     sink.sync_all()
 }
 
+mod claim;
+mod manifest;
 mod state;
 #[cfg(test)]
 mod tests;
 
+pub use claim::{Claim, Replaced, RunKind};
+use claim::{Earlier, admit};
+pub(crate) use manifest::sha256;
+pub use manifest::{FileRecord, MANIFEST, PENDING, RunManifest};
+use manifest::{Pending, checked_name, read_small, read_small_limit};
 pub(crate) use state::FolderState;

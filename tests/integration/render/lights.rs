@@ -89,9 +89,10 @@ fn the_same_light_twice_costs_two_passes_and_pictures_as_one() {
     let (ma, mb) = (a.camera.map_cache.expect("a map cache"), b.camera.map_cache.expect("a map cache"));
     assert!(ma.misses > 0 && mb.misses >= 2 * ma.misses, "{} misses alone, {} twice", ma.misses, mb.misses);
     // The pictures: the shaded body alike, pixel for pixel.
+    let base = scratch("lights-twice");
     let picture = |s: &Scene, name: &str| {
         let r = rendered(s, cfg);
-        let dir = scratch("lights-twice").join(name);
+        let dir = base.join(name);
         let mut folder = OutputFolder::create(
             &dir,
             umbra::sim::output::folder::Claim::new(umbra::sim::output::folder::RunKind::Render),
@@ -110,7 +111,7 @@ fn the_same_light_twice_costs_two_passes_and_pictures_as_one() {
     };
     assert!(body(&pa) == body(&pb), "the summed picture differs from the one light's");
     assert!(body(&pa).iter().any(|p| p.0 != body(&pa)[0].0), "the body is not blank");
-    let dir = scratch("lights-twice").join("twice");
+    let dir = base.join("twice");
     for name in ["shadow-light0.png", "shadow-light1.png", "z1-light1.npy", "verdict-light1.npy", "metrics.json"] {
         assert!(dir.join(name).is_file(), "{name}");
     }

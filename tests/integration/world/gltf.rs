@@ -83,9 +83,9 @@ fn mesh_file(positions: &[[f32; 3]], indices: &[u16], mode: u32, extra: Value) -
     (doc, bin)
 }
 
-/// Write `bytes` as `name` in a scratch folder of the test's.
-fn file(test: &str, name: &str, bytes: &[u8]) -> PathBuf {
-    let path = scratch(test).join(name);
+/// Write `bytes` as `name` in `dir`, a scratch folder of the test's.
+fn file(dir: &Path, name: &str, bytes: &[u8]) -> PathBuf {
+    let path = dir.join(name);
     std::fs::write(&path, bytes).expect("write");
     path
 }
@@ -99,6 +99,7 @@ fn read(path: &Path) -> Result<Gltf, umbra::sim::world::gltf::GltfError> {
 /// Worked by hand: the parent maps `(x, y, z)` to `(2z + 1, 2y, −2x)`.
 #[test]
 fn node_transforms_and_instances_place_the_mesh_as_worked_by_hand() {
+    let dir = scratch("gltf-instances");
     let (p, t) = cube();
     let s = std::f32::consts::FRAC_1_SQRT_2;
     let nodes = json!({ "scenes": [{ "nodes": [0] }], "nodes": [
@@ -107,7 +108,7 @@ fn node_transforms_and_instances_place_the_mesh_as_worked_by_hand() {
         { "name": "high", "mesh": 0, "translation": [0.0, 3.0, 0.0] }
     ]});
     let (doc, bin) = mesh_file(&p, &t, 4, nodes);
-    let g = read(&file("gltf-instances", "cube.glb", &glb(&doc, &bin))).expect("reads");
+    let g = read(&file(&dir, "cube.glb", &glb(&doc, &bin))).expect("reads");
     assert_eq!(g.instances.len(), 2, "one instance per node that places the mesh");
     let by_hand = |[x, y, z]: [f32; 3], raise: f32| Vec3::new(2.0 * z + 1.0, 2.0 * (y + raise), -2.0 * x);
     for (instance, raise) in g.instances.iter().zip([0.0, 3.0]) {
@@ -127,7 +128,7 @@ fn node_transforms_and_instances_place_the_mesh_as_worked_by_hand() {
     );
     let nodes = json!({ "scenes": [{ "nodes": [0] }], "nodes": [{ "matrix": m.to_cols_array(), "mesh": 0 }] });
     let (doc, bin) = mesh_file(&p, &t, 4, nodes);
-    let g = read(&file("gltf-instances", "matrix.glb", &glb(&doc, &bin))).expect("reads");
+    let g = read(&file(&dir, "matrix.glb", &glb(&doc, &bin))).expect("reads");
     for (got, corner) in g.instances[0].mesh.positions.iter().zip(&p) {
         assert!((*got - by_hand(*corner, 0.0)).abs().max_element() < 1e-6);
     }
@@ -137,10 +138,11 @@ fn node_transforms_and_instances_place_the_mesh_as_worked_by_hand() {
 /// mirrored cube is still wound outward, as the glTF specification says.
 #[test]
 fn a_mirroring_node_keeps_faces_outward() {
+    let dir = scratch("gltf-mirror");
     let (p, t) = cube();
     let nodes = json!({ "nodes": [{ "mesh": 0, "scale": [-1.0, 1.0, 1.0] }] });
     let (doc, bin) = mesh_file(&p, &t, 4, nodes);
-    let g = read(&file("gltf-mirror", "m.glb", &glb(&doc, &bin))).expect("reads");
+    let g = read(&file(&dir, "m.glb", &glb(&doc, &bin))).expect("reads");
     let m = &g.instances[0].mesh;
     let centre = m.positions.iter().copied().sum::<Vec3>() / m.positions.len() as f32;
     for tri in &m.triangles {
@@ -154,10 +156,11 @@ fn a_mirroring_node_keeps_faces_outward() {
 /// points and lines are counted and left out.
 #[test]
 fn strips_fans_points_and_lines_follow_the_specification() {
+    let dir = scratch("gltf-modes");
     let p: Vec<[f32; 3]> = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0], [2.0, 0.5, 0.0]];
     let idx: Vec<u16> = vec![0, 1, 2, 3, 4];
     let tris = |mode| {
-        read(&file("gltf-modes", &format!("{mode}.glb"), &{
+        read(&file(&dir, &format!("{mode}.glb"), &{
             let (d, b) = mesh_file(&p, &idx, mode, json!({}));
             glb(&d, &b)
         }))
@@ -176,7 +179,7 @@ fn strips_fans_points_and_lines_follow_the_specification() {
         { "attributes": { "POSITION": 0 }, "mode": 0 }
     ] }] });
     let (d, b) = mesh_file(&p, &[0, 1, 2], 4, two);
-    let g = read(&file("gltf-modes", "lines.glb", &glb(&d, &b))).expect("reads");
+    let g = read(&file(&dir, "lines.glb", &glb(&d, &b))).expect("reads");
     let m = &g.instances[0].mesh;
     assert_eq!((m.triangles.len(), m.ignored.segments, m.ignored.points), (1, 2, 5));
 }
@@ -187,6 +190,7 @@ fn strips_fans_points_and_lines_follow_the_specification() {
 /// plane its range.
 #[test]
 fn cameras_and_lights_follow_gltf_conventions() {
+    let dir = scratch("gltf-views");
     let (p, t) = cube();
     // Turned 30° about x (looking down), at (0.5, 2, 4).
     let a = 15f32.to_radians();
@@ -204,7 +208,7 @@ fn cameras_and_lights_follow_gltf_conventions() {
         "extensions": { "KHR_lights_punctual": { "lights": [{ "type": "spot", "range": 9.0, "spot": { "outerConeAngle": 0.5 } }] } }
     });
     let (doc, bin) = mesh_file(&p, &t, 4, extra);
-    let path = file("gltf-views", "views.glb", &glb(&doc, &bin));
+    let path = file(&dir, "views.glb", &glb(&doc, &bin));
     let scene = Scene::open(path.to_str().expect("utf-8"), &Limits::DEFAULT).expect("opens");
     assert_eq!(scene.image, [1080, 540], "the camera's aspect ratio at 540 rows");
     let (s, c) = (30f32.to_radians().sin(), 30f32.to_radians().cos());
@@ -267,13 +271,14 @@ fn refused(path: &Path) -> (String, GltfProblem) {
 /// never a panic or an allocation past the limits.
 #[test]
 fn malformed_files_are_refused_by_name() {
+    let dir = scratch("gltf-malformed");
     let (p, t) = cube();
     let good = |extra: Value| {
         let (d, b) = mesh_file(&p, &t, 4, extra);
         glb(&d, &b)
     };
     let whole = good(json!({}));
-    let write = |name: &str, bytes: &[u8]| file("gltf-malformed", name, bytes);
+    let write = |name: &str, bytes: &[u8]| file(&dir, name, bytes);
     // Truncated: the header says more than the file holds.
     let (at, problem) = refused(&write("truncated.glb", &whole[..whole.len() / 2]));
     assert!(at.starts_with('(') && matches!(problem, GltfProblem::Syntax(_)), "{at}: {problem}");

@@ -3,7 +3,6 @@
 
 #![allow(dead_code, reason = "each test binary uses what it needs")]
 
-use std::path::PathBuf;
 use std::process::{Command, Output};
 
 /// Run `umbra` with `args`, without backtraces in its errors.
@@ -16,9 +15,14 @@ pub fn umbra(args: &[&str]) -> Output {
         .expect("the command runs")
 }
 
-/// A folder of this test process for `name`, absent.
-pub fn dir(name: &str) -> PathBuf {
+#[path = "../../../../tests/integration/scratch.rs"]
+mod scratch;
+pub use scratch::Scratch;
+
+/// A folder of this test process for `name`, absent until the test makes
+/// it, and removed when the value is dropped.
+pub fn dir(name: &str) -> Scratch {
     let d = std::env::temp_dir().join(format!("umbra-cli-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
-    d
+    Scratch(d)
 }

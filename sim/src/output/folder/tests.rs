@@ -9,9 +9,10 @@ use super::{Claim, LOCK, MANIFEST, OutputFolder, PENDING, RunKind, RunManifest, 
 /// A render's claim on its folder.
 const RENDER: Claim = Claim::new(RunKind::Render);
 
-/// A fresh directory of this test, kept for the test to remove.
-fn scratch(name: &str) -> std::path::PathBuf {
-    tempfile::Builder::new().prefix(&format!("umbra-{name}-")).tempdir().expect("temp dir").keep()
+/// A fresh directory of this test, removed when the value is dropped
+/// (when the test ends, however it ends).
+fn scratch(name: &str) -> tempfile::TempDir {
+    tempfile::Builder::new().prefix(&format!("umbra-{name}-")).tempdir().expect("temp dir")
 }
 
 /// The folder's entries, but for its lock.
@@ -36,7 +37,8 @@ fn a_full_disk_is_an_error() {
 
 #[test]
 fn names_outside_the_folder_are_refused() {
-    let base = scratch("folder-names");
+    let scratch_dir = scratch("folder-names");
+    let base = scratch_dir.path().to_owned();
     let mut f = OutputFolder::create(&base.join("out"), RENDER).expect("folder");
     for bad in ["../escaped.txt", "/tmp/escaped.txt", "a/../../b", "", "a\\b", MANIFEST, PENDING] {
         assert!(f.write(bad, b"x").is_err(), "`{bad}` accepted");
@@ -44,14 +46,14 @@ fn names_outside_the_folder_are_refused() {
     f.write("sub/inside.txt", b"x").expect("a sub-folder is inside");
     f.finish(None).expect("finished");
     assert_eq!(names(&base), vec!["out".to_owned()], "nothing beside the folder");
-    let _ = std::fs::remove_dir_all(&base);
 }
 
 /// A second run removes what the first wrote and it did not, keeps what
 /// Umbra never wrote, and ends with a manifest matching the folder.
 #[test]
 fn no_stale_file_survives_and_foreign_files_are_kept() {
-    let base = scratch("folder-stale");
+    let scratch_dir = scratch("folder-stale");
+    let base = scratch_dir.path().to_owned();
     let dir = base.join("out");
     let mut first = OutputFolder::create(&dir, RENDER).expect("folder");
     first.write("z1.png", b"one").and_then(|_| first.write("z2.png", b"two")).expect("written");
@@ -72,7 +74,6 @@ fn no_stale_file_survives_and_foreign_files_are_kept() {
     OutputFolder::create(&dir, RENDER.replacing(true)).and_then(|f| f.finish(None)).expect("a run");
     assert!(base.join("outside.txt").exists(), "a file outside the folder was removed");
     assert!(dir.join("notes.txt").exists(), "a file Umbra did not write was removed");
-    let _ = std::fs::remove_dir_all(&base);
 }
 
 /// A run that stops before it finishes (killed, or failed) leaves a folder
@@ -80,7 +81,8 @@ fn no_stale_file_survives_and_foreign_files_are_kept() {
 /// may have left.
 #[test]
 fn an_unfinished_run_is_visibly_incomplete() {
-    let base = scratch("folder-killed");
+    let scratch_dir = scratch("folder-killed");
+    let base = scratch_dir.path().to_owned();
     let dir = base.join("out");
     let mut done = OutputFolder::create(&dir, RENDER).expect("folder");
     done.write("results.jsonl", b"1008 rows").expect("written");
@@ -100,7 +102,6 @@ fn an_unfinished_run_is_visibly_incomplete() {
     std::fs::write(dir.join("summary.md"), "whol").expect("truncate");
     let err = RunManifest::verify(&dir, u64::MAX).expect_err("changed");
     assert!(err.to_string().contains("summary.md") && err.to_string().contains("differs"), "{err}");
-    let _ = std::fs::remove_dir_all(&base);
 }
 
 /// A manifest (ours, forged or stale) that lists a file reached through a
@@ -110,7 +111,8 @@ fn an_unfinished_run_is_visibly_incomplete() {
 #[cfg(unix)]
 #[test]
 fn a_listed_file_is_removed_only_inside_and_only_if_ours() {
-    let base = scratch("folder-trust");
+    let scratch_dir = scratch("folder-trust");
+    let base = scratch_dir.path().to_owned();
     let (dir, elsewhere) = (base.join("out"), base.join("elsewhere"));
     std::fs::create_dir_all(&elsewhere).expect("dir");
     std::fs::write(elsewhere.join("precious.txt"), "x").expect("a file outside");
@@ -136,7 +138,6 @@ fn a_listed_file_is_removed_only_inside_and_only_if_ours() {
     assert!(err.to_string().contains("symbolic link"), "{err}");
     assert!(!elsewhere.join("new.txt").exists());
     pending.clear();
-    let _ = std::fs::remove_dir_all(&base);
 }
 
 /// One run a folder: a second run into a folder in use fails at once,
@@ -144,7 +145,8 @@ fn a_listed_file_is_removed_only_inside_and_only_if_ours() {
 /// temporaries are removed by the next run.
 #[test]
 fn a_folder_in_use_is_refused_and_dead_temporaries_removed() {
-    let base = scratch("folder-lock");
+    let scratch_dir = scratch("folder-lock");
+    let base = scratch_dir.path().to_owned();
     let dir = base.join("out");
     let first = OutputFolder::create(&dir, RENDER).expect("folder");
     let err = OutputFolder::create(&dir, RENDER).expect_err("in use");
@@ -159,7 +161,6 @@ fn a_folder_in_use_is_refused_and_dead_temporaries_removed() {
     assert!(!dir.join(".umbra-ab12.tmp").exists() && !dir.join("sub/.umbra-cd34.tmp").exists());
     assert!(dir.join("mine.tmp").exists());
     f.finish(None).expect("finished");
-    let _ = std::fs::remove_dir_all(&base);
 }
 
 /// Files get the permissions the umask gives a new file, as `touch` makes
@@ -168,7 +169,8 @@ fn a_folder_in_use_is_refused_and_dead_temporaries_removed() {
 #[test]
 fn files_are_as_readable_as_the_umask_allows() {
     use std::os::unix::fs::PermissionsExt;
-    let base = scratch("folder-mode");
+    let scratch_dir = scratch("folder-mode");
+    let base = scratch_dir.path().to_owned();
     let dir = base.join("out");
     std::fs::create_dir_all(&dir).expect("dir");
     std::fs::write(base.join("touched"), "").expect("touch");
@@ -183,7 +185,6 @@ fn files_are_as_readable_as_the_umask_allows() {
             assert_eq!(mode, touched, "{n}");
         }
     }
-    let _ = std::fs::remove_dir_all(&base);
 }
 
 /// A run refused after it opened its folder but before it wrote a file (an
@@ -193,7 +194,8 @@ fn files_are_as_readable_as_the_umask_allows() {
 /// file still leaves its pending record.
 #[test]
 fn a_run_that_wrote_nothing_leaves_the_folder_as_it_was() {
-    let base = scratch("folder-untouched");
+    let scratch_dir = scratch("folder-untouched");
+    let base = scratch_dir.path().to_owned();
     let made = base.join("made");
     drop(OutputFolder::create(&made, RENDER).expect("folder"));
     assert!(!made.exists(), "the folder it made is removed");
@@ -218,7 +220,6 @@ fn a_run_that_wrote_nothing_leaves_the_folder_as_it_was() {
     partial.write("rows.jsonl", b"1").expect("written");
     drop(partial);
     assert!(done.join(PENDING).exists() && !done.join(MANIFEST).exists(), "a partial run is visible");
-    let _ = std::fs::remove_dir_all(&base);
 }
 
 /// A folder holds one command's results: a study into a render's folder
@@ -228,7 +229,8 @@ fn a_run_that_wrote_nothing_leaves_the_folder_as_it_was() {
 /// its command line.
 #[test]
 fn another_commands_results_are_refused_unless_replaced() {
-    let base = scratch("folder-kinds");
+    let scratch_dir = scratch("folder-kinds");
+    let base = scratch_dir.path().to_owned();
     let dir = base.join("out");
     let mut render = OutputFolder::create(&dir, RENDER).expect("folder");
     render.write("shaded.png", b"pixels").and_then(|_| render.write("metrics.json", b"{}")).expect("written");
@@ -256,7 +258,6 @@ fn another_commands_results_are_refused_unless_replaced() {
     let err = OutputFolder::create(&dir, RENDER).expect_err("a study's folder").to_string();
     assert!(err.contains("a study") && err.contains("umbra study --quick"), "{err}");
     OutputFolder::create(&dir, study).expect("a study into a study's folder").finish(None).expect("finished");
-    let _ = std::fs::remove_dir_all(&base);
 }
 
 /// A file this process read is never removed nor written over, whatever
@@ -265,7 +266,8 @@ fn another_commands_results_are_refused_unless_replaced() {
 /// (which would write it again) is refused before it starts.
 #[test]
 fn a_file_the_run_read_is_kept() {
-    let base = scratch("folder-input");
+    let scratch_dir = scratch("folder-input");
+    let base = scratch_dir.path().to_owned();
     let dir = base.join("out");
     let mut scene = OutputFolder::create(&dir, Claim::new(RunKind::Scene)).expect("folder");
     let model = scene.write("city.glb", b"a model").expect("written");
@@ -285,5 +287,4 @@ fn a_file_the_run_read_is_kept() {
     // The model, now a file no manifest lists, is still this run's input.
     OutputFolder::create(&dir, RENDER).expect("its input is no stranger").finish(None).expect("finished");
     assert!(model.exists());
-    let _ = std::fs::remove_dir_all(&base);
 }
