@@ -428,25 +428,31 @@ fn the_study_page_lists_every_file_a_study_writes() {
 #[test]
 fn no_two_documented_commands_of_different_kinds_share_a_folder() {
     use std::collections::BTreeMap;
-    // The results each subcommand writes, and where by default.
-    let kinds = [
-        ("depth", "maps", "out/depth"),
-        ("render", "render", "out/render"),
-        ("cost", "cost", "out/cost"),
-        ("trace", "trace", "out/trace"),
-        ("correlate", "correlation", "out/correlate"),
-        ("study", "study", "out/study"),
-        ("merge", "study", "out/study"),
-        ("plan", "plan", "out/plan"),
-        ("scene", "scene", "out/scene-city"),
+    use umbra_sim::output::folder::RunKind;
+    // Where each subcommand writes by default.
+    let defaults = [
+        ("depth", "out/depth"),
+        ("render", "out/render"),
+        ("cost", "out/cost"),
+        ("trace", "out/trace"),
+        ("correlate", "out/correlate"),
+        ("study", "out/study"),
+        ("merge", "out/study"),
+        ("plan", "out/plan"),
+        ("scene", "out/scene-city"),
     ];
-    let mut folders: BTreeMap<String, (String, String)> = BTreeMap::new();
+    let mut folders: BTreeMap<String, (RunKind, String)> = BTreeMap::new();
     let mut seen = 0;
     for page in pages() {
         let text = std::fs::read_to_string(&page).expect("a page");
         for command in commands(&text) {
             let words: Vec<&str> = command.split_whitespace().collect();
-            let Some(&(_, kind, default)) = kinds.iter().find(|(sub, ..)| words.get(1) == Some(sub)) else { continue };
+            // The kind the library reads from the command line.
+            let (Some(kind), Some(&(_, default))) =
+                (RunKind::of_command(&command), defaults.iter().find(|(sub, _)| words.get(1) == Some(sub)))
+            else {
+                continue;
+            };
             if words.get(2) == Some(&"upgrade") {
                 continue;
             }
@@ -454,12 +460,12 @@ fn no_two_documented_commands_of_different_kinds_share_a_folder() {
             seen += 1;
             if let Some((other, first)) = folders.get(&folder) {
                 assert!(
-                    other == kind,
-                    "{folder} is written by `{first}` ({other}) and by `{command}` ({kind}) in {}",
+                    *other == kind,
+                    "{folder} is written by `{first}` ({other:?}) and by `{command}` ({kind:?}) in {}",
                     page.display()
                 );
             } else {
-                folders.insert(folder, (kind.to_owned(), command.clone()));
+                folders.insert(folder, (kind, command.clone()));
             }
         }
     }

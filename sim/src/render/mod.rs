@@ -126,10 +126,7 @@ pub enum RenderError {
 impl RenderError {
     /// [`RenderError::NothingEvaluated`] of `scene`'s camera.
     fn nothing_evaluated(scene: &Scene) -> Self {
-        let (near, far) = match scene.camera {
-            crate::world::scene::Camera::Perspective(p) => (p.near, p.far),
-            crate::world::scene::Camera::Orthographic(o) => (o.near, o.far),
-        };
+        let (near, far) = scene.camera.planes();
         Self::NothingEvaluated { near, far }
     }
 

@@ -118,6 +118,15 @@ pub enum Camera {
 }
 
 impl Camera {
+    /// Its near and far planes.
+    #[must_use]
+    pub const fn planes(&self) -> (f32, f32) {
+        match self {
+            Self::Perspective(p) => (p.near, p.far),
+            Self::Orthographic(o) => (o.near, o.far),
+        }
+    }
+
     /// World space to clip space for a target `aspect = width / height`.
     #[must_use]
     pub fn view_projection_aspect(&self, aspect: f32) -> Mat4 {

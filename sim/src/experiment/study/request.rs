@@ -135,10 +135,12 @@ pub enum Outcome {
 /// [`StudyError::Request`] naming the flag and the item, or the count.
 pub fn no_repeats<'a>(flag: &str, items: impl IntoIterator<Item = &'a str>) -> Result<(), StudyError> {
     let mut seen = std::collections::BTreeSet::new();
-    for item in items {
+    let mut items = items.into_iter();
+    while let Some(item) = items.next() {
         if seen.len() == MAX_AXIS_VALUES {
+            let n = MAX_AXIS_VALUES + 1 + items.count();
             return Err(StudyError::Request(format!(
-                "{flag}: more than {MAX_AXIS_VALUES} values; a list has at most {MAX_AXIS_VALUES}, as a sweep's axis"
+                "{flag}: {n} values; a list has at most {MAX_AXIS_VALUES}, as a sweep's axis"
             )));
         }
         if !seen.insert(item) {
@@ -155,12 +157,6 @@ pub fn no_repeats<'a>(flag: &str, items: impl IntoIterator<Item = &'a str>) -> R
 /// [`StudyError::Request`] naming `flag`, the side and the limit
 /// (`--max-map-side`) it breaks.
 pub fn map_sides(flag: &str, sides: &[u32], limits: &Limits) -> Result<(), StudyError> {
-    if sides.len() > MAX_AXIS_VALUES {
-        return Err(StudyError::Request(format!(
-            "{flag}: {} values; a list has at most {MAX_AXIS_VALUES}, as a sweep's axis",
-            sides.len()
-        )));
-    }
     let names: Vec<String> = sides.iter().map(u32::to_string).collect();
     no_repeats(flag, names.iter().map(String::as_str))?;
     for &side in sides {

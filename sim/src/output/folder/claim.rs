@@ -69,10 +69,12 @@ impl RunKind {
         }
     }
 
-    /// The kind a manifest written before manifests named it holds: the
-    /// first word of its command line that is a subcommand's; `None` for
-    /// the bare `umbra` (which writes maps, a render and a study).
-    fn of_command(command: &str) -> Option<Self> {
+    /// The kind a command line writes (and a manifest written before
+    /// manifests named it holds): the first word of it that is a
+    /// subcommand's; `None` for the bare `umbra` (which writes maps, a
+    /// render and a study) and commands that write no folder.
+    #[must_use]
+    pub fn of_command(command: &str) -> Option<Self> {
         command.split_whitespace().skip(1).find_map(|w| Self::ALL.into_iter().find(|k| k.words().contains(&w)))
     }
 }

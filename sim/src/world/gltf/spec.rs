@@ -14,7 +14,7 @@ use super::{Fault, GltfProblem};
 /// How far a rotation's length may be from 1 (exporters write f32
 /// quaternions normalised to about 10⁻⁷; the glTF validator allows 10⁻⁵
 /// of the squared length: this is looser, for files written by hand).
-pub(super) const UNIT_TOLERANCE: f64 = 1e-3;
+const UNIT_TOLERANCE: f64 = 1e-3;
 
 /// A problem at `path`.
 fn fault(path: String, problem: String) -> Fault {
