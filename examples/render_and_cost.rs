@@ -29,11 +29,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!(
         "  on {}: {:.0} cycles, {:.3} ms, {} DRAM bytes, light pass bound by {}, camera pass by {}",
         arch.name,
-        cost.cycles,
-        cost.seconds * 1e3,
-        cost.bytes,
-        cost.light.bottleneck.name(),
-        cost.camera.bottleneck.name()
+        cost.cycles(),
+        cost.seconds() * 1e3,
+        cost.bytes(),
+        cost.light.bottleneck().name(),
+        cost.camera.bottleneck().name()
     );
     Ok(())
 }

@@ -29,7 +29,7 @@
 //! let render = umbra_sim::render(&job, TruthSource::Quiet)?;
 //! assert!(render.metrics.evaluated > 0);
 //! let cost = umbra_sim::cost(&job, &arch)?;
-//! assert!(cost.cycles > 0.0 && cost.bytes > 0);
+//! assert!(cost.cycles() > 0.0 && cost.bytes() > 0);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 

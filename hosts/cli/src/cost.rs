@@ -104,7 +104,7 @@ pub(super) fn cost(args: &CostArgs, trace: bool, limits: &Limits) -> Result<()> 
         let slices = files::write_trace(&mut folder, &reports)?;
         for (r, n) in reports.iter().zip(slices) {
             let unit = if r.arch.immediate() { "draw" } else { "tile" };
-            say!("trace.json: {} ({:.3} ms): {n} {unit} slices", r.arch.name, r.seconds * 1e3);
+            say!("trace.json: {} ({:.3} ms): {n} {unit} slices", r.arch.name, r.seconds() * 1e3);
         }
     } else {
         let comparison = files::write_costs(&mut folder, &reports)?;

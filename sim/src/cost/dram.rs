@@ -1,107 +1,197 @@
-//! DRAM traffic by purpose: what each pass moved, in bytes, for the map,
-//! the depth, the bins, the colour, silhouettes and shadow volumes.
+//! DRAM traffic by purpose: the byte side of a pass's ledger. Every byte a
+//! pass moves is charged to one [`Purpose`] as it is moved, and every
+//! total is the sum of the purposes ([`Dram::total`]), never kept beside
+//! them.
 
 use serde::Serialize;
+use serde::ser::SerializeMap;
 
-/// DRAM traffic per buffer, bytes.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
-pub struct Dram {
-    /// Map texels written by the resolve.
-    pub map_writes: u64,
-    /// Tiles loaded back by a later flush.
-    pub map_rmw_reads: u64,
-    /// Off-chip depth (and ids) read and written per fragment: cache lines
-    /// fetched and written back, or each access when uncached.
-    pub depth_rmw: u64,
-    /// Map texels and silhouette points requested by the shadow unit
-    /// (before any cache).
-    pub map_reads: u64,
-    /// Map and silhouette lines fetched through the map cache.
-    pub map_fetched: u64,
+/// What a DRAM byte was moved for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[repr(usize)]
+pub enum Purpose {
+    /// Map texels written by the light pass's resolve.
+    MapWrites,
+    /// A tile's depth loaded back on chip by a later flush of its bins
+    /// (the map's in the light pass, the visibility's in the camera pass).
+    TileReloads,
+    /// Two maps read and one written by the pass combining them (a second
+    /// depth by a second light pass).
+    MapCombine,
+    /// Depth kept off chip, read and written per fragment: cache lines
+    /// fetched and written back, or every access when uncached.
+    OffChipDepth,
+    /// Map texels the shadow unit read, without a map cache.
+    MapReads,
+    /// Silhouette points the shadow unit read, without a map cache.
+    SilhouetteReads,
+    /// Lines the map cache fetched (map texels and silhouette points).
+    MapCacheFills,
     /// Shaded pixels' colour written to the frame buffer.
-    pub colour: u64,
-    /// Bins and setup records written and read.
-    pub bins: u64,
+    Colour,
+    /// Bins and setup records, written at binning and read at a flush.
+    Bins,
     /// Silhouette points written by the silhouette pass.
-    pub silhouette_writes: u64,
-    /// Silhouette points read by the camera pass.
-    pub silhouette_reads: u64,
-    /// Scene depth read by shadow-volume fragments.
-    pub volume_depth_reads: u64,
-    /// Stencil read and written by shadow-volume fragments.
-    pub stencil: u64,
+    SilhouetteWrites,
+    /// Scene depth read by shadow-volume fragments (stencil off chip).
+    VolumeDepthReads,
+    /// Stencil read and written by shadow-volume fragments (off chip).
+    Stencil,
 }
 
-impl Dram {
-    /// Both passes' bytes added, purpose by purpose.
+impl Purpose {
+    /// Every purpose, in the order reports list them.
+    pub const ALL: [Self; 12] = [
+        Self::MapWrites,
+        Self::TileReloads,
+        Self::MapCombine,
+        Self::OffChipDepth,
+        Self::MapReads,
+        Self::SilhouetteReads,
+        Self::MapCacheFills,
+        Self::Colour,
+        Self::Bins,
+        Self::SilhouetteWrites,
+        Self::VolumeDepthReads,
+        Self::Stencil,
+    ];
+
+    /// Its name in files (`cost.json`, the stats file, the rows).
     #[must_use]
-    pub(crate) const fn plus(&self, o: &Self) -> Self {
-        Self {
-            map_writes: self.map_writes + o.map_writes,
-            map_rmw_reads: self.map_rmw_reads + o.map_rmw_reads,
-            depth_rmw: self.depth_rmw + o.depth_rmw,
-            map_reads: self.map_reads + o.map_reads,
-            map_fetched: self.map_fetched + o.map_fetched,
-            colour: self.colour + o.colour,
-            bins: self.bins + o.bins,
-            silhouette_writes: self.silhouette_writes + o.silhouette_writes,
-            silhouette_reads: self.silhouette_reads + o.silhouette_reads,
-            volume_depth_reads: self.volume_depth_reads + o.volume_depth_reads,
-            stencil: self.stencil + o.stencil,
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::MapWrites => "map_writes",
+            Self::TileReloads => "tile_reloads",
+            Self::MapCombine => "map_combine",
+            Self::OffChipDepth => "off_chip_depth",
+            Self::MapReads => "map_reads",
+            Self::SilhouetteReads => "silhouette_reads",
+            Self::MapCacheFills => "map_cache_fills",
+            Self::Colour => "colour",
+            Self::Bins => "bins",
+            Self::SilhouetteWrites => "silhouette_writes",
+            Self::VolumeDepthReads => "volume_depth_reads",
+            Self::Stencil => "stencil",
         }
+    }
+
+    /// Its name in words, as a report's sentence gives it.
+    #[must_use]
+    pub const fn words(self) -> &'static str {
+        match self {
+            Self::MapWrites => "map writes",
+            Self::TileReloads => "tile reloads",
+            Self::MapCombine => "combining maps",
+            Self::OffChipDepth => "off-chip depth",
+            Self::MapReads => "map reads",
+            Self::SilhouetteReads => "silhouette reads",
+            Self::MapCacheFills => "map-cache fills",
+            Self::Colour => "colour",
+            Self::Bins => "bins",
+            Self::SilhouetteWrites => "silhouette writes",
+            Self::VolumeDepthReads => "volume depth reads",
+            Self::Stencil => "stencil",
+        }
+    }
+
+    /// What it counts, as the stats file explains it.
+    #[must_use]
+    pub const fn meaning(self) -> &'static str {
+        match self {
+            Self::MapWrites => "map texels written by the light pass's resolve",
+            Self::TileReloads => "tile depth loaded back on chip by a later flush of its bins",
+            Self::MapCombine => "two maps read and one written by the pass combining them",
+            Self::OffChipDepth => "depth kept off chip, read and written per fragment",
+            Self::MapReads => "map texels the shadow unit read without a map cache",
+            Self::SilhouetteReads => "silhouette points the shadow unit read without a map cache",
+            Self::MapCacheFills => "lines the map cache fetched",
+            Self::Colour => "shaded pixels' colour written to the frame buffer",
+            Self::Bins => "bins and setup records written and read",
+            Self::SilhouetteWrites => "silhouette points written by the silhouette pass",
+            Self::VolumeDepthReads => "scene depth read by shadow-volume fragments",
+            Self::Stencil => "stencil read and written by shadow-volume fragments",
+        }
+    }
+}
+
+/// DRAM traffic by purpose, bytes: one entry per [`Purpose`]. Written as
+/// a map from each purpose's name to its bytes (its total beside it, where
+/// it is written, is [`Dram::total`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Dram([u64; 12]);
+
+impl Dram {
+    /// The bytes moved for `purpose`.
+    #[must_use]
+    pub const fn get(&self, purpose: Purpose) -> u64 {
+        self.0[purpose as usize]
+    }
+
+    /// Charge `bytes` to `purpose`.
+    pub(crate) const fn add(&mut self, purpose: Purpose, bytes: u64) {
+        self.0[purpose as usize] += bytes;
+    }
+
+    /// Every byte, the sum of the purposes.
+    #[must_use]
+    pub fn total(&self) -> u64 {
+        self.0.iter().sum()
+    }
+
+    /// Both added, purpose by purpose.
+    #[must_use]
+    pub(crate) fn plus(&self, o: &Self) -> Self {
+        let mut d = *self;
+        d.0.iter_mut().zip(o.0).for_each(|(a, b)| *a += b);
+        d
     }
 
     /// Every purpose `k` times.
     #[must_use]
-    pub(crate) const fn times(&self, k: u64) -> Self {
-        Self {
-            map_writes: self.map_writes * k,
-            map_rmw_reads: self.map_rmw_reads * k,
-            depth_rmw: self.depth_rmw * k,
-            map_reads: self.map_reads * k,
-            map_fetched: self.map_fetched * k,
-            colour: self.colour * k,
-            bins: self.bins * k,
-            silhouette_writes: self.silhouette_writes * k,
-            silhouette_reads: self.silhouette_reads * k,
-            volume_depth_reads: self.volume_depth_reads * k,
-            stencil: self.stencil * k,
+    pub(crate) fn times(&self, k: u64) -> Self {
+        Self(self.0.map(|b| b * k))
+    }
+
+    /// Every purpose's bytes with its name, in [`Purpose::ALL`] order.
+    pub fn fields(&self) -> impl Iterator<Item = (Purpose, u64)> + '_ {
+        Purpose::ALL.into_iter().map(|p| (p, self.get(p)))
+    }
+
+    /// The purposes that moved bytes, in words, as a report's sentence
+    /// lists them (`map writes 2777088, bins 1084056`); "none" for none.
+    #[must_use]
+    pub(crate) fn words(&self) -> String {
+        let parts: Vec<String> =
+            self.fields().filter(|&(_, b)| b > 0).map(|(p, b)| format!("{} {b}", p.words())).collect();
+        if parts.is_empty() { "none".to_owned() } else { parts.join(", ") }
+    }
+}
+
+impl Serialize for Dram {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut m = s.serialize_map(Some(Purpose::ALL.len()))?;
+        for (p, b) in self.fields() {
+            m.serialize_entry(p.name(), &b)?;
         }
+        m.end()
     }
+}
 
-    /// The map bytes DRAM moved for the shadow unit: the lines fetched
-    /// through the map cache when there is one, else every byte requested.
-    #[must_use]
-    pub(crate) const fn map_as_fetched(&self, cached: bool) -> u64 {
-        if cached { self.map_fetched } else { self.map_reads }
-    }
+/// What the shadow unit asked of memory before any cache, bytes: not
+/// traffic when a map cache stands between (its fills are), but what
+/// Sen et al.'s bandwidth model counts.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct Requested {
+    /// Map texels.
+    pub map: u64,
+    /// Silhouette points.
+    pub silhouette: u64,
+}
 
-    /// The DRAM traffic by purpose with its name: every purpose, the map's
-    /// reads as fetched ([`Dram::map_as_fetched`]).
+impl Requested {
+    /// Both added.
     #[must_use]
-    pub(crate) fn traffic(&self, cached: bool) -> Vec<(&'static str, u64)> {
-        self.fields()
-            .into_iter()
-            .filter(|(name, _)| *name != "map_fetched")
-            .map(|(name, b)| if name == "map_reads" { (name, self.map_as_fetched(cached)) } else { (name, b) })
-            .collect()
-    }
-
-    /// Every purpose's bytes with its name, in declaration order.
-    #[must_use]
-    pub(crate) const fn fields(&self) -> [(&'static str, u64); 11] {
-        [
-            ("map_writes", self.map_writes),
-            ("map_rmw_reads", self.map_rmw_reads),
-            ("depth_rmw", self.depth_rmw),
-            ("map_reads", self.map_reads),
-            ("map_fetched", self.map_fetched),
-            ("colour", self.colour),
-            ("bins", self.bins),
-            ("silhouette_writes", self.silhouette_writes),
-            ("silhouette_reads", self.silhouette_reads),
-            ("volume_depth_reads", self.volume_depth_reads),
-            ("stencil", self.stencil),
-        ]
+    pub(crate) const fn plus(&self, o: &Self) -> Self {
+        Self { map: self.map + o.map, silhouette: self.silhouette + o.silhouette }
     }
 }

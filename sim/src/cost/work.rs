@@ -5,7 +5,7 @@
 
 use crate::cost::arch::Arch;
 use crate::cost::cache::CacheStats;
-use crate::cost::dram::Dram;
+use crate::cost::dram::{Dram, Purpose};
 use serde::{Deserialize, Serialize};
 
 /// The stages a tile's time is the slowest of.
@@ -56,7 +56,6 @@ impl Stage {
 #[repr(usize)]
 pub enum Bottleneck {
     /// Triangle setup.
-    #[default]
     Setup,
     /// Scan conversion.
     Raster,
@@ -77,11 +76,16 @@ pub enum Bottleneck {
     /// The depth cache, its misses at the DRAM latency over
     /// `depth_cache.misses_in_flight`.
     DepthCacheMissesInFlight,
+    /// Nothing: the pass did no work (no light pass for shadow volumes).
+    #[default]
+    #[serde(rename = "none")]
+    Nothing,
 }
 
 impl Bottleneck {
     /// Every bottleneck, in pipeline order: a bottleneck's code in the
-    /// stats file is its place here.
+    /// stats file is its place here ([`Bottleneck::Nothing`]'s is the
+    /// next).
     pub const ALL: [Self; 9] = [
         Self::Setup,
         Self::Raster,
@@ -122,6 +126,7 @@ impl Bottleneck {
             Self::DramBandwidth | Self::DramLatency | Self::MapCacheMissesInFlight | Self::DepthCacheMissesInFlight => {
                 Stage::Memory
             }
+            Self::Nothing => Stage::Setup,
         }
     }
 
@@ -133,7 +138,19 @@ impl Bottleneck {
             Self::DramLatency => "dram-latency",
             Self::MapCacheMissesInFlight => "map-cache-misses-in-flight",
             Self::DepthCacheMissesInFlight => "depth-cache-misses-in-flight",
+            Self::Nothing => "none",
             s => s.stage().name(),
+        }
+    }
+}
+
+impl Bottleneck {
+    /// As a sentence ends with it: "bound by {words}".
+    #[must_use]
+    pub const fn words(self) -> &'static str {
+        match self {
+            Self::Nothing => "nothing (no work)",
+            s => s.name(),
         }
     }
 }
@@ -142,7 +159,7 @@ impl core::str::FromStr for Bottleneck {
     type Err = String;
 
     fn from_str(s: &str) -> Result<Self, String> {
-        Self::ALL.into_iter().find(|b| b.name() == s).ok_or_else(|| {
+        Self::ALL.into_iter().chain([Self::Nothing]).find(|b| b.name() == s).ok_or_else(|| {
             let names: Vec<&str> = Self::ALL.iter().map(|b| b.name()).collect();
             format!("`{s}` is not a bottleneck (one of {})", names.join(", "))
         })
@@ -245,8 +262,6 @@ pub struct Work {
     /// Compute cycles per stage, in [`Stage::ALL`] order (memory's slot is
     /// filled by `Work::memory`).
     pub cycles: [f64; 6],
-    /// DRAM bytes.
-    pub bytes: u64,
     /// Bytes streamed: written or read in order, coalesced into bursts.
     pub streamed: u64,
     /// Scattered DRAM requests, one access each (uncached off-chip depth).
@@ -261,11 +276,23 @@ pub struct Work {
     pub fragments: u64,
     /// Pixels shaded.
     pub pixels: u64,
-    /// Its DRAM traffic by purpose (of the bytes a purpose counts).
+    /// Its DRAM traffic by purpose: its entries in the pass's ledger.
     pub dram: Dram,
 }
 
 impl Work {
+    /// Its DRAM bytes: the sum of its purposes.
+    #[must_use]
+    pub fn bytes(&self) -> u64 {
+        self.dram.total()
+    }
+
+    /// `bytes` streamed for `purpose`: written or read in order.
+    pub(crate) const fn stream(&mut self, purpose: Purpose, bytes: u64) {
+        self.dram.add(purpose, bytes);
+        self.streamed += bytes;
+    }
+
     pub(super) fn charge(&mut self, stage: Stage, cycles: f64) {
         if let Some(c) = self.cycles.get_mut(stage as usize) {
             *c += cycles;
@@ -287,7 +314,7 @@ impl Work {
             wait(self.depth_misses, arch.depth_cache.misses_in_flight),
         ];
         MemoryTime {
-            bandwidth_cycles: self.bytes as f64 / arch.bytes_per_cycle(),
+            bandwidth_cycles: self.bytes() as f64 / arch.bytes_per_cycle(),
             latency_cycles: queue_cycles.iter().copied().fold(0.0, f64::max),
             queue_cycles,
         }
@@ -329,7 +356,6 @@ impl Work {
         for c in &mut self.cycles {
             *c *= k as f64;
         }
-        self.bytes *= k;
         self.streamed *= k;
         self.requests *= k;
         self.map_misses *= k;
@@ -398,58 +424,72 @@ impl EnergySplit {
     }
 }
 
-/// A pass's time on an architecture.
-#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+/// A pass's time on an architecture, and its ledger: every cycle charged
+/// to what bound it (`bound_cycles`, beside the fixed `overhead`) and every
+/// DRAM byte to its purpose (`dram`). The pass's cycles and bytes are
+/// those ledgers' sums ([`PassTiming::cycles`], [`PassTiming::bytes`]).
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct PassTiming {
     /// Cycles per stage summed over the tiles (the front end's in setup and
     /// memory), in [`Stage::ALL`] order.
-    #[serde(rename = "stage_cycles", serialize_with = "by_stage")]
     pub stages: [f64; 6],
     /// The front end's cycles (setup and bin writes).
-    #[serde(rename = "front_cycles")]
     pub front: f64,
     /// The tiles' cycles: each tile its slowest stage, summed.
-    #[serde(rename = "tile_cycles")]
     pub tiles: f64,
-    /// The pass: front end and tiles as the architecture overlaps them,
-    /// plus its fixed overhead.
-    pub cycles: f64,
     /// The fixed overhead: cycles waiting for the host.
-    #[serde(rename = "overhead_cycles")]
     pub overhead: f64,
+    /// The cycles' ledger: the pass's cycles besides its overhead, each
+    /// charged to what bound it, in [`Bottleneck::ALL`] order — a tile's
+    /// to its slowest stage, the front end's (when it outlasts the tiles)
+    /// to its own, the DRAM's shared by both (when it outlasts them) to
+    /// its limit, each unit after the tiles to its slowest stage.
+    pub bound_cycles: [f64; 9],
     /// Tiles (draws) with work bound by each bottleneck, in
     /// `Bottleneck::ALL` order.
-    #[serde(rename = "tiles_bound", serialize_with = "by_bottleneck")]
     pub bound: [u64; 9],
-    /// What bounds the most cycles.
-    pub bottleneck: Bottleneck,
     /// Memory time summed over the pass, as each limit would make it.
     pub memory: MemoryTime,
-    /// DRAM bytes.
-    #[serde(rename = "dram_bytes")]
-    pub bytes: u64,
-    /// DRAM bytes over the pass's time, bytes a second.
-    pub achieved_bytes_per_second: f64,
+    /// The bytes' ledger: DRAM traffic by purpose.
+    pub dram: Dram,
     /// The map cache, when the pass reads through one.
     pub map_cache: Option<CacheStats>,
     /// The depth cache, when the pass keeps depth off chip through one.
     pub depth_cache: Option<CacheStats>,
     /// Energy by unit, joules.
-    #[serde(rename = "energy_joules")]
     pub energy: EnergySplit,
-}
-
-/// Per-stage figures as a map from the stage's name.
-fn by_stage<S: serde::Serializer>(v: &[f64; 6], s: S) -> Result<S::Ok, S::Error> {
-    s.collect_map(Stage::ALL.iter().map(|st| st.name()).zip(v))
-}
-
-/// Per-bottleneck counts as a map from the bottleneck's name.
-fn by_bottleneck<S: serde::Serializer>(v: &[u64; 9], s: S) -> Result<S::Ok, S::Error> {
-    s.collect_map(Bottleneck::ALL.iter().map(|b| b.name()).zip(v))
+    /// The clock the cycles run at, hertz.
+    pub clock: f64,
 }
 
 impl PassTiming {
+    /// The pass's cycles: its overhead and its ledger's.
+    #[must_use]
+    pub fn cycles(&self) -> f64 {
+        self.overhead + self.bound_cycles.iter().sum::<f64>()
+    }
+
+    /// The pass's DRAM bytes: its ledger's, every purpose.
+    #[must_use]
+    pub fn bytes(&self) -> u64 {
+        self.dram.total()
+    }
+
+    /// What bounds the most of its cycles (the first on a tie);
+    /// [`Bottleneck::Nothing`] for a pass with none.
+    #[must_use]
+    pub fn bottleneck(&self) -> Bottleneck {
+        most(&self.bound_cycles)
+    }
+
+    /// DRAM bytes over the pass's time, bytes a second.
+    #[must_use]
+    #[allow(clippy::cast_precision_loss, reason = "bytes far below 2^53")]
+    pub fn achieved_bytes_per_second(&self) -> f64 {
+        let seconds = self.cycles() / self.clock;
+        if seconds > 0.0 { self.bytes() as f64 / seconds } else { 0.0 }
+    }
+
     /// The pass-level bound: the slowest stage summed over the whole pass.
     #[must_use]
     pub fn pass_bound(&self) -> f64 {
@@ -462,18 +502,15 @@ impl PassTiming {
         self.overhead + self.stages.iter().sum::<f64>()
     }
 
-    /// This pass, then `next` (a further light's pass), as one: cycles,
-    /// bytes, energy and counts added; bound by the bottleneck of the one
-    /// that takes longer; the achieved bandwidth over both at `clock`.
+    /// This pass, then `next` (a further light's pass), as one: every
+    /// figure and both ledgers added.
     #[must_use]
-    pub(crate) fn then(&self, next: &Self, clock: f64) -> Self {
+    pub(crate) fn then(&self, next: &Self) -> Self {
+        let add = |a: [f64; 9], b: [f64; 9]| core::array::from_fn(|k| a[k] + b[k]);
         let mut stages = self.stages;
         stages.iter_mut().zip(next.stages).for_each(|(a, b)| *a += b);
         let mut bound = self.bound;
         bound.iter_mut().zip(next.bound).for_each(|(a, b)| *a += b);
-        let cycles = self.cycles + next.cycles;
-        let bytes = self.bytes + next.bytes;
-        let seconds = cycles / clock;
         let cache = |a: Option<CacheStats>, b: Option<CacheStats>| match (a, b) {
             (Some(a), Some(b)) => Some(a.plus(b)),
             (a, b) => a.or(b),
@@ -482,17 +519,81 @@ impl PassTiming {
             stages,
             front: self.front + next.front,
             tiles: self.tiles + next.tiles,
-            cycles,
             overhead: self.overhead + next.overhead,
+            bound_cycles: add(self.bound_cycles, next.bound_cycles),
             bound,
-            bottleneck: if next.cycles > self.cycles { next.bottleneck } else { self.bottleneck },
             memory: self.memory.plus(&next.memory),
-            bytes,
-            #[allow(clippy::cast_precision_loss, reason = "bytes far below 2^53")]
-            achieved_bytes_per_second: if seconds > 0.0 { bytes as f64 / seconds } else { 0.0 },
+            dram: self.dram.plus(&next.dram),
             map_cache: cache(self.map_cache, next.map_cache),
             depth_cache: cache(self.depth_cache, next.depth_cache),
             energy: self.energy.plus(&next.energy),
+            clock: if self.clock > 0.0 { self.clock } else { next.clock },
         }
     }
+}
+
+/// The bottleneck of the most cycles in a ledger (the first on a tie);
+/// [`Bottleneck::Nothing`] when it holds none.
+#[must_use]
+pub(crate) fn most(bound_cycles: &[f64; 9]) -> Bottleneck {
+    Bottleneck::ALL
+        .into_iter()
+        .zip(bound_cycles)
+        .fold((Bottleneck::Nothing, 0.0), |b, (s, &c)| if c > b.1 { (s, c) } else { b })
+        .0
+}
+
+impl Serialize for PassTiming {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        /// The pass as `cost.json` holds it: the totals beside the ledgers they sum.
+        #[derive(Serialize)]
+        struct Out<'a> {
+            cycles: f64,
+            bottleneck: Bottleneck,
+            overhead_cycles: f64,
+            #[serde(serialize_with = "by_bottleneck")]
+            bound_cycles: &'a [f64; 9],
+            #[serde(serialize_with = "by_stage")]
+            stage_cycles: &'a [f64; 6],
+            front_cycles: f64,
+            tile_cycles: f64,
+            #[serde(serialize_with = "by_bottleneck")]
+            tiles_bound: &'a [u64; 9],
+            memory: &'a MemoryTime,
+            dram_bytes: u64,
+            dram: &'a Dram,
+            achieved_bytes_per_second: f64,
+            map_cache: Option<CacheStats>,
+            depth_cache: Option<CacheStats>,
+            energy_joules: &'a EnergySplit,
+        }
+        Out {
+            cycles: self.cycles(),
+            bottleneck: self.bottleneck(),
+            overhead_cycles: self.overhead,
+            bound_cycles: &self.bound_cycles,
+            stage_cycles: &self.stages,
+            front_cycles: self.front,
+            tile_cycles: self.tiles,
+            tiles_bound: &self.bound,
+            memory: &self.memory,
+            dram_bytes: self.bytes(),
+            dram: &self.dram,
+            achieved_bytes_per_second: self.achieved_bytes_per_second(),
+            map_cache: self.map_cache,
+            depth_cache: self.depth_cache,
+            energy_joules: &self.energy,
+        }
+        .serialize(s)
+    }
+}
+
+/// Per-stage figures as a map from the stage's name.
+fn by_stage<S: serde::Serializer>(v: &&[f64; 6], s: S) -> Result<S::Ok, S::Error> {
+    s.collect_map(Stage::ALL.iter().map(|st| st.name()).zip(v.iter()))
+}
+
+/// Per-bottleneck figures as a map from the bottleneck's name.
+fn by_bottleneck<S: serde::Serializer, T: Serialize>(v: &&[T; 9], s: S) -> Result<S::Ok, S::Error> {
+    s.collect_map(Bottleneck::ALL.iter().map(|b| b.name()).zip(v.iter()))
 }

@@ -40,18 +40,12 @@ impl Delta {
     /// `b` − `a`.
     fn between(a: &CostReport, b: &CostReport) -> Self {
         let purposes = |r: &CostReport| -> Vec<(&'static str, i64)> {
-            let cached = r.arch.map_cache.size > 0;
-            r.light_dram
-                .traffic(cached)
-                .into_iter()
-                .zip(r.camera_dram.traffic(cached))
-                .map(|((name, l), (_, c))| (name, i64::try_from(l + c).unwrap_or(i64::MAX)))
-                .collect()
+            r.dram().fields().map(|(p, b)| (p.name(), i64::try_from(b).unwrap_or(i64::MAX))).collect()
         };
-        let bytes = |r: &CostReport| i64::try_from(r.bytes).unwrap_or(i64::MAX);
+        let bytes = |r: &CostReport| i64::try_from(r.bytes()).unwrap_or(i64::MAX);
         Self {
-            seconds: b.seconds - a.seconds,
-            joules: b.energy.total() - a.energy.total(),
+            seconds: b.seconds() - a.seconds(),
+            joules: b.energy().total() - a.energy().total(),
             bytes: bytes(b) - bytes(a),
             bytes_by_purpose: purposes(a).into_iter().zip(purposes(b)).map(|((n, x), (_, y))| (n, y - x)).collect(),
         }
@@ -173,8 +167,8 @@ pub fn attribute(job: &Checked<'_>, a: &Arch, b: &Arch) -> Result<Attribution, R
         a: a.name.clone(),
         b: b.name.clone(),
         config: ra.config.clone(),
-        a_seconds: ra.seconds,
-        b_seconds: rb.seconds,
+        a_seconds: ra.seconds(),
+        b_seconds: rb.seconds(),
         total,
         shares,
         remainder,

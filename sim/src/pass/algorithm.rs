@@ -296,7 +296,7 @@ impl Algorithm {
 
     /// Every algorithm, in the order of the papers, those with a parameter
     /// given `bias1` and `offset`.
-    const fn every(bias1: f64, offset: f64) -> [Self; 9] {
+    pub(crate) const fn every(bias1: f64, offset: f64) -> [Self; 9] {
         [
             Self::First,
             Self::BiasRange { hi: bias1 },

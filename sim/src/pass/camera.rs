@@ -372,11 +372,29 @@ pub(crate) fn shade_visible<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
     Ok(CameraImage { width: size.0, height: size.1, pixels, camera: *camera })
 }
 
+/// The lit pass of a frame whose shadows the shading unit does not test
+/// — shadow volumes, whose stencil decides them, or none at all: every
+/// pixel of `ids` (a `width`-wide image) that a triangle covers shaded
+/// once and its colour written, as the shading unit reports it
+/// ([`Event::PixelShaded`](umbra_core::probe::Event::PixelShaded)), with
+/// no lookup.
+pub(crate) fn lit_pass<P: Probe>(ids: &[u32], width: u32, probe: &mut P) {
+    let across = width.max(1) as usize;
+    for (k, &id) in ids.iter().enumerate() {
+        if id != NO_TRIANGLE {
+            #[allow(clippy::cast_possible_truncation, reason = "pixel coordinates of a checked image")]
+            let (x, y) = ((k % across) as u32, (k / across) as u32);
+            probe.event(umbra_core::probe::Event::PixelShaded { x, y });
+        }
+    }
+}
+
 /// The camera pass of depth-fail shadow volumes into `frame`: the
 /// visibility unit (walking the image as `tiling` says), then, for each
 /// of `lit` (the scene lit by each of its lights in turn), the stencil
-/// unit over every occluder's volume; a pixel is in shadow where its
-/// stencil is non-zero. One image per light.
+/// unit over every occluder's volume and the lit pass over every covered
+/// pixel ([`lit_pass`]), as a map's camera pass shades each; a pixel is
+/// in shadow where its stencil is non-zero. One image per light.
 ///
 /// # Errors
 /// [`PassError`] for an unusable size or a malformed mesh.
@@ -394,6 +412,7 @@ pub(crate) fn volumes<P: Probe>(
         let occluders = crate::world::occluders::Occluders::new(one);
         let stencil =
             crate::pass::occluders::stencil::<D24, _>(one, &occluders, &vis.camera, vis.raster, &frame.z, probe)?;
+        lit_pass(&frame.ids, size.0, probe);
         let pixels = frame
             .ids
             .iter()

@@ -7,10 +7,9 @@
 //! each through its own probe ([`Fan`]); the functional render's passes
 //! cost those whose tiling is its own.
 
-use umbra_core::probe::Event;
 use umbra_core::shadow::Filter;
 use umbra_core::silhouette::{Packed, SilPoint, SilStore};
-use umbra_core::{DepthFormat, DepthFormatKind, Probe, RasterConfig};
+use umbra_core::{DepthFormat, DepthFormatKind, RasterConfig};
 
 use super::{Algorithm, Checked, Render, RenderConfig, RenderError, Targets, TruthSource, passes, render_in};
 use crate::base::maps::{Tiling, with_format};
@@ -20,7 +19,7 @@ use crate::cost::report::CostReport;
 use crate::cost::timing::{ArchProbe, PassKind};
 use crate::input::limits::Limits;
 use crate::pass::algorithm::{MapKind, Units};
-use crate::pass::camera::{CameraFrame, visibility};
+use crate::pass::camera::{CameraFrame, lit_pass, visibility};
 use crate::world::occluders::Occluders;
 use crate::world::scene::Scene;
 
@@ -170,7 +169,7 @@ fn reports<const L: bool, const C: bool>(
 /// let cost = |a: &Arch| umbra_sim::cost(&job, a);
 /// // The same frame, the same events: the machines differ in time only.
 /// assert_eq!(cost(&slow)?.pixels, cost(&fast)?.pixels);
-/// assert!(cost(&slow)?.seconds > cost(&fast)?.seconds);
+/// assert!(cost(&slow)?.seconds() > cost(&fast)?.seconds());
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 ///
@@ -239,13 +238,7 @@ fn cost_in<F: DepthFormat, const L: bool, const C: bool>(
         let mut frame = CameraFrame::default();
         let size = (checked.image.width(), checked.image.height());
         visibility(&mut frame, scene, size, drawing, &mut camera)?;
-        for (k, &id) in frame.ids().iter().enumerate() {
-            if id != umbra_core::NO_TRIANGLE {
-                #[allow(clippy::cast_possible_truncation, reason = "pixel coordinates of a checked image")]
-                let (x, y) = ((k % size.0 as usize) as u32, (k / size.0 as usize) as u32);
-                camera.event(Event::PixelShaded { x, y });
-            }
-        }
+        lit_pass(frame.ids(), size.0, &mut camera);
         format!("no shadow, image {}x{}", cfg.width, cfg.height)
     };
     Ok(reports(scene, cfg, &config, light, camera))

@@ -8,6 +8,8 @@ pub mod arrays;
 mod config;
 mod costed;
 pub mod files;
+#[cfg(test)]
+mod ledger;
 pub mod params;
 pub mod pictures;
 mod produced;

@@ -7,6 +7,7 @@ use umbra::core::{CullMode, D16, D24, DepthFormat, DepthFormatKind, DepthUnit, L
 use umbra::sim::Algorithm;
 use umbra::sim::cost::arch::Arch;
 use umbra::sim::cost::arch::BUNDLED;
+use umbra::sim::cost::dram::Purpose;
 use umbra::sim::cost::timing::{ArchProbe, PassKind};
 use umbra::sim::cost::work::{Bottleneck, PassTiming, Stage};
 use umbra::sim::input::limits::Limits;
@@ -56,14 +57,14 @@ pub(super) fn close(a: f64, b: f64) -> bool {
 fn talisman_quad_by_hand() {
     let a = pass::<D24>(&bundled("talisman"), DepthUnit::Single, &quad(), 64);
     let t = a.timing();
-    assert!(close(t.cycles, 2048.0), "{}", t.cycles);
+    assert!(close(t.cycles(), 2048.0), "{}", t.cycles());
     let memory = 2.0 * 3208.0 / 16.0 + 2.0 * 3140.0 / 16.0 + 152.0 / 16.0;
     let expected = [40.0, 2048.0, 2048.0, 0.0, 0.0, memory];
     for (k, (got, want)) in t.stages.iter().zip(expected).enumerate() {
         assert!(close(*got, want), "{}: {got} against {want}", Stage::ALL[k].name());
     }
-    assert_eq!(t.bytes, 2 * 3208 + 2 * 3140 + 152);
-    assert_eq!((a.dram.map_writes, a.dram.bins), (4 * 3072, 152 + 6 * 68));
+    assert_eq!(t.bytes(), 2 * 3208 + 2 * 3140 + 152);
+    assert_eq!((a.dram().get(Purpose::MapWrites), a.dram().get(Purpose::Bins)), (4 * 3072, 152 + 6 * 68));
     assert_eq!(a.on_chip_bytes(), 32 * 32 * 3);
 }
 
@@ -89,9 +90,9 @@ fn pixelflow_quad_by_hand_and_depth_bits() {
     // 12 392 bytes at 8 a cycle, 1549); the bins written (2 × 52 bytes, 4
     // bursts, 20 cycles) share the DRAM: 1960 cycles.
     let memory = (388.0 * 10.0 / 2.0_f64).max((64.0 * 64.0 * 3.0 + 2.0 * 52.0) / 8.0);
-    assert!(close(t24.cycles, memory + 20.0), "{}", t24.cycles);
+    assert!(close(t24.cycles(), memory + 20.0), "{}", t24.cycles());
     assert_eq!(t24.bound[Bottleneck::DramLatency as usize], 1, "the latency, not the bandwidth, binds");
-    assert_eq!(t24.bottleneck, Bottleneck::DramLatency);
+    assert_eq!(t24.bottleneck(), Bottleneck::DramLatency);
 }
 
 /// One small triangle in each 32² tile of a 128² 16-bit map, worked from
@@ -169,7 +170,7 @@ fn one_triangle_per_tile_by_hand_on_every_bundled_file() {
             front + 16.0 * tile
         };
         let t = a.timing();
-        assert!(close(t.cycles, body + drain), "{name}: {} against {}", t.cycles, body + drain);
+        assert!(close(t.cycles(), body + drain), "{name}: {} against {}", t.cycles(), body + drain);
         // Timed per tile on a tiler, per draw (here the one pass) on an
         // immediate-mode machine: the same sum, the tiles being alike.
         let units = if arch.immediate() { 1 } else { 16 };
@@ -193,7 +194,7 @@ fn memory_bound_halves_and_compute_bound_stays() {
         let by_bandwidth = t.bound[Bottleneck::DramBandwidth as usize];
         assert_eq!(t.bound.iter().sum::<u64>(), by_bandwidth, "every tile bound by the bandwidth (no latency)");
     }
-    assert!(close(b.cycles, a.cycles / 2.0), "{} then {}", a.cycles, b.cycles);
+    assert!(close(b.cycles(), a.cycles() / 2.0), "{} then {}", a.cycles(), b.cycles());
 
     let mut fast = bundled("talisman");
     fast.set("dram.bandwidth=1TB/s").expect("valid");
@@ -204,8 +205,8 @@ fn memory_bound_halves_and_compute_bound_stays() {
     let memory =
         |t: &PassTiming| t.bound[Bottleneck::DramBandwidth as usize] + t.bound[Bottleneck::DramLatency as usize];
     assert_eq!(memory(&c.light) + memory(&c.camera), 0);
-    assert!(close(c.cycles, d.cycles), "{} then {}", c.cycles, d.cycles);
-    assert!(c.bytes == d.bytes && c.bytes > 0);
+    assert!(close(c.cycles(), d.cycles()), "{} then {}", c.cycles(), d.cycles());
+    assert!(c.bytes() == d.bytes() && c.bytes() > 0);
 }
 
 /// Energy per frame: the sum over units, each recomputed from the event
@@ -232,17 +233,17 @@ fn energy_is_the_sum_over_units_recomputed_from_the_events() {
     let buffers = l.depth_reads() + l.depth_writes() + c.depth_reads() + c.depth_writes();
     let raster = l.fragments + c.fragments;
     let shadow = c.map_reads() + c.lookups_culled;
-    assert!(close(r.energy.buffers, buffers as f64 * e.buffer_access));
-    assert!(close(r.energy.raster, raster as f64 * e.fragment_op));
-    assert!(close(r.energy.shadow, shadow as f64 * e.fragment_op));
-    assert!(close(r.energy.dram, r.bytes as f64 * e.dram_byte));
-    assert!(close(r.energy.caches, c.map_reads() as f64 * e.cache_access));
-    let sum = r.energy.dram + r.energy.buffers + r.energy.caches + r.energy.raster + r.energy.shadow;
-    assert!(close(r.energy.total(), sum) && sum > 0.0);
+    assert!(close(r.energy().buffers, buffers as f64 * e.buffer_access));
+    assert!(close(r.energy().raster, raster as f64 * e.fragment_op));
+    assert!(close(r.energy().shadow, shadow as f64 * e.fragment_op));
+    assert!(close(r.energy().dram, r.bytes() as f64 * e.dram_byte));
+    assert!(close(r.energy().caches, c.map_reads() as f64 * e.cache_access));
+    let sum = r.energy().dram + r.energy().buffers + r.energy().caches + r.energy().raster + r.energy().shadow;
+    assert!(close(r.energy().total(), sum) && sum > 0.0);
 }
 
 fn within_bounds(t: &PassTiming) -> bool {
-    t.pass_bound() <= t.cycles * (1.0 + 1e-12) && t.cycles <= t.serial() * (1.0 + 1e-12)
+    t.pass_bound() <= t.cycles() * (1.0 + 1e-12) && t.cycles() <= t.serial() * (1.0 + 1e-12)
 }
 
 proptest::proptest! {
@@ -256,7 +257,7 @@ proptest::proptest! {
         let unit = if dual { DepthUnit::Dual } else { DepthUnit::Single };
         for (name, _) in BUNDLED {
             let t = pass::<D24>(&bundled(name), unit, &tris, 128).timing();
-            proptest::prop_assert!(within_bounds(&t), "{}: {} not within {} ..= {}", name, t.cycles, t.pass_bound(), t.serial());
+            proptest::prop_assert!(within_bounds(&t), "{}: {} not within {} ..= {}", name, t.cycles(), t.pass_bound(), t.serial());
         }
     }
 }
@@ -290,7 +291,7 @@ fn shadow_volume_cost_follows_overdraw_and_stays_on_chip_on_a_tiler() {
         let expected = (c.fragments + c.volume_fragments) as f64 / 2.0 + (c.culled_triangles + c.culled_blocks) as f64;
         assert!(close(r.camera.stages[Stage::Raster as usize], expected));
         assert!(r.sen.overdraw > 1.0, "O = {}", r.sen.overdraw);
-        assert_eq!((r.camera_dram.stencil, r.camera_dram.volume_depth_reads), (0, 0));
+        assert_eq!((r.camera.dram.get(Purpose::Stencil), r.camera.dram.get(Purpose::VolumeDepthReads)), (0, 0));
         assert!(c.bin_entries > 0, "volume triangles binned");
     }
     // Four times the pixels, about four times the volume fragments.
@@ -299,8 +300,8 @@ fn shadow_volume_cost_follows_overdraw_and_stays_on_chip_on_a_tiler() {
     let immediate =
         cfg(320, 180).check(&scene, &Limits::DEFAULT).and_then(|job| cost(&job, &bundled("immediate"))).expect("costs");
     let c = &immediate.camera_events;
-    assert_eq!(immediate.camera_dram.stencil, c.stencil_read_bytes + c.stencil_write_bytes);
-    assert_eq!(immediate.camera_dram.volume_depth_reads, c.volume_depth_bytes);
+    assert_eq!(immediate.camera.dram.get(Purpose::Stencil), c.stencil_read_bytes + c.stencil_write_bytes);
+    assert_eq!(immediate.camera.dram.get(Purpose::VolumeDepthReads), c.volume_depth_bytes);
 }
 
 /// Sen et al.'s `P` both ways on the crowd: as their Table 1 measures it
@@ -373,7 +374,7 @@ fn a_silhouette_map_costs_its_four_corner_samples_whatever_the_filter() {
     }
     assert!((point.sen.model_map_bytes_per_pixel - 16.0).abs() < 1e-12, "{}", point.sen.model_map_bytes_per_pixel);
     let (a, b) = (report(Algorithm::First, Filter::Point), report(Algorithm::First, Filter::Box { size: 5 }));
-    assert!(b.camera.cycles > a.camera.cycles, "25 samples cost more than 1");
+    assert!(b.camera.cycles() > a.camera.cycles(), "25 samples cost more than 1");
 }
 
 /// The timeline comes from the same model: the light pass's tile slices
@@ -429,20 +430,12 @@ fn the_timeline_is_the_timing_model() {
             .filter_map(|e| e["args"]["bytes by purpose"][purpose].as_u64())
             .sum()
     };
-    for (pass, d) in [("light", &r.light_dram), ("camera", &r.camera_dram)] {
-        // Through the map cache, the map's reads are the lines it fetched.
-        let purposes = [
-            ("bins", d.bins),
-            ("map_writes", d.map_writes),
-            ("map_rmw_reads", d.map_rmw_reads),
-            ("colour", d.colour),
-            ("map_reads", d.map_fetched),
-        ];
-        for (purpose, bytes) in purposes {
-            assert_eq!(by_purpose(pass, purpose), bytes, "{pass}: {purpose}");
+    for (pass, d) in [("light", &r.light.dram), ("camera", &r.camera.dram)] {
+        for (purpose, bytes) in d.fields() {
+            assert_eq!(by_purpose(pass, purpose.name()), bytes, "{pass}: {}", purpose.name());
         }
     }
-    assert!(r.light_dram.map_writes > 0 && r.camera_dram.map_fetched > 0);
+    assert!(r.light.dram.get(Purpose::MapWrites) > 0 && r.camera.dram.get(Purpose::MapCacheFills) > 0);
     assert_eq!(trace["metadata"][0]["arch"]["name"], "talisman");
     assert_timeline(events, 1, &r, slices[0]);
 }
@@ -463,8 +456,8 @@ fn assert_timeline(events: &[serde_json::Value], pid: usize, r: &umbra::sim::cos
     assert_eq!(host, if r.host_cycles > 0.0 { vec![(0.0, us(r.host_cycles))] } else { vec![] });
     let passes: Vec<(f64, f64)> =
         mine.iter().filter(|e| e["tid"] == 0 && e["cat"] != "host").map(|e| span(e)).collect();
-    let frame = us(r.cycles);
-    let light_end = us(r.host_cycles + r.light.cycles);
+    let frame = us(r.cycles());
+    let light_end = us(r.host_cycles + r.light.cycles());
     assert_eq!(passes.len(), 2);
     assert!(close(passes[0].0, us(r.host_cycles)) && close(passes[0].1, light_end) && close(passes[1].0, light_end));
     assert!(close(passes[1].1, frame), "{passes:?} against {frame}");

@@ -37,19 +37,24 @@ fn each_key_s_share_is_its_single_change_run_alone() {
     ];
     let keys: Vec<&str> = t.shares.iter().map(|s| s.key).collect();
     assert_eq!(keys.len(), 2, "{keys:?}");
-    let bytes = |r: &CostReport| i64::try_from(r.bytes).expect("bytes");
+    let bytes = |r: &CostReport| i64::try_from(r.bytes()).expect("bytes");
     let mut explained = (0.0, 0);
     for (key, r) in &alone {
         let share = t.shares.iter().find(|s| s.key == *key).expect("a share");
         let e = share.effect.as_ref().expect("changes alone");
-        assert!(close(e.seconds, r.seconds - ra.seconds), "{key}: {} against {}", e.seconds, r.seconds - ra.seconds);
-        assert!(close(e.joules, r.energy.total() - ra.energy.total()), "{key}");
+        assert!(
+            close(e.seconds, r.seconds() - ra.seconds()),
+            "{key}: {} against {}",
+            e.seconds,
+            r.seconds() - ra.seconds()
+        );
+        assert!(close(e.joules, r.energy().total() - ra.energy().total()), "{key}");
         assert_eq!(e.bytes, bytes(r) - bytes(&ra), "{key}");
         assert_eq!(e.bytes_by_purpose.iter().map(|p| p.1).sum::<i64>(), e.bytes, "{key}: purposes add up");
         explained = (explained.0 + e.seconds, explained.1 + e.bytes);
     }
-    assert!(close(t.total.seconds, rb.seconds - ra.seconds));
-    assert!(close(t.remainder.seconds, (rb.seconds - ra.seconds) - explained.0), "{:?}", t.remainder);
+    assert!(close(t.total.seconds, rb.seconds() - ra.seconds()));
+    assert!(close(t.remainder.seconds, (rb.seconds() - ra.seconds()) - explained.0), "{:?}", t.remainder);
     assert_eq!(t.remainder.bytes, (bytes(&rb) - bytes(&ra)) - explained.1);
     // Ranked by the size of the effect on time.
     let size = |k: usize| t.shares[k].effect.as_ref().map_or(0.0, |e| e.seconds.abs());

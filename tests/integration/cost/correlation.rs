@@ -140,7 +140,7 @@ fn each_files_depth_only_fill_as_derived_by_hand() {
         let r = cfg.check(&scene, &limits).and_then(|job| cost(&job, &arch)).expect("costs");
         assert_eq!(r.light_events.fragments, 256 * 256, "{name}: the quad fills the map once");
         #[allow(clippy::cast_precision_loss, reason = "a count")]
-        let fill = r.light_events.fragments as f64 / ((r.light.cycles - r.light.overhead) / arch.clock);
+        let fill = r.light_events.fragments as f64 / ((r.light.cycles() - r.light.overhead) / arch.clock);
         assert!((fill / rate - 1.0).abs() < 0.05, "{name}: {fill:.4e} pixels/s against {rate:.4e} by hand");
     }
 }

@@ -67,7 +67,7 @@ fn every_candidate(scene: &Scene, spec: &PlanSpec) -> Vec<Measured> {
                     let r = render(&job, TruthSource::Given(reference.clone())).expect("renders");
                     let c = cost(&job, &spec.arch).expect("costs");
                     let measures = spec.budgets.iter().map(|b| percent(&r.metrics, b.measure.name())).collect();
-                    out.push((cfg, c.cycles.round() as u64, c.bytes, measures));
+                    out.push((cfg, c.cycles().round() as u64, c.bytes(), measures));
                 }
             }
         }

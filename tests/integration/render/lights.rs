@@ -80,7 +80,7 @@ fn the_same_light_twice_costs_two_passes_and_pictures_as_one() {
     }
     let (a, b) = (cost(&job(&one, cfg), &arch).expect("costs"), cost(&job(&twice, cfg), &arch).expect("costs"));
     assert_eq!(b.light_passes.len(), 2);
-    assert_eq!(b.light.cycles, 2.0 * a.light.cycles, "the light passes add");
+    assert_eq!(b.light.cycles(), 2.0 * a.light.cycles(), "the light passes add");
     assert_eq!(b.light_events.fragments, 2 * a.light_events.fragments);
     assert_eq!(b.camera_events.fragments, a.camera_events.fragments, "visibility runs once");
     assert_eq!(b.camera_events.pixels_shaded, 2 * a.camera_events.pixels_shaded, "shading runs per light");

@@ -75,15 +75,15 @@ impl Comparison {
             .map(|r| Compared {
                 arch: r.arch.name.clone(),
                 clock_hertz: r.arch.clock,
-                cycles: r.cycles,
-                seconds: r.seconds,
-                dram_bytes: r.bytes,
-                energy_joules: r.energy.total(),
-                bottleneck: r.bottleneck,
-                seconds_change: change(first.seconds, r.seconds),
-                dram_bytes_change: change(first.bytes as f64, r.bytes as f64),
-                energy_change: change(first.energy.total(), r.energy.total()),
-                rank: 1 + reports.iter().filter(|o| o.seconds < r.seconds).count(),
+                cycles: r.cycles(),
+                seconds: r.seconds(),
+                dram_bytes: r.bytes(),
+                energy_joules: r.energy().total(),
+                bottleneck: r.bottleneck(),
+                seconds_change: change(first.seconds(), r.seconds()),
+                dram_bytes_change: change(first.bytes() as f64, r.bytes() as f64),
+                energy_change: change(first.energy().total(), r.energy().total()),
+                rank: 1 + reports.iter().filter(|o| o.seconds() < r.seconds()).count(),
             })
             .collect();
         let one_clock = reports.iter().all(|r| r.arch.clock.to_bits() == first.arch.clock.to_bits());

@@ -18,7 +18,7 @@ use std::fmt::Write as _;
 use crate::cost::arch::Arch;
 use crate::cost::arch::derived::latency_ceiling;
 use crate::cost::cache::CacheStats;
-use crate::cost::dram::Dram;
+use crate::cost::dram::{Dram, Purpose, Requested};
 use crate::cost::timing::ArchProbe;
 use crate::cost::work::{Bottleneck, EnergySplit, PassTiming, Work};
 use crate::world::scene::Scene;
@@ -66,8 +66,10 @@ pub struct SenFigures {
     pub model_volume_bytes_per_fill: f64,
 }
 
-/// The cost of one render on one architecture.
-#[derive(Clone, Debug, Serialize)]
+/// The cost of one render on one architecture: each pass's timing and
+/// ledgers, and the frame's totals computed from them
+/// ([`CostReport::cycles`], [`CostReport::dram`], [`CostReport::energy`]).
+#[derive(Clone, Debug)]
 pub struct CostReport {
     /// The scene's name.
     pub scene: String,
@@ -84,29 +86,8 @@ pub struct CostReport {
     /// The host and driver's fixed time of the frame, cycles (before the
     /// passes; none for a frame that draws nothing).
     pub host_cycles: f64,
-    /// The frame: the host's time, the light pass, then the camera pass.
-    pub cycles: f64,
-    /// The frame's time at the clock, seconds.
-    pub seconds: f64,
-    /// Frames per second.
-    #[serde(rename = "frames_per_second")]
-    pub fps: f64,
-    /// What bounds the frame: the bottleneck of the pass that takes longer.
-    pub bottleneck: Bottleneck,
-    /// The frame's energy by unit, joules.
-    #[serde(rename = "energy_joules")]
-    pub energy: EnergySplit,
-    /// Light-pass DRAM traffic, bytes by purpose.
-    #[serde(rename = "light_dram_bytes")]
-    pub light_dram: Dram,
-    /// Camera-pass DRAM traffic, bytes by purpose.
-    #[serde(rename = "camera_dram_bytes")]
-    pub camera_dram: Dram,
-    /// Every DRAM byte of the frame.
-    #[serde(rename = "dram_bytes")]
-    pub bytes: u64,
-    /// The frame's DRAM bytes over its time, bytes a second.
-    pub achieved_bytes_per_second: f64,
+    /// What the shadow unit asked of memory before any cache.
+    pub requested: Requested,
     /// The DRAM's peak bandwidth, bytes a second.
     pub dram_peak_bytes_per_second: f64,
     /// The bandwidth the requests in flight sustain at the latency
@@ -133,12 +114,118 @@ pub struct CostReport {
     pub camera_events: Totals,
     /// Each light's pass, in the scene's order, when there are several
     /// (the light pass above is their sum: they run one after another).
-    #[serde(rename = "light_passes", skip_serializing_if = "Vec::is_empty")]
     pub light_passes: Vec<PassTiming>,
     /// Every pass in the order the frame runs them (each light's, then
     /// the camera's), for the timeline.
-    #[serde(skip)]
     pub timeline: Vec<PassTimeline>,
+}
+
+impl CostReport {
+    /// The frame's cycles: the host's, then the light pass, then the
+    /// camera pass — each its ledger's sum.
+    #[must_use]
+    pub fn cycles(&self) -> f64 {
+        self.host_cycles + self.light.cycles() + self.camera.cycles()
+    }
+
+    /// The frame's time at the clock, seconds.
+    #[must_use]
+    pub fn seconds(&self) -> f64 {
+        self.cycles() / self.arch.clock
+    }
+
+    /// Frames per second.
+    #[must_use]
+    pub fn fps(&self) -> f64 {
+        let s = self.seconds();
+        if s > 0.0 { 1.0 / s } else { 0.0 }
+    }
+
+    /// The frame's cycles' ledger: both passes' added, by what bound them.
+    #[must_use]
+    pub fn bound_cycles(&self) -> [f64; 9] {
+        core::array::from_fn(|k| self.light.bound_cycles[k] + self.camera.bound_cycles[k])
+    }
+
+    /// What bounds the most cycles of the frame.
+    #[must_use]
+    pub fn bottleneck(&self) -> Bottleneck {
+        crate::cost::work::most(&self.bound_cycles())
+    }
+
+    /// The frame's DRAM traffic by purpose: both passes' ledgers added.
+    #[must_use]
+    pub fn dram(&self) -> Dram {
+        self.light.dram.plus(&self.camera.dram)
+    }
+
+    /// Every DRAM byte of the frame: its ledger's sum.
+    #[must_use]
+    pub fn bytes(&self) -> u64 {
+        self.dram().total()
+    }
+
+    /// The frame's DRAM bytes over its time, bytes a second.
+    #[must_use]
+    #[allow(clippy::cast_precision_loss, reason = "bytes far below 2^53")]
+    pub fn achieved_bytes_per_second(&self) -> f64 {
+        let s = self.seconds();
+        if s > 0.0 { self.bytes() as f64 / s } else { 0.0 }
+    }
+
+    /// The frame's energy by unit, joules: both passes' added.
+    #[must_use]
+    pub fn energy(&self) -> EnergySplit {
+        self.light.energy.plus(&self.camera.energy)
+    }
+}
+
+impl Serialize for CostReport {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        let mut m = s.serialize_struct("CostReport", 30)?;
+        m.serialize_field("scene", &self.scene)?;
+        m.serialize_field("config", &self.config)?;
+        m.serialize_field("arch", &self.arch)?;
+        m.serialize_field("version", &self.version)?;
+        m.serialize_field("cycles", &self.cycles())?;
+        m.serialize_field("host_cycles", &self.host_cycles)?;
+        m.serialize_field("seconds", &self.seconds())?;
+        m.serialize_field("frames_per_second", &self.fps())?;
+        m.serialize_field("bottleneck", &self.bottleneck())?;
+        m.serialize_field("bound_cycles", &BoundCycles(self.bound_cycles()))?;
+        m.serialize_field("dram_bytes", &self.bytes())?;
+        m.serialize_field("dram", &self.dram())?;
+        m.serialize_field("energy_joules", &self.energy())?;
+        m.serialize_field("light", &self.light)?;
+        m.serialize_field("camera", &self.camera)?;
+        m.serialize_field("requested_bytes", &self.requested)?;
+        m.serialize_field("achieved_bytes_per_second", &self.achieved_bytes_per_second())?;
+        m.serialize_field("dram_peak_bytes_per_second", &self.dram_peak_bytes_per_second)?;
+        m.serialize_field("dram_latency_ceiling_bytes_per_second", &self.dram_latency_ceiling_bytes_per_second)?;
+        m.serialize_field("on_chip_bytes", &self.on_chip_bytes)?;
+        m.serialize_field("max_z_cull_rate", &self.max_z_cull_rate)?;
+        m.serialize_field("lookups_culled_per_pixel", &self.lookups_culled_per_pixel)?;
+        m.serialize_field("virtual_sample_fraction", &self.virtual_sample_fraction)?;
+        m.serialize_field("pixels", &self.pixels)?;
+        m.serialize_field("scene_fill", &self.scene_fill)?;
+        m.serialize_field("sen", &self.sen)?;
+        m.serialize_field("light_events", &self.light_events)?;
+        m.serialize_field("camera_events", &self.camera_events)?;
+        if !self.light_passes.is_empty() {
+            m.serialize_field("light_passes", &self.light_passes)?;
+        }
+        m.end()
+    }
+}
+
+/// A cycles' ledger as a map from each bottleneck's name.
+struct BoundCycles([f64; 9]);
+
+impl Serialize for BoundCycles {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_map(Bottleneck::ALL.iter().map(|b| b.name()).zip(self.0))
+    }
 }
 
 /// What the timeline draws of one pass.
@@ -193,14 +280,13 @@ impl CostReport {
         samples_per_pixel: u64,
     ) -> Self {
         let arch = camera.arch.clone();
-        // The light passes run one after another: their times, bytes,
+        // The light passes run one after another: their times, ledgers,
         // energy and events add.
         let each: Vec<PassTiming> = lights.iter().map(ArchProbe::timing).collect();
-        let lt = each.iter().skip(1).fold(each.first().cloned().unwrap_or_default(), |a, b| a.then(b, arch.clock));
+        let lt = each.iter().skip(1).fold(each.first().cloned().unwrap_or_default(), |a, b| a.then(b));
         let ct = camera.timing();
         let le = lights.iter().fold(Totals::ZERO, |a, l| a.plus(&l.events));
         let ce = camera.events;
-        let light_dram = lights.iter().fold(Dram::default(), |a, l| a.plus(&l.dram));
         let several = lights.len() > 1;
         let mut timeline: Vec<PassTimeline> = lights
             .iter()
@@ -216,22 +302,15 @@ impl CostReport {
             })
             .collect();
         timeline.push(PassTimeline::of("camera".to_owned(), camera, ct.clone()));
-        let cached = arch.map_cache.size > 0;
         // The shading unit shades each covered pixel once per light.
         let looked_up = lights.len().max(1) as u64;
         let pixels = ce.pixels_shaded / looked_up;
         let fill = ce.fragments;
         let drew = le.submitted + ce.submitted > 0;
         let host_cycles = if drew { arch.front.frame_overhead_cycles } else { 0.0 };
-        let cycles = host_cycles + lt.cycles + ct.cycles;
-        let seconds = cycles / arch.clock;
-        let bottleneck = if lt.cycles > ct.cycles { lt.bottleneck } else { ct.bottleneck };
-        let bytes = lt.bytes + ct.bytes;
-        #[allow(clippy::cast_precision_loss, reason = "bytes far below 2^53")]
-        let achieved = if seconds > 0.0 { bytes as f64 / seconds } else { 0.0 };
         let p_lookup = ratio(camera.reconstructed_pixels, pixels);
         let overdraw = ratio(ce.volume_fragments, fill);
-        let map = camera.dram.map_as_fetched(cached);
+        let map = ct.dram.get(Purpose::MapReads) + ct.dram.get(Purpose::MapCacheFills);
         let lookups = ce.trivial_pixels() + ce.tangent_setups;
         #[allow(clippy::cast_precision_loss, reason = "a small count")]
         let sen = SenFigures {
@@ -245,7 +324,7 @@ impl CostReport {
             overdraw,
             map_bytes_per_pixel: ratio(map, pixels),
             model_map_bytes_per_pixel: 4.0 * (samples_per_pixel * looked_up) as f64,
-            silhouette_bytes_per_pixel: ratio(camera.dram.silhouette_reads, pixels),
+            silhouette_bytes_per_pixel: ratio(camera.requested.silhouette, pixels),
             model_silhouette_bytes_per_pixel: 24.0 * p_lookup,
             volume_bytes_per_fill: ratio(ce.volume_depth_bytes + ce.stencil_read_bytes + ce.stencil_write_bytes, fill),
             model_volume_bytes_per_fill: 5.5 * overdraw,
@@ -255,17 +334,9 @@ impl CostReport {
             config,
             version: env!("CARGO_PKG_VERSION"),
             host_cycles,
-            cycles,
-            seconds,
-            fps: if seconds > 0.0 { 1.0 / seconds } else { 0.0 },
-            bottleneck,
-            energy: lt.energy.plus(&ct.energy),
-            bytes,
-            achieved_bytes_per_second: achieved,
+            requested: lights.iter().fold(camera.requested, |a, l| a.plus(&l.requested)),
             dram_peak_bytes_per_second: arch.dram.bandwidth,
             dram_latency_ceiling_bytes_per_second: arch.dram_latency_ceiling(),
-            light_dram,
-            camera_dram: camera.dram,
             on_chip_bytes: lights.iter().map(ArchProbe::on_chip_bytes).max().unwrap_or(0),
             max_z_cull_rate: [
                 ratio(culled(&le), culled(&le) + le.rasterized),
@@ -296,18 +367,18 @@ impl CostReport {
         let _ = writeln!(
             s,
             "Frame: {:.0} cycles{}, {:.3} ms at {} MHz ({:.1} frames/s), {} DRAM bytes, {:.3} mJ; bound by {}.\n",
-            self.cycles,
+            self.cycles(),
             if self.host_cycles > 0.0 {
                 format!(" ({:.0} in the host and driver)", self.host_cycles)
             } else {
                 String::new()
             },
-            self.seconds * 1e3,
+            self.seconds() * 1e3,
             a.clock / 1e6,
-            self.fps,
-            self.bytes,
-            self.energy.total() * 1e3,
-            self.bottleneck
+            self.fps(),
+            self.bytes(),
+            self.energy().total() * 1e3,
+            self.bottleneck().words()
         );
         let unit = if a.immediate() { "draws" } else { "tiles" };
         let bounds = Bottleneck::ALL.map(Bottleneck::name).join("/");
@@ -338,9 +409,9 @@ impl CostReport {
             cells.extend(t.stages.iter().map(|c| format!("{c:.0}")));
             cells.extend([
                 format!("{:.0} / {:.0}", t.memory.bandwidth_cycles, t.memory.latency_cycles),
-                format!("{:.0}", t.cycles),
-                t.bottleneck.to_string(),
-                gb(t.achieved_bytes_per_second),
+                format!("{:.0}", t.cycles()),
+                t.bottleneck().to_string(),
+                gb(t.achieved_bytes_per_second()),
                 t.bound.map(|n| n.to_string()).join("/"),
             ]);
             table.row(cells);
@@ -349,7 +420,7 @@ impl CostReport {
         let _ = writeln!(
             s,
             "\nDRAM: achieved {} over the frame, against a peak of {} and a latency ceiling of {} ({} requests in flight × {} B / {:.1} ns).",
-            gb(self.achieved_bytes_per_second),
+            gb(self.achieved_bytes_per_second()),
             gb(self.dram_peak_bytes_per_second),
             gb(self.dram_latency_ceiling_bytes_per_second),
             a.dram.requests_in_flight,
@@ -373,7 +444,7 @@ impl CostReport {
                 a.dram.latency * 1e9
             );
         }
-        let e = &self.energy;
+        let e = &self.energy();
         let _ = writeln!(
             s,
             "Energy (µJ): DRAM {:.1}, on-chip buffers {:.1}, caches {:.1}, raster and depth {:.1}, shadow unit {:.1}.",
@@ -383,21 +454,25 @@ impl CostReport {
             e.raster * 1e6,
             e.shadow * 1e6
         );
-        let (l, c) = (&self.light_dram, &self.camera_dram);
         let _ = writeln!(
             s,
-            "DRAM bytes: map writes {}, tile reloads {}, off-chip depth {} (light) + {} (camera), bins {} + {}, map reads {} requested / {} fetched, colour {}; on-chip depth {} bytes.",
-            l.map_writes,
-            l.map_rmw_reads,
-            l.depth_rmw,
-            c.depth_rmw,
-            l.bins,
-            c.bins,
-            c.map_reads,
-            c.map_fetched,
-            c.colour,
+            "DRAM bytes, {} in all: light pass {} ({}); camera pass {} ({}). On-chip depth {} bytes.",
+            self.bytes(),
+            self.light.bytes(),
+            self.light.dram.words(),
+            self.camera.bytes(),
+            self.camera.dram.words(),
             self.on_chip_bytes
         );
+        if self.requested.map + self.requested.silhouette > 0 {
+            let _ = writeln!(
+                s,
+                "The shadow unit requested {} map bytes and {} silhouette bytes{}.",
+                self.requested.map,
+                self.requested.silhouette,
+                if a.map_cache.size > 0 { ", through the map cache" } else { ", each from DRAM" }
+            );
+        }
         let _ = writeln!(
             s,
             "Max-z culled: {:.1} % (light), {:.1} % (camera visibility); {:.2} lookups culled per covered pixel; virtual samples for {:.2} % of lookups.",

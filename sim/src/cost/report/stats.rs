@@ -13,6 +13,7 @@ use std::fmt::Write as _;
 use serde::{Deserialize, Serialize};
 
 use super::CostReport;
+use crate::cost::dram::Purpose;
 use crate::cost::work::{Bottleneck, QUEUE_NAMES, Stage};
 use umbra_core::probe::{Counted, Totals};
 
@@ -214,29 +215,33 @@ stats! {
     #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
     #[serde(deny_unknown_fields)]
     pub struct RowCost from (r: &CostReport) {
-        "light.cycles" => light_cycles: u64, Cycles, "the light pass (silhouette pass included)" = whole_cycles(r.light.cycles);
-        "light.bottleneck" => light_bottleneck: Bottleneck, Code, "what bounds the light pass: setup, raster, depth, shadow, shade, dram-bandwidth, dram-latency, map-cache-misses-in-flight, depth-cache-misses-in-flight" = r.light.bottleneck;
-        "camera.cycles" => camera_cycles: u64, Cycles, "the camera pass" = whole_cycles(r.camera.cycles);
+        "light.cycles" => light_cycles: u64, Cycles, "the light pass (silhouette pass included)" = whole_cycles(r.light.cycles());
+        "light.bottleneck" => light_bottleneck: Bottleneck, Code, "what bounds the most cycles of the light pass: setup, raster, depth, shadow, shade, dram-bandwidth, dram-latency, map-cache-misses-in-flight, depth-cache-misses-in-flight, or none (no work)" = r.light.bottleneck();
+        "camera.cycles" => camera_cycles: u64, Cycles, "the camera pass" = whole_cycles(r.camera.cycles());
         "camera.stage.shadow_cycles" => camera_shadow_cycles: u64, Cycles, "the camera pass's shadow-unit cycles summed over tiles" = whole_cycles(r.camera.stages[Stage::Shadow as usize]);
-        "camera.bottleneck" => camera_bottleneck: Bottleneck, Code, "what bounds the camera pass" = r.camera.bottleneck;
-        "frame.cycles" => total_cycles: u64, Cycles, "the frame: light pass then camera pass" = whole_cycles(r.cycles);
+        "camera.bottleneck" => camera_bottleneck: Bottleneck, Code, "what bounds the most cycles of the camera pass" = r.camera.bottleneck();
+        "frame.cycles" => total_cycles: u64, Cycles, "the frame: host, light pass then camera pass" = whole_cycles(r.cycles());
         "arch.clock_hertz" => clock_hertz: f64, Hertz, "the architecture's clock" = r.arch.clock;
-        "frame.seconds" => frame_seconds: f64, Seconds, "the frame at the clock" = r.seconds;
-        "frame.frames_per_second" => frames_per_second: f64, PerSecond, "frames a second at the clock" = r.fps;
-        "frame.energy.total_joules" => energy_joules: f64, Joules, "the frame's energy" = r.energy.total();
-        "frame.dram.achieved_bytes_per_second" => dram_achieved_bytes_per_second: f64, BytesPerSecond, "the frame's DRAM bytes over its time" = r.achieved_bytes_per_second;
+        "frame.seconds" => frame_seconds: f64, Seconds, "the frame at the clock" = r.seconds();
+        "frame.frames_per_second" => frames_per_second: f64, PerSecond, "frames a second at the clock" = r.fps();
+        "frame.energy.total_joules" => energy_joules: f64, Joules, "the frame's energy" = r.energy().total();
+        "frame.dram.achieved_bytes_per_second" => dram_achieved_bytes_per_second: f64, BytesPerSecond, "the frame's DRAM bytes over its time" = r.achieved_bytes_per_second();
         "frame.dram.peak_bytes_per_second" => dram_peak_bytes_per_second: f64, BytesPerSecond, "the DRAM's bandwidth" = r.dram_peak_bytes_per_second;
         "frame.dram.latency_ceiling_bytes_per_second" => dram_latency_ceiling_bytes_per_second: f64, BytesPerSecond, "requests in flight × burst / latency (Little's law)" = r.dram_latency_ceiling_bytes_per_second;
-        "light.dram.map_writes_bytes" => dram_map_write_bytes: u64, Bytes, "map texels written by the light pass" = r.light_dram.map_writes;
-        "light.dram.map_rmw_reads_bytes" => dram_map_readback_bytes: u64, Bytes, "depth read back by the light pass" = r.light_dram.map_rmw_reads;
-        "frame.dram.bins_bytes" => dram_bin_bytes: u64, Bytes, "bins and setup records of both passes" = r.light_dram.bins + r.camera_dram.bins;
-        "camera.dram.depth_bytes" => dram_camera_depth_bytes: u64, Bytes, "camera visibility depth, when off chip" = r.camera_dram.map_rmw_reads + r.camera_dram.depth_rmw;
-        "camera.dram.map_reads_bytes" => dram_map_requested_bytes: u64, Bytes, "map bytes the shadow unit requested" = r.camera_dram.map_reads;
-        "camera.dram.map_as_fetched_bytes" => dram_map_fetched_bytes: u64, Bytes, "map bytes fetched through the map cache" = r.camera_dram.map_as_fetched(r.arch.map_cache.size > 0);
-        "frame.dram.silhouette_bytes" => dram_silhouette_bytes: u64, Bytes, "silhouette points written and read" = r.light_dram.silhouette_writes + r.camera_dram.silhouette_reads;
-        "camera.dram.volume_depth_reads_bytes" => dram_volume_depth_bytes: u64, Bytes, "scene depth read by shadow-volume fragments" = r.camera_dram.volume_depth_reads;
-        "camera.dram.stencil_bytes" => dram_stencil_bytes: u64, Bytes, "stencil read and written by shadow-volume fragments" = r.camera_dram.stencil;
-        "frame.dram_bytes" => total_dram_bytes: u64, Bytes, "all DRAM traffic, map reads as fetched" = r.bytes;
+        "frame.dram.map_writes_bytes" => dram_map_writes_bytes: u64, Bytes, "map texels written by the light pass's resolve" = r.dram().get(Purpose::MapWrites);
+        "frame.dram.tile_reloads_bytes" => dram_tile_reloads_bytes: u64, Bytes, "tile depth loaded back on chip by a later flush of its bins" = r.dram().get(Purpose::TileReloads);
+        "frame.dram.map_combine_bytes" => dram_map_combine_bytes: u64, Bytes, "two maps read and one written by the pass combining them" = r.dram().get(Purpose::MapCombine);
+        "frame.dram.off_chip_depth_bytes" => dram_off_chip_depth_bytes: u64, Bytes, "depth kept off chip, read and written per fragment" = r.dram().get(Purpose::OffChipDepth);
+        "frame.dram.map_reads_bytes" => dram_map_reads_bytes: u64, Bytes, "map texels the shadow unit read without a map cache" = r.dram().get(Purpose::MapReads);
+        "frame.dram.silhouette_reads_bytes" => dram_silhouette_reads_bytes: u64, Bytes, "silhouette points the shadow unit read without a map cache" = r.dram().get(Purpose::SilhouetteReads);
+        "frame.dram.map_cache_fills_bytes" => dram_map_cache_fills_bytes: u64, Bytes, "lines the map cache fetched" = r.dram().get(Purpose::MapCacheFills);
+        "frame.dram.colour_bytes" => dram_colour_bytes: u64, Bytes, "shaded pixels' colour written to the frame buffer" = r.dram().get(Purpose::Colour);
+        "frame.dram.bins_bytes" => dram_bins_bytes: u64, Bytes, "bins and setup records written and read" = r.dram().get(Purpose::Bins);
+        "frame.dram.silhouette_writes_bytes" => dram_silhouette_writes_bytes: u64, Bytes, "silhouette points written by the silhouette pass" = r.dram().get(Purpose::SilhouetteWrites);
+        "frame.dram.volume_depth_reads_bytes" => dram_volume_depth_reads_bytes: u64, Bytes, "scene depth read by shadow-volume fragments" = r.dram().get(Purpose::VolumeDepthReads);
+        "frame.dram.stencil_bytes" => dram_stencil_bytes: u64, Bytes, "stencil read and written by shadow-volume fragments" = r.dram().get(Purpose::Stencil);
+        "frame.dram_bytes" => total_dram_bytes: u64, Bytes, "all DRAM traffic: the sum of the dram_*_bytes columns" = r.bytes();
+        "camera.requested.map_bytes" => map_requested_bytes: u64, Bytes, "map bytes the shadow unit requested, before any cache (not traffic when cached)" = r.requested.map;
         "light.on_chip_bytes" => on_chip_bytes: u64, Bytes, "on-chip depth storage of the light pass" = r.on_chip_bytes;
         "light.max_z_culled_percent" => light_culled_percent: f64, Percent, "light-pass triangle-tile pairs and blocks max-z culled" = 100.0 * r.max_z_cull_rate[0];
         "camera.max_z_culled_percent" => camera_culled_percent: f64, Percent, "the same of the camera's visibility" = 100.0 * r.max_z_cull_rate[1];
@@ -244,10 +249,10 @@ stats! {
         "sen.map_bytes_per_pixel" => map_bytes_per_px: f64, BytesPerPixel, "camera-pass map bytes a covered pixel" = r.sen.map_bytes_per_pixel;
     }
     only {
-        "frame.bottleneck": Bottleneck, Code, "what bounds the most cycles of the frame" = r.bottleneck;
+        "frame.bottleneck": Bottleneck, Code, "what bounds the most cycles of the frame" = r.bottleneck();
         "frame.host_cycles": u64, Cycles, "the host and driver's cycles a frame" = whole_cycles(r.host_cycles);
-        "light.seconds": f64, Seconds, "the light pass at the clock" = r.light.cycles / r.arch.clock;
-        "camera.seconds": f64, Seconds, "the camera pass at the clock" = r.camera.cycles / r.arch.clock;
+        "light.seconds": f64, Seconds, "the light pass at the clock" = r.light.cycles() / r.arch.clock;
+        "camera.seconds": f64, Seconds, "the camera pass at the clock" = r.camera.cycles() / r.arch.clock;
         "light.front_cycles": u64, Cycles, "setup and bin writes of the light pass" = whole_cycles(r.light.front);
         "camera.front_cycles": u64, Cycles, "setup and bin writes of the camera pass" = whole_cycles(r.camera.front);
         "light.tile_cycles": u64, Cycles, "the light pass's tiles (draws, on an immediate-mode machine), each its slowest stage, summed" = whole_cycles(r.light.tiles);
@@ -256,10 +261,10 @@ stats! {
         "camera.memory.bandwidth_cycles": u64, Cycles, "the camera pass's memory cycles summed over tiles were the bytes at the bandwidth what bound them" = whole_cycles(r.camera.memory.bandwidth_cycles);
         "light.memory.latency_cycles": u64, Cycles, "the light pass's memory cycles summed over tiles were the requests at the latency what bound them" = whole_cycles(r.light.memory.latency_cycles);
         "camera.memory.latency_cycles": u64, Cycles, "the camera pass's memory cycles summed over tiles were the requests at the latency what bound them" = whole_cycles(r.camera.memory.latency_cycles);
-        "light.dram_bytes": u64, Bytes, "DRAM traffic of the light pass" = r.light.bytes;
-        "camera.dram_bytes": u64, Bytes, "DRAM traffic of the camera pass" = r.camera.bytes;
-        "light.dram.achieved_bytes_per_second": f64, BytesPerSecond, "the light pass's DRAM bytes over its time" = r.light.achieved_bytes_per_second;
-        "camera.dram.achieved_bytes_per_second": f64, BytesPerSecond, "the camera pass's DRAM bytes over its time" = r.camera.achieved_bytes_per_second;
+        "light.dram_bytes": u64, Bytes, "DRAM traffic of the light pass" = r.light.bytes();
+        "camera.dram_bytes": u64, Bytes, "DRAM traffic of the camera pass" = r.camera.bytes();
+        "light.dram.achieved_bytes_per_second": f64, BytesPerSecond, "the light pass's DRAM bytes over its time" = r.light.achieved_bytes_per_second();
+        "camera.dram.achieved_bytes_per_second": f64, BytesPerSecond, "the camera pass's DRAM bytes over its time" = r.camera.achieved_bytes_per_second();
         "sen.triangles": u64, Count, "scene triangles (Table 1)" = r.sen.triangles;
         "sen.silhouette_edges": u64, Count, "silhouette edges under the light (Table 1)" = r.sen.silhouette_edges;
         "sen.scene_fill": u64, Count, "camera visibility fragments (Table 1)" = r.sen.scene_fill;
@@ -310,7 +315,11 @@ impl CostReport {
         for line in self.arch.to_toml().lines() {
             let _ = writeln!(s, "# arch.{line}");
         }
-        let legend: Vec<String> = Bottleneck::ALL.iter().map(|b| format!("{} {}", *b as usize, b.name())).collect();
+        let legend: Vec<String> = Bottleneck::ALL
+            .iter()
+            .chain([&Bottleneck::Nothing])
+            .map(|b| format!("{} {}", *b as usize, b.name()))
+            .collect();
         let _ = writeln!(s, "# bottleneck codes: {}", legend.join(", "));
         for Statistic { name, value, unit, meaning } in self.statistics() {
             let _ = writeln!(s, "{name:<48} {:>20} # {meaning} ({unit})", value.text());
@@ -326,10 +335,10 @@ impl CostReport {
         let count = Figure::Count;
         let cycles = |v: f64| Figure::Count(whole_cycles(v));
         let real = Figure::Real;
-        for (unit, e) in self.energy.fields() {
+        for (unit, e) in self.energy().fields() {
             stat(&format!("frame.energy.{unit}_joules"), StatUnit::Joules, real(e), "energy of the unit");
         }
-        for (pass, t, dram) in [("light", &self.light, &self.light_dram), ("camera", &self.camera, &self.camera_dram)] {
+        for (pass, t) in [("light", &self.light), ("camera", &self.camera)] {
             for (k, stage) in Stage::ALL.iter().enumerate() {
                 let name = format!("{pass}.stage.{}_cycles", stage.name());
                 stat(&name, StatUnit::Cycles, cycles(t.stages[k]), "stage cycles summed over tiles");
@@ -347,9 +356,19 @@ impl CostReport {
                 let name = format!("{pass}.bound.{}", b.name().replace('-', "_"));
                 stat(&name, StatUnit::Count, count(t.bound[k]), "tiles (draws) bound by it");
             }
-            for (purpose, b) in dram.fields() {
-                stat(&format!("{pass}.dram.{purpose}_bytes"), StatUnit::Bytes, count(b), "DRAM traffic by purpose");
+            for (purpose, b) in t.dram.fields() {
+                stat(&format!("{pass}.dram.{}_bytes", purpose.name()), StatUnit::Bytes, count(b), purpose.meaning());
             }
+            for (k, b) in Bottleneck::ALL.iter().enumerate() {
+                let name = format!("{pass}.bound_cycles.{}", b.name().replace('-', "_"));
+                stat(
+                    &name,
+                    StatUnit::Cycles,
+                    cycles(t.bound_cycles[k]),
+                    "the pass's cycles charged to what bound them",
+                );
+            }
+            stat(&format!("{pass}.overhead_cycles"), StatUnit::Cycles, cycles(t.overhead), "waiting for the host");
             for (cache, c) in [("map_cache", t.map_cache), ("depth_cache", t.depth_cache)] {
                 let Some(c) = c else { continue };
                 for (what, unit, value, doc) in [

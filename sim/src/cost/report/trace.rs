@@ -69,15 +69,10 @@ impl CostReport {
             let memory = w.memory(a);
             let [dram_queue, map_queue, depth_queue] = memory.queue_cycles;
             // The bytes each purpose moved (those a purpose counts).
-            let purposes: serde_json::Map<String, Value> = w
-                .dram
-                .traffic(a.map_cache.size > 0)
-                .into_iter()
-                .filter(|&(_, b)| b > 0)
-                .map(|(name, b)| (name.to_owned(), json!(b)))
-                .collect();
+            let purposes: serde_json::Map<String, Value> =
+                w.dram.fields().filter(|&(_, b)| b > 0).map(|(p, b)| (p.name().to_owned(), json!(b))).collect();
             let args = json!({
-                "triangles": w.triangles, "fragments": w.fragments, "pixels": w.pixels, "bytes": w.bytes,
+                "triangles": w.triangles, "fragments": w.fragments, "pixels": w.pixels, "bytes": w.bytes(),
                 "bytes by purpose": purposes, "cycles": dur, "bound by": bound.name(), "setup cycles": cycles[Stage::Setup as usize],
                 "memory cycles at the bandwidth": memory.bandwidth_cycles,
                 "memory cycles at the latency": memory.latency_cycles,
@@ -91,7 +86,7 @@ impl CostReport {
                     let c = cycles[*stage as usize];
                     if c > 0.0 {
                         let args = if *stage == Stage::Memory {
-                            json!({ "cycles": c, "bytes": w.bytes, "bytes by purpose": purposes, "map cache misses": w.map_misses, "depth cache misses": w.depth_misses })
+                            json!({ "cycles": c, "bytes": w.bytes(), "bytes by purpose": purposes, "map cache misses": w.map_misses, "depth cache misses": w.depth_misses })
                         } else {
                             json!({ "cycles": c })
                         };
@@ -102,7 +97,7 @@ impl CostReport {
                     }
                 }
                 #[allow(clippy::cast_precision_loss, reason = "bytes far below 2^53")]
-                let rate = w.bytes as f64 / (dur / a.clock) / 1e9;
+                let rate = w.bytes() as f64 / (dur / a.clock) / 1e9;
                 events
                     .push(json!({ "name": "DRAM GB/s", "ph": "C", "ts": us(t), "pid": pid, "args": { "GB/s": rate } }));
                 // Each cache's misses outstanding on average over the slice
@@ -128,11 +123,11 @@ impl CostReport {
         for p in &self.timeline {
             let (pass, timing) = (p.name.as_str(), &p.timing);
             let args = json!({
-                "cycles": timing.cycles, "bottleneck": timing.bottleneck.name(), "bytes": timing.bytes,
-                "achieved GB/s": timing.achieved_bytes_per_second / 1e9,
+                "cycles": timing.cycles(), "bottleneck": timing.bottleneck().name(), "bytes": timing.bytes(),
+                "achieved GB/s": timing.achieved_bytes_per_second() / 1e9,
             });
             let name = format!("{pass} pass");
-            events.push(json!({ "name": name, "cat": pass, "ph": "X", "ts": us(start), "dur": us(timing.cycles), "pid": pid, "tid": 0, "args": args }));
+            events.push(json!({ "name": name, "cat": pass, "ph": "X", "ts": us(start), "dur": us(timing.cycles()), "pid": pid, "tid": 0, "args": args }));
             if timing.overhead > 0.0 {
                 let label = format!("{pass}: waiting for the host");
                 events.push(json!({ "name": label, "cat": pass, "ph": "X", "ts": us(start), "dur": us(timing.overhead), "pid": pid, "tid": 1 }));
@@ -155,7 +150,7 @@ impl CostReport {
                 .iter()
                 .map(|(name, w)| (format!("{pass}: {name}"), w.bottleneck(a).map_or(0.0, |b| b.1)))
                 .collect();
-            let body_end = start + timing.cycles - tail.iter().map(|u| u.1).sum::<f64>();
+            let body_end = start + timing.cycles() - tail.iter().map(|u| u.1).sum::<f64>();
             if body_end > t * (1.0 + 1e-12) && body_end > body_start + front {
                 let label = format!("{pass}: DRAM shared by the front end and the tiles");
                 events.push(json!({ "name": label, "cat": pass, "ph": "X", "ts": us(t), "dur": us(body_end - t), "pid": pid, "tid": TILES }));
@@ -164,7 +159,7 @@ impl CostReport {
             for ((label, _), (_, w)) in tail.into_iter().zip(&p.tail) {
                 t += slice(events, pass, label, w, t, TILES, true);
             }
-            start += timing.cycles;
+            start += timing.cycles();
         }
         events.push(json!({ "name": "DRAM GB/s", "ph": "C", "ts": us(start), "pid": pid, "args": { "GB/s": 0.0 } }));
         for name in ["map cache misses in flight", "depth cache misses in flight"] {

@@ -3,6 +3,7 @@
 
 use super::{ArchProbe, COLOUR_BYTES, PassKind, Phase, ShadeCounts};
 use crate::cost::cache::morton;
+use crate::cost::dram::Purpose;
 use crate::cost::work::Stage;
 use umbra_core::probe::{Buffer, Event, Fragment, TexelRead, Tilings};
 use umbra_core::{Probe, TileId};
@@ -32,23 +33,20 @@ impl<const D: bool> Probe for ArchProbe<D> {
                 // The entries and the setup record, written at binning.
                 let b =
                     n(tiles) * self.arch.bins.entry_bytes + self.arch.bins.setup_record_bytes * u64::from(tiles > 0);
-                self.dram.bins += b;
-                self.front.dram.bins += b;
-                self.front.bytes += b;
-                self.front.streamed += b;
+                self.front.stream(Purpose::Bins, b);
             }
             Event::BinFlush { tile, triangles, .. } => {
                 // The entries and their setup records, read back.
                 self.enter(Phase::Back);
                 self.select(tile);
                 let b = n(triangles) * (self.arch.bins.entry_bytes + self.arch.bins.setup_record_bytes);
-                self.traffic(|d| &mut d.bins, b);
+                self.traffic(Purpose::Bins, b);
                 self.work().triangles += n(triangles);
             }
             Event::TileLoad { tile, bytes: b } => {
                 self.select(tile);
                 if on_chip {
-                    self.traffic(|d| &mut d.map_rmw_reads, n(b));
+                    self.traffic(Purpose::TileReloads, n(b));
                 }
             }
             Event::TileStore { tile, bytes: b, cleared } => {
@@ -58,7 +56,7 @@ impl<const D: bool> Probe for ArchProbe<D> {
                 if on_chip && self.kind == PassKind::Light && !cleared {
                     let written =
                         if self.arch.on_chip.resolve_test_value_only { n(b) / self.buffers.max(1) } else { n(b) };
-                    self.traffic(|d| &mut d.map_writes, written);
+                    self.traffic(Purpose::MapWrites, written);
                 }
             }
             Event::Fragments { tile, count } => {
@@ -67,10 +65,8 @@ impl<const D: bool> Probe for ArchProbe<D> {
                 if !on_chip && !cached {
                     // Uncached: every fragment reads each buffer, one request each.
                     let (b, requests) = (n(count) * bytes * self.buffers, n(count) * self.buffers);
-                    self.dram.depth_rmw += b;
                     let w = self.work();
-                    w.dram.depth_rmw += b;
-                    w.bytes += b;
+                    w.dram.add(Purpose::OffChipDepth, b);
                     w.requests += requests;
                 }
             }
@@ -90,10 +86,8 @@ impl<const D: bool> Probe for ArchProbe<D> {
                     self.accesses.buffer += n(texels);
                 } else if !cached && (buffer != Buffer::Id || self.kind == PassKind::Camera) {
                     // Uncached: each texel written is its own request.
-                    self.dram.depth_rmw += n(b);
                     let w = self.work();
-                    w.dram.depth_rmw += n(b);
-                    w.bytes += n(b);
+                    w.dram.add(Purpose::OffChipDepth, n(b));
                     w.requests += n(texels);
                 }
             }
@@ -110,9 +104,8 @@ impl<const D: bool> Probe for ArchProbe<D> {
                 self.work().charge(Stage::Depth, cycles);
             }
             Event::MapRead { texels, bytes: b, .. } => {
-                self.dram.map_reads += n(b);
-                self.work().dram.map_reads += n(b);
-                self.map_read(n(texels), n(b));
+                self.requested.map += n(b);
+                self.map_read(n(texels), n(b), Purpose::MapReads);
             }
             Event::LookupCulled { .. } => {
                 // One compare against the tiles' bounds.
@@ -138,7 +131,7 @@ impl<const D: bool> Probe for ArchProbe<D> {
                 self.select(TileId { x: (x >> s) as u16, y: (y >> s) as u16 });
                 self.shaded(&ShadeCounts { pixels: 1, ..ShadeCounts::default() });
                 self.work().pixels += 1;
-                self.traffic(|d| &mut d.colour, COLOUR_BYTES);
+                self.traffic(Purpose::Colour, COLOUR_BYTES);
             }
             Event::SilhouetteFragments { fragments, bytes: b, .. } => {
                 // Conservative line rasterization at the scan converter's
@@ -150,21 +143,17 @@ impl<const D: bool> Probe for ArchProbe<D> {
                     a.raster.cycles_per_tile
                 };
                 self.accesses.raster_ops += n(fragments);
-                self.dram.silhouette_writes += n(b);
                 let w = &mut self.silhouette;
-                w.dram.silhouette_writes += n(b);
+                w.stream(Purpose::SilhouetteWrites, n(b));
                 w.charge(Stage::Raster, raster);
                 w.fragments += n(fragments);
-                w.bytes += n(b);
-                w.streamed += n(b);
             }
             Event::SilhouetteRead { points, bytes: b } => {
                 // Once per pixel, however many of its samples needed it.
                 self.reconstructed_pixels += u64::from(!self.reconstructed);
                 self.reconstructed = true;
-                self.dram.silhouette_reads += n(b);
-                self.work().dram.silhouette_reads += n(b);
-                self.map_read(n(points), n(b));
+                self.requested.silhouette += n(b);
+                self.map_read(n(points), n(b), Purpose::SilhouetteReads);
             }
             Event::VolumeFragments { tile, fragments, depth_bytes } => {
                 // Scan converted and depth tested like scene fragments,
@@ -174,7 +163,7 @@ impl<const D: bool> Probe for ArchProbe<D> {
                 if self.arch.on_chip.stencil {
                     self.accesses.buffer += n(fragments);
                 } else {
-                    self.traffic(|d| &mut d.volume_depth_reads, n(depth_bytes));
+                    self.traffic(Purpose::VolumeDepthReads, n(depth_bytes));
                 }
             }
             Event::StencilRead { tile, texels, bytes: b } | Event::StencilWrite { tile, texels, bytes: b } => {
@@ -182,7 +171,7 @@ impl<const D: bool> Probe for ArchProbe<D> {
                 if self.arch.on_chip.stencil {
                     self.accesses.buffer += n(texels);
                 } else {
-                    self.traffic(|d| &mut d.stencil, n(b));
+                    self.traffic(Purpose::Stencil, n(b));
                 }
             }
         }
@@ -232,10 +221,8 @@ impl<const D: bool> Probe for ArchProbe<D> {
         self.accesses.cache += 1;
         if !m.cache.access(address) {
             let line = m.cache.line();
-            self.dram.map_fetched += line;
             let w = self.work();
-            w.dram.map_fetched += line;
-            w.bytes += line;
+            w.dram.add(Purpose::MapCacheFills, line);
             w.map_misses += 1;
         }
     }

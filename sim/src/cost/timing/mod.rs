@@ -16,7 +16,7 @@ mod tally;
 
 use crate::cost::arch::{Arch, CacheParams};
 use crate::cost::cache::{Cache, MapCache};
-use crate::cost::dram::Dram;
+use crate::cost::dram::{Dram, Purpose, Requested};
 use crate::cost::work::{Accesses, EnergySplit, PassTiming, Work};
 use crate::cost::work::{Bottleneck, MemoryLimit, Stage};
 use serde::Serialize;
@@ -94,8 +94,8 @@ pub struct ArchProbe<const FRAGMENT_DETAIL: bool = false> {
     pub reconstructed_pixels: u64,
     /// The pixel being shaded has read silhouette points.
     reconstructed: bool,
-    /// DRAM bytes by purpose.
-    pub dram: Dram,
+    /// What the shadow unit asked of memory before any cache.
+    pub requested: Requested,
     /// Accesses that cost energy.
     pub accesses: Accesses,
     /// Every event of the pass, totalled.
@@ -151,7 +151,7 @@ impl<const D: bool> ArchProbe<D> {
             reconstructed_pixels: 0,
             reconstructed: false,
             across: raster.tiles().0 as usize,
-            dram: Dram::default(),
+            requested: Requested::default(),
             accesses: Accesses::default(),
             events: Totals::default(),
             map_cache: cache(&arch.map_cache).map(|c| MapCache::new(c, 1, format.bytes())),
@@ -216,19 +216,10 @@ impl<const D: bool> ArchProbe<D> {
         &mut self.tiles[i]
     }
 
-    /// Streamed bytes of the current tile: moved in bursts.
-    fn stream(&mut self, bytes: u64) {
-        let w = self.work();
-        w.bytes += bytes;
-        w.streamed += bytes;
-    }
-
-    /// `bytes` of DRAM traffic for one purpose streamed by the current
-    /// tile: counted for the pass and for the tile.
-    fn traffic(&mut self, purpose: fn(&mut Dram) -> &mut u64, bytes: u64) {
-        *purpose(&mut self.dram) += bytes;
-        *purpose(&mut self.work().dram) += bytes;
-        self.stream(bytes);
+    /// `bytes` of DRAM traffic for `purpose` streamed by the current tile
+    /// (moved in bursts): charged to its ledger.
+    fn traffic(&mut self, purpose: Purpose, bytes: u64) {
+        self.work().stream(purpose, bytes);
     }
 
     #[allow(clippy::cast_precision_loss, reason = "counts far below 2^53")]
@@ -285,16 +276,12 @@ impl<const D: bool> ArchProbe<D> {
         let line = c.line();
         let w = self.work();
         if !hit {
-            w.bytes += line;
+            w.dram.add(Purpose::OffChipDepth, line);
             w.depth_misses += 1;
         }
         if writeback {
-            w.bytes += line;
-            w.streamed += line;
+            w.stream(Purpose::OffChipDepth, line);
         }
-        let rmw = if hit { 0 } else { line } + if writeback { line } else { 0 };
-        self.dram.depth_rmw += rmw;
-        self.work().dram.depth_rmw += rmw;
     }
 
     /// Finish the pass: charge the shading's tallies as cycles, and write
@@ -303,10 +290,7 @@ impl<const D: bool> ArchProbe<D> {
         self.charge_tallies();
         if let Some(c) = self.depth_cache.as_mut() {
             let bytes = c.flush() * c.line();
-            self.dram.depth_rmw += bytes;
-            self.drain.dram.depth_rmw += bytes;
-            self.drain.bytes += bytes;
-            self.drain.streamed += bytes;
+            self.drain.stream(Purpose::OffChipDepth, bytes);
         }
     }
 
@@ -327,7 +311,7 @@ impl<const D: bool> ArchProbe<D> {
             let m = w.memory(a);
             t.memory = t.memory.plus(&m);
             by_limit[m.limit() as usize] += m.cycles();
-            t.bytes += w.bytes;
+            t.dram = t.dram.plus(&w.dram);
             s
         };
         let mut tile_memory = 0.0;
@@ -354,11 +338,27 @@ impl<const D: bool> ArchProbe<D> {
             .zip(by_limit)
             .fold((MemoryLimit::Bandwidth, 0.0), |b, (l, c)| if c > b.1 { (l, c) } else { b })
             .0;
-        // The units after the tiles, each with its own stages.
-        let mut after = 0.0;
+        let front_bound = front.bottleneck(a).map_or(Bottleneck::Setup, |b| b.0);
+        // The body's cycles, each charged to what bound it: overlapped, the
+        // longest of the front end, the tiles and the DRAM they share;
+        // else the front end, then the tiles.
+        let shared = fs[Stage::Memory as usize] + tile_memory;
+        if a.front.overlap && shared > t.tiles.max(t.front) {
+            t.bound_cycles[Bottleneck::of(Stage::Memory, shared_limit) as usize] += shared;
+        } else if a.front.overlap && t.front > t.tiles {
+            t.bound_cycles[front_bound as usize] += t.front;
+        } else {
+            t.bound_cycles = per_bound;
+            if !a.front.overlap {
+                t.bound_cycles[front_bound as usize] += t.front;
+            }
+        }
+        // The units after the tiles, each its slowest stage's.
         for (_, w) in &self.tail() {
-            let ws = add(&mut t, &mut [0.0; 4], w);
-            after += ws.iter().copied().fold(0.0, f64::max);
+            add(&mut t, &mut [0.0; 4], w);
+            if let Some((b, slowest)) = w.bottleneck(a) {
+                t.bound_cycles[b as usize] += slowest;
+            }
         }
         // A pass that drew nothing (no light pass for shadow volumes, none
         // at all without shadows) waits for no host; a second depth by
@@ -366,27 +366,11 @@ impl<const D: bool> ArchProbe<D> {
         let waits = if self.passes > 1 { self.passes + 1 } else { self.passes };
         #[allow(clippy::cast_precision_loss, reason = "1 to 3")]
         let overhead = if self.events.submitted > 0 { a.front.pass_overhead_cycles * waits as f64 } else { 0.0 };
-        let shared = fs[Stage::Memory as usize] + tile_memory;
-        let body = if a.front.overlap { t.front.max(t.tiles).max(shared) } else { t.front + t.tiles };
-        t.cycles = overhead + body + after;
         t.overhead = overhead;
-        t.bottleneck = if a.front.overlap && shared > t.tiles.max(t.front) {
-            Bottleneck::of(Stage::Memory, shared_limit)
-        } else if a.front.overlap && t.front > t.tiles {
-            front.bottleneck(a).map_or(Bottleneck::Setup, |b| b.0)
-        } else {
-            Bottleneck::ALL
-                .iter()
-                .zip(per_bound)
-                .fold((Bottleneck::Setup, -1.0), |b, (&s, c)| if c > b.1 { (s, c) } else { b })
-                .0
-        };
-        #[allow(clippy::cast_precision_loss, reason = "bytes far below 2^53")]
-        let achieved = if t.cycles > 0.0 { t.bytes as f64 / (t.cycles / a.clock) } else { 0.0 };
-        t.achieved_bytes_per_second = achieved;
+        t.clock = a.clock;
         t.map_cache = self.map_cache.as_ref().filter(|_| self.lookups).map(|m| m.cache.stats());
         t.depth_cache = self.depth_cache.as_ref().map(|c| c.stats().times(self.passes));
-        t.energy = self.energy(t.bytes);
+        t.energy = self.energy(t.bytes());
         t
     }
 
@@ -406,20 +390,22 @@ impl<const D: bool> ArchProbe<D> {
     /// The units that follow the tiles, in order, each with its name: the
     /// pass combining two maps (a second depth by a second pass: two reads
     /// and a write a texel, one fragment a texel), the silhouette pass,
-    /// and the depth cache's final write-back.
+    /// and the depth cache's final write-back (once per light pass).
     #[must_use]
     pub(crate) fn tail(&self) -> [(&'static str, Work); 3] {
         let mut combine = Work::default();
         if self.passes > 1 {
             let texels = self.raster.texel_count() as u64;
-            combine.bytes = 3 * texels * u64::from(self.format.bytes());
-            combine.streamed = combine.bytes;
+            combine.stream(Purpose::MapCombine, 3 * texels * u64::from(self.format.bytes()));
             combine.cycles[Stage::Raster as usize] = Self::per(texels, self.arch.raster.fragments_per_clock.max(1.0));
             #[allow(clippy::cast_precision_loss, reason = "texels far below 2^53")]
             let program = texels as f64 * self.arch.depth.combine_cycles;
             combine.cycles[Stage::Shade as usize] = program;
         }
-        [("combining the maps", combine), ("silhouette pass", self.silhouette), ("depth cache write-back", self.drain)]
+        // Each light pass writes back what its depth cache holds dirty.
+        let mut drain = self.drain;
+        drain.scale(self.passes);
+        [("combining the maps", combine), ("silhouette pass", self.silhouette), ("depth cache write-back", drain)]
     }
 
     /// Tiles a row of the pass's target, when it is timed per tile (row
@@ -447,12 +433,23 @@ impl<const D: bool> ArchProbe<D> {
         }
     }
 
-    fn map_read(&mut self, texels: u64, bytes: u64) {
+    /// `texels` (or points) the shadow unit read, `bytes` in all, for
+    /// `purpose` when no map cache stands between (its fills are charged
+    /// per line otherwise).
+    fn map_read(&mut self, texels: u64, bytes: u64, purpose: Purpose) {
         self.accesses.shadow_ops += texels;
         // A machine shading per fragment fetches in its program.
         self.shaded(&ShadeCounts { samples: texels, ..ShadeCounts::default() });
         if self.map_cache.is_none() {
-            self.stream(bytes);
+            self.traffic(purpose, bytes);
         }
+    }
+
+    /// The pass's DRAM traffic by purpose: its units' ledgers added (the
+    /// tiles and the front end once per light pass it takes).
+    #[must_use]
+    pub fn dram(&self) -> Dram {
+        let drawn = self.tiles.iter().fold(self.front.dram, |a, w| a.plus(&w.dram)).times(self.passes);
+        self.tail().iter().fold(drawn, |a, (_, w)| a.plus(&w.dram))
     }
 }

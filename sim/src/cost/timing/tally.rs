@@ -20,6 +20,7 @@ use super::shading::ShadeCounts;
 use super::{ArchProbe, COLOUR_BYTES, Phase, cache};
 use crate::cost::arch::CacheParams;
 use crate::cost::cache::{Cache, MapCache, morton, morton_next_x};
+use crate::cost::dram::Purpose;
 use crate::cost::stack::StackDistances;
 
 impl<const D: bool> ArchProbe<D> {
@@ -60,25 +61,23 @@ impl<const D: bool> ArchProbe<D> {
             self.shaded(&t.counts);
             let pixels = t.counts.pixels;
             self.accesses.shadow_ops += t.counts.samples + t.counts.culled + t.counts.virtual_samples;
-            self.dram.colour += COLOUR_BYTES * pixels;
-            self.dram.map_reads += t.map_bytes;
-            self.dram.silhouette_reads += t.silhouette_bytes;
+            self.requested.map += t.map_bytes;
+            self.requested.silhouette += t.silhouette_bytes;
             let cached = self.map_cache.is_some();
             let missed = geometry.and_then(|g| part.misses.get(i * per + g)).map_or(0, |&m| u64::from(m));
             if cached {
                 self.accesses.cache += t.reads;
-                self.dram.map_fetched += missed * line;
                 (hits, misses) = (hits + t.reads - missed, misses + missed);
             }
             let w = self.work();
             w.pixels += pixels;
-            w.dram.colour += COLOUR_BYTES * pixels;
-            w.dram.map_reads += t.map_bytes;
-            w.dram.silhouette_reads += t.silhouette_bytes;
-            let streamed = COLOUR_BYTES * pixels + if cached { 0 } else { t.map_bytes + t.silhouette_bytes };
-            w.bytes += streamed + missed * line;
-            w.streamed += streamed;
-            w.dram.map_fetched += missed * line;
+            w.stream(Purpose::Colour, COLOUR_BYTES * pixels);
+            if cached {
+                w.dram.add(Purpose::MapCacheFills, missed * line);
+            } else {
+                w.stream(Purpose::MapReads, t.map_bytes);
+                w.stream(Purpose::SilhouetteReads, t.silhouette_bytes);
+            }
             w.map_misses += missed;
         }
         if let Some(m) = self.map_cache.as_mut() {

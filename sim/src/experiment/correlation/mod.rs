@@ -331,16 +331,18 @@ fn simulate(point: &Point, scene: &Scene, arch: &Arch, limits: &Limits) -> Resul
         _ => &report.camera,
     };
     // A pass's own time: without its waits for the host.
-    let seconds = (pass.cycles - pass.overhead) / arch.clock;
+    let seconds = (pass.cycles() - pass.overhead) / arch.clock;
     #[allow(clippy::cast_precision_loss, reason = "counts far below 2^53")]
     Ok(match point.measure {
-        Measure::Frame => report.fps,
+        Measure::Frame => report.fps(),
         Measure::Fill => {
             let events = if point.pass == Some(Pass::Light) { &report.light_events } else { &report.camera_events };
             events.fragments as f64 / seconds
         }
-        Measure::Bandwidth => pass.bytes as f64 / seconds,
-        Measure::Attachment => report.camera_dram.colour as f64 * point.fps.unwrap_or(0.0),
+        Measure::Bandwidth => pass.bytes() as f64 / seconds,
+        Measure::Attachment => {
+            report.camera.dram.get(crate::cost::dram::Purpose::Colour) as f64 * point.fps.unwrap_or(0.0)
+        }
     })
 }
 

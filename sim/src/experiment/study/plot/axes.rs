@@ -64,6 +64,7 @@ const fn short(b: Bottleneck) -> &'static str {
         Bottleneck::DramLatency => "LAT",
         Bottleneck::MapCacheMissesInFlight => "MC",
         Bottleneck::DepthCacheMissesInFlight => "DC",
+        Bottleneck::Nothing => "-",
     }
 }
 
