@@ -33,9 +33,9 @@ pub(super) enum ArchCommand {
     Upgrade(crate::upgrade::UpgradeArgs),
     /// Two architectures key by key and derived figure by derived figure;
     /// with `--scene`, the difference in time, energy and DRAM bytes by
-    /// purpose on that scene's render attributed to each key (one key
-    /// changed at a time from the first toward the second, plus the
-    /// remainder their interaction makes), ranked by effect.
+    /// purpose on that scene's render attributed to each key by its
+    /// Shapley value (its effect averaged over every order of changing
+    /// the keys), ranked by effect.
     Diff {
         /// The first: a bundled name or an architecture file.
         a: String,

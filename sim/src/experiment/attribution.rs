@@ -1,29 +1,47 @@
 //! Why two architectures differ on a render: the difference in time,
-//! DRAM bytes by purpose and energy attributed to each key that differs,
-//! by changing one key at a time from the first toward the second, plus
-//! the remainder that only their interaction explains, ranked by the
-//! effect on time.
+//! energy and DRAM bytes by purpose attributed to each key that differs by
+//! its Shapley value — its marginal effect averaged over every order of
+//! changing the keys from the first file toward the second — ranked by
+//! the effect on time.
 //!
-//! With `a` and `b` differing in keys `k₁ … kₙ`, key `kᵢ`'s effect is
-//! `cost(a with kᵢ from b) − cost(a)`; the remainder is
-//! `cost(b) − cost(a) − Σ effects`. The effects are exact where the keys
-//! act alone (a tile size and a cache size on a frame bound by neither
-//! interact little) and the remainder says how far they do not. A key
-//! that cannot change alone (a cache size whose sets need `b`'s ways too)
-//! has no effect of its own: it is named, and its share is in the
-//! remainder.
+//! With `a` and `b` differing in keys `k₁ … kₙ` and `v(S)` the cost of `a`
+//! with the keys of `S` taken from `b`, less the cost of `a`, key `i`'s
+//! share is `Σ_{S ∌ i} |S|! (n − |S| − 1)! / n! · (v(S ∪ {i}) − v(S))`
+//! (Shapley 1953). The shares add up to `v(all) = cost(b) − cost(a)` with
+//! no remainder (the interaction of keys is split among them), do not
+//! depend on the order the keys are listed in, and `diff b a` is key by
+//! key the negative of `diff a b`. Up to [`EXACT_KEYS`] keys every one of
+//! the `2ⁿ` coalitions is costed (grouped, as a study's architectures
+//! are, into as few runs of the passes as their tilings allow); beyond,
+//! [`PERMUTATIONS`] random orders are, and each share carries the standard
+//! error of its mean. Keys that cannot change without one another (a cache
+//! size whose sets need the other file's ways too) are one player: they
+//! share one row.
 
 use crate::output::table::{Align, Table};
+use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
 use serde::Serialize;
 
 use crate::cost::arch::{Arch, PARAMS, Unit};
+use crate::cost::dram::Purpose;
 use crate::cost::report::CostReport;
 use crate::render::{Checked, RenderError, cost_others};
 
-/// A difference of costs: time, energy, and DRAM bytes by purpose (the
-/// map's reads as DRAM fetched them; light and camera passes together).
+/// Keys up to which every coalition is costed; beyond, orders are sampled.
+pub const EXACT_KEYS: usize = 12;
+
+/// Random orders sampled beyond [`EXACT_KEYS`] keys.
+pub const PERMUTATIONS: usize = 64;
+
+/// Architectures costed in one grouped costing: bounds the memory of a
+/// run of the passes however many coalitions there are.
+const GROUP: usize = 64;
+
+/// A difference of costs: time, energy, and DRAM bytes in all and by
+/// purpose (light and camera passes together). Bytes are real: a Shapley
+/// share is an average of integer differences.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct Delta {
     /// Frame time, seconds.
@@ -31,54 +49,107 @@ pub struct Delta {
     /// Frame energy, joules.
     pub joules: f64,
     /// DRAM bytes of the frame.
-    pub bytes: i64,
-    /// DRAM bytes by purpose: name, change.
-    pub bytes_by_purpose: Vec<(&'static str, i64)>,
+    pub bytes: f64,
+    /// DRAM bytes by purpose, in [`Purpose::ALL`] order: name, change.
+    pub bytes_by_purpose: Vec<(&'static str, f64)>,
 }
 
-impl Delta {
-    /// `b` − `a`.
-    fn between(a: &CostReport, b: &CostReport) -> Self {
-        let purposes = |r: &CostReport| -> Vec<(&'static str, i64)> {
-            r.dram().fields().map(|(p, b)| (p.name(), i64::try_from(b).unwrap_or(i64::MAX))).collect()
-        };
-        let bytes = |r: &CostReport| i64::try_from(r.bytes()).unwrap_or(i64::MAX);
-        Self {
-            seconds: b.seconds() - a.seconds(),
-            joules: b.energy().total() - a.energy().total(),
-            bytes: bytes(b) - bytes(a),
-            bytes_by_purpose: purposes(a).into_iter().zip(purposes(b)).map(|((n, x), (_, y))| (n, y - x)).collect(),
-        }
-    }
+/// A coalition's cost, as the shares weigh it: time, energy, bytes by
+/// purpose (integers, so that their weighted sums are exact).
+#[derive(Clone, Copy, Debug, Default)]
+struct Value {
+    seconds: f64,
+    joules: f64,
+    bytes: [i128; 12],
+}
 
-    /// `self` + `k` × `o`.
-    #[allow(clippy::cast_precision_loss, reason = "k is 1 or -1")]
-    fn plus(&self, k: i64, o: &Self) -> Self {
-        Self {
-            seconds: self.seconds + k as f64 * o.seconds,
-            joules: self.joules + k as f64 * o.joules,
-            bytes: self.bytes + k * o.bytes,
-            bytes_by_purpose: self
-                .bytes_by_purpose
-                .iter()
-                .zip(&o.bytes_by_purpose)
-                .map(|(&(n, x), &(_, y))| (n, x + k * y))
-                .collect(),
-        }
+impl Value {
+    fn of(r: &CostReport) -> Self {
+        let d = r.dram();
+        Self { seconds: r.seconds(), joules: r.energy().total(), bytes: Purpose::ALL.map(|p| i128::from(d.get(p))) }
     }
 }
 
-/// One key's share of the difference.
+/// A weighted sum of coalition values' differences: reals for time and
+/// energy, integer numerators over a common denominator for bytes.
+#[derive(Clone, Copy, Debug, Default)]
+struct Sum {
+    seconds: f64,
+    joules: f64,
+    bytes: [i128; 12],
+}
+
+impl Sum {
+    /// Add `w × (x − y)`, `w` the term's weight and `r` its real share.
+    fn add(&mut self, (w, r): (i128, f64), x: &Value, y: &Value) {
+        self.seconds += r * (x.seconds - y.seconds);
+        self.joules += r * (x.joules - y.joules);
+        for (s, (a, b)) in self.bytes.iter_mut().zip(x.bytes.iter().zip(y.bytes)) {
+            *s += w * (a - b);
+        }
+    }
+
+    /// As a delta, its bytes divided by `denominator`.
+    #[allow(clippy::cast_precision_loss, reason = "bytes times a weight, far below 2^100")]
+    fn delta(&self, denominator: i128) -> Delta {
+        let bytes: Vec<(&'static str, f64)> =
+            Purpose::ALL.iter().zip(self.bytes).map(|(p, b)| (p.name(), b as f64 / denominator as f64)).collect();
+        let all: i128 = self.bytes.iter().sum();
+        Delta {
+            seconds: self.seconds,
+            joules: self.joules,
+            bytes: all as f64 / denominator as f64,
+            bytes_by_purpose: bytes,
+        }
+    }
+}
+
+/// One differing key, as each file writes it.
 #[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Share {
+pub struct Key {
     /// The key.
     pub key: &'static str,
-    /// Its value in `a`, then in `b`, as files write them.
+    /// Its value in `a`, then in `b`.
     pub values: (String, String),
-    /// What changing it alone does; `None` when it cannot change alone.
-    pub effect: Option<Delta>,
-    /// Why it cannot change alone.
-    pub alone: Option<String>,
+}
+
+/// A player's share of the difference.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Share {
+    /// Its keys: one, or those that cannot change without one another.
+    pub keys: Vec<Key>,
+    /// Its Shapley value.
+    pub share: Delta,
+    /// What changing its keys alone from `a` does (its marginal effect
+    /// first in the order).
+    pub alone: Delta,
+    /// What changing its keys last does (its marginal effect last in the
+    /// order): the negative of changing them alone from `b`.
+    pub last: Delta,
+    /// The standard error of `share.seconds` when orders were sampled.
+    pub standard_error_seconds: Option<f64>,
+}
+
+/// How the shares were computed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Method {
+    /// Every coalition of the players costed.
+    Exact {
+        /// The players.
+        players: usize,
+        /// The coalitions costed (`2^players`).
+        coalitions: usize,
+    },
+    /// Random orders sampled.
+    Sampled {
+        /// The players.
+        players: usize,
+        /// The orders.
+        permutations: usize,
+        /// The distinct coalitions costed.
+        coalitions: usize,
+    },
 }
 
 /// The difference between two architectures on one render, attributed.
@@ -96,14 +167,79 @@ pub struct Attribution {
     pub b_seconds: f64,
     /// `b` − `a`.
     pub total: Delta,
-    /// Each differing key's share, ranked by the size of its effect on
-    /// time (those that cannot change alone last).
+    /// Each player's share, ranked by the size of its effect on time.
     pub shares: Vec<Share>,
-    /// What the shares do not explain: the keys' interaction.
-    pub remainder: Delta,
+    /// How the shares were computed.
+    pub method: Method,
 }
 
-/// Attribute `b − a` on the render `job` to each key that differs.
+/// `a` with `keys` taken from `b`, checked once they all are.
+fn coalition(a: &Arch, b: &Arch, keys: &[&'static str]) -> Result<Arch, String> {
+    let mut arch = a.clone();
+    arch.take(keys, b).map(|()| arch).map_err(|(k, e)| format!("{k}: {e}"))
+}
+
+/// The keys of the players in `mask`.
+fn keys_of(players: &[Vec<&'static str>], mask: u64) -> Vec<&'static str> {
+    players.iter().enumerate().filter(|(i, _)| mask >> i & 1 == 1).flat_map(|(_, p)| p.iter().copied()).collect()
+}
+
+/// A small deterministic generator (splitmix64) for the sampled orders.
+fn splitmix(state: &mut u64) -> u64 {
+    *state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    let mut z = *state;
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+/// The orders of `n` players the shares average over: `None` for every
+/// order (exact), else [`PERMUTATIONS`] shuffles.
+fn orders(n: usize) -> Option<Vec<Vec<usize>>> {
+    (n > EXACT_KEYS).then(|| {
+        let mut state = 0x0005_a91e_u64;
+        (0..PERMUTATIONS)
+            .map(|_| {
+                let mut order: Vec<usize> = (0..n).collect();
+                for i in (1..n).rev() {
+                    #[allow(clippy::cast_possible_truncation, reason = "an index below n")]
+                    let j = (splitmix(&mut state) % (i as u64 + 1)) as usize;
+                    order.swap(i, j);
+                }
+                order
+            })
+            .collect()
+    })
+}
+
+/// The coalitions the shares of `n` players need: every one, or those
+/// along each sampled order.
+fn masks(n: usize, orders: Option<&[Vec<usize>]>) -> Vec<u64> {
+    match orders {
+        None => (0..1u64 << n).collect(),
+        Some(orders) => {
+            // The empty and the whole coalitions, and each player alone
+            // and each last, beside those along the orders.
+            let n = orders.first().map_or(0, Vec::len);
+            let full = (1u64 << n) - 1;
+            let mut all = vec![0u64, full];
+            all.extend((0..n).flat_map(|i| [1 << i, full ^ 1 << i]));
+            for order in orders {
+                let mut m = 0u64;
+                for &i in order {
+                    m |= 1 << i;
+                    all.push(m);
+                }
+            }
+            all.sort_unstable();
+            all.dedup();
+            all
+        }
+    }
+}
+
+/// Attribute `b − a` on the render `job` to each key that differs, by
+/// Shapley value.
 ///
 /// ```
 /// use umbra_sim::{Arch, Limits, RenderConfig, Scene};
@@ -114,71 +250,198 @@ pub struct Attribution {
 /// let mut b = a.clone();
 /// b.set("dram.bandwidth=2.4GB/s")?;
 /// let t = attribute(&cfg.check(&scene, &Limits::DEFAULT)?, &a, &b)?;
-/// assert_eq!(t.shares.len(), 1);
 /// // One key explains all of it.
-/// assert!(t.remainder.seconds.abs() <= 1e-12 && t.remainder.bytes == 0);
+/// assert_eq!(t.shares.len(), 1);
+/// assert_eq!(t.shares[0].share, t.total);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 ///
 /// # Errors
 /// The render's or a costing's [`RenderError`].
 pub fn attribute(job: &Checked<'_>, a: &Arch, b: &Arch) -> Result<Attribution, RenderError> {
+    // Computed one way round whichever way it is asked, so that `diff b a`
+    // is, bit for bit, the negative of `diff a b`.
+    if b.to_toml() < a.to_toml() {
+        return attribute(job, b, a).map(Attribution::reversed);
+    }
     let differing: Vec<&'static str> =
         PARAMS.iter().filter(|p| p.unit != Unit::Text && p.written(a) != p.written(b)).map(|p| p.key).collect();
-    let mut archs = vec![a.clone(), b.clone()];
-    let mut alone = Vec::new();
-    for key in &differing {
-        let mut one = a.clone();
-        match one.take(key, b) {
-            Ok(()) => {
-                archs.push(one);
-                alone.push(None);
+    let mut players: Vec<Vec<&'static str>> = differing.iter().map(|&k| vec![k]).collect();
+    // Keys that cannot change without one another play as one: merge the
+    // players of the first coalition that is no machine, until none is.
+    let archs = loop {
+        let n = players.len();
+        let order = orders(n);
+        let wanted = masks(n, order.as_deref());
+        let mut archs = BTreeMap::new();
+        let mut invalid = None;
+        for &m in &wanted {
+            match coalition(a, b, &keys_of(&players, m)) {
+                Ok(arch) => {
+                    archs.insert(m, arch);
+                }
+                Err(_) => {
+                    invalid = Some(m);
+                    break;
+                }
             }
-            Err((k, problem)) => alone.push(Some(format!("changed alone, {k}: {problem}"))),
         }
-    }
-    let mut out: Vec<Option<Result<CostReport, RenderError>>> = archs.iter().map(|_| None).collect();
-    cost_others(job, &archs, &mut out);
-    let mut reports = Vec::with_capacity(out.len());
-    for r in out {
-        reports.push(r.unwrap_or_else(|| Err(RenderError::Cost("not costed".into())))?);
-    }
-    let (ra, rb) = (&reports[0], &reports[1]);
-    let total = Delta::between(ra, rb);
-    let mut costed = reports[2..].iter();
-    let mut shares: Vec<Share> = differing
+        let Some(m) = invalid else { break archs };
+        let (mut joined, mut rest) = (Vec::new(), Vec::new());
+        for (i, p) in players.into_iter().enumerate() {
+            if m >> i & 1 == 1 { joined.extend(p) } else { rest.push(p) }
+        }
+        rest.insert(0, joined);
+        players = rest;
+    };
+    let values = cost_all(job, &archs)?;
+    let n = players.len();
+    let order = orders(n);
+    let v = |m: u64| values.get(&m).copied().unwrap_or_default();
+    let full = (1u64 << n) - 1;
+    let mut sums = vec![Sum::default(); n];
+    let mut squares = vec![0.0f64; n];
+    let denominator: i128 = match &order {
+        None => {
+            // Weight of a coalition of s others: s! (n − s − 1)! over n!.
+            let factorial = |k: usize| (1..=k as i128).product::<i128>();
+            for (i, sum) in sums.iter_mut().enumerate() {
+                for m in (0..=full).filter(|m| m >> i & 1 == 0) {
+                    let s = m.count_ones() as usize;
+                    let w = factorial(s) * factorial(n - s - 1);
+                    #[allow(clippy::cast_precision_loss, reason = "at most 12!")]
+                    let r = w as f64 / factorial(n) as f64;
+                    sum.add((w, r), &v(m | 1 << i), &v(m));
+                }
+            }
+            factorial(n)
+        }
+        Some(orders) => {
+            #[allow(clippy::cast_precision_loss, reason = "a few orders")]
+            let r = 1.0 / orders.len() as f64;
+            for order in orders {
+                let mut m = 0u64;
+                for &i in order {
+                    let (x, y) = (v(m | 1 << i), v(m));
+                    sums[i].add((1, r), &x, &y);
+                    squares[i] += (x.seconds - y.seconds).powi(2);
+                    m |= 1 << i;
+                }
+            }
+            orders.len() as i128
+        }
+    };
+    let total = {
+        let mut t = Sum::default();
+        t.add((1, 1.0), &v(full), &v(0));
+        t.delta(1)
+    };
+    let mut shares: Vec<Share> = players
         .iter()
-        .zip(alone)
-        .map(|(&key, alone)| {
-            let p = PARAMS.iter().find(|p| p.key == key);
-            let values = p.map(|p| (p.written(a), p.written(b))).unwrap_or_default();
-            let effect = if alone.is_none() { costed.next().map(|r| Delta::between(ra, r)) } else { None };
-            Share { key, values, effect, alone }
+        .enumerate()
+        .map(|(i, keys)| {
+            let (mut alone, mut last) = (Sum::default(), Sum::default());
+            alone.add((1, 1.0), &v(1 << i), &v(0));
+            last.add((1, 1.0), &v(full), &v(full ^ 1 << i));
+            let share = sums[i].delta(denominator);
+            #[allow(clippy::cast_precision_loss, reason = "a few orders")]
+            let standard_error_seconds = order.as_ref().map(|o| {
+                let m = o.len() as f64;
+                let var = (squares[i] / m - share.seconds.powi(2)).max(0.0) * m / (m - 1.0).max(1.0);
+                (var / m).sqrt()
+            });
+            let keys = keys
+                .iter()
+                .map(|&key| {
+                    let p = PARAMS.iter().find(|p| p.key == key);
+                    Key { key, values: p.map(|p| (p.written(a), p.written(b))).unwrap_or_default() }
+                })
+                .collect();
+            Share { keys, share, alone: alone.delta(1), last: last.delta(1), standard_error_seconds }
         })
         .collect();
-    let explained =
-        shares.iter().filter_map(|s| s.effect.as_ref()).fold(Delta::between(ra, ra), |acc, e| acc.plus(1, e));
-    let remainder = total.plus(-1, &explained);
-    shares.sort_by(|x, y| {
-        let size = |s: &Share| s.effect.as_ref().map_or(-1.0, |e| e.seconds.abs());
-        size(y).total_cmp(&size(x))
-    });
+    shares.sort_by(|x, y| y.share.seconds.abs().total_cmp(&x.share.seconds.abs()));
+    let method = match &order {
+        None => Method::Exact { players: n, coalitions: values.len() },
+        Some(o) => Method::Sampled { players: n, permutations: o.len(), coalitions: values.len() },
+    };
+    let ra_seconds = v(0).seconds;
     Ok(Attribution {
         a: a.name.clone(),
         b: b.name.clone(),
-        config: ra.config.clone(),
-        a_seconds: ra.seconds(),
-        b_seconds: rb.seconds(),
+        config: job.config().describe(),
+        a_seconds: ra_seconds,
+        b_seconds: v(full).seconds,
         total,
         shares,
-        remainder,
+        method,
     })
 }
 
+/// Every coalition's cost, [`GROUP`] architectures to a grouped costing.
+fn cost_all(job: &Checked<'_>, archs: &BTreeMap<u64, Arch>) -> Result<BTreeMap<u64, Value>, RenderError> {
+    let entries: Vec<(&u64, &Arch)> = archs.iter().collect();
+    let mut values = BTreeMap::new();
+    for chunk in entries.chunks(GROUP) {
+        let group: Vec<Arch> = chunk.iter().map(|(_, a)| (*a).clone()).collect();
+        let mut out: Vec<Option<Result<CostReport, RenderError>>> = group.iter().map(|_| None).collect();
+        cost_others(job, &group, &mut out);
+        for ((m, _), r) in chunk.iter().zip(out) {
+            let r = r.unwrap_or_else(|| Err(RenderError::Cost("not costed".into())))?;
+            values.insert(**m, Value::of(&r));
+        }
+    }
+    Ok(values)
+}
+
+/// Bytes with their sign, as few digits as they need (a share of two
+/// keys is a whole or half byte); no sign for none.
+fn signed(bytes: f64) -> String {
+    if bytes == 0.0 { "0".to_owned() } else { format!("{bytes:+}") }
+}
+
+impl Delta {
+    /// The same difference, the other way.
+    fn negated(&self) -> Self {
+        Self {
+            seconds: -self.seconds,
+            joules: -self.joules,
+            bytes: -self.bytes,
+            bytes_by_purpose: self.bytes_by_purpose.iter().map(|&(n, b)| (n, -b)).collect(),
+        }
+    }
+}
+
 impl Attribution {
-    /// The attribution as a Markdown table: a row per key (ranked), the
-    /// remainder and the total; time in µs and percent of `a`'s, energy
-    /// in µJ, DRAM bytes in all and by every purpose that changes.
+    /// The attribution of `a − b`, from that of `b − a`: every difference
+    /// negated, the files' roles swapped.
+    fn reversed(self) -> Self {
+        let shares = self
+            .shares
+            .into_iter()
+            .map(|s| Share {
+                keys: s.keys.into_iter().map(|k| Key { key: k.key, values: (k.values.1, k.values.0) }).collect(),
+                share: s.share.negated(),
+                alone: s.last.negated(),
+                last: s.alone.negated(),
+                standard_error_seconds: s.standard_error_seconds,
+            })
+            .collect();
+        Self {
+            a: self.b,
+            b: self.a,
+            config: self.config,
+            a_seconds: self.b_seconds,
+            b_seconds: self.a_seconds,
+            total: self.total.negated(),
+            shares,
+            method: self.method,
+        }
+    }
+
+    /// The attribution as a Markdown table: a row per player (ranked) and
+    /// the total; time in µs and percent of `a`'s, energy in µJ, DRAM bytes
+    /// in all and by every purpose that changes.
     #[must_use]
     pub fn markdown(&self) -> String {
         let mut s = String::new();
@@ -188,17 +451,21 @@ impl Attribution {
             .iter()
             .enumerate()
             .filter(|(k, _)| {
-                self.shares
-                    .iter()
-                    .filter_map(|x| x.effect.as_ref())
-                    .chain([&self.total, &self.remainder])
-                    .any(|d| d.bytes_by_purpose[*k].1 != 0)
+                self.shares.iter().map(|x| &x.share).chain([&self.total]).any(|d| d.bytes_by_purpose[*k].1 != 0.0)
             })
             .map(|(k, &(n, _))| (k, n))
             .collect();
+        let how = match self.method {
+            Method::Exact { players, coalitions } => format!(
+                "each key's Shapley share, its effect averaged over every order of changing the {players} key(s) ({coalitions} costings)"
+            ),
+            Method::Sampled { players, permutations, coalitions } => format!(
+                "each key's Shapley share, its effect averaged over {permutations} random orders of changing the {players} keys ({coalitions} costings; ± one standard error)"
+            ),
+        };
         let _ = writeln!(
             s,
-            "From `{}` ({:.3} ms) to `{}` ({:.3} ms) on {}, one key at a time:\n",
+            "From `{}` ({:.3} ms) to `{}` ({:.3} ms) on {}, {how}:\n",
             self.a,
             self.a_seconds * 1e3,
             self.b,
@@ -209,31 +476,34 @@ impl Attribution {
             ("change".to_owned(), Align::Left),
             ("time (µs)".to_owned(), Align::Right),
             ("time".to_owned(), Align::Right),
+            ("alone (µs)".to_owned(), Align::Right),
             ("energy (µJ)".to_owned(), Align::Right),
             ("DRAM bytes".to_owned(), Align::Right),
         ];
         columns.extend(purposes.iter().map(|(_, n)| (format!("{n} bytes"), Align::Right)));
         let mut t = Table::new(&columns);
-        let cells = |what: String, d: &Delta| {
+        let cells = |what: String, d: &Delta, alone: Option<&Delta>, error: Option<f64>| {
+            let time = match error {
+                Some(e) => format!("{:+.3} ± {:.3}", d.seconds * 1e6, e * 1e6),
+                None => format!("{:+.3}", d.seconds * 1e6),
+            };
             let mut cells = vec![
                 what,
-                format!("{:+.3}", d.seconds * 1e6),
+                time,
                 format!("{:+.1} %", 100.0 * d.seconds / self.a_seconds.max(f64::MIN_POSITIVE)),
+                alone.map_or_else(String::new, |a| format!("{:+.3}", a.seconds * 1e6)),
                 format!("{:+.3}", d.joules * 1e6),
-                format!("{:+}", d.bytes),
+                signed(d.bytes),
             ];
-            cells.extend(purposes.iter().map(|&(k, _)| format!("{:+}", d.bytes_by_purpose[k].1)));
+            cells.extend(purposes.iter().map(|&(k, _)| signed(d.bytes_by_purpose[k].1)));
             cells
         };
         for share in &self.shares {
-            let what = format!("`{}` {} → {}", share.key, share.values.0, share.values.1);
-            match &share.effect {
-                Some(d) => t.row(cells(what, d)),
-                None => t.row([format!("{what} ({})", share.alone.as_deref().unwrap_or(""))]),
-            }
+            let what: Vec<String> =
+                share.keys.iter().map(|k| format!("`{}` {} → {}", k.key, k.values.0, k.values.1)).collect();
+            t.row(cells(what.join(" with "), &share.share, Some(&share.alone), share.standard_error_seconds));
         }
-        t.row(cells("the keys' interaction (the remainder)".to_owned(), &self.remainder));
-        t.row(cells("**all of them**".to_owned(), &self.total));
+        t.row(cells("**all of them**".to_owned(), &self.total, None, None));
         s.push_str(&t.markdown());
         s
     }

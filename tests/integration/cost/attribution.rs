@@ -1,7 +1,8 @@
 //! `arch diff --scene`: two architecture files differing in the tile size
-//! and the map cache's size, their difference attributed to each key and
-//! held to separate runs of each single change; the remainder is what the
-//! two single changes do not add up to.
+//! and the map cache's size, their difference attributed to each key by
+//! Shapley value and held to the two-player formula worked by hand from
+//! separate runs of each single change; the shares add up to the
+//! difference, and the other way round they are its negative.
 
 use umbra::sim::cost::arch::Arch;
 use umbra::sim::cost::report::CostReport;
@@ -31,35 +32,39 @@ fn each_key_s_share_is_its_single_change_run_alone() {
     let t = attribute(&job, &a, &b).expect("attributes");
     let run = |arch: &Arch| cost(&job, arch).expect("costs");
     let (ra, rb) = (run(&a), run(&b));
-    let alone = [
-        ("raster.tile", run(&file(&["raster.tile=64"]))),
-        ("map_cache.size", run(&file(&["map_cache.size=\"4KiB\""]))),
-    ];
-    let keys: Vec<&str> = t.shares.iter().map(|s| s.key).collect();
+    let tile = run(&file(&["raster.tile=64"]));
+    let cache = run(&file(&["map_cache.size=\"4KiB\""]));
+    let keys: Vec<&str> = t.shares.iter().flat_map(|s| s.keys.iter().map(|k| k.key)).collect();
     assert_eq!(keys.len(), 2, "{keys:?}");
-    let bytes = |r: &CostReport| i64::try_from(r.bytes()).expect("bytes");
-    let mut explained = (0.0, 0);
-    for (key, r) in &alone {
-        let share = t.shares.iter().find(|s| s.key == *key).expect("a share");
-        let e = share.effect.as_ref().expect("changes alone");
-        assert!(
-            close(e.seconds, r.seconds() - ra.seconds()),
-            "{key}: {} against {}",
-            e.seconds,
-            r.seconds() - ra.seconds()
-        );
-        assert!(close(e.joules, r.energy().total() - ra.energy().total()), "{key}");
-        assert_eq!(e.bytes, bytes(r) - bytes(&ra), "{key}");
-        assert_eq!(e.bytes_by_purpose.iter().map(|p| p.1).sum::<i64>(), e.bytes, "{key}: purposes add up");
-        explained = (explained.0 + e.seconds, explained.1 + e.bytes);
+    let bytes = |r: &CostReport| r.bytes() as f64;
+    // Two players, worked by hand: each key's share is the mean of its
+    // effect first (from a) and its effect last (into b).
+    for (key, alone, other) in [("raster.tile", &tile, &cache), ("map_cache.size", &cache, &tile)] {
+        let share = t.shares.iter().find(|s| s.keys[0].key == key).expect("a share");
+        let by_hand = |f: &dyn Fn(&CostReport) -> f64| 0.5 * (f(alone) - f(&ra)) + 0.5 * (f(&rb) - f(other));
+        let seconds = by_hand(&|r| r.seconds());
+        assert!(close(share.share.seconds, seconds), "{key}: {} against {seconds}", share.share.seconds);
+        assert!(close(share.share.joules, by_hand(&|r| r.energy().total())), "{key}");
+        assert_eq!(share.share.bytes, by_hand(&bytes), "{key}: half-bytes are exact");
+        assert!(close(share.alone.seconds, alone.seconds() - ra.seconds()), "{key}: alone");
+        let purposes: f64 = share.share.bytes_by_purpose.iter().map(|p| p.1).sum();
+        assert_eq!(purposes, share.share.bytes, "{key}: purposes add up");
     }
-    assert!(close(t.total.seconds, rb.seconds() - ra.seconds()));
-    assert!(close(t.remainder.seconds, (rb.seconds() - ra.seconds()) - explained.0), "{:?}", t.remainder);
-    assert_eq!(t.remainder.bytes, (bytes(&rb) - bytes(&ra)) - explained.1);
+    // The shares add up to the difference, with no remainder.
+    let (seconds, b_bytes): (f64, f64) =
+        t.shares.iter().map(|s| (s.share.seconds, s.share.bytes)).fold((0.0, 0.0), |a, x| (a.0 + x.0, a.1 + x.1));
+    assert!((seconds - (rb.seconds() - ra.seconds())).abs() <= 1e-12 * ra.seconds());
+    assert_eq!(b_bytes, bytes(&rb) - bytes(&ra));
     // Ranked by the size of the effect on time.
-    let size = |k: usize| t.shares[k].effect.as_ref().map_or(0.0, |e| e.seconds.abs());
-    assert!(size(0) >= size(1), "{:?}", t.shares);
-    // Both changes move DRAM bytes: the tile the bins and resolves, the
-    // cache the map's fetches.
-    assert!(t.shares.iter().all(|s| s.effect.as_ref().is_some_and(|e| e.bytes != 0)), "{:?}", t.shares);
+    assert!(t.shares[0].share.seconds.abs() >= t.shares[1].share.seconds.abs(), "{:?}", t.shares);
+    // The other way round: key by key the negative, bit for bit.
+    let back = attribute(&job, &b, &a).expect("attributes");
+    for s in &t.shares {
+        let o = back.shares.iter().find(|o| o.keys[0].key == s.keys[0].key).expect("the same key");
+        assert_eq!(o.share.seconds, -s.share.seconds, "{}", s.keys[0].key);
+        assert_eq!(o.share.bytes, -s.share.bytes);
+        assert_eq!(o.share.joules, -s.share.joules);
+        assert_eq!((&o.keys[0].values.0, &o.keys[0].values.1), (&s.keys[0].values.1, &s.keys[0].values.0));
+    }
+    assert_eq!(back.total.seconds, -t.total.seconds);
 }

@@ -287,15 +287,17 @@ impl Arch {
         from_text(p.unit, text)
     }
 
-    /// Take `key`'s value from `other`, then check the machine: one key
-    /// changed at a time, as an attribution changes them.
+    /// Take `keys`' values from `other`, then check the machine: a
+    /// coalition of keys changed, as an attribution changes them.
     ///
     /// # Errors
     /// An unknown key, or the machine the change makes that cannot run:
     /// the key and the problem.
-    pub(crate) fn take(&mut self, key: &str, other: &Self) -> Result<(), (String, Problem)> {
-        let p = PARAMS.iter().find(|p| p.key == key).ok_or_else(|| (key.to_owned(), Problem::Unknown))?;
-        p.assign(self, (p.get)(other)).map_err(|e| (key.to_owned(), e))?;
+    pub(crate) fn take(&mut self, keys: &[&str], other: &Self) -> Result<(), (String, Problem)> {
+        for &key in keys {
+            let p = PARAMS.iter().find(|p| p.key == key).ok_or_else(|| (key.to_owned(), Problem::Unknown))?;
+            p.assign(self, (p.get)(other)).map_err(|e| (key.to_owned(), e))?;
+        }
         self.check().map_err(|(k, e)| (k.to_owned(), e))
     }
 
