@@ -230,23 +230,26 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
         m.displacement_texels[1],
         m.displacement_texels[2]
     );
-    let way = |f: [f64; 2]| if f[0] < 1.0 { "magnified" } else { "minified" };
-    say!(
-        "map footprint, texels per pixel (median / 95th percentile): {:.3} / {:.3} along x ({}), {:.3} / {:.3} along y ({})",
-        m.footprint_x[0],
-        m.footprint_x[1],
-        way(m.footprint_x),
-        m.footprint_y[0],
-        m.footprint_y[1],
-        way(m.footprint_y)
-    );
-    say!(
-        "virtual samples for {} pixels, {} trivially decided, {} tangent fallbacks, {} lookups culled, {} map bytes read",
-        t.tangent_setups,
-        t.trivial_pixels(),
-        t.tangent_fallbacks,
-        t.lookups_culled,
-        t.map_read_bytes
-    );
+    // Shadow volumes read no map: no footprint, lookups or map bytes.
+    if cfg.algorithm != umbra_sim::Algorithm::Volumes {
+        let way = |f: [f64; 2]| if f[0] < 1.0 { "magnified" } else { "minified" };
+        say!(
+            "map footprint, texels per pixel (median / 95th percentile): {:.3} / {:.3} along x ({}), {:.3} / {:.3} along y ({})",
+            m.footprint_x[0],
+            m.footprint_x[1],
+            way(m.footprint_x),
+            m.footprint_y[0],
+            m.footprint_y[1],
+            way(m.footprint_y)
+        );
+        say!(
+            "virtual samples for {} pixels, {} trivially decided, {} tangent fallbacks, {} lookups culled, {} map bytes read",
+            t.tangent_setups,
+            t.trivial_pixels(),
+            t.tangent_fallbacks,
+            t.lookups_culled,
+            t.map_read_bytes
+        );
+    }
     crate::say::wrote(&out, &manifest, &replaced)
 }

@@ -177,6 +177,10 @@ impl RenderConfig {
     /// The configuration in words, every field (for the records outputs carry).
     #[must_use]
     pub fn describe(&self) -> String {
+        // Shadow volumes use no map: no format, side, filter or bias of one.
+        if self.algorithm == Algorithm::Volumes {
+            return format!("volumes, image {}x{}, {}² reference rays", self.width, self.height, self.reference_rays);
+        }
         format!(
             "{}, {}, map {}², filter {}, bias {}, virtual samples {}, culling {}, image {}x{}, {}² reference rays",
             self.algorithm.flags().trim_start_matches("--algo "),

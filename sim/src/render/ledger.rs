@@ -2,7 +2,7 @@
 //! bundled architecture, the parts add up to the totals — the printed
 //! report, `cost.json`, the stats file and the study's row — and shadow
 //! volumes pay the lit pass's shading and colour as a map's camera pass
-//! does, on the same pixels.
+//! does, on the same pixels, and are described without a map.
 
 use std::collections::BTreeMap;
 
@@ -153,6 +153,13 @@ fn every_ledger_adds_up_and_volumes_pay_the_lit_pass() {
             for (arch, r) in archs.iter().zip(costs) {
                 let r = r.expect("costs");
                 check(&r, &format!("{name}, {}, {}", algorithm.name(), arch.name));
+                // Shadow volumes name no map's side, format, filter or bias.
+                if algorithm == Algorithm::Volumes {
+                    for word in ["map", "filter", "bias", "d24", "d16"] {
+                        assert!(!r.config.contains(word), "{}: {word}", r.config);
+                    }
+                    assert_eq!(r.light.bottleneck().name(), "none", "{name} on {}: an empty light pass", arch.name);
+                }
                 let pixels = (r.camera_events.pixels_shaded, r.camera.dram.get(Purpose::Colour));
                 let first = *colour.entry(arch.name.as_str()).or_insert(pixels);
                 assert_eq!(

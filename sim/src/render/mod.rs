@@ -5,6 +5,8 @@
 //! above the passes, the cost model and the truth, and joins them.
 
 pub mod arrays;
+#[cfg(test)]
+mod cache_trace;
 mod config;
 mod costed;
 pub mod files;

@@ -248,8 +248,8 @@ pub struct Plan {
     /// The reasons, one line each.
     pub reasons: Vec<String>,
     /// The chosen map's storage under Reeves et al.'s schemes (Table 2),
-    /// tiles of `REEVES_TILE`.
-    pub storage: StorageBytes,
+    /// tiles of `REEVES_TILE`; `None` for shadow volumes, which store no map.
+    pub storage: Option<StorageBytes>,
 }
 
 /// Why planning failed.
@@ -468,8 +468,14 @@ pub fn plan(scene: &Scene, spec: &PlanSpec, progress: &ProgressBar) -> Result<Pl
     let r = render(&config.check(scene, &spec.limits)?, TruthSource::Quiet)?;
     let raster = r.maps.maps.config.raster;
     let shape = MapShape::of_format(raster.width(), raster.height(), r.maps.format);
-    let storage = storage_bytes(&shape, &r.maps.buffers(), REEVES_TILE)
-        .map_err(|e| PlanError::Spec(format!("map storage: {e}")))?;
+    let storage = if config.algorithm == crate::pass::algorithm::Algorithm::Volumes {
+        None
+    } else {
+        Some(
+            storage_bytes(&shape, &r.maps.buffers(), REEVES_TILE)
+                .map_err(|e| PlanError::Spec(format!("map storage: {e}")))?,
+        )
+    };
     Ok(Plan {
         budgets: budgets.clone(),
         config,

@@ -10,7 +10,7 @@ use crate::world::scene::Scene;
 
 impl Plan {
     /// The plan as Markdown: the pick, why, its figures, the runners-up
-    /// and the map's storage.
+    /// and the map's storage (none for shadow volumes, which store none).
     #[must_use]
     pub fn markdown(&self, scene: &Scene) -> String {
         let mut s = String::new();
@@ -58,7 +58,7 @@ impl Plan {
             t.row(cells(&r.candidate, false).into_iter().chain([r.lost.clone()]));
         }
         let _ = write!(s, "\n{}", t.markdown());
-        let st = &self.storage;
+        let Some(st) = &self.storage else { return s };
         let mut t = Table::new(&[("scheme", Align::Left), ("bytes", Align::Right), ("holds", Align::Left)]);
         t.row(["raw".to_owned(), st.raw.to_string(), "every texel".to_owned()]);
         t.row([

@@ -283,6 +283,10 @@ impl Row {
     pub(crate) fn render_label(&self) -> String {
         let c = &self.config;
         let mut s = c.algorithm.clone();
+        // Shadow volumes use no map: no side, format or filter of one.
+        if c.family == Family::Volumes {
+            return s;
+        }
         if let Some(hi) = c.bias1 {
             let _ = write!(s, " bias {}…{hi}", c.bias);
         } else if c.bias != 0.0 || c.family == Family::FirstDepth {
