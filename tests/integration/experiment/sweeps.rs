@@ -7,11 +7,9 @@ use umbra::sim::Culling;
 use umbra::sim::experiment::study::{SweepFile, Variant};
 use umbra::sim::input::limits::Limits;
 
-fn dir(name: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("umbra-sweeps-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).expect("temp dir");
-    d
+/// A scratch folder for `name`, removed when the test ends.
+fn dir(name: &str) -> crate::common::Scratch {
+    crate::common::scratch(name)
 }
 
 #[test]
@@ -20,7 +18,8 @@ fn bundled_sweeps_load_and_round_trip() {
     for name in ["quick", "full"] {
         let f = SweepFile::bundled(name).expect("bundled");
         let spec = f.spec(&l).expect("valid");
-        let copy = dir(name).join("sweep.toml");
+        let folder = dir(name);
+        let copy = folder.join("sweep.toml");
         std::fs::write(&copy, &f.text).expect("write");
         let again = SweepFile::open(copy.to_str().expect("UTF-8"), &l).expect("opens").spec(&l).expect("valid");
         assert_eq!(again.hash, spec.hash);

@@ -10,11 +10,11 @@ use crate::experiment::study::{self, Manifest, Row, Shard, Spec, StudyError, Var
 use crate::input::limits::Limits;
 use crate::output::folder::RunManifest;
 
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("umbra-merge-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).expect("temp dir");
-    d
+use super::scratch::Scratch;
+
+/// A scratch folder of this test process for `name`, removed when dropped.
+fn dir(name: &str) -> super::scratch::Scratch {
+    super::scratch_dir("umbra-merge", name)
 }
 
 /// A tiny sweep: one scene, two algorithms, one format, map, filter and
@@ -34,7 +34,7 @@ fn tiny(hash: &str) -> Spec {
 }
 
 /// Shard `i/n` of `spec` written into a folder named `tag-i`.
-fn shard(spec: &Spec, tag: &str, i: usize, n: usize) -> PathBuf {
+fn shard(spec: &Spec, tag: &str, i: usize, n: usize) -> Scratch {
     let d = dir(&format!("{tag}-{i}"));
     let s = Shard { index: i, count: n };
     let rows = study::run(spec, s, &indicatif::ProgressBar::hidden()).expect("within the limits");
@@ -64,7 +64,8 @@ fn rewrite(d: &Path, edit: impl Fn(&mut Row)) {
 #[test]
 fn merge_refuses_what_would_lie() {
     let spec = tiny("aaaa");
-    let s: Vec<PathBuf> = (0..2).map(|i| shard(&spec, "good", i, 2)).collect();
+    let shards: Vec<Scratch> = (0..2).map(|i| shard(&spec, "good", i, 2)).collect();
+    let s: Vec<PathBuf> = shards.iter().map(|d| d.to_path_buf()).collect();
     // The good case merges.
     let out = dir("ok");
     assert_eq!(study::merge(&s, &out, &Limits::DEFAULT).expect("merges"), 2);
@@ -74,33 +75,37 @@ fn merge_refuses_what_would_lie() {
     refused(&[s[0].clone(), s[0].clone()], &s[0], "given again");
     // Two folders holding the same shard.
     let again = shard(&spec, "again", 0, 2);
-    refused(&[s[0].clone(), again.clone(), s[1].clone()], &again.join("manifest.json"), "shard 0/2 is given twice");
+    refused(
+        &[s[0].clone(), again.to_path_buf(), s[1].clone()],
+        &again.join("manifest.json"),
+        "shard 0/2 is given twice",
+    );
     // A shard of another sweep.
     let other = shard(&tiny("bbbb"), "other", 1, 2);
-    refused(&[s[0].clone(), other.clone()], &other.join("manifest.json"), "another sweep");
+    refused(&[s[0].clone(), other.to_path_buf()], &other.join("manifest.json"), "another sweep");
     // A shard of a run split another way.
     let three = shard(&spec, "three", 1, 3);
-    refused(&[s[0].clone(), three.clone()], &three.join("manifest.json"), "3-ways");
+    refused(&[s[0].clone(), three.to_path_buf()], &three.join("manifest.json"), "3-ways");
     // No manifest.
     let bare = dir("bare");
     std::fs::copy(s[1].join("results.jsonl"), bare.join("results.jsonl")).expect("copy");
-    refused(&[s[0].clone(), bare.clone()], &bare.join("manifest.json"), "");
+    refused(&[s[0].clone(), bare.to_path_buf()], &bare.join("manifest.json"), "");
     // An empty results file where the manifest counts a row.
     let empty = shard(&spec, "empty", 1, 2);
     std::fs::write(empty.join("results.jsonl"), "").expect("truncate");
-    refused(&[s[0].clone(), empty.clone()], &empty.join("results.jsonl"), "differs from the manifest");
+    refused(&[s[0].clone(), empty.to_path_buf()], &empty.join("results.jsonl"), "differs from the manifest");
     // A row with a negative error, and one with NaN.
     let negative = shard(&spec, "negative", 1, 2);
     rewrite(&negative, |r| r.metrics.iter_mut().for_each(|m| m.misclassified_percent = -5.0));
-    refused(&[s[0].clone(), negative.clone()], &negative.join("results.jsonl"), "misclassified_percent -5");
+    refused(&[s[0].clone(), negative.to_path_buf()], &negative.join("results.jsonl"), "misclassified_percent -5");
     let nan = shard(&spec, "nan", 1, 2);
     rewrite(&nan, |r| r.metrics.iter_mut().for_each(|m| m.rms_error = f64::NAN));
-    let e = study::merge(&[s[0].clone(), nan.clone()], &dir("out"), &Limits::DEFAULT).expect_err("refused");
+    let e = study::merge(&[s[0].clone(), nan.to_path_buf()], &dir("out"), &Limits::DEFAULT).expect_err("refused");
     assert!(e.to_string().contains("results.jsonl"), "{e}");
     // A row of another sweep slipped into a shard.
     let foreign = shard(&spec, "foreign", 1, 2);
     rewrite(&foreign, |r| r.config.sweep_hash = "cccc".into());
-    refused(&[s[0].clone(), foreign.clone()], &foreign.join("results.jsonl"), "of sweep cccc");
+    refused(&[s[0].clone(), foreign.to_path_buf()], &foreign.join("results.jsonl"), "of sweep cccc");
     assert!(matches!(study::merge(&[], &dir("none"), &Limits::DEFAULT), Err(StudyError::Merge { .. })));
 }
 
@@ -114,7 +119,8 @@ fn status_tells_every_shards_state_and_merge_refuses_the_unfinished() {
     use crate::output::folder::{Claim, OutputFolder, RunKind};
     let spec = tiny("status");
     let limits = Limits::DEFAULT;
-    let done: Vec<PathBuf> = (0..2).map(|i| shard(&spec, "status", i, 4)).collect();
+    let shards: Vec<Scratch> = (0..2).map(|i| shard(&spec, "status", i, 4)).collect();
+    let done: Vec<PathBuf> = shards.iter().map(|d| d.to_path_buf()).collect();
     // Shard 2 killed mid-run: its folder opened, never finished.
     let abandoned = dir("status-2");
     let mut killed = OutputFolder::create(&abandoned, Claim::new(RunKind::Study)).expect("opened");
@@ -126,7 +132,8 @@ fn status_tells_every_shards_state_and_merge_refuses_the_unfinished() {
     // A complete folder whose results were edited since.
     let corrupt = shard(&spec, "status-edited", 1, 4);
     std::fs::write(corrupt.join("results.jsonl"), "{}\n").expect("edit");
-    let inputs = vec![done[0].clone(), done[1].clone(), abandoned.clone(), running.clone(), corrupt.clone()];
+    let inputs =
+        vec![done[0].clone(), done[1].clone(), abandoned.to_path_buf(), running.to_path_buf(), corrupt.to_path_buf()];
     let s = study::status(&inputs, &limits);
     let states: Vec<study::ShardState> = s.folders.iter().map(|f| f.state.clone()).collect();
     use study::ShardState::{Abandoned, Complete, Corrupt, Running};
@@ -135,11 +142,11 @@ fn status_tells_every_shards_state_and_merge_refuses_the_unfinished() {
     let md = s.markdown();
     assert!(md.contains("2 of 4 shards complete; not complete: 2/4, 3/4"), "{md}");
     refused(
-        &[done[0].clone(), abandoned.clone()],
+        &[done[0].clone(), abandoned.to_path_buf()],
         &abandoned,
         "not a finished shard: its run stopped before finishing",
     );
-    refused(&[done[0].clone(), running.clone()], &running, "not a finished shard: its run is under way");
+    refused(&[done[0].clone(), running.to_path_buf()], &running, "not a finished shard: its run is under way");
     drop(held);
     // The rerun's check: shard 0's folder holds shard 0 of this sweep and
     // version; not shard 1's, nor another sweep's, nor an edited one.
@@ -148,13 +155,10 @@ fn status_tells_every_shards_state_and_merge_refuses_the_unfinished() {
     assert!(!study::already_complete(&done[0], &m(1, &spec), &limits));
     assert!(!study::already_complete(&done[0], &m(0, &tiny("other")), &limits));
     assert!(!study::already_complete(&corrupt, &m(1, &spec), &limits));
-    for d in done.into_iter().chain([abandoned, running, corrupt]) {
-        let _ = std::fs::remove_dir_all(d);
-    }
 }
 
 /// Copy a finished folder's files into a new folder `tag`.
-fn copy(from: &Path, tag: &str) -> PathBuf {
+fn copy(from: &Path, tag: &str) -> Scratch {
     let d = dir(tag);
     for e in std::fs::read_dir(from).expect("folder") {
         let e = e.expect("entry");
@@ -170,10 +174,12 @@ fn copy(from: &Path, tag: &str) -> PathBuf {
 fn status_and_merge_refuse_the_same_sets() {
     let spec = tiny("cccc");
     let limits = Limits::DEFAULT;
-    let s: Vec<PathBuf> = (0..3).map(|i| shard(&spec, "same", i, 3)).collect();
+    let shards: Vec<Scratch> = (0..3).map(|i| shard(&spec, "same", i, 3)).collect();
+    let s: Vec<PathBuf> = shards.iter().map(|d| d.to_path_buf()).collect();
     let whole = shard(&spec, "same-whole", 0, 1);
     let foreign = shard(&tiny("dddd"), "same-foreign", 1, 3);
-    let link = dir("same-link").join("s1");
+    let links = dir("same-link");
+    let link = links.join("s1");
     std::os::unix::fs::symlink(&s[1], &link).expect("link");
     let versioned = copy(&s[2], "same-version");
     let record = versioned.join("manifest.json");
@@ -198,22 +204,22 @@ fn status_and_merge_refuse_the_same_sets() {
     // a whole run beside shards, a record whose two versions differ.
     both(&[s[0].clone(), s[0].clone(), s[1].clone(), s[2].clone()], "given again");
     both(&all(&link), "given again");
-    both(&all(&foreign), "another sweep");
-    both(&all(&whole), "never merged together");
-    both(&[s[0].clone(), s[1].clone(), versioned.clone()], "version 0.0.0");
+    both(&all(&foreign.to_path_buf()), "another sweep");
+    both(&all(&whole.to_path_buf()), "never merged together");
+    both(&[s[0].clone(), s[1].clone(), versioned.to_path_buf()], "version 0.0.0");
     // Ours: the same folder by its results file and through `..`; a
     // whole run first, then shards; a shard of a run split another way
     // after a missing one; a file that is not a results file; nothing.
     both(&[s[0].clone(), s[1].join("results.jsonl"), s[1].clone(), s[2].clone()], "given again");
     let dotted = s[2].join("..").join(s[2].file_name().expect("named"));
     both(&[s[0].clone(), s[1].clone(), s[2].clone(), dotted], "given again");
-    both(&[whole.clone(), s[0].clone()], "never merged together");
-    both(&[s[0].clone(), shard(&spec, "same-four", 1, 4)], "4-ways");
+    both(&[whole.to_path_buf(), s[0].clone()], "never merged together");
+    both(&[s[0].clone(), shard(&spec, "same-four", 1, 4).to_path_buf()], "4-ways");
     both(&[s[0].clone(), s[1].join("manifest.json"), s[2].clone()], "is a file, not a study's folder");
     both(&[s[0].clone(), s[1].join("nothing"), s[2].clone()], "does not exist");
     both(&[], "no shard to merge");
     // And the good sets are ready, and merge.
-    for good in [vec![s[2].clone(), link.clone(), s[0].join("results.jsonl")], vec![whole.clone()]] {
+    for good in [vec![s[2].clone(), link.clone(), s[0].join("results.jsonl")], vec![whole.to_path_buf()]] {
         let st = study::status(&good, &limits);
         assert!(st.ready() && st.markdown().contains(": ready to merge."), "{}", st.markdown());
         let out = dir("same-merged");
@@ -230,9 +236,12 @@ fn status_is_ready_exactly_when_merge_succeeds() {
     use crate::output::folder::{Claim, OutputFolder, RunKind};
     let spec = tiny("eeee");
     let limits = Limits::DEFAULT;
-    let s: Vec<PathBuf> = (0..3).map(|i| shard(&spec, "prop", i, 3)).collect();
+    let shards: Vec<Scratch> = (0..3).map(|i| shard(&spec, "prop", i, 3)).collect();
+    let s: Vec<PathBuf> = shards.iter().map(|d| d.to_path_buf()).collect();
     let whole = shard(&spec, "prop-whole", 0, 1);
-    let link = dir("prop-link").join("s1");
+    let (foreign, two) = (shard(&tiny("ffff"), "prop-foreign", 2, 3), shard(&spec, "prop-two", 1, 2));
+    let links = dir("prop-link");
+    let link = links.join("s1");
     std::os::unix::fs::symlink(&s[1], &link).expect("link");
     let abandoned = dir("prop-abandoned");
     let mut killed = OutputFolder::create(&abandoned, Claim::new(RunKind::Study)).expect("opened");
@@ -248,11 +257,11 @@ fn status_is_ready_exactly_when_merge_succeeds() {
         (s[2].clone(), Some("s2")),
         (link, Some("s1")),
         (s[2].join("results.jsonl"), Some("s2")),
-        (whole, Some("whole")),
-        (shard(&tiny("ffff"), "prop-foreign", 2, 3), None),
-        (shard(&spec, "prop-two", 1, 2), None),
-        (abandoned, None),
-        (edited, None),
+        (whole.to_path_buf(), Some("whole")),
+        (foreign.to_path_buf(), None),
+        (two.to_path_buf(), None),
+        (abandoned.to_path_buf(), None),
+        (edited.to_path_buf(), None),
         (s[0].join("absent"), None),
     ];
     let ready_by_rule = |names: &[Option<&str>]| {
@@ -309,7 +318,7 @@ fn status_is_ready_exactly_when_merge_succeeds() {
 fn a_folder_of_any_name_keeps_the_status_table_whole() {
     let spec = tiny("gggg");
     let odd = shard(&spec, "odd|name\nwith | bars", 0, 1);
-    let s = study::status(&[odd.clone(), odd.clone()], &Limits::DEFAULT);
+    let s = study::status(&[odd.to_path_buf(), odd.to_path_buf()], &Limits::DEFAULT);
     let md = s.markdown();
     let table: Vec<&str> = md.lines().take_while(|l| l.starts_with('|')).collect();
     assert_eq!(table.len(), 4, "a heading, a rule and two rows: {md}");

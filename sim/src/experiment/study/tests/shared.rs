@@ -3,7 +3,7 @@
 //! format, map side and filter, on every bundled architecture, and a whole
 //! study's files either way.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use crate::Algorithm;
 use crate::base::maps::with_format;
@@ -101,12 +101,9 @@ fn a_shared_render_is_its_own_render() {
     assert_eq!(compared, 11 * 3 * 3 * 5);
 }
 
-/// A folder of this test process for `name`, emptied.
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("umbra-shared-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).expect("temp dir");
-    d
+/// A scratch folder of this test process for `name`, removed when dropped.
+fn dir(name: &str) -> super::scratch::Scratch {
+    super::scratch_dir("umbra-shared", name)
 }
 
 /// Every file of `d` but the manifest (which names the command), by name.
@@ -151,8 +148,5 @@ fn a_shared_study_writes_the_unshared_files() {
     assert_eq!(x.iter().map(|f| &f.0).collect::<Vec<_>>(), y.iter().map(|f| &f.0).collect::<Vec<_>>());
     for (f, g) in x.iter().zip(&y) {
         assert!(f.1 == g.1, "{} differs", f.0);
-    }
-    for d in [a, b] {
-        let _ = std::fs::remove_dir_all(d);
     }
 }

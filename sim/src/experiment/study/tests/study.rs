@@ -4,7 +4,7 @@
 //! band, slivers, coincident surfaces) finite, without a panic, and
 //! degrading monotonically with the near/far ratio.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use crate::Algorithm;
 use crate::cost::arch::Arch;
@@ -15,12 +15,9 @@ use crate::input::limits::Limits;
 use crate::world::scene::Scene;
 use umbra_core::DepthFormatKind;
 
-/// A folder of this test process for `name`, emptied.
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("umbra-study-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).expect("temp dir");
-    d
+/// A scratch folder of this test process for `name`, removed when dropped.
+fn dir(name: &str) -> super::scratch::Scratch {
+    super::scratch_dir("umbra-study", name)
 }
 
 /// A small sweep with every preset: two scenes, two algorithms, two
@@ -121,9 +118,6 @@ fn same_bytes_on_one_and_two_threads() {
     for (x, y) in fa.iter().zip(&fb) {
         assert!(x == y, "{} differs between 1 and 2 threads", x.0);
     }
-    for d in [a, b] {
-        let _ = std::fs::remove_dir_all(d);
-    }
 }
 
 /// The files of a folder but its manifest (which records the command
@@ -133,7 +127,7 @@ fn outputs(d: &Path) -> Vec<(String, Vec<u8>)> {
 }
 
 /// Three shards of `spec`, each in its folder with its manifest.
-pub(crate) fn shards(spec: &Spec, tag: &str) -> Vec<PathBuf> {
+pub(crate) fn shards(spec: &Spec, tag: &str) -> Vec<super::scratch::Scratch> {
     (0..3)
         .map(|i| {
             let d = dir(&format!("{tag}-shard-{i}"));
@@ -165,7 +159,7 @@ fn shards_merge_into_the_whole_run() {
     study::write_run(&full, &rows, &whole(&spec, &rows)).expect("write");
     let shards = shards(&spec, "merge");
     let merged = dir("merged");
-    let inputs = vec![shards[2].join("results.jsonl"), shards[0].clone(), shards[1].join("results.jsonl")];
+    let inputs = vec![shards[2].join("results.jsonl"), shards[0].to_path_buf(), shards[1].join("results.jsonl")];
     let n = study::merge(&inputs, &merged, &Limits::DEFAULT).expect("merge");
     assert_eq!(n, spec.configs().len() * Arch::era_presets().len());
     assert_eq!(outputs(&full), outputs(&merged));
@@ -174,9 +168,6 @@ fn shards_merge_into_the_whole_run() {
     assert_eq!((m.shard.as_str(), m.rows), ("0/1", n));
     for bad in ["3/3", "1", "a/2", "0/0"] {
         assert!(Shard::parse(bad).is_err(), "{bad}");
-    }
-    for d in shards.into_iter().chain([full, merged]) {
-        let _ = std::fs::remove_dir_all(d);
     }
 }
 
@@ -349,9 +340,6 @@ fn configurations_that_render_alike_write_the_unshared_files() {
     study::write_run(&a, &shared, &whole(&spec, &shared)).expect("write");
     study::write_run(&b, &unshared, &whole(&spec, &unshared)).expect("write");
     assert_eq!(outputs(&a), outputs(&b));
-    for d in [a, b] {
-        let _ = std::fs::remove_dir_all(d);
-    }
 }
 
 /// Shards partition any sweep, keep its blocks whole while there are no
