@@ -11,7 +11,7 @@ mod config;
 mod costed;
 pub mod files;
 #[cfg(test)]
-mod ledger;
+mod ledger_property;
 pub mod params;
 pub mod pictures;
 mod produced;

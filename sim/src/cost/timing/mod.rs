@@ -17,7 +17,8 @@ mod tally;
 use crate::cost::arch::{Arch, CacheParams};
 use crate::cost::cache::{Cache, MapCache};
 use crate::cost::dram::{Dram, Purpose, Requested};
-use crate::cost::work::{Accesses, EnergySplit, PassTiming, Work};
+use crate::cost::ledger::PassTiming;
+use crate::cost::work::{Accesses, EnergySplit, Work};
 use crate::cost::work::{Bottleneck, MemoryLimit, Stage};
 use serde::Serialize;
 use shading::ShadeCounts;
@@ -311,7 +312,6 @@ impl<const D: bool> ArchProbe<D> {
             let m = w.memory(a);
             t.memory = t.memory.plus(&m);
             by_limit[m.limit() as usize] += m.cycles();
-            t.dram = t.dram.plus(&w.dram);
             s
         };
         let mut tile_memory = 0.0;
@@ -368,6 +368,7 @@ impl<const D: bool> ArchProbe<D> {
         let overhead = if self.events.submitted > 0 { a.front.pass_overhead_cycles * waits as f64 } else { 0.0 };
         t.overhead = overhead;
         t.clock = a.clock;
+        t.dram = self.dram();
         t.map_cache = self.map_cache.as_ref().filter(|_| self.lookups).map(|m| m.cache.stats());
         t.depth_cache = self.depth_cache.as_ref().map(|c| c.stats().times(self.passes));
         t.energy = self.energy(t.bytes());

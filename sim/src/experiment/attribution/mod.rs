@@ -18,9 +18,9 @@
 //! size whose sets need the other file's ways too) are one player: they
 //! share one row.
 
-use crate::output::table::{Align, Table};
+mod markdown;
+
 use std::collections::BTreeMap;
-use std::fmt::Write as _;
 
 use serde::Serialize;
 
@@ -54,8 +54,10 @@ pub struct Delta {
     pub bytes_by_purpose: Vec<(&'static str, f64)>,
 }
 
-/// A coalition's cost, as the shares weigh it: time, energy, bytes by
-/// purpose (integers, so that their weighted sums are exact).
+/// A coalition's cost, or a weighted sum of differences of them, as the
+/// shares weigh it: reals for time and energy, integers for bytes by
+/// purpose (numerators over a common denominator, so that the shares'
+/// bytes are exact).
 #[derive(Clone, Copy, Debug, Default)]
 struct Value {
     seconds: f64,
@@ -68,18 +70,7 @@ impl Value {
         let d = r.dram();
         Self { seconds: r.seconds(), joules: r.energy().total(), bytes: Purpose::ALL.map(|p| i128::from(d.get(p))) }
     }
-}
 
-/// A weighted sum of coalition values' differences: reals for time and
-/// energy, integer numerators over a common denominator for bytes.
-#[derive(Clone, Copy, Debug, Default)]
-struct Sum {
-    seconds: f64,
-    joules: f64,
-    bytes: [i128; 12],
-}
-
-impl Sum {
     /// Add `w × (x − y)`, `w` the term's weight and `r` its real share.
     fn add(&mut self, (w, r): (i128, f64), x: &Value, y: &Value) {
         self.seconds += r * (x.seconds - y.seconds);
@@ -173,10 +164,11 @@ pub struct Attribution {
     pub method: Method,
 }
 
-/// `a` with `keys` taken from `b`, checked once they all are.
-fn coalition(a: &Arch, b: &Arch, keys: &[&'static str]) -> Result<Arch, String> {
+/// `a` with `keys` taken from `b`, checked once they all are; `None`
+/// when they make no machine.
+fn coalition(a: &Arch, b: &Arch, keys: &[&'static str]) -> Option<Arch> {
     let mut arch = a.clone();
-    arch.take(keys, b).map(|()| arch).map_err(|(k, e)| format!("{k}: {e}"))
+    arch.take(keys, b).ok().map(|()| arch)
 }
 
 /// The keys of the players in `mask`.
@@ -269,7 +261,7 @@ pub fn attribute(job: &Checked<'_>, a: &Arch, b: &Arch) -> Result<Attribution, R
     let mut players: Vec<Vec<&'static str>> = differing.iter().map(|&k| vec![k]).collect();
     // Keys that cannot change without one another play as one: merge the
     // players of the first coalition that is no machine, until none is.
-    let archs = loop {
+    let (archs, order) = loop {
         let n = players.len();
         let order = orders(n);
         let wanted = masks(n, order.as_deref());
@@ -277,16 +269,16 @@ pub fn attribute(job: &Checked<'_>, a: &Arch, b: &Arch) -> Result<Attribution, R
         let mut invalid = None;
         for &m in &wanted {
             match coalition(a, b, &keys_of(&players, m)) {
-                Ok(arch) => {
+                Some(arch) => {
                     archs.insert(m, arch);
                 }
-                Err(_) => {
+                None => {
                     invalid = Some(m);
                     break;
                 }
             }
         }
-        let Some(m) = invalid else { break archs };
+        let Some(m) = invalid else { break (archs, order) };
         let (mut joined, mut rest) = (Vec::new(), Vec::new());
         for (i, p) in players.into_iter().enumerate() {
             if m >> i & 1 == 1 { joined.extend(p) } else { rest.push(p) }
@@ -296,10 +288,9 @@ pub fn attribute(job: &Checked<'_>, a: &Arch, b: &Arch) -> Result<Attribution, R
     };
     let values = cost_all(job, &archs)?;
     let n = players.len();
-    let order = orders(n);
     let v = |m: u64| values.get(&m).copied().unwrap_or_default();
     let full = (1u64 << n) - 1;
-    let mut sums = vec![Sum::default(); n];
+    let mut sums = vec![Value::default(); n];
     let mut squares = vec![0.0f64; n];
     let denominator: i128 = match &order {
         None => {
@@ -332,7 +323,7 @@ pub fn attribute(job: &Checked<'_>, a: &Arch, b: &Arch) -> Result<Attribution, R
         }
     };
     let total = {
-        let mut t = Sum::default();
+        let mut t = Value::default();
         t.add((1, 1.0), &v(full), &v(0));
         t.delta(1)
     };
@@ -340,7 +331,7 @@ pub fn attribute(job: &Checked<'_>, a: &Arch, b: &Arch) -> Result<Attribution, R
         .iter()
         .enumerate()
         .map(|(i, keys)| {
-            let (mut alone, mut last) = (Sum::default(), Sum::default());
+            let (mut alone, mut last) = (Value::default(), Value::default());
             alone.add((1, 1.0), &v(1 << i), &v(0));
             last.add((1, 1.0), &v(full), &v(full ^ 1 << i));
             let share = sums[i].delta(denominator);
@@ -394,12 +385,6 @@ fn cost_all(job: &Checked<'_>, archs: &BTreeMap<u64, Arch>) -> Result<BTreeMap<u
     Ok(values)
 }
 
-/// Bytes with their sign, as few digits as they need (a share of two
-/// keys is a whole or half byte); no sign for none.
-fn signed(bytes: f64) -> String {
-    if bytes == 0.0 { "0".to_owned() } else { format!("{bytes:+}") }
-}
-
 impl Delta {
     /// The same difference, the other way.
     fn negated(&self) -> Self {
@@ -437,74 +422,5 @@ impl Attribution {
             shares,
             method: self.method,
         }
-    }
-
-    /// The attribution as a Markdown table: a row per player (ranked) and
-    /// the total; time in µs and percent of `a`'s, energy in µJ, DRAM bytes
-    /// in all and by every purpose that changes.
-    #[must_use]
-    pub fn markdown(&self) -> String {
-        let mut s = String::new();
-        let purposes: Vec<(usize, &'static str)> = self
-            .total
-            .bytes_by_purpose
-            .iter()
-            .enumerate()
-            .filter(|(k, _)| {
-                self.shares.iter().map(|x| &x.share).chain([&self.total]).any(|d| d.bytes_by_purpose[*k].1 != 0.0)
-            })
-            .map(|(k, &(n, _))| (k, n))
-            .collect();
-        let how = match self.method {
-            Method::Exact { players, coalitions } => format!(
-                "each key's Shapley share, its effect averaged over every order of changing the {players} key(s) ({coalitions} costings)"
-            ),
-            Method::Sampled { players, permutations, coalitions } => format!(
-                "each key's Shapley share, its effect averaged over {permutations} random orders of changing the {players} keys ({coalitions} costings; ± one standard error)"
-            ),
-        };
-        let _ = writeln!(
-            s,
-            "From `{}` ({:.3} ms) to `{}` ({:.3} ms) on {}, {how}:\n",
-            self.a,
-            self.a_seconds * 1e3,
-            self.b,
-            self.b_seconds * 1e3,
-            self.config
-        );
-        let mut columns = vec![
-            ("change".to_owned(), Align::Left),
-            ("time (µs)".to_owned(), Align::Right),
-            ("time".to_owned(), Align::Right),
-            ("alone (µs)".to_owned(), Align::Right),
-            ("energy (µJ)".to_owned(), Align::Right),
-            ("DRAM bytes".to_owned(), Align::Right),
-        ];
-        columns.extend(purposes.iter().map(|(_, n)| (format!("{n} bytes"), Align::Right)));
-        let mut t = Table::new(&columns);
-        let cells = |what: String, d: &Delta, alone: Option<&Delta>, error: Option<f64>| {
-            let time = match error {
-                Some(e) => format!("{:+.3} ± {:.3}", d.seconds * 1e6, e * 1e6),
-                None => format!("{:+.3}", d.seconds * 1e6),
-            };
-            let mut cells = vec![
-                what,
-                time,
-                format!("{:+.1} %", 100.0 * d.seconds / self.a_seconds.max(f64::MIN_POSITIVE)),
-                alone.map_or_else(String::new, |a| format!("{:+.3}", a.seconds * 1e6)),
-                format!("{:+.3}", d.joules * 1e6),
-                signed(d.bytes),
-            ];
-            cells.extend(purposes.iter().map(|&(k, _)| signed(d.bytes_by_purpose[k].1)));
-            cells
-        };
-        for share in &self.shares {
-            let what: Vec<String> =
-                share.keys.iter().map(|k| format!("`{}` {} → {}", k.key, k.values.0, k.values.1)).collect();
-            t.row(cells(what.join(" with "), &share.share, Some(&share.alone), share.standard_error_seconds));
-        }
-        t.row(cells("**all of them**".to_owned(), &self.total, None, None));
-        s.push_str(&t.markdown());
-        s
     }
 }

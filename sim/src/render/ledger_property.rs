@@ -173,3 +173,21 @@ fn every_ledger_adds_up_and_volumes_pay_the_lit_pass() {
         }
     }
 }
+
+/// The row's byte columns are the purposes, each named and explained as
+/// the ledger declares it, in its order: a purpose added to the ledger
+/// without its column (or a column out of step) fails here.
+#[test]
+fn the_rows_byte_columns_are_the_ledgers_purposes() {
+    let columns: Vec<(&str, &str)> = RowCost::COLUMNS
+        .iter()
+        .filter(|c| c.0.starts_with("dram_") && c.0.ends_with("_bytes"))
+        .map(|c| (c.0, c.3))
+        .collect();
+    let purposes: Vec<(String, &str)> =
+        Purpose::ALL.iter().map(|p| (format!("dram_{}_bytes", p.name()), p.meaning())).collect();
+    assert_eq!(columns.len(), purposes.len(), "{columns:?}");
+    for ((name, meaning), (want, doc)) in columns.iter().zip(&purposes) {
+        assert_eq!((*name, *meaning), (want.as_str(), *doc));
+    }
+}
