@@ -7,6 +7,7 @@ use clap::Subcommand;
 use umbra_sim::Arch;
 use umbra_sim::cost::arch::PARAMS;
 use umbra_sim::cost::arch::derived::diff;
+use umbra_sim::cost::silicon::Silicon;
 use umbra_sim::experiment::attribution::attribute;
 use umbra_sim::input::limits::Limits;
 use umbra_sim::output::table::{Align, Table};
@@ -20,7 +21,8 @@ use crate::say::say;
 pub(super) enum ArchCommand {
     /// Every key with its value and unit, then the derived figures (peak
     /// rates, achievable DRAM bandwidth and its latency ceiling, cache
-    /// geometry, on-chip bytes a tile needs).
+    /// geometry, on-chip bytes a tile needs), then each unit's silicon
+    /// area at its technology for the default render.
     Show(OneArchArgs),
     /// Every key that has no effect, each named with why: the derived
     /// ceilings that cap another key, and the keys no unit of this machine
@@ -66,7 +68,15 @@ pub(super) fn arch(command: &ArchCommand, limits: &Limits) -> Result<()> {
                 derived.row([f.name.to_owned(), f.text(), f.how.to_owned()]);
             }
             let title = umbra_sim::output::markdown::escape(&format!("# `{}`: {}", a.name, a.description));
-            say!("{title}\n\n{}\n{}", keys.markdown(), derived.markdown().trim_end());
+            let render = RenderConfig::DEFAULT;
+            let silicon = Silicon::of(&a, &render.demand());
+            say!(
+                "{title}\n\n{}\n{}\n\nThe units of the default render ({}):\n{}",
+                keys.markdown(),
+                derived.markdown().trim_end(),
+                render.describe(),
+                silicon.markdown().trim_end()
+            );
             Ok(())
         }
         ArchCommand::Check(which) => {

@@ -389,24 +389,34 @@ pub struct EnergySplit {
     pub raster: f64,
     /// The shadow unit.
     pub shadow: f64,
+    /// Static: the units' leakage over the time
+    /// ([`crate::cost::silicon::Silicon::leakage_watts`]).
+    pub leakage: f64,
 }
 
 impl EnergySplit {
-    /// The sum over units.
+    /// The sum over units, dynamic and static.
     #[must_use]
     pub fn total(&self) -> f64 {
+        self.dynamic() + self.leakage
+    }
+
+    /// The dynamic energy: every access's.
+    #[must_use]
+    pub fn dynamic(&self) -> f64 {
         self.dram + self.buffers + self.caches + self.raster + self.shadow
     }
 
     /// Every unit's energy with its name.
     #[must_use]
-    pub(crate) const fn fields(&self) -> [(&'static str, f64); 5] {
+    pub(crate) const fn fields(&self) -> [(&'static str, f64); 6] {
         [
             ("dram", self.dram),
             ("buffers", self.buffers),
             ("caches", self.caches),
             ("raster", self.raster),
             ("shadow", self.shadow),
+            ("leakage", self.leakage),
         ]
     }
 
@@ -419,6 +429,7 @@ impl EnergySplit {
             caches: self.caches + o.caches,
             raster: self.raster + o.raster,
             shadow: self.shadow + o.shadow,
+            leakage: self.leakage + o.leakage,
         }
     }
 }

@@ -29,8 +29,9 @@ pub struct Format {
 /// Architecture files. Version 2 added `front.frame_overhead_cycles`,
 /// `depth.program_cycles`, `depth.peel_cycles`, `depth.combine_cycles`,
 /// `shadow.cycles_per_sample`, `shadow.cycles_per_weights` and
-/// `shade.per_fragment`.
-pub const ARCH: Format = Format { kind: "architecture", current: 2 };
+/// `shade.per_fragment`; version 3 the `[technology]` table (node, SRAM
+/// bit cell, array efficiency, gate, leakage).
+pub const ARCH: Format = Format { kind: "architecture", current: 3 };
 /// Scene files: one version so far.
 pub const SCENE: Format = Format { kind: "scene", current: 1 };
 /// Sweep files. Version 2 takes an architecture axis's values as numbers

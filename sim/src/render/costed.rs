@@ -16,6 +16,7 @@ use crate::base::maps::{Tiling, with_format};
 use crate::base::probes::Fan;
 use crate::cost::arch::Arch;
 use crate::cost::report::CostReport;
+use crate::cost::silicon::{Demand, Silicon};
 use crate::cost::timing::{ArchProbe, PassKind};
 use crate::input::limits::Limits;
 use crate::pass::algorithm::{MapKind, Units};
@@ -54,6 +55,47 @@ const fn lookup_samples(cfg: &RenderConfig) -> (u64, bool) {
         (_, Filter::Bilinear) => (4, true),
         (_, Filter::Box { size }) => (size as u64 * size as u64, false),
         (_, Filter::Jittered(j)) => (j.num_samples as u64, false),
+    }
+}
+
+impl RenderConfig {
+    /// What this configuration asks of the hardware, as silicon is
+    /// counted ([`crate::cost::silicon`]).
+    ///
+    /// ```
+    /// use umbra_sim::RenderConfig;
+    /// let d = RenderConfig::DEFAULT.demand();
+    /// assert_eq!((d.depth_buffers, d.depth_bits), (2, 24));
+    /// ```
+    #[must_use]
+    pub fn demand(&self) -> Demand {
+        demand(self)
+    }
+}
+
+/// What `cfg` asks of the hardware, as silicon is counted.
+fn demand(cfg: &RenderConfig) -> Demand {
+    let units = cfg.algorithm.units::<umbra_core::D24>(cfg.bias);
+    let (samples, bilinear) = lookup_samples(cfg);
+    let two = matches!(cfg.algorithm, Algorithm::Midpoint | Algorithm::Dual { .. });
+    let silhouette_bits = match units.map {
+        MapKind::Silhouette { packed: true } => 8 * Packed::BYTES,
+        MapKind::Silhouette { packed: false } => 8 * SilPoint::BYTES,
+        MapKind::Depth | MapKind::Volumes => 0,
+    };
+    Demand {
+        depth_buffers: units.unit.buffers(),
+        depth_bits: cfg.format.bits(),
+        map: [cfg.map_size, cfg.map_size],
+        image: [cfg.width, cfg.height],
+        buffers_read: if two { 2 } else { 1 },
+        samples_per_lookup: u32::try_from(samples).unwrap_or(u32::MAX),
+        bilinear,
+        offset: two,
+        bias_range: matches!(cfg.algorithm, Algorithm::BiasRange { .. }),
+        virtual_samples: units.virtual_samples(cfg.virtual_samples),
+        silhouette_bits,
+        volumes: units.map == MapKind::Volumes,
     }
 }
 
@@ -129,7 +171,9 @@ pub(super) fn report<const L: bool, const C: bool>(
 ) -> CostReport {
     lights.iter_mut().for_each(ArchProbe::finish);
     camera.finish();
-    let mut r = CostReport::new((scene, config.to_owned()), &lights, &camera, lookup_samples(cfg).0);
+    let silicon = Silicon::of(&camera.arch, &demand(cfg));
+    let mut r =
+        CostReport::new((scene, config.to_owned()), &lights, &camera, lookup_samples(cfg).0).with_silicon(silicon);
     r.sen.triangles = counts.triangles;
     r.sen.silhouette_edges = counts.silhouette_edges;
     r

@@ -123,7 +123,7 @@ impl Arch {
             let value = match (lookup(&table, p.key), &p.default) {
                 (Some(v), _) => from_toml(p.unit, v),
                 // A key added since the file's format: the earlier behaviour.
-                (None, Some(default)) if format < ARCH.current => Ok(default.clone()),
+                (None, Some(default)) if format < p.since => Ok(default.clone()),
                 (None, _) => Err(Problem::Missing),
             };
             if let Err(problem) = value.and_then(|v| p.assign(&mut arch, v)) {
@@ -153,7 +153,7 @@ impl Arch {
     /// let old = Arch::bundled("talisman")?.to_toml().replace("depth.peel_cycles = 0", "");
     /// let old = old.lines().filter(|l| !l.starts_with("format")).collect::<Vec<_>>().join("\n");
     /// let new = Arch::upgrade(&old, "old.toml")?;
-    /// assert!(new.starts_with("format = 2\n"));
+    /// assert!(new.starts_with("format = 3\n"));
     /// assert!(new.contains("peel_cycles = 0  # second light pass"));
     /// assert_eq!(Arch::parse(&new, "new.toml")?, Arch::parse(&old, "old.toml")?);
     /// assert_eq!(Arch::upgrade(&new, "new.toml")?, new);
@@ -180,7 +180,8 @@ impl Arch {
                     "-" => String::new(),
                     u => format!(" ({u})"),
                 };
-                let comment = format!("{}{unit}; added in format 2, this value keeps the earlier behaviour", p.doc);
+                let comment =
+                    format!("{}{unit}; added in format {}, this value keeps the earlier behaviour", p.doc, p.since);
                 Some(Added { key: p.key, value, comment })
             })
             .collect();

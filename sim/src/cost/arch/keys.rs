@@ -89,6 +89,10 @@ pub enum Unit {
     Time,
     /// Joules: `J`, `mJ`, `uJ`, `nJ`, `pJ`, `fJ`.
     Joules,
+    /// Square metres: `mm2`, `um2` (or `mm²`, `µm²`).
+    Area,
+    /// Watts per square metre: `W/mm2`, `mW/mm2`, `uW/mm2`.
+    PowerDensity,
 }
 
 impl Unit {
@@ -104,6 +108,8 @@ impl Unit {
             Self::Frequency => "hertz",
             Self::Time => "seconds",
             Self::Joules => "joules",
+            Self::Area => "square_metres",
+            Self::PowerDensity => "watts_per_square_metre",
         }
     }
 
@@ -118,6 +124,8 @@ impl Unit {
             Self::Frequency => "Hz",
             Self::Time => "s",
             Self::Joules => "J",
+            Self::Area => "m²",
+            Self::PowerDensity => "W/m²",
         }
     }
 }
@@ -175,6 +183,9 @@ pub struct Param {
     /// The value a file that lacks the key gets: the behaviour of the
     /// releases before the key existed (none: every file must give it).
     pub default: Option<Value>,
+    /// The file format the key was added in (1: the first): a file of an
+    /// earlier format that lacks it gets [`Param::default`].
+    pub since: u32,
     pub(super) get: fn(&Arch) -> Value,
     pub(super) set: fn(&mut Arch, Value) -> Result<(), Problem>,
 }
@@ -306,10 +317,11 @@ impl Param {
 }
 
 /// Declares [`PARAMS`] from one list: key, unit, field path, range (for
-/// numbers), the default of a key added after the first release (the
-/// value that keeps the earlier behaviour), meaning.
+/// numbers), for a key added after the first release the format it came
+/// in and its default (the value that keeps the earlier behaviour),
+/// meaning.
 macro_rules! params {
-    ($($key:literal, $unit:ident, $($field:ident).+, $([$min:expr, $max:expr],)? $(default $default:expr,)? $doc:literal;)+) => {
+    ($($key:literal, $unit:ident, $($field:ident).+, $([$min:expr, $max:expr],)? $(since $since:literal default $default:expr,)? $doc:literal;)+) => {
         /// Every key of an architecture file, in file order.
         pub const PARAMS: &[Param] = &[$(Param {
             key: $key,
@@ -317,6 +329,7 @@ macro_rules! params {
             doc: $doc,
             range: params!(@range $([$min, $max])?),
             default: params!(@default $($default)?),
+            since: params!(@since $($since)?),
             get: |a: &Arch| Field::get(&a.$($field).+),
             set: |a: &mut Arch, v: Value| Field::set(&mut a.$($field).+, v),
         }),+];
@@ -325,6 +338,8 @@ macro_rules! params {
     (@range) => { None };
     (@default $default:expr) => { Some($default) };
     (@default) => { None };
+    (@since $since:literal) => { $since };
+    (@since) => { 1 };
 }
 
 /// Largest cycle count of one unit event (setup, tile, division), cycles.
@@ -343,16 +358,16 @@ params! {
     "front.setup_cycles", Number, front.setup_cycles, [0.0, CYCLES], "cycles per triangle set up";
     "front.overlap", Flag, front.overlap, "setup and binning overlap the tiles";
     "front.pass_overhead_cycles", Number, front.pass_overhead_cycles, [0.0, 1e9], "fixed cycles per pass waiting for the host";
-    "front.frame_overhead_cycles", Number, front.frame_overhead_cycles, [0.0, 1e10], default Value::Number(0.0), "fixed cycles per frame in the host and driver";
+    "front.frame_overhead_cycles", Number, front.frame_overhead_cycles, [0.0, 1e10], since 2 default Value::Number(0.0), "fixed cycles per frame in the host and driver";
     "raster.tile", Count, raster.tile, [8.0, 128.0], "tile (chunk, region) side in pixels";
     "raster.fragments_per_clock", Number, raster.fragments_per_clock, [0.0, RATE], "fragments scan-converted per clock (0: evaluator)";
     "raster.cycles_per_tile", Number, raster.cycles_per_tile, [0.0, CYCLES], "evaluator cycles per triangle per tile touched";
     "depth.fragments_per_clock", Number, depth.fragments_per_clock, [0.0, RATE], "fragments depth-tested per clock per buffer (0: bit-serial)";
     "depth.cycles_per_bit", Number, depth.cycles_per_bit, [0.0, CYCLES], "bit-serial cycles per depth bit per buffer per triangle per tile";
     "depth.second_depth_pass", Flag, depth.second_depth_pass, "second depth by a second light pass and a combining pass";
-    "depth.program_cycles", Number, depth.program_cycles, [0.0, CYCLES], default Value::Number(0.0), "map-writing fragment program cycles per light fragment passing depth (0: fixed function)";
-    "depth.peel_cycles", Number, depth.peel_cycles, [0.0, CYCLES], default Value::Number(0.0), "second light pass's further program cycles per fragment passing depth";
-    "depth.combine_cycles", Number, depth.combine_cycles, [0.0, CYCLES], default Value::Number(0.0), "combining pass program cycles per texel";
+    "depth.program_cycles", Number, depth.program_cycles, [0.0, CYCLES], since 2 default Value::Number(0.0), "map-writing fragment program cycles per light fragment passing depth (0: fixed function)";
+    "depth.peel_cycles", Number, depth.peel_cycles, [0.0, CYCLES], since 2 default Value::Number(0.0), "second light pass's further program cycles per fragment passing depth";
+    "depth.combine_cycles", Number, depth.combine_cycles, [0.0, CYCLES], since 2 default Value::Number(0.0), "combining pass program cycles per texel";
     "on_chip.light_depth", Flag, on_chip.light_depth, "light-pass depth buffers on chip";
     "on_chip.camera_depth", Flag, on_chip.camera_depth, "camera visibility depth and ids on chip";
     "on_chip.stencil", Flag, on_chip.stencil, "stencil and volume-tested depth on chip";
@@ -363,11 +378,11 @@ params! {
     "shadow.divider_cycles", Number, shadow.divider_cycles, [0.0, CYCLES], "latency of one tangent-plane division";
     "shadow.dividers", Count, shadow.dividers, [1.0, PARALLEL], "dividers working in parallel";
     "shadow.cycles_per_lookup", Number, shadow.cycles_per_lookup, [0.0, CYCLES], "shadow-test cycles per pixel besides the samples";
-    "shadow.cycles_per_sample", Number, shadow.cycles_per_sample, [0.0, CYCLES], default Value::Number(0.0), "filter program cycles per sample besides its fetch";
-    "shadow.cycles_per_weights", Number, shadow.cycles_per_weights, [0.0, CYCLES], default Value::Number(0.0), "bilinear weights program cycles per lookup";
+    "shadow.cycles_per_sample", Number, shadow.cycles_per_sample, [0.0, CYCLES], since 2 default Value::Number(0.0), "filter program cycles per sample besides its fetch";
+    "shadow.cycles_per_weights", Number, shadow.cycles_per_weights, [0.0, CYCLES], since 2 default Value::Number(0.0), "bilinear weights program cycles per lookup";
     "shadow.in_shader", Flag, shadow.in_shader, "the shadow test runs in the shading program";
     "shade.cycles_per_pixel", Number, shade.cycles_per_pixel, [0.0, CYCLES], "shading cycles per pixel besides the shadow lookup";
-    "shade.per_fragment", Flag, shade.per_fragment, default Value::Flag(false), "shading runs per camera fragment passing depth, not per covered pixel";
+    "shade.per_fragment", Flag, shade.per_fragment, since 2 default Value::Flag(false), "shading runs per camera fragment passing depth, not per covered pixel";
     "dram.bandwidth", Bandwidth, dram.bandwidth, [1e6, 1e14], "DRAM bandwidth";
     "dram.latency", Time, dram.latency, [0.0, 1e-3], "DRAM latency, request to data";
     "dram.burst", Bytes, dram.burst, [1.0, RECORD], "bytes of one DRAM access";
@@ -384,7 +399,13 @@ params! {
     "energy.buffer_access", Joules, energy.buffer_access, [0.0, 1e-6], "energy per on-chip buffer access";
     "energy.cache_access", Joules, energy.cache_access, [0.0, 1e-6], "energy per cache access";
     "energy.fragment_op", Joules, energy.fragment_op, [0.0, 1e-6], "energy per fragment operation";
+    "technology.node", Text, technology.node, since 3 default Value::Text(String::new()), "process node the area and leakage figures are for (empty: no silicon modelled)";
+    "technology.sram_bit", Area, technology.sram_bit, [0.0, 1e-9], since 3 default Value::Number(0.0), "area of one SRAM bit cell";
+    "technology.array_efficiency", Number, technology.array_efficiency, [0.01, 1.0], since 3 default Value::Number(0.7), "bit cells' share of an SRAM array's area";
+    "technology.gate", Area, technology.gate, [0.0, 1e-9], since 3 default Value::Number(0.0), "area of one NAND2 gate equivalent of logic, placed and routed";
+    "technology.leakage", PowerDensity, technology.leakage, [0.0, 1e4], since 3 default Value::Number(0.0), "leakage power per area of the units";
 }
+
 
 impl Unit {
     /// What a value of this unit looks like, for errors.
@@ -399,6 +420,8 @@ impl Unit {
             Self::Frequency => "a frequency such as 800MHz",
             Self::Time => "a time such as 2ns",
             Self::Joules => "an energy such as 20pJ",
+            Self::Area => "an area such as 0.021um2 or 2mm2",
+            Self::PowerDensity => "a power per area such as 20mW/mm2",
         }
     }
 
@@ -431,8 +454,26 @@ impl Unit {
             Self::Frequency => &[("GHz", 1e9), ("MHz", 1e6), ("kHz", 1e3), ("Hz", 1.0)],
             Self::Time => &[("ns", 1e-9), ("us", 1e-6), ("µs", 1e-6), ("ms", 1e-3), ("ps", 1e-12), ("s", 1.0)],
             Self::Joules => &[("pJ", 1e-12), ("nJ", 1e-9), ("fJ", 1e-15), ("uJ", 1e-6), ("mJ", 1e-3), ("J", 1.0)],
+            Self::Area => &[("mm2", 1e-6), ("um2", 1e-12), ("mm²", 1e-6), ("µm²", 1e-12), ("m2", 1.0)],
+            // A longer suffix before the one it ends with.
+            Self::PowerDensity => &[
+                ("mW/mm2", 1e3),
+                ("uW/mm2", 1.0),
+                ("mW/mm²", 1e3),
+                ("µW/mm²", 1.0),
+                ("W/mm2", 1e6),
+                ("W/mm²", 1e6),
+                ("W/m2", 1.0),
+            ],
             Self::Text | Self::Flag | Self::Count | Self::Number => &[],
         }
+    }
+
+    /// The smallest scaled number a value is written with before a
+    /// smaller suffix is tried: areas read best in the unit of the
+    /// figure (`0.021um2`, `0.25mm2`).
+    fn smallest(self) -> f64 {
+        if self == Self::Area { 1e-3 } else { 1.0 }
     }
 
     /// Read `text` (a number and a suffix) in this unit, to its base: the
@@ -461,7 +502,7 @@ impl Unit {
         for &(s, scale) in self.suffixes() {
             let scaled = v / scale;
             let text = format!("{scaled}{s}");
-            if scaled.abs() >= 1.0 && self.parse(&text).is_ok_and(|back| back.to_bits() == v.to_bits()) {
+            if scaled.abs() >= self.smallest() && self.parse(&text).is_ok_and(|back| back.to_bits() == v.to_bits()) {
                 return text;
             }
         }
@@ -479,7 +520,10 @@ pub(super) fn from_toml(unit: Unit, v: &toml::Value) -> Result<Value, Problem> {
         (Unit::Count | Unit::Number, toml::Value::Integer(i)) => Ok(Value::Number(*i as f64)),
         (Unit::Number, toml::Value::Float(x)) => Ok(Value::Number(*x)),
         (Unit::Count, toml::Value::Float(x)) => Err(Problem::Range { value: *x, what: "a whole number" }),
-        (Unit::Bytes | Unit::Bandwidth | Unit::Frequency | Unit::Time | Unit::Joules, toml::Value::String(s)) => {
+        (
+            Unit::Bytes | Unit::Bandwidth | Unit::Frequency | Unit::Time | Unit::Joules | Unit::Area | Unit::PowerDensity,
+            toml::Value::String(s),
+        ) => {
             unit.parse(s).map(Value::Number)
         }
         _ => Err(Problem::Type(unit.expected())),

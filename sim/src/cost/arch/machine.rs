@@ -4,7 +4,7 @@
 
 use serde::Serialize;
 
-use super::units::{Bins, CacheParams, DepthRates, DramParams, Energy, Front, OnChip, Raster, Shade, ShadowRates};
+use super::units::{Bins, CacheParams, DepthRates, DramParams, Energy, Front, OnChip, Raster, Shade, ShadowRates, Technology};
 
 /// An architecture: every parameter of the machine a render is costed on.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
@@ -37,6 +37,8 @@ pub struct Arch {
     pub depth_cache: CacheParams,
     /// Energy per access.
     pub energy: Energy,
+    /// The process: area per bit and per gate, leakage per area.
+    pub technology: Technology,
     /// The parameters set from a measurement, each with the point of a
     /// correlation dataset it came from (`[calibration]`, key = point):
     /// that point then validates nothing.

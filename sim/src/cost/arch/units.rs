@@ -151,3 +151,24 @@ pub struct Energy {
     /// a sample compared).
     pub fragment_op: f64,
 }
+
+/// The process the units are built in: what a bit of storage, a gate of
+/// logic and a square millimetre's leakage cost there
+/// ([`crate::cost::silicon`]). An empty node with every figure 0 (a file
+/// written before format 3) models no silicon: no area and no static
+/// energy, as before.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Technology {
+    /// The process node the figures are for (`TSMC N5`); empty for none.
+    pub node: String,
+    /// Area of one high-density 6T SRAM bit cell, square metres.
+    pub sram_bit: f64,
+    /// The bit cells' share of an SRAM array's area (the rest is
+    /// decoders, sense amplifiers, drivers and assist circuits).
+    pub array_efficiency: f64,
+    /// Area of one NAND2 gate equivalent of logic, placed and routed,
+    /// square metres.
+    pub gate: f64,
+    /// Leakage power per square metre of the units, watts.
+    pub leakage: f64,
+}

@@ -6,6 +6,7 @@ use std::fmt::Write as _;
 
 use super::CostReport;
 use crate::cost::arch::derived::latency_ceiling;
+use crate::cost::silicon::{Kind, Silicon};
 use crate::cost::work::Bottleneck;
 use crate::output::table::{Align, Table};
 use crate::world::scene::Scene;
@@ -101,12 +102,17 @@ impl CostReport {
         let e = &self.energy();
         let _ = writeln!(
             s,
-            "Energy (µJ): DRAM {:.1}, on-chip buffers {:.1}, caches {:.1}, raster and depth {:.1}, shadow unit {:.1}.",
+            "Energy (µJ), {:.3} in all: dynamic {:.3} (DRAM {:.1}, on-chip buffers {:.1}, caches {:.1}, raster and depth {:.1}, shadow unit {:.1}); static {:.4} (the units' {:.3} mW of leakage over {:.3} ms).",
+            e.total() * 1e6,
+            e.dynamic() * 1e6,
             e.dram * 1e6,
             e.buffers * 1e6,
             e.caches * 1e6,
             e.raster * 1e6,
-            e.shadow * 1e6
+            e.shadow * 1e6,
+            e.leakage * 1e6,
+            self.silicon.leakage_watts() * 1e3,
+            self.seconds() * 1e3
         );
         let _ = writeln!(
             s,
@@ -178,6 +184,41 @@ impl CostReport {
                 n.map_bytes_per_pixel, n.model_map_bytes_per_pixel
             );
         }
+        s.push_str(&self.silicon.markdown());
+        s
+    }
+}
+
+impl Silicon {
+    /// The units' areas as Markdown: a line with the total and the
+    /// leakage, then a table of every unit; for an architecture with no
+    /// technology, a line saying so.
+    #[must_use]
+    pub fn markdown(&self) -> String {
+        if self.node.is_empty() {
+            return "\nSilicon: the architecture states no technology (its `[technology]` table, format 3), so no area or leakage is modelled; `umbra arch upgrade` writes the table to fill in.\n".to_owned();
+        }
+        let mut s = format!(
+            "\nSilicon at {}: {:.4} mm² for the units this render uses, leaking {:.3} mW.\n\n",
+            self.node,
+            self.square_metres() * 1e6,
+            self.leakage_watts() * 1e3
+        );
+        let mut t = Table::new(&[
+            ("unit", Align::Left),
+            ("kind", Align::Left),
+            ("size", Align::Right),
+            ("counted as", Align::Left),
+            ("mm²", Align::Right),
+        ]);
+        for u in &self.units {
+            let (kind, size) = match u.kind {
+                Kind::Storage => ("SRAM", format!("{:.0} bits", u.size)),
+                Kind::Logic => ("logic", format!("{:.0} NAND2", u.size)),
+            };
+            t.row([u.unit.to_owned(), kind.to_owned(), size, u.how.clone(), format!("{:.6}", u.square_metres * 1e6)]);
+        }
+        s.push_str(&t.markdown());
         s
     }
 }

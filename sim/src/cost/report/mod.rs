@@ -17,6 +17,7 @@ use crate::cost::arch::Arch;
 use crate::cost::cache::CacheStats;
 use crate::cost::dram::{Dram, Purpose, Requested};
 use crate::cost::ledger::PassTiming;
+use crate::cost::silicon::Silicon;
 use crate::cost::timing::ArchProbe;
 use crate::cost::work::{Bottleneck, EnergySplit, Work};
 use serde::Serialize;
@@ -115,6 +116,10 @@ pub struct CostReport {
     /// Every pass in the order the frame runs them (each light's, then
     /// the camera's), for the timeline.
     pub timeline: Vec<PassTimeline>,
+    /// The silicon of the units the render uses: their areas at the
+    /// architecture's technology, and the leakage each pass's
+    /// [`EnergySplit::leakage`] charges.
+    pub silicon: Silicon,
 }
 
 impl CostReport {
@@ -170,10 +175,37 @@ impl CostReport {
         if s > 0.0 { self.bytes() as f64 / s } else { 0.0 }
     }
 
-    /// The frame's energy by unit, joules: both passes' added.
+    /// The frame's energy by unit, joules: both passes' added, and the
+    /// units' leakage while the host works before them.
     #[must_use]
     pub fn energy(&self) -> EnergySplit {
-        self.light.energy.plus(&self.camera.energy)
+        let host = EnergySplit { leakage: self.leakage_over(self.host_cycles), ..EnergySplit::default() };
+        self.light.energy.plus(&self.camera.energy).plus(&host)
+    }
+
+    /// The units' area, square metres.
+    #[must_use]
+    pub fn square_metres(&self) -> f64 {
+        self.silicon.square_metres()
+    }
+
+    /// The units' leakage over `cycles` at the clock, joules.
+    fn leakage_over(&self, cycles: f64) -> f64 {
+        self.silicon.leakage_watts() * cycles / self.arch.clock
+    }
+
+    /// This report with `silicon` for its units: each pass's leakage
+    /// charged over its time.
+    #[must_use]
+    pub fn with_silicon(mut self, silicon: Silicon) -> Self {
+        let (watts, clock) = (silicon.leakage_watts(), self.arch.clock);
+        let charge = |p: &mut PassTiming| p.energy.leakage = watts * p.cycles() / clock;
+        charge(&mut self.light);
+        charge(&mut self.camera);
+        self.light_passes.iter_mut().for_each(charge);
+        self.timeline.iter_mut().for_each(|t| charge(&mut t.timing));
+        self.silicon = silicon;
+        self
     }
 }
 
@@ -194,6 +226,8 @@ impl Serialize for CostReport {
         m.serialize_field("dram_bytes", &self.bytes())?;
         m.serialize_field("dram", &self.dram())?;
         m.serialize_field("energy_joules", &self.energy())?;
+        m.serialize_field("area_square_metres", &self.square_metres())?;
+        m.serialize_field("silicon", &self.silicon)?;
         m.serialize_field("light", &self.light)?;
         m.serialize_field("camera", &self.camera)?;
         m.serialize_field("requested_bytes", &self.requested)?;
@@ -351,6 +385,7 @@ impl CostReport {
             light: lt,
             camera: ct,
             arch,
+            silicon: Silicon::default(),
         }
     }
 

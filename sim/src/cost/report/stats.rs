@@ -41,6 +41,10 @@ pub(crate) enum StatUnit {
     BytesPerFragment,
     /// Joules.
     Joules,
+    /// Square metres.
+    SquareMetres,
+    /// Watts.
+    Watts,
     /// A ratio.
     Ratio,
     /// Percent.
@@ -67,6 +71,8 @@ impl StatUnit {
             Self::PerPixel => "1/px",
             Self::BytesPerFragment => "B/fragment",
             Self::Joules => "J",
+            Self::SquareMetres => "m2",
+            Self::Watts => "W",
             Self::Ratio => "ratio",
             Self::Percent => "percent",
             Self::Hertz => "Hz",
@@ -224,7 +230,8 @@ stats! {
         "arch.clock_hertz" => clock_hertz: f64, Hertz, "the architecture's clock" = r.arch.clock;
         "frame.seconds" => frame_seconds: f64, Seconds, "the frame at the clock" = r.seconds();
         "frame.frames_per_second" => frames_per_second: f64, PerSecond, "frames a second at the clock" = r.fps();
-        "frame.energy.total_joules" => energy_joules: f64, Joules, "the frame's energy" = r.energy().total();
+        "frame.energy.total_joules" => energy_joules: f64, Joules, "the frame's energy, dynamic and static" = r.energy().total();
+        "silicon.square_metres" => area_square_metres: f64, SquareMetres, "the silicon of the units the render uses, at the architecture's technology" = r.square_metres();
         "frame.dram.achieved_bytes_per_second" => dram_achieved_bytes_per_second: f64, BytesPerSecond, "the frame's DRAM bytes over its time" = r.achieved_bytes_per_second();
         "frame.dram.peak_bytes_per_second" => dram_peak_bytes_per_second: f64, BytesPerSecond, "the DRAM's bandwidth" = r.dram_peak_bytes_per_second;
         "frame.dram.latency_ceiling_bytes_per_second" => dram_latency_ceiling_bytes_per_second: f64, BytesPerSecond, "requests in flight × burst / latency (Little's law)" = r.dram_latency_ceiling_bytes_per_second;
@@ -337,6 +344,11 @@ impl CostReport {
         let real = Figure::Real;
         for (unit, e) in self.energy().fields() {
             stat(&format!("frame.energy.{unit}_joules"), StatUnit::Joules, real(e), "energy of the unit");
+        }
+        stat("silicon.leakage_watts", StatUnit::Watts, real(self.silicon.leakage_watts()), "the units' leakage power");
+        for u in &self.silicon.units {
+            let name = format!("silicon.{}.square_metres", u.unit.replace([' ', '-'], "_"));
+            stat(&name, StatUnit::SquareMetres, real(u.square_metres), &format!("area of the unit: {}", u.how));
         }
         for (pass, t) in [("light", &self.light), ("camera", &self.camera)] {
             for (k, stage) in Stage::ALL.iter().enumerate() {

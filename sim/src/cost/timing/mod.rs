@@ -385,6 +385,7 @@ impl<const D: bool> ArchProbe<D> {
             caches: self.accesses.cache as f64 * e.cache_access * k,
             raster: self.accesses.raster_ops as f64 * e.fragment_op * k,
             shadow: self.accesses.shadow_ops as f64 * e.fragment_op,
+            leakage: 0.0,
         }
     }
 
