@@ -41,7 +41,20 @@ pub(super) struct PlanArgs {
     /// default: the scene's.
     #[arg(long)]
     pub(super) image: Option<String>,
-    /// The architecture whose time is minimised (default: talisman).
+    /// What the pick minimises: `cycles` (the default), `energy` (dynamic
+    /// and static), `area` (silicon of the units it uses), `edp` (energy
+    /// × time), `edap` (energy × time × area), or a weighted sum such as
+    /// `cycles=1,energy=1,area=0.5` (each measure over its least among the
+    /// candidates).
+    #[arg(long, value_parser = objective, default_value = "cycles")]
+    pub(super) objective: umbra_sim::experiment::plan::Objective,
+    /// The most silicon the pick's units may take (`2mm2`, `500um2`).
+    #[arg(long)]
+    pub(super) max_area: Option<String>,
+    /// The most energy a frame of the pick may take (`150uJ`, `1mJ`).
+    #[arg(long)]
+    pub(super) max_energy: Option<String>,
+    /// The architecture the candidates are costed on (default: talisman).
     #[command(flatten)]
     pub(super) archs: OneArchArgs,
     /// Output folder for plan.md and plan.json.
@@ -50,6 +63,11 @@ pub(super) struct PlanArgs {
     /// Replace another command's results in --out deliberately.
     #[arg(long, help = crate::REPLACE_HELP)]
     pub(super) replace: bool,
+}
+
+/// An `--objective` value, read as the library (and Python) reads it.
+fn objective(text: &str) -> Result<umbra_sim::experiment::plan::Objective, String> {
+    text.parse()
 }
 
 /// A `--budget` value, read as the library (and Python) reads it.
@@ -142,6 +160,10 @@ pub(super) fn plan(args: &PlanArgs, limits: &Limits) -> Result<()> {
     };
     spec.limits = *limits;
     spec.arch = args.archs.one("talisman", limits)?;
+    spec.objective = args.objective;
+    spec.cost_limits =
+        umbra_sim::experiment::plan::CostLimits::parse(args.max_area.as_deref(), args.max_energy.as_deref())
+            .map_err(anyhow::Error::msg)?;
     if !args.maps.is_empty() {
         umbra_sim::experiment::study::map_sides("--maps", &args.maps, limits)?;
         spec.map_sizes.clone_from(&args.maps);

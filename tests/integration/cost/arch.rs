@@ -239,8 +239,13 @@ fn energy_is_the_sum_over_units_recomputed_from_the_events() {
     assert!(close(r.energy().shadow, shadow as f64 * e.fragment_op));
     assert!(close(r.energy().dram, r.bytes() as f64 * e.dram_byte));
     assert!(close(r.energy().caches, c.map_reads() as f64 * e.cache_access));
-    let sum = r.energy().dram + r.energy().buffers + r.energy().caches + r.energy().raster + r.energy().shadow;
-    assert!(close(r.energy().total(), sum) && sum > 0.0);
+    // Leakage: the technology's power per area over the units' area, for
+    // the frame's time.
+    let leak = arch.technology.leakage * r.square_metres() * r.seconds();
+    assert!(close(r.energy().leakage, leak) && leak > 0.0, "{} against {leak}", r.energy().leakage);
+    let e = r.energy();
+    let sum = e.dram + e.buffers + e.caches + e.raster + e.shadow + e.leakage;
+    assert!(close(e.total(), sum) && sum > 0.0);
 }
 
 fn within_bounds(t: &PassTiming) -> bool {

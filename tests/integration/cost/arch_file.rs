@@ -106,74 +106,98 @@ fn overrides_read_their_units() {
     assert!(matches!(a.set("clock").expect_err("no =").problem, Problem::Override));
 }
 
-/// The keys added after the first release.
-const ADDED: [&str; 7] = [
-    "frame_overhead_cycles",
-    "program_cycles",
-    "peel_cycles",
-    "combine_cycles",
-    "cycles_per_sample",
-    "cycles_per_weights",
-    "per_fragment",
+/// The keys added after the first release: each key's last part, the
+/// format it came in, and the value that keeps the earlier behaviour.
+const ADDED: [(&str, u32, &str); 12] = [
+    ("frame_overhead_cycles", 2, "0"),
+    ("program_cycles", 2, "0"),
+    ("peel_cycles", 2, "0"),
+    ("combine_cycles", 2, "0"),
+    ("cycles_per_sample", 2, "0"),
+    ("cycles_per_weights", 2, "0"),
+    ("per_fragment", 2, "false"),
+    ("node", 3, "\"\""),
+    ("sram_bit", 3, "\"0mm2\""),
+    ("array_efficiency", 3, "0.7"),
+    ("gate", 3, "\"0mm2\""),
+    ("leakage", 3, "\"0W/mm2\""),
 ];
 
-/// A file written before the seven keys existed loads, each key at the
-/// value that keeps the earlier behaviour (0 cycles; shading per pixel),
-/// the same machine as the file stating those values.
+/// The added key a line of a file gives, if it gives one.
+fn added(line: &str) -> Option<&'static (&'static str, u32, &'static str)> {
+    ADDED.iter().find(|(k, _, _)| line.starts_with(&format!("{k} =")))
+}
+
+/// A bundled file as format `format` wrote it: no `format` line, none of
+/// the keys added after `format` (nor a table left with none of its keys).
+fn as_of(text: &str, format: u32) -> String {
+    text.lines()
+        .filter(|l| !l.starts_with("format =") && added(l).is_none_or(|a| a.1 <= format))
+        .filter(|l| format >= 3 || *l != "[technology]")
+        .map(|l| format!("{l}\n"))
+        .collect()
+}
+
+/// A file written before the added keys existed loads, each key at the
+/// value that keeps the earlier behaviour (0 cycles; shading per pixel; no
+/// technology: no area, no leakage), the same machine as the file stating
+/// those values; so does a format-2 file without the technology table.
 #[test]
 fn a_file_from_before_the_added_keys_loads_as_it_did() {
     for (name, text) in BUNDLED {
-        let added = |l: &str| ADDED.iter().find(|k| l.starts_with(&format!("{k} =")));
-        let old: Vec<&str> = text.lines().filter(|l| added(l).is_none()).collect();
-        assert_eq!(old.len(), text.lines().count() - ADDED.len(), "{name}: each added key once");
-        let stated: Vec<String> = text
+        assert_eq!(text.lines().filter(|l| added(l).is_some()).count(), ADDED.len(), "{name}: each added key once");
+        let stated: String = text
             .lines()
             .map(|l| match added(l) {
-                Some(&"per_fragment") => "per_fragment = false".to_owned(),
-                Some(k) => format!("{k} = 0"),
-                None => l.to_owned(),
+                Some((k, _, v)) => format!("{k} = {v}\n"),
+                None => format!("{l}\n"),
             })
             .collect();
-        let loaded = Arch::parse(&old.join("\n"), "old.toml").unwrap_or_else(|e| panic!("{name}: {e}"));
-        let earlier = Arch::parse(&stated.join("\n"), "stated.toml").unwrap_or_else(|e| panic!("{name}: {e}"));
-        assert_eq!(loaded, earlier, "{name}");
+        let earlier = Arch::parse(&stated, "stated.toml").unwrap_or_else(|e| panic!("{name}: {e}"));
+        let first = Arch::parse(&as_of(text, 1), "old.toml").unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(first, earlier, "{name}");
+        let second = format!("format = 2\n{}", as_of(text, 2));
+        let second = Arch::parse(&second, "two.toml").unwrap_or_else(|e| panic!("{name}: {e}"));
+        let bundled = Arch::parse(text, name).expect("loads");
+        assert_eq!(second, Arch { technology: earlier.technology.clone(), ..bundled }, "{name}");
+        // A format-2 file must give the keys format 2 added.
+        let e = Arch::parse(&format!("format = 2\n{}", as_of(text, 1)), "two.toml").expect_err("seven missing");
+        let Problem::Several(problems) = &e.problem else { panic!("{e}") };
+        assert_eq!(problems.len(), 7, "{e}");
     }
-    // Keys every file must give have no default.
-    let defaulted: Vec<&str> = PARAMS.iter().filter(|p| p.default.is_some()).map(|p| p.key).collect();
+    // Keys every file must give have no default; each added one has.
+    let defaulted: Vec<(&str, u32)> = PARAMS.iter().filter(|p| p.default.is_some()).map(|p| (p.key, p.since)).collect();
     assert_eq!(defaulted.len(), ADDED.len(), "{defaulted:?}");
-    assert!(ADDED.iter().all(|k| defaulted.iter().any(|d| d.ends_with(k))), "{defaulted:?}");
+    assert!(ADDED.iter().all(|(k, f, _)| defaulted.iter().any(|(d, g)| d.ends_with(k) && g == f)), "{defaulted:?}");
 }
 
 /// A file of the first release's keys, upgraded: the format stated, the
-/// seven keys written with the values that keep the earlier behaviour
-/// (each with its meaning), every line of the original still there in
-/// order, the same machine loaded; upgrading again changes nothing. A file
-/// that states the current format must give every key, and one stating a
-/// later format is refused naming it.
+/// added keys written with the values that keep the earlier behaviour
+/// (each with its meaning and the format that added it), every line of the
+/// original still there in order, the same machine loaded; upgrading
+/// again changes nothing. A file that states the current format must give
+/// every key, and one stating a later format is refused naming it.
 #[test]
 fn an_upgraded_file_loads_as_the_original_did() {
     for (name, text) in BUNDLED {
-        let old: String = text
-            .lines()
-            .filter(|l| !ADDED.iter().any(|k| l.starts_with(&format!("{k} ="))))
-            .map(|l| format!("{l}\n"))
-            .collect();
+        let old = as_of(text, 1);
         let new = Arch::upgrade(&old, "old.toml").unwrap_or_else(|e| panic!("{name}: {e}"));
-        assert!(new.starts_with("format = 2\n"), "{name}");
+        assert!(new.starts_with("format = 3\n"), "{name}");
         let mut lines = new.lines();
         for l in old.lines() {
             assert!(lines.any(|n| n == l), "{name}: `{l}` kept, in order");
         }
-        for k in ADDED {
+        for (k, format, _) in ADDED {
             let line = new.lines().find(|l| l.starts_with(&format!("{k} = "))).expect("added");
-            assert!(line.contains("  # ") && line.ends_with("this value keeps the earlier behaviour"), "{line}");
+            let said = format!("added in format {format}, this value keeps the earlier behaviour");
+            assert!(line.contains("  # ") && line.ends_with(&said), "{line}");
         }
         let (a, b) = (Arch::parse(&old, "old.toml"), Arch::parse(&new, "new.toml"));
         assert_eq!(a.expect("loads"), b.expect("loads"), "{name}");
         assert_eq!(Arch::upgrade(&new, "new.toml").expect("loads"), new, "{name}: idempotent");
         // Stating the current format, the file must be whole.
-        let stated = format!("format = 2\n{old}");
-        let e = Arch::parse(&stated, "stated.toml").expect_err("seven keys missing");
+        let stated = format!("format = 3\n{old}");
+        let e = Arch::parse(&stated, "stated.toml").expect_err("the added keys missing");
         let Problem::Several(problems) = &e.problem else { panic!("{e}") };
         assert_eq!(problems.len(), ADDED.len(), "{e}");
         assert!(problems.iter().all(|(_, p)| matches!(p, Problem::Missing)), "{e}");
@@ -185,12 +209,16 @@ fn an_upgraded_file_loads_as_the_original_did() {
     let upgraded = Arch::parse(&Arch::upgrade(shipped, "x").expect("upgrades"), "x").expect("loads");
     assert_eq!(first, upgraded);
     let tbdr = Arch::bundled("mobile-tbdr").expect("bundled");
-    (first.name, first.description) = (tbdr.name.clone(), tbdr.description.clone());
+    // The technology table is the bundled file's alone: a first-release
+    // file models no silicon.
+    assert!(first.technology.node.is_empty() && first.technology.sram_bit == 0.0 && first.technology.leakage == 0.0);
+    (first.name, first.description, first.technology) =
+        (tbdr.name.clone(), tbdr.description.clone(), tbdr.technology.clone());
     assert_eq!(first, tbdr);
-    let later = format!("format = 3\n{}", BUNDLED[0].1);
+    let later = BUNDLED[0].1.replace("format = 3", "format = 4");
     let e = Arch::parse(&later, "later.toml").expect_err("a later format");
     assert_eq!(e.key, "format", "{e}");
-    assert!(e.to_string().contains("reads formats 1 to 2"), "{e}");
+    assert!(e.to_string().contains("reads formats 1 to 3"), "{e}");
 }
 
 /// One error names every missing and unknown key, in file order.

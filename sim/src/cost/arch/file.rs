@@ -169,6 +169,10 @@ impl Arch {
             .iter()
             .filter_map(|p| {
                 let value = match p.default.as_ref()? {
+                    // A quantity with a unit as text with its unit (`"0mm2"`).
+                    Value::Number(x) if !matches!(p.unit, Unit::Count | Unit::Number) => {
+                        toml_edit::Value::from(p.unit.write(*x))
+                    }
                     // Whole numbers as integers, as the bundled files write them.
                     #[allow(clippy::cast_possible_truncation, reason = "whole and far below 2^53")]
                     Value::Number(x) if x.fract() == 0.0 && x.abs() < 1e15 => toml_edit::Value::from(*x as i64),

@@ -403,9 +403,8 @@ params! {
     "technology.sram_bit", Area, technology.sram_bit, [0.0, 1e-9], since 3 default Value::Number(0.0), "area of one SRAM bit cell";
     "technology.array_efficiency", Number, technology.array_efficiency, [0.01, 1.0], since 3 default Value::Number(0.7), "bit cells' share of an SRAM array's area";
     "technology.gate", Area, technology.gate, [0.0, 1e-9], since 3 default Value::Number(0.0), "area of one NAND2 gate equivalent of logic, placed and routed";
-    "technology.leakage", PowerDensity, technology.leakage, [0.0, 1e4], since 3 default Value::Number(0.0), "leakage power per area of the units";
+    "technology.leakage", PowerDensity, technology.leakage, [0.0, 1e6], since 3 default Value::Number(0.0), "leakage power per area of the units";
 }
-
 
 impl Unit {
     /// What a value of this unit looks like, for errors.
@@ -521,11 +520,15 @@ pub(super) fn from_toml(unit: Unit, v: &toml::Value) -> Result<Value, Problem> {
         (Unit::Number, toml::Value::Float(x)) => Ok(Value::Number(*x)),
         (Unit::Count, toml::Value::Float(x)) => Err(Problem::Range { value: *x, what: "a whole number" }),
         (
-            Unit::Bytes | Unit::Bandwidth | Unit::Frequency | Unit::Time | Unit::Joules | Unit::Area | Unit::PowerDensity,
+            Unit::Bytes
+            | Unit::Bandwidth
+            | Unit::Frequency
+            | Unit::Time
+            | Unit::Joules
+            | Unit::Area
+            | Unit::PowerDensity,
             toml::Value::String(s),
-        ) => {
-            unit.parse(s).map(Value::Number)
-        }
+        ) => unit.parse(s).map(Value::Number),
         _ => Err(Problem::Type(unit.expected())),
     }
 }

@@ -4,7 +4,9 @@
 
 use serde::Serialize;
 
-use super::units::{Bins, CacheParams, DepthRates, DramParams, Energy, Front, OnChip, Raster, Shade, ShadowRates, Technology};
+use super::units::{
+    Bins, CacheParams, DepthRates, DramParams, Energy, Front, OnChip, Raster, Shade, ShadowRates, Technology,
+};
 
 /// An architecture: every parameter of the machine a render is costed on.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]

@@ -16,4 +16,6 @@ pub use keys::{PARAMS, Param, Problem, Unit, Value};
 pub use machine::{Arch, Calibration};
 pub use presets::BUNDLED;
 pub use reads::Unread;
-pub use units::{Bins, CacheParams, DepthRates, DramParams, Energy, Front, OnChip, Raster, Shade, ShadowRates, Technology};
+pub use units::{
+    Bins, CacheParams, DepthRates, DramParams, Energy, Front, OnChip, Raster, Shade, ShadowRates, Technology,
+};

@@ -6,7 +6,7 @@
 //! array efficiency (the share the cells take of an array beside its
 //! decoders, sense amplifiers and drivers). A cache stores, besides its
 //! data, a tag, a valid bit and its LRU age (`log2 ways` bits) per line;
-//! tags are of a [`ADDRESS_BITS`]-bit address.
+//! tags are of a 40-bit physical address.
 //!
 //! **Logic** is NAND2 gate equivalents ([`gates`]) times the node's gate
 //! area. Each datapath is as many lanes as its unit's rate per clock, each
@@ -52,17 +52,17 @@ use umbra_core::budget::{MAP_FRACTION_BITS, PLANE_FRACTION_BITS};
 use crate::cost::arch::{Arch, CacheParams, Technology};
 
 /// Bits of a physical address a cache's tags hold.
-pub const ADDRESS_BITS: u32 = 40;
+const ADDRESS_BITS: u32 = 40;
 /// Bits of one bin's head pointer (a DRAM address of its list).
-pub const BIN_POINTER_BITS: u32 = 32;
+const BIN_POINTER_BITS: u32 = 32;
 /// Bits of a camera pixel's visibility depth (the camera pass is D24).
-pub const CAMERA_DEPTH_BITS: u32 = 24;
+const CAMERA_DEPTH_BITS: u32 = 24;
 /// Bits of a camera pixel's triangle id.
-pub const ID_BITS: u32 = 32;
+const ID_BITS: u32 = 32;
 /// Bits of a stencil value.
-pub const STENCIL_BITS: u32 = 8;
+const STENCIL_BITS: u32 = 8;
 /// Bits of the random source a bias-range lane draws from (an LFSR).
-pub const LFSR_BITS: u32 = 16;
+const LFSR_BITS: u32 = 16;
 
 /// What a render asks of the hardware, in the terms silicon is counted
 /// in (the render layer builds it from a configuration).
@@ -247,9 +247,8 @@ fn storage(arch: &Arch, d: &Demand, u: &mut Units<'_>) {
         let bits = texels * u64::from(STENCIL_BITS);
         u.sram("stencil", bits as f64, format!("{t}² pixels × {STENCIL_BITS} bits"));
     }
-    let off_chip = (!d.volumes && !arch.on_chip.light_depth)
-        || !arch.on_chip.camera_depth
-        || (d.volumes && !arch.on_chip.stencil);
+    let off_chip =
+        (!d.volumes && !arch.on_chip.light_depth) || !arch.on_chip.camera_depth || (d.volumes && !arch.on_chip.stencil);
     if off_chip {
         let (bits, how) = cache_bits(&arch.depth_cache);
         u.sram("depth cache", bits, how);
@@ -279,10 +278,7 @@ fn logic(arch: &Arch, d: &Demand, u: &mut Units<'_>) {
         if arch.depth.fragments_per_clock > 0.0 {
             let n = lanes(arch.depth.fragments_per_clock);
             let per = ge(Block::Add, wide, 1) + f64::from(layers) * ge(Block::Compare, d.depth_bits, 1);
-            let how = format!(
-                "{n} lanes × ({wide}-bit interpolator + {layers} × {}-bit comparator)",
-                d.depth_bits
-            );
+            let how = format!("{n} lanes × ({wide}-bit interpolator + {layers} × {}-bit comparator)", d.depth_bits);
             u.logic("light depth test", f64::from(n) * per, how);
         } else {
             // Bit-serial: a one-bit adder and comparator per pixel, a tree
@@ -310,7 +306,8 @@ fn shadow_unit(arch: &Arch, d: &Demand, u: &mut Units<'_>) {
     let compare = f64::from(d.buffers_read) * ge(Block::Compare, bits, 1);
     let adders = 1 + u32::from(d.offset);
     let mut per = compare + f64::from(adders) * ge(Block::Add, bits, 1);
-    let mut how = format!("{samples} sample lanes × ({} × {bits}-bit comparator + {adders} × {bits}-bit adder", d.buffers_read);
+    let mut how =
+        format!("{samples} sample lanes × ({} × {bits}-bit comparator + {adders} × {bits}-bit adder", d.buffers_read);
     if d.bias_range {
         per += ge(Block::Register, LFSR_BITS, 1) + 2.0 * ge(Block::Add, 1, 1);
         how += &format!(" + {LFSR_BITS}-bit LFSR");

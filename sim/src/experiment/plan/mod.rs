@@ -30,9 +30,14 @@ use umbra_core::shadow::Filter;
 use umbra_core::{CullMode, DepthFormat, DepthFormatKind, DepthUnit, F32, LightPassConfig, RasterConfig};
 
 mod budget;
+mod candidate;
+mod objective;
 mod report;
+mod why;
 
 pub use budget::{Budget, Measure};
+pub use candidate::{Candidate, RunnerUp};
+pub use objective::{CostLimits, Costs, Objective};
 
 use crate::cost::arch::Arch;
 use crate::cost::storage::{MapShape, REEVES_TILE, StorageBytes, storage_bytes};
@@ -62,8 +67,12 @@ pub struct PlanSpec {
     pub map_sizes: Vec<u32>,
     /// Filters.
     pub filters: Vec<Filter>,
-    /// The architecture whose time is minimised.
+    /// The architecture the candidates are costed on.
     pub arch: Arch,
+    /// What the pick minimises.
+    pub objective: Objective,
+    /// The most the pick may cost.
+    pub cost_limits: CostLimits,
     /// Camera image the candidates are measured at.
     pub image: [u32; 2],
     /// What each render may ask for.
@@ -87,6 +96,8 @@ impl PlanSpec {
             map_sizes: vec![128, 256, 512, 1024, 2048],
             filters: FILTERS[..3].to_vec(),
             arch: Arch::bundled("talisman").unwrap_or_default(),
+            objective: Objective::Cycles,
+            cost_limits: CostLimits::default(),
             image: scene.image,
             limits: Limits::DEFAULT,
         }
@@ -132,95 +143,6 @@ impl PlanSpec {
     }
 }
 
-/// One candidate as the planner measured it.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Candidate {
-    /// The configuration in words (`dual offset 0.005, d16, 256², point`).
-    pub label: String,
-    /// Its algorithm, as `--algo` spells it.
-    pub algorithm: String,
-    /// Depth format.
-    #[serde(with = "crate::base::text")]
-    pub format: DepthFormatKind,
-    /// Map side, texels.
-    pub map_size: u32,
-    /// Filter.
-    #[serde(with = "crate::base::text")]
-    pub filter: Filter,
-    /// Frame cycles on the architecture.
-    pub cycles: u64,
-    /// Frame time on the architecture, seconds.
-    pub seconds: f64,
-    /// DRAM bytes of the frame.
-    pub bytes: u64,
-    /// Every measure, percent of the evaluated pixels, in [`Measure::ALL`]
-    /// order.
-    #[serde(serialize_with = "by_measure")]
-    pub percent: [f64; 9],
-    /// RMS area error.
-    pub rms_error: f64,
-    /// The `umbra render` command that renders it.
-    pub command: String,
-}
-
-/// Per-measure figures as a map from the measure's name.
-fn by_measure<S: serde::Serializer>(v: &[f64; 9], s: S) -> Result<S::Ok, S::Error> {
-    s.collect_map(Measure::ALL.iter().map(|m| m.name()).zip(v))
-}
-
-impl Candidate {
-    /// One measure of it, percent.
-    #[must_use]
-    pub fn measure(&self, m: Measure) -> f64 {
-        self.percent[m as usize]
-    }
-
-    /// What it measured: cycles, bytes and every measure, exactly (two
-    /// candidates that render alike measure alike).
-    fn outcome(&self) -> (u64, u64, [u64; 9]) {
-        (self.cycles, self.bytes, self.percent.map(f64::to_bits))
-    }
-
-    /// The budgets it misses, each as `acne 0.031% > 0.01%`.
-    fn misses(&self, budgets: &[Budget]) -> Vec<String> {
-        budgets
-            .iter()
-            .filter(|b| self.measure(b.measure) > b.percent)
-            .map(|b| format!("{} {:.3}% > {}%", b.measure.name(), self.measure(b.measure), b.percent))
-            .collect()
-    }
-
-    /// The worst ratio of a budgeted measure to its budget: at most 1
-    /// meets every budget.
-    fn worst(&self, budgets: &[Budget]) -> f64 {
-        budgets
-            .iter()
-            .map(|b| {
-                let v = self.measure(b.measure);
-                if v <= b.percent {
-                    0.0
-                } else if b.percent > 0.0 {
-                    v / b.percent
-                } else {
-                    f64::INFINITY
-                }
-            })
-            .fold(0.0, f64::max)
-    }
-}
-
-/// A candidate the pick beat, and why.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct RunnerUp {
-    /// The candidate.
-    pub candidate: Candidate,
-    /// Whether it is cheaper than the pick (else dearer, or as cheap with
-    /// more DRAM bytes).
-    pub cheaper: bool,
-    /// Why it lost: the budgets it missed, or how much dearer it is.
-    pub lost: String,
-}
-
 /// A chosen configuration and why.
 #[derive(Clone, Debug, Serialize)]
 pub struct Plan {
@@ -232,8 +154,12 @@ pub struct Plan {
     pub pick: Candidate,
     /// Whether the pick meets every budget.
     pub meets: bool,
-    /// The architecture whose time was minimised.
+    /// The architecture the candidates were costed on.
     pub arch: String,
+    /// What the pick minimises.
+    pub objective: Objective,
+    /// The most the pick may cost.
+    pub cost_limits: CostLimits,
     /// The thinnest gap between surfaces (1st percentile), in 16-bit steps.
     pub gap_lsbs: f64,
     /// Whether the scene has open surfaces.
@@ -319,6 +245,8 @@ fn candidate(spec: &Spec, row: &Row, scene: &Scene) -> Option<Candidate> {
         cycles: c.total_cycles,
         seconds: c.frame_seconds,
         bytes: c.total_dram_bytes,
+        joules: c.energy_joules,
+        square_metres: c.area_square_metres,
         percent: Measure::ALL.map(|x| x.percent(m)),
         rms_error: m.rms_error,
         command: cfg.command(scene),
@@ -370,15 +298,19 @@ pub fn plan(scene: &Scene, spec: &PlanSpec, progress: &ProgressBar) -> Result<Pl
     let rows = run(&study, Shard::ALL, progress)?;
     let mut all: Vec<(Candidate, usize)> =
         rows.iter().filter_map(|r| candidate(&study, r, scene).map(|c| (c, r.config_index))).collect();
-    // Cheapest first: cycles, then DRAM bytes, then the study's order.
-    all.sort_by(|(a, i), (b, j)| a.cycles.cmp(&b.cycles).then(a.bytes.cmp(&b.bytes)).then(i.cmp(j)));
+    // Least first by the objective, then DRAM bytes, then the study's order.
+    let (objective, limits) = (spec.objective, &spec.cost_limits);
+    let least = Objective::least(all.iter().map(|(c, _)| c.costs()).collect::<Vec<_>>().iter());
+    let score = |c: &Candidate| objective.score(&c.costs(), &least);
+    all.sort_by(|(a, i), (b, j)| score(a).total_cmp(&score(b)).then(a.bytes.cmp(&b.bytes)).then(i.cmp(j)));
     let budgets = &spec.budgets;
-    let meeting = all.iter().filter(|(c, _)| c.misses(budgets).is_empty()).count();
-    let first_meeting = all.iter().position(|(c, _)| c.misses(budgets).is_empty());
+    let meets_all = |c: &Candidate| c.misses(budgets, limits).is_empty();
+    let meeting = all.iter().filter(|(c, _)| meets_all(c)).count();
+    let first_meeting = all.iter().position(|(c, _)| meets_all(c));
     let nearest = || {
         all.iter()
             .enumerate()
-            .min_by(|(_, (a, _)), (_, (b, _))| a.worst(budgets).total_cmp(&b.worst(budgets)))
+            .min_by(|(_, (a, _)), (_, (b, _))| a.worst(budgets, limits).total_cmp(&b.worst(budgets, limits)))
             .map(|x| x.0)
     };
     let Some(at) = first_meeting.or_else(nearest) else {
@@ -400,19 +332,24 @@ pub fn plan(scene: &Scene, spec: &PlanSpec, progress: &ProgressBar) -> Result<Pl
         .filter(|(c, _)| fresh(c))
         .take(CHEAPER)
         .map(|(c, _)| {
-            let missed = c.misses(budgets);
+            let missed = c.misses(budgets, limits);
             let lost = if missed.is_empty() { "nearer every budget".to_owned() } else { missed.join(", ") };
             RunnerUp { candidate: c.clone(), cheaper: true, lost }
         })
         .collect();
-    #[allow(clippy::cast_precision_loss, reason = "cycle counts far below 2^53")]
-    let dearer = |c: &Candidate| 100.0 * (c.cycles as f64 / pick.cycles.max(1) as f64 - 1.0);
-    let meeting_dearer = all[at + 1..].iter().filter(|(c, _)| c.misses(budgets).is_empty() && fresh(c));
+    let dearer = |c: &Candidate| 100.0 * (score(c) / score(&pick) - 1.0);
+    let meeting_dearer = all[at + 1..].iter().filter(|(c, _)| meets_all(c) && fresh(c));
     runners_up.extend(meeting_dearer.take(DEARER).map(|(c, _)| {
-        let lost = if c.cycles == pick.cycles {
-            format!("meets every budget in as many cycles, {} more DRAM bytes", c.bytes.saturating_sub(pick.bytes))
+        let lost = if score(c).total_cmp(&score(&pick)).is_eq() {
+            format!(
+                "meets every budget at as little {}, {} more DRAM bytes",
+                objective.words(),
+                c.bytes.saturating_sub(pick.bytes)
+            )
+        } else if score(&pick) > 0.0 {
+            format!("meets every budget, {:.1} % more {}", dearer(c), objective.words())
         } else {
-            format!("meets every budget, {:.1} % more cycles", dearer(c))
+            format!("meets every budget at {}", objective.text(&c.costs(), &least))
         };
         RunnerUp { candidate: c.clone(), cheaper: false, lost }
     }));
@@ -433,18 +370,24 @@ pub fn plan(scene: &Scene, spec: &PlanSpec, progress: &ProgressBar) -> Result<Pl
     )];
     if meets {
         reasons.push(format!(
-            "{}: the cheapest of them in cycles on {} ({} cycles, {:.3} ms), {} cheaper candidates missing a budget",
+            "{}: the least {} of them on {} ({}{} cycles, {:.3} ms, {:.3} µJ, {:.4} mm² of silicon), {} candidates ranked before it missing a budget{}",
             pick.label,
+            objective.words(),
             spec.arch.name,
+            if objective == Objective::Cycles { String::new() } else { format!("{}; ", objective.text(&pick.costs(), &least)) },
             pick.cycles,
             pick.seconds * 1e3,
-            at
+            pick.joules * 1e6,
+            pick.square_metres * 1e6,
+            at,
+            if limits.max_square_metres.is_some() || limits.max_joules.is_some() { " or a limit" } else { "" }
         ));
+        reasons.extend(why::against_fastest(&study, spec, (&all, &least), (&pick, index)));
     } else {
         reasons.push(format!(
-            "no candidate meets every budget: {}, the nearest (its worst measure {:.2}× its budget), is taken",
+            "no candidate meets every budget and limit: {}, the nearest (its worst measure {:.2}× its budget or limit), is taken",
             pick.label,
-            pick.worst(budgets)
+            pick.worst(budgets, limits)
         ));
     }
     if open_surfaces {
@@ -482,6 +425,8 @@ pub fn plan(scene: &Scene, spec: &PlanSpec, progress: &ProgressBar) -> Result<Pl
         pick,
         meets,
         arch: spec.arch.name.clone(),
+        objective,
+        cost_limits: *limits,
         gap_lsbs,
         open_surfaces,
         candidates: all.len(),

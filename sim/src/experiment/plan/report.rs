@@ -14,13 +14,21 @@ impl Plan {
     #[must_use]
     pub fn markdown(&self, scene: &Scene) -> String {
         let mut s = String::new();
-        let list = self.budgets.iter().map(|b| format!("{} ≤ {}%", b.measure.name(), b.percent)).collect::<Vec<_>>();
+        let mut list =
+            self.budgets.iter().map(|b| format!("{} ≤ {}%", b.measure.name(), b.percent)).collect::<Vec<_>>();
+        if let Some(m) = self.cost_limits.max_square_metres {
+            list.push(format!("area ≤ {} mm²", m * 1e6));
+        }
+        if let Some(m) = self.cost_limits.max_joules {
+            list.push(format!("energy ≤ {} µJ", m * 1e6));
+        }
         let p = &self.pick;
         let _ = writeln!(
             s,
-            "## Plan for `{}` ({}; costed on `{}`)\n\n{}\n\n`{}`\n",
+            "## Plan for `{}` ({}; least {} on `{}`)\n\n{}\n\n`{}`\n",
             scene.name,
             list.join(", "),
+            self.objective.words(),
             self.arch,
             p.label,
             p.command
@@ -29,11 +37,12 @@ impl Plan {
             let _ = writeln!(s, "- {r}");
         }
         let measures: Vec<Measure> = budget_columns(&self.budgets);
-        let mut columns: Vec<(String, Align)> = ["candidate", "cycles", "time (ms)", "DRAM bytes"]
-            .iter()
-            .enumerate()
-            .map(|(i, h)| ((*h).to_owned(), if i == 0 { Align::Left } else { Align::Right }))
-            .collect();
+        let mut columns: Vec<(String, Align)> =
+            ["candidate", "cycles", "time (ms)", "DRAM bytes", "energy (µJ)", "area (mm²)"]
+                .iter()
+                .enumerate()
+                .map(|(i, h)| ((*h).to_owned(), if i == 0 { Align::Left } else { Align::Right }))
+                .collect();
         columns.extend(measures.iter().map(|m| (format!("{} %", m.name()), Align::Right)));
         columns.push(("why not".to_owned(), Align::Left));
         let mut t = Table::new(&columns);
@@ -44,6 +53,8 @@ impl Plan {
                 b(c.cycles.to_string()),
                 b(format!("{:.3}", c.seconds * 1e3)),
                 b(c.bytes.to_string()),
+                b(format!("{:.3}", c.joules * 1e6)),
+                b(format!("{:.4}", c.square_metres * 1e6)),
             ];
             cells.extend(measures.iter().map(|&m| b(format!("{:.3}", c.measure(m)))));
             cells

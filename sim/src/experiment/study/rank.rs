@@ -35,6 +35,24 @@ pub(super) fn keys(rows: &[&Row]) -> [Key; 3] {
     [if one_clock(rows).is_some() { CYCLES } else { TIME }, bytes, energy]
 }
 
+/// The objectives the summary names a best for: time (cycles on one
+/// clock), energy, silicon area, energy × time and energy × time × area
+/// ([`crate::experiment::plan::Objective::NAMED`], ranked on rows).
+pub(super) fn objectives(rows: &[&Row]) -> [Key; 5] {
+    let energy = Key { name: "energy (µJ)", value: |c| c.energy_joules, show: |v| format!("{:.3}", v * 1e6) };
+    let area = Key { name: "area (mm²)", value: |c| c.area_square_metres, show: |v| format!("{:.4}", v * 1e6) };
+    let edp =
+        Key {
+            name: "energy × time (J·s)", value: |c| c.energy_joules * c.frame_seconds, show: |v| format!("{v:.4e}")
+        };
+    let edap = Key {
+        name: "energy × time × area (J·s·mm²)",
+        value: |c| c.energy_joules * c.frame_seconds * c.area_square_metres,
+        show: |v| format!("{:.4e}", v * 1e6),
+    };
+    [if one_clock(rows).is_some() { CYCLES } else { TIME }, energy, area, edp, edap]
+}
+
 /// The clock every costed row's architecture runs at, if they share one.
 pub(super) fn one_clock(rows: &[&Row]) -> Option<f64> {
     let clocks = distinct(rows.iter().filter_map(|r| r.cost.as_ref()).map(|c| c.clock_hertz.to_bits()));

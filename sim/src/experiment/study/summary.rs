@@ -1,7 +1,7 @@
 //! The study's outputs: the results table, the summary an architect reads,
 //! and the plots.
 
-use super::rank::{cheapest, keys, one_clock};
+use super::rank::{cheapest, keys, objectives, one_clock};
 use super::{Manifest, Row, RowCost, StudyError, distinct, jsonl, loosest, plot, sort_rows};
 use crate::output::folder::OutputFolder;
 use crate::output::markdown::escape;
@@ -177,6 +177,7 @@ fn scene_summary(s: &mut String, rows: &[&Row], budgets: &[f64]) {
              by a configuration with no artifact at all.\n"
         );
     }
+    best_per_objective(s, rows, budgets);
     let families = distinct(rows.iter().map(|r| r.config.family));
     for key in keys {
         let mut columns = vec![("family".to_owned(), Align::Left)];
@@ -199,6 +200,62 @@ fn scene_summary(s: &mut String, rows: &[&Row], budgets: &[f64]) {
     }
     crossovers(s, rows, budgets);
     bottlenecks(s, rows, budgets);
+}
+
+/// The best row per objective under each budget, with why: its time,
+/// energy and area against the fastest row's.
+fn best_per_objective(s: &mut String, rows: &[&Row], budgets: &[f64]) {
+    let objectives = objectives(rows);
+    let (l, r) = (Align::Left, Align::Right);
+    let mut t = Table::new(&[
+        ("artifact budget", r),
+        ("objective", l),
+        ("best", l),
+        ("time (µs)", r),
+        ("energy (µJ)", r),
+        ("area (mm²)", r),
+        ("why", l),
+    ]);
+    let ratio = |a: f64, b: f64| if b > 0.0 { format!("{:.2}×", a / b) } else { "–".to_owned() };
+    for &budget in budgets {
+        let fastest = cheapest(rows, budget, objectives[0]).and_then(|(r, _)| Some((r, r.cost.as_ref()?)));
+        for key in objectives {
+            let Some((best, c)) = cheapest(rows, budget, key).and_then(|(r, _)| Some((r, r.cost.as_ref()?))) else {
+                t.row([format!("{budget} %"), key.name.to_owned(), "none meets it".to_owned()]);
+                continue;
+            };
+            let why = match fastest {
+                Some((f, _)) if f.config_index == best.config_index && f.arch_index == best.arch_index => {
+                    "the fastest too".to_owned()
+                }
+                Some((f, fc)) => format!(
+                    "least {}: {} of the fastest's ({}), at {} its time, {} its energy, {} its area",
+                    key.name,
+                    ratio((key.value)(c), (key.value)(fc)),
+                    f.label(),
+                    ratio(c.frame_seconds, fc.frame_seconds),
+                    ratio(c.energy_joules, fc.energy_joules),
+                    ratio(c.area_square_metres, fc.area_square_metres)
+                ),
+                None => String::new(),
+            };
+            t.row([
+                format!("{budget} %"),
+                key.name.to_owned(),
+                best.label(),
+                format!("{:.3}", c.frame_seconds * 1e6),
+                format!("{:.3}", c.energy_joules * 1e6),
+                format!("{:.4}", c.area_square_metres * 1e6),
+                why,
+            ]);
+        }
+    }
+    let _ = writeln!(
+        s,
+        "Best per objective (energy: dynamic and static; area: the silicon of the units each configuration \
+         uses at its architecture's technology), each against the fastest:\n\n{}",
+        t.markdown()
+    );
 }
 
 /// Where the winner (the fastest under the loosest budget) changes

@@ -101,8 +101,9 @@ impl Figure for Pareto<'_> {
 /// Artifacts against cost for one scene's rows: hollow markers by
 /// algorithm family, coloured by architecture, the Pareto front a
 /// staircase, the budgets dashed lines, the legend beside the chart.
-/// Writes `pareto-<scene>-time.{svg,png}` and
-/// `pareto-<scene>-bytes.{svg,png}`.
+/// Writes `pareto-<scene>-time.{svg,png}`,
+/// `pareto-<scene>-bytes.{svg,png}` and, where an architecture states its
+/// technology, `pareto-<scene>-area.{svg,png}`.
 ///
 /// # Errors
 /// [`StudyError::Plot`] or [`StudyError::Output`].
@@ -136,7 +137,12 @@ pub(crate) fn pareto(
         ),
         #[allow(clippy::cast_precision_loss, reason = "plot coordinates")]
         ("bytes", "DRAM bytes (both passes)", |c: &RowCost| c.total_dram_bytes as f64),
+        ("area", "silicon area, µm² (the units each configuration uses)", |c: &RowCost| c.area_square_metres * 1e12),
     ] {
+        // No area where no architecture states its technology.
+        if what == "area" && rows.iter().filter_map(|r| r.cost.as_ref()).all(|c| c.area_square_metres <= 0.0) {
+            continue;
+        }
         let points: Vec<(f64, f64)> = rows
             .iter()
             .filter_map(|r| Some((r.cost.as_ref()?, r.metrics.as_ref()?)))
