@@ -91,3 +91,58 @@ fn an_edited_copy_under_the_originals_name_is_said() {
     assert!(said.contains("calls itself `mobile-tbdr`") && said.contains("(dram.bandwidth)"), "{said}");
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// A study with a map-cache axis names a best design per objective in its
+/// summary: the fastest takes a large cache, but under area (and energy ×
+/// time × area) the best is not simply the largest cache, since a cache's
+/// bits are silicon; a Pareto front against area is drawn.
+#[test]
+fn a_map_cache_axis_has_a_best_per_objective() {
+    let d = dir("cache-axis");
+    std::fs::create_dir_all(&d).expect("temp dir");
+    let sweep = d.join("caches.toml");
+    std::fs::write(
+        &sweep,
+        r#"
+format = 2
+name = "caches"
+scenes = ["table-and-sphere"]
+images = [[160, 90]]
+reference_rays = 1
+formats = ["d24"]
+maps = [1024]
+filters = ["bilinear"]
+archs = ["talisman"]
+budgets = [100.0]
+
+[[arch_axes]]
+key = "map_cache.size"
+values = ["1KiB", "16KiB", "256KiB"]
+
+[[algorithms]]
+algo = "second"
+"#,
+    )
+    .expect("write");
+    let out = d.join("out");
+    let o = umbra(&["study", "--sweep", sweep.to_str().expect("UTF-8"), "--out", out.to_str().expect("UTF-8")]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let md = std::fs::read_to_string(out.join("summary.md")).expect("summary");
+    // The best-per-objective table's row: budget, objective, best, …, why.
+    let best = |objective: &str| {
+        let line = md
+            .lines()
+            .find(|l| l.starts_with("| 100 % |") && l.contains(&format!("| {objective} |")) && l.contains("map_cache"))
+            .unwrap_or_else(|| panic!("{objective}:\n{md}"));
+        let cells: Vec<&str> = line.split(" | ").collect();
+        (cells[2].to_owned(), cells[cells.len() - 1].to_owned())
+    };
+    assert!(best("cycles").0.contains("map_cache.size=256KiB"), "{:?}", best("cycles"));
+    for objective in ["area (mm²)", "energy × time × area (J·s·mm²)"] {
+        let (pick, why) = best(objective);
+        assert!(!pick.contains("map_cache.size=256KiB"), "{pick}");
+        assert!(why.contains("of the fastest's"), "says why: {why}");
+    }
+    assert!(out.join("pareto-table-and-sphere-area.svg").is_file());
+    std::fs::remove_dir_all(&d).expect("clean up");
+}

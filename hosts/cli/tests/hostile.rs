@@ -546,7 +546,7 @@ fn an_in_place_upgrade_keeps_what_it_replaces() {
     let o = upgrade(&link);
     assert!(o.status.success() && String::from_utf8_lossy(&o.stderr).contains("real.toml"), "names the target");
     assert!(std::fs::symlink_metadata(&link).expect("link").file_type().is_symlink(), "the link stays a link");
-    assert!(upgraded(&real).starts_with("format = 2\n"), "its target upgraded");
+    assert!(upgraded(&real).starts_with("format = 3\n"), "its target upgraded");
     // A read-only file is refused, and left as it was.
     let locked = sub.join("locked.toml");
     std::fs::write(&locked, &old).expect("file");

@@ -9,5 +9,6 @@ mod correlation;
 mod derived;
 mod reads;
 mod shared;
+mod silicon;
 mod stack;
 mod storage;

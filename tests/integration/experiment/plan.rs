@@ -161,3 +161,73 @@ fn plans_on_the_shared_meshes() {
     let scene = Scene::parse(text, Path::new("probe.toml"), &Limits::DEFAULT).expect("a scene");
     holds(&scene, &["acne=0.1%", "misclassified=1.1%"]);
 }
+
+/// `--objective area` ranks by the silicon of the units each candidate
+/// uses: under a budget every candidate meets, one 16-bit buffer is the
+/// least, then one 24-bit buffer, two 16-bit buffers, two 24-bit ones,
+/// and last a silhouette map's points and evaluator beside its buffer;
+/// each candidate's area is its
+/// units' at the architecture's technology, computed here from the
+/// configuration alone. The reasons set the pick beside the fastest and
+/// name the units that differ.
+#[test]
+fn an_area_objective_picks_by_the_units_silicon() {
+    use umbra::sim::cost::silicon::Silicon;
+    use umbra::sim::experiment::plan::Objective;
+    let scene = Scene::bundled("table-and-sphere").expect("bundled");
+    let arch = umbra::sim::Arch::bundled("talisman").expect("bundled");
+    let spec = PlanSpec {
+        variants: vec![
+            Variant::new(Algorithm::Silhouette { packed: false }, 0.005),
+            Variant::new(Algorithm::Second, 0.0),
+            Variant::new(Algorithm::First, 0.005),
+            Variant::new(Algorithm::Volumes, 0.0),
+        ],
+        formats: vec![DepthFormatKind::D24, DepthFormatKind::D16],
+        map_sizes: vec![256],
+        filters: vec![Filter::Point],
+        image: [320, 180],
+        objective: Objective::Area,
+        arch: arch.clone(),
+        ..PlanSpec::new(&scene, vec!["artifacts=100%".parse::<Budget>().expect("a budget")])
+    };
+    let p = plan(&scene, &spec, &ProgressBar::hidden()).expect("plans");
+    assert_eq!(p.candidates, 8);
+    let order: Vec<(String, f64)> = std::iter::once(&p.pick)
+        .chain(p.runners_up.iter().filter(|r| !r.cheaper).map(|r| &r.candidate))
+        .map(|c| (format!("{} {}", c.algorithm, c.format.name()), c.square_metres))
+        .collect();
+    let names: Vec<&str> = order.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(names[1..], ["first d16", "first d24", "second d16"], "{order:?}");
+    assert!(names[0].starts_with("volumes"), "{order:?}");
+    assert!(order.windows(2).all(|w| w[0].1 < w[1].1), "{order:?}");
+    // Each area is the units' of its configuration, from the file.
+    let area = |algorithm, format| {
+        let v = spec.variants.iter().find(|v| v.algorithm == algorithm).expect("a variant");
+        let (virtual_samples, filter) = (v.virtual_samples, Filter::Point);
+        let (width, height) = (320, 180);
+        let cfg = RenderConfig {
+            algorithm,
+            format,
+            filter,
+            virtual_samples,
+            map_size: 256,
+            width,
+            height,
+            ..RenderConfig::DEFAULT
+        };
+        Silicon::of(&arch, &cfg.demand()).square_metres()
+    };
+    assert_eq!(order[0].1, area(Algorithm::Volumes, DepthFormatKind::D16));
+    assert_eq!(order[1].1, area(Algorithm::First, DepthFormatKind::D16));
+    assert_eq!(order[3].1, area(Algorithm::Second, DepthFormatKind::D16));
+    let (sil, two) = (Algorithm::Silhouette { packed: false }, area(Algorithm::Second, DepthFormatKind::D24));
+    assert!(area(sil, DepthFormatKind::D16) > two && two > order[3].1);
+    let why = p.reasons.iter().find(|r| r.starts_with("against the fastest"));
+    let why = why.unwrap_or_else(|| panic!("{}", p.reasons.join("\n")));
+    assert!(why.contains("map cache 0 against") && why.contains("stencil"), "{why}");
+    // By cycles the same space picks otherwise: area is a trade, not a tie.
+    let fastest = plan(&scene, &PlanSpec { objective: Objective::Cycles, ..spec.clone() }, &ProgressBar::hidden())
+        .expect("plans");
+    assert!(fastest.pick.label != p.pick.label, "{}", fastest.pick.label);
+}

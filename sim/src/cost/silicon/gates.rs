@@ -133,11 +133,21 @@ mod synthesis {
         cells.iter().map(|(c, n)| weight(c) * n.as_f64().expect("a count")).sum()
     }
 
+    /// A scratch folder, removed however the test ends.
+    struct Scratch(std::path::PathBuf);
+
+    impl Drop for Scratch {
+        fn drop(&mut self) {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
+
     #[test]
     #[ignore = "needs yosys (apt-get install yosys); .ci/run installs it and runs this"]
     fn gate_counts_match_yosys() {
-        let dir = std::env::temp_dir().join(format!("umbra-yosys-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).expect("scratch folder");
+        let scratch = Scratch(std::env::temp_dir().join(format!("umbra-yosys-{}", std::process::id())));
+        let dir = &scratch.0;
+        std::fs::create_dir_all(dir).expect("scratch folder");
         let mut worst: f64 = 0.0;
         for b in Block::ALL {
             let widths: &[(u32, u32)] = if b == Block::Multiply {
@@ -146,7 +156,7 @@ mod synthesis {
                 &[(8, 1), (12, 1), (16, 1), (24, 1), (32, 1)]
             };
             for &(w, v) in widths {
-                let (model, yosys) = (gate_equivalents(b, w, v), synthesised(&dir, b, w, v));
+                let (model, yosys) = (gate_equivalents(b, w, v), synthesised(dir, b, w, v));
                 let off = (model / yosys - 1.0).abs();
                 worst = worst.max(off);
                 // 15 %: the spread of a per-bit figure over widths 8 to 32
@@ -154,7 +164,6 @@ mod synthesis {
                 assert!(off <= 0.15, "{} {w}×{v}: model {model:.1} GE, yosys {yosys:.1} GE", b.name());
             }
         }
-        std::fs::remove_dir_all(&dir).expect("remove the scratch folder");
         eprintln!("worst: {:.1} %", 100.0 * worst);
     }
 }
