@@ -94,10 +94,11 @@ pub(super) struct StudyArgs {
     /// Reference rays per pixel side, in place of the sweep's.
     #[arg(long, value_parser = clap::value_parser!(u32).range(RenderConfig::reference_rays_flag()))]
     pub(super) reference_rays: Option<u32>,
-    /// Error budgets, percent artifacts, in place of the sweep's
-    /// (`--budgets 1,0.1`).
-    #[arg(long, value_delimiter = ',')]
-    pub(super) budgets: Vec<f64>,
+    /// Error budgets in place of the sweep's, each a percentage of
+    /// artifacts or `MEASURE=PERCENT` as `plan --budget` spells it
+    /// (`--budgets 1,0.1,acne=0.01%`).
+    #[arg(long, value_delimiter = ',', value_parser = budget)]
+    pub(super) budgets: Vec<umbra_sim::experiment::plan::Budget>,
     /// Run only shard i of n (every n-th block of configurations that share
     /// a scene, image, format and map side, so each block's passes are
     /// drawn once) and write a partial results.jsonl; `umbra merge` joins

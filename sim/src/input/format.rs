@@ -35,8 +35,9 @@ pub const ARCH: Format = Format { kind: "architecture", current: 3 };
 /// Scene files: one version so far.
 pub const SCENE: Format = Format { kind: "scene", current: 1 };
 /// Sweep files. Version 2 takes an architecture axis's values as numbers
-/// and flags as well as text.
-pub const SWEEP: Format = Format { kind: "sweep", current: 2 };
+/// and flags as well as text; version 3 takes budgets on any measure
+/// (`"acne=0.01%"`) beside numbers for artifacts.
+pub const SWEEP: Format = Format { kind: "sweep", current: 3 };
 
 /// A key an upgrade adds: its dotted path, its value, and the comment
 /// written after it.

@@ -2,6 +2,7 @@
 //! command line and Python cannot disagree.
 
 use umbra::sim::Limits;
+use umbra::sim::experiment::study::budget::Budget;
 use umbra::sim::experiment::study::{Overrides, Request, StudyError};
 
 fn request(overrides: Overrides) -> Request {
@@ -23,11 +24,14 @@ fn the_replaced_axes_are_written_canonically() {
         scenes: vec!["crowd".into()],
         images: vec!["160x90".into()],
         reference_rays: Some(1),
-        budgets: vec![1.0, 0.5],
+        budgets: vec![Budget::artifacts(1.0), Budget::artifacts(0.5), "acne=0.01%".parse().expect("a budget")],
         maps: vec![256],
         ..Overrides::default()
     };
-    assert_eq!(o.canonical(), "scenes=crowd\narch=\nset=\nimage=160x90\nreference_rays=1\nbudgets=1,0.5\nmaps=256");
+    assert_eq!(
+        o.canonical(),
+        "scenes=crowd\narch=\nset=\nimage=160x90\nreference_rays=1\nbudgets=1,0.5,acne=0.01%\nmaps=256"
+    );
     assert!(Overrides::default().is_empty() && !o.is_empty());
 }
 
@@ -58,7 +62,7 @@ fn a_bad_request_names_its_flag() {
     assert!(err(images("160x90", "160×90")).contains("`160x90` and `160×90` are one size"));
     assert!(err(images("160x90", "160 x 90")).contains("are one size, 160x90"));
     assert!(err(Overrides { reference_rays: Some(17), ..Overrides::default() }).contains("--reference-rays 17"));
-    assert!(err(Overrides { budgets: vec![0.0], ..Overrides::default() }).contains("--budgets"));
+    assert!(err(Overrides { budgets: vec![Budget::artifacts(0.0)], ..Overrides::default() }).contains("--budgets"));
     let shard = Request { shard: Some("2/2".into()), ..request(Overrides::default()) };
     assert!(matches!(shard.prepare(&limits, 1), Err(StudyError::Shard(_))));
     assert!(!std::path::Path::new("target/unused").exists(), "nothing is written by a refused request");

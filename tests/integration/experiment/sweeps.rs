@@ -131,9 +131,9 @@ algo = "first"
     assert_eq!(names.len(), 4, "{names:?}");
     assert!(names.iter().all(|n| n.len() <= 64 && n.starts_with(&base[..40])), "{names:?}");
     // A format this build does not know is refused, naming it.
-    std::fs::write(&f, text.replace("format = 2", "format = 3")).expect("write");
-    let e = SweepFile::open(f.to_str().expect("UTF-8"), &l).and_then(|s| s.spec(&l)).expect_err("format 3");
-    assert!(e.key == "format" && e.problem.contains("formats 1 to 2"), "{e}");
+    std::fs::write(&f, text.replace("format = 2", "format = 4")).expect("write");
+    let e = SweepFile::open(f.to_str().expect("UTF-8"), &l).and_then(|s| s.spec(&l)).expect_err("format 4");
+    assert!(e.key == "format" && e.problem.contains("formats 1 to 3"), "{e}");
 }
 
 #[test]
@@ -170,6 +170,12 @@ fn a_bad_sweep_file_names_its_key() {
             "scenes[1]",
         ),
         ("[[algorithms]]\nalgo = \"first\"\n", Some(("budgets = [1.0]", "budgets = [1.0, 1.0]")), "budgets[1]"),
+        (
+            "[[algorithms]]\nalgo = \"first\"\n",
+            Some(("budgets = [1.0]", "budgets = [1.0, \"glare=1%\"]")),
+            "budgets[1]",
+        ),
+        ("[[algorithms]]\nalgo = \"first\"\n", Some(("budgets = [1.0]", "budgets = [\"acne=0%\"]")), "budgets[0]"),
         ("[[algorithms]]\nalgo = \"first\"\nbias = [0.0, 0.0]\n", None, "algorithms"),
         ("[[algorithms]]\nalgo = \"first\"\n", Some(("[[64, 36]]", "[[64, 36, 2]]")), "(line"),
         ("[[algorithms]]\nalgo = \"first\"\n", Some(("[[64, 36]]", "[[64.5, 36]]")), "(line"),
@@ -249,4 +255,23 @@ fn one_value_under_two_spellings_is_refused() {
     let e = request(vec!["dram.bandwidth=3GB/s".into()]).prepare(&Limits::DEFAULT, 1).expect_err("swept key");
     assert!(e.to_string().contains("arch_axes vary `dram.bandwidth`"), "{e}");
     request(vec!["clock=2GHz".into()]).prepare(&Limits::DEFAULT, 1).expect("another key");
+}
+
+/// A sweep's budgets bound any measure the planner's do: a number is
+/// artifacts, as every earlier file meant; `MEASURE=PERCENT` another; and
+/// the summary judges each row by the measure its budget names.
+#[test]
+fn budgets_on_any_measure() {
+    use umbra::sim::experiment::study::budget::{Budget, Measure};
+    let d = dir("measures");
+    let text = "format = 3\nname = \"m\"\nscenes = [\"table-and-sphere\"]\nimages = [[64, 36]]\nreference_rays = 1\n\
+                formats = [\"d16\"]\nmaps = [128]\nfilters = [\"point\"]\narchs = [\"talisman\"]\n\
+                budgets = [1.0, \"acne=0.01%\", \"misclassified=5%\"]\n[[algorithms]]\nalgo = \"first\"\n";
+    let f = d.join("m.toml");
+    std::fs::write(&f, text).expect("write");
+    let l = Limits::DEFAULT;
+    let spec = SweepFile::open(f.to_str().expect("UTF-8"), &l).and_then(|s| s.spec(&l)).expect("loads");
+    let want = [(Measure::Artifacts, 1.0), (Measure::Acne, 0.01), (Measure::Misclassified, 5.0)];
+    assert_eq!(spec.budgets, want.map(|(measure, percent)| Budget { measure, percent }));
+    assert_eq!(spec.budgets.iter().map(Budget::short).collect::<Vec<_>>(), ["1 %", "acne 0.01 %", "misclassified 5 %"]);
 }

@@ -29,13 +29,12 @@ use serde::Serialize;
 use umbra_core::shadow::Filter;
 use umbra_core::{CullMode, DepthFormat, DepthFormatKind, DepthUnit, F32, LightPassConfig, RasterConfig};
 
-mod budget;
 mod candidate;
 mod objective;
 mod report;
 mod why;
 
-pub use budget::{Budget, Measure};
+pub use crate::experiment::study::budget::{Budget, Measure};
 pub use candidate::{Candidate, RunnerUp};
 pub use objective::{CostLimits, Costs, Objective};
 
@@ -135,7 +134,7 @@ impl PlanSpec {
             arch_points: Vec::new(),
             images: vec![self.image],
             reference_rays: REFERENCE_RAYS,
-            budgets: self.budgets.iter().filter(|b| b.measure == Measure::Artifacts).map(|b| b.percent).collect(),
+            budgets: self.budgets.clone(),
             hash: crate::output::provenance::hash(name.as_bytes()),
             name,
             limits: self.limits,

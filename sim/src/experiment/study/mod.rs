@@ -27,6 +27,7 @@ use crate::input::limits::FileError;
 use crate::output::OutputError;
 use crate::world::scene_file::SceneError;
 
+pub mod budget;
 pub(crate) mod extremes;
 pub(crate) mod plot;
 mod rank;
@@ -41,6 +42,7 @@ mod sweep;
 mod sweep_file;
 
 pub use crate::cost::report::stats::RowCost;
+use budget::{Budget, Measure};
 pub use request::{Outcome, Overrides, Prepared, Request, choose_archs, image_size, map_sides, no_repeats};
 pub use row::{Row, RowConfig, RowMetrics, Status};
 #[cfg(test)]
@@ -80,12 +82,14 @@ pub(crate) const MAX_BUDGETS: usize = 16;
 /// [`MAX_BUDGETS`], a value that is not a percentage in (0, 100], or one
 /// given twice. The message names the offending entry by its index.
 #[must_use]
-pub(crate) fn budgets_problem(budgets: &[f64]) -> Option<(usize, String)> {
+pub(crate) fn budgets_problem(budgets: &[Budget]) -> Option<(usize, String)> {
     if budgets.len() > MAX_BUDGETS {
         return Some((MAX_BUDGETS, format!("{} budgets; at most {MAX_BUDGETS}", budgets.len())));
     }
-    if let Some((i, b)) = budgets.iter().enumerate().find(|&(_, &b)| !(b.is_finite() && b > 0.0 && b <= 100.0)) {
-        return Some((i, format!("{b} is not a percentage in (0, 100]")));
+    if let Some((i, b)) =
+        budgets.iter().enumerate().find(|&(_, b)| !(b.percent.is_finite() && b.percent > 0.0 && b.percent <= 100.0))
+    {
+        return Some((i, format!("{} is not a percentage in (0, 100]", b.percent)));
     }
     repeated(budgets).map(|(j, i)| (i, format!("{} repeats budget {j}", budgets[i])))
 }
@@ -110,9 +114,11 @@ fn same_names(scenes: &[crate::world::scene::Scene]) -> Option<(usize, usize, St
     })
 }
 
-/// The loosest of the error budgets.
-fn loosest(budgets: &[f64]) -> Option<f64> {
-    budgets.iter().copied().max_by(f64::total_cmp)
+/// The budget the summary's crossovers and the axes' plot judge winners
+/// by: the loosest on artifacts, else the first.
+fn loosest(budgets: &[Budget]) -> Option<Budget> {
+    let artifacts = budgets.iter().filter(|b| b.measure == Measure::Artifacts);
+    artifacts.max_by(|a, b| a.percent.total_cmp(&b.percent)).or(budgets.first()).copied()
 }
 
 /// Why the study could not run or write its files.

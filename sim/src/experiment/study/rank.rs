@@ -1,8 +1,9 @@
 //! How rows are ranked: the costs the summary ranks by (time, or cycles
 //! where every architecture shares one clock; DRAM bytes; energy), and the
-//! cheapest complete row within an artifact budget.
+//! cheapest complete row within an error budget.
 
 use super::{Row, RowCost, distinct};
+use crate::experiment::study::budget::Budget;
 
 /// A cost the summary ranks by: its name with its unit, its value, and
 /// the value as the table writes it.
@@ -62,14 +63,14 @@ pub(super) fn one_clock(rows: &[&Row]) -> Option<f64> {
     }
 }
 
-/// The complete rows whose artifacts are within `budget` percent, the
-/// cheapest by `key`, and how many tie with it (ties are broken by sweep
-/// order: the first configuration, then the first architecture).
-pub(super) fn cheapest<'a>(rows: &[&'a Row], budget: f64, key: Key) -> Option<(&'a Row, usize)> {
+/// The complete rows within `budget`, the cheapest by `key`, and how many
+/// tie with it (ties are broken by sweep order: the first configuration,
+/// then the first architecture).
+pub(super) fn cheapest<'a>(rows: &[&'a Row], budget: &Budget, key: Key) -> Option<(&'a Row, usize)> {
     let ok: Vec<(&Row, f64)> = rows
         .iter()
         .copied()
-        .filter(|r| r.complete() && r.metrics.is_some_and(|m| m.artifact_percent <= budget))
+        .filter(|r| r.complete() && r.metrics.is_some_and(|m| budget.met_by(&m)))
         .filter_map(|r| Some((r, (key.value)(r.cost.as_ref()?))))
         .collect();
     let best = ok.iter().map(|(_, k)| *k).min_by(f64::total_cmp)?;

@@ -7,6 +7,7 @@
 //! axes written canonically ([`Overrides::canonical`]): the same request
 //! spelled in another order of flags, or by another host, hashes the same.
 
+use crate::experiment::study::budget::{Budget, Measure};
 use std::path::PathBuf;
 
 use indicatif::ProgressBar;
@@ -37,8 +38,8 @@ pub struct Overrides {
     pub images: Vec<String>,
     /// Reference rays per pixel side.
     pub reference_rays: Option<u32>,
-    /// Error budgets, percent artifacts.
-    pub budgets: Vec<f64>,
+    /// Error budgets, each on a measure of the metrics.
+    pub budgets: Vec<Budget>,
     /// Map sides.
     pub maps: Vec<u32>,
 }
@@ -63,7 +64,16 @@ impl Overrides {
             format!("set={}", list(&self.sets)),
             format!("image={}", list(&self.images)),
             format!("reference_rays={}", self.reference_rays.map(|n| n.to_string()).unwrap_or_default()),
-            format!("budgets={}", numbers(self.budgets.iter().map(f64::to_string).collect())),
+            // An artifacts budget as a bare number, as the hash always had it.
+            format!(
+                "budgets={}",
+                numbers(
+                    self.budgets
+                        .iter()
+                        .map(|b| if b.measure == Measure::Artifacts { b.percent.to_string() } else { b.to_string() })
+                        .collect()
+                )
+            ),
             format!("maps={}", numbers(self.maps.iter().map(u32::to_string).collect())),
         ]
         .join("\n")

@@ -3,6 +3,7 @@
 
 use super::rank::{cheapest, keys, objectives, one_clock};
 use super::{Manifest, Row, RowCost, StudyError, distinct, jsonl, loosest, plot, sort_rows};
+use crate::experiment::study::budget::Budget;
 use crate::output::folder::OutputFolder;
 use crate::output::markdown::escape;
 use crate::output::table::{Align, Table};
@@ -133,7 +134,7 @@ pub fn summary(rows: &[Row], manifest: &Manifest) -> String {
     s
 }
 
-fn scene_summary(s: &mut String, rows: &[&Row], budgets: &[f64]) {
+fn scene_summary(s: &mut String, rows: &[&Row], budgets: &[Budget]) {
     // The smallest image of the sweep sets the budget a pixel is.
     let pixel = rows.iter().filter_map(|r| r.metrics.map(|m| m.evaluated_px)).filter(|&n| n > 0).min().map(|n| {
         #[allow(clippy::cast_precision_loss, reason = "a pixel count")]
@@ -143,15 +144,15 @@ fn scene_summary(s: &mut String, rows: &[&Row], budgets: &[f64]) {
     let keys = keys(rows);
     let (l, r) = (Align::Left, Align::Right);
     let mut t = Table::new(&[
-        ("artifact budget", r),
+        ("budget", r),
         ("cost", l),
         ("cheapest", l),
         ("cost", r),
         ("artifacts %", r),
         ("misclassified %", r),
     ]);
-    for &budget in budgets {
-        let flag = if pixel.is_some_and(|p| budget < p) { " (below one pixel)" } else { "" };
+    for budget in budgets {
+        let flag = if pixel.is_some_and(|p| budget.percent < p) { " (below one pixel)" } else { "" };
         for key in keys {
             let cells = match cheapest(rows, budget, key) {
                 Some((r, ties)) => {
@@ -166,7 +167,7 @@ fn scene_summary(s: &mut String, rows: &[&Row], budgets: &[f64]) {
                 }
                 None => ["none meets it", "–", "–", "–"].map(str::to_owned),
             };
-            t.row([format!("{budget} %{flag}"), key.name.to_owned()].into_iter().chain(cells));
+            t.row([format!("{}{flag}", budget.short()), key.name.to_owned()].into_iter().chain(cells));
         }
     }
     s.push_str(&t.markdown());
@@ -181,11 +182,11 @@ fn scene_summary(s: &mut String, rows: &[&Row], budgets: &[f64]) {
     let families = distinct(rows.iter().map(|r| r.config.family));
     for key in keys {
         let mut columns = vec![("family".to_owned(), Align::Left)];
-        columns.extend(budgets.iter().map(|b| (format!("{b} %"), Align::Left)));
+        columns.extend(budgets.iter().map(|b| (b.short(), Align::Left)));
         let mut t = Table::new(&columns);
         for f in &families {
             let fam: Vec<&Row> = rows.iter().copied().filter(|r| r.config.family == *f).collect();
-            let cells = budgets.iter().map(|&b| {
+            let cells = budgets.iter().map(|b| {
                 cheapest(&fam, b, key).map_or_else(
                     || "–".to_owned(),
                     |(r, _)| {
@@ -204,11 +205,11 @@ fn scene_summary(s: &mut String, rows: &[&Row], budgets: &[f64]) {
 
 /// The best row per objective under each budget, with why: its time,
 /// energy and area against the fastest row's.
-fn best_per_objective(s: &mut String, rows: &[&Row], budgets: &[f64]) {
+fn best_per_objective(s: &mut String, rows: &[&Row], budgets: &[Budget]) {
     let objectives = objectives(rows);
     let (l, r) = (Align::Left, Align::Right);
     let mut t = Table::new(&[
-        ("artifact budget", r),
+        ("budget", r),
         ("objective", l),
         ("best", l),
         ("time (µs)", r),
@@ -217,11 +218,11 @@ fn best_per_objective(s: &mut String, rows: &[&Row], budgets: &[f64]) {
         ("why", l),
     ]);
     let ratio = |a: f64, b: f64| if b > 0.0 { format!("{:.2}×", a / b) } else { "–".to_owned() };
-    for &budget in budgets {
+    for budget in budgets {
         let fastest = cheapest(rows, budget, objectives[0]).and_then(|(r, _)| Some((r, r.cost.as_ref()?)));
         for key in objectives {
             let Some((best, c)) = cheapest(rows, budget, key).and_then(|(r, _)| Some((r, r.cost.as_ref()?))) else {
-                t.row([format!("{budget} %"), key.name.to_owned(), "none meets it".to_owned()]);
+                t.row([budget.short(), key.name.to_owned(), "none meets it".to_owned()]);
                 continue;
             };
             let why = match fastest {
@@ -240,7 +241,7 @@ fn best_per_objective(s: &mut String, rows: &[&Row], budgets: &[f64]) {
                 None => String::new(),
             };
             t.row([
-                format!("{budget} %"),
+                budget.short(),
                 key.name.to_owned(),
                 best.label(),
                 format!("{:.3}", c.frame_seconds * 1e6),
@@ -263,7 +264,7 @@ fn best_per_objective(s: &mut String, rows: &[&Row], budgets: &[f64]) {
 /// the cheapest shadow-volume configuration's split of cycles into a light
 /// pass (fixed) and a camera pass (per pixel), the image size at which
 /// they cross.
-fn crossovers(s: &mut String, rows: &[&Row], budgets: &[f64]) {
+fn crossovers(s: &mut String, rows: &[&Row], budgets: &[Budget]) {
     let Some(loose) = loosest(budgets) else { return };
     let fastest = keys(rows)[0];
     let by = |axis: &str, value: &dyn Fn(&Row) -> String| {
@@ -271,11 +272,11 @@ fn crossovers(s: &mut String, rows: &[&Row], budgets: &[f64]) {
         if values.len() < 2 {
             return String::new();
         }
-        let mut out = format!("Winner within {loose} % by {axis}:");
+        let mut out = format!("Winner within {} by {axis}:", loose.short());
         for v in &values {
             let sub: Vec<&Row> = rows.iter().copied().filter(|r| value(r) == *v).collect();
             let w =
-                cheapest(&sub, loose, fastest).map_or_else(|| "none".to_owned(), |(r, _)| r.config.family.to_string());
+                cheapest(&sub, &loose, fastest).map_or_else(|| "none".to_owned(), |(r, _)| r.config.family.to_string());
             let _ = write!(out, " {v}: {w};");
         }
         out.pop();
@@ -285,7 +286,7 @@ fn crossovers(s: &mut String, rows: &[&Row], budgets: &[f64]) {
     s.push_str(&by("map side", &|r| format!("{}²", r.config.map_side_texels)));
     let volumes: Vec<&Row> = rows.iter().copied().filter(|r| r.config.algorithm == "volumes").collect();
     let maps: Vec<&Row> = rows.iter().copied().filter(|r| r.config.algorithm != "volumes").collect();
-    if let (Some((v, _)), Some((m, _))) = (cheapest(&volumes, loose, fastest), cheapest(&maps, loose, fastest)) {
+    if let (Some((v, _)), Some((m, _))) = (cheapest(&volumes, &loose, fastest), cheapest(&maps, &loose, fastest)) {
         let (Some(vc), Some(mc)) = (&v.cost, &m.cost) else { return };
         // Cycles where one clock runs every row, else nanoseconds.
         let one = one_clock(rows).is_some();
@@ -297,9 +298,10 @@ fn crossovers(s: &mut String, rows: &[&Row], budgets: &[f64]) {
             (px, time(vc, vc.total_cycles) / px, time(mc, mc.camera_cycles) / px, time(mc, mc.light_cycles));
         let _ = write!(
             s,
-            "Shadow volumes against maps within {loose} %: the cheapest volumes take {:.2} {unit} a pixel \
+            "Shadow volumes against maps within {}: the cheapest volumes take {:.2} {unit} a pixel \
              (overdraw × stencil work), the cheapest map configuration ({}) {:.2} a pixel plus {:.0} for its light \
              pass. ",
+            loose.short(),
             v_px,
             m.label(),
             m_px,
@@ -325,7 +327,7 @@ fn crossovers(s: &mut String, rows: &[&Row], budgets: &[f64]) {
 /// For each configuration that wins (the fastest within the
 /// loosest budget) at some architecture parameter point, its bottlenecks
 /// at every point: where a parameter moves one, this shows it.
-fn bottlenecks(s: &mut String, rows: &[&Row], budgets: &[f64]) {
+fn bottlenecks(s: &mut String, rows: &[&Row], budgets: &[Budget]) {
     let Some(loose) = loosest(budgets) else { return };
     let fastest = keys(rows)[0];
     let points = distinct(rows.iter().map(|r| r.config.arch_point()));
@@ -336,7 +338,7 @@ fn bottlenecks(s: &mut String, rows: &[&Row], budgets: &[f64]) {
     let mut winners: Vec<usize> = Vec::new();
     for &p in &points {
         let sub: Vec<&Row> = rows.iter().copied().filter(|r| at(r, p)).collect();
-        if let Some((w, _)) = cheapest(&sub, loose, fastest)
+        if let Some((w, _)) = cheapest(&sub, &loose, fastest)
             && !winners.contains(&w.config_index)
         {
             winners.push(w.config_index);
@@ -344,8 +346,9 @@ fn bottlenecks(s: &mut String, rows: &[&Row], budgets: &[f64]) {
     }
     let _ = writeln!(
         s,
-        "Bottlenecks (light pass / camera pass) of each configuration that wins within {loose} % at some \
-         architecture point, at every point:\n"
+        "Bottlenecks (light pass / camera pass) of each configuration that wins within {} at some \
+         architecture point, at every point:\n",
+        loose.short()
     );
     let (l, r) = (Align::Left, Align::Right);
     let mut t = Table::new(&[

@@ -82,8 +82,8 @@ pub struct Spec {
     pub images: Vec<[u32; 2]>,
     /// Reference rays per pixel side.
     pub reference_rays: u32,
-    /// The summary's error budgets, percent artifacts.
-    pub budgets: Vec<f64>,
+    /// The summary's error budgets, each on a measure of the metrics.
+    pub budgets: Vec<crate::experiment::study::budget::Budget>,
     /// The sweep's name (`quick`, `full`, or the file's).
     pub name: String,
     /// The hash of the sweep file's text (`crate::output::provenance::hash`),

@@ -266,7 +266,7 @@ pub(crate) fn arch_axes(
                                 let x = f64::from_bits(bits);
                                 let at: Vec<&Row> =
                                     mine.iter().copied().filter(|r| value(r, &x_col, &texts) == Some(x)).collect();
-                                let (best, _) = cheapest(&at, budget, TIME)?;
+                                let (best, _) = cheapest(&at, &budget, TIME)?;
                                 let c = best.cost.as_ref()?;
                                 let bound = if c.light_cycles > c.camera_cycles {
                                     c.light_bottleneck
@@ -286,7 +286,7 @@ pub(crate) fn arch_axes(
         .collect();
     let unit = axis_unit(&x_col);
     let fig = AxisPlot {
-        title: format!("{scene}: fastest within {budget} % against {first}"),
+        title: format!("{scene}: fastest within {} against {first}", budget.short()),
         x_unit: PARAMS.iter().find(|p| p.key == first.as_str()).map(|p| p.unit),
         x_desc: if unit == "-" { first.clone() } else { format!("{first} ({unit})") },
         names,

@@ -5,6 +5,7 @@ use plotters::prelude::*;
 
 use super::{ERROR_FLOOR, FAMILIES, Legend, marker, pareto_front, provenance, with_legend};
 use crate::experiment::plot::{Figure, both, colour, footnote, log_log_chart, log_range, zero_row};
+use crate::experiment::study::budget::Measure;
 use crate::experiment::study::{Manifest, Row, RowCost, StudyError, distinct};
 use crate::output::folder::OutputFolder;
 
@@ -19,6 +20,7 @@ struct Pareto<'a> {
     family_of: Vec<usize>,
     /// Each architecture's label (its base and axis values).
     archs: Vec<String>,
+    /// The artifact budgets: the lines the y axis can draw.
     budgets: &'a [f64],
     /// What made it: the version, the sweep and its hash.
     provenance: [String; 2],
@@ -129,6 +131,9 @@ pub(crate) fn pareto(
         .collect();
     let family_of: Vec<usize> =
         rows.iter().map(|r| FAMILIES.iter().position(|&f| f == r.config.family).unwrap_or(4)).collect();
+    // The y axis is artifacts: budgets on other measures draw no line.
+    let artifact_budgets: Vec<f64> =
+        manifest.budgets.iter().filter(|b| b.measure == Measure::Artifacts).map(|b| b.percent).collect();
     for (what, axis, key) in [
         (
             "time",
@@ -155,7 +160,7 @@ pub(crate) fn pareto(
             arch_of: arch_of.clone(),
             family_of: family_of.clone(),
             archs: archs.clone(),
-            budgets: &manifest.budgets,
+            budgets: &artifact_budgets,
             provenance: provenance(manifest),
         };
         both(folder, &format!("pareto-{scene}-{what}"), &fig)?;

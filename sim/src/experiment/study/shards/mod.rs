@@ -34,8 +34,10 @@ pub struct Manifest {
     pub architectures: usize,
     /// Rows in this run's `results.jsonl`.
     pub rows: usize,
-    /// The summary's error budgets, percent artifacts.
-    pub budgets: Vec<f64>,
+    /// The summary's error budgets: numbers for artifacts (as earlier
+    /// manifests wrote them), `MEASURE=PERCENT` for another measure.
+    #[serde(with = "crate::experiment::study::budget::written")]
+    pub budgets: Vec<crate::experiment::study::budget::Budget>,
     /// The command line that made it.
     pub command: String,
 }

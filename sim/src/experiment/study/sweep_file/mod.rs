@@ -34,6 +34,7 @@ use umbra_core::{DepthFormatKind, RasterConfig};
 mod arch_points;
 
 use super::{Spec, Variant, repeated};
+use crate::experiment::study::budget::written::Written;
 use crate::input::exact::Exact;
 use crate::input::limits::Limits;
 use crate::render::{Algorithm, Culling, RenderConfig};
@@ -79,7 +80,7 @@ struct FileText {
     archs: Vec<String>,
     #[serde(default)]
     arch_axes: Vec<AxisText>,
-    budgets: Vec<f64>,
+    budgets: Vec<Written>,
     algorithms: Vec<AlgorithmText>,
 }
 
@@ -278,7 +279,13 @@ impl SweepFile {
             .map(|(i, f)| self.filter(&format!("filters[{i}]"), f))
             .collect::<Result<Vec<_>, _>>()?;
         let (archs, arch_points) = self.archs(&t, limits)?;
-        if let Some((i, problem)) = super::budgets_problem(&t.budgets) {
+        let budgets = t
+            .budgets
+            .iter()
+            .enumerate()
+            .map(|(i, b)| b.budget().map_err(|e| self.err(format!("budgets[{i}]"), e)))
+            .collect::<Result<Vec<_>, _>>()?;
+        if let Some((i, problem)) = super::budgets_problem(&budgets) {
             return Err(self.err(format!("budgets[{i}]"), problem));
         }
         let mut variants = Vec::new();
@@ -324,7 +331,7 @@ impl SweepFile {
             arch_points,
             images: t.images.iter().map(|i| i.0).collect(),
             reference_rays: t.reference_rays,
-            budgets: t.budgets,
+            budgets,
             name: t.name,
             hash: self.hash(),
             limits: *limits,

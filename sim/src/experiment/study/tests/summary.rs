@@ -83,7 +83,7 @@ fn manifest() -> Manifest {
         layout: crate::experiment::study::Layout { configurations: 5, variants: 5, formats: 1, maps: 1, filters: 1 },
         architectures: 1,
         rows: 6,
-        budgets: vec![1.0, 0.1, 0.001],
+        budgets: [1.0, 0.1, 0.001].map(crate::experiment::study::budget::Budget::artifacts).to_vec(),
         command: String::new(),
     }
 }
@@ -368,4 +368,25 @@ fn plots_of_twelve_architectures_keep_their_legends_and_read_in_si() {
     }
     assert!(plots >= 2, "{plots} plots");
     let _ = std::fs::remove_dir_all(&base);
+}
+
+/// A budget on another measure judges rows by it: misclassified pixels
+/// are artifacts + 0.5 % in these rows, so `misclassified=0.52%` admits
+/// only the rows with at most 0.02 % artifacts (the volumes' 0), and
+/// `acne=0.01%` every row (none has acne).
+#[test]
+fn a_budget_on_another_measure_judges_by_it() {
+    use crate::experiment::study::budget::Budget;
+    let small = [100, 100];
+    let a = ("talisman", "");
+    let rows = vec![
+        row(0, ("volumes", "shadow volumes"), small, a, 0.0, (0, 30_000), 900, 5.0, "depth"),
+        row(1, ("second-ffc", "second depth"), small, a, 0.05, (10_000, 10_000), 500, 4.0, "depth"),
+    ];
+    let budgets: Vec<Budget> = ["misclassified=0.52%", "acne=0.01%"].map(|b| b.parse().expect("a budget")).to_vec();
+    let md = summary(&rows, &Manifest { budgets, ..manifest() });
+    let l = line(&md, "misclassified 0.52 %", "cycles");
+    assert!(l.contains("volumes") && l.contains("| 30000 |"), "{l}");
+    let l = line(&md, "acne 0.01 %", "cycles");
+    assert!(l.contains("second-ffc") && l.contains("| 20000 |"), "{l}");
 }

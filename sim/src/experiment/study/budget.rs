@@ -1,13 +1,13 @@
 //! Error budgets: the measures a budget can bound (a class of the
 //! metrics' wrong pixels, percent of the evaluated pixels, each judged by
-//! its cause) and their one spelling, which the command line and Python
-//! read alike.
+//! its cause) and their one spelling, which the planner, the study, sweep
+//! files, the command line and Python read alike.
 
 use std::str::FromStr;
 
 use serde::Serialize;
 
-use crate::experiment::study::RowMetrics;
+use super::RowMetrics;
 
 /// What a budget bounds: a class of the metrics' wrong pixels
 /// ([`crate::truth::metrics`]), percent of the evaluated pixels.
@@ -89,7 +89,7 @@ impl Measure {
 /// Python's `umbra.plan`.
 ///
 /// ```
-/// use umbra_sim::experiment::plan::{Budget, Measure};
+/// use umbra_sim::experiment::study::budget::{Budget, Measure};
 /// let b: Budget = "misclassified=0.1%".parse()?;
 /// assert_eq!((b.measure, b.percent), (Measure::Misclassified, 0.1));
 /// assert_eq!("0.01".parse::<Budget>()?.measure, Measure::Artifacts);
@@ -123,9 +123,79 @@ impl FromStr for Budget {
         let v = v.strip_suffix('%').unwrap_or(v).trim();
         let percent: f64 = v.parse().map_err(|_| format!("budget `{text}`: `{value}` is not a percentage"))?;
         if !(0.0..=100.0).contains(&percent) {
-            return Err(format!("budget `{text}`: {percent}% is outside 0…100%"));
+            return Err(format!("budget `{text}`: `{value}` is not a percentage in 0…100"));
         }
         Ok(Self { measure, percent })
+    }
+}
+
+impl Budget {
+    /// Artifacts within `percent`: what a bare number means.
+    #[must_use]
+    pub const fn artifacts(percent: f64) -> Self {
+        Self { measure: Measure::Artifacts, percent }
+    }
+
+    /// As a table heads it: `1 %` for artifacts, `acne 0.01 %` for another
+    /// measure.
+    #[must_use]
+    pub fn short(&self) -> String {
+        match self.measure {
+            Measure::Artifacts => format!("{} %", self.percent),
+            m => format!("{} {} %", m.name(), self.percent),
+        }
+    }
+
+    /// Whether `m`'s measure is within it.
+    #[must_use]
+    pub fn met_by(&self, m: &RowMetrics) -> bool {
+        self.measure.percent(m) <= self.percent
+    }
+}
+
+/// Budgets as a study's manifest and sweep files write them: a number for
+/// artifacts (as every earlier file wrote them), `MEASURE=PERCENT` text for
+/// another measure; each read back either way.
+pub(crate) mod written {
+    use super::Budget;
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    /// One budget as written: a number or text.
+    #[derive(Deserialize)]
+    #[serde(untagged)]
+    pub(crate) enum Written {
+        /// Artifacts, percent.
+        Number(f64),
+        /// `MEASURE=PERCENT`.
+        Text(String),
+    }
+
+    impl Written {
+        /// The budget it spells.
+        pub(crate) fn budget(&self) -> Result<Budget, String> {
+            match self {
+                Self::Number(p) => Ok(Budget::artifacts(*p)),
+                Self::Text(t) => t.parse(),
+            }
+        }
+    }
+
+    pub(crate) fn serialize<S: Serializer>(budgets: &[Budget], s: S) -> Result<S::Ok, S::Error> {
+        #[derive(serde::Serialize)]
+        #[serde(untagged)]
+        enum Out {
+            Number(f64),
+            Text(String),
+        }
+        s.collect_seq(budgets.iter().map(|b| match b.measure {
+            super::Measure::Artifacts => Out::Number(b.percent),
+            _ => Out::Text(b.to_string()),
+        }))
+    }
+
+    pub(crate) fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<Budget>, D::Error> {
+        let written = Vec::<Written>::deserialize(d)?;
+        written.iter().map(|w| w.budget().map_err(serde::de::Error::custom)).collect()
     }
 }
 
