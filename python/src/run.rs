@@ -8,7 +8,7 @@ use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use umbra_core::DepthFormatKind;
-use umbra_sim::experiment::plan::{Budget, PlanSpec};
+use umbra_sim::experiment::plan::{Budget, CostLimits, PlanSpec};
 use umbra_sim::experiment::study::{Overrides, Request, Shard, SweepFile, schema::schema_csv, table};
 use umbra_sim::input::limits::Limits;
 use umbra_sim::render::arrays::PixelArrays;
@@ -187,9 +187,10 @@ pub fn study(
 /// (`budgets` spelt as `umbra plan --budget` spells them: `acne=0.01%`),
 /// as the JSON text of `plan.json`. `sweep` (a bundled sweep or a sweep
 /// file), `maps` and `image` narrow the candidates as the command's flags
-/// do.
+/// do; `objective`, `max_area` and `max_energy` are spelt as `umbra plan`'s
+/// flags are (`"edp"`, `"2mm2"`, `"150uJ"`).
 #[pyfunction]
-#[pyo3(signature = (scene, budgets, arch, sweep=None, maps=None, image=None, progress=None, threads=None))]
+#[pyo3(signature = (scene, budgets, arch, sweep=None, maps=None, image=None, objective=None, max_area=None, max_energy=None, progress=None, threads=None))]
 #[allow(clippy::too_many_arguments, reason = "Python's keyword arguments")]
 pub fn plan(
     py: Python<'_>,
@@ -199,6 +200,9 @@ pub fn plan(
     sweep: Option<String>,
     maps: Option<Vec<u32>>,
     image: Option<(u32, u32)>,
+    objective: Option<String>,
+    max_area: Option<String>,
+    max_energy: Option<String>,
     progress: Option<&Bound<'_, PyAny>>,
     threads: Option<usize>,
 ) -> PyResult<String> {
@@ -213,6 +217,11 @@ pub fn plan(
         None => PlanSpec::new(&scene.inner, budgets),
     };
     spec.arch = arch.inner.clone();
+    if let Some(o) = objective {
+        spec.objective = o.parse().map_err(|e| bad("objective", e))?;
+    }
+    spec.cost_limits =
+        CostLimits::parse(max_area.as_deref(), max_energy.as_deref()).map_err(|e| bad("max_area or max_energy", e))?;
     if let Some(maps) = maps {
         spec.map_sizes = maps;
     }

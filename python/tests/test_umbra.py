@@ -246,6 +246,19 @@ def test_plan_names_a_configuration_within_its_budgets():
     with pytest.raises(umbra.UmbraError) as e:
         umbra.plan("weiskopf-l", "glare=1%", "talisman")
     assert "glare" in str(e.value)
+    # By silicon area, under an energy limit: the pick is the least area of
+    # every candidate within the budget and the limit (its runners-up
+    # after it take at least as much), and it is within the limit.
+    r = umbra.plan(
+        "weiskopf-l", 50.0, "mobile-tbdr", sweep="quick", maps=[128], image=(96, 54),
+        objective="area", max_energy="1mJ",
+    )
+    assert r["objective"] == "area" and r["pick"]["joules"] <= 1e-3
+    dearer = [x["candidate"]["square_metres"] for x in r["runners_up"] if not x["cheaper"]]
+    assert all(a >= r["pick"]["square_metres"] for a in dearer), (r["pick"], dearer)
+    with pytest.raises(umbra.UmbraError) as e:
+        umbra.plan("weiskopf-l", 50.0, "talisman", objective="speed")
+    assert "objective" in str(e.value)
 
 
 def test_bad_input_names_the_file_and_key(tmp_path):

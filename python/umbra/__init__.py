@@ -247,16 +247,23 @@ def plan(
     sweep: Optional[str] = None,
     maps: Optional[Sequence[int]] = None,
     image: Optional[tuple[int, int]] = None,
+    objective: Optional[str] = None,
+    max_area: Optional[str] = None,
+    max_energy: Optional[str] = None,
     progress: Optional[Progress] = None,
     threads: Optional[int] = None,
 ) -> dict[str, Any]:
-    """The cheapest configuration on ``arch`` meeting every budget, as
+    """The least costly configuration on ``arch`` meeting every budget, as
     ``umbra plan`` chooses it (``plan.json``): the pick, its figures, the
     runners-up and why each lost. A budget is spelt as ``umbra plan
     --budget`` spells it (``"acne=0.01%"``, ``"misclassified=0.1"``), or a
     number: percent artifacts; give a list for several at once. ``sweep``
     (``"quick"``, ``"full"`` or a sweep file), ``maps`` and ``image``
-    choose the candidates as the command's flags do."""
+    choose the candidates as the command's flags do; ``objective``
+    (``"cycles"``, ``"energy"``, ``"area"``, ``"edp"``, ``"edap"`` or weights
+    such as ``"cycles=1,area=2"``), ``max_area`` (``"2mm2"``) and
+    ``max_energy`` (``"150uJ"``) as ``--objective``, ``--max-area`` and
+    ``--max-energy`` do."""
     budgets = [budget] if isinstance(budget, (int, float, str)) else list(budget)
     spelt = [b if isinstance(b, str) else f"artifacts={float(b)!r}%" for b in budgets]
     return json.loads(
@@ -267,6 +274,9 @@ def plan(
             sweep,
             None if maps is None else [int(m) for m in maps],
             None if image is None else (int(image[0]), int(image[1])),
+            objective,
+            max_area,
+            max_energy,
             progress,
             threads,
         )

@@ -259,7 +259,7 @@ pub struct MapCache {
 const LIGHT_STRIDE: u64 = 1 << 42;
 
 /// Where the silhouette map starts (above any map's depths).
-const SILHOUETTE_BASE: u64 = 1 << 40;
+pub(crate) const SILHOUETTE_BASE: u64 = 1 << 40;
 
 /// Each byte's bits spread to the even positions of 16.
 const SPREAD: [u16; 256] = {
