@@ -410,12 +410,21 @@ impl RenderRequest {
     }
 }
 
+/// The parameters of a map, which a shadow-volume render has none of.
+const MAP_PARAMS: [&str; 4] = ["depth", "map", "filter", "bias"];
+
 /// The flags of `cfg` as the command that renders it again writes them
-/// (`--algo dual --offset 0.01 --depth d24 …`).
+/// (`--algo dual --offset 0.01 --depth d24 …`; a shadow-volume render's
+/// without the map's).
 pub(super) fn flags(cfg: &RenderConfig) -> String {
     let (request, default) = (RenderRequest::of(cfg), RenderRequest::DEFAULT);
     let mut out = String::new();
+    // Shadow volumes draw no map: no format, side, filter or bias of one.
+    let volumes = cfg.algorithm == Algorithm::Volumes;
     for p in PARAMS {
+        if volumes && MAP_PARAMS.contains(&p.name) {
+            continue;
+        }
         let Some(value) = p.value(&request) else { continue };
         let write = match p.written {
             Written::Always => true,
