@@ -170,4 +170,3 @@ fn the_map_cache_is_pycachesim_s_lru_cache() {
     // The comparison can tell replacement policies apart.
     assert!(lru_differs_from_fifo, "FIFO would have passed too");
 }
-
