@@ -45,6 +45,12 @@ fn each_key_s_share_is_its_single_change_run_alone() {
         let seconds = by_hand(&|r| r.seconds());
         assert!(close(share.share.seconds, seconds), "{key}: {} against {seconds}", share.share.seconds);
         assert!(close(share.share.joules, by_hand(&|r| r.energy().total())), "{key}");
+        // The tile's buffers and the cache's bits are silicon; the area
+        // of either does not depend on the other, so a share is its own.
+        let area = by_hand(&|r| r.square_metres());
+        assert!(close(share.share.square_metres, area) && area != 0.0, "{key}: {area}");
+        assert!(close(share.alone.square_metres, alone.square_metres() - ra.square_metres()), "{key}");
+        assert!(close(share.share.square_metres, share.alone.square_metres), "{key}: no interaction in area");
         assert_eq!(share.share.bytes, by_hand(&bytes), "{key}: half-bytes are exact");
         assert!(close(share.alone.seconds, alone.seconds() - ra.seconds()), "{key}: alone");
         let purposes: f64 = share.share.bytes_by_purpose.iter().map(|p| p.1).sum();
@@ -64,6 +70,7 @@ fn each_key_s_share_is_its_single_change_run_alone() {
         assert_eq!(o.share.seconds, -s.share.seconds, "{}", s.keys[0].key);
         assert_eq!(o.share.bytes, -s.share.bytes);
         assert_eq!(o.share.joules, -s.share.joules);
+        assert_eq!(o.share.square_metres, -s.share.square_metres);
         assert_eq!((&o.keys[0].values.0, &o.keys[0].values.1), (&s.keys[0].values.1, &s.keys[0].values.0));
     }
     assert_eq!(back.total.seconds, -t.total.seconds);

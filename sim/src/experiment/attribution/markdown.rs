@@ -52,6 +52,7 @@ impl Attribution {
             ("time".to_owned(), Align::Right),
             ("alone (µs)".to_owned(), Align::Right),
             ("energy (µJ)".to_owned(), Align::Right),
+            ("area (µm²)".to_owned(), Align::Right),
             ("DRAM bytes".to_owned(), Align::Right),
         ];
         columns.extend(purposes.iter().map(|(_, n)| (format!("{n} bytes"), Align::Right)));
@@ -67,6 +68,7 @@ impl Attribution {
                 format!("{:+.1} %", 100.0 * d.seconds / self.a_seconds.max(f64::MIN_POSITIVE)),
                 alone.map_or_else(String::new, |a| format!("{:+.3}", a.seconds * 1e6)),
                 format!("{:+.3}", d.joules * 1e6),
+                format!("{:+.0}", d.square_metres * 1e12),
                 signed(d.bytes),
             ];
             cells.extend(purposes.iter().map(|&(k, _)| signed(d.bytes_by_purpose[k].1)));

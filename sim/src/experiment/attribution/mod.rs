@@ -48,6 +48,8 @@ pub struct Delta {
     pub seconds: f64,
     /// Frame energy, joules.
     pub joules: f64,
+    /// Silicon area of the units the render uses, square metres.
+    pub square_metres: f64,
     /// DRAM bytes of the frame.
     pub bytes: f64,
     /// DRAM bytes by purpose, in [`Purpose::ALL`] order: name, change.
@@ -62,19 +64,26 @@ pub struct Delta {
 struct Value {
     seconds: f64,
     joules: f64,
+    square_metres: f64,
     bytes: [i128; 12],
 }
 
 impl Value {
     fn of(r: &CostReport) -> Self {
         let d = r.dram();
-        Self { seconds: r.seconds(), joules: r.energy().total(), bytes: Purpose::ALL.map(|p| i128::from(d.get(p))) }
+        Self {
+            seconds: r.seconds(),
+            joules: r.energy().total(),
+            square_metres: r.square_metres(),
+            bytes: Purpose::ALL.map(|p| i128::from(d.get(p))),
+        }
     }
 
     /// Add `w × (x − y)`, `w` the term's weight and `r` its real share.
     fn add(&mut self, (w, r): (i128, f64), x: &Value, y: &Value) {
         self.seconds += r * (x.seconds - y.seconds);
         self.joules += r * (x.joules - y.joules);
+        self.square_metres += r * (x.square_metres - y.square_metres);
         for (s, (a, b)) in self.bytes.iter_mut().zip(x.bytes.iter().zip(y.bytes)) {
             *s += w * (a - b);
         }
@@ -89,6 +98,7 @@ impl Value {
         Delta {
             seconds: self.seconds,
             joules: self.joules,
+            square_metres: self.square_metres,
             bytes: all as f64 / denominator as f64,
             bytes_by_purpose: bytes,
         }
@@ -391,6 +401,7 @@ impl Delta {
         Self {
             seconds: -self.seconds,
             joules: -self.joules,
+            square_metres: -self.square_metres,
             bytes: -self.bytes,
             bytes_by_purpose: self.bytes_by_purpose.iter().map(|&(n, b)| (n, -b)).collect(),
         }
