@@ -113,6 +113,14 @@ pub(super) struct StudyArgs {
     /// `--maps 256,1024`).
     #[arg(long, value_delimiter = ',')]
     pub(super) maps: Vec<u32>,
+    /// The most silicon the summary's best per objective may take
+    /// (`2mm2`).
+    #[arg(long)]
+    pub(super) max_area: Option<String>,
+    /// The most energy a frame of the summary's best per objective may
+    /// take (`150uJ`).
+    #[arg(long)]
+    pub(super) max_energy: Option<String>,
     /// The architectures each configuration is costed on, in place of the
     /// sweep's (`--set` applies to the sweep's when `--arch` is not given).
     #[command(flatten)]
@@ -209,6 +217,11 @@ pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
             reference_rays: args.reference_rays,
             budgets: args.budgets.clone(),
             maps: args.maps.clone(),
+            cost_limits: umbra_sim::experiment::plan::CostLimits::parse(
+                args.max_area.as_deref(),
+                args.max_energy.as_deref(),
+            )
+            .map_err(anyhow::Error::msg)?,
         },
         shard: args.shard.clone(),
         extremes: args.extremes,

@@ -267,6 +267,8 @@ fn run() -> Result<()> {
                     shard: None,
                     extremes: false,
                     maps: Vec::new(),
+                    max_area: None,
+                    max_energy: None,
                     archs: cost::ArchArgs::default(),
                     out: PathBuf::from("out/study"),
                     replace: false,

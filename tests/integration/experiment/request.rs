@@ -47,6 +47,9 @@ fn the_hash_is_the_files_own_or_covers_the_replaced_axes() {
     assert_ne!(hash(small()), file);
     assert_eq!(hash(small()), hash(small()));
     assert_ne!(hash(small()), hash(Overrides { reference_rays: Some(1), ..small() }));
+    // Cost limits change the summary, so the hash.
+    let limited = umbra::sim::experiment::plan::CostLimits::parse(Some("2mm2"), None).expect("a limit");
+    assert_ne!(hash(small()), hash(Overrides { cost_limits: limited, ..small() }));
 }
 
 /// Each mistake is refused before any folder is made, naming the flag.

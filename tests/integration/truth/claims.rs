@@ -50,6 +50,7 @@ fn sweep_scene(
         images: vec![[size.0, size.1]],
         reference_rays: size.2,
         budgets: Vec::new(),
+        cost_limits: Default::default(),
         name: "claims".to_owned(),
         hash: String::new(),
         limits: Limits::DEFAULT,

@@ -30,13 +30,12 @@ use umbra_core::shadow::Filter;
 use umbra_core::{CullMode, DepthFormat, DepthFormatKind, DepthUnit, F32, LightPassConfig, RasterConfig};
 
 mod candidate;
-mod objective;
 mod report;
 mod why;
 
 pub use crate::experiment::study::budget::{Budget, Measure};
+pub use crate::experiment::study::objective::{CostLimits, Costs, Objective};
 pub use candidate::{Candidate, RunnerUp};
-pub use objective::{CostLimits, Costs, Objective};
 
 use crate::cost::arch::Arch;
 use crate::cost::storage::{MapShape, REEVES_TILE, StorageBytes, storage_bytes};
@@ -135,6 +134,7 @@ impl PlanSpec {
             images: vec![self.image],
             reference_rays: REFERENCE_RAYS,
             budgets: self.budgets.clone(),
+            cost_limits: self.cost_limits,
             hash: crate::output::provenance::hash(name.as_bytes()),
             name,
             limits: self.limits,

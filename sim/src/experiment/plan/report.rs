@@ -16,11 +16,8 @@ impl Plan {
         let mut s = String::new();
         let mut list =
             self.budgets.iter().map(|b| format!("{} ≤ {}%", b.measure.name(), b.percent)).collect::<Vec<_>>();
-        if let Some(m) = self.cost_limits.max_square_metres {
-            list.push(format!("area ≤ {} mm²", m * 1e6));
-        }
-        if let Some(m) = self.cost_limits.max_joules {
-            list.push(format!("energy ≤ {} µJ", m * 1e6));
+        if self.cost_limits.any() {
+            list.push(self.cost_limits.words());
         }
         let p = &self.pick;
         let _ = writeln!(

@@ -175,6 +175,7 @@ pub(crate) fn spec(scenes: Vec<Scene>, width: u32, height: u32) -> Spec {
         images: vec![[width, height]],
         reference_rays: 1,
         budgets: Vec::new(),
+        cost_limits: super::objective::CostLimits::default(),
         name: "extremes".to_owned(),
         hash: String::new(),
         limits: Limits::DEFAULT,

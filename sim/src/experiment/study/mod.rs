@@ -29,6 +29,7 @@ use crate::world::scene_file::SceneError;
 
 pub mod budget;
 pub(crate) mod extremes;
+pub mod objective;
 pub(crate) mod plot;
 mod rank;
 

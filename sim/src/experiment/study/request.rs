@@ -8,6 +8,7 @@
 //! spelled in another order of flags, or by another host, hashes the same.
 
 use crate::experiment::study::budget::{Budget, Measure};
+use crate::experiment::study::objective::CostLimits;
 use std::path::PathBuf;
 
 use indicatif::ProgressBar;
@@ -42,6 +43,8 @@ pub struct Overrides {
     pub budgets: Vec<Budget>,
     /// Map sides.
     pub maps: Vec<u32>,
+    /// The most the summary's best per objective may cost.
+    pub cost_limits: CostLimits,
 }
 
 impl Overrides {
@@ -76,6 +79,12 @@ impl Overrides {
             ),
             format!("maps={}", numbers(self.maps.iter().map(u32::to_string).collect())),
         ]
+        .into_iter()
+        // Cost limits change the summary: a line each, when set (so that
+        // the hashes of earlier requests stay as they were).
+        .chain(self.cost_limits.max_square_metres.map(|m| format!("max_area={m:e}")))
+        .chain(self.cost_limits.max_joules.map(|m| format!("max_energy={m:e}")))
+        .collect::<Vec<_>>()
         .join("\n")
     }
 }
@@ -303,6 +312,7 @@ impl Request {
         if !o.maps.is_empty() {
             spec.map_sizes.clone_from(&o.maps);
         }
+        spec.cost_limits = o.cost_limits;
         // Replaced axes change the sweep: its hash covers them, so shards
         // run with different ones do not merge.
         if !o.is_empty() {

@@ -4,6 +4,7 @@
 use super::rank::{cheapest, keys, objectives, one_clock};
 use super::{Manifest, Row, RowCost, StudyError, distinct, jsonl, loosest, plot, sort_rows};
 use crate::experiment::study::budget::Budget;
+use crate::experiment::study::objective::{CostLimits, Costs};
 use crate::output::folder::OutputFolder;
 use crate::output::markdown::escape;
 use crate::output::table::{Align, Table};
@@ -122,7 +123,7 @@ pub fn summary(rows: &[Row], manifest: &Manifest) -> String {
     for scene in scenes_of(rows) {
         let mine: Vec<&Row> = rows.iter().filter(|r| r.config.scene == scene).collect();
         let _ = writeln!(s, "## {}\n", escape(&scene));
-        scene_summary(&mut s, &mine, &manifest.budgets);
+        scene_summary(&mut s, &mine, manifest);
     }
     if !skipped.is_empty() {
         let mut t = Table::new(&[("row", Align::Right), ("configuration", Align::Left), ("reason", Align::Left)]);
@@ -134,7 +135,8 @@ pub fn summary(rows: &[Row], manifest: &Manifest) -> String {
     s
 }
 
-fn scene_summary(s: &mut String, rows: &[&Row], budgets: &[Budget]) {
+fn scene_summary(s: &mut String, rows: &[&Row], manifest: &Manifest) {
+    let budgets = &manifest.budgets[..];
     // The smallest image of the sweep sets the budget a pixel is.
     let pixel = rows.iter().filter_map(|r| r.metrics.map(|m| m.evaluated_px)).filter(|&n| n > 0).min().map(|n| {
         #[allow(clippy::cast_precision_loss, reason = "a pixel count")]
@@ -178,7 +180,7 @@ fn scene_summary(s: &mut String, rows: &[&Row], budgets: &[Budget]) {
              by a configuration with no artifact at all.\n"
         );
     }
-    best_per_objective(s, rows, budgets);
+    best_per_objective(s, rows, budgets, &manifest.cost_limits);
     let families = distinct(rows.iter().map(|r| r.config.family));
     for key in keys {
         let mut columns = vec![("family".to_owned(), Align::Left)];
@@ -203,9 +205,21 @@ fn scene_summary(s: &mut String, rows: &[&Row], budgets: &[Budget]) {
     bottlenecks(s, rows, budgets);
 }
 
-/// The best row per objective under each budget, with why: its time,
-/// energy and area against the fastest row's.
-fn best_per_objective(s: &mut String, rows: &[&Row], budgets: &[Budget]) {
+/// The best row per objective under each budget and within the cost
+/// limits, with why: its time, energy and area against the fastest
+/// row's.
+fn best_per_objective(s: &mut String, rows: &[&Row], budgets: &[Budget], limits: &CostLimits) {
+    let within = |c: &RowCost| {
+        let costs = Costs {
+            cycles: 0.0,
+            seconds: c.frame_seconds,
+            joules: c.energy_joules,
+            square_metres: c.area_square_metres,
+        };
+        limits.exceeded(&costs).is_empty()
+    };
+    let rows: Vec<&Row> = rows.iter().copied().filter(|r| r.cost.as_ref().is_none_or(within)).collect();
+    let rows = &rows[..];
     let objectives = objectives(rows);
     let (l, r) = (Align::Left, Align::Right);
     let mut t = Table::new(&[
@@ -254,7 +268,8 @@ fn best_per_objective(s: &mut String, rows: &[&Row], budgets: &[Budget]) {
     let _ = writeln!(
         s,
         "Best per objective (energy: dynamic and static; area: the silicon of the units each configuration \
-         uses at its architecture's technology), each against the fastest:\n\n{}",
+         uses at its architecture's technology){}, each against the fastest:\n\n{}",
+        if limits.any() { format!(" within {}", limits.words()) } else { String::new() },
         t.markdown()
     );
 }

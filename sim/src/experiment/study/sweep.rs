@@ -84,6 +84,8 @@ pub struct Spec {
     pub reference_rays: u32,
     /// The summary's error budgets, each on a measure of the metrics.
     pub budgets: Vec<crate::experiment::study::budget::Budget>,
+    /// The most the summary's best per objective may cost.
+    pub cost_limits: super::objective::CostLimits,
     /// The sweep's name (`quick`, `full`, or the file's).
     pub name: String,
     /// The hash of the sweep file's text (`crate::output::provenance::hash`),

@@ -38,6 +38,10 @@ pub struct Manifest {
     /// manifests wrote them), `MEASURE=PERCENT` for another measure.
     #[serde(with = "crate::experiment::study::budget::written")]
     pub budgets: Vec<crate::experiment::study::budget::Budget>,
+    /// The most the summary's best per objective may cost (none in an
+    /// earlier release's manifest).
+    #[serde(default)]
+    pub cost_limits: super::objective::CostLimits,
     /// The command line that made it.
     pub command: String,
 }
@@ -56,6 +60,7 @@ impl Manifest {
             architectures: spec.archs.len().max(1),
             rows,
             budgets: spec.budgets.clone(),
+            cost_limits: spec.cost_limits,
             command: crate::output::provenance::command_line(),
         }
     }

@@ -332,6 +332,7 @@ impl SweepFile {
             images: t.images.iter().map(|i| i.0).collect(),
             reference_rays: t.reference_rays,
             budgets,
+            cost_limits: super::objective::CostLimits::default(),
             name: t.name,
             hash: self.hash(),
             limits: *limits,

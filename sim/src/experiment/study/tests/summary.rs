@@ -84,6 +84,7 @@ fn manifest() -> Manifest {
         architectures: 1,
         rows: 6,
         budgets: [1.0, 0.1, 0.001].map(crate::experiment::study::budget::Budget::artifacts).to_vec(),
+        cost_limits: crate::experiment::study::objective::CostLimits::default(),
         command: String::new(),
     }
 }
@@ -389,4 +390,26 @@ fn a_budget_on_another_measure_judges_by_it() {
     assert!(l.contains("volumes") && l.contains("| 30000 |"), "{l}");
     let l = line(&md, "acne 0.01 %", "cycles");
     assert!(l.contains("second-ffc") && l.contains("| 20000 |"), "{l}");
+}
+
+/// The best per objective stays within the cost limits: the volumes'
+/// 9 µJ row is left out under `--max-energy 8uJ`, so the fastest within
+/// the limit is the map's; without a limit, volumes are the fastest.
+#[test]
+fn the_best_per_objective_keeps_within_the_cost_limits() {
+    use crate::experiment::study::objective::CostLimits;
+    let (small, a) = ([100, 100], ("talisman", ""));
+    let rows = vec![
+        row(0, ("volumes", "shadow volumes"), small, a, 0.0, (0, 15_000), 900, 9.0, "depth"),
+        row(1, ("second-ffc", "second depth"), small, a, 0.05, (10_000, 10_000), 500, 4.0, "depth"),
+    ];
+    let best = |md: &str| {
+        md.lines().find(|l| l.starts_with("| 1 % | cycles |") && l.contains("the fastest too")).map(str::to_owned)
+    };
+    let free = summary(&rows, &manifest());
+    assert!(best(&free).is_some_and(|l| l.contains("volumes")), "{free}");
+    let limits = CostLimits::parse(None, Some("8uJ")).expect("a limit");
+    let md = summary(&rows, &Manifest { cost_limits: limits, ..manifest() });
+    assert!(md.contains("within energy ≤ 8 µJ"), "{md}");
+    assert!(best(&md).is_some_and(|l| l.contains("second-ffc")), "{md}");
 }

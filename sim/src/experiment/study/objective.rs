@@ -1,5 +1,5 @@
 //! What "least costly" means: the objective a plan or a study ranks
-//! candidates by — cycles, energy, silicon area, the energy-delay product,
+//! candidates (rows) by — cycles, energy, silicon area, the energy-delay product,
 //! the energy-delay-area product, or a weighted sum of time, energy and
 //! area — and the cost limits a pick must stay within (`--max-area`,
 //! `--max-energy`), spelt alike on the command line and in Python.
@@ -191,7 +191,7 @@ impl std::fmt::Display for Objective {
 
 /// The most a pick may cost: limits on its area and energy (none: no
 /// limit).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, serde::Deserialize)]
 pub struct CostLimits {
     /// The most silicon, square metres.
     pub max_square_metres: Option<f64>,
@@ -203,7 +203,7 @@ impl CostLimits {
     /// `--max-area` and `--max-energy` as written (`2mm2`, `150uJ`).
     ///
     /// ```
-    /// use umbra_sim::experiment::plan::CostLimits;
+    /// use umbra_sim::experiment::study::objective::CostLimits;
     /// let l = CostLimits::parse(Some("2mm2"), Some("150uJ"))?;
     /// assert_eq!(l.max_square_metres, Some(2e-6));
     /// assert!(CostLimits::parse(Some("2 acres"), None).is_err());
@@ -221,6 +221,25 @@ impl CostLimits {
             max_square_metres: read("--max-area", Unit::Area, area)?,
             max_joules: read("--max-energy", Unit::Joules, energy)?,
         })
+    }
+
+    /// Whether it limits anything.
+    #[must_use]
+    pub const fn any(&self) -> bool {
+        self.max_square_metres.is_some() || self.max_joules.is_some()
+    }
+
+    /// The limits as a summary heads them (`area ≤ 2 mm², energy ≤ 150 µJ`).
+    #[must_use]
+    pub fn words(&self) -> String {
+        let mut out = Vec::new();
+        if let Some(m) = self.max_square_metres {
+            out.push(format!("area ≤ {} mm²", m * 1e6));
+        }
+        if let Some(m) = self.max_joules {
+            out.push(format!("energy ≤ {} µJ", m * 1e6));
+        }
+        out.join(", ")
     }
 
     /// The limits `c` exceeds, each as `area 2.1 mm² > 2 mm²`.
