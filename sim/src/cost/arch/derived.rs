@@ -14,8 +14,9 @@
 //! # Ok::<(), umbra_sim::cost::arch::ArchError>(())
 //! ```
 
-use super::keys::{PARAMS, Unit};
+use super::keys::PARAMS;
 use super::machine::Arch;
+use super::measure::Unit;
 use super::units::CacheParams;
 
 /// One derived figure: a name, its value in the unit's base, the unit.

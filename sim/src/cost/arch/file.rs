@@ -12,8 +12,9 @@ use std::path::Path;
 use crate::input::format::{ARCH, Added};
 use crate::input::limits::Limits;
 
-use super::keys::{PARAMS, Problem, Unit, Value, from_text, from_toml};
+use super::keys::{PARAMS, Problem, Value, from_text, from_toml};
 use super::machine::{Arch, Calibration};
+use super::measure::Unit;
 use super::presets::BUNDLED;
 
 /// The largest cache an architecture may have, bytes: the model keeps a

@@ -6,14 +6,16 @@ pub mod derived;
 mod file;
 mod keys;
 mod machine;
+mod measure;
 mod presets;
 mod reads;
 mod units;
 
 pub use file::ArchError;
 pub(crate) use keys::column;
-pub use keys::{PARAMS, Param, Problem, Unit, Value};
+pub use keys::{PARAMS, Param, Problem, Value};
 pub use machine::{Arch, Calibration};
+pub use measure::{NotInUnit, Unit};
 pub use presets::BUNDLED;
 pub use reads::Unread;
 pub use units::{
