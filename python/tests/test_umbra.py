@@ -62,6 +62,7 @@ def test_render_arrays_are_the_cli_npy_files_bit_for_bit(tmp_path):
         assert int((r["verdict"] == 2).sum()) == r["aliasing_px"]
         assert int((r["verdict"] == 5).sum()) == r["detachment_px"]
         assert int((r["verdict"] == 6).sum()) == r["penumbra_px"]
+        assert int((r["verdict"] == 7).sum()) == r["clipped_px"]
 
 
 def test_maps_are_the_stored_integers():

@@ -165,7 +165,7 @@ def render(
     where the algorithm keeps none), ``shadow`` (float32, 0 lit to 1
     shadowed, NaN for the background), ``reference`` (the exact shadowed
     area fraction) and ``verdict`` (uint8: 0 unevaluated, 1 right, 2
-    aliasing, 3 acne, 4 leak, 5 detachment, 6 penumbra); and
+    aliasing, 3 acne, 4 leak, 5 detachment, 6 penumbra, 7 clipped); and
     ``render_again``, the command line
     that renders it again.
     """

@@ -18,11 +18,12 @@ pub(super) struct PlanArgs {
     pub(super) scene: String,
     /// An error budget the pick must meet, `MEASURE=PERCENT` (repeat it
     /// for several, all met at once): a measure of `artifacts`,
-    /// `misclassified`, `acne`, `detachment`, `leaks`, `aliasing`,
-    /// `penumbra`, `false-shadow`, `false-light`, percent of the pixels
-    /// facing the light (`--budget acne=0.01% --budget
+    /// `misclassified`, `acne`, `detachment`, `leaks`, `clipped`,
+    /// `aliasing`, `penumbra`, `false-shadow`, `false-light`, percent of
+    /// the pixels facing the light (`--budget acne=0.01% --budget
     /// misclassified=0.1%`); a bare percentage bounds artifacts. Default:
-    /// `artifacts=0.1%`.
+    /// `artifacts=0.1%` and `misclassified=2%`, so a render with few
+    /// artifacts but most pixels wrong is never the pick.
     #[arg(long = "budget", value_parser = budget)]
     pub(super) budgets: Vec<umbra_sim::experiment::plan::Budget>,
     /// The same as `--budget artifacts=PERCENT`.
@@ -160,7 +161,7 @@ pub(super) fn plan(args: &PlanArgs, limits: &Limits) -> Result<()> {
     let scene = Scene::open(&args.scene, limits)?;
     let budgets = match (&args.budgets[..], args.error_budget) {
         ([], Some(b)) => vec![b],
-        ([], None) => vec![budget("artifacts=0.1%").map_err(anyhow::Error::msg)?],
+        ([], None) => umbra_sim::experiment::plan::DEFAULT_BUDGETS.to_vec(),
         (b, _) => b.to_vec(),
     };
     let mut spec = match &args.sweep {

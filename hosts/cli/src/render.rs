@@ -202,7 +202,7 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
     }
     say!("{}", table.markdown().trim_end());
     say!(
-        "artifacts (wrong by their cause, shade off the reference by more than {} or on the wrong side of ½): {} acne ({} on terminators; {:.1} px of excess shadow), {} detachment ({:.1} px of missing shadow), {} leaks ({:.1} px of missing shadow): {:.3} % artifacts",
+        "artifacts (wrong by their cause, shade off the reference by more than {} or on the wrong side of ½): {} acne ({} on terminators; {:.1} px of excess shadow), {} detachment ({:.1} px of missing shadow), {} leaks ({:.1} px of missing shadow), {} clipped ({:.1} px of missing shadow, occluders outside the light's frustum): {:.3} % artifacts",
         SHADE_STEP,
         m.acne,
         m.terminator_acne,
@@ -211,8 +211,16 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
         m.detachment_area,
         m.leaks,
         m.leak_area,
+        m.clipped,
+        m.clipped_area,
         m.artifact_percent,
     );
+    if m.receiver_fallbacks > 0 {
+        say!(
+            "{} wrong pixels judged against a flat receiver: their triangle's plane could not be set up (edge-on to the light, or nearer than its near plane)",
+            m.receiver_fallbacks
+        );
+    }
     say!(
         "not artifacts: {} aliasing ({:.1} px), {} penumbra ({:.1} px; within {} / {} px of the exact edge, median / 95th percentile); {} ties at ½; RMS area error {:.4}; boundary displacement {:.2} / {:.2} / {:.2} pixels, {:.2} / {:.2} / {:.2} texels (mean / 95th percentile / max)",
         m.aliasing,

@@ -22,7 +22,8 @@ pub struct PixelArrays {
     /// background.
     pub reference: Vec<f32>,
     /// Each pixel's verdict as a code (`Verdict::code`): 0 unevaluated,
-    /// 1 right, 2 aliasing, 3 acne, 4 leak, 5 detachment, 6 penumbra.
+    /// 1 right, 2 aliasing, 3 acne, 4 leak, 5 detachment, 6 penumbra,
+    /// 7 clipped (an occluder the map never saw).
     pub verdict: Vec<u8>,
 }
 
@@ -40,6 +41,7 @@ impl Verdict {
             Self::Wrong(Cause::Leak) => 4,
             Self::Wrong(Cause::Detachment) => 5,
             Self::Wrong(Cause::Penumbra) => 6,
+            Self::Wrong(Cause::Clipped) => 7,
         }
     }
 }

@@ -136,13 +136,14 @@ pub(crate) fn write_shadow_term(
 }
 
 /// The error map's classes in legend order, each with its colour: the
-/// two that are the map and the filter at work, then the three artifacts.
-pub const ERROR_COLOURS: [(Cause, &str, [u8; 3]); 5] = [
+/// two that are the map and the filter at work, then the four artifacts.
+pub const ERROR_COLOURS: [(Cause, &str, [u8; 3]); 6] = [
     (Cause::Aliasing, "aliasing", [235, 170, 0]),
     (Cause::Penumbra, "penumbra", [150, 205, 220]),
     (Cause::Acne, "acne", [220, 30, 30]),
     (Cause::Detachment, "detachment", [150, 40, 190]),
     (Cause::Leak, "leaks", [30, 100, 235]),
+    (Cause::Clipped, "clipped occluder", [20, 150, 70]),
 ];
 
 /// The colour of a class on the error map.
@@ -150,7 +151,7 @@ fn colour_of(cause: Cause) -> [u8; 3] {
     ERROR_COLOURS.iter().find(|(c, _, _)| *c == cause).map_or([0; 3], |&(_, _, rgb)| rgb)
 }
 
-/// Artifact pixels (acne, detachment, leaks) ringed on the error map when
+/// Artifact pixels (acne, detachment, leaks, clipped occluders) ringed on the error map when
 /// there are at most this many.
 pub(crate) const RINGS: usize = 2000;
 

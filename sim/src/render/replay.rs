@@ -14,7 +14,7 @@ use crate::pass::PassError;
 use crate::pass::algorithm::MapKind;
 use crate::pass::camera::{CameraOptions, shade_config};
 use crate::pass::occluders::silhouette_map;
-use crate::truth::cause::{Cause, Judge, Rays, Receiver, Taps};
+use crate::truth::cause::{Cause, Judge, Judged, Rays, Receiver, Sight, Taps};
 use crate::truth::metrics::{Attribution, Fields, Footprints, Metrics, Verdict, compare_with};
 use crate::truth::reference::{PixelTruth, Reference, surface_point};
 use crate::world::occluders::Occluders;
@@ -163,15 +163,18 @@ impl<'a, F: DepthFormat, U: ShadowUnit<F>> Replay<'a, F, U> {
     }
 
     /// The cause of pixel `k`, shaded `s`, too dark when `dark`, from its
-    /// taps of the last replay.
-    fn judge(&self, k: usize, s: &Shaded, dark: bool, receiver: &mut Option<(u32, Receiver)>) -> Cause {
+    /// taps of the last replay, and whether its receiver's plane fell back
+    /// to a flat one.
+    fn judge(&self, k: usize, s: &Shaded, dark: bool, receiver: &mut Option<(u32, Receiver)>) -> Judged {
         let shadow = self.cfg.shadow;
         let judge = Judge { test: shadow.test(), shade: s.shadow, dark, soft: Judge::softens(shadow.filter()) };
         let width = self.cfg.width as usize;
         #[allow(clippy::cast_possible_truncation, reason = "a pixel of the image")]
         let (x, y) = ((k % width) as u32, (k / width) as u32);
         let (Some(&id), Some(light)) = (self.ids.get(k), s.light) else {
-            return judge.cause(&[], &Receiver::flat::<F>(0), |_| false);
+            // No lookup: the pixel lies behind the light.
+            let cause = judge.cause(&[], &Receiver::flat::<F>(0), |_| Sight::Clear);
+            return Judged { cause, fallback: false };
         };
         let triangle = self.reference.triangle(id).copied();
         // The receiver's plane, kept while the pixels stay on its triangle.
@@ -192,21 +195,28 @@ impl<'a, F: DepthFormat, U: ShadowUnit<F>> Replay<'a, F, U> {
         // not), unless the centre is lit.
         let mut own: Option<Option<u32>> = None;
         let size = (f64::from(self.cfg.width), f64::from(self.cfg.height));
-        judge.cause(self.taps.of_column(x), &plane, |t| {
-            let Some(tri) = triangle else { return false };
-            let Some(occluder) = self.rays.occluder(t.x, t.y, &tri) else { return false };
-            let own = *own.get_or_insert_with(|| {
-                let centre = (f64::from(x) + 0.5, f64::from(y) + 0.5);
-                let (p, _) = surface_point(&self.camera_inverse, centre, size, &tri)?;
-                self.reference.occluder_of(p, &self.light_source)
-            });
-            own.is_none_or(|o| o == occluder)
-        })
+        let cause = judge.cause(self.taps.of_column(x), &plane, |t| {
+            let Some(tri) = triangle else { return Sight::Clear };
+            match self.rays.occluder(t.x, t.y, &tri) {
+                Some(_) if dark => Sight::Occluded,
+                Some(occluder) => {
+                    let own = *own.get_or_insert_with(|| {
+                        let centre = (f64::from(x) + 0.5, f64::from(y) + 0.5);
+                        let (p, _) = surface_point(&self.camera_inverse, centre, size, &tri)?;
+                        self.reference.occluder_of(p, &self.light_source)
+                    });
+                    if own.is_none_or(|o| o == occluder) { Sight::Occluded } else { Sight::Elsewhere }
+                }
+                None if !dark && self.rays.unseen(t.x, t.y, &tri, &self.light_source) => Sight::Unseen,
+                None => Sight::Clear,
+            }
+        });
+        Judged { cause, fallback: plane.fallback() }
     }
 }
 
 impl<F: DepthFormat, U: ShadowUnit<F>> Attribution for Replay<'_, F, U> {
-    fn causes(&mut self, wrong: &[(usize, bool)], render: &[Shaded]) -> Vec<Cause> {
+    fn causes(&mut self, wrong: &[(usize, bool)], render: &[Shaded]) -> Vec<Judged> {
         let width = (self.cfg.width as usize).max(1);
         let mut causes = Vec::with_capacity(wrong.len());
         let mut receiver = None;

@@ -27,6 +27,7 @@ use umbra_core::shadow::{DepthTest, Filter, Shadow};
 use umbra_core::{DepthFormat, DepthFormatKind};
 
 use crate::truth::reference::{Reference, camera_ray};
+use crate::world::scene::LightSource;
 
 /// Why a pixel's shade is wrong.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -43,15 +44,29 @@ pub enum Cause {
     Aliasing,
     /// A filter's own partial shade across a true edge.
     Penumbra,
+    /// Too light because what shadows the pixel lies where the map never
+    /// saw it: outside the light's frustum (nearer than its near plane,
+    /// past its far plane, beside it), or the pixel itself outside the map.
+    Clipped,
 }
 
 impl Cause {
-    /// Whether the class is an artifact (acne, detachment, leak) rather
-    /// than the map's resolution or the filter at work.
+    /// Whether the class is an artifact (acne, detachment, leak, an
+    /// occluder the map never saw) rather than the map's resolution or the filter at work.
     #[must_use]
     pub const fn is_artifact(self) -> bool {
-        matches!(self, Self::Acne | Self::Detachment | Self::Leak)
+        matches!(self, Self::Acne | Self::Detachment | Self::Leak | Self::Clipped)
     }
+}
+
+/// A wrong pixel's cause, and whether its receiver's plane fell back to a
+/// flat one ([`Receiver::flat`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Judged {
+    /// Why it is wrong.
+    pub cause: Cause,
+    /// Its receiver was judged without its plane.
+    pub fallback: bool,
 }
 
 /// A probe that records the taps of the pixels a shading unit decides,
@@ -132,26 +147,48 @@ pub struct Receiver {
     dv: f64,
     /// One step of the map's format at the receiver's depth, `PlaneZ` bits.
     step: f64,
+    /// Set up from the triangle's plane (not a flat fallback).
+    plane: bool,
 }
 
 impl Receiver {
     /// The plane of `triangle` (world space) on a `width × height` map
-    /// seen through `light` (world to light clip), in format `F`'s units;
-    /// `None` when a vertex lies behind the light or the triangle is
-    /// edge-on to it.
+    /// seen through `light` (world to light clip), in format `F`'s units:
+    /// taken from the triangle's part beyond the light's near plane
+    /// (clip-space `z ≥ 0`), where depth is defined — a triangle with a
+    /// vertex behind the light keeps its plane. `None` when no part of it
+    /// lies beyond the near plane or it is edge-on to the light.
     #[must_use]
     pub fn of<F: DepthFormat>(triangle: &[DVec3; 3], light: &DMat4, (width, height): (u32, u32)) -> Option<Self> {
         let unit = plane_unit::<F>();
-        let [a, b, c] = triangle.map(|p| {
-            let q = *light * DVec4::new(p.x, p.y, p.z, 1.0);
-            (q.w > 0.0).then(|| {
-                let (x, y, z) = (q.x / q.w, q.y / q.w, q.z / q.w);
-                DVec3::new((x + 1.0) * f64::from(width) / 2.0, (1.0 - y) * f64::from(height) / 2.0, z * unit)
-            })
-        });
-        let (a, b, c) = (a?, b?, c?);
-        let (e1, e2) = (b - a, c - a);
-        let det = e1.x * e2.y - e1.y * e2.x;
+        let clip = triangle.map(|p| *light * DVec4::new(p.x, p.y, p.z, 1.0));
+        // Sutherland–Hodgman against the near plane: at most four corners.
+        let mut part = [DVec3::ZERO; 4];
+        let mut n = 0;
+        for (i, &a) in clip.iter().enumerate() {
+            let b = clip[(i + 1) % 3];
+            let mut keep = |q: DVec4| {
+                if q.w > 0.0 && n < part.len() {
+                    let (x, y, z) = (q.x / q.w, q.y / q.w, q.z / q.w);
+                    part[n] = DVec3::new((x + 1.0) * f64::from(width) / 2.0, (1.0 - y) * f64::from(height) / 2.0, z * unit);
+                    n += 1;
+                }
+            };
+            if a.z >= 0.0 {
+                keep(a);
+            }
+            if (a.z >= 0.0) != (b.z >= 0.0) {
+                keep(a + (b - a) * (a.z / (a.z - b.z)));
+            }
+        }
+        // Depth is affine on the plane's image: any three corners give the
+        // plane; the fan triangle of the largest area gives it best.
+        let det = |i: usize| {
+            let (e1, e2) = (part[i] - part[0], part[i + 1] - part[0]);
+            e1.x * e2.y - e1.y * e2.x
+        };
+        let k = (1..n.saturating_sub(1)).max_by(|&i, &j| det(i).abs().total_cmp(&det(j).abs()))?;
+        let (a, e1, e2, det) = (part[0], part[k] - part[0], part[k + 1] - part[0], det(k));
         if det.abs() < 1e-12 || !det.is_finite() {
             return None;
         }
@@ -159,16 +196,25 @@ impl Receiver {
         let dv = (e2.z * e1.x - e1.z * e2.x) / det;
         let z0 = a.z - du * a.x - dv * a.y;
         let step = step::<F>(a.z);
-        [z0, du, dv].iter().all(|v| v.is_finite()).then_some(Self { z0, du, dv, step })
+        [z0, du, dv].iter().all(|v| v.is_finite()).then_some(Self { z0, du, dv, step, plane: true })
     }
 
-    /// A receiver known only by one depth (no plane could be set up):
-    /// flat, its span one step of the format.
+    /// A receiver known only by one depth (no plane could be set up: the
+    /// triangle is edge-on to the light, or wholly nearer than its near
+    /// plane): flat, its span one step of the format. Its taps are judged
+    /// by that span alone ([`Receiver::fallback`]).
     #[must_use]
     pub fn flat<F: DepthFormat>(z: i64) -> Self {
         #[allow(clippy::cast_precision_loss, reason = "a depth in PlaneZ bits, below 2^57")]
         let z = z as f64;
-        Self { z0: z, du: 0.0, dv: 0.0, step: step::<F>(z) }
+        Self { z0: z, du: 0.0, dv: 0.0, step: step::<F>(z), plane: false }
+    }
+
+    /// Whether the receiver is a flat fallback ([`Receiver::flat`]), not
+    /// its triangle's plane.
+    #[must_use]
+    pub const fn fallback(&self) -> bool {
+        !self.plane
     }
 
     /// The receiver's depth at the centre of texel `(x, y)`.
@@ -217,21 +263,61 @@ impl<'r> Rays<'r> {
     }
 
     /// The object whose surface the exact light ray through the centre of
-    /// texel `(x, y)` meets before it reaches the plane of `receiver`
-    /// (world space): the true occluder of that tap, if there is one.
+    /// texel `(x, y)` meets inside the light's frustum (past its near
+    /// plane, short of its far plane) before it reaches the plane of
+    /// `receiver` (world space): the true occluder of that tap the map
+    /// could hold, if there is one. `None` too for a texel outside the map.
     #[must_use]
-    #[allow(clippy::cast_precision_loss, reason = "texel coordinates")]
     pub(crate) fn occluder(&self, x: i64, y: i64, receiver: &[DVec3; 3]) -> Option<u32> {
+        let inside = (0..i64::from(self.size.0)).contains(&x) && (0..i64::from(self.size.1)).contains(&y);
+        let (near, dir, t, normal) = self.to_plane(x, y, receiver).filter(|_| inside)?;
+        self.reference.first_in_front((near, near + dir * t.min(1.0)), (near + dir * t, normal))
+    }
+
+    /// Whether the exact ray from the light through the centre of texel
+    /// `(x, y)` meets a surface before the plane of `receiver` anywhere
+    /// (nearer than the near plane, past the far plane or beside the
+    /// frustum included): with no [`Rays::occluder`], a surface the map
+    /// never saw.
+    #[must_use]
+    pub(crate) fn unseen(&self, x: i64, y: i64, receiver: &[DVec3; 3], light: &LightSource) -> bool {
+        self.to_plane(x, y, receiver).is_some_and(|(near, dir, t, normal)| {
+            let on = near + dir * t;
+            self.reference.first_in_front((self.reference.light_from(on, light), on), (on, normal)).is_some()
+        })
+    }
+
+    /// The ray through the centre of texel `(x, y)`: its point on the near
+    /// plane, its direction to the far plane's point, where (in those
+    /// units) it meets the plane of `receiver`, and the plane's normal;
+    /// `None` along the plane or when the plane lies behind the near plane.
+    #[allow(clippy::cast_precision_loss, reason = "texel coordinates")]
+    fn to_plane(&self, x: i64, y: i64, receiver: &[DVec3; 3]) -> Option<(DVec3, DVec3, f64, DVec3)> {
         let size = (f64::from(self.size.0), f64::from(self.size.1));
         let (near, far) = camera_ray(&self.inverse, (x as f64 + 0.5, y as f64 + 0.5), size);
         let normal = (receiver[1] - receiver[0]).cross(receiver[2] - receiver[0]);
         let dir = far - near;
         let t = normal.dot(receiver[0] - near) / normal.dot(dir);
-        if !(t.is_finite() && t > 0.0) {
-            return None;
-        }
-        self.reference.first_on(near, near + dir * t)
+        (t.is_finite() && t > 0.0).then_some((near, dir, t, normal))
     }
+}
+
+/// What the exact light ray through a tap's texel centre meets before it
+/// reaches the receiver's plane.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Sight {
+    /// Nothing: the receiver's plane is the first surface on it.
+    Clear,
+    /// A surface inside the light's frustum, which the map could hold (for
+    /// a lit tap of a too-light pixel: the object that hides the pixel's
+    /// own centre, or any when its centre is lit).
+    Occluded,
+    /// Another object than the one hiding the pixel's own centre: an edge
+    /// lies between the pixel and the tap.
+    Elsewhere,
+    /// Only surfaces outside the light's frustum (nearer than its near
+    /// plane, past its far plane, beside it): none the map could hold.
+    Unseen,
 }
 
 /// What a wrong pixel's taps are judged with.
@@ -261,49 +347,66 @@ impl Judge {
 
 impl Judge {
     /// The cause of the pixel's error from `taps`, the `receiver`'s plane
-    /// on the map and `occluded` (whether the exact ray through a tap's
-    /// texel meets a surface in front of the receiver; asked only of lit
-    /// taps of a too-light pixel).
+    /// on the map and `sight` (what the exact ray through a tap's texel
+    /// meets before the receiver's plane; asked of the darkening taps of a
+    /// too-dark pixel and the lit taps of a too-light one).
     #[must_use]
-    pub fn cause(&self, taps: &[Tap], receiver: &Receiver, mut occluded: impl FnMut(&Tap) -> bool) -> Cause {
+    pub fn cause(&self, taps: &[Tap], receiver: &Receiver, mut sight: impl FnMut(&Tap) -> Sight) -> Cause {
         let counted = || taps.iter().filter(|t| t.weight > 0);
         let partial = self.soft && self.shade > Shadow::ZERO && self.shade < Shadow::ONE && counted().count() > 1;
         let edge = if partial { Cause::Penumbra } else { Cause::Aliasing };
         if self.dark {
+            // The receiver's own darkening: the depth compared lies within
+            // the receiver's span there, and (when its plane is known) no
+            // surface truly lies in front of it on the tap's exact ray —
+            // the stored depth is in front only through sampling and
+            // precision. A surface in front, touching or not, is a true
+            // occluder: its edge's placement.
             #[allow(clippy::cast_precision_loss, reason = "depths in PlaneZ bits, below 2^57")]
-            let own = |t: &Tap| t.reference.is_some_and(|c| c as f64 >= receiver.at(t.x, t.y) - receiver.span());
+            let within = |t: &Tap| t.reference.is_some_and(|c| c as f64 >= receiver.at(t.x, t.y) - receiver.span());
             let mut darkening = counted().filter(|t| t.shadowed).peekable();
             let any = darkening.peek().is_some();
-            return if any && darkening.all(own) { Cause::Acne } else { edge };
+            let own = darkening.all(|t| within(t) && (receiver.fallback() || !matches!(sight(t), Sight::Occluded | Sight::Elsewhere)));
+            return if any && own { Cause::Acne } else { edge };
         }
         // Too light: weigh the lit taps by what let the light through.
-        let (mut detached, mut leaked, mut missed) = (0u128, 0u128, 0u128);
+        let (mut detached, mut leaked, mut unseen, mut missed) = (0u128, 0u128, 0u128, 0u128);
         for t in counted().filter(|t| !t.shadowed) {
             let w = u128::from(t.weight);
-            match self.lit_tap(t, &mut occluded) {
+            match self.lit_tap(t, &mut sight) {
                 Some(Cause::Detachment) => detached += w,
                 Some(Cause::Leak) => leaked += w,
+                Some(Cause::Clipped) => unseen += w,
                 _ => missed += w,
             }
         }
-        if detached > 0 && detached >= leaked && detached >= missed {
+        if detached > 0 && detached >= leaked.max(unseen).max(missed) {
             Cause::Detachment
-        } else if leaked > 0 && leaked >= missed {
+        } else if leaked > 0 && leaked >= unseen.max(missed) {
             Cause::Leak
-        } else {
+        } else if missed > 0 && missed > unseen {
             edge
+        } else {
+            // No lit tap (the lookup read nothing: the pixel lies outside
+            // the map), or the light came through where the map never saw
+            // the occluder: no true edge among the taps.
+            Cause::Clipped
         }
     }
 
     /// Why a lit tap of a too-light pixel is lit: [`Cause::Detachment`],
-    /// [`Cause::Leak`], or `None` when it missed the occluder (no surface
-    /// in front of the receiver on its exact ray, or a first layer that
-    /// does not hold it).
-    fn lit_tap(&self, t: &Tap, occluded: &mut impl FnMut(&Tap) -> bool) -> Option<Cause> {
-        let c = t.reference?;
-        if !occluded(t) {
-            return None;
+    /// [`Cause::Leak`], [`Cause::Clipped`] (its exact ray meets surfaces
+    /// only where the map never saw), or `None` when it missed the
+    /// occluder (no surface in front of the receiver on its exact ray,
+    /// another occluder than the pixel's own, or a first layer that does
+    /// not hold it).
+    fn lit_tap(&self, t: &Tap, sight: &mut impl FnMut(&Tap) -> Sight) -> Option<Cause> {
+        match sight(t) {
+            Sight::Unseen => return Some(Cause::Clipped),
+            Sight::Occluded => {}
+            Sight::Clear | Sight::Elsewhere => return None,
         }
+        let c = t.reference?;
         // Without the bias the tap would shadow: the bias moved it past.
         if t.receiver > c {
             return Some(Cause::Detachment);

@@ -54,6 +54,9 @@ pub struct Reference {
     /// out degenerate triangles).
     objects: Vec<u32>,
     epsilon: f64,
+    /// The scene's bounding box's diagonal: farther than any two of its
+    /// points lie apart.
+    reach: f64,
 }
 
 impl core::fmt::Debug for Reference {
@@ -119,7 +122,8 @@ impl Reference {
             });
         let objects = usable.iter().map(|&(k, _)| objects.get(k).copied().unwrap_or(0)).collect();
         let mesh = TriMesh::new(vertices, indices).map_err(|e| ReferenceError::Mesh(format!("{e:?}")))?;
-        Ok(Self { mesh, triangles, objects, epsilon: 1e-9 * (hi - lo).length().max(1.0) })
+        let reach = (hi - lo).length().max(1.0);
+        Ok(Self { mesh, triangles, objects, epsilon: 1e-9 * reach, reach })
     }
 
     /// The object of the first surface on the segment from `from` to just
@@ -137,6 +141,33 @@ impl Reference {
         let ray = Ray::new(Vector::new(from.x, from.y, from.z), Vector::new(dir.x, dir.y, dir.z));
         let hit = self.mesh.cast_local_ray_and_get_normal(&ray, length - self.epsilon * 32.0, false)?;
         Some(self.object_of(hit.subshape))
+    }
+
+    /// The object of the first surface on the segment from `from` to `to`
+    /// that lies in front of the plane through `on` with normal `normal`
+    /// (on `from`'s side, by more than the reference's tolerance): a
+    /// surface in that plane — the receiver's own, or one lying in it —
+    /// is not in front, however grazing the segment.
+    #[must_use]
+    pub(crate) fn first_in_front(&self, (from, to): (DVec3, DVec3), (on, normal): (DVec3, DVec3)) -> Option<u32> {
+        let d = to - from;
+        let length = d.length();
+        let normal = normal.normalize_or_zero();
+        if !(length.is_finite() && length > 0.0) || normal == DVec3::ZERO {
+            return None;
+        }
+        let dir = d / length;
+        let ray = Ray::new(Vector::new(from.x, from.y, from.z), Vector::new(dir.x, dir.y, dir.z));
+        let hit = self.mesh.cast_local_ray_and_get_normal(&ray, length, false)?;
+        let gap = (from + dir * hit.time_of_impact - on).dot(normal) * (from - on).dot(normal).signum();
+        (gap > self.epsilon * 64.0).then(|| self.object_of(hit.subshape))
+    }
+
+    /// Where the light is seen from `p`: its position, or for a
+    /// directional light a point beyond the whole scene towards it.
+    pub(crate) fn light_from(&self, p: DVec3, light: &LightSource) -> DVec3 {
+        let (to_light, distance) = light.towards(p);
+        p + to_light * if distance.is_finite() { distance } else { 2.0 * self.reach + p.length() }
     }
 
     /// The ray from point `p` towards the light, started just off the

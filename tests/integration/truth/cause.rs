@@ -9,7 +9,7 @@ use umbra::core::depth::PlaneZ;
 use umbra::core::shadow::{Bias, DepthTest, Filter, Lookup, MapCoord, Shadow, ShadowConfig, shadow};
 use umbra::sim::Algorithm;
 use umbra::sim::render::{Render, RenderConfig, TruthSource, render};
-use umbra::sim::truth::cause::{Cause, Judge, Receiver, Taps};
+use umbra::sim::truth::cause::{Cause, Judge, Receiver, Sight, Taps};
 use umbra::sim::truth::metrics::Verdict;
 use umbra::sim::{Limits, Scene};
 
@@ -47,7 +47,8 @@ fn judged(
     let s = shadow(&map.view(), &cfg, l, &mut taps);
     assert!(!taps.taps().is_empty(), "the taps are recorded");
     let judge = Judge { test, shade: s, dark, soft: Judge::softens(filter) };
-    (s, judge.cause(taps.taps(), &Receiver::flat::<D24>(l.z.to_bits()), |t| occluder(t.x, t.y)))
+    let sight = |t: &umbra::core::probe::Tap| if occluder(t.x, t.y) { Sight::Occluded } else { Sight::Clear };
+    (s, judge.cause(taps.taps(), &Receiver::flat::<D24>(l.z.to_bits()), sight))
 }
 
 /// A tap whose stored depth is the receiver's own (one step in front of
@@ -114,9 +115,10 @@ fn a_second_depth_behind_the_receiver_under_a_first_layer_occluder_is_a_leak() {
     assert_eq!(cause, Cause::Leak);
 }
 
-/// A render of `scene` at `size` with `algo`, `bias`, `filter` and map side `map`.
-fn rendered(scene: &Scene, (algo, bias, filter): (Algorithm, f64, &str), map: u32, size: (u32, u32)) -> Render {
-    let cfg = RenderConfig {
+/// The configuration of a render at `size` with `algo`, `bias`, `filter`
+/// and map side `map`.
+pub(super) fn config((algo, bias, filter): (Algorithm, f64, &str), map: u32, size: (u32, u32)) -> RenderConfig {
+    RenderConfig {
         algorithm: algo,
         bias,
         filter: filter.parse().expect("a filter"),
@@ -125,23 +127,32 @@ fn rendered(scene: &Scene, (algo, bias, filter): (Algorithm, f64, &str), map: u3
         height: size.1,
         reference_rays: 2,
         ..RenderConfig::DEFAULT
-    };
+    }
+}
+
+/// A render of `scene` as `cfg` says.
+pub(super) fn render_with(scene: &Scene, cfg: &RenderConfig) -> Render {
     cfg.check(scene, &Limits::DEFAULT).and_then(|job| render(&job, TruthSource::Quiet)).expect("renders")
 }
 
+/// A render of `scene` at `size` with `algo`, `bias`, `filter` and map side `map`.
+pub(super) fn rendered(scene: &Scene, algo: (Algorithm, f64, &str), map: u32, size: (u32, u32)) -> Render {
+    render_with(scene, &config(algo, map, size))
+}
+
 /// The object of each pixel's visible triangle (`None` for the background).
-fn objects(scene: &Scene, r: &Render) -> Vec<Option<usize>> {
+pub(super) fn objects(scene: &Scene, r: &Render) -> Vec<Option<usize>> {
     let of = scene.triangle_objects();
     r.image.pixels.iter().map(|p| of.get(p.triangle as usize).map(|&o| o as usize)).collect()
 }
 
 /// `scene` with only object `keep`.
-fn alone(scene: &Scene, keep: usize) -> Scene {
+pub(super) fn alone(scene: &Scene, keep: usize) -> Scene {
     Scene { objects: vec![scene.objects[keep].clone()], ..scene.clone() }
 }
 
 /// The texel a point lookup of pixel `p` reads, and what the map holds there.
-fn texel_under(r: &Render, p: &umbra::core::shade::Shaded) -> Option<u32> {
+pub(super) fn texel_under(r: &Render, p: &umbra::core::shade::Shaded) -> Option<u32> {
     let l = p.light?;
     let (x, y) = (l.x.to_num::<i64>(), l.y.to_num::<i64>());
     let w = i64::from(r.maps.maps.config.raster.width());

@@ -3,4 +3,5 @@
 mod cause;
 mod claims;
 mod metrics;
+mod receivers;
 mod reference;

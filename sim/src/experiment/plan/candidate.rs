@@ -36,7 +36,7 @@ pub struct Candidate {
     /// Every measure, percent of the evaluated pixels, in [`Measure::ALL`]
     /// order.
     #[serde(serialize_with = "by_measure")]
-    pub percent: [f64; 9],
+    pub percent: [f64; Measure::COUNT],
     /// RMS area error.
     pub rms_error: f64,
     /// The `umbra render` command that renders it.
@@ -44,7 +44,7 @@ pub struct Candidate {
 }
 
 /// Per-measure figures as a map from the measure's name.
-fn by_measure<S: serde::Serializer>(v: &[f64; 9], s: S) -> Result<S::Ok, S::Error> {
+fn by_measure<S: serde::Serializer>(v: &[f64; Measure::COUNT], s: S) -> Result<S::Ok, S::Error> {
     s.collect_map(Measure::ALL.iter().map(|m| m.name()).zip(v))
 }
 
@@ -57,7 +57,7 @@ impl Candidate {
 
     /// What it measured: cycles, bytes and every measure, exactly (two
     /// candidates that render alike measure alike).
-    pub(super) fn outcome(&self) -> (u64, u64, [u64; 9]) {
+    pub(super) fn outcome(&self) -> (u64, u64, [u64; Measure::COUNT]) {
         (self.cycles, self.bytes, self.percent.map(f64::to_bits))
     }
 

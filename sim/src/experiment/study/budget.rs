@@ -14,7 +14,7 @@ use super::RowMetrics;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Measure {
-    /// Acne, detachment and leaks together.
+    /// Acne, detachment, leaks and clipped occluders together.
     Artifacts,
     /// Every pixel the ½ verdict gets wrong, aliasing included.
     Misclassified,
@@ -24,6 +24,8 @@ pub enum Measure {
     Detachment,
     /// Too light because the depth compared lies behind the receiver.
     Leaks,
+    /// Too light because what shadows it lies outside the light's frustum.
+    Clipped,
     /// Wrong because the taps straddle a true edge or miss the occluder.
     Aliasing,
     /// A filter's own partial shade across a true edge.
@@ -35,13 +37,17 @@ pub enum Measure {
 }
 
 impl Measure {
+    /// How many measures there are.
+    pub const COUNT: usize = 10;
+
     /// Every measure, in the order reports list them.
-    pub const ALL: [Self; 9] = [
+    pub const ALL: [Self; Self::COUNT] = [
         Self::Artifacts,
         Self::Misclassified,
         Self::Acne,
         Self::Detachment,
         Self::Leaks,
+        Self::Clipped,
         Self::Aliasing,
         Self::Penumbra,
         Self::FalseShadow,
@@ -57,6 +63,7 @@ impl Measure {
             Self::Acne => "acne",
             Self::Detachment => "detachment",
             Self::Leaks => "leaks",
+            Self::Clipped => "clipped",
             Self::Aliasing => "aliasing",
             Self::Penumbra => "penumbra",
             Self::FalseShadow => "false-shadow",
@@ -75,6 +82,7 @@ impl Measure {
             Self::Acne => of(m.acne_px),
             Self::Detachment => of(m.detachment_px),
             Self::Leaks => of(m.leaks_px),
+            Self::Clipped => of(m.clipped_px),
             Self::Aliasing => of(m.aliasing_px),
             Self::Penumbra => of(m.penumbra_px),
             Self::FalseShadow => of(m.false_shadow_px),

@@ -161,12 +161,14 @@ columns! {
         terminator_acne_px: u64, "integer", "px", "of the acne, near grazing beside a surface facing away: the terminator's" = m.terminator_acne;
         detachment_px: u64, "integer", "px", "too light because only the bias moved the test past an occluder: detachment" = m.detachment;
         leaks_px: u64, "integer", "px", "too light because the depth compared lies behind the receiver: leaks" = m.leaks;
+        clipped_px: u64, "integer", "px", "too light because what shadows it lies outside the light's frustum: an occluder the map never saw" = m.clipped;
         aliasing_area_px: f64, "number", "px", "the aliasing's summed shade difference" = m.aliasing_area;
         penumbra_area_px: f64, "number", "px", "the penumbra's summed shade difference" = m.penumbra_area;
         acne_area_px: f64, "number", "px", "the acne's summed excess shadow" = m.acne_area;
         detachment_area_px: f64, "number", "px", "the detachment's summed missing shadow" = m.detachment_area;
         leak_area_px: f64, "number", "px", "the leaks' summed missing shadow" = m.leak_area;
-        artifact_percent: f64, "number", "percent", "acne, detachment and leaks, of the evaluated pixels: what budgets bound" = m.artifact_percent;
+        clipped_area_px: f64, "number", "px", "the clipped occluders' summed missing shadow" = m.clipped_area;
+        artifact_percent: f64, "number", "percent", "acne, detachment, leaks and clipped occluders, of the evaluated pixels: what budgets bound" = m.artifact_percent;
         penumbra_width_p95_px: f64, "number", "px", "95th percentile distance of penumbra pixels from the exact boundary" = m.penumbra_width[1];
         mean_abs_error: f64, "number", "shadow fraction", "mean |shadow fraction − true shadowed area|" = m.mean_abs_error;
         rms_error: f64, "number", "shadow fraction", "root mean square of the same" = m.rms_error;
@@ -174,6 +176,7 @@ columns! {
         displacement_p95_px: f64, "number", "px", "its 95th percentile" = m.displacement[1];
         footprint_x_texels_per_px: f64, "number", "texels/px", "median map texels a pixel along x (below 1: magnified)" = m.footprint_x[0];
         footprint_y_texels_per_px: f64, "number", "texels/px", "the same along y" = m.footprint_y[0];
+        receiver_fallback_px: u64, "integer", "px", "wrong pixels judged against a flat receiver (no plane could be set up)" = m.receiver_fallbacks;
         virtual_sample_percent: f64, "number", "percent", "lookups with virtual samples" = 100.0 * virtual_sample_fraction;
     }
 }
@@ -187,10 +190,10 @@ impl RowConfig {
 }
 
 impl RowMetrics {
-    /// Acne, detachment and leaks, pixels.
+    /// Acne, detachment, leaks and clipped occluders, pixels.
     #[must_use]
     pub const fn artifacts_px(&self) -> u64 {
-        self.acne_px + self.detachment_px + self.leaks_px
+        self.acne_px + self.detachment_px + self.leaks_px + self.clipped_px
     }
 }
 

@@ -34,6 +34,9 @@ impl Metrics {
             m.detachment_area += l.detachment_area;
             m.leaks += l.leaks;
             m.leak_area += l.leak_area;
+            m.clipped += l.clipped;
+            m.clipped_area += l.clipped_area;
+            m.receiver_fallbacks += l.receiver_fallbacks;
             m.penumbra += l.penumbra;
             m.penumbra_area += l.penumbra_area;
             m.ties += l.ties;

@@ -12,7 +12,9 @@
 //!   §2), **detachment** (too light because only the bias moved the test
 //!   past an occluder the map holds; their Figure 4) and **leaks** (too
 //!   light because the depth compared lies behind the receiver under a
-//!   first-layer occluder) are the artifacts;
+//!   first-layer occluder) and **clipped** occluders (too light because
+//!   what shadows the pixel lies outside the light's frustum: the map
+//!   never saw it) are the artifacts;
 //! * **aliasing** (the taps straddle a true edge or miss the occluder:
 //!   edge placement) and **penumbra** (a filter's own partial shade
 //!   across a true edge; Reeves et al.) are the map's resolution and the
@@ -28,7 +30,7 @@ use serde::Serialize;
 use umbra_core::shade::Shaded;
 use umbra_core::shadow::Shadow;
 
-use crate::truth::cause::Cause;
+use crate::truth::cause::{Cause, Judged};
 use crate::truth::reference::PixelTruth;
 
 mod fields;
@@ -116,6 +118,19 @@ pub struct Metrics {
     /// The leaks' summed missing shadow, pixels.
     #[serde(rename = "leak_area_px")]
     pub leak_area: f64,
+    /// Too light because what shadows it lies where the map never saw
+    /// it (outside the light's frustum, or the pixel outside the map): a
+    /// set-up error, an artifact.
+    #[serde(rename = "clipped_px")]
+    pub clipped: u64,
+    /// Their summed missing shadow, pixels.
+    #[serde(rename = "clipped_area_px")]
+    pub clipped_area: f64,
+    /// Wrong pixels whose receiver's plane could not be set up (its
+    /// triangle edge-on to the light, or wholly nearer than its near
+    /// plane), judged against a flat receiver one step thick.
+    #[serde(rename = "receiver_fallback_px")]
+    pub receiver_fallbacks: u64,
     /// A filter's own partial shade across a true edge: penumbra, not an
     /// artifact.
     #[serde(rename = "penumbra_px")]
@@ -128,8 +143,9 @@ pub struct Metrics {
     /// edge's width on each side.
     #[serde(rename = "penumbra_width_px", serialize_with = "median_p95")]
     pub penumbra_width: [f64; 2],
-    /// Artifacts (acne, detachment and leaks), in percent of the evaluated
-    /// pixels: the measure error budgets apply to.
+    /// Artifacts (acne, detachment, leaks and occluders the map never
+    /// saw), in percent of the evaluated pixels: the measure error budgets
+    /// apply to.
     pub artifact_percent: f64,
     /// Pixels whose filtered shadow fraction is exactly ½: counted as lit.
     #[serde(rename = "ties_px")]
@@ -207,12 +223,12 @@ pub trait Attribution {
     /// The cause of each wrong pixel `(k, dark)` of `render` (in
     /// increasing `k`; too dark than the reference when `dark`, else too
     /// light), one each, in the same order.
-    fn causes(&mut self, wrong: &[(usize, bool)], render: &[Shaded]) -> Vec<Cause>;
+    fn causes(&mut self, wrong: &[(usize, bool)], render: &[Shaded]) -> Vec<Judged>;
 }
 
 impl<F: FnMut(usize, &Shaded, bool) -> Cause> Attribution for F {
-    fn causes(&mut self, wrong: &[(usize, bool)], render: &[Shaded]) -> Vec<Cause> {
-        wrong.iter().map(|&(k, dark)| self(k, &render[k], dark)).collect()
+    fn causes(&mut self, wrong: &[(usize, bool)], render: &[Shaded]) -> Vec<Judged> {
+        wrong.iter().map(|&(k, dark)| Judged { cause: self(k, &render[k], dark), fallback: false }).collect()
     }
 }
 
@@ -292,7 +308,7 @@ impl Metrics {
         self.false_shadow_percent = 100.0 * fs / n;
         self.false_light_percent = 100.0 * fl / n;
         self.misclassified_percent = 100.0 * (fs + fl) / n;
-        self.artifact_percent = 100.0 * (self.acne + self.detachment + self.leaks) as f64 / n;
+        self.artifact_percent = 100.0 * (self.acne + self.detachment + self.leaks + self.clipped) as f64 / n;
         self.mean_abs_error = abs_error / n;
         self.rms_error = (square_error / n).sqrt();
     }

@@ -69,8 +69,9 @@ impl Sums {
             });
         }
         if !self.wrong.is_empty() {
-            for (&(k, _), cause) in self.wrong.iter().zip(causes.causes(&self.wrong, render)) {
-                self.verdicts[k] = Verdict::Wrong(cause);
+            for (&(k, _), judged) in self.wrong.iter().zip(causes.causes(&self.wrong, render)) {
+                self.verdicts[k] = Verdict::Wrong(judged.cause);
+                self.m.receiver_fallbacks += u64::from(judged.fallback);
             }
         }
         for (k, (s, t)) in band.zip(pixels.iter().zip(truths)) {
@@ -110,6 +111,10 @@ impl Sums {
             Verdict::Wrong(Cause::Leak) => {
                 m.leaks += 1;
                 m.leak_area += e.abs();
+            }
+            Verdict::Wrong(Cause::Clipped) => {
+                m.clipped += 1;
+                m.clipped_area += e.abs();
             }
             Verdict::Right | Verdict::Unevaluated => {}
         }

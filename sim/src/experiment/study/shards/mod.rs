@@ -224,6 +224,7 @@ pub(crate) fn invalid(r: &Row) -> Option<String> {
             ("acne_area_px", m.acne_area_px),
             ("detachment_area_px", m.detachment_area_px),
             ("leak_area_px", m.leak_area_px),
+            ("clipped_area_px", m.clipped_area_px),
             ("penumbra_width_p95_px", m.penumbra_width_p95_px),
             ("footprint_x_texels_per_px", m.footprint_x_texels_per_px),
             ("footprint_y_texels_per_px", m.footprint_y_texels_per_px),
@@ -235,10 +236,13 @@ pub(crate) fn invalid(r: &Row) -> Option<String> {
         if m.false_shadow_px.checked_add(m.false_light_px).is_none_or(|n| n > m.evaluated_px) {
             return Some("more misclassified pixels than evaluated".into());
         }
-        let classes = [m.aliasing_px, m.penumbra_px, m.acne_px, m.detachment_px, m.leaks_px];
+        let classes = [m.aliasing_px, m.penumbra_px, m.acne_px, m.detachment_px, m.leaks_px, m.clipped_px];
         let wrong = classes.iter().try_fold(0u64, |a, &n| a.checked_add(n));
         if wrong.is_none_or(|n| n > m.evaluated_px) {
-            return Some("more wrong pixels (aliasing, penumbra, acne, detachment, leaks) than evaluated".into());
+            return Some("more wrong pixels (aliasing, penumbra, acne, detachment, leaks, clipped) than evaluated".into());
+        }
+        if wrong.is_none_or(|n| m.receiver_fallback_px > n) {
+            return Some("more receiver fallbacks than wrong pixels".into());
         }
         if m.terminator_acne_px > m.acne_px {
             return Some("more terminator acne than acne".into());
