@@ -184,7 +184,8 @@ pub fn study(
 }
 
 /// The cheapest configuration of `scene` on `arch` meeting every budget
-/// (`budgets` spelt as `umbra plan --budget` spells them: `acne=0.01%`),
+/// (`budgets` spelt as `umbra plan --budget` spells them: `acne=0.01%`;
+/// none: the planner's default budgets),
 /// as the JSON text of `plan.json`. `sweep` (a bundled sweep or a sweep
 /// file), `maps` and `image` narrow the candidates as the command's flags
 /// do; `objective`, `max_area` and `max_energy` are spelt as `umbra plan`'s
@@ -206,8 +207,11 @@ pub fn plan(
     progress: Option<&Bound<'_, PyAny>>,
     threads: Option<usize>,
 ) -> PyResult<String> {
-    let budgets =
+    let mut budgets =
         budgets.iter().map(|b| b.parse()).collect::<Result<Vec<Budget>, String>>().map_err(|e| bad("budget", e))?;
+    if budgets.is_empty() {
+        budgets = umbra_sim::experiment::plan::DEFAULT_BUDGETS.to_vec();
+    }
     let mut spec = match sweep {
         Some(name) => {
             let limits = Limits::for_machine();

@@ -244,6 +244,12 @@ def test_plan_names_a_configuration_within_its_budgets():
     # A bare number is an artifacts budget.
     q = umbra.plan("weiskopf-l", 50.0, "talisman", sweep="quick", maps=[128], image=(96, 54))
     assert q["budgets"] == [{"measure": "artifacts", "percent": 50.0}]
+    # No budget: the command's default, artifacts and misclassified pixels.
+    d = umbra.plan("weiskopf-l", arch="talisman", sweep="quick", maps=[128], image=(96, 54))
+    assert d["budgets"] == [
+        {"measure": "artifacts", "percent": 0.1},
+        {"measure": "misclassified", "percent": 2.0},
+    ]
     with pytest.raises(umbra.UmbraError) as e:
         umbra.plan("weiskopf-l", "glare=1%", "talisman")
     assert "glare" in str(e.value)

@@ -242,7 +242,7 @@ def _typed(rows: str, schema: str) -> pd.DataFrame:
 
 def plan(
     scene: Union[str, Scene, Mapping[str, Any]],
-    budget: Union[float, str, Sequence[Union[float, str]]],
+    budget: Union[None, float, str, Sequence[Union[float, str]]] = None,
     arch: Union[str, Arch] = "talisman",
     sweep: Optional[str] = None,
     maps: Optional[Sequence[int]] = None,
@@ -257,14 +257,16 @@ def plan(
     ``umbra plan`` chooses it (``plan.json``): the pick, its figures, the
     runners-up and why each lost. A budget is spelt as ``umbra plan
     --budget`` spells it (``"acne=0.01%"``, ``"misclassified=0.1"``), or a
-    number: percent artifacts; give a list for several at once. ``sweep``
+    number: percent artifacts; give a list for several at once; none
+    means ``umbra plan``'s default, ``artifacts=0.1%`` and
+    ``misclassified=2%``. ``sweep``
     (``"quick"``, ``"full"`` or a sweep file), ``maps`` and ``image``
     choose the candidates as the command's flags do; ``objective``
     (``"cycles"``, ``"energy"``, ``"area"``, ``"edp"``, ``"edap"`` or weights
     such as ``"cycles=1,area=2"``), ``max_area`` (``"2mm2"``) and
     ``max_energy`` (``"150uJ"``) as ``--objective``, ``--max-area`` and
     ``--max-energy`` do."""
-    budgets = [budget] if isinstance(budget, (int, float, str)) else list(budget)
+    budgets = [budget] if isinstance(budget, (int, float, str)) else list(budget or [])
     spelt = [b if isinstance(b, str) else f"artifacts={float(b)!r}%" for b in budgets]
     return json.loads(
         _umbra.plan(

@@ -97,7 +97,8 @@ pub(super) struct StudyArgs {
     pub(super) reference_rays: Option<u32>,
     /// Error budgets in place of the sweep's, each a percentage of
     /// artifacts or `MEASURE=PERCENT` as `plan --budget` spells it
-    /// (`--budgets 1,0.1,acne=0.01%`).
+    /// (`--budgets 1,0.1,acne=0.01%`). The bundled sweeps' bound
+    /// artifacts (1, 0.1 and 0.01 %) and misclassified pixels (2 %).
     #[arg(long, value_delimiter = ',', value_parser = budget)]
     pub(super) budgets: Vec<umbra_sim::experiment::plan::Budget>,
     /// Run only shard i of n (every n-th block of configurations that share

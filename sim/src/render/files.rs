@@ -21,7 +21,8 @@ use crate::world::scene::Scene;
 /// the caller's to finish). A scene of several shadow-casting lights
 /// writes the frame's `shaded.png` and `metrics.json` (the frame's
 /// metrics, and each light's under `lights`), and every other file once
-/// per light, named for it: `shadow-light1.png`, `z1-light1.npy`.
+/// per light, suffixed with its index from 0 (`lights[k]`):
+/// `shadow-light0.png`, `shadow-light1.png`, `z1-light0.npy`.
 ///
 /// # Errors
 /// `OutputError` for a file that could not be written.

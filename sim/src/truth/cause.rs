@@ -170,7 +170,8 @@ impl Receiver {
             let mut keep = |q: DVec4| {
                 if q.w > 0.0 && n < part.len() {
                     let (x, y, z) = (q.x / q.w, q.y / q.w, q.z / q.w);
-                    part[n] = DVec3::new((x + 1.0) * f64::from(width) / 2.0, (1.0 - y) * f64::from(height) / 2.0, z * unit);
+                    part[n] =
+                        DVec3::new((x + 1.0) * f64::from(width) / 2.0, (1.0 - y) * f64::from(height) / 2.0, z * unit);
                     n += 1;
                 }
             };
@@ -366,7 +367,8 @@ impl Judge {
             let within = |t: &Tap| t.reference.is_some_and(|c| c as f64 >= receiver.at(t.x, t.y) - receiver.span());
             let mut darkening = counted().filter(|t| t.shadowed).peekable();
             let any = darkening.peek().is_some();
-            let own = darkening.all(|t| within(t) && (receiver.fallback() || !matches!(sight(t), Sight::Occluded | Sight::Elsewhere)));
+            let own = darkening
+                .all(|t| within(t) && (receiver.fallback() || !matches!(sight(t), Sight::Occluded | Sight::Elsewhere)));
             return if any && own { Cause::Acne } else { edge };
         }
         // Too light: weigh the lit taps by what let the light through.

@@ -136,7 +136,10 @@ fn a_surface_near_a_receiver_is_an_occluder_and_touching_is_acne() {
         let dark: Vec<usize> = changed.iter().filter(|c| c.1).map(|c| c.0).collect();
         let count = |cause| dark.iter().filter(|&&k| with.verdicts[k] == Verdict::Wrong(cause)).count();
         let (acne, aliasing) = (count(Cause::Acne), count(Cause::Aliasing));
-        println!("strip at {height}: {} too dark where the floor alone is right: {acne} acne, {aliasing} aliasing", dark.len());
+        println!(
+            "strip at {height}: {} too dark where the floor alone is right: {acne} acne, {aliasing} aliasing",
+            dark.len()
+        );
         if height == 0.0 {
             assert!(dark.len() >= 50 && acne == dark.len(), "touching: {acne} acne of {}", dark.len());
         } else {
@@ -155,13 +158,14 @@ fn a_floors_own_acne_is_acne_beside_any_strip() {
     let algo = (Algorithm::First, 0.0, "point");
     for height in [0.0, 0.015, 0.5] {
         let scene = strip_over_a_floor(height);
-        let (with, without) = (rendered(&scene, algo, 256, (256, 256)), rendered(&alone(&scene, 0), algo, 256, (256, 256)));
+        let (with, without) =
+            (rendered(&scene, algo, 256, (256, 256)), rendered(&alone(&scene, 0), algo, 256, (256, 256)));
         let floor = objects(&scene, &with);
         let (mut held, mut edge) = (0, 0);
-        for k in 0..with.verdicts.len() {
+        for (k, object) in floor.iter().enumerate() {
             let p = &with.image.pixels[k];
             let same = p.shadow == without.image.pixels[k].shadow && texel_under(&with, p) == texel_under(&without, p);
-            if floor[k] == Some(0) && same && without.verdicts[k] == Verdict::Wrong(Cause::Acne) {
+            if *object == Some(0) && same && without.verdicts[k] == Verdict::Wrong(Cause::Acne) {
                 held += 1;
                 edge += usize::from(with.verdicts[k] != Verdict::Wrong(Cause::Acne));
             }

@@ -56,10 +56,8 @@ pub const REFERENCE_RAYS: u32 = 4;
 /// and misclassified pixels within 2 % of the evaluated pixels — so a
 /// render with few artifacts but most of its pixels wrong (a map too
 /// coarse, say) is never the pick.
-pub const DEFAULT_BUDGETS: [Budget; 2] = [
-    Budget { measure: Measure::Artifacts, percent: 0.1 },
-    Budget { measure: Measure::Misclassified, percent: 2.0 },
-];
+pub const DEFAULT_BUDGETS: [Budget; 2] =
+    [Budget { measure: Measure::Artifacts, percent: 0.1 }, Budget { measure: Measure::Misclassified, percent: 2.0 }];
 
 /// What the planner may choose from, and the budgets it must meet.
 #[derive(Clone, Debug, PartialEq)]

@@ -103,10 +103,11 @@ pub fn summary(rows: &[Row], manifest: &Manifest) -> String {
     let _ = writeln!(s, "# Umbra study `{}`: what wins where, and why\n", manifest.sweep);
     let _ = writeln!(
         s,
-        "{}; sweep {} ({}). {} rows ({configs} configurations × architectures), {} skipped. Budgets bound \
-         artifacts — acne, detachment and leaks: wrong pixels (shade off the area-averaged reference by more than \
-         0.1, or on the wrong side of ½) judged by what the shadow unit compared — in percent of the pixels facing \
-         the light; aliasing and a filter's penumbra are not artifacts. Time: \
+        "{}; sweep {} ({}). {} rows ({configs} configurations × architectures), {} skipped. A budget bounds \
+         artifacts — acne, detachment, leaks and clipped occluders: wrong pixels (shade off the area-averaged \
+         reference by more than 0.1, or on the wrong side of ½) judged by what the shadow unit compared — or the \
+         measure it names, in percent of the pixels facing the light; aliasing and a filter's penumbra are not \
+         artifacts. Time: \
          the frame, light pass then camera pass, in each architecture's per-tile timing model at its clock; {}; \
          bytes: all DRAM traffic, map reads as fetched through the map cache; energy: DRAM, buffers, caches and \
          units. Each cell names the architecture point that won.\n",

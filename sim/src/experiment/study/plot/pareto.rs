@@ -45,7 +45,7 @@ impl Figure for Pareto<'_> {
         let any_zero = self.points.iter().any(|p| p.1 <= 0.0);
         let points: Vec<(f64, f64)> = self.points.iter().map(|&(x, y)| (x, if y > 0.0 { y } else { zero })).collect();
         let yr = log_range(ys(), if any_zero { zero } else { ERROR_FLOOR });
-        let y_desc = "artifacts % (acne, detachment, leaks)";
+        let y_desc = "artifacts % (acne, detachment, leaks, clipped)";
         let (x0, x1) = (xr.start, xr.end);
         let mut chart = log_log_chart(&plot, &self.title, (xr, yr), self.axis, y_desc, any_zero.then_some(zero))?;
         // The budgets dashed, named in the legend: no label over a marker.

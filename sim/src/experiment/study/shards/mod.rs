@@ -239,7 +239,9 @@ pub(crate) fn invalid(r: &Row) -> Option<String> {
         let classes = [m.aliasing_px, m.penumbra_px, m.acne_px, m.detachment_px, m.leaks_px, m.clipped_px];
         let wrong = classes.iter().try_fold(0u64, |a, &n| a.checked_add(n));
         if wrong.is_none_or(|n| n > m.evaluated_px) {
-            return Some("more wrong pixels (aliasing, penumbra, acne, detachment, leaks, clipped) than evaluated".into());
+            return Some(
+                "more wrong pixels (aliasing, penumbra, acne, detachment, leaks, clipped) than evaluated".into(),
+            );
         }
         if wrong.is_none_or(|n| m.receiver_fallback_px > n) {
             return Some("more receiver fallbacks than wrong pixels".into());
