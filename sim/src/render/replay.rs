@@ -50,24 +50,41 @@ pub(crate) fn judged<F: DepthFormat>(
     (truth, fields, reference): (&[Option<PixelTruth>], &Fields, &Reference),
     footprints: Option<&Footprints>,
 ) -> Result<(Metrics, Vec<Verdict>), PassError> {
-    with_judge(what, reference, |judge| compare_with(pixels, truth, fields, judge, footprints))
+    with_judge(what, (reference, fields), |judge| compare_with(pixels, truth, fields, judge, footprints))
+}
+
+/// The cause of wrong pixel `k` of a shadow volume render, too dark when
+/// `dark`. Volumes compare no depth and take no taps: a pixel the exact
+/// shadow boundary passes within one pixel of is the volume's rasterized
+/// edge, aliasing. One with no true edge near is the volumes' own error,
+/// never aliasing: too light, a leak (light through an occluder the
+/// volumes missed — a light inside a closed occluder casts no silhouette);
+/// too dark, acne (a surface inside a volume that should not hold it).
+fn volume_cause(fields: &Fields, k: usize, dark: bool) -> Cause {
+    match (fields.edge_near(k), dark) {
+        (true, _) => Cause::Aliasing,
+        (false, true) => Cause::Acne,
+        (false, false) => Cause::Leak,
+    }
 }
 
 /// `then` with the judge of a render's wrong pixels, which replays each
 /// through the shadow unit that shaded it (a silhouette map is drawn again
 /// for it, bit for bit the camera pass's). Shadow volumes compare no
-/// depth: each of their wrong pixels is the volume's rasterized edge,
-/// aliasing.
+/// depth: their wrong pixels are judged by the exact boundary alone
+/// ([`volume_cause`]).
 ///
 /// # Errors
 /// [`PassError`] when the silhouette map cannot be drawn again.
 pub(crate) fn with_judge<F: DepthFormat, T>(
     what: &PassInputs<'_, F>,
-    reference: &Reference,
+    (reference, fields): (&Reference, &Fields),
     then: impl FnOnce(&mut dyn Attribution) -> T,
 ) -> Result<T, PassError> {
     Ok(match (what.kind, what.view) {
-        (MapKind::Volumes, _) | (_, None) => then(&mut |_: usize, _: &Shaded, _: bool| Cause::Aliasing),
+        (MapKind::Volumes, _) | (_, None) => {
+            then(&mut |k: usize, _: &Shaded, dark: bool| volume_cause(fields, k, dark))
+        }
         (MapKind::Silhouette { packed: true }, Some(view)) => silhouettes::<Packed, F, T>(what, view, reference, then)?,
         (MapKind::Silhouette { packed: false }, Some(view)) => {
             silhouettes::<SilPoint, F, T>(what, view, reference, then)?

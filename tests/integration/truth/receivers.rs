@@ -212,7 +212,7 @@ mesh = { box = { min = [-0.5, 2.5, -0.5], max = [0.5, 3.5, 0.5] } }
 
 /// Every pixel the box truly shadows is too light, and each is a clipped
 /// occluder, an artifact: no tap could see the box. The planner's default
-/// budgets refuse every candidate.
+/// budgets refuse every candidate, shadow volumes included.
 #[test]
 fn an_occluder_nearer_than_the_near_plane_is_clipped_and_never_within_budget() {
     let scene = boxed_light();
@@ -225,6 +225,11 @@ fn an_occluder_nearer_than_the_near_plane_is_clipped_and_never_within_budget() {
     assert!(shadowed >= 500, "only {shadowed} pixels under the box");
     assert_eq!((m.clipped, m.aliasing, m.acne), (shadowed, 0, 0));
     assert!(m.artifact_percent > 99.0, "{m:?}");
+    // Shadow volumes miss the box too (the light inside it sees no
+    // silhouette): with no true edge near, their wrong pixels are leaks,
+    // not aliasing.
+    let v = rendered(&scene, (Algorithm::Volumes, 0.0, "point"), 64, (64, 36)).metrics;
+    assert_eq!((v.leaks, v.aliasing), (shadowed, 0), "{v:?}");
     let spec = PlanSpec { map_sizes: vec![64], image: [64, 36], ..PlanSpec::new(&scene, DEFAULT_BUDGETS.to_vec()) };
     let p = plan(&scene, &spec, &ProgressBar::hidden()).expect("plans");
     assert!(!p.meets && p.meeting == 0, "{} of {} candidates meet {:?}", p.meeting, p.candidates, spec.budgets);

@@ -91,7 +91,7 @@ pub(crate) fn render_shared<F: DepthFormat>(
             let mut sums = Sums::new(pixels.len());
             let kept = image.kept_footprints();
             let mut fit = vec![true; kept.len()];
-            let done = with_judge(&inputs, &image.reference, |judge| {
+            let done = with_judge(&inputs, (&image.reference, &image.fields), |judge| {
                 let mut then = |band: Range<usize>, out: &[Shaded]| {
                     sums.add(band.clone(), out, image.truth, &image.fields, judge);
                     for (f, fits) in kept.iter().zip(&mut fit) {

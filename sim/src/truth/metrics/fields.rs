@@ -19,6 +19,13 @@ pub struct Fields {
 }
 
 impl Fields {
+    /// Whether the exact shadow boundary passes within one pixel
+    /// (Chebyshev) of pixel `k`: a true edge there.
+    #[must_use]
+    pub(crate) fn edge_near(&self, k: usize) -> bool {
+        self.to_edge.get(k).is_some_and(|&d| d <= 1)
+    }
+
     /// The fields of a `width`-wide reference.
     #[must_use]
     pub fn new(truth: &[Option<PixelTruth>], width: u32) -> Self {
