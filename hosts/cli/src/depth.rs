@@ -4,7 +4,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use umbra_sim::output::table::{Align, Table};
 
-use crate::say::say;
+use crate::say::{Style, say};
 use anyhow::{Context, Result};
 use clap::ValueEnum;
 use umbra_core::{CullMode, DepthFormatKind, DepthUnit, LightPassConfig, RasterConfig};
@@ -94,7 +94,7 @@ fn read_matrix(arg: &str, limits: &Limits) -> Result<Mat4> {
     parse_matrix(arg).with_context(|| format!("--matrix `{arg}`: no such file, and not a 4×4 JSON array"))
 }
 
-pub(super) fn depth(args: &DepthArgs, limits: &Limits) -> Result<()> {
+pub(super) fn depth(args: &DepthArgs, limits: &Limits, style: Style) -> Result<()> {
     limits.check_map(args.map).with_context(|| format!("--map {}", args.map))?;
     let scene = match &args.mesh {
         Some(path) => Scene::of_obj(path, limits)?,
@@ -121,8 +121,12 @@ pub(super) fn depth(args: &DepthArgs, limits: &Limits) -> Result<()> {
     folder.write_text("tiles.md", &tile_report(&scene, &maps, &counters, args))?;
     folder.write_text("counters.json", &serde_json::to_string_pretty(&counters.totals)?)?;
     let (manifest, replaced) = folder.finish_replacing(None)?;
-    say!("{}", summary(&maps, &counters, scene.ignored()));
-    crate::say::wrote(&args.out, &manifest, &replaced)
+    if style == Style::Brief {
+        crate::say::wrapped(&format!("light pass of `{}`: {}", scene.name, describe(&maps)))?;
+    } else {
+        say!("{}", summary(&maps, &counters, scene.ignored()));
+    }
+    crate::say::wrote_in(style, &args.out, &manifest, &replaced)
 }
 
 fn write_maps(folder: &mut OutputFolder, maps: &RawMaps, scene: &Scene) -> Result<()> {
@@ -168,12 +172,19 @@ fn summary(maps: &RawMaps, c: &Counters, ignored: umbra_sim::world::mesh::Ignore
     if !ignored.is_empty() {
         let _ = writeln!(s, "{ignored}");
     }
+    let rejected =
+        t.rejected_facing + t.rejected_clipped + t.rejected_degenerate + t.rejected_no_coverage + t.rejected_non_finite;
+    // The clipper cuts a triangle crossing the frustum into pieces, each
+    // set up or rejected on its own: the pieces beyond one a triangle are
+    // what set up and rejected count past the triangles submitted.
+    let pieces = (t.setups + rejected).saturating_sub(t.submitted);
+    let split = if pieces > 0 { format!(" (and {pieces} more pieces the clipper cut)") } else { String::new() };
     let _ = writeln!(
         s,
-        "triangles {} submitted, {} set up, {} rejected (facing {}, clipped {}, degenerate {}, no coverage {}, non-finite {})",
+        "triangles {} submitted{split}, {} set up, {} rejected (facing {}, clipped {}, degenerate {}, no coverage {}, non-finite {})",
         t.submitted,
         t.setups,
-        t.rejected_facing + t.rejected_clipped + t.rejected_degenerate + t.rejected_no_coverage + t.rejected_non_finite,
+        rejected,
         t.rejected_facing,
         t.rejected_clipped,
         t.rejected_degenerate,

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use crate::cost::{ArchArgs, OneArchArgs};
-use crate::say::say;
+use crate::say::{Style, say};
 use anyhow::{Context, Result};
 use indicatif::ProgressBar;
 use umbra_sim::input::limits::Limits;
@@ -207,7 +207,7 @@ fn configurations_bar(prefix: &'static str) -> Result<ProgressBar> {
 
 /// `umbra study`: the library prepares (checks and hashes) and runs it;
 /// this prints what it did.
-pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
+pub(super) fn study(args: &StudyArgs, limits: &Limits, style: Style) -> Result<()> {
     use umbra_sim::experiment::study::{Outcome, Overrides, Request};
     let request = Request {
         sweep: if args.quick { "quick".to_owned() } else { args.sweep.clone() },
@@ -231,6 +231,7 @@ pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
         replace: args.replace,
     };
     let prepared = request.prepare(limits, rayon::current_num_threads())?;
+    let prepared_budgets = prepared.spec.budgets.clone();
     // A bound past half the limit is said: the run is near the machine's edge.
     let (renders, bound) = prepared.spec.memory(rayon::current_num_threads())?;
     if bound > limits.max_memory / 2 {
@@ -249,20 +250,26 @@ pub(super) fn study(args: &StudyArgs, limits: &Limits) -> Result<()> {
             say!("study: shard {} in {} is already complete and verified: not recomputed", m.shard, args.out.display());
         }
         Outcome::Ran { rows, summary, extremes, replaced, .. } => {
-            if let Some(summary) = summary {
-                say!("{summary}");
+            match (style, summary) {
+                (Style::Full, Some(summary)) => say!("{summary}"),
+                (Style::Brief, Some(_)) => {
+                    for line in umbra_sim::experiment::study::headline(&rows, &prepared_budgets) {
+                        crate::say::wrapped(&line)?;
+                    }
+                }
+                (_, None) => {}
             }
             if let Some(report) = extremes {
                 say!("{report}");
             }
             let configs = rows.iter().map(|r| r.config_index).collect::<std::collections::BTreeSet<_>>().len();
             let skipped = rows.iter().filter(|r| r.metrics.is_none()).count();
-            say!(
+            crate::say::wrapped(&format!(
                 "study: {configs} configurations, {} rows ({skipped} skipped); wrote {} (its files in {})",
                 rows.len(),
                 args.out.display(),
                 args.out.join(umbra_sim::output::folder::MANIFEST).display()
-            );
+            ))?;
             crate::say::replacements(&args.out, &replaced)?;
             // The wall time varies with the machine: not part of the results.
             eprintln!("study took {:.1} s", start.elapsed().as_secs_f64());

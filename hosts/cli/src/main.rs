@@ -20,7 +20,7 @@ mod say;
 mod scene;
 mod upgrade;
 
-use say::say;
+use say::{Style, say};
 
 /// Umbra: a bit-exact model of fixed-function shadow-mapping hardware.
 ///
@@ -219,12 +219,12 @@ fn run() -> Result<()> {
     }
     let limits = &cli.limits.limits();
     match cli.command {
-        Some(Command::Depth(args)) => depth(&args, limits),
-        Some(Command::Render(args)) => render(&args, limits),
+        Some(Command::Depth(args)) => depth(&args, limits, Style::Full),
+        Some(Command::Render(args)) => render(&args, limits, Style::Full),
         Some(Command::Cost(args)) => cost(&args, false, limits),
         Some(Command::Trace(args)) => cost(&args, true, limits),
         Some(Command::Correlate(args)) => correlate(&args, limits),
-        Some(Command::Study(args)) => study(&args, limits),
+        Some(Command::Study(args)) => study(&args, limits, Style::Full),
         Some(Command::Plan(args)) => plan(&args, limits),
         Some(Command::Arch(command)) => arch::arch(&command, limits),
         Some(Command::Scene(command)) => scene::scene(&command, limits),
@@ -254,8 +254,9 @@ fn run() -> Result<()> {
             Ok(())
         }
         None => {
-            depth(&DepthArgs::default(), limits)?;
-            render(&RenderArgs::default(), limits)?;
+            // The headline of each, the full figures in the files.
+            depth(&DepthArgs::default(), limits, Style::Brief)?;
+            render(&RenderArgs::default(), limits, Style::Brief)?;
             study(
                 &StudyArgs {
                     scenes: Vec::new(),
@@ -274,7 +275,10 @@ fn run() -> Result<()> {
                     replace: false,
                 },
                 limits,
-            )
+                Style::Brief,
+            )?;
+            say!("every figure: out/depth/tiles.md, out/render/metrics.json and out/study/summary.md");
+            Ok(())
         }
     }
 }

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 use umbra_sim::output::table::{Align, Table};
 
-use crate::say::say;
+use crate::say::{Style, say};
 use anyhow::Result;
 use indicatif::ProgressBar;
 use umbra_sim::input::limits::Limits;
@@ -150,8 +150,9 @@ pub(super) fn job<'s>(args: &RenderArgs, scene: &'s Scene, limits: &Limits) -> R
     Ok(request.config(scene.image)?.check(scene, limits)?)
 }
 
-/// `umbra render`: the pictures, the metrics and the events of one render.
-pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
+/// `umbra render`: the pictures, the metrics and the events of one render,
+/// printed in `style`.
+pub(super) fn render(args: &RenderArgs, limits: &Limits, style: Style) -> Result<()> {
     let scene = args.scene(limits)?;
     let job = job(args, &scene, limits)?;
     let cfg = *job.config();
@@ -165,6 +166,22 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits) -> Result<()> {
     let (manifest, replaced) = folder.finish_replacing(None)?;
     let m = r.frame_metrics();
     let t = &r.camera_events.totals;
+    if style == Style::Brief {
+        crate::say::wrapped(&format!("render `{}`: {}", scene.name, cfg.describe()))?;
+        crate::say::wrapped(&format!(
+            "misclassified {:.3} % of {} pixels facing the light; artifacts {:.3} % ({} acne, {} detachment, {} \
+             leaks, {} clipped); {} aliasing",
+            m.misclassified_percent,
+            m.evaluated,
+            m.artifact_percent,
+            m.acne,
+            m.detachment,
+            m.leaks,
+            m.clipped,
+            m.aliasing
+        ))?;
+        return crate::say::wrote_in(style, &out, &manifest, &replaced);
+    }
     say!("render `{}`: {}", scene.name, cfg.describe());
     if !scene.ignored().is_empty() {
         say!("the scene's mesh files: {}", scene.ignored());

@@ -41,6 +41,61 @@ macro_rules! say {
 }
 pub(crate) use say;
 
+/// How much a command prints: every figure (a subcommand of its own), or
+/// the few a person reads first, in lines of at most [`BRIEF_WIDTH`]
+/// columns (the main job's), the rest left in the files it wrote.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Style {
+    /// Every figure and every file written.
+    Full,
+    /// The headline figures and where the files went.
+    Brief,
+}
+
+/// The widest line the brief style prints, in columns.
+pub(crate) const BRIEF_WIDTH: usize = 100;
+
+/// Print `text` in lines of at most [`BRIEF_WIDTH`] columns, broken at
+/// spaces, each continuation indented by two.
+///
+/// # Errors
+/// As [`line()`].
+pub(crate) fn wrapped(text: &str) -> Result<()> {
+    let mut now = String::new();
+    for word in text.split(' ') {
+        let width = now.chars().count();
+        if width > 0 && width + 1 + word.chars().count() > BRIEF_WIDTH {
+            say!("{now}");
+            now = format!("  {word}");
+        } else {
+            if width > 0 {
+                now.push(' ');
+            }
+            now.push_str(word);
+        }
+    }
+    if !now.is_empty() {
+        say!("{now}");
+    }
+    Ok(())
+}
+
+/// Print where a finished folder's files went in `style`: each file and
+/// the manifest ([`wrote`]), or one wrapped line naming them.
+///
+/// # Errors
+/// As [`line()`].
+pub(crate) fn wrote_in(style: Style, dir: &Path, manifest: &RunManifest, replaced: &Replaced) -> Result<()> {
+    match style {
+        Style::Full => wrote(dir, manifest, replaced),
+        Style::Brief => {
+            let names: Vec<&str> = manifest.files.iter().map(|f| f.path.as_str()).chain([MANIFEST]).collect();
+            wrapped(&format!("wrote {} files to {}: {}", names.len(), dir.display(), names.join(", ")))?;
+            replacements(dir, replaced)
+        }
+    }
+}
+
 /// Print the files a finished folder holds, its manifest last, and what
 /// the run replaced there.
 ///

@@ -40,7 +40,7 @@ pub fn write_render(folder: &mut OutputFolder, job: &Checked<'_>, r: &Render) ->
             (String::new(), detail.clone())
         };
         let file = |stem: &str, ext: &str| format!("{stem}{named}.{ext}");
-        write_shadow_term(folder, &file("shadow", "png"), part.image, &detail)?;
+        write_shadow_term(folder, &file("shadow", "png"), (part.image, part.truth), &detail)?;
         write_error_image(folder, &file("error", "png"), part.image, part.verdicts, (part.truth, &detail))?;
         let maps = part.maps;
         let (w, h) = (maps.maps.config.raster.width(), maps.maps.config.raster.height());

@@ -101,16 +101,23 @@ pub(crate) fn write_shadow_image(
     write_framed(folder, name, &pixels, (image.width, image.height), &frame)
 }
 
+/// The colour of a surface the light does not reach on the shadow term:
+/// one dark grey, apart from the scale (the shading leaves it unlit,
+/// whatever the shadow unit would say).
+pub const UNLIT: [u8; 3] = [48, 48, 56];
+
 /// Write the shadow term alone: white lit, black fully shadowed, greys
-/// between, [`BACKGROUND`] where there is no surface; framed with
-/// `detail` and its key.
+/// between; [`UNLIT`] where the surface faces away from the light or lies
+/// outside a spot light's frustum (the shading lights none of it: the
+/// test's result there is no shadow's), [`BACKGROUND`] where there is no
+/// surface; framed with `detail` and its key.
 ///
 /// # Errors
 /// [`OutputError::Image`] or [`OutputError::Font`].
 pub(crate) fn write_shadow_term(
     folder: &mut OutputFolder,
     name: &str,
-    image: &CameraImage,
+    (image, truth): (&CameraImage, &[Option<PixelTruth>]),
     detail: &str,
 ) -> Result<PathBuf, OutputError> {
     let grey = |lit: f64| {
@@ -118,19 +125,24 @@ pub(crate) fn write_shadow_term(
         let g = (255.0 * lit.clamp(0.0, 1.0)).round() as u8;
         [g; 3]
     };
-    let pixels: Vec<u8> =
-        image
-            .pixels
-            .iter()
-            .flat_map(|p| {
-                if p.triangle == umbra_core::NO_TRIANGLE { BACKGROUND } else { grey(1.0 - p.shadow.to_num::<f64>()) }
-            })
-            .collect();
+    let pixels: Vec<u8> = image
+        .pixels
+        .iter()
+        .zip(truth.iter().chain(core::iter::repeat(&None)))
+        .flat_map(|(p, t)| match t {
+            _ if p.triangle == umbra_core::NO_TRIANGLE => BACKGROUND,
+            Some(t) if !t.faces_light => UNLIT,
+            _ => grey(1.0 - p.shadow.to_num::<f64>()),
+        })
+        .collect();
     let frame = Frame {
         title: "shadow term: the fraction of light the shadow unit lets through".into(),
         detail: detail.to_owned(),
         scale: Some(Scale { colour: &grey, low: "0 (shadowed)".into(), high: "1 (lit)".into() }),
-        swatches: vec![(BACKGROUND, "no surface".into())],
+        swatches: vec![
+            (UNLIT, "faces away from the light, or out of its reach".into()),
+            (BACKGROUND, "no surface".into()),
+        ],
     };
     write_framed(folder, name, &pixels, (image.width, image.height), &frame)
 }

@@ -8,6 +8,7 @@ use umbra::sim::input::limits::Limits;
 use umbra::sim::output::folder::OutputFolder;
 use umbra::sim::output::picture::{BACKGROUND, BODY_ORIGIN, CAPTION_BAND};
 use umbra::sim::render::files::write_render;
+use umbra::sim::render::pictures::UNLIT;
 use umbra::sim::render::{RenderConfig, TruthSource, render};
 use umbra::sim::world::scene::Scene;
 
@@ -46,10 +47,20 @@ fn every_picture_carries_its_caption_and_key_and_tells_its_values_apart() {
     let png = image::open(dir.join("shadow.png")).expect("a PNG").to_rgb8();
     let (x0, y0) = BODY_ORIGIN;
     let at = |k: usize| png.get_pixel(x0 + (k as u32 % r.image.width), y0 + (k as u32 / r.image.width)).0;
-    let find = |f: &dyn Fn(&Shaded) -> bool| r.image.pixels.iter().position(f).expect("such a pixel");
-    let none = at(find(&|p| p.triangle == umbra::core::NO_TRIANGLE));
-    let shadowed = at(find(&|p| p.triangle != umbra::core::NO_TRIANGLE && p.shadow.to_num::<f64>() == 1.0));
-    let lit = at(find(&|p| p.triangle != umbra::core::NO_TRIANGLE && p.shadow.to_num::<f64>() == 0.0));
+    let facing = |k: usize| r.truth[k].is_some_and(|t| t.faces_light);
+    let find = |f: &dyn Fn(&Shaded) -> bool| {
+        (0..r.image.pixels.len()).find(|&k| facing(k) && f(&r.image.pixels[k])).expect("such a pixel")
+    };
+    let none = at(r.image.pixels.iter().position(|p| p.triangle == umbra::core::NO_TRIANGLE).expect("background"));
+    let shadowed = at(find(&|p| p.shadow.to_num::<f64>() == 1.0));
+    let lit = at(find(&|p| p.shadow.to_num::<f64>() == 0.0));
     assert_eq!((none, shadowed, lit), (BACKGROUND, [0; 3], [255; 3]));
+    // A surface the light does not reach (the sphere's far side, the
+    // floor beyond the spot's frustum) is one colour, apart from the
+    // scale, whatever the unit's test said there: no grid of its taps.
+    let away: Vec<usize> = (0..r.image.pixels.len()).filter(|&k| r.truth[k].is_some_and(|t| !t.faces_light)).collect();
+    assert!(away.len() >= 100, "only {} pixels face away", away.len());
+    assert!(away.iter().all(|&k| at(k) == UNLIT), "a pixel facing away is not the unlit colour");
+    assert!(![BACKGROUND, [0; 3], [255; 3]].contains(&UNLIT));
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -46,7 +46,7 @@ impl Figure {
                     .unwrap_or((1.0, ""));
                 format!("{} {prefix}/s", (self.value / scale * 1000.0).round() / 1000.0)
             }
-            u => u.write(self.value),
+            u => u.show(self.value),
         }
     }
 }
@@ -162,11 +162,11 @@ impl Arch {
                 "dram.bandwidth",
                 format!(
                     "{} is above the latency ceiling of {} (dram.requests_in_flight {} × dram.burst {} / dram.latency {}): streams are latency-bound, and bandwidth above the ceiling buys nothing; {needed} requests in flight would use it",
-                    Unit::Bandwidth.write(self.dram.bandwidth),
-                    Unit::Bandwidth.write(ceiling),
+                    Unit::Bandwidth.show(self.dram.bandwidth),
+                    Unit::Bandwidth.show(ceiling),
                     self.dram.requests_in_flight,
-                    Unit::Bytes.write(self.dram.burst as f64),
-                    Unit::Time.write(self.dram.latency),
+                    Unit::Bytes.show(self.dram.burst as f64),
+                    Unit::Time.show(self.dram.latency),
                 ),
             ));
         }
@@ -184,9 +184,9 @@ impl Arch {
                     format!(
                         "{} misses of {} in flight fetch at most {} at the DRAM latency, below the DRAM's {}: misses are latency-bound whatever dram.requests_in_flight is; {needed} would use the bandwidth",
                         c.misses_in_flight,
-                        Unit::Bytes.write(c.line as f64),
-                        Unit::Bandwidth.write(misses),
-                        Unit::Bandwidth.write(self.dram.bandwidth),
+                        Unit::Bytes.show(c.line as f64),
+                        Unit::Bandwidth.show(misses),
+                        Unit::Bandwidth.show(self.dram.bandwidth),
                     ),
                 ));
             }

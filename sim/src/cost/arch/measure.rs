@@ -164,6 +164,31 @@ impl Unit {
         if v.is_finite() { Ok(v) } else { Err(bad()) }
     }
 
+    /// Show a figure worked out from a file's values (`v`, in the base) as a
+    /// person writes it: in each suffix it reaches (at least the unit's
+    /// smallest, 1 or 0.001), rounded to 12 significant digits so that
+    /// the float noise of its arithmetic goes, and of those the shortest
+    /// (`760GB/s`, not `759.9999999999999GB/s`; `10KB`, not `9.765625KiB`).
+    ///
+    /// ```
+    /// use umbra_sim::cost::arch::Unit;
+    /// assert_eq!(Unit::Bandwidth.show(760e9 * (1.0 - 1e-16)), "760GB/s");
+    /// assert_eq!(Unit::Time.show(225.0 * 1e-9), "225ns");
+    /// assert_eq!(Unit::Bytes.show(10_000.0), "10KB");
+    /// assert_eq!(Unit::Bytes.show(65_536.0), "64KiB");
+    /// ```
+    #[must_use]
+    pub fn show(self, v: f64) -> String {
+        let round = |x: f64| format!("{x:.11e}").parse().unwrap_or(x);
+        self.suffixes()
+            .iter()
+            .map(|&(s, scale)| (round(v / scale), s))
+            .filter(|&(x, _)| x.abs() >= self.smallest())
+            .map(|(x, s)| format!("{x}{s}"))
+            .min_by_key(String::len)
+            .unwrap_or_else(|| self.write(v))
+    }
+
     /// Write `v` (in the base) with the largest suffix that reads back to
     /// the same bits.
     #[must_use]

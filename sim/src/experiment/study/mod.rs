@@ -29,6 +29,7 @@ use crate::world::scene_file::SceneError;
 
 pub mod budget;
 pub(crate) mod extremes;
+mod headline;
 pub mod objective;
 pub(crate) mod plot;
 mod rank;
@@ -44,6 +45,7 @@ mod sweep_file;
 
 pub use crate::cost::report::stats::RowCost;
 use budget::{Budget, Measure};
+pub use headline::headline;
 pub use request::{Outcome, Overrides, Prepared, Request, choose_archs, image_size, map_sides, no_repeats};
 pub use row::{Row, RowConfig, RowMetrics, Status};
 #[cfg(test)]

@@ -86,7 +86,7 @@ pub(crate) fn slug(name: &str) -> String {
 }
 
 /// Scene names in order of first appearance.
-fn scenes_of(rows: &[Row]) -> Vec<String> {
+pub(super) fn scenes_of(rows: &[Row]) -> Vec<String> {
     distinct(rows.iter().map(|r| r.config.scene.clone()))
 }
 

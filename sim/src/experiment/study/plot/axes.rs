@@ -89,7 +89,7 @@ fn range(values: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
 impl AxisPlot {
     /// An axis value as the key's files write it, else with an SI prefix.
     fn x_text(&self, x: f64) -> String {
-        self.x_unit.filter(|u| u.symbol() != "-").map_or_else(|| si(x), |u| u.write(x))
+        self.x_unit.filter(|u| u.symbol() != "-").map_or_else(|| si(x), |u| u.show(x))
     }
 }
 
@@ -233,7 +233,7 @@ pub(crate) fn arch_axes(
                 let unit = PARAMS.iter().find(|p| column(p.key) == col).map(|p| p.unit);
                 let value = match (r.config.arch_axes.get(&col), unit) {
                     (Some(v), Some(unit)) if unit.symbol() != "-" => {
-                        v.as_f64().map_or_else(|| v.to_string(), |x| unit.write(x))
+                        v.as_f64().map_or_else(|| v.to_string(), |x| unit.show(x))
                     }
                     (Some(v), _) => v.as_f64().map_or_else(|| v.to_string().trim_matches('"').to_owned(), si),
                     (None, _) => String::new(),
