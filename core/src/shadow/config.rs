@@ -203,12 +203,15 @@ impl core::str::FromStr for Filter {
         let texels = |p: &'static str, t: &str| {
             t.parse::<MapCoord>().ok().filter(|v| *v >= MapCoord::ZERO).ok_or(FilterNameError::Texels(p))
         };
-        match s {
-            "point" => return Ok(Self::Point),
-            "bilinear" => return Ok(Self::Bilinear),
-            _ => {}
+        // Case aside: the help writes a name at a sentence's start.
+        let prefix = |p: &str| s.get(..p.len()).filter(|h| h.eq_ignore_ascii_case(p)).map(|_| &s[p.len()..]);
+        if s.eq_ignore_ascii_case("point") {
+            return Ok(Self::Point);
         }
-        if let Some(side) = s.strip_prefix("box") {
+        if s.eq_ignore_ascii_case("bilinear") {
+            return Ok(Self::Bilinear);
+        }
+        if let Some(side) = prefix("box") {
             let size = side.parse::<u8>().map_err(|_| FilterNameError::BoxSide)?;
             return if Self::BOX_SIDES.contains(&size) {
                 Ok(Self::Box { size })
@@ -216,7 +219,7 @@ impl core::str::FromStr for Filter {
                 Err(FilterNameError::BoxSide)
             };
         }
-        let rest = s.strip_prefix("jitter").ok_or(FilterNameError::Unknown)?;
+        let rest = prefix("jitter").ok_or(FilterNameError::Unknown)?;
         let mut parts = rest.split(',');
         let mut j = Jitter { num_samples: samples("num-samples", parts.next().unwrap_or_default())?, ..Jitter::REEVES };
         for part in parts {

@@ -100,9 +100,8 @@ impl clap::Args for RenderArgs {
                 .aliases(p.aliases.iter().map(|a| a.replace('_', "-")));
             arg = match p.kind {
                 Kind::Flag => arg.action(ArgAction::SetTrue),
-                Kind::Choice(names) => {
-                    arg.value_parser(clap::builder::PossibleValuesParser::new(names.iter().copied()))
-                }
+                // A choice is read by the library, as every other value is:
+                // case aside, and a slip answered with what it was nearly.
                 _ => {
                     arg.value_parser(clap::builder::ValueParser::new(move |s: &str| p.check(s).map(|()| s.to_owned())))
                 }

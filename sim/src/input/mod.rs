@@ -1,9 +1,11 @@
 //! What the simulator reads in: the limits every input is read within
-//! ([`limits`]), the files' format versions ([`format`]), and
-//! fixed-length arrays read exactly (`exact`).
+//! ([`limits`]), the files' format versions ([`format`]), what kind of
+//! file a user gave ([`kind`]), and fixed-length arrays read exactly
+//! (`exact`).
 
 pub(crate) mod exact;
 pub mod format;
+pub mod kind;
 pub mod limits;
 
 /// Where byte `offset` of a file's `text` is, as an error names it: the

@@ -155,11 +155,13 @@ pub const PARAMS: &[RenderParam] = &[
         written: Written::Always,
         get: |r| Some(r.algo.to_owned()),
         set: |r, v| {
-            let name = v.trim();
-            r.algo = Algorithm::NAMES
-                .iter()
-                .find(|n| **n == name)
-                .ok_or_else(|| format!("expected one of {}", Algorithm::NAMES.join(", ")))?;
+            // The one spelling, case aside, with what a slip was nearly.
+            r.algo = Algorithm::NAMES.iter().find(|n| n.eq_ignore_ascii_case(v.trim())).ok_or_else(|| {
+                match umbra_core::spelling::closest(v.trim(), Algorithm::NAMES.iter().copied()) {
+                    Some(near) => format!("did you mean `{near}`? (one of {})", Algorithm::NAMES.join(", ")),
+                    None => format!("expected one of {}", Algorithm::NAMES.join(", ")),
+                }
+            })?;
             Ok(())
         },
     },

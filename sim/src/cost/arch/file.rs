@@ -58,7 +58,7 @@ fn calibration(table: Option<toml::Value>) -> Result<Vec<Calibration>, (String, 
         .map(|(key, point)| {
             let name = format!("calibration.{key}");
             if !PARAMS.iter().any(|p| p.key == key && p.unit != Unit::Text) {
-                return Err((name, Problem::Unknown));
+                return Err((name, Problem::unknown(&key)));
             }
             match point {
                 toml::Value::String(point)
@@ -117,7 +117,10 @@ impl Arch {
         let mut problems: Vec<(String, Problem)> = keys
             .into_iter()
             .filter(|k| !PARAMS.iter().any(|p| p.key == k.as_str()))
-            .map(|k| (k, Problem::Unknown))
+            .map(|k| {
+                let p = Problem::unknown(&k);
+                (k, p)
+            })
             .collect();
         let mut arch = Self { calibration, ..Self::default() };
         for p in PARAMS {
@@ -278,7 +281,7 @@ impl Arch {
     /// # Errors
     /// The problem: an unknown key, or a value of the wrong unit or range.
     pub(crate) fn assign(&mut self, key: &str, value: &str) -> Result<(), Problem> {
-        let p = PARAMS.iter().find(|p| p.key == key).ok_or(Problem::Unknown)?;
+        let p = PARAMS.iter().find(|p| p.key == key).ok_or_else(|| Problem::unknown(key))?;
         from_text(p.unit, value).and_then(|v| p.assign(self, v))
     }
 
@@ -289,7 +292,7 @@ impl Arch {
     /// # Errors
     /// An unknown key, or text that is not a value of the key's unit.
     pub(crate) fn value_of(key: &str, text: &str) -> Result<Value, Problem> {
-        let p = PARAMS.iter().find(|p| p.key == key).ok_or(Problem::Unknown)?;
+        let p = PARAMS.iter().find(|p| p.key == key).ok_or_else(|| Problem::unknown(key))?;
         from_text(p.unit, text)
     }
 
@@ -301,7 +304,7 @@ impl Arch {
     /// the key and the problem.
     pub(crate) fn take(&mut self, keys: &[&str], other: &Self) -> Result<(), (String, Problem)> {
         for &key in keys {
-            let p = PARAMS.iter().find(|p| p.key == key).ok_or_else(|| (key.to_owned(), Problem::Unknown))?;
+            let p = PARAMS.iter().find(|p| p.key == key).ok_or_else(|| (key.to_owned(), Problem::unknown(key)))?;
             p.assign(self, (p.get)(other)).map_err(|e| (key.to_owned(), e))?;
         }
         self.check().map_err(|(k, e)| (k.to_owned(), e))

@@ -16,9 +16,12 @@ pub enum Problem {
     /// Not valid TOML.
     #[error("{0}")]
     Syntax(String),
-    /// No such key.
-    #[error("unknown key (the keys are: {})", PARAMS.iter().map(|p| p.key).collect::<Vec<_>>().join(", "))]
-    Unknown,
+    /// No such key; the one it is a slip of, if any.
+    #[error("unknown key{}; `umbra arch show` lists every key", near.map_or_else(String::new, |n| format!(" (did you mean `{n}`?)")))]
+    Unknown {
+        /// The key it was nearly ([`umbra_core::spelling::closest`]).
+        near: Option<&'static str>,
+    },
     /// A key the file must give.
     #[error("missing")]
     Missing,
@@ -78,13 +81,22 @@ pub fn column(key: &str) -> String {
     if unit.is_empty() { base } else { format!("{base}_{unit}") }
 }
 
+impl Problem {
+    /// `key` is no key: [`Problem::Unknown`], with the key it is a slip of.
+    #[must_use]
+    pub fn unknown(key: &str) -> Self {
+        Self::Unknown { near: umbra_core::spelling::closest(key, PARAMS.iter().map(|p| p.key)) }
+    }
+}
+
 /// Several keys' problems in one line, an unknown key without the list of
 /// every key; past the first [`SHOWN`], only how many more.
 fn several(problems: &[(String, Problem)]) -> String {
     /// The problems a message lists before it counts the rest.
     const SHOWN: usize = 20;
     let each = problems.iter().take(SHOWN).map(|(key, problem)| match problem {
-        Problem::Unknown => format!("{key}: unknown key"),
+        Problem::Unknown { near: Some(near) } => format!("{key}: unknown key (did you mean `{near}`?)"),
+        Problem::Unknown { near: None } => format!("{key}: unknown key"),
         _ => format!("{key}: {problem}"),
     });
     let more = match problems.len().saturating_sub(SHOWN) {

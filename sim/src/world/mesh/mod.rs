@@ -47,6 +47,14 @@ pub enum MeshError {
         /// The loader's error.
         source: tobj::LoadError,
     },
+    /// The file is another kind than a mesh.
+    #[error("{path}: {} (not an OBJ mesh): {}", kind.what(), kind.read_by())]
+    Kind {
+        /// The file.
+        path: PathBuf,
+        /// What it is.
+        kind: crate::input::kind::FileKind,
+    },
     /// The file holds no triangles.
     #[error("{path}: no triangles")]
     Empty {

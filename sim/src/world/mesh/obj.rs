@@ -7,6 +7,7 @@ use std::path::Path;
 use glam::Vec3;
 
 use super::{Mesh, MeshError};
+use crate::input::kind::FileKind;
 use crate::input::limits::{FileError, LimitError, Limits};
 
 /// OBJ records that are not surfaces, left out of a loaded mesh and counted.
@@ -144,6 +145,9 @@ impl Mesh {
             FileError::NotAFile => MeshError::NotAFile { path: path.to_owned() },
             FileError::Limit(source) => MeshError::Limit { path: path.to_owned(), source },
         })?;
+        if let Some(kind) = FileKind::of(&bytes).filter(|&k| k != FileKind::Obj) {
+            return Err(MeshError::Kind { path: path.to_owned(), kind });
+        }
         let counts = check_obj(path, &bytes)?;
         let primitives = counts.triangles.saturating_add(counts.ignored.segments).saturating_add(counts.ignored.points);
         let over = |source| MeshError::Limit { path: path.to_owned(), source };

@@ -39,6 +39,7 @@ use std::path::{Path, PathBuf};
 
 use glam::{EulerRot, Mat4, Quat, Vec3};
 
+use crate::input::kind::FileKind;
 use crate::input::limits::{FileError, LimitError, Limits};
 use crate::world::mesh::MeshError;
 use crate::world::scene::{Camera, Light, Object, Orthographic, Scene};
@@ -95,6 +96,9 @@ pub enum Problem {
     /// The file cannot be read.
     #[error("cannot read: {0}")]
     Read(std::io::Error),
+    /// The file is another kind than a scene file.
+    #[error("{} (not a scene file): {}", .0.what(), .0.read_by())]
+    Kind(FileKind),
     /// Not valid TOML, an unknown key, or a value of the wrong type.
     #[error("{0}")]
     Syntax(String),
@@ -254,6 +258,9 @@ impl Scene {
             Check { file }
                 .err(format!("line {line}"), Problem::Syntax(format!("not UTF-8 text at byte {}", e.valid_up_to())))
         })?;
+        if let Some(kind) = FileKind::of(bytes).filter(|&k| k != FileKind::Scene) {
+            return Err(Check { file }.err("(file)", Problem::Kind(kind)));
+        }
         Self::parse(text, file, limits)
     }
 
@@ -345,7 +352,10 @@ impl Scene {
             }
             None => Err(Check { file: &file }.err(
                 "(name)",
-                Problem::Syntax(format!("no bundled scene `{name}`; there are {}", BUNDLED.map(|(n, _)| n).join(", "))),
+                Problem::Syntax(match umbra_core::spelling::closest(name, BUNDLED.iter().map(|(n, _)| *n)) {
+                    Some(near) => format!("no bundled scene `{name}`: did you mean `{near}`?"),
+                    None => format!("no bundled scene `{name}`; there are {}", BUNDLED.map(|(n, _)| n).join(", ")),
+                }),
             )),
         }
     }
