@@ -509,7 +509,10 @@ fn an_in_place_upgrade_keeps_what_it_replaces() {
     std::fs::create_dir_all(&sub).expect("dir");
     let old = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/first-release-gpu.toml"))
         .expect("an earlier release's file");
-    assert!(!old.starts_with("format = "), "the example states no format");
+    assert!(!old.contains("\nformat = "), "the example states no format");
+    // Upgraded: the format stated first of the keys, the header comment first.
+    const STATED: &str = "\nformat = 3  # upgraded from format 1\n";
+    let header = old.lines().next().expect("a header");
     let upgrade = |file: &Path| umbra(&["arch", "upgrade", "--in-place", text(file)]);
     let upgraded = |file: &Path| std::fs::read_to_string(file).expect("read").replace("\r\n", "\n");
     let mode = |file: &Path| std::fs::metadata(file).expect("meta").permissions().mode() & 0o777;
@@ -524,7 +527,7 @@ fn an_in_place_upgrade_keeps_what_it_replaces() {
     assert_eq!(std::fs::read_to_string(&victim).expect("victim"), "the user's", "written through the link");
     assert!(std::fs::symlink_metadata(sub.join(".x.toml.upgrading")).expect("link").file_type().is_symlink());
     assert!(std::fs::symlink_metadata(&file).expect("file").file_type().is_file(), "the file became a link");
-    assert!(upgraded(&file).starts_with("format = 3\n"), "upgraded");
+    assert!(upgraded(&file).contains(STATED) && upgraded(&file).starts_with(header), "upgraded");
     assert_eq!(mode(&file), 0o600, "a private file stays private");
     let names: Vec<_> = std::fs::read_dir(&sub).expect("dir").map(|e| e.expect("entry").file_name()).collect();
     assert_eq!(names.len(), 2, "no temporary left: {names:?}");
@@ -534,7 +537,7 @@ fn an_in_place_upgrade_keeps_what_it_replaces() {
     std::fs::set_permissions(&crlf, std::fs::Permissions::from_mode(0o755)).expect("mode");
     assert!(upgrade(&crlf).status.success());
     let bytes = std::fs::read(&crlf).expect("read");
-    assert!(bytes.starts_with(b"format = 3\r\n"), "CRLF kept");
+    assert!(String::from_utf8_lossy(&bytes).contains(&STATED.replace('\n', "\r\n")), "CRLF kept");
     assert!(bytes.windows(2).filter(|w| w[1] == b'\n').all(|w| w[0] == b'\r'), "every line ends in CRLF");
     assert_eq!(mode(&crlf), 0o755);
     let again = upgrade(&crlf);
@@ -546,7 +549,7 @@ fn an_in_place_upgrade_keeps_what_it_replaces() {
     let o = upgrade(&link);
     assert!(o.status.success() && String::from_utf8_lossy(&o.stderr).contains("real.toml"), "names the target");
     assert!(std::fs::symlink_metadata(&link).expect("link").file_type().is_symlink(), "the link stays a link");
-    assert!(upgraded(&real).starts_with("format = 3\n"), "its target upgraded");
+    assert!(upgraded(&real).contains(STATED), "its target upgraded");
     // A read-only file is refused, and left as it was.
     let locked = sub.join("locked.toml");
     std::fs::write(&locked, &old).expect("file");

@@ -12,7 +12,10 @@
 //! assert!(SWEEP.stated(Some(i64::from(SWEEP.current) + 1)).is_err());
 //! assert!(SWEEP.stated(Some(-1)).unwrap_err().contains("format -1"));
 //! let text = SWEEP.upgrade("name = \"mine\" # my sweep\n", &[]).expect("TOML");
-//! assert_eq!(text, format!("format = {}\nname = \"mine\" # my sweep\n", SWEEP.current));
+//! assert_eq!(text, format!("format = {}  # upgraded from format 1\nname = \"mine\" # my sweep\n", SWEEP.current));
+//! // A header comment stays first.
+//! let text = SWEEP.upgrade("# my sweep\nname = \"mine\"\n", &[]).expect("TOML");
+//! assert!(text.starts_with("# my sweep\nformat = "));
 //! ```
 
 use toml_edit::{DocumentMut, Item, Table, Value};
@@ -68,8 +71,9 @@ impl Format {
         }
     }
 
-    /// `text` for the current version: `format` set (first, for a file
-    /// that had none), each of `added` that the file lacks put in its
+    /// `text` for the current version: `format` set (for a file that had
+    /// none, after its header comment and before its first key), each of
+    /// `added` that the file lacks put in its
     /// table with its comment; the rest of the text as it was. Applied to
     /// its own output it changes nothing.
     ///
@@ -79,7 +83,7 @@ impl Format {
         let mut doc: DocumentMut = text.parse().map_err(|e: toml_edit::TomlError| e.to_string())?;
         let current = i64::from(self.current);
         let stated = doc.contains_key("format");
-        if stated {
+        if stated && doc.get("format").and_then(Item::as_integer) != Some(current) {
             doc["format"] = toml_edit::value(current);
         }
         for a in added {
@@ -102,8 +106,18 @@ impl Format {
             value.decor_mut().set_suffix(format!("  # {}", a.comment));
             t.insert(leaf, Item::Value(value));
         }
-        // A key at the top of the text precedes every table, as TOML
-        // needs it to.
-        Ok(if stated { doc.to_string() } else { format!("format = {current}\n{doc}") })
+        if stated {
+            return Ok(doc.to_string());
+        }
+        // A key before every table, as TOML needs it; after the file's
+        // header comment, which stays first, and saying what it was.
+        let text = doc.to_string();
+        let header: usize = text
+            .split_inclusive('\n')
+            .take_while(|l| l.trim().is_empty() || l.trim_start().starts_with('#'))
+            .map(str::len)
+            .sum();
+        let (head, rest) = text.split_at(header);
+        Ok(format!("{head}format = {current}  # upgraded from format 1\n{rest}"))
     }
 }

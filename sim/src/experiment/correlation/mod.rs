@@ -420,7 +420,8 @@ fn stats_cells(s: &Stats) -> Vec<String> {
     let opt = |v: Option<f64>, f: &dyn Fn(f64) -> String| v.map_or_else(|| "—".to_owned(), f);
     vec![
         s.points.to_string(),
-        format!("{:.1} %", s.mean_absolute_error_percent),
+        // No statistic of an empty set: a dataset of no points has no error.
+        if s.points == 0 { "—".to_owned() } else { format!("{:.1} %", s.mean_absolute_error_percent) },
         opt(s.pearson_r, &|r| format!("{r:.3}")),
         opt(s.nrmse_percent, &|n| format!("{n:.1} %")),
         s.within_10_percent.to_string(),
