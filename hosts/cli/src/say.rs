@@ -61,21 +61,17 @@ pub(crate) const BRIEF_WIDTH: usize = 100;
 /// # Errors
 /// As [`line()`].
 pub(crate) fn wrapped(text: &str) -> Result<()> {
-    let mut now = String::new();
-    for word in text.split(' ') {
-        let width = now.chars().count();
-        if width > 0 && width + 1 + word.chars().count() > BRIEF_WIDTH {
-            say!("{now}");
-            now = format!("  {word}");
-        } else {
-            if width > 0 {
-                now.push(' ');
-            }
-            now.push_str(word);
-        }
+    use umbra_sim::output::lines::lines;
+    let Some((first, rest)) = lines(text, BRIEF_WIDTH).split_first().map(|(f, r)| (f.clone(), r.join(" "))) else {
+        return Ok(());
+    };
+    if !first.is_empty() {
+        say!("{first}");
     }
-    if !now.is_empty() {
-        say!("{now}");
+    if !rest.is_empty() {
+        for line in lines(&rest, BRIEF_WIDTH - 2) {
+            say!("  {line}");
+        }
     }
     Ok(())
 }

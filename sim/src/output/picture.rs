@@ -50,18 +50,7 @@ fn line_chars(width: u32) -> usize {
 /// `text` in at most `lines` lines of at most `chars` characters, broken
 /// at spaces; the last line cut with `…` when it does not fit.
 fn wrap(text: &str, chars: usize, lines: usize) -> Vec<String> {
-    let mut out: Vec<String> = Vec::new();
-    let mut line = String::new();
-    for word in text.split(' ') {
-        if !line.is_empty() && line.chars().count() + 1 + word.chars().count() > chars {
-            out.push(std::mem::take(&mut line));
-        }
-        if !line.is_empty() {
-            line.push(' ');
-        }
-        line.push_str(word);
-    }
-    out.push(line);
+    let mut out = super::lines::lines(text, chars);
     if out.len() > lines {
         out.truncate(lines);
         if let Some(last) = out.last_mut() {

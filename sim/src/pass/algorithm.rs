@@ -49,7 +49,12 @@ impl std::fmt::Display for Algorithm {
 
 /// A name that is no algorithm's.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("`{name}` is not an algorithm ({})", Algorithm::NAMES.join(", "), name = .0)]
+#[error(
+    "`{name}` is not an algorithm{} ({})",
+    umbra_core::spelling::closest(.0, Algorithm::NAMES).map_or_else(String::new, |n| format!(": did you mean `{n}`?")),
+    Algorithm::NAMES.join(", "),
+    name = .0
+)]
 pub struct UnknownAlgorithm(pub String);
 
 /// The paper an algorithm comes from, as the study groups them.
@@ -316,13 +321,16 @@ impl Algorithm {
     /// The dual-depth offset when none is given (`umbra render --offset`).
     pub(crate) const DEFAULT_OFFSET: f64 = 0.01;
 
-    /// The algorithm named `name` ([`Algorithm::name`]), with Reeves'
-    /// `Bias1` for a bias range and the offset for dual depth (the others
-    /// take neither).
+    /// The algorithm named `name` ([`Algorithm::name`], case aside: the
+    /// help writes a name at a sentence's start), with Reeves' `Bias1` for
+    /// a bias range and the offset for dual depth (the others take
+    /// neither). An unknown name's error suggests the name it was a slip of.
     ///
     /// ```
     /// use umbra_sim::pass::algorithm::Algorithm;
     /// assert_eq!(Algorithm::named("dual", 0.005, 0.01), Ok(Algorithm::Dual { offset: 0.01 }));
+    /// assert_eq!(Algorithm::named("Second", 0.0, 0.0), Ok(Algorithm::Second));
+    /// assert!(Algorithm::named("secnod", 0.0, 0.0).unwrap_err().to_string().contains("did you mean `second`?"));
     /// assert!(Algorithm::named("third", 0.0, 0.0).is_err());
     /// ```
     ///
@@ -331,7 +339,7 @@ impl Algorithm {
     pub fn named(name: &str, bias1: f64, offset: f64) -> Result<Self, UnknownAlgorithm> {
         Self::every(bias1, offset)
             .into_iter()
-            .find(|a| a.name() == name)
+            .find(|a| a.name().eq_ignore_ascii_case(name))
             .ok_or_else(|| UnknownAlgorithm(name.to_owned()))
     }
 

@@ -155,13 +155,8 @@ pub const PARAMS: &[RenderParam] = &[
         written: Written::Always,
         get: |r| Some(r.algo.to_owned()),
         set: |r, v| {
-            // The one spelling, case aside, with what a slip was nearly.
-            r.algo = Algorithm::NAMES.iter().find(|n| n.eq_ignore_ascii_case(v.trim())).ok_or_else(|| {
-                match umbra_core::spelling::closest(v.trim(), Algorithm::NAMES.iter().copied()) {
-                    Some(near) => format!("did you mean `{near}`? (one of {})", Algorithm::NAMES.join(", ")),
-                    None => format!("expected one of {}", Algorithm::NAMES.join(", ")),
-                }
-            })?;
+            // Its one spelling, as every reader of algorithm names reads it.
+            r.algo = Algorithm::named(v.trim(), 0.0, 0.0).map_err(|e| e.to_string())?.name();
             Ok(())
         },
     },

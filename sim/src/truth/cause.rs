@@ -147,8 +147,8 @@ pub struct Receiver {
     dv: f64,
     /// One step of the map's format at the receiver's depth, `PlaneZ` bits.
     step: f64,
-    /// Set up from the triangle's plane (not a flat fallback).
-    plane: bool,
+    /// A flat fallback ([`Receiver::flat`]), not its triangle's plane.
+    flat: bool,
 }
 
 impl Receiver {
@@ -197,7 +197,7 @@ impl Receiver {
         let dv = (e2.z * e1.x - e1.z * e2.x) / det;
         let z0 = a.z - du * a.x - dv * a.y;
         let step = step::<F>(a.z);
-        [z0, du, dv].iter().all(|v| v.is_finite()).then_some(Self { z0, du, dv, step, plane: true })
+        [z0, du, dv].iter().all(|v| v.is_finite()).then_some(Self { z0, du, dv, step, flat: false })
     }
 
     /// A receiver known only by one depth (no plane could be set up: the
@@ -208,14 +208,14 @@ impl Receiver {
     pub fn flat<F: DepthFormat>(z: i64) -> Self {
         #[allow(clippy::cast_precision_loss, reason = "a depth in PlaneZ bits, below 2^57")]
         let z = z as f64;
-        Self { z0: z, du: 0.0, dv: 0.0, step: step::<F>(z), plane: false }
+        Self { z0: z, du: 0.0, dv: 0.0, step: step::<F>(z), flat: true }
     }
 
     /// Whether the receiver is a flat fallback ([`Receiver::flat`]), not
     /// its triangle's plane.
     #[must_use]
     pub const fn fallback(&self) -> bool {
-        !self.plane
+        self.flat
     }
 
     /// The receiver's depth at the centre of texel `(x, y)`.

@@ -53,9 +53,8 @@ pub struct Reference {
     /// The object of each triangle of the ray-casting mesh (which leaves
     /// out degenerate triangles).
     objects: Vec<u32>,
-    epsilon: f64,
-    /// The scene's bounding box's diagonal: farther than any two of its
-    /// points lie apart.
+    /// The scene's bounding box's diagonal (at least 1): farther than any
+    /// two of its points lie apart.
     reach: f64,
 }
 
@@ -122,8 +121,22 @@ impl Reference {
             });
         let objects = usable.iter().map(|&(k, _)| objects.get(k).copied().unwrap_or(0)).collect();
         let mesh = TriMesh::new(vertices, indices).map_err(|e| ReferenceError::Mesh(format!("{e:?}")))?;
-        let reach = (hi - lo).length().max(1.0);
-        Ok(Self { mesh, triangles, objects, epsilon: 1e-9 * reach, reach })
+        Ok(Self { mesh, triangles, objects, reach: (hi - lo).length().max(1.0) })
+    }
+
+    /// The reference's tolerance: a billionth of the scene's size.
+    fn epsilon(&self) -> f64 {
+        1e-9 * self.reach
+    }
+
+    /// The ray from `from` towards `to` (a unit direction) and the
+    /// segment's length; `None` for a segment of no length.
+    fn segment(from: DVec3, to: DVec3) -> Option<(Ray, f64)> {
+        let d = to - from;
+        let length = d.length();
+        let dir = d / length;
+        (length.is_finite() && length > 0.0)
+            .then(|| (Ray::new(Vector::new(from.x, from.y, from.z), Vector::new(dir.x, dir.y, dir.z)), length))
     }
 
     /// The object of the first surface on the segment from `from` to just
@@ -132,14 +145,8 @@ impl Reference {
     /// lies there.
     #[must_use]
     pub(crate) fn first_on(&self, from: DVec3, to: DVec3) -> Option<u32> {
-        let d = to - from;
-        let length = d.length();
-        if !(length.is_finite() && length > self.epsilon * 64.0) {
-            return None;
-        }
-        let dir = d / length;
-        let ray = Ray::new(Vector::new(from.x, from.y, from.z), Vector::new(dir.x, dir.y, dir.z));
-        let hit = self.mesh.cast_local_ray_and_get_normal(&ray, length - self.epsilon * 32.0, false)?;
+        let (ray, length) = Self::segment(from, to).filter(|&(_, l)| l > self.epsilon() * 64.0)?;
+        let hit = self.mesh.cast_local_ray_and_get_normal(&ray, length - self.epsilon() * 32.0, false)?;
         Some(self.object_of(hit.subshape))
     }
 
@@ -150,17 +157,12 @@ impl Reference {
     /// is not in front, however grazing the segment.
     #[must_use]
     pub(crate) fn first_in_front(&self, (from, to): (DVec3, DVec3), (on, normal): (DVec3, DVec3)) -> Option<u32> {
-        let d = to - from;
-        let length = d.length();
-        let normal = normal.normalize_or_zero();
-        if !(length.is_finite() && length > 0.0) || normal == DVec3::ZERO {
-            return None;
-        }
-        let dir = d / length;
-        let ray = Ray::new(Vector::new(from.x, from.y, from.z), Vector::new(dir.x, dir.y, dir.z));
+        let normal = normal.try_normalize()?;
+        let (ray, length) = Self::segment(from, to)?;
         let hit = self.mesh.cast_local_ray_and_get_normal(&ray, length, false)?;
-        let gap = (from + dir * hit.time_of_impact - on).dot(normal) * (from - on).dot(normal).signum();
-        (gap > self.epsilon * 64.0).then(|| self.object_of(hit.subshape))
+        let at = ray.point_at(hit.time_of_impact);
+        let gap = (DVec3::new(at.x, at.y, at.z) - on).dot(normal) * (from - on).dot(normal).signum();
+        (gap > self.epsilon() * 64.0).then(|| self.object_of(hit.subshape))
     }
 
     /// Where the light is seen from `p`: its position, or for a
@@ -174,9 +176,9 @@ impl Reference {
     /// surface, and how far it may go before it reaches the light.
     fn towards_light(&self, p: DVec3, light: &LightSource) -> (Ray, f64) {
         let (to_light, distance) = light.towards(p);
-        let origin = p + to_light * self.epsilon * 16.0;
+        let origin = p + to_light * self.epsilon() * 16.0;
         let ray = Ray::new(Vector::new(origin.x, origin.y, origin.z), Vector::new(to_light.x, to_light.y, to_light.z));
-        let max = if distance.is_finite() { distance - self.epsilon * 32.0 } else { f64::MAX };
+        let max = if distance.is_finite() { distance - self.epsilon() * 32.0 } else { f64::MAX };
         (ray, max.max(0.0))
     }
 

@@ -18,37 +18,48 @@ use umbra::sim::{Limits, Scene};
 
 use super::cause::{alone, objects, rendered, texel_under};
 
-/// A scene from its file's text.
-fn scene(text: &str) -> Scene {
-    Scene::parse(text, Path::new("test.toml"), &Limits::DEFAULT).expect("a scene")
+/// A camera or a spot light: where it is, what it looks at, its field of
+/// view in degrees and its near and far planes.
+struct View {
+    position: [f64; 3],
+    target: [f64; 3],
+    fov: f64,
+    near: f64,
+    far: f64,
+}
+
+impl View {
+    /// Its keys in a scene file's table.
+    fn keys(&self) -> String {
+        let Self { position, target, fov, near, far } = self;
+        format!("position = {position:?}\ntarget = {target:?}\nfov = {fov:?}\nnear = {near:?}\nfar = {far:?}\n")
+    }
+}
+
+/// A scene of `objects` (each a name and its mesh's inline table) at
+/// `image`, seen through `camera` and lit by one spot `light`, read as a
+/// scene file is.
+fn scene(name: &str, image: [u32; 2], (camera, light): (View, View), objects: &[(&str, String)]) -> Scene {
+    let mut text = format!("name = \"{name}\"\nimage = {image:?}\n[camera]\n{}", camera.keys());
+    text += &format!("[[lights]]\nkind = \"spot\"\n{}", light.keys());
+    for (name, mesh) in objects {
+        text += &format!("[[objects]]\nname = \"{name}\"\nmesh = {mesh}\n");
+    }
+    Scene::parse(&text, Path::new("test.toml"), &Limits::DEFAULT).expect("a scene")
+}
+
+/// A quad's mesh table: `corner` and its two edges.
+fn quad(corner: [f64; 3], u: [f64; 3], v: [f64; 3]) -> String {
+    format!("{{ quad = {{ corner = {corner:?}, u = {u:?}, v = {v:?} }} }}")
 }
 
 /// A floor under a low spot light at the origin looking along −z, its
 /// near edge at `near_z` (behind the light for `near_z > 0`).
 fn floor_under_a_low_spot(near_z: f64) -> Scene {
-    scene(&format!(
-        r#"
-name = "floor-{near_z}"
-image = [320, 180]
-[camera]
-position = [0.0, 4.0, 3.0]
-target = [0.0, 0.0, -4.0]
-fov = 60.0
-near = 0.5
-far = 30.0
-[[lights]]
-kind = "spot"
-position = [0.0, 0.5, 0.0]
-target = [0.0, 0.0, -4.0]
-fov = 60.0
-near = 0.1
-far = 20.0
-[[objects]]
-name = "floor"
-mesh = {{ quad = {{ corner = [-4.0, 0.0, {near_z:?}], u = [8.0, 0.0, 0.0], v = [0.0, 0.0, {v:?}] }} }}
-"#,
-        v = -8.0 - near_z
-    ))
+    let camera = View { position: [0.0, 4.0, 3.0], target: [0.0, 0.0, -4.0], fov: 60.0, near: 0.5, far: 30.0 };
+    let light = View { position: [0.0, 0.5, 0.0], target: [0.0, 0.0, -4.0], fov: 60.0, near: 0.1, far: 20.0 };
+    let floor = quad([-4.0, 0.0, near_z], [8.0, 0.0, 0.0], [0.0, 0.0, -8.0 - near_z]);
+    scene(&format!("floor-{near_z}"), [320, 180], (camera, light), &[("floor", floor)])
 }
 
 /// A floor whose triangles each have a corner behind the spot light keeps
@@ -70,31 +81,11 @@ fn a_receiver_with_a_corner_behind_the_light_keeps_its_plane() {
 /// A floor with a strip over it, `height` above (0: lying on it), lit
 /// from above and to the side so that the strip's shadow falls beside it.
 fn strip_over_a_floor(height: f64) -> Scene {
-    scene(&format!(
-        r#"
-name = "strip-{height}"
-image = [256, 256]
-[camera]
-position = [0.0, 5.0, 3.0]
-target = [0.0, 0.0, 0.0]
-fov = 50.0
-near = 0.5
-far = 30.0
-[[lights]]
-kind = "spot"
-position = [3.0, 5.0, 1.0]
-target = [0.0, 0.0, 0.0]
-fov = 60.0
-near = 1.0
-far = 20.0
-[[objects]]
-name = "floor"
-mesh = {{ quad = {{ corner = [-3.0, 0.0, 3.0], u = [6.0, 0.0, 0.0], v = [0.0, 0.0, -6.0] }} }}
-[[objects]]
-name = "strip"
-mesh = {{ quad = {{ corner = [-0.3, {height:?}, 2.0], u = [0.6, 0.0, 0.0], v = [0.0, 0.0, -4.0] }} }}
-"#
-    ))
+    let camera = View { position: [0.0, 5.0, 3.0], target: [0.0; 3], fov: 50.0, near: 0.5, far: 30.0 };
+    let light = View { position: [3.0, 5.0, 1.0], target: [0.0; 3], fov: 60.0, near: 1.0, far: 20.0 };
+    let floor = quad([-3.0, 0.0, 3.0], [6.0, 0.0, 0.0], [0.0, 0.0, -6.0]);
+    let strip = quad([-0.3, height, 2.0], [0.6, 0.0, 0.0], [0.0, 0.0, -4.0]);
+    scene(&format!("strip-{height}"), [256, 256], (camera, light), &[("floor", floor), ("strip", strip)])
 }
 
 /// The floor pixels of `with` that are wrong and too dark (or too light)
@@ -183,31 +174,11 @@ fn a_floors_own_acne_is_acne_beside_any_strip() {
 /// A spot light inside a closed box, every corner within 0.87 of it,
 /// with its near plane at 1: the map never sees the box.
 fn boxed_light() -> Scene {
-    scene(
-        r#"
-name = "boxed-light"
-image = [64, 36]
-[camera]
-position = [0.0, 6.0, 8.0]
-target = [0.0, 0.0, 0.0]
-fov = 50.0
-near = 0.5
-far = 40.0
-[[lights]]
-kind = "spot"
-position = [0.0, 3.0, 0.0]
-target = [0.0, 0.0, 0.0]
-fov = 90.0
-near = 1.0
-far = 20.0
-[[objects]]
-name = "floor"
-mesh = { quad = { corner = [-5.0, 0.0, 5.0], u = [10.0, 0.0, 0.0], v = [0.0, 0.0, -10.0] } }
-[[objects]]
-name = "box"
-mesh = { box = { min = [-0.5, 2.5, -0.5], max = [0.5, 3.5, 0.5] } }
-"#,
-    )
+    let camera = View { position: [0.0, 6.0, 8.0], target: [0.0; 3], fov: 50.0, near: 0.5, far: 40.0 };
+    let light = View { position: [0.0, 3.0, 0.0], target: [0.0; 3], fov: 90.0, near: 1.0, far: 20.0 };
+    let floor = quad([-5.0, 0.0, 5.0], [10.0, 0.0, 0.0], [0.0, 0.0, -10.0]);
+    let closed = "{ box = { min = [-0.5, 2.5, -0.5], max = [0.5, 3.5, 0.5] } }".to_owned();
+    scene("boxed-light", [64, 36], (camera, light), &[("floor", floor), ("box", closed)])
 }
 
 /// Every pixel the box truly shadows is too light, and each is a clipped
