@@ -28,6 +28,12 @@ impl Scene {
             .map_err(|e| error(&e))
     }
 
+    /// The scene with its first light moved to `point` `(x, y, z)`, aimed
+    /// at the centre of the scene's bounds (as `--light-from`).
+    fn with_light_from(&self, point: [f32; 3]) -> PyResult<Self> {
+        self.inner.clone().with_light_from(point.into()).map(|inner| Self { inner }).map_err(|e| error(&e))
+    }
+
     /// What the scene's loader supplied that its file did not say (a
     /// default camera or light).
     #[getter]

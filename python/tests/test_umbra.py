@@ -289,3 +289,13 @@ def test_bad_input_names_the_file_and_key(tmp_path):
     assert "mine" in str(e.value) and "objects[0].mesh.arrays.triangles[0]" in str(e.value), str(e.value)
     done = cli("render", str(bad), "--out", str(tmp_path / "o"))
     assert done.returncode != 0 and "bad.toml" in done.stderr
+
+
+def test_a_light_moves_where_it_is_put():
+    # The scene's bounds reach 5.69 from their centre (0, 0.55, 0): a light
+    # must stand 1.2 times that, 6.83, away. 10 above is; 0.5 above is not.
+    moved = umbra.scene("table-and-sphere", light_from=(0, 10, 0))
+    assert any("moved to 0,10,0" in n for n in moved.notes), moved.notes
+    with pytest.raises(umbra.UmbraError) as e:
+        umbra.scene("table-and-sphere", light_from=(0, 0.5, 0))
+    assert "within its bounds' sphere" in str(e.value)

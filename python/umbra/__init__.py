@@ -105,12 +105,17 @@ def _toml(parts: Mapping[str, Any], what: str) -> str:
 
 
 def scene(
-    source: Union[str, Path, Mapping[str, Any], Scene], name: str = "(scene dict)", camera: Optional[str] = None
+    source: Union[str, Path, Mapping[str, Any], Scene],
+    name: str = "(scene dict)",
+    camera: Optional[str] = None,
+    light_from: Optional[Sequence[float]] = None,
 ) -> Scene:
     """A scene: a bundled scene's name, a scene file's path, a glTF file's
     path (``.gltf`` or ``.glb``; ``camera`` chooses its camera by name or
     index, its first by default), or a dict with the scene file's keys
-    (``image``, ``camera``, ``lights``, ``objects``).
+    (``image``, ``camera``, ``lights``, ``objects``). ``light_from``, a
+    point ``(x, y, z)``, moves its first light there, aimed at the centre
+    of the scene's bounds (``umbra render --light-from X,Y,Z``).
 
     An object's ``mesh`` is a generator (``{"sphere": {...}}``), an OBJ file
     (``{"obj": "bunny.obj"}``) or arrays (``{"arrays": {"positions": P,
@@ -118,10 +123,12 @@ def scene(
     integer array of vertex indices). ``name`` names a dict in errors.
     """
     if isinstance(source, Scene):
-        return source
-    if isinstance(source, Mapping):
-        return Scene.from_toml(_toml(source, name), name)
-    return Scene(str(source), camera)
+        made = source
+    elif isinstance(source, Mapping):
+        made = Scene.from_toml(_toml(source, name), name)
+    else:
+        made = Scene(str(source), camera)
+    return made if light_from is None else made.with_light_from([float(v) for v in light_from])
 
 
 def allow_read(folder: Union[str, Path]) -> None:

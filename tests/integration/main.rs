@@ -31,5 +31,6 @@ mod world;
 
 mod determinism;
 mod layers;
+mod python_build;
 mod regressions;
 mod surface;

@@ -4,6 +4,7 @@ use core::fmt;
 
 use super::MapCoord;
 use crate::depth::PlaneZ;
+use crate::spelling::closest;
 
 /// Which reference depth a sample compares against.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -165,30 +166,46 @@ impl fmt::Display for Filter {
 /// Text that names no filter, with what is wrong with it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FilterNameError {
-    /// Not `point`, `bilinear`, `box<N>` or `jitter<N>…`.
-    Unknown,
+    /// Not `point`, `bilinear`, `box<N>` or `jitter<N>…`; with the
+    /// filter's name it nearly spells, if any.
+    Unknown {
+        /// The name the text nearly spells.
+        near: Option<&'static str>,
+    },
     /// A box side outside `1..=16`.
     BoxSide,
     /// A sample count that is not a whole number from 1 to 65535.
     Samples(&'static str),
-    /// A jitter parameter that is not `res-factor`, `min-samples` or `min-size`.
-    Parameter,
+    /// A jitter parameter that is not `res-factor`, `min-samples` or
+    /// `min-size`; with the one it nearly spells, if any.
+    Parameter {
+        /// The parameter the text nearly spells.
+        near: Option<&'static str>,
+    },
     /// A size in texels that is not a non-negative number below 32768.
     Texels(&'static str),
 }
 
 impl fmt::Display for FilterNameError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
-            Self::Unknown => {
-                "not a filter: expected point, bilinear, box<N> (N from 1 to 16) or jitter<N> with optional \
-                 ,res-factor=<texels>,min-samples=<n>,min-size=<texels>"
+        let near = |n: &Option<&'static str>| n.map(|n| (" (did you mean ", n, "?)")).unwrap_or_default();
+        match self {
+            Self::Unknown { near: n } => {
+                let (a, b, c) = near(n);
+                write!(
+                    f,
+                    "not a filter{a}{b}{c}: expected point, bilinear, box<N> (N from 1 to 16) or jitter<N> with \
+                     optional ,res-factor=<texels>,min-samples=<n>,min-size=<texels>"
+                )
             }
-            Self::BoxSide => "a box filter's side must be 1 to 16 texels",
-            Self::Samples(p) => return write!(f, "{p} must be a whole number from 1 to 65535"),
-            Self::Parameter => "a jitter parameter must be res-factor, min-samples or min-size",
-            Self::Texels(p) => return write!(f, "{p} must be a non-negative number of texels below 32768"),
-        })
+            Self::BoxSide => f.write_str("a box filter's side must be 1 to 16 texels"),
+            Self::Samples(p) => write!(f, "{p} must be a whole number from 1 to 65535"),
+            Self::Parameter { near: n } => {
+                let (a, b, c) = near(n);
+                write!(f, "not a jitter parameter{a}{b}{c}: they are res-factor, min-samples and min-size")
+            }
+            Self::Texels(p) => write!(f, "{p} must be a non-negative number of texels below 32768"),
+        }
     }
 }
 
@@ -219,7 +236,11 @@ impl core::str::FromStr for Filter {
                 Err(FilterNameError::BoxSide)
             };
         }
-        let rest = prefix("jitter").ok_or(FilterNameError::Unknown)?;
+        let rest = prefix("jitter").ok_or_else(|| {
+            // The name's letters against the filters' (`bilinaer`, `jiter8`).
+            let letters = s.find(|c: char| !c.is_ascii_alphabetic()).map_or(s, |k| &s[..k]);
+            FilterNameError::Unknown { near: closest(letters, ["point", "bilinear", "box", "jitter"]) }
+        })?;
         let mut parts = rest.split(',');
         let mut j = Jitter { num_samples: samples("num-samples", parts.next().unwrap_or_default())?, ..Jitter::REEVES };
         for part in parts {
@@ -227,7 +248,11 @@ impl core::str::FromStr for Filter {
                 Some(("res-factor", v)) => j.res_factor = texels("res-factor", v)?,
                 Some(("min-samples", v)) => j.min_samples = samples("min-samples", v)?,
                 Some(("min-size", v)) => j.min_size = texels("min-size", v)?,
-                _ => return Err(FilterNameError::Parameter),
+                _ => {
+                    let name = part.split_once('=').map_or(part, |(k, _)| k);
+                    let near = closest(name, ["res-factor", "min-samples", "min-size"]);
+                    return Err(FilterNameError::Parameter { near });
+                }
             }
         }
         Ok(Self::Jittered(j))

@@ -195,13 +195,13 @@ pub(super) fn plan(args: &PlanArgs, limits: &Limits) -> Result<()> {
     crate::say::wrote(&args.out, &manifest, &replaced)
 }
 
-/// A bar of configurations run, on stderr (hidden when it is not a
-/// terminal); the run sets its length.
+/// A bar of a study's work, on stderr (hidden when it is not a terminal):
+/// the run sets its length to the configurations' estimated work, so that
+/// the time left follows the work done, and its message to how many
+/// configurations are done of how many.
 fn configurations_bar(prefix: &'static str) -> Result<ProgressBar> {
-    let style = indicatif::ProgressStyle::with_template(
-        "{prefix} [{elapsed_precise}] {wide_bar} {pos}/{len} configurations, {per_sec}, {eta} left",
-    )
-    .context("progress bar template")?;
+    let style = indicatif::ProgressStyle::with_template("{prefix} [{elapsed_precise}] {wide_bar} {msg}, {eta} left")
+        .context("progress bar template")?;
     Ok(ProgressBar::new(0).with_style(style).with_prefix(prefix))
 }
 

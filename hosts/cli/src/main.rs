@@ -3,21 +3,22 @@
 use std::path::PathBuf;
 
 use anyhow::Result;
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use cost::{CorrelateArgs, CostArgs, correlate, cost};
 use depth::{DepthArgs, depth};
 use experiment::{MergeArgs, PlanArgs, StatusArgs, StudyArgs, plan, study};
+use limits::LimitArgs;
 use render::{RenderArgs, render};
-use umbra_sim::cost::arch::Unit;
-use umbra_sim::input::limits::Limits;
 
 mod arch;
 mod cost;
 mod depth;
 mod experiment;
+mod limits;
 mod render;
 mod say;
 mod scene;
+mod stop;
 mod upgrade;
 
 use say::{Style, say};
@@ -33,8 +34,6 @@ use say::{Style, say};
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
-    #[command(flatten)]
-    limits: LimitArgs,
     /// Worker threads of the commands that run in parallel (a study, a
     /// correlation), from 1 to 256; default: one a core (or
     /// `RAYON_NUM_THREADS`). The results do not depend on it. On Slurm,
@@ -46,71 +45,13 @@ struct Cli {
     /// Repeat for several.
     #[arg(long = "allow-read", global = true, value_name = "FOLDER")]
     allow_read: Vec<PathBuf>,
-}
-
-/// What the simulator accepts, each checked before anything of that size is
-/// allocated (`umbra_sim::input::limits`). Options, not scene-file keys: a file
-/// cannot raise the limits it is read under.
-#[derive(clap::Args, Debug, Clone, Copy)]
-#[command(next_help_heading = "Limits")]
-struct LimitArgs {
-    /// Largest light-map side, texels (a dual 24-bit map of side s takes 8·s² bytes).
-    #[arg(long, global = true, default_value_t = Limits::DEFAULT.max_map_side)]
-    max_map_side: u32,
-    /// Largest camera image side, pixels.
-    #[arg(long, global = true, default_value_t = Limits::DEFAULT.max_image_side)]
-    max_image_side: u32,
-    /// Most camera image pixels (a render keeps up to 160 bytes a pixel).
-    #[arg(long, global = true, default_value_t = Limits::DEFAULT.max_image_pixels)]
-    max_image_pixels: u64,
-    /// Most triangles of a scene, every object together (a render keeps up to 1024 bytes a triangle), at most 2^28.
-    #[arg(long, global = true, default_value_t = Limits::DEFAULT.max_triangles, value_parser = clap::value_parser!(u64).range(1..=1 << 28))]
-    max_triangles: u64,
-    /// Largest file read (an OBJ mesh, a `--matrix` file, study results to merge), bytes.
-    #[arg(long, global = true, default_value_t = Limits::DEFAULT.max_file_bytes)]
-    max_file_bytes: u64,
-    /// Largest TOML file read (a scene, a sweep, an architecture), bytes (its parse keeps about 96 bytes a byte).
-    #[arg(long, global = true, default_value_t = Limits::DEFAULT.max_text_bytes)]
-    max_text_bytes: u64,
-    /// Most objects of a scene file.
-    #[arg(long, global = true, default_value_t = Limits::DEFAULT.max_objects)]
-    max_objects: u64,
-    /// Most memory a run may take, bytes or with a unit (16GiB): a render, a study's scenes, reference and renders at once, a TOML file's parse, each bounded before it starts [default: 3/4 of this machine's physical memory; 16GiB where the system does not say]
-    #[arg(long, global = true, value_parser = memory)]
-    max_memory: Option<u64>,
+    // Last: the options after it would join its help section.
+    #[command(flatten)]
+    limits: LimitArgs,
 }
 
 /// The help of every command's `--replace`.
 const REPLACE_HELP: &str = "Replace what --out holds when it is another command's results or files no run of umbra wrote there (a new, empty or same-command folder needs no flag); files this run reads are kept, and none umbra did not write is deleted";
-
-/// A `--max-memory` value: bytes, or a size as architecture files write
-/// one (`16GiB`, `512MB`, `1TiB`: the one reader of sizes, [`Unit::Bytes`]).
-fn memory(text: &str) -> Result<u64, String> {
-    let bytes = match text.trim().parse::<f64>() {
-        Ok(plain) => plain,
-        Err(_) => Unit::Bytes.parse(text).map_err(|e| e.to_string())?,
-    };
-    if !(bytes >= 1.0 && bytes < 2f64.powi(63)) {
-        return Err(format!("`{text}` is not a size from 1 B to 8 EiB"));
-    }
-    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "checked in range")]
-    Ok(bytes as u64)
-}
-
-impl LimitArgs {
-    fn limits(self) -> Limits {
-        Limits {
-            max_map_side: self.max_map_side,
-            max_image_side: self.max_image_side,
-            max_image_pixels: self.max_image_pixels,
-            max_triangles: self.max_triangles,
-            max_file_bytes: self.max_file_bytes,
-            max_text_bytes: self.max_text_bytes,
-            max_objects: self.max_objects,
-            max_memory: self.max_memory.unwrap_or_else(|| Limits::for_machine().max_memory),
-        }
-    }
-}
 
 #[derive(Subcommand, Debug)]
 enum Command {
@@ -195,15 +136,26 @@ fn clamp_threads() {
 
 /// Run the command; an error is one line on stderr and exit status 1 (a
 /// user's mistake is not a crash: no stack trace, whatever
-/// `RUST_BACKTRACE` says).
+/// `RUST_BACKTRACE` says). A run stopped by Ctrl-C or SIGTERM has said so
+/// already and exits with [`stop::STATUS`].
 fn main() -> std::process::ExitCode {
-    match run() {
+    match stop::on_signals().and_then(|()| run()) {
         Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(_) if umbra_sim::base::stop::requested() => std::process::ExitCode::from(stop::STATUS),
         Err(e) => {
             eprintln!("Error: {}", one_line(&e));
             std::process::ExitCode::FAILURE
         }
     }
+}
+
+/// The command line, read by `umbra`'s command with the limits listed
+/// once ([`limits::listed_once`]); help, the version and mistakes are
+/// printed and exit here, as clap does.
+fn parse() -> Cli {
+    let mut umbra = limits::listed_once(Cli::command());
+    let mut matches = umbra.get_matches_mut();
+    Cli::from_arg_matches_mut(&mut matches).unwrap_or_else(|e| e.format(&mut umbra).exit())
 }
 
 /// An error and its causes in one line, each cause said once: a cause
@@ -224,7 +176,7 @@ fn one_line(e: &anyhow::Error) -> String {
 }
 
 fn run() -> Result<()> {
-    let cli = Cli::parse();
+    let cli = parse();
     if let Some(n) = cli.threads {
         // Only fails if a pool was built already, and none is before this.
         let _ = rayon::ThreadPoolBuilder::new().num_threads(usize::from(n)).build_global();

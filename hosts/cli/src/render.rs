@@ -24,6 +24,8 @@ pub(super) struct RenderArgs {
     pub(super) scene: String,
     /// A glTF file's camera, by name or index.
     pub(super) camera: Option<String>,
+    /// Where to move the scene's first light (`X,Y,Z`).
+    pub(super) light_from: Option<String>,
     /// Each parameter given, by name, as written (a switch as `false`).
     pub(super) params: Vec<(&'static str, String)>,
     /// Output folder (default: the command's own).
@@ -34,7 +36,14 @@ pub(super) struct RenderArgs {
 
 impl Default for RenderArgs {
     fn default() -> Self {
-        Self { scene: DEFAULT_SCENE.to_owned(), camera: None, params: Vec::new(), out: None, replace: false }
+        Self {
+            scene: DEFAULT_SCENE.to_owned(),
+            camera: None,
+            light_from: None,
+            params: Vec::new(),
+            out: None,
+            replace: false,
+        }
     }
 }
 
@@ -55,6 +64,7 @@ impl clap::FromArgMatches for RenderArgs {
         Ok(Self {
             scene: m.get_one::<String>("scene").cloned().unwrap_or_else(|| DEFAULT_SCENE.to_owned()),
             camera: m.get_one::<String>("camera").cloned(),
+            light_from: m.get_one::<String>("light-from").cloned(),
             params,
             out: m.get_one::<PathBuf>("out").cloned(),
             replace: m.get_flag("replace"),
@@ -82,6 +92,14 @@ impl clap::Args for RenderArgs {
                 .long("camera")
                 .value_name("NAME|INDEX")
                 .help("A glTF file's camera, by name or by index in the order of its nodes [default: its first]"),
+        );
+        cmd = cmd.arg(
+            Arg::new("light-from")
+                .long("light-from")
+                .value_name("X,Y,Z")
+                .allow_hyphen_values(true)
+                .value_parser(|s: &str| umbra_sim::world::relight::parse_point(s).map(|_| s.to_owned()))
+                .help("Move the scene's first light to X,Y,Z, aimed at the scene's centre [default: where its file puts it]"),
         );
         for p in PARAMS {
             let flag = p.flag();
@@ -123,9 +141,13 @@ impl clap::Args for RenderArgs {
 }
 
 impl RenderArgs {
-    /// The scene the arguments name, with its camera, its loader's notes printed.
+    /// The scene the arguments name, with its camera and its light where
+    /// `--light-from` puts it, its loader's notes printed.
     pub(super) fn scene(&self, limits: &Limits) -> Result<Scene> {
-        let scene = Scene::open_with_camera(&self.scene, self.camera.as_deref(), limits)?;
+        let mut scene = Scene::open_with_camera(&self.scene, self.camera.as_deref(), limits)?;
+        if let Some(text) = &self.light_from {
+            scene = scene.with_light_from(umbra_sim::world::relight::parse_point(text)?)?;
+        }
         for note in &scene.notes {
             say!("note: {note}");
         }

@@ -59,35 +59,40 @@ fn a_bad_architecture_names_its_file_and_key_and_writes_nothing() {
         out.to_str().expect("UTF-8"),
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let record = std::fs::read_to_string(out.join("arch-mine.toml")).expect("the effective architecture");
-    assert!(record.contains("clock = \"150MHz\""), "{record}");
-    let stats = std::fs::read_to_string(out.join("stats-mine.txt")).expect("stats");
+    // Named for its file and the change: `--set` is said in every output.
+    let record = std::fs::read_to_string(out.join("arch-mine-clock-150MHz.toml")).expect("the effective architecture");
+    assert!(record.contains("clock = \"150MHz\"") && record.contains("; --set clock=150MHz"), "{record}");
+    let stats = std::fs::read_to_string(out.join("stats-mine-clock-150MHz.txt")).expect("stats");
     assert!(stats.contains("# arch.clock = \"150MHz\"") && stats.contains("frame.cycles"), "{stats}");
     let _ = std::fs::remove_dir_all(&input);
     let _ = std::fs::remove_dir_all(&out);
 }
 
-/// A copied file keeps its original's `name`: an exact copy costs without a
-/// word, an edited one is said to differ (naming the keys) and to be named
-/// after the original in its outputs.
+/// A copied file reports under its own file's name (`cp
+/// arch/mobile-tbdr.toml copy.toml` costs as `copy`), edited or not; a
+/// file named as a bundled machine but differing from it is said to
+/// differ, naming the keys, since its outputs take that machine's name.
 #[test]
-fn an_edited_copy_under_the_originals_name_is_said() {
+fn a_copy_reports_under_its_own_name_and_a_namesake_is_said() {
     let d = dir("namesake");
     std::fs::create_dir_all(&d).expect("temp dir");
     let original = include_str!("../../../arch/mobile-tbdr.toml");
-    let (copy, edited) = (d.join("copy.toml"), d.join("edited.toml"));
-    std::fs::write(&copy, original).expect("write");
     let line = original.lines().find(|l| l.starts_with("bandwidth = ")).expect("a bandwidth");
-    std::fs::write(&edited, original.replace(line, "bandwidth = \"10GB/s\"")).expect("write");
-    let run = |file: &std::path::Path| {
-        let out = d.join("out");
+    let edited = original.replace(line, "bandwidth = \"10GB/s\"");
+    let (copy, namesake) = (d.join("copy.toml"), d.join("mobile-tbdr.toml"));
+    std::fs::write(&copy, &edited).expect("write");
+    std::fs::write(&namesake, &edited).expect("write");
+    let run = |file: &std::path::Path, out: &str| {
+        let out = d.join(out);
         let args = ["cost", "table-and-sphere", "--width", "64", "--height", "36", "--arch"];
         let o = umbra(&[&args[..], &[file.to_str().expect("UTF-8"), "--out", out.to_str().expect("UTF-8")]].concat());
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        String::from_utf8_lossy(&o.stderr).into_owned()
+        (String::from_utf8_lossy(&o.stdout).into_owned(), String::from_utf8_lossy(&o.stderr).into_owned())
     };
-    assert!(!run(&copy).contains("warning"), "an exact copy is the machine itself");
-    let said = run(&edited);
+    let (printed, said) = run(&copy, "copy-out");
+    assert!(!said.contains("warning") && printed.contains("### copy — "), "{printed}{said}");
+    assert!(d.join("copy-out/arch-copy.toml").is_file() && d.join("copy-out/stats-copy.txt").is_file());
+    let (_, said) = run(&namesake, "namesake-out");
     assert!(said.contains("calls itself `mobile-tbdr`") && said.contains("(dram.bandwidth)"), "{said}");
     let _ = std::fs::remove_dir_all(&d);
 }

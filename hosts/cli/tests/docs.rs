@@ -19,6 +19,8 @@
 //! to the command line's grammar (run with `--help` appended, so nothing
 //! runs): a flag or a value the command no longer takes fails here.
 
+#[path = "docs/commands.rs"]
+mod commands;
 mod common;
 
 use std::path::{Path, PathBuf};
@@ -281,100 +283,6 @@ fn every_file_a_page_shows_is_the_shipped_file() {
         }
     }
     assert!(seen >= 3, "only {seen} shipped files shown");
-}
-
-/// `args` (after `umbra`) at small sizes: renders and maps at 64×36 and
-/// 64², one reference ray; everything else as written.
-fn small(mut args: Vec<String>) -> Vec<String> {
-    let set = |args: &mut Vec<String>, flag: &str, value: &str| {
-        let mut k = 0;
-        let mut found = false;
-        while k < args.len() {
-            if args[k] == flag && k + 1 < args.len() {
-                if found {
-                    args.drain(k..k + 2);
-                    continue;
-                }
-                args[k + 1] = value.to_owned();
-                found = true;
-            }
-            k += 1;
-        }
-        if !found {
-            args.extend([flag.to_owned(), value.to_owned()]);
-        }
-    };
-    let command =
-        ["render", "cost", "trace", "depth", "study", "plan"].into_iter().find(|c| args.iter().any(|a| a == c));
-    match command {
-        Some("render" | "cost" | "trace") => {
-            for (flag, value) in [("--width", "64"), ("--height", "36"), ("--map", "64"), ("--reference-rays", "1")] {
-                set(&mut args, flag, value);
-            }
-        }
-        Some("depth") => set(&mut args, "--map", "64"),
-        Some("study" | "plan") => {
-            for (flag, value) in [("--image", "64x36"), ("--maps", "64")] {
-                set(&mut args, flag, value);
-            }
-            if command == Some("study") {
-                set(&mut args, "--reference-rays", "1");
-            }
-        }
-        _ => {}
-    }
-    args
-}
-
-/// Every line of the README's and the guide's shell blocks that runs
-/// `cargo umbra` (alone, or after a `cp` of a shipped file) runs, in
-/// order, page by page, in a scratch folder holding the repository's
-/// shipped files, at small sizes ([`small`]); each must succeed. Lines of
-/// other tools (cargo's own commands, Slurm, pip, QEMU) are run by CI's
-/// own stages; the bare `cargo umbra` too, as written.
-#[test]
-fn every_documented_command_runs() {
-    let mut ran = 0;
-    for page in pages() {
-        let text = std::fs::read_to_string(&page).expect("a page");
-        let name = page.file_stem().and_then(|s| s.to_str()).unwrap_or("page").to_owned();
-        let scratch = common::dir(&format!("docs-run-{name}"));
-        std::fs::create_dir_all(&scratch).expect("scratch");
-        for shipped in ["examples", "arch", "scenes", "sweeps", "data"] {
-            std::os::unix::fs::symlink(root().join(shipped), scratch.join(shipped)).expect("a link");
-        }
-        for t in shell_lines(&text).into_iter().filter(|t| t.contains("cargo umbra") || t.starts_with("cp ")) {
-            for part in t.split("&&").map(str::trim) {
-                let words = shlex::split(part).unwrap_or_else(|| panic!("{}: `{part}` does not parse", page.display()));
-                match words.first().map(String::as_str) {
-                    Some("cp") => {
-                        std::fs::copy(scratch.join(&words[1]), scratch.join(&words[2])).expect("cp");
-                    }
-                    Some("cargo") if words.len() > 2 => {
-                        let args = small(words[2..].to_vec());
-                        let o = std::process::Command::new(env!("CARGO_BIN_EXE_umbra"))
-                            .args(&args)
-                            .current_dir(&scratch)
-                            .env("RUST_BACKTRACE", "0")
-                            .output()
-                            .expect("umbra runs");
-                        assert!(
-                            o.status.success(),
-                            "{}: `{part}` (run as `umbra {}`) failed: {}",
-                            page.display(),
-                            args.join(" "),
-                            String::from_utf8_lossy(&o.stderr)
-                        );
-                        ran += 1;
-                    }
-                    Some("cargo") => {} // the bare `cargo umbra`: CI runs it as written
-                    _ => panic!("{}: `{part}`: only `cp` and `cargo umbra` are run here", page.display()),
-                }
-            }
-        }
-        let _ = std::fs::remove_dir_all(&scratch);
-    }
-    assert!(ran >= 60, "only {ran} documented commands ran");
 }
 
 /// `docs/study.md`'s table of what a study writes names every file a

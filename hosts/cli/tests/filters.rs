@@ -39,7 +39,7 @@ fn reeves_parameters_reach_the_filter() {
         ("jitter4,min-size=1e9", "min-size"),
         ("jitter0", "num-samples"),
         ("jitter4,min-samples=0", "min-samples"),
-        ("jitter4,blur=2", "res-factor, min-samples or min-size"),
+        ("jitter4,blur=2", "res-factor, min-samples and min-size"),
         ("box17", "1 to 16"),
         ("gauss", "not a filter"),
     ] {

@@ -162,3 +162,28 @@ fn the_reference_ray_bound_is_one_for_every_door() {
     succeeds(&umbra(&["study", "--sweep", &sweep(16), "--out", &o("w16")]));
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// The limits are listed once, in `umbra --help`'s Limits section; each
+/// subcommand's help (a nested one's too) says where they are instead, and
+/// each takes them after its name as `umbra` takes them before it.
+#[test]
+fn the_limits_are_listed_once_and_taken_before_or_after_the_subcommand() {
+    let top = succeeds(&umbra(&["--help"]));
+    let section = top.split("\nLimits:").nth(1).expect("a Limits section");
+    for flag in ["--max-map-side", "--max-image-pixels", "--max-triangles", "--max-memory"] {
+        assert!(section.contains(flag), "`{flag}` is not under Limits: {top}");
+    }
+    for command in [&["render", "--help"][..], &["study", "--help"], &["arch", "show", "--help"], &["help", "depth"]] {
+        let help = succeeds(&umbra(command));
+        assert!(!help.contains("--max-map-side") && !help.contains("Limits:"), "{command:?} lists the limits: {help}");
+        assert!(help.contains("(--max-*): see `umbra --help`"), "{command:?} does not say where they are: {help}");
+        // The global options that are not limits are still listed.
+        assert!(help.contains("--threads"), "{command:?}: {help}");
+    }
+    let arch = concat!(env!("CARGO_MANIFEST_DIR"), "/../../arch/mobile-tbdr.toml");
+    let limit = ["--max-text-bytes", "10"];
+    let show = ["arch", "show", "--arch", arch];
+    for args in [[&limit[..], &show].concat(), [&show[..], &limit].concat()] {
+        fails_saying(&umbra(&args), &["above the limit of 10", "max_text_bytes"]);
+    }
+}

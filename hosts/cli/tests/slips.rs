@@ -28,6 +28,9 @@ fn a_name_a_letter_off_is_answered_with_what_it_was_nearly() {
     assert!(key.contains("did you mean `dram.bandwidth`?"), "{key}");
     assert!(key.len() < 300, "the key's error lists every key: {} bytes", key.len());
     assert!(error(&["render", "--algo", "secnod"]).contains("did you mean `second`?"));
+    assert!(error(&["render", "--filter", "bilinaer"]).contains("did you mean bilinear?"));
+    assert!(error(&["render", "--filter", "jiter8"]).contains("did you mean jitter?"));
+    assert!(error(&["render", "--filter", "jitter8,res-factr=1"]).contains("did you mean res-factor?"));
     // Nothing near: the names, not a guess.
     let far = error(&["render", "teapot"]);
     assert!(!far.contains("did you mean") && far.contains("table-and-sphere"), "{far}");

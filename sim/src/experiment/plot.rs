@@ -1,8 +1,10 @@
 //! Plots drawn the same way on any backend, shared by the study and the
 //! correlation: SVG and PNG of one figure (`both`), colours that stay
-//! distinct for any number of series (`colour`), log–log charts whose
-//! axes have labelled ticks (a log axis at each decade, at 2 and 5 too when
-//! it spans few, with minor ticks), and a footnote.
+//! distinct for any number of series (`colour`) and shades of one
+//! (`shade`), series set a few pixels apart (`dodge`), log–log charts
+//! whose axes have labelled ticks (a log axis at each decade, at 2 and 5
+//! too when it spans few, with minor ticks), labels that overlap nothing
+//! ([`place`]), and a footnote.
 //!
 //! Text needs a font for its metrics in both backends: the bundled DejaVu
 //! Sans.
@@ -16,6 +18,10 @@ use plotters::prelude::*;
 use crate::output::OutputError;
 use crate::output::folder::OutputFolder;
 use crate::output::formats::{font, png};
+
+pub(crate) mod place;
+#[cfg(test)]
+pub(crate) mod record;
 
 /// Why a plot could not be written.
 #[derive(Debug, thiserror::Error)]
@@ -53,6 +59,8 @@ pub(crate) fn both(folder: &mut OutputFolder, base: &str, f: &impl Figure) -> Re
     let svg_path = folder.dir().join(&svg_name);
     let png_path = folder.dir().join(&png_name);
     font().map_err(|e| err(&svg_path, e))?;
+    #[cfg(test)]
+    record::keep(base, f).map_err(|e| err(&svg_path, e))?;
     let mut svg = String::new();
     {
         let area = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
@@ -98,6 +106,39 @@ pub(crate) fn colour(k: usize, n: usize) -> RGBColor {
     let light = if k.is_multiple_of(2) { 0.38 } else { 0.55 };
     let (r, g, b) = HSLColor(hue, 0.75, light).rgb();
     RGBColor(r, g, b)
+}
+
+/// Shade `j` of `m` of colour `c`: from darker (the first) to lighter
+/// (the last), `c` itself in the middle, every shade clear of white.
+#[must_use]
+pub(crate) fn shade(c: RGBColor, j: usize, m: usize) -> RGBColor {
+    #[allow(clippy::cast_precision_loss, reason = "a few shades")]
+    let t = if m > 1 { j as f64 / (m - 1) as f64 } else { 0.5 };
+    // Up to 40 % of the way to black, or to white.
+    let (towards, by) = if t < 0.5 { (0.0, 0.8 * (0.5 - t)) } else { (255.0, 0.8 * (t - 0.5)) };
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "a channel, 0 to 255")]
+    let mix = |v: u8| (f64::from(v) + (towards - f64::from(v)) * by).round() as u8;
+    RGBColor(mix(c.0), mix(c.1), mix(c.2))
+}
+
+/// How far series `k` of `n` is moved sideways, pixels: `step` apart,
+/// the series centred on the true position, so that two series of one
+/// value both show.
+#[must_use]
+pub(crate) fn dodge(k: usize, n: usize, step: f64) -> i32 {
+    #[allow(clippy::cast_precision_loss, clippy::cast_possible_truncation, reason = "a few series, pixels")]
+    let d = ((k as f64 - (n.max(1) - 1) as f64 / 2.0) * step).round() as i32;
+    d
+}
+
+/// The [`dodge`] step for `n` series whose points lie at least `gap`
+/// pixels apart along x: all of them within 40 % of the gap, each at
+/// most `most` pixels from the next.
+#[must_use]
+pub(crate) fn dodge_step(gap: i32, n: usize, most: f64) -> f64 {
+    #[allow(clippy::cast_precision_loss, reason = "a few series")]
+    let step = f64::from(gap) * 0.4 / n.saturating_sub(1).max(1) as f64;
+    step.min(most)
 }
 
 /// A log range covering `values` with some margin.
@@ -204,16 +245,17 @@ pub(crate) type LogLogChart<'a, DB> =
     ChartContext<'a, DB, Cartesian2d<WithKeyPoints<LogCoord<f64>>, WithKeyPoints<LogCoord<f64>>>>;
 
 /// A white area with a titled chart on log–log axes over `x` and `y`,
-/// its mesh and labels drawn, each axis in one tick style. With `zero`,
-/// the y axis has a row of its own for 0 at that value ([`zero_row`]),
-/// labelled `0` and set off from the decades above by a dashed line.
+/// its mesh and labels drawn, each axis in one tick style, `right` pixels
+/// kept free at its right for labels. With `zero`, the y axis has a row
+/// of its own for 0 at that value ([`zero_row`]), labelled `0` and set
+/// off from the decades above by a dashed line.
 pub(crate) fn log_log_chart<'a, DB: DrawingBackend>(
     area: &'a DrawingArea<DB, Shift>,
     title: &str,
     (x, y): (std::ops::Range<f64>, std::ops::Range<f64>),
-    x_desc: &str,
-    y_desc: &str,
+    (x_desc, y_desc): (&str, &str),
     zero: Option<f64>,
+    right: u32,
 ) -> Result<LogLogChart<'a, DB>, String> {
     area.fill(&WHITE).map_err(|e| e.to_string())?;
     let y = match zero {
@@ -225,6 +267,7 @@ pub(crate) fn log_log_chart<'a, DB: DrawingBackend>(
     let mut chart = ChartBuilder::on(area)
         .caption(title, ("sans-serif", 18))
         .margin(12)
+        .margin_right(right.max(12))
         .x_label_area_size(45)
         .y_label_area_size(70)
         .build_cartesian_2d(x_axis, y_axis)
@@ -264,7 +307,21 @@ pub(crate) fn footnote<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, lines:
 
 #[cfg(test)]
 mod tests {
-    use super::{axis_label, plain_axis, spread, zero_row};
+    use plotters::style::RGBColor;
+
+    use super::{axis_label, dodge, plain_axis, shade, spread, zero_row};
+
+    /// Shades of one colour run from darker to lighter, the middle one the
+    /// colour itself; series are set aside evenly about their value.
+    #[test]
+    fn shades_run_dark_to_light_and_series_dodge_about_their_value() {
+        let c = RGBColor(31, 119, 180);
+        let shades: Vec<RGBColor> = (0..5).map(|j| shade(c, j, 5)).collect();
+        assert_eq!(shades[2], c);
+        assert!(shades.windows(2).all(|w| w[0].0 < w[1].0 && w[0].1 < w[1].1 && w[0].2 < w[1].2), "{shades:?}");
+        assert_eq!((0..4).map(|k| dodge(k, 4, 10.0)).collect::<Vec<_>>(), [-15, -5, 5, 15]);
+        assert_eq!(dodge(0, 1, 10.0), 0);
+    }
 
     /// One axis, one style: an axis whose ticks pass 10 000 writes every
     /// tick in the `1e4` style (it wrote `5000` beside `1e4`), one within

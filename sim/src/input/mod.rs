@@ -1,5 +1,5 @@
 //! What the simulator reads in: the limits every input is read within
-//! ([`limits`]), the files' format versions ([`format`]), what kind of
+//! ([`limits`]), the files' format versions ([`format`](mod@format)), what kind of
 //! file a user gave ([`kind`]), and fixed-length arrays read exactly
 //! (`exact`).
 

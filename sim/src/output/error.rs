@@ -38,4 +38,8 @@ pub enum OutputError {
         /// The encoder's error.
         source: image::ImageError,
     },
+    /// A stop was requested before the run finished: its folder is left
+    /// marked unfinished.
+    #[error(transparent)]
+    Stopped(#[from] crate::base::stop::Stopped),
 }

@@ -19,7 +19,7 @@
 //! `--replace`). Even then it never deletes a file no run of Umbra wrote,
 //! nor a file this process read ([`crate::base::reads`]): a render whose
 //! model lies in its output folder keeps it, and a run never writes over
-//! its own input. [`OutputFolder::replaced`] names what a run replaces.
+//! its own input. [`OutputFolder::finish_replacing`] names what a run replaces.
 //!
 //! The folder trusts nothing it did not write and verify: a file an
 //! earlier record lists is removed only if its path lies inside the folder
@@ -29,6 +29,12 @@
 //! if the run dies), so a second run into it fails at once; temporaries a
 //! dead run left (`.umbra-*.tmp`) are removed by the next. Files are
 //! created as the process's umask allows (as `touch` would), not private.
+//!
+//! A run stopped on request ([`crate::base::stop`]: the `umbra` command's
+//! Ctrl-C) does not finish: it keeps its pending record, so the folder is
+//! an unfinished run's that the next run resumes or replaces, and removes
+//! its lock file as it releases the lock. A folder is not opened once a
+//! stop is requested.
 //!
 //! ```
 //! use umbra_sim::output::folder::{Claim, OutputFolder, RunKind, RunManifest};
@@ -102,10 +108,20 @@ impl Before {
 impl Drop for OutputFolder {
     /// A run that wrote no file leaves the folder as it found it: the
     /// earlier manifest back, its own pending record gone, and a folder it
-    /// made removed (when nothing else is in it). A run that wrote a file
-    /// leaves its pending record, so the folder tells it did not finish.
+    /// made removed (when nothing else is in it). A run that wrote a file,
+    /// or was stopped, leaves its pending record, so the folder tells it did
+    /// not finish; a stopped run removes its lock file too.
     fn drop(&mut self) {
-        if self.finished || !self.written.is_empty() {
+        if self.finished {
+            return;
+        }
+        if crate::base::stop::requested() {
+            // Removed while held (the lock goes with the field, after this):
+            // a run that opened it meanwhile finds it gone and takes a new one.
+            let _ = std::fs::remove_file(self.dir.join(LOCK));
+            return;
+        }
+        if !self.written.is_empty() {
             return;
         }
         if let Some(bytes) = &self.before.manifest
@@ -162,16 +178,46 @@ fn remove_dead_temporaries(dir: &Path) {
 }
 
 /// Take the lock of `dir` for this run, or say that another run holds it.
+///
+/// A run that ends removes the lock file while it holds it, so a lock
+/// taken on a file no longer at the lock's path guards nothing: the file
+/// now there (or a new one) is locked instead.
 fn lock(dir: &Path) -> Result<std::fs::File, OutputError> {
+    const TRIES: usize = 16;
     let path = dir.join(LOCK);
-    let file = std::fs::OpenOptions::new().create(true).truncate(false).write(true).open(&path).map_err(io(&path))?;
-    match file.try_lock() {
-        Ok(()) => Ok(file),
-        Err(std::fs::TryLockError::WouldBlock) => Err(problem(
-            dir,
-            "is in use by another run of umbra (its lock .umbra-lock is held); wait for it or choose another --out",
-        )),
-        Err(std::fs::TryLockError::Error(e)) => Err(io(&path)(e)),
+    for _ in 0..TRIES {
+        let file =
+            std::fs::OpenOptions::new().create(true).truncate(false).write(true).open(&path).map_err(io(&path))?;
+        match file.try_lock() {
+            Ok(()) if at_path(&file, &path) => return Ok(file),
+            Ok(()) => {}
+            Err(std::fs::TryLockError::WouldBlock) => {
+                return Err(problem(
+                    dir,
+                    "is in use by another run of umbra (its lock .umbra-lock is held); wait for it or choose another --out",
+                ));
+            }
+            Err(std::fs::TryLockError::Error(e)) => return Err(io(&path)(e)),
+        }
+    }
+    Err(problem(dir, "its lock .umbra-lock keeps being replaced by other runs; wait for them or choose another --out"))
+}
+
+/// Whether `file` is the file at `path` now (not one removed since it was
+/// opened).
+fn at_path(file: &std::fs::File, path: &Path) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        match (file.metadata(), std::fs::metadata(path)) {
+            (Ok(a), Ok(b)) => (a.dev(), a.ino()) == (b.dev(), b.ino()),
+            _ => false,
+        }
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = (file, path);
+        true
     }
 }
 
@@ -183,8 +229,10 @@ impl OutputFolder {
     /// # Errors
     /// `OutputError::Io` or `OutputError::Folder` naming the folder; a
     /// folder that holds another command's results, or files no run of
-    /// Umbra wrote, is refused (naming them) unless `claim.replace`.
+    /// Umbra wrote, is refused (naming them) unless `claim.replace`;
+    /// `OutputError::Stopped` once a stop was requested.
     pub fn create(dir: &Path, claim: Claim) -> Result<Self, OutputError> {
+        crate::base::stop::check()?;
         if std::fs::symlink_metadata(dir).is_ok_and(|m| m.file_type().is_symlink()) && !dir.exists() {
             return Err(problem(dir, "is a symbolic link to nothing (dangling, or a loop): give a folder"));
         }
@@ -197,10 +245,11 @@ impl OutputFolder {
         let lock = lock(dir)?;
         let earlier = Earlier::read(dir);
         if let Err(e) = admit(dir, claim, &earlier) {
-            drop(lock);
+            // Removed while held, as a stopped run's ([`lock`]).
             if !had_lock {
                 let _ = std::fs::remove_file(dir.join(LOCK));
             }
+            drop(lock);
             return Err(e);
         }
         let manifest = dir.join(MANIFEST);
@@ -314,7 +363,8 @@ impl OutputFolder {
     ///
     /// # Errors
     /// `OutputError::Io` naming the file that could not be removed or
-    /// written.
+    /// written; `OutputError::Stopped` once a stop was requested (the
+    /// folder then stays marked unfinished).
     pub fn finish(self, study: Option<serde_json::Value>) -> Result<RunManifest, OutputError> {
         self.finish_replacing(study).map(|(manifest, _)| manifest)
     }
@@ -329,6 +379,7 @@ impl OutputFolder {
         mut self,
         study: Option<serde_json::Value>,
     ) -> Result<(RunManifest, Replaced), OutputError> {
+        crate::base::stop::check()?;
         let mut replaced = Replaced {
             command: self.earlier_command.clone(),
             overwritten: std::mem::take(&mut self.overwritten),

@@ -15,7 +15,7 @@ use crate::output::folder::OutputFolder;
 use crate::output::formats::{RawMap, write_array, write_npy};
 use crate::output::picture::write_preview;
 use crate::output::provenance::{command_line, version};
-use crate::world::scene::Scene;
+use crate::world::scene::{Light, Scene};
 
 /// Write render `r` of the checked `job` into `folder` (its manifest is
 /// the caller's to finish). A scene of several shadow-casting lights
@@ -70,6 +70,9 @@ pub fn write_render(folder: &mut OutputFolder, job: &Checked<'_>, r: &Render) ->
             fields.insert(k.to_owned(), Value::String(v));
         }
         fields.insert("configuration".to_owned(), serde_json::to_value(cfg).unwrap_or(Value::Null));
+        // The lights as rendered, and what the scene's loader supplied.
+        fields.insert("light_views".to_owned(), scene.lights.iter().map(light_view).collect());
+        fields.insert("scene_notes".to_owned(), scene.notes.iter().map(|n| Value::String(n.clone())).collect());
         if several {
             let each = r.parts().map(|p| serde_json::to_value(p.metrics).unwrap_or(Value::Null)).collect();
             fields.insert("lights".to_owned(), Value::Array(each));
@@ -77,6 +80,32 @@ pub fn write_render(folder: &mut OutputFolder, job: &Checked<'_>, r: &Render) ->
     }
     folder.write_text("metrics.json", &serde_json::to_string_pretty(&record).unwrap_or_default())?;
     Ok(())
+}
+
+/// A light's view as `metrics.json` records it: its kind, where it is,
+/// where it looks, and its frustum.
+fn light_view(light: &Light) -> Value {
+    // Each f32 as its shortest decimal (0.55, not 0.550000011920929).
+    let n = |v: f32| v.to_string().parse::<f64>().unwrap_or(f64::from(v));
+    let xyz = |v: glam::Vec3| serde_json::json!([n(v.x), n(v.y), n(v.z)]);
+    match light {
+        Light::Spot(p) | Light::Cone(p) => serde_json::json!({
+            "kind": if matches!(light, Light::Spot(_)) { "spot" } else { "cone" },
+            "position": xyz(p.position),
+            "target": xyz(p.target),
+            "fov_degrees": n(p.fov_degrees),
+            "near": n(p.near),
+            "far": n(p.far),
+        }),
+        Light::Directional(o) => serde_json::json!({
+            "kind": "directional",
+            "position": xyz(o.position),
+            "target": xyz(o.target),
+            "extent": n(o.extent),
+            "near": n(o.near),
+            "far": n(o.far),
+        }),
+    }
 }
 
 /// What a stored map's preview shows, by its name (`z1`, `z2`, …).

@@ -125,6 +125,9 @@ pub enum RenderError {
         /// What went wrong.
         source: Box<RenderError>,
     },
+    /// A stop was requested while the reference was built.
+    #[error(transparent)]
+    Stopped(#[from] crate::base::stop::Stopped),
 }
 
 impl RenderError {
@@ -199,6 +202,8 @@ fn truths_of(
         TruthSource::Build(progress) => build(progress),
         TruthSource::Given(t) => t,
     };
+    // A reference cut short by a stop is not one.
+    crate::base::stop::check()?;
     let pixels = u64::from(cfg.width) * u64::from(cfg.height);
     if truths.len() != lights.len() {
         return Err(RenderError::Truths { lights: lights.len(), found: truths.len() });
@@ -224,7 +229,8 @@ fn truths_of(
 /// once per scene and image.
 ///
 /// # Errors
-/// See [`RenderError`].
+/// See [`RenderError`]; [`RenderError::Stopped`] when a stop was
+/// requested before it was whole.
 pub fn truth(
     scene: &Scene,
     width: u32,
@@ -236,7 +242,10 @@ pub fn truth(
     let vis = visibility(&mut frame, scene, (width, height), Tiling::DEFAULT, &mut umbra_core::NoProbe)?;
     let reference = Reference::of(scene)?;
     let lights = light_sources(scene);
-    Ok(lights.iter().map(|l| reference.image(frame.ids(), &vis.camera, width, height, l, samples, progress)).collect())
+    let truths =
+        lights.iter().map(|l| reference.image(frame.ids(), &vis.camera, width, height, l, samples, progress)).collect();
+    crate::base::stop::check()?;
+    Ok(truths)
 }
 
 /// Each shadow-casting light as the exact reference sees it.

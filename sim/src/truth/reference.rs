@@ -219,7 +219,9 @@ impl Reference {
     /// the area-averaged visibility. Background pixels are `None`. Rows run
     /// in parallel (each pixel is a pure function of the scene, so the
     /// result does not depend on the thread count); `progress` is ticked
-    /// once per row.
+    /// once per row. Once a stop is requested ([`crate::base::stop`]) the
+    /// pixels left are `None`: the caller checks for the stop and drops
+    /// the image.
     #[must_use]
     #[allow(clippy::too_many_arguments, reason = "the camera, the light and the sampling, each a separate choice")]
     pub fn image(
@@ -242,6 +244,9 @@ impl Reference {
                 chunk.iter().enumerate().map(move |(x, &id)| (y * row + x, id))
             })
             .map(|(i, id)| {
+                if crate::base::stop::requested() {
+                    return None;
+                }
                 let tri = self.triangles.get(usize::try_from(id).ok()?).filter(|_| id != NO_TRIANGLE)?;
                 let (px, py) = ((i % width as usize) as f64, (i / width as usize) as f64);
                 let near_of = |sx: f64, sy: f64| camera_ray(&inverse, (sx, sy), (w, h)).0;

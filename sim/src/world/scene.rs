@@ -16,6 +16,25 @@ pub struct Object {
     pub solid: bool,
 }
 
+/// How far from the centre of a scene's bounding sphere, in radii, a
+/// framing view's eye lies at least: its near plane then clears the
+/// sphere.
+pub const CLEARANCE: f32 = 1.2;
+
+/// A point as the flag and [`Scene::arguments`] write it: `x,y,z`, each
+/// the shortest decimal that reads back as the same f32.
+#[must_use]
+pub fn point_text(p: Vec3) -> String {
+    format!("{},{},{}", p.x, p.y, p.z)
+}
+
+/// The centre and radius of the sphere round `mesh`'s bounds.
+#[must_use]
+pub(crate) fn bounding_sphere(mesh: &crate::world::mesh::Mesh) -> Option<(Vec3, f32)> {
+    let (lo, hi) = mesh.bounds()?;
+    Some(((lo + hi) / 2.0, ((hi - lo).length() / 2.0).max(f32::MIN_POSITIVE)))
+}
+
 /// A perspective view: a spot light, or the camera.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Perspective {
@@ -48,18 +67,33 @@ impl Perspective {
     /// side `towards` points to (from the mesh's centre).
     #[must_use]
     pub fn framing_along(mesh: &crate::world::mesh::Mesh, towards: Vec3) -> Option<Self> {
-        let (lo, hi) = mesh.bounds()?;
-        let center = (lo + hi) / 2.0;
-        let radius = ((hi - lo).length() / 2.0).max(f32::MIN_POSITIVE);
+        let (center, radius) = bounding_sphere(mesh)?;
         let distance = 3.0 * radius;
-        Some(Self {
-            position: center + towards.normalize() * distance,
+        Some(Self::aimed(center, radius, center + towards.normalize() * distance, distance))
+    }
+
+    /// A view from `position` aimed at the centre of `mesh`'s bounds, as
+    /// [`Perspective::framing`] frames them. `None` for a mesh without
+    /// vertices, or a position within [`CLEARANCE`] radii of the centre.
+    #[must_use]
+    pub fn framing_from(mesh: &crate::world::mesh::Mesh, position: Vec3) -> Option<Self> {
+        let (center, radius) = bounding_sphere(mesh)?;
+        let distance = (position - center).length();
+        (distance >= CLEARANCE * radius).then(|| Self::aimed(center, radius, position, distance))
+    }
+
+    /// A view from `position`, `distance` from `center`, aimed at it: its
+    /// field of view holds the sphere of `radius` with a tenth to spare,
+    /// its near and far planes hug the sphere.
+    fn aimed(center: Vec3, radius: f32, position: Vec3, distance: f32) -> Self {
+        Self {
+            position,
             target: center,
             fov_degrees: 2.0 * (radius / distance).asin().to_degrees() * 1.1,
-            near: distance - 1.2 * radius,
-            far: distance + 1.2 * radius,
+            near: distance - CLEARANCE * radius,
+            far: distance + CLEARANCE * radius,
             up: Vec3::Y,
-        })
+        }
     }
 
     /// World space to clip space (depth `[0, 1]`, y up, right-handed).
@@ -154,8 +188,9 @@ pub enum Light {
     /// frustum holds; the exact reference lights every way from it.
     Spot(Perspective),
     /// A spot light with a cone (a glTF file's): it lights what its
-    /// frustum holds and nothing else, so a surface outside it is not
-    /// lit by it, nor measured against it.
+    /// cone holds (half its field of view about its axis) and nothing
+    /// else, so a surface outside it is not lit by it, nor measured
+    /// against it.
     Cone(Perspective),
     /// An orthographic directional light.
     Directional(Orthographic),
@@ -237,6 +272,10 @@ pub struct Scene {
     /// What the scene's loader supplied that its file did not say (a
     /// default camera or light), for hosts to print.
     pub notes: Vec<String>,
+    /// Where the first light was moved to (`--light-from`,
+    /// [`Scene::with_light_from`]), which commands that name the scene
+    /// again pass on; `None` where it stands as its file put it.
+    pub light_from: Option<Vec3>,
 }
 
 impl Scene {
@@ -252,14 +291,18 @@ impl Scene {
     }
 
     /// The arguments of an `umbra` command that name this scene again:
-    /// its source, shell-quoted, and the `--camera` chosen.
+    /// its source, shell-quoted, the `--camera` chosen and where
+    /// `--light-from` moved its light.
     #[must_use]
     pub fn arguments(&self) -> String {
-        let quoted = crate::output::provenance::shell_word(&self.source);
-        match &self.camera_choice {
-            Some(c) => format!("{quoted} --camera {}", crate::output::provenance::shell_word(c)),
-            None => quoted,
+        let mut words = crate::output::provenance::shell_word(&self.source);
+        if let Some(c) = &self.camera_choice {
+            words += &format!(" --camera {}", crate::output::provenance::shell_word(c));
         }
+        if let Some(p) = self.light_from {
+            words += &format!(" --light-from {}", point_text(p));
+        }
+        words
     }
 
     /// The scene as light `k` alone lights it: the same objects and
@@ -412,9 +455,10 @@ pub struct Draw<'a> {
 pub enum LightSource {
     /// A point light at this position, shining every way.
     Point(DVec3),
-    /// A spot light at `position` that lights what its frustum holds (the
-    /// view its map is drawn through, `frustum` its view-projection): a
-    /// point outside it is not lit by this light at all.
+    /// A spot light at `position` that lights what its cone holds: the
+    /// circle inscribed in the view its map is drawn through (`frustum`,
+    /// its view-projection, whose field of view is twice the cone's
+    /// angle): a point outside it is not lit by this light at all.
     Spot {
         /// Where the light is.
         position: DVec3,
@@ -438,15 +482,19 @@ impl LightSource {
     }
 
     /// Whether the light reaches `p` at all: a spot light only inside its
-    /// frustum (between its near and far planes, within its field of
-    /// view); every other light everywhere.
+    /// cone (between its near and far planes, within half its field of
+    /// view of its axis: the circle its square frustum's sides touch,
+    /// where `x² + y² ≤ w²` in clip space); every other light everywhere.
     pub(crate) fn reaches(&self, p: DVec3) -> bool {
         match *self {
             Self::Spot { frustum, .. } => {
                 let c = frustum * p.extend(1.0);
-                c.w > 0.0 && c.x.abs() <= c.w && c.y.abs() <= c.w && (0.0..=c.w).contains(&c.z)
+                c.w > 0.0 && c.x * c.x + c.y * c.y <= c.w * c.w && (0.0..=c.w).contains(&c.z)
             }
             Self::Point(_) | Self::Directional(_) => true,
         }
     }
 }
+
+#[cfg(test)]
+mod tests;

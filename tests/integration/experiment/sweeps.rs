@@ -95,7 +95,8 @@ fn an_axis_of_numbers_and_long_generated_names() {
     let d = dir("numbers");
     let base = "a-mobile-tiler-of-our-own-with-a-rather-long-descriptive-name";
     let arch = umbra::sim::Arch::bundled("mobile-tbdr").expect("bundled").to_toml().replace("mobile-tbdr", base);
-    std::fs::write(d.join("mine.toml"), arch).expect("write");
+    // Named as its file: a file's own name is the architecture's.
+    std::fs::write(d.join(format!("{base}.toml")), arch).expect("write");
     let text = r#"
 format = 2
 name = "numbers"
@@ -105,7 +106,7 @@ reference_rays = 1
 formats = ["d16"]
 maps = [128]
 filters = ["point"]
-archs = ["mine.toml"]
+archs = ["a-mobile-tiler-of-our-own-with-a-rather-long-descriptive-name.toml"]
 budgets = [1.0]
 
 [[arch_axes]]

@@ -44,6 +44,7 @@ fn scene(occluders: Vec<Mesh>) -> Scene {
         image: [320, 240],
         source: String::new(),
         camera_choice: None,
+        light_from: None,
         shadowless: Vec::new(),
         notes: Vec::new(),
     }

@@ -40,6 +40,7 @@ fn a_sphere_casts_a_disc_under_a_directional_light() {
         image: [160, 120],
         source: String::new(),
         camera_choice: None,
+        light_from: None,
         shadowless: Vec::new(),
         notes: Vec::new(),
     };

@@ -230,6 +230,35 @@ fn cameras_and_lights_follow_gltf_conventions() {
     assert!(matches!(scene.camera, Camera::Perspective(_)));
 }
 
+/// A file without a light: the spot light standing in is named with where
+/// it stands, and `--light-from` moves it, worked by hand for the unit
+/// cube (centre (0.5, 0.5, 0.5), bounding radius √3 / 2): from (0.5, 5.5,
+/// 0.5), 5 above the centre, it looks straight down with a field of view
+/// of 2 · asin(0.866 / 5) · 1.1 = 21.9°, near 5 − 1.2 · 0.866 = 3.96;
+/// within 1.2 radii of the centre it is refused.
+#[test]
+fn a_substitute_light_is_named_and_moves() {
+    use umbra::sim::world::relight::RelightError;
+    let dir = scratch("gltf-relight");
+    let (p, t) = cube();
+    let (doc, bin) = mesh_file(&p, &t, 4, json!({}));
+    let path = file(&dir, "dark.glb", &glb(&doc, &bin));
+    let scene = Scene::open(path.to_str().expect("utf-8"), &Limits::DEFAULT).expect("opens");
+    let Some(Light::Spot(standing)) = scene.lights.first().copied() else { panic!("{:?}", scene.lights) };
+    let where_ = format!("a spot light at {},{},{}", standing.position.x, standing.position.y, standing.position.z);
+    assert!(scene.notes.iter().any(|n| n.contains(&where_) && n.contains("--light-from")), "{:?}", scene.notes);
+    let moved = scene.clone().with_light_from(Vec3::new(0.5, 5.5, 0.5)).expect("outside the cube");
+    let Some(Light::Spot(view)) = moved.lights.first().copied() else { panic!("{:?}", moved.lights) };
+    assert_eq!((view.position, view.target), (Vec3::new(0.5, 5.5, 0.5), Vec3::splat(0.5)));
+    let radius = 3f32.sqrt() / 2.0;
+    assert!((view.fov_degrees - 2.0 * (radius / 5.0).asin().to_degrees() * 1.1).abs() < 1e-4, "{}", view.fov_degrees);
+    assert!((view.fov_degrees - 21.94).abs() < 0.01, "{}", view.fov_degrees);
+    assert!((view.near - (5.0 - 1.2 * radius)).abs() < 1e-5 && (view.far - (5.0 + 1.2 * radius)).abs() < 1e-5);
+    assert!(moved.arguments().ends_with("--light-from 0.5,5.5,0.5"), "{}", moved.arguments());
+    let inside = scene.with_light_from(Vec3::new(0.5, 1.4, 0.5)).expect_err("0.9 from the centre");
+    assert!(matches!(inside, RelightError::Inside { .. }), "{inside}");
+}
+
 /// What a scene file's `mesh = { gltf = …, node = … }` reads: the node and
 /// what lies under it, placed where the glTF places it, then the scene
 /// file's own transform.

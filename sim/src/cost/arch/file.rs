@@ -12,7 +12,7 @@ use std::path::Path;
 use crate::input::format::{ARCH, Added};
 use crate::input::limits::Limits;
 
-use super::keys::{PARAMS, Problem, Value, from_text, from_toml};
+use super::keys::{PARAMS, Problem, SHOWN, Value, from_text, from_toml};
 use super::machine::{Arch, Calibration};
 use super::measure::Unit;
 use super::presets::BUNDLED;
@@ -113,12 +113,15 @@ impl Arch {
         let calibration = calibration(table.remove("calibration")).map_err(|(key, problem)| err(&key, problem))?;
         let mut keys = Vec::new();
         leaves(&table, "", &mut keys);
-        // Every unknown, missing or malformed key, all at once.
+        // Every unknown, missing or malformed key, all at once; a
+        // suggestion only for the unknown keys the message lists (a file
+        // of a million would otherwise be spelt against every key).
         let mut problems: Vec<(String, Problem)> = keys
             .into_iter()
             .filter(|k| !PARAMS.iter().any(|p| p.key == k.as_str()))
-            .map(|k| {
-                let p = Problem::unknown(&k);
+            .enumerate()
+            .map(|(i, k)| {
+                let p = if i < SHOWN { Problem::unknown(&k) } else { Problem::Unknown { near: None } };
                 (k, p)
             })
             .collect();
@@ -210,7 +213,24 @@ impl Arch {
             |problem: String| ArchError { file: name.clone(), key: "(file)".into(), problem: Problem::Read(problem) };
         let bytes = limits.read_text_file(path).map_err(|e| read(e.to_string()))?;
         let text = String::from_utf8(bytes).map_err(|_| read("not UTF-8 text".into()))?;
-        Self::parse(&text, &name)
+        let mut arch = Self::parse(&text, &name)?;
+        arch.name = Self::file_name(path, arch.name);
+        Ok(arch)
+    }
+
+    /// The name an architecture loaded from `path` goes by: the file's
+    /// own (its stem), so that a copy (`cp arch/mobile-tbdr.toml
+    /// my-gpu.toml`) reports as `my-gpu`, not as what it was copied from;
+    /// `declared`, its `name` key, where the stem is that name or is
+    /// `arch-<name>` (the files Umbra writes beside its results), or is not
+    /// a name an architecture may have.
+    fn file_name(path: &Path, declared: String) -> String {
+        let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+        let written = stem == declared || stem.strip_prefix("arch-") == Some(declared.as_str());
+        let valid = !stem.is_empty()
+            && stem.len() <= 64
+            && stem.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_');
+        if written || !valid { declared } else { stem }
     }
 
     /// A bundled architecture by name.
@@ -263,6 +283,7 @@ impl Arch {
 
     /// Apply one `key=value` override (`dram.bandwidth=25.6GB/s`,
     /// `clock=800MHz`, `map_cache.size=32KiB`), then check the machine.
+    /// The architecture keeps its name: [`Arch::set_named`] renames it.
     ///
     /// # Errors
     /// [`ArchError`] with file `--set` naming the key and the problem.
@@ -272,6 +293,47 @@ impl Arch {
         let key = key.trim();
         self.assign(key, value).map_err(|problem| err(key, problem))?;
         self.check().map_err(|(key, problem)| err(key, problem))
+    }
+
+    /// [`Arch::set`], the change then named wherever the architecture is:
+    /// its name [`Arch::name_with`] it (`talisman-dram_bandwidth-2_4GB_s`),
+    /// its description ends with it as written (`--set dram.bandwidth=2.4GB/s`).
+    ///
+    /// ```
+    /// use umbra_sim::{Arch, Limits};
+    /// let mut arch = Arch::open("talisman", &Limits::DEFAULT)?;
+    /// arch.set_named("dram.bandwidth=2.4GB/s")?;
+    /// assert_eq!(arch.name, "talisman-dram_bandwidth-2_4GB_s");
+    /// assert!(arch.description.ends_with("; --set dram.bandwidth=2.4GB/s"));
+    /// # Ok::<(), umbra_sim::cost::arch::ArchError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`Arch::set`].
+    pub fn set_named(&mut self, assignment: &str) -> Result<(), ArchError> {
+        self.set(assignment)?;
+        let (key, value) = assignment.split_once('=').unwrap_or((assignment, ""));
+        self.name = Self::name_with(&self.name, key.trim(), value.trim());
+        self.description = format!("{}; --set {}={}", self.description, key.trim(), value.trim());
+        Ok(())
+    }
+
+    /// The name of architecture `name` with `key` set to `value`:
+    /// `<name>-<key>-<value>`, every character but letters and digits
+    /// written `_`, within the 64 characters a name may have (past them,
+    /// its first 55 characters, `-` and 8 hexadecimal digits of its hash,
+    /// so that two long names stay apart).
+    #[must_use]
+    pub fn name_with(name: &str, key: &str, value: &str) -> String {
+        const MAX: usize = 64;
+        let word = |s: &str| s.chars().map(|c| if c.is_ascii_alphanumeric() { c } else { '_' }).collect::<String>();
+        let long = format!("{name}-{}-{}", word(key), word(value));
+        if long.len() <= MAX {
+            return long;
+        }
+        let hash = crate::output::provenance::hash(long.as_bytes());
+        let head: String = long.chars().take(MAX - 9).collect();
+        format!("{head}-{}", &hash[..8])
     }
 
     /// Set one key to a value written as `--set` takes it, checked against

@@ -89,11 +89,12 @@ impl Problem {
     }
 }
 
+/// The problems a message lists before it counts the rest.
+pub(crate) const SHOWN: usize = 20;
+
 /// Several keys' problems in one line, an unknown key without the list of
 /// every key; past the first [`SHOWN`], only how many more.
 fn several(problems: &[(String, Problem)]) -> String {
-    /// The problems a message lists before it counts the rest.
-    const SHOWN: usize = 20;
     let each = problems.iter().take(SHOWN).map(|(key, problem)| match problem {
         Problem::Unknown { near: Some(near) } => format!("{key}: unknown key (did you mean `{near}`?)"),
         Problem::Unknown { near: None } => format!("{key}: unknown key"),

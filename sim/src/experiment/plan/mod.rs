@@ -260,7 +260,9 @@ fn candidate(spec: &Spec, row: &Row, scene: &Scene) -> Option<Candidate> {
 }
 
 /// Plan `scene` within `spec`: measure every candidate, pick the cheapest
-/// meeting every budget; `progress` ticks once per candidate.
+/// meeting every budget; `progress` shows the candidates' study
+/// ([`crate::experiment::study::run`]: their estimated work, and how many
+/// are done).
 ///
 /// ```
 /// use umbra_core::shadow::Filter;

@@ -185,6 +185,9 @@ pub enum StudyError {
     /// An architecture did not load, or refused a change.
     #[error(transparent)]
     Arch(#[from] crate::cost::arch::ArchError),
+    /// A stop was requested before the study finished.
+    #[error(transparent)]
+    Stopped(#[from] crate::base::stop::Stopped),
 }
 
 impl From<PlotError> for StudyError {

@@ -205,7 +205,7 @@ pub fn image_size(text: &str, limits: &Limits) -> Result<[u32; 2], StudyError> {
 
 /// The architectures `names` choose (bundled names, files, or `all` for
 /// every bundled one; `default` when there are none), each with the
-/// `key=value` changes `sets`.
+/// `key=value` changes `sets`, named in its name ([`Arch::set_named`]).
 ///
 /// # Errors
 /// [`StudyError::Request`] for an architecture chosen twice or a key set
@@ -234,7 +234,7 @@ pub fn choose_archs(
     no_repeats("--set", sets.iter().map(|s| s.split_once('=').map_or(s.as_str(), |(k, _)| k.trim())))?;
     for arch in &mut archs {
         for s in sets {
-            arch.set(s)?;
+            arch.set_named(s)?;
         }
     }
     Ok(archs)
@@ -278,7 +278,7 @@ impl Request {
             }
             for arch in &mut spec.archs {
                 for s in &o.sets {
-                    arch.set(s)?;
+                    arch.set_named(s)?;
                 }
             }
         } else {

@@ -270,14 +270,25 @@ impl Row {
         matches!(self.status, Status::Ok) && self.metrics.is_some() && self.cost.is_some()
     }
 
-    /// The configuration and architecture in words, for tables.
+    /// The configuration and architecture in words, for tables: an
+    /// architecture point its axes made by its base and its values as the
+    /// sweep file writes them (`own-tbdr map_cache.size=16KiB`), said
+    /// once; any other by its name (which names a `--set` too), with its
+    /// axis values.
     #[must_use]
     pub fn label(&self) -> String {
-        let (arch, params) = self.config.arch_point();
-        if params.is_empty() {
-            format!("{}, {arch}", self.render_label())
+        let c = &self.config;
+        let made = c
+            .arch_params
+            .split(',')
+            .filter_map(|kv| kv.split_once('='))
+            .fold(c.base_arch.clone(), |name, (k, v)| crate::cost::arch::Arch::name_with(&name, k, v));
+        if c.arch_params.is_empty() {
+            format!("{}, {}", self.render_label(), c.arch)
+        } else if made == c.arch {
+            format!("{}, {} {}", self.render_label(), c.base_arch, c.arch_params)
         } else {
-            format!("{}, {arch} ({params})", self.render_label())
+            format!("{}, {} ({})", self.render_label(), c.arch, c.arch_params)
         }
     }
 

@@ -142,7 +142,7 @@ impl Spec {
         self.memory(threads).map(|(n, _)| n)
     }
 
-    /// The renders [`Spec::renders_at_once`] allows and the memory the
+    /// The renders `Spec::renders_at_once` allows and the memory the
     /// study is then bounded by, bytes: its scenes, one reference, what
     /// configurations share, and that many renders (an upper bound: see
     /// [`Footprint`] for its margin over the peak measured).

@@ -163,6 +163,29 @@ fn a_folder_in_use_is_refused_and_dead_temporaries_removed() {
     f.finish(None).expect("finished");
 }
 
+/// A stopped run removes its lock file while it holds it: a second run
+/// that opened the file before, and locks it once it is free, holds a lock
+/// on a removed file, which guards nothing; [`super::lock`] takes the file
+/// now at the path instead, and that one keeps a third run out.
+#[cfg(unix)]
+#[test]
+fn a_lock_on_a_removed_lock_file_is_not_the_folders() {
+    let scratch_dir = scratch("folder-relock");
+    let dir = scratch_dir.path().join("out");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let path = dir.join(LOCK);
+    let first = super::lock(&dir).expect("free");
+    let second = std::fs::OpenOptions::new().write(true).open(&path).expect("opened while held");
+    std::fs::remove_file(&path).expect("removed while held");
+    drop(first);
+    second.try_lock().expect("the removed file's lock is free");
+    assert!(!super::at_path(&second, &path), "a lock on a removed file is taken for the folder's");
+    let third = super::lock(&dir).expect("a new lock file");
+    assert!(super::at_path(&third, &path));
+    let err = super::lock(&dir).expect_err("held");
+    assert!(err.to_string().contains("in use"), "{err}");
+}
+
 /// Files get the permissions the umask gives a new file, as `touch` makes
 /// it, not a private 0600; a second run keeps them.
 #[cfg(unix)]

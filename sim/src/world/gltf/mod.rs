@@ -8,7 +8,7 @@
 //! once per node, each placement holding only the vertices its triangles
 //! use. The file is treated as an adversary wrote it: nothing the `gltf`
 //! crate would index unchecked reaches it, the specification's rules it
-//! leaves out are checked ([`spec`]), a buffer is read only from the
+//! leaves out are checked (`spec`), a buffer is read only from the
 //! model's own folder, every count is checked against the [`Limits`] and
 //! the memory the whole read takes is estimated from the counts the file
 //! declares (`meshes`) before any buffer is read, every byte range is

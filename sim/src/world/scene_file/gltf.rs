@@ -11,7 +11,7 @@ use super::{Check, Problem, SceneError};
 use crate::input::limits::Limits;
 use crate::world::gltf::{Gltf, GltfError, Lamp, Lens, Placed};
 use crate::world::mesh::Mesh;
-use crate::world::scene::{Camera, Light, Object, Orthographic, Perspective, Scene};
+use crate::world::scene::{Camera, Light, Object, Orthographic, Perspective, Scene, point_text};
 
 /// A glTF problem as a scene's: the file, the JSON path, the problem.
 impl From<GltfError> for SceneError {
@@ -243,8 +243,13 @@ impl Scene {
         };
         let mut lights = gltf.lights.iter().map(|l| light(l, sphere)).collect::<Result<Vec<_>, _>>().map_err(fault)?;
         if lights.is_empty() {
-            notes.push("the file has no KHR_lights_punctual light: a spot light framing the scene from above casts the shadows".to_owned());
-            lights.push(Light::Spot(Perspective::framing(&all).ok_or_else(|| c.err("meshes", Problem::NoVertices))?));
+            let spot = Perspective::framing(&all).ok_or_else(|| c.err("meshes", Problem::NoVertices))?;
+            notes.push(format!(
+                "the file has no KHR_lights_punctual light: a spot light at {}, aimed at {}, casts the shadows (`--light-from X,Y,Z` moves it)",
+                point_text(spot.position),
+                point_text(spot.target)
+            ));
+            lights.push(Light::Spot(spot));
         } else {
             let names: Vec<String> =
                 gltf.lights.iter().enumerate().map(|(k, l)| format!("{} `{}`", Scene::light_key(k), l.name)).collect();
@@ -294,6 +299,7 @@ impl Scene {
             image,
             source: path.display().to_string(),
             camera_choice: camera_choice.map(str::to_owned),
+            light_from: None,
             shadowless: Vec::new(),
             notes,
         })

@@ -328,6 +328,7 @@ impl Scene {
             image: [512, 512],
             source: path.display().to_string(),
             camera_choice: None,
+            light_from: None,
             shadowless: Vec::new(),
             notes: Vec::new(),
         })
@@ -461,6 +462,7 @@ impl Scene {
             image,
             source: String::new(),
             camera_choice: None,
+            light_from: None,
             shadowless,
             notes: Vec::new(),
         })

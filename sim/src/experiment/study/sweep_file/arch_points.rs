@@ -66,7 +66,6 @@ impl SweepFile {
                 .flat_map(|p| axis.iter().map(move |v| [p.clone(), vec![(i, v.as_str())]].concat()))
                 .collect();
         }
-        let word = |s: &str| s.chars().map(|c| if c.is_ascii_alphanumeric() { c } else { '_' }).collect::<String>();
         let (mut archs, mut params) = (Vec::new(), Vec::new());
         for a in &base {
             for p in &points {
@@ -77,10 +76,9 @@ impl SweepFile {
                     arch.assign(key, value).map_err(|e| {
                         self.err(format!("arch_axes[{i}]"), format!("{key} = `{value}` on {}: {e}", a.name))
                     })?;
-                    arch.name = format!("{}-{}-{}", arch.name, word(key), word(value));
+                    arch.name = Arch::name_with(&arch.name, key, value);
                     assignments.push((key.clone(), value.to_owned()));
                 }
-                arch.name = fit_name(&arch.name);
                 arch.check().map_err(|(k, e)| self.err(format!("arch_axes ({k})"), e.to_string()))?;
                 archs.push(arch);
                 params.push(ArchPoint { base: a.name.clone(), assignments });
@@ -88,16 +86,4 @@ impl SweepFile {
         }
         Ok((archs, params))
     }
-}
-
-/// A generated architecture name that fits the 64 characters a name may
-/// have: as it is when it fits, else its first 55 characters, `-` and 8
-/// hexadecimal digits of its hash, so that two long names stay apart.
-fn fit_name(name: &str) -> String {
-    const MAX: usize = 64;
-    if name.len() <= MAX {
-        return name.to_owned();
-    }
-    let hash = crate::output::provenance::hash(name.as_bytes());
-    format!("{}-{}", &name[..MAX - 9], &hash[..8])
 }

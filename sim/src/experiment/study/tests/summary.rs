@@ -7,6 +7,8 @@
 use crate::cost::work::Bottleneck;
 use crate::experiment::study::{Manifest, Row, RowConfig, RowCost, RowMetrics, Status, summary};
 
+mod figures;
+
 /// A row: `algorithm` of `family` at `image` on `arch` (`params`), with
 /// `artifacts` percent of 10 000 evaluated pixels, and its costs: light and
 /// camera cycles, bytes, energy, and the camera pass's bottleneck; at
@@ -182,7 +184,7 @@ fn different_clocks_rank_by_time() {
 /// and two names with one slug are refused rather than overwrite each other.
 #[test]
 fn scene_names_never_become_paths() {
-    let base = std::env::temp_dir().join(format!("umbra-slug-{}", std::process::id()));
+    let base = super::scratch_dir("umbra-summary", "slug");
     let _ = std::fs::remove_dir_all(&base);
     let out = base.join("inside").join("out");
     let named = |name: &str, k: usize| {
@@ -207,61 +209,75 @@ fn scene_names_never_become_paths() {
     let _ = std::fs::remove_dir_all(&base);
 }
 
-/// Two base architectures swept over three DRAM bandwidths: the
-/// architecture-axes plot draws one line of three points for each on a
-/// numeric axis whose ticks are bandwidths — 1, 2 and 4 GB/s, a
-/// geometric series, on a log scale labelled at its values — (read from
-/// the SVG's polylines and text), and the palette keeps twelve
-/// architectures apart.
-#[test]
-fn the_arch_axes_plot_is_numeric_with_a_line_per_base() {
-    use crate::experiment::plot::{colour, log_ticks, tick_label};
-    let base = std::env::temp_dir().join(format!("umbra-axes-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&base);
+/// Two base architectures, talisman and immediate, each swept over the
+/// DRAM bandwidths `gbs` (GB/s): a frame of second depth on each, its
+/// camera pass the faster the more bandwidth.
+fn bandwidth_rows(gbs: &[u32]) -> Vec<Row> {
     let mut rows = Vec::new();
-    for (b, arch) in ["talisman", "immediate"].iter().enumerate() {
-        for (k, gb) in [1u32, 2, 4].iter().enumerate() {
+    for arch in ["talisman", "immediate"] {
+        for gb in gbs {
             let params = format!("dram.bandwidth={gb}GB/s");
             let name = format!("{arch}-dram_bandwidth-{gb}GB_s");
+            let camera = 10_000 / u64::from(*gb);
             let r = row(
                 0,
                 ("second-ffc", "second depth"),
                 [100, 100],
                 (&name, &params),
                 0.05,
-                (10_000, 10_000 / u64::from(*gb)),
+                (10_000, camera),
                 1,
                 1.0,
                 "depth",
             );
             let mut axes = std::collections::BTreeMap::new();
             axes.insert("arch_dram_bandwidth_bytes_per_second".to_owned(), serde_json::json!(f64::from(*gb) * 1e9));
-            let config = RowConfig { base_arch: (*arch).to_owned(), arch_axes: axes, ..r.config };
-            rows.push(Row { arch_index: 3 * b + k, config, ..r });
+            let config = RowConfig { base_arch: arch.to_owned(), arch_axes: axes, ..r.config };
+            rows.push(Row { arch_index: rows.len(), config, ..r });
         }
     }
-    crate::experiment::study::write_run(&base, &rows, &manifest()).expect("written");
-    let svg = std::fs::read_to_string(base.join("arch-axes-synthetic.svg")).expect("the plot");
-    // Each base's line: three points, in its colour.
-    for k in 0..2 {
-        let c = colour(k, 2);
-        let stroke = format!("stroke=\"#{:02X}{:02X}{:02X}\"", c.0, c.1, c.2);
-        let lines: Vec<&str> = svg
-            .split("<polyline")
-            .skip(1)
-            .filter(|p| p.contains(&stroke))
-            .filter_map(|p| p.split("points=\"").nth(1)?.split('"').next())
-            .filter(|pts| pts.split_whitespace().count() == 3)
-            .collect();
-        assert_eq!(lines.len(), 1, "base {k}: {lines:?}");
+    rows
+}
+
+/// Two base architectures swept over DRAM bandwidths: the
+/// architecture-axes plot draws one line for each, a point a bandwidth,
+/// on a numeric axis ticked at the bandwidths as written (read from the
+/// SVG's polylines and text) — 1, 2 and 4 GB/s, within ten times of each
+/// other, linearly; 1 to 64 GB/s on a log scale — and the palette keeps
+/// twelve architectures apart.
+#[test]
+fn the_arch_axes_plot_is_numeric_with_a_line_per_base() {
+    use crate::experiment::plot::{colour, log_ticks, tick_label};
+    for (gbs, desc) in [(&[1u32, 2, 4][..], "dram.bandwidth"), (&[1, 4, 16, 64], "dram.bandwidth (log scale)")] {
+        let base = super::scratch_dir("umbra-summary", &format!("axes-{}", gbs.len()));
+        let _ = std::fs::remove_dir_all(&base);
+        crate::experiment::study::write_run(&base, &bandwidth_rows(gbs), &manifest()).expect("written");
+        let svg = std::fs::read_to_string(base.join("arch-axes-synthetic.svg")).expect("the plot");
+        // Each base's line: a point a bandwidth, in its colour.
+        for k in 0..2 {
+            let c = colour(k, 2);
+            let stroke = format!("stroke=\"#{:02X}{:02X}{:02X}\"", c.0, c.1, c.2);
+            let lines: Vec<&str> = svg
+                .split("<polyline")
+                .skip(1)
+                .filter(|p| p.contains(&stroke))
+                .filter_map(|p| p.split("points=\"").nth(1)?.split('"').next())
+                .filter(|pts| pts.split_whitespace().count() == gbs.len())
+                // Not a marker: a marker's outline closes on itself.
+                .filter(|pts| pts.split_whitespace().next() != pts.split_whitespace().last())
+                .collect();
+            assert_eq!(lines.len(), 1, "base {k}: {lines:?}");
+        }
+        let texts: Vec<&str> =
+            svg.split("<text").skip(1).filter_map(|t| Some(t.split('>').nth(1)?.split('<').next()?.trim())).collect();
+        for gb in gbs {
+            let tick = format!("{gb}GB/s");
+            assert!(texts.contains(&tick.as_str()), "{tick} not among {texts:?}");
+        }
+        // The ticks carry the unit: the axis names only the key.
+        assert!(texts.contains(&desc), "{desc} not among {texts:?}");
+        let _ = std::fs::remove_dir_all(&base);
     }
-    let texts: Vec<&str> =
-        svg.split("<text").skip(1).filter_map(|t| Some(t.split('>').nth(1)?.split('<').next()?.trim())).collect();
-    for tick in ["1GB/s", "2GB/s", "4GB/s"] {
-        assert!(texts.contains(&tick), "{tick} not among {texts:?}");
-    }
-    assert!(texts.iter().any(|t| t.contains("dram.bandwidth (B/s) (log scale)")), "{texts:?}");
-    let _ = std::fs::remove_dir_all(&base);
     // Twelve colours, no two alike (each channel apart by more than a
     // rounding, summed over the channels).
     let twelve: Vec<_> = (0..12).map(|k| colour(k, 12)).collect();
@@ -299,15 +315,8 @@ fn texts(svg: &str) -> Vec<(f64, f64, String)> {
 }
 
 /// Twelve base architectures (names as long as a sweep makes them), each
-/// at three DRAM bandwidths, in two panels of map-cache size: every plot
-/// a study writes keeps its legend inside the image and above its
-/// footnote (every text's coordinates read from the SVG), and each
-/// panel's title gives its value as a number with a prefix, as the key's
-/// files write it (`16KiB`), which reads back as the value.
-#[test]
-fn plots_of_twelve_architectures_keep_their_legends_and_read_in_si() {
-    let base = std::env::temp_dir().join(format!("umbra-twelve-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&base);
+/// at three DRAM bandwidths and two map-cache sizes.
+fn twelve_rows() -> Vec<Row> {
     let mut rows = Vec::new();
     for b in 0..12u64 {
         for gb in &[1u64, 2, 4] {
@@ -334,6 +343,20 @@ fn plots_of_twelve_architectures_keep_their_legends_and_read_in_si() {
             }
         }
     }
+    rows
+}
+
+/// Twelve base architectures (names as long as a sweep makes them), each
+/// at three DRAM bandwidths, in two panels of map-cache size: every plot
+/// a study writes keeps its legend inside the image and above its
+/// footnote (every text's coordinates read from the SVG), and each
+/// panel's title gives its value as a number with a prefix, as the key's
+/// files write it (`16KiB`), which reads back as the value.
+#[test]
+fn plots_of_twelve_architectures_keep_their_legends_and_read_in_si() {
+    let base = super::scratch_dir("umbra-summary", "twelve");
+    let _ = std::fs::remove_dir_all(&base);
+    let rows = twelve_rows();
     crate::experiment::study::write_run(&base, &rows, &manifest()).expect("written");
     let (w, h) = (f64::from(crate::experiment::plot::SIZE.0), f64::from(crate::experiment::plot::SIZE.1));
     let mut plots = 0;

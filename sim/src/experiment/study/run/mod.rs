@@ -1,5 +1,7 @@
 //! Running a sweep: each configuration rendered once against the reference and costed on every architecture.
 
+mod work;
+
 use indicatif::ProgressBar;
 use rayon::prelude::*;
 
@@ -7,6 +9,7 @@ use std::sync::Mutex;
 
 use super::{Config, Row, RowCost, RowMetrics, Shard, Spec, StudyError};
 use crate::base::maps::with_format;
+use crate::base::stop;
 use crate::cost::arch::Arch;
 use crate::cost::report::CostReport;
 use crate::input::limits::Limits;
@@ -17,6 +20,7 @@ use crate::world::scene::Scene;
 use umbra_core::probe::Totals;
 use umbra_core::shadow::{Filter, ShadowConfig};
 use umbra_core::{DepthFormat, DepthFormatKind};
+use work::Progress;
 
 /// The render configuration of `c`.
 #[must_use]
@@ -124,9 +128,11 @@ pub(crate) fn truth_of(spec: &Spec, scene: usize, image: usize) -> Truth {
     truth(&spec.scenes[scene], w, h, spec.reference_rays, &ProgressBar::hidden()).map_err(|e| e.to_string())
 }
 
-/// Run the configurations of `shard` in parallel (on the current rayon pool),
-/// ticking `progress` once per configuration. Rows come back sorted by
-/// configuration and preset.
+/// Run the configurations of `shard` in parallel (on the current rayon pool).
+/// Rows come back sorted by configuration and preset. `progress`'s length
+/// is the run's estimated work, ticked as each reference and configuration
+/// is done, and its message says how many configurations are done of how
+/// many.
 ///
 /// One scene and image size is run at a time: its reference is built once,
 /// shared by its configurations and dropped before the next, and at most
@@ -159,7 +165,9 @@ pub(crate) fn truth_of(spec: &Spec, scene: usize, image: usize) -> Truth {
 ///
 /// # Errors
 /// [`StudyError::Limit`] when even one render beside the scenes and a
-/// reference would take more than [`Limits::max_memory`].
+/// reference would take more than [`Limits::max_memory`];
+/// [`StudyError::Stopped`] when a stop is requested ([`crate::base::stop`]):
+/// no configuration starts after it.
 pub fn run(spec: &Spec, shard: Shard, progress: &ProgressBar) -> Result<Vec<Row>, StudyError> {
     run_with(spec, shard, progress, true)
 }
@@ -213,94 +221,127 @@ fn rows_like(spec: &Spec, c: &Config, like: &[Row]) -> Vec<Row> {
         .collect()
 }
 
-fn run_with(spec: &Spec, shard: Shard, progress: &ProgressBar, share: bool) -> Result<Vec<Row>, StudyError> {
-    let at_once = spec.renders_at_once(rayon::current_num_threads())?;
-    let layout = super::Layout::of(spec);
-    let configs: Vec<Config> = spec.configs().into_iter().filter(|c| shard.contains(&layout, c.index)).collect();
-    progress.set_length(configs.len() as u64);
-    let mut rows = Vec::new();
-    let scratch = Mutex::new(Vec::<Scratch>::new());
+/// The configurations of one scene and image size of a shard, run together
+/// on their reference.
+pub(super) struct Group<'c> {
+    /// The scene.
+    pub(super) scene: usize,
+    /// The image size.
+    pub(super) image: usize,
+    /// Its configurations, in the study's order.
+    pub(super) configs: Vec<&'c Config>,
+    /// For each, the position of the first that renders alike to it
+    /// ([`alike`]; its own when none): only the first is rendered.
+    pub(super) first: Vec<usize>,
+    /// Whether its configurations share what they can
+    /// ([`crate::render::shared`], which renders scenes of one light).
+    pub(super) shared: bool,
+}
+
+/// The groups of `configs`, scene by scene, each image size in turn;
+/// configurations that render alike are noted when `share`.
+pub(super) fn groups<'c>(spec: &Spec, configs: &'c [Config], share: bool) -> Vec<Group<'c>> {
+    let mut groups = Vec::new();
     for scene in 0..spec.scenes.len() {
         for image in 0..spec.images.len() {
             let group: Vec<&Config> = configs.iter().filter(|c| c.scene == scene && c.image == image).collect();
             if group.is_empty() {
                 continue;
             }
-            let truth = truth_of(spec, scene, image);
-            // Each configuration's first of its kind, rendered; the others
-            // reported from it.
             let keys: Vec<Option<RenderConfig>> =
                 group.iter().map(|c| if share { alike(spec, c) } else { None }).collect();
-            let first: Vec<usize> = (0..group.len())
+            let first = (0..group.len())
                 .map(|i| keys[i].map_or(i, |k| keys.iter().position(|o| *o == Some(k)).unwrap_or(i)))
                 .collect();
-            let rendered: Vec<&Config> = (0..group.len()).filter(|&i| first[i] == i).map(|i| group[i]).collect();
-            let [w, h] = spec.images[image];
-            let shared = match &truth {
-                // The shared path renders scenes of one light; a scene of
-                // several renders each configuration on its own.
-                Ok(t) if share && t.len() == 1 => {
-                    ImageShare::new(&spec.scenes[scene], (w, h), &t[0], &spec.archs, &spec.limits)
-                }
-                _ => None,
-            };
-            // The configurations that render on their own (shadow volumes,
-            // which draw no map; every one when nothing is shared), and
-            // blocks of one format and map side of the others, in the order
-            // their first comes: each block's light passes drawn at once,
-            // in parallel, then every configuration of the block in
-            // parallel.
-            let (alone, blocks) = blocks(spec, &rendered, shared.is_some());
-            let alone = || run_waves(&alone, at_once, progress, |c| run_config(spec, c, &truth));
-            let blocks = || {
-                let mut done: Vec<Vec<Row>> = Vec::with_capacity(rendered.len());
-                for ((format, _), members) in blocks {
-                    let Some(image) = &shared else { continue };
-                    let mut rows = with_format!(format, F => {
-                        let lights = light_shares::<F>(spec, image, &members);
-                        run_waves(&members, at_once, progress, |c| {
-                            let cfg = render_config(spec, c);
-                            let light = LightKey::of(&cfg)
-                                .and_then(|k| lights.iter().find(|l| l.0 == k))
-                                .and_then(|l| l.1.as_ref());
-                            let mut mine = scratch.lock().map(|mut s| s.pop()).ok().flatten().unwrap_or_default();
-                            let rows = light
-                                .and_then(|l| run_shared::<F>(spec, c, image, l, &mut mine))
-                                .unwrap_or_else(|| run_config(spec, c, &truth));
-                            if let Ok(mut s) = scratch.lock() {
-                                s.push(mine);
-                            }
-                            rows
-                        })
-                    });
-                    done.append(&mut rows);
-                }
-                done
-            };
-            // A configuration on its own takes as long as many shared ones
-            // (a shadow volume's stencil pass): with room for a render a
-            // thread, those run beside the blocks rather than after them,
-            // so that no thread waits alone at the end.
-            let (mut done, mut own) = if at_once >= rayon::current_num_threads() {
-                let (own, done) = rayon::join(alone, blocks);
-                (done, own)
-            } else {
-                (blocks(), alone())
-            };
-            done.append(&mut own);
-            done.sort_by_key(|r| r.first().map(|r| r.config_index));
-            for (i, c) in group.iter().enumerate() {
-                if first[i] != i {
-                    let at = done
-                        .iter()
-                        .position(|r| r.first().map(|r| r.config_index) == Some(group[first[i]].index))
-                        .unwrap_or(0);
-                    rows.extend(rows_like(spec, c, &done[at]));
-                    progress.inc(1);
-                }
-            }
-            rows.extend(done.into_iter().flatten());
+            let shared = share && spec.scenes[scene].lights.len() <= 1;
+            groups.push(Group { scene, image, configs: group, first, shared });
         }
+    }
+    groups
+}
+
+fn run_with(spec: &Spec, shard: Shard, progress: &ProgressBar, share: bool) -> Result<Vec<Row>, StudyError> {
+    let at_once = spec.renders_at_once(rayon::current_num_threads())?;
+    let layout = super::Layout::of(spec);
+    let configs: Vec<Config> = spec.configs().into_iter().filter(|c| shard.contains(&layout, c.index)).collect();
+    let groups = groups(spec, &configs, share);
+    let progress = Progress::new(progress, spec, &groups);
+    let mut rows = Vec::new();
+    let scratch = Mutex::new(Vec::<Scratch>::new());
+    for g in &groups {
+        stop::check()?;
+        let (group, first) = (&g.configs, &g.first);
+        let truth = truth_of(spec, g.scene, g.image);
+        stop::check()?;
+        progress.reference(spec, g);
+        // Each configuration's first of its kind, rendered; the others
+        // reported from it.
+        let rendered: Vec<&Config> = (0..group.len()).filter(|&i| first[i] == i).map(|i| group[i]).collect();
+        let [w, h] = spec.images[g.image];
+        let shared = match &truth {
+            Ok(t) if g.shared => {
+                t.first().and_then(|t| ImageShare::new(&spec.scenes[g.scene], (w, h), t, &spec.archs, &spec.limits))
+            }
+            _ => None,
+        };
+        // The configurations that render on their own (shadow volumes,
+        // which draw no map; every one when nothing is shared), and
+        // blocks of one format and map side of the others, in the order
+        // their first comes: each block's light passes drawn at once,
+        // in parallel, then every configuration of the block in
+        // parallel.
+        let (alone, blocks) = blocks(spec, &rendered, shared.is_some());
+        let alone = || run_waves(&alone, at_once, &progress, |c| run_config(spec, c, &truth));
+        let blocks = || {
+            let mut done: Vec<Vec<Row>> = Vec::with_capacity(rendered.len());
+            for ((format, _), members) in blocks {
+                let Some(image) = &shared else { continue };
+                let mut rows = with_format!(format, F => {
+                    let lights = light_shares::<F>(spec, image, &members);
+                    run_waves(&members, at_once, &progress, |c| {
+                        let cfg = render_config(spec, c);
+                        let light = LightKey::of(&cfg)
+                            .and_then(|k| lights.iter().find(|l| l.0 == k))
+                            .and_then(|l| l.1.as_ref());
+                        let mut mine = scratch.lock().map(|mut s| s.pop()).ok().flatten().unwrap_or_default();
+                        let rows = light
+                            .and_then(|l| run_shared::<F>(spec, c, image, l, &mut mine))
+                            .unwrap_or_else(|| run_config(spec, c, &truth));
+                        if let Ok(mut s) = scratch.lock() {
+                            s.push(mine);
+                        }
+                        rows
+                    })
+                });
+                done.append(&mut rows);
+            }
+            done
+        };
+        // A configuration on its own takes as long as many shared ones
+        // (a shadow volume's stencil pass): with room for a render a
+        // thread, those run beside the blocks rather than after them,
+        // so that no thread waits alone at the end.
+        let (mut done, mut own) = if at_once >= rayon::current_num_threads() {
+            let (own, done) = rayon::join(alone, blocks);
+            (done, own)
+        } else {
+            (blocks(), alone())
+        };
+        // Configurations skipped for a stop left no rows.
+        stop::check()?;
+        done.append(&mut own);
+        done.sort_by_key(|r| r.first().map(|r| r.config_index));
+        for (i, c) in group.iter().enumerate() {
+            if first[i] != i {
+                let at = done
+                    .iter()
+                    .position(|r| r.first().map(|r| r.config_index) == Some(group[first[i]].index))
+                    .unwrap_or(0);
+                rows.extend(rows_like(spec, c, &done[at]));
+                progress.config(c);
+            }
+        }
+        rows.extend(done.into_iter().flatten());
     }
     sort_rows(&mut rows);
     Ok(rows)
@@ -330,14 +371,8 @@ fn blocks<'c>(
     // The filters that compare the most samples first, so that a block
     // does not end waiting on one of them alone (the rows are sorted
     // afterwards).
-    let samples = |c: &&Config| match spec.filters.get(c.filter) {
-        Some(Filter::Jittered(j)) => 8 * u32::from(j.num_samples),
-        Some(Filter::Box { size }) => u32::from(*size) * u32::from(*size),
-        Some(Filter::Bilinear) => 4,
-        Some(Filter::Point) | None => 1,
-    };
     for (_, members) in &mut blocks {
-        members.sort_by_key(|c| core::cmp::Reverse(samples(c)));
+        members.sort_by_key(|c| core::cmp::Reverse(work::taps(spec, c)));
     }
     (alone, blocks)
 }
@@ -362,11 +397,13 @@ fn light_shares<F: DepthFormat>(
 
 /// `each` over `configs` in parallel, at most `at_once` at a time (all at
 /// once on as many threads as the pool has when memory allows that many),
-/// ticking `progress` once a configuration: their rows, in order.
+/// ticking `progress` as each is done: their rows, in order. Once a stop
+/// is requested no configuration starts, and those not started give no
+/// rows.
 fn run_waves(
     configs: &[&Config],
     at_once: usize,
-    progress: &ProgressBar,
+    progress: &Progress<'_>,
     each: impl Fn(&Config) -> Vec<Row> + Sync,
 ) -> Vec<Vec<Row>> {
     let mut done = Vec::with_capacity(configs.len());
@@ -374,9 +411,9 @@ fn run_waves(
     // one wave takes them all, and no thread waits for a wave's slowest.
     let wave = if at_once >= rayon::current_num_threads() { configs.len().max(1) } else { at_once };
     for wave in configs.chunks(wave) {
-        done.par_extend(wave.par_iter().map(|c| {
+        done.par_extend(wave.par_iter().filter(|_| !stop::requested()).map(|c| {
             let rows = each(c);
-            progress.inc(1);
+            progress.config(c);
             rows
         }));
     }
