@@ -4,7 +4,7 @@
 //! (`shade`), series set a few pixels apart (`dodge`), log–log charts
 //! whose axes have labelled ticks (a log axis at each decade, at 2 and 5
 //! too when it spans few, with minor ticks), labels that overlap nothing
-//! ([`place`]), and a footnote.
+//! (`place`), and a footnote.
 //!
 //! Text needs a font for its metrics in both backends: the bundled DejaVu
 //! Sans.
