@@ -24,8 +24,9 @@ pub(super) struct RenderArgs {
     pub(super) scene: String,
     /// A glTF file's camera, by name or index.
     pub(super) camera: Option<String>,
-    /// Where to move the scene's first light (`X,Y,Z`).
-    pub(super) light_from: Option<String>,
+    /// Where to move the scene's first light (`X,Y,Z`, read once by
+    /// its flag's parser).
+    pub(super) light_from: Option<umbra_core::glam::Vec3>,
     /// Each parameter given, by name, as written (a switch as `false`).
     pub(super) params: Vec<(&'static str, String)>,
     /// Output folder (default: the command's own).
@@ -64,7 +65,7 @@ impl clap::FromArgMatches for RenderArgs {
         Ok(Self {
             scene: m.get_one::<String>("scene").cloned().unwrap_or_else(|| DEFAULT_SCENE.to_owned()),
             camera: m.get_one::<String>("camera").cloned(),
-            light_from: m.get_one::<String>("light-from").cloned(),
+            light_from: m.get_one::<umbra_core::glam::Vec3>("light-from").copied(),
             params,
             out: m.get_one::<PathBuf>("out").cloned(),
             replace: m.get_flag("replace"),
@@ -98,7 +99,7 @@ impl clap::Args for RenderArgs {
                 .long("light-from")
                 .value_name("X,Y,Z")
                 .allow_hyphen_values(true)
-                .value_parser(|s: &str| umbra_sim::world::relight::parse_point(s).map(|_| s.to_owned()))
+                .value_parser(umbra_sim::world::relight::parse_point)
                 .help("Move the scene's first light to X,Y,Z, aimed at the scene's centre [default: where its file puts it]"),
         );
         for p in PARAMS {
@@ -145,8 +146,8 @@ impl RenderArgs {
     /// `--light-from` puts it, its loader's notes printed.
     pub(super) fn scene(&self, limits: &Limits) -> Result<Scene> {
         let mut scene = Scene::open_with_camera(&self.scene, self.camera.as_deref(), limits)?;
-        if let Some(text) = &self.light_from {
-            scene = scene.with_light_from(umbra_sim::world::relight::parse_point(text)?)?;
+        if let Some(point) = self.light_from {
+            scene = scene.with_light_from(point)?;
         }
         for note in &scene.notes {
             say!("note: {note}");

@@ -119,7 +119,7 @@ fn every_bundled_sweep_spells_commands_the_cli_reads() {
     let limits = Limits::DEFAULT;
     for name in ["quick", "full"] {
         let spec = SweepFile::bundled(name).and_then(|f| f.spec(&limits)).expect("bundled sweep");
-        let mut seen = BTreeMap::new();
+        let mut seen = std::collections::BTreeSet::new();
         for c in spec.configs() {
             let scene = &spec.scenes[c.scene];
             let small = umbra_sim::render::RenderConfig {
@@ -141,11 +141,11 @@ fn every_bundled_sweep_spells_commands_the_cli_reads() {
                     spelt.push(format!("{w} {value}"));
                 }
             }
-            let new: Vec<String> = spelt.into_iter().filter(|p| !seen.contains_key(p)).collect();
+            let new: Vec<String> = spelt.into_iter().filter(|p| !seen.contains(p)).collect();
             if new.is_empty() {
                 continue;
             }
-            seen.extend(new.into_iter().map(|p| (p, ())));
+            seen.extend(new);
             let m = render_again(&command, &format!("{name}-{}", seen.len()));
             let want = small
                 .check(scene, &limits)

@@ -12,8 +12,9 @@ use crate::world::scene::{CLEARANCE, Light, Orthographic, Perspective, Scene, bo
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum RelightError {
-    /// The text is not three finite numbers `X,Y,Z`.
-    #[error("--light-from `{0}`: expected three numbers, X,Y,Z (as `2,3,1.5`)")]
+    /// The text (held here; the flag's parser quotes it) is not three
+    /// finite numbers `X,Y,Z`.
+    #[error("expected three numbers, X,Y,Z (as `2,3,1.5`)")]
     Point(String),
     /// The scene has no vertex to aim at.
     #[error("--light-from: the scene has no vertex to aim the light at")]
