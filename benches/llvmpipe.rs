@@ -35,9 +35,15 @@ use umbra::sim::world::scene_file::shared_meshes;
 const SIDES: [u32; 2] = [1024, 4096];
 const FRAMES: usize = 15;
 
+/// The workspace's root, where `../shared/meshes` is read from as
+/// `umbra` reads it (cargo runs a bench in its package's folder).
+fn root() -> &'static Path {
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+}
+
 /// The shared meshes, by name.
 fn meshes() -> Vec<(String, PathBuf)> {
-    let dir = shared_meshes();
+    let dir = root().join(shared_meshes());
     let mut found: Vec<(String, PathBuf)> = std::fs::read_dir(&dir)
         .map(|d| {
             d.filter_map(Result::ok)
@@ -53,7 +59,7 @@ fn meshes() -> Vec<(String, PathBuf)> {
 
 /// Build the llvmpipe harness; its path, or why not.
 fn harness() -> Result<PathBuf, String> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = root();
     let out = Command::new(option_env!("CARGO").unwrap_or("cargo"))
         .args(["build", "--release", "--quiet", "-p", "umbra-llvmpipe"])
         .current_dir(root)
@@ -116,7 +122,7 @@ fn umbra_ms(frame: &mut LightFrame<u32>, side: u32, draw: Draw<'_>) -> f64 {
 fn bench(c: &mut Criterion) {
     let meshes = meshes();
     if meshes.is_empty() {
-        eprintln!("llvmpipe: no meshes in {} (set UMBRA_MESHES)", shared_meshes().display());
+        eprintln!("llvmpipe: no meshes in {} (set UMBRA_MESHES)", root().join(shared_meshes()).display());
         return;
     }
     let harness = harness();

@@ -4,13 +4,13 @@
 //! new one each pass).
 //!
 //! ```sh
-//! cargo build --release --example light_profile
-//! valgrind --tool=callgrind target/release/examples/light_profile 2
-//! perf record -g target/release/examples/light_profile 50
-//! target/release/examples/light_profile 50 bands 2048   # LightOptions::BANDS, 2048²
-//! RAYON_NUM_THREADS=1 target/release/examples/light_profile 4 bands 2048
-//! target/release/examples/light_profile 1 whole 1024 digest
-//! target/release/examples/light_profile 20 bands-new 2048   # a new frame each pass
+//! cargo build --release --bin light_profile
+//! valgrind --tool=callgrind target/release/light_profile 2
+//! perf record -g target/release/light_profile 50
+//! target/release/light_profile 50 bands 2048   # LightOptions::BANDS, 2048²
+//! RAYON_NUM_THREADS=1 target/release/light_profile 4 bands 2048
+//! target/release/light_profile 1 whole 1024 digest
+//! target/release/light_profile 20 bands-new 2048   # a new frame each pass
 //! ```
 //!
 //! With `digest` it prints a digest of the last maps' bits too: a change
@@ -26,7 +26,7 @@
 //! with their depth cache fed fragment by fragment):
 //!
 //! ```sh
-//! TORUS=25x20 UNIT=dual CULL=1 target/release/examples/light_profile 1 whole 2048 digest
+//! TORUS=25x20 UNIT=dual CULL=1 target/release/light_profile 1 whole 2048 digest
 //! ```
 
 use std::hash::{DefaultHasher, Hash, Hasher};

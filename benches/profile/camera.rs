@@ -10,9 +10,9 @@
 //! keeps the results and the counts.
 //!
 //! ```sh
-//! cargo build --release --example camera_profile
-//! perf record -g target/release/examples/camera_profile 20
-//! target/release/examples/camera_profile 1 all
+//! cargo build --release --bin camera_profile
+//! perf record -g target/release/camera_profile 20
+//! target/release/camera_profile 1 all
 //! ```
 
 use std::hash::{DefaultHasher, Hash, Hasher};
