@@ -5,8 +5,9 @@
 use glam::{DVec3, Mat4, Vec3};
 use umbra_core::front::clip::ClipVertex;
 use umbra_core::probe::Probe;
+use umbra_core::shade::SilhouetteUnit;
 use umbra_core::shadow::{MapView, ShadowConfig};
-use umbra_core::silhouette::{SilStore, SilhouettePass};
+use umbra_core::silhouette::{Packed, SilPoint, SilStore, SilhouetteMap, SilhouettePass};
 use umbra_core::stencil::{StencilPass, Volume, VolumeLight};
 use umbra_core::{ConfigError, DepthFormat, RasterConfig};
 
@@ -36,6 +37,59 @@ pub(crate) fn silhouette_map<S: SilStore, F: DepthFormat, P: Probe>(
         pass.draw_clip(&clip(light, a), &clip(light, b), probe);
     }
     Ok(texels)
+}
+
+/// A silhouette map's texels in the store its algorithm names: drawn once
+/// for a configuration's light, read by its shading and by its judge.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum SilTexels {
+    /// Packed texels (Sen et al.'s eight bits a point).
+    Packed(Vec<Packed>),
+    /// A point a texel, unpacked.
+    Points(Vec<SilPoint>),
+}
+
+impl SilTexels {
+    /// The silhouette map [`silhouette_map`] draws, packed when `packed`.
+    ///
+    /// # Errors
+    /// [`ConfigError`] when `map` is unusable.
+    pub(crate) fn draw<F: DepthFormat, P: Probe>(
+        packed: bool,
+        occluders: &Occluders,
+        light: &Mat4,
+        map: &MapView<'_, F>,
+        cfg: ShadowConfig,
+        probe: &mut P,
+    ) -> Result<Self, ConfigError> {
+        Ok(if packed {
+            Self::Packed(silhouette_map::<Packed, F, P>(occluders, light, map, cfg, probe)?)
+        } else {
+            Self::Points(silhouette_map::<SilPoint, F, P>(occluders, light, map, cfg, probe)?)
+        })
+    }
+
+    /// `reader` given the silhouette unit over these texels, for a depth
+    /// map of `map`'s size.
+    ///
+    /// # Errors
+    /// [`ConfigError`] when the texels do not fit the map's size.
+    pub(crate) fn read<R: SilReader>(&self, map: &RasterConfig, reader: R) -> Result<R::Out, ConfigError> {
+        let (w, h) = (map.width(), map.height());
+        Ok(match self {
+            Self::Packed(t) => reader.read(&SilhouetteUnit(&SilhouetteMap::view(w, h, t)?)),
+            Self::Points(t) => reader.read(&SilhouetteUnit(&SilhouetteMap::view(w, h, t)?)),
+        })
+    }
+}
+
+/// What reads a silhouette map through its shadow unit, whatever the
+/// map's store ([`SilTexels::read`]).
+pub(crate) trait SilReader {
+    /// What the reading gives.
+    type Out;
+    /// Read through `unit`.
+    fn read<S: SilStore>(self, unit: &SilhouetteUnit<'_, '_, S>) -> Self::Out;
 }
 
 /// The light as the volumes need it under `camera`, with an extrusion

@@ -276,7 +276,7 @@ fn cost_in<F: DepthFormat, const L: bool, const C: bool>(
     let drawing = archs.first().map_or(Tiling::DEFAULT, |a| a.tiling());
     let config = if shadowed {
         let frames = &mut Vec::new();
-        light = passes::<F, _, _>(scene, cfg, checked, frames, light, &mut camera, drawing)?.0;
+        light = passes::<F, _, _>(scene, cfg, checked, frames, light, &mut camera, drawing)?.light_probes;
         cfg.describe()
     } else {
         let mut frame = CameraFrame::default();

@@ -23,9 +23,9 @@ use std::borrow::Cow;
 
 use indicatif::ProgressBar;
 use umbra_core::depth::Texel;
-use umbra_core::shade::{MapUnit, SilhouetteUnit};
+use umbra_core::shade::{MapUnit, ShadowUnit, SilhouetteUnit};
 use umbra_core::shadow::{MapView, ShadowConfig, ShadowConfigError};
-use umbra_core::silhouette::{Packed, SilPoint, SilStore, SilhouetteMap};
+use umbra_core::silhouette::SilStore;
 use umbra_core::{DepthFormat, DepthUnit, LightPassConfig, Probe, RasterConfig, TileState};
 
 pub(crate) use self::config::Targets;
@@ -33,7 +33,7 @@ pub use self::config::{Checked, RenderConfig, RenderConfigError};
 pub use self::costed::{cost, render_costed};
 pub(crate) use self::costed::{cost_others, cost_unshadowed};
 pub use self::produced::{LightPart, PartRef, Render};
-use self::replay::{PassInputs, judged};
+use self::replay::{PassInputs, ShadowSource, judged};
 pub use self::request::RenderRequest;
 use crate::base::counters::Counters;
 use crate::base::maps::{Tiling, with_format};
@@ -44,7 +44,7 @@ use crate::pass::algorithm::MapKind;
 pub(crate) use crate::pass::algorithm::{Algorithm, Culling};
 use crate::pass::camera::{CameraFrame, CameraImage, CameraOptions, map_view, shade_visible, visibility, volumes};
 use crate::pass::light::{self, DEFAULT_BIN_CAPACITY, LightFrame, LightMaps, LightOptions, RawMaps};
-use crate::pass::occluders::silhouette_map;
+use crate::pass::occluders::{SilReader, SilTexels};
 use crate::truth::metrics::Fields;
 use crate::truth::reference::{PixelTruth, Reference, ReferenceError};
 use crate::world::occluders::Occluders;
@@ -299,7 +299,8 @@ pub(crate) fn camera_options(
 /// then the camera pass: the visibility unit once and the shading unit
 /// once per light against that light's map (the probe told which map it
 /// reads), or the stencil unit once per light for shadow volumes. The
-/// light probes, and one camera image per light.
+/// light probes, one camera image per light, and each light's silhouette
+/// map (none for other algorithms), for the judge to read.
 pub(super) fn passes<F: DepthFormat, L: Probe, C: Probe>(
     scene: &Scene,
     cfg: &RenderConfig,
@@ -308,7 +309,7 @@ pub(super) fn passes<F: DepthFormat, L: Probe, C: Probe>(
     light_probes: Vec<L>,
     camera_probe: &mut C,
     tiling: Tiling,
-) -> Result<(Vec<L>, Vec<CameraImage>), RenderError> {
+) -> Result<Passes<L>, RenderError> {
     let units = cfg.algorithm.units::<F>(cfg.bias);
     let light_config = LightPassConfig { raster: checked.map, unit: units.unit, max_z_cull: true };
     let mut camera = CameraFrame::default();
@@ -318,7 +319,7 @@ pub(super) fn passes<F: DepthFormat, L: Probe, C: Probe>(
     debug_assert_eq!(light_probes.len(), lit.len(), "one light probe per light");
     if units.map == MapKind::Volumes {
         let images = volumes(&mut camera, (scene, &lit), size, tiling, camera_probe)?;
-        return Ok((light_probes, images));
+        return Ok(Passes { light_probes, images, silhouettes: Vec::new() });
     }
     frames.resize_with(lit.len(), LightFrame::new);
     let drawing = LightOptions { per_draw: tiling.per_draw, ..LightOptions::default() };
@@ -331,53 +332,62 @@ pub(super) fn passes<F: DepthFormat, L: Probe, C: Probe>(
         probes.push(probe);
     }
     let options = camera_options(cfg, &units, size, tiling)?;
-    let seen = (scene, lit.as_slice(), views.as_slice());
-    let images = match units.map {
-        MapKind::Silhouette { packed: true } => {
-            silhouettes::<Packed, F, _, _>(&mut camera, seen, &options, &mut probes, camera_probe)?
+    let mut silhouettes = Vec::new();
+    if let MapKind::Silhouette { packed } = units.map {
+        // Each light's silhouette pass over its map, its events to its
+        // light probe (part of the light side).
+        for ((one, view), probe) in lit.iter().zip(&views).zip(probes.iter_mut()) {
+            let light = one.light().view_projection();
+            let texels = SilTexels::draw(packed, &Occluders::new(one), &light, view, options.shadow, probe)
+                .map_err(PassError::from)?;
+            silhouettes.push(texels);
         }
-        MapKind::Silhouette { packed: false } => {
-            silhouettes::<SilPoint, F, _, _>(&mut camera, seen, &options, &mut probes, camera_probe)?
-        }
-        MapKind::Depth | MapKind::Volumes => {
-            visibility(&mut camera, scene, size, tiling, camera_probe)?;
-            let mut images = Vec::with_capacity(lit.len());
-            for (k, (one, view)) in lit.iter().zip(&views).enumerate() {
-                bind(camera_probe, k, lit.len());
-                images.push(shade_visible(&mut camera, one, view, &MapUnit, &options, camera_probe)?);
-            }
-            images
-        }
-    };
-    Ok((probes, images))
+    }
+    visibility(&mut camera, scene, size, tiling, camera_probe)?;
+    let mut images = Vec::with_capacity(lit.len());
+    for (k, (one, view)) in lit.iter().zip(&views).enumerate() {
+        bind(camera_probe, k, lit.len());
+        let shade = Shade { camera: &mut camera, scene: one, view, options: &options, probe: &mut *camera_probe };
+        images.push(match silhouettes.get(k) {
+            Some(texels) => texels.read(view.raster(), shade).map_err(PassError::from)??,
+            None => shade.read(&MapUnit)?,
+        });
+    }
+    Ok(Passes { light_probes: probes, images, silhouettes })
 }
 
-/// Each light's silhouette pass over its map (events to its light probe,
-/// as part of the light side), then the camera pass: visibility once, and
-/// the silhouette unit once per light.
-fn silhouettes<S: SilStore, F: DepthFormat, L: Probe, C: Probe>(
-    camera: &mut CameraFrame,
-    (scene, lit, views): (&Scene, &[&Scene], &[MapView<'_, F>]),
-    options: &CameraOptions,
-    light_probes: &mut [L],
-    camera_probe: &mut C,
-) -> Result<Vec<CameraImage>, RenderError> {
-    let mut stores = Vec::with_capacity(lit.len());
-    for ((one, view), probe) in lit.iter().zip(views).zip(light_probes.iter_mut()) {
-        let light = one.light().view_projection();
-        let texels = silhouette_map::<S, F, _>(&Occluders::new(one), &light, view, options.shadow, probe)
-            .map_err(PassError::from)?;
-        stores.push(texels);
+/// What a render's passes leave ([`passes`]).
+pub(super) struct Passes<L> {
+    /// The light probes, one a light.
+    pub(super) light_probes: Vec<L>,
+    /// One camera image a light.
+    pub(super) images: Vec<CameraImage>,
+    /// Each light's silhouette map, for an algorithm that draws one.
+    pub(super) silhouettes: Vec<SilTexels>,
+}
+
+/// The shading of the visible pixels against one light's map, through the
+/// shadow unit it is given.
+struct Shade<'a, 'v, F: DepthFormat, C> {
+    camera: &'a mut CameraFrame,
+    scene: &'a Scene,
+    view: &'a MapView<'v, F>,
+    options: &'a CameraOptions,
+    probe: &'a mut C,
+}
+
+impl<F: DepthFormat, C: Probe> Shade<'_, '_, F, C> {
+    fn read<U: ShadowUnit<F>>(self, unit: &U) -> Result<CameraImage, RenderError> {
+        Ok(shade_visible(self.camera, self.scene, self.view, unit, self.options, self.probe)?)
     }
-    visibility(camera, scene, (options.width, options.height), options.tiling, camera_probe)?;
-    let mut images = Vec::with_capacity(lit.len());
-    for (k, ((one, view), texels)) in lit.iter().zip(views).zip(&stores).enumerate() {
-        let raster = view.raster();
-        let sil = SilhouetteMap::view(raster.width(), raster.height(), texels).map_err(PassError::from)?;
-        bind(camera_probe, k, lit.len());
-        images.push(shade_visible(camera, one, view, &SilhouetteUnit(&sil), options, camera_probe)?);
+}
+
+impl<F: DepthFormat, C: Probe> SilReader for Shade<'_, '_, F, C> {
+    type Out = Result<CameraImage, RenderError>;
+
+    fn read<S: SilStore>(self, unit: &SilhouetteUnit<'_, '_, S>) -> Self::Out {
+        Shade::read(self, unit)
     }
-    Ok(images)
 }
 
 /// The render of `cfg`, its events counted, and reporting to more probes
@@ -394,7 +404,7 @@ pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
     let mut camera_events = Counters::new(&checked.image);
     let mut frames = Vec::new();
     let light_probes = light_also.into_iter().map(|also| Tee(Counters::new(&checked.map), also)).collect();
-    let (probes, images) = passes::<F, _, _>(
+    let Passes { light_probes: probes, images, silhouettes } = passes::<F, _, _>(
         scene,
         cfg,
         checked,
@@ -428,8 +438,7 @@ pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
             seen: (&ids, image.camera),
             view: view.as_ref(),
             options: &options,
-            kind: units.map,
-            occluders: None,
+            source: ShadowSource::of(units.map, silhouettes.get(k)),
         };
         let (metrics, verdicts) = judged(&inputs, &image.pixels, (&truth, &fields, &reference), None)
             .map_err(|e| if several { RenderError::Pass(e).of_light(k) } else { RenderError::Pass(e) })?;

@@ -7,17 +7,16 @@ use umbra_core::shade::{
     MapUnit, SceneTriangle, ShadeConfig, ShadeInputs, ShadeSetup, Shaded, ShadowUnit, SilhouetteUnit, shade_rect,
 };
 use umbra_core::shadow::MapView;
-use umbra_core::silhouette::{Packed, SilPoint, SilStore, SilhouetteMap};
+use umbra_core::silhouette::SilStore;
 use umbra_core::{DepthFormat, TileRect};
 
 use crate::pass::PassError;
 use crate::pass::algorithm::MapKind;
 use crate::pass::camera::{CameraOptions, shade_config};
-use crate::pass::occluders::silhouette_map;
+use crate::pass::occluders::{SilReader, SilTexels};
 use crate::truth::cause::{Cause, Judge, Judged, Rays, Receiver, Sight, Taps};
 use crate::truth::metrics::{Attribution, Fields, Footprints, Metrics, Verdict, compare_with};
 use crate::truth::reference::{PixelTruth, Reference, surface_point};
-use crate::world::occluders::Occluders;
 use crate::world::scene::{LightSource, Scene};
 
 /// What a render's judge reads: the scene, the visibility it shaded (ids
@@ -32,11 +31,33 @@ pub(crate) struct PassInputs<'a, F: DepthFormat> {
     pub view: Option<&'a MapView<'a, F>>,
     /// The camera pass's options.
     pub options: &'a CameraOptions,
-    /// The map the shadow unit reads (a depth map, or a silhouette map over it).
-    pub kind: MapKind,
-    /// The scene's occluders, when they are at hand: a silhouette map's
-    /// judge draws the map again from them (from the scene otherwise).
-    pub occluders: Option<&'a Occluders>,
+    /// What the shadow unit read.
+    pub source: ShadowSource<'a>,
+}
+
+/// What a camera pass's shadow unit read, for its judge to read the same.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum ShadowSource<'a> {
+    /// The depth map, through the map's own unit.
+    Map,
+    /// Shadow volumes in the stencil: no map.
+    Volumes,
+    /// A silhouette map over the depth map, the texels the shading read
+    /// (drawn once for both).
+    Silhouette(&'a SilTexels),
+}
+
+impl<'a> ShadowSource<'a> {
+    /// What an algorithm drawing `kind` read, given the silhouette map
+    /// its passes drew (which a silhouette algorithm always has).
+    #[must_use]
+    pub(crate) fn of(kind: MapKind, silhouette: Option<&'a SilTexels>) -> Self {
+        match (kind, silhouette) {
+            (MapKind::Volumes, _) => Self::Volumes,
+            (MapKind::Silhouette { .. }, Some(texels)) => Self::Silhouette(texels),
+            _ => Self::Map,
+        }
+    }
 }
 
 /// The render's metrics and verdicts, each wrong pixel judged by replaying
@@ -69,51 +90,42 @@ fn volume_cause(fields: &Fields, k: usize, dark: bool) -> Cause {
 }
 
 /// `then` with the judge of a render's wrong pixels, which replays each
-/// through the shadow unit that shaded it (a silhouette map is drawn again
-/// for it, bit for bit the camera pass's). Shadow volumes compare no
-/// depth: their wrong pixels are judged by the exact boundary alone
-/// ([`volume_cause`]).
+/// through the shadow unit that shaded it (a silhouette map's, over the
+/// texels the shading read). Shadow volumes compare no depth: their wrong
+/// pixels are judged by the exact boundary alone ([`volume_cause`]).
 ///
 /// # Errors
-/// [`PassError`] when the silhouette map cannot be drawn again.
+/// [`PassError`] when the silhouette map does not fit the depth map.
 pub(crate) fn with_judge<F: DepthFormat, T>(
     what: &PassInputs<'_, F>,
     (reference, fields): (&Reference, &Fields),
     then: impl FnOnce(&mut dyn Attribution) -> T,
 ) -> Result<T, PassError> {
-    Ok(match (what.kind, what.view) {
-        (MapKind::Volumes, _) | (_, None) => {
+    Ok(match (what.source, what.view) {
+        (ShadowSource::Volumes, _) | (_, None) => {
             then(&mut |k: usize, _: &Shaded, dark: bool| volume_cause(fields, k, dark))
         }
-        (MapKind::Silhouette { packed: true }, Some(view)) => silhouettes::<Packed, F, T>(what, view, reference, then)?,
-        (MapKind::Silhouette { packed: false }, Some(view)) => {
-            silhouettes::<SilPoint, F, T>(what, view, reference, then)?
+        (ShadowSource::Silhouette(texels), Some(view)) => {
+            texels.read(view.raster(), Judging { what, view, reference, then })?
         }
-        (MapKind::Depth, Some(view)) => then(&mut Replay::new(what, view, &MapUnit, reference)),
+        (ShadowSource::Map, Some(view)) => then(&mut Replay::new(what, view, &MapUnit, reference)),
     })
 }
 
-/// [`with_judge`] with a silhouette unit over the map drawn again.
-fn silhouettes<S: SilStore, F: DepthFormat, T>(
-    what: &PassInputs<'_, F>,
-    view: &MapView<'_, F>,
-    reference: &Reference,
-    then: impl FnOnce(&mut dyn Attribution) -> T,
-) -> Result<T, PassError> {
-    let light = what.scene.light().view_projection();
-    let found;
-    let occluders = match what.occluders {
-        Some(o) => o,
-        None => {
-            found = Occluders::new(what.scene);
-            &found
-        }
-    };
-    let texels = silhouette_map::<S, F, _>(occluders, &light, view, what.options.shadow, &mut umbra_core::NoProbe)?;
-    let raster = view.raster();
-    let sil = SilhouetteMap::view(raster.width(), raster.height(), &texels)?;
-    let unit = SilhouetteUnit(&sil);
-    Ok(then(&mut Replay::new(what, view, &unit, reference)))
+/// `then` with the judge of a silhouette map's render, as [`SilReader`].
+struct Judging<'a, 'v, F: DepthFormat, Then> {
+    what: &'a PassInputs<'a, F>,
+    view: &'a MapView<'v, F>,
+    reference: &'a Reference,
+    then: Then,
+}
+
+impl<F: DepthFormat, T, Then: FnOnce(&mut dyn Attribution) -> T> SilReader for Judging<'_, '_, F, Then> {
+    type Out = T;
+
+    fn read<S: SilStore>(self, unit: &SilhouetteUnit<'_, '_, S>) -> T {
+        (self.then)(&mut Replay::new(self.what, self.view, unit, self.reference))
+    }
 }
 
 /// The wrong pixels' judge: shades each run of them along a row again

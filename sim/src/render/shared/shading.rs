@@ -8,7 +8,7 @@ use glam::Mat4;
 use umbra_core::probe::{Probe, Totals};
 use umbra_core::shade::{MapUnit, PixelResult, ShadeSetup, Shaded, ShadowUnit, SilhouetteUnit};
 use umbra_core::shadow::{MapView, Shadow, TileBounds};
-use umbra_core::silhouette::{Packed, SilPoint, SilStore, SilhouetteMap};
+use umbra_core::silhouette::SilStore;
 use umbra_core::{DepthFormat, RasterConfig};
 
 use super::probes::{Kept, Probes, Reporting, copy_of};
@@ -19,9 +19,9 @@ use crate::cost::report::CostReport;
 use crate::pass::PassError;
 use crate::pass::algorithm::MapKind;
 use crate::pass::camera::{Bands, CameraOptions, map_view, shade};
-use crate::pass::occluders::silhouette_map;
+use crate::pass::occluders::{SilReader, SilTexels};
 use crate::render::camera_options;
-use crate::render::replay::{PassInputs, with_judge};
+use crate::render::replay::{PassInputs, ShadowSource, with_judge};
 use crate::render::{RenderConfig, RenderError};
 use crate::truth::metrics::{Metrics, Sums};
 
@@ -82,12 +82,21 @@ pub(crate) fn render_shared<F: DepthFormat>(
         let view = map_view::<F>(&light.lit[bounds[0]].maps, units.front_culled).ok()?.with_tilings(&tilings).ok()?;
         let seen = &image.seen[seen];
         let seen = (seen.frame.ids(), seen.camera);
+        // The silhouette pass over this shading's map, once: its events
+        // to the light probes, its texels to the shading and the judge.
+        let silhouette = match units.map {
+            MapKind::Silhouette { packed } => {
+                Some(lights.run(Silhouettes { image, view: &view, options: &options, packed }).ok()?)
+            }
+            MapKind::Depth | MapKind::Volumes => None,
+        };
+        let silhouette = silhouette.as_ref();
         if k == 0 {
             // The functional render, its metrics summed band by band as it
             // is shaded, each wrong pixel judged by replaying it; the map's
             // footprint one kept when the pixels' points are its own.
-            let occluders = Some(&image.occluders);
-            let inputs = PassInputs { scene, seen, view: Some(&view), options: &options, kind: units.map, occluders };
+            let source = ShadowSource::of(units.map, silhouette);
+            let inputs = PassInputs { scene, seen, view: Some(&view), options: &options, source };
             let mut sums = Sums::new(pixels.len());
             let kept = image.kept_footprints();
             let mut fit = vec![true; kept.len()];
@@ -100,14 +109,14 @@ pub(crate) fn render_shared<F: DepthFormat>(
                 };
                 let bands = Some(Bands { rows: BAND_ROWS, then: &mut then });
                 let pass = Shading { image, view: &view, options: &options, seen, out: &mut *pixels, setups, bands };
-                pass.run(units.map, &mut lights, &mut cameras, &mut camera_totals)
+                pass.run(silhouette, &mut cameras, &mut camera_totals)
             });
             done.ok()?.ok()?;
             let footprints = image.footprints(pixels, kept.iter().zip(fit).find_map(|(f, fits)| fits.then_some(f)));
             metrics = Some(sums.finish(pixels, image.truth, &image.fields, Some(&footprints)).0);
         } else {
             let pass = Shading { image, view: &view, options: &options, seen, out: &mut *others, setups, bands: None };
-            pass.run(units.map, &mut lights, &mut cameras, &mut umbra_core::NoProbe).ok()?;
+            pass.run(silhouette, &mut cameras, &mut umbra_core::NoProbe).ok()?;
         }
         let names = (image.scene.name.as_str(), image.counts);
         for ((i, l), (_, c)) in lights.into_kept().into_iter().zip(cameras.into_kept()) {
@@ -172,20 +181,21 @@ struct Shading<'p, 'v, F: DepthFormat, R> {
 }
 
 impl<F: DepthFormat, R: PixelResult> Shading<'_, '_, F, R> {
-    /// The silhouette pass, when the algorithm has one (its events to the
-    /// light probes), then the shading (its events to the camera probes and
-    /// to `also`).
+    /// The shading through the silhouette unit over `silhouette`, when
+    /// the algorithm drew one, or the map's own unit: its events to the
+    /// camera probes and to `also`.
     fn run<P: Probe>(
         self,
-        map: MapKind,
-        lights: &mut Probes,
+        silhouette: Option<&SilTexels>,
         cameras: &mut Probes,
         also: &mut P,
     ) -> Result<(), RenderError> {
-        match map {
-            MapKind::Silhouette { packed: true } => self.silhouette::<Packed, P>(lights, cameras, also),
-            MapKind::Silhouette { packed: false } => self.silhouette::<SilPoint, P>(lights, cameras, also),
-            MapKind::Depth | MapKind::Volumes => self.tallied(&MapUnit, cameras, also),
+        match silhouette {
+            Some(texels) => {
+                let raster = *self.view.raster();
+                texels.read(&raster, Tallied { shading: self, cameras, also }).map_err(PassError::from)?
+            }
+            None => self.tallied(&MapUnit, cameras, also),
         }
     }
 
@@ -206,33 +216,39 @@ impl<F: DepthFormat, R: PixelResult> Shading<'_, '_, F, R> {
         cameras.absorb(&tally.closed());
         Ok(())
     }
-
-    fn silhouette<S: SilStore, P: Probe>(
-        self,
-        lights: &mut Probes,
-        cameras: &mut Probes,
-        also: &mut P,
-    ) -> Result<(), RenderError> {
-        let texels = lights.run(Silhouettes::<S, F, R> { shading: &self, store: core::marker::PhantomData })?;
-        let raster = self.view.raster();
-        let sil = SilhouetteMap::view(raster.width(), raster.height(), &texels).map_err(PassError::from)?;
-        self.tallied(&SilhouetteUnit(&sil), cameras, also)
-    }
 }
 
 /// The silhouette pass over a shading's map, as [`Reporting`].
-struct Silhouettes<'s, 'p, 'v, S, F: DepthFormat, R> {
-    shading: &'s Shading<'p, 'v, F, R>,
-    store: core::marker::PhantomData<S>,
+struct Silhouettes<'p, 'v, F: DepthFormat> {
+    image: &'p ImageShare<'p>,
+    view: &'p MapView<'v, F>,
+    options: &'p CameraOptions,
+    packed: bool,
 }
 
-impl<S: SilStore, F: DepthFormat, R> Reporting for Silhouettes<'_, '_, '_, S, F, R> {
-    type Out = Result<Vec<S>, RenderError>;
+impl<F: DepthFormat> Reporting for Silhouettes<'_, '_, F> {
+    type Out = Result<SilTexels, RenderError>;
 
     fn run<P: Probe>(self, probe: &mut P) -> Self::Out {
-        let Shading { image, view, options, .. } = self.shading;
-        let light = image.scene.light().view_projection();
-        Ok(silhouette_map::<S, F, _>(&image.occluders, &light, view, options.shadow, probe).map_err(PassError::from)?)
+        let light = self.image.scene.light().view_projection();
+        let shadow = self.options.shadow;
+        Ok(SilTexels::draw(self.packed, &self.image.occluders, &light, self.view, shadow, probe)
+            .map_err(PassError::from)?)
+    }
+}
+
+/// A shading through a silhouette unit, tallied, as [`SilReader`].
+struct Tallied<'s, 'p, 'v, F: DepthFormat, R, P> {
+    shading: Shading<'p, 'v, F, R>,
+    cameras: &'s mut Probes,
+    also: &'s mut P,
+}
+
+impl<F: DepthFormat, R: PixelResult, P: Probe> SilReader for Tallied<'_, '_, '_, F, R, P> {
+    type Out = Result<(), RenderError>;
+
+    fn read<S: SilStore>(self, unit: &SilhouetteUnit<'_, '_, S>) -> Self::Out {
+        self.shading.tallied(unit, self.cameras, self.also)
     }
 }
 
