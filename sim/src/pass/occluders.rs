@@ -23,7 +23,7 @@ fn clip(m: &Mat4, p: Vec3) -> ClipVertex {
 ///
 /// # Errors
 /// [`ConfigError`] when `map` is unusable.
-pub(crate) fn silhouette_map<S: SilStore, F: DepthFormat, P: Probe>(
+fn silhouette_map<S: SilStore, F: DepthFormat, P: Probe>(
     occluders: &Occluders,
     light: &Mat4,
     map: &MapView<'_, F>,
