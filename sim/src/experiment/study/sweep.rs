@@ -169,10 +169,15 @@ impl Spec {
         // point on the algorithm axis at most).
         let tilings = crate::render::shared::tilings(&self.archs) as u64;
         let texels = u64::from(map) * u64::from(map);
-        let shares = crate::render::shared::image_bytes(pixels, tilings).saturating_add(
-            crate::render::shared::light_bytes(texels, tilings).saturating_mul(self.variants.len() as u64),
+        let casting = self.scenes.iter().map(|s| s.lights.len().max(1) as u64).max().unwrap_or(1);
+        let shares = crate::render::shared::image_bytes(pixels, tilings, casting).saturating_add(
+            crate::render::shared::light_bytes(texels, tilings, casting).saturating_mul(self.variants.len() as u64),
         );
-        let fixed = Footprint::render(0, 0, held).saturating_add(reference).saturating_add(shares);
+        // A scene of several lights is held once more for each light, as
+        // that light alone lights it.
+        let lit =
+            if casting > 1 { (Footprint::render(0, 0, most) - Footprint::BASE).saturating_mul(casting) } else { 0 };
+        let fixed = Footprint::render(0, 0, held).saturating_add(reference).saturating_add(shares).saturating_add(lit);
         let room = self.limits.max_memory.saturating_sub(fixed) / render.max(1);
         if room == 0 {
             self.limits

@@ -1,4 +1,4 @@
-//! The light pass, drawn once per tiling for every configuration of one
+//! A light's pass, drawn once per tiling for every configuration of one
 //! [`LightKey`](super::LightKey).
 
 use umbra_core::probe::{Probe, Totals};
@@ -28,9 +28,9 @@ pub(super) struct Lit<T> {
     pub(super) maps: LightMaps<T>,
 }
 
-/// What the configurations with one [`LightKey`](super::LightKey) share: a
-/// light pass per tiling of the architectures (and the default one), each
-/// architecture's light probe as its pass left it.
+/// What the configurations with one [`LightKey`](super::LightKey) share
+/// of one light: its pass per tiling of the architectures (and the default
+/// one), each architecture's light probe as its pass left it.
 #[derive(Debug)]
 pub(crate) struct LightShare<T> {
     /// The default tiling's first.
@@ -38,8 +38,6 @@ pub(crate) struct LightShare<T> {
     /// For each architecture that [`shares`](super::shares), its entry in `lit`.
     pub(super) lit_by: Vec<Option<usize>>,
     pub(super) probes: Vec<(usize, Kept)>,
-    /// Triangles the default pass set up (none: the light sees nothing).
-    pub(super) setups: u64,
 }
 
 /// Whether two maps shade alike: the shadow unit reads their texels and
@@ -76,12 +74,17 @@ impl<F: DepthFormat> Reporting for Pass<'_, F> {
 }
 
 impl<T: umbra_core::depth::Texel> LightShare<T> {
-    /// The light passes of `cfg` (any configuration of its key) in format
-    /// `F`: `None` when one cannot run, for each configuration to render
-    /// (and fail) on its own.
+    /// The passes of light `light` of the scene (its index among the
+    /// shadow-casting lights) for `cfg` (any configuration of its key) in
+    /// format `F`: `None` when one cannot run or the light sees nothing,
+    /// for each configuration to render (and fail) on its own.
     #[must_use]
-    pub(crate) fn new<F: DepthFormat<Texel = T>>(image: &ImageShare<'_>, cfg: &RenderConfig) -> Option<Self> {
-        let scene = image.scene;
+    pub(crate) fn new<F: DepthFormat<Texel = T>>(
+        image: &ImageShare<'_>,
+        cfg: &RenderConfig,
+        light: usize,
+    ) -> Option<Self> {
+        let scene: &crate::world::scene::Scene = &image.lights.get(light)?.scene;
         let units = cfg.algorithm.units::<F>(cfg.bias);
         let (shapes, lit_by) = assign(image.archs, (Tiling::DEFAULT, false), |a: &Arch| {
             let s = shape(a);
@@ -90,7 +93,7 @@ impl<T: umbra_core::depth::Texel> LightShare<T> {
         let draws = scene.draws_culled(scene.light().view_projection(), |solid| units.cull(solid, cfg.culling));
         let (mut lit, mut kept, mut setups) = (Vec::<Lit<T>>::new(), Vec::new(), 0);
         for (k, &(tiling, detail)) in shapes.iter().enumerate() {
-            let checked = cfg.check(scene, &image.limits).ok()?.targets(tiling.tile).ok()?;
+            let checked = cfg.check(image.scene, &image.limits).ok()?.targets(tiling.tile).ok()?;
             let mut probes = Probes::default();
             for (i, a) in image.archs.iter().enumerate().filter(|&(i, _)| lit_by[i] == Some(k)) {
                 let pass = (PassKind::Light, checked.map);
@@ -115,6 +118,6 @@ impl<T: umbra_core::depth::Texel> LightShare<T> {
             lit.push(Lit { class, texels, maps });
         }
         kept.sort_by_key(|(i, _)| *i);
-        Some(Self { lit, lit_by, probes: kept, setups })
+        (setups > 0).then_some(Self { lit, lit_by, probes: kept })
     }
 }

@@ -7,17 +7,21 @@
 //!   architecture's tiling — never the algorithm or the map — so it is drawn
 //!   once per tiling ([`ImageShare`]), and each architecture's camera probe is
 //!   kept as the visibility left it, for every configuration to continue;
-//! * the **light pass** reads the scene, the depth unit and the culling,
-//!   the depth format, the map side and the tiling — never the filter, the
-//!   shadow test or its bias — so it is drawn once per tiling for every
-//!   configuration with the same [`LightKey`] ([`LightShare`]), each
-//!   architecture's light probe kept as it left it;
-//! * the **shading** reads the visible ids, the map's texels and its tiles'
-//!   bounds (lookup culling): it runs once per configuration for each
-//!   distinct pair of them, feeding every architecture that drew that pair
-//!   at once (pixel coordinates, not the tiling, place its events);
-//! * the **reference's** boundaries and distance fields (`Fields`) are
-//!   worked out once per scene and image.
+//! * each light's **light pass** reads the scene as that light lights it,
+//!   the depth unit and the culling, the depth format, the map side and
+//!   the tiling — never the filter, the shadow test or its bias — so it is
+//!   drawn once per tiling and light for every configuration with the same
+//!   [`LightKey`] ([`LightShare`]), each architecture's light probe kept as
+//!   it left it;
+//! * the **shading** reads the visible ids, one light's map's texels and
+//!   its tiles' bounds (lookup culling): it runs once per configuration and
+//!   light for each distinct pair of them, feeding every architecture that
+//!   drew that pair at once (pixel coordinates, not the tiling, place its
+//!   events); the lights are shaded in the scene's order after the one
+//!   visibility, each architecture's camera probe told which light's map it
+//!   reads, as a render on its own shades them;
+//! * each light's **reference** and its boundaries and distance fields
+//!   (`Fields`) are worked out once per scene and image.
 //!
 //! A probe continued from a kept copy receives exactly the events, in
 //! exactly the order, that a probe of its own passes would: every report is
@@ -98,20 +102,22 @@ impl LightKey {
     }
 }
 
-/// Bytes an [`ImageShare`] holds beside its reference, at most, for an
-/// image of `pixels` drawn in `tilings` tilings: each tiling's depth and
-/// ids, the reference's fields, and the footprints it keeps (a map
+/// Bytes an [`ImageShare`] holds beside its references and its scenes,
+/// at most, for an image of `pixels` drawn in `tilings` tilings, shaded
+/// against `lights` lights: each tiling's depth and ids, and for each
+/// light its reference's fields and the footprints it keeps (a map
 /// position of 12 bytes a pixel each).
 #[must_use]
-pub(crate) const fn image_bytes(pixels: u64, tilings: u64) -> u64 {
-    pixels * (8 * tilings + 32 + 12 * seen::KEPT_FOOTPRINTS as u64)
+pub(crate) const fn image_bytes(pixels: u64, tilings: u64, lights: u64) -> u64 {
+    pixels * (8 * tilings + lights * (32 + 12 * seen::KEPT_FOOTPRINTS as u64))
 }
 
-/// Bytes a [`LightShare`] holds, at most, for maps of `texels` texels
-/// drawn in `tilings` tilings: two buffers of 4-byte texels each.
+/// Bytes a key's [`LightShare`]s hold, at most, for maps of `texels`
+/// texels drawn in `tilings` tilings for each of `lights` lights: two
+/// buffers of 4-byte texels each.
 #[must_use]
-pub(crate) const fn light_bytes(texels: u64, tilings: u64) -> u64 {
-    texels * 8 * tilings
+pub(crate) const fn light_bytes(texels: u64, tilings: u64, lights: u64) -> u64 {
+    texels * 8 * tilings * lights
 }
 
 /// The passes a share draws for `archs`, at most: the visibility's

@@ -57,20 +57,30 @@ impl Kept {
         self
     }
 
-    /// The report of a `light` and a `camera` probe, once the passes have run.
+    /// The report of the `lights` probes (one a light) and a `camera`
+    /// probe, once the passes have run: `None` for probes of another kind
+    /// than one another (one architecture's are all of one).
     pub(super) fn report(
         names: (&str, SceneCounts),
         cfg: &RenderConfig,
         config: &str,
-        light: Self,
+        lights: Vec<Self>,
         camera: Self,
-    ) -> CostReport {
-        match (light, camera) {
-            (Self::Plain(l), Self::Plain(c)) => report(names, cfg, config, vec![l], c),
-            (Self::Plain(l), Self::Detail(c)) => report(names, cfg, config, vec![l], c),
-            (Self::Detail(l), Self::Plain(c)) => report(names, cfg, config, vec![l], c),
-            (Self::Detail(l), Self::Detail(c)) => report(names, cfg, config, vec![l], c),
+    ) -> Option<CostReport> {
+        let (mut plain, mut detail) = (Vec::new(), Vec::new());
+        for l in lights {
+            match l {
+                Self::Plain(p) => plain.push(p),
+                Self::Detail(p) => detail.push(p),
+            }
         }
+        Some(match (camera, plain.is_empty(), detail.is_empty()) {
+            (_, false, false) => return None,
+            (Self::Plain(c), _, true) => report(names, cfg, config, plain, c),
+            (Self::Detail(c), _, true) => report(names, cfg, config, plain, c),
+            (Self::Plain(c), true, false) => report(names, cfg, config, detail, c),
+            (Self::Detail(c), true, false) => report(names, cfg, config, detail, c),
+        })
     }
 }
 

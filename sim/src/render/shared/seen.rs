@@ -1,6 +1,9 @@
 //! The camera's visibility, drawn once per tiling for every configuration
-//! of a scene and image.
+//! of a scene and image, and what each of its lights' shadings reads
+//! beside the map: the scene as that light lights it, its exact
+//! reference and the reference's fields.
 
+use std::borrow::Cow;
 use std::sync::{Arc, Mutex};
 
 use glam::Mat4;
@@ -39,14 +42,13 @@ pub(super) struct Seen {
     pub(super) probes: Vec<(usize, Kept)>,
 }
 
-/// What the renders of one scene at one image size share: the reference
-/// with its [`Fields`], a visibility pass per tiling, the scene's counts.
+/// What the renders of one scene at one image size share: a visibility
+/// pass per tiling, the scene's counts, the exact reference's rays and
+/// what each shadow-casting light's shading reads ([`Lighting`]).
 #[derive(Debug)]
 pub(crate) struct ImageShare<'s> {
     pub(super) scene: &'s Scene,
     pub(super) size: (u32, u32),
-    pub(super) truth: &'s [Option<PixelTruth>],
-    pub(super) fields: Fields,
     /// The exact reference's rays, for judging wrong pixels by cause.
     pub(super) reference: Reference,
     pub(super) archs: &'s [Arch],
@@ -56,6 +58,19 @@ pub(crate) struct ImageShare<'s> {
     /// For each architecture that [`shares`](super::shares), its entry in `seen`.
     pub(super) seen_by: Vec<Option<usize>>,
     pub(super) counts: SceneCounts,
+    /// Each shadow-casting light's, in the scene's order.
+    pub(super) lights: Vec<Lighting<'s>>,
+}
+
+/// What the shadings against one light read beside its map: the scene as
+/// that light alone lights it (the scene itself when it has one light),
+/// the light's exact reference with its [`Fields`], its occluders (for a
+/// silhouette map) and the map's footprints kept over renders.
+#[derive(Debug)]
+pub(super) struct Lighting<'s> {
+    pub(super) scene: Cow<'s, Scene>,
+    pub(super) truth: &'s [Option<PixelTruth>],
+    pub(super) fields: Fields,
     pub(super) occluders: Occluders,
     /// The map's footprints over renders of this image, kept for the
     /// configurations whose visible points on the map are the same (at
@@ -85,19 +100,22 @@ impl Reporting for Draw<'_> {
 
 impl<'s> ImageShare<'s> {
     /// The visibility of `scene` at `size` in the default tiling and in
-    /// each tiling of `archs`, and the reference `truth`'s fields: `None`
-    /// when the reference has no pixel to measure or a pass cannot run, for
-    /// each configuration to render (and fail) on its own.
+    /// each tiling of `archs`, and each light's reference of `truths` (one
+    /// a shadow-casting light) with its fields: `None` when a reference
+    /// has no pixel to measure or a pass cannot run, for each
+    /// configuration to render (and fail) on its own.
     #[must_use]
     pub(crate) fn new(
         scene: &'s Scene,
         size: (u32, u32),
-        truth: &'s [Option<PixelTruth>],
+        truths: &'s [Vec<Option<PixelTruth>>],
         archs: &'s [Arch],
         limits: &Limits,
     ) -> Option<Self> {
         let pixels = u64::from(size.0) * u64::from(size.1);
-        if truth.len() as u64 != pixels || !truth.iter().flatten().any(|t| t.faces_light) {
+        let lit = crate::render::lit_scenes(scene);
+        let measured = |t: &[Option<PixelTruth>]| t.len() as u64 == pixels && t.iter().flatten().any(|t| t.faces_light);
+        if truths.len() != lit.len() || !truths.iter().all(|t| measured(t)) {
             return None;
         }
         let (tilings, seen_by) = assign(archs, Tiling::DEFAULT, Arch::tiling);
@@ -125,35 +143,54 @@ impl<'s> ImageShare<'s> {
             pass.class = seen.iter().position(|s| s.frame.ids() == pass.frame.ids()).unwrap_or(pass.class);
             seen.push(pass);
         }
+        let lights = lit
+            .into_iter()
+            .zip(truths)
+            .map(|(lit, truth)| Lighting {
+                occluders: Occluders::new(&lit),
+                scene: lit,
+                truth,
+                fields: Fields::new(truth, size.0),
+                footprints: Mutex::new(Vec::new()),
+            })
+            .collect();
         Some(Self {
             scene,
             size,
-            truth,
-            fields: Fields::new(truth, size.0),
             reference: Reference::of(scene).ok()?,
             archs,
             limits: *limits,
             seen,
             seen_by,
             counts: SceneCounts::of(scene),
-            occluders: Occluders::new(scene),
-            footprints: Mutex::new(Vec::new()),
+            lights,
         })
     }
+}
 
+impl ImageShare<'_> {
+    /// The scene's shadow-casting lights (one for a scene of none).
+    #[must_use]
+    pub(crate) fn lights(&self) -> usize {
+        self.lights.len()
+    }
+}
+
+impl Lighting<'_> {
     /// The footprints kept from earlier configurations of this image.
     pub(super) fn kept_footprints(&self) -> Vec<Arc<Footprints>> {
         self.footprints.lock().map(|k| k.clone()).unwrap_or_default()
     }
 
-    /// The map's footprint over `render`, a render of this image: `fits`,
-    /// one kept that fits it (the same points on the map), or worked out,
-    /// and kept while there is room.
-    pub(super) fn footprints(&self, render: &[Shaded], fits: Option<&Arc<Footprints>>) -> Arc<Footprints> {
+    /// The map's footprint over `render`, a render of this image (`width`
+    /// pixels wide) against this light: `fits`, one kept that fits it (the
+    /// same points on the map), or worked out, and kept while there is
+    /// room.
+    pub(super) fn footprints(&self, render: &[Shaded], width: u32, fits: Option<&Arc<Footprints>>) -> Arc<Footprints> {
         if let Some(f) = fits {
             return Arc::clone(f);
         }
-        let f = Arc::new(Footprints::of(render, self.truth, self.size.0 as usize));
+        let f = Arc::new(Footprints::of(render, self.truth, width as usize));
         if let Ok(mut k) = self.footprints.lock()
             && k.len() < KEPT_FOOTPRINTS
         {

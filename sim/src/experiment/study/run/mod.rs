@@ -104,11 +104,11 @@ fn run_shared<F: DepthFormat>(
     spec: &Spec,
     c: &Config,
     image: &ImageShare<'_>,
-    light: &LightShare<F::Texel>,
+    lights: &[LightShare<F::Texel>],
     scratch: &mut Scratch,
 ) -> Option<Vec<Row>> {
     let cfg = render_config(spec, c);
-    let (metrics, camera, mut costs) = render_shared::<F>(image, light, &cfg, scratch)?;
+    let (metrics, camera, mut costs) = render_shared::<F>(image, lights, &cfg, scratch)?;
     cost_others(&cfg.check(&spec.scenes[c.scene], &spec.limits).ok()?, &spec.archs, &mut costs);
     let costs = costs.into_iter().map(|r| r.unwrap_or_else(|| Err(RenderError::Cost("not costed".into()))));
     Some(rows_of(spec, c, &Ok((RowMetrics::new(&metrics, tangent_share(&camera)), costs.collect()))))
@@ -234,7 +234,7 @@ pub(super) struct Group<'c> {
     /// ([`alike`]; its own when none): only the first is rendered.
     pub(super) first: Vec<usize>,
     /// Whether its configurations share what they can
-    /// ([`crate::render::shared`], which renders scenes of one light).
+    /// ([`crate::render::shared`]).
     pub(super) shared: bool,
 }
 
@@ -253,8 +253,7 @@ pub(super) fn groups<'c>(spec: &Spec, configs: &'c [Config], share: bool) -> Vec
             let first = (0..group.len())
                 .map(|i| keys[i].map_or(i, |k| keys.iter().position(|o| *o == Some(k)).unwrap_or(i)))
                 .collect();
-            let shared = share && spec.scenes[scene].lights.len() <= 1;
-            groups.push(Group { scene, image, configs: group, first, shared });
+            groups.push(Group { scene, image, configs: group, first, shared: share });
         }
     }
     groups
@@ -279,9 +278,7 @@ fn run_with(spec: &Spec, shard: Shard, progress: &ProgressBar, share: bool) -> R
         let rendered: Vec<&Config> = (0..group.len()).filter(|&i| first[i] == i).map(|i| group[i]).collect();
         let [w, h] = spec.images[g.image];
         let shared = match &truth {
-            Ok(t) if g.shared => {
-                t.first().and_then(|t| ImageShare::new(&spec.scenes[g.scene], (w, h), t, &spec.archs, &spec.limits))
-            }
+            Ok(t) if g.shared => ImageShare::new(&spec.scenes[g.scene], (w, h), t, &spec.archs, &spec.limits),
             _ => None,
         };
         // The configurations that render on their own (shadow volumes,
@@ -378,13 +375,15 @@ fn blocks<'c>(
 }
 
 /// The light passes of `configs` (of one format `F` and map side), one
-/// share per [`LightKey`], drawn in parallel: `None` for a key whose pass
-/// cannot run (its configurations render on their own).
+/// share per [`LightKey`] and shadow-casting light, drawn in parallel:
+/// `None` for a key one of whose passes cannot run (its configurations
+/// render on their own).
+#[allow(clippy::type_complexity, reason = "a key and its lights' shares")]
 fn light_shares<F: DepthFormat>(
     spec: &Spec,
     image: &ImageShare<'_>,
     configs: &[&Config],
-) -> Vec<(LightKey, Option<LightShare<F::Texel>>)> {
+) -> Vec<(LightKey, Option<Vec<LightShare<F::Texel>>>)> {
     let mut keys: Vec<(LightKey, RenderConfig)> = Vec::new();
     for c in configs {
         let cfg = render_config(spec, c);
@@ -392,7 +391,17 @@ fn light_shares<F: DepthFormat>(
             keys.push((k, cfg));
         }
     }
-    keys.into_par_iter().map(|(k, cfg)| (k, LightShare::new::<F>(image, &cfg))).collect()
+    let lights = image.lights();
+    let passes: Vec<(usize, usize)> = (0..keys.len()).flat_map(|k| (0..lights).map(move |l| (k, l))).collect();
+    let drawn: Vec<Option<LightShare<F::Texel>>> =
+        passes.into_par_iter().map(|(k, l)| LightShare::new::<F>(image, &keys[k].1, l)).collect();
+    let mut drawn = drawn.into_iter();
+    keys.into_iter()
+        .map(|(k, _)| {
+            let mine: Vec<_> = drawn.by_ref().take(lights).collect();
+            (k, mine.into_iter().collect())
+        })
+        .collect()
 }
 
 /// `each` over `configs` in parallel, at most `at_once` at a time (all at

@@ -36,27 +36,36 @@ pub(super) fn variants() -> Vec<Variant> {
     ]
 }
 
-/// Each configuration rendered from its shares gives, on every bundled
-/// architecture that shares (all but the R300, which shades per fragment),
-/// the metrics and the cost report of a render of its own passes; the
-/// R300 is left to be costed on its own. If a share handed a probe the
-/// wrong events (a map of the wrong tiling, a camera probe that had not
-/// seen the visibility, the wrong filter's reading), a report would differ.
-#[test]
+/// `table-and-sphere` with a second spot light, from the other side and
+/// higher: a scene of two shadow-casting lights.
+fn two_lights() -> Scene {
+    let scene = Scene::open("table-and-sphere", &Limits::DEFAULT).expect("bundled");
+    let other = scene.clone().with_light_from(glam::Vec3::new(-5.0, 7.0, 4.0)).expect("outside the scene");
+    let mut two = scene;
+    two.lights.push(other.lights[0]);
+    two
+}
+
+/// Each configuration of `variants` in `formats` at each map side and
+/// filter of `maps`, rendered from its shares of `scene` at 80×45, gives
+/// on every bundled architecture that shares (all but the R300, which
+/// shades per fragment) the frame's metrics and the cost report of a
+/// render of its own passes; the R300 is left to be costed on its own.
+/// The reports compared.
 #[allow(clippy::needless_update, reason = "a parameter the study does not vary takes its default")]
-fn a_shared_render_is_its_own_render() {
+fn compare_shared(scene: &Scene, variants: &[Variant], formats: &[DepthFormatKind], maps: &[(u32, Filter)]) -> usize {
     let limits = Limits::DEFAULT;
-    let scene = Scene::open("table-and-sphere", &limits).expect("bundled");
     let archs = Arch::presets().expect("bundled");
     assert!(archs.iter().any(|a| !shares(a)), "an architecture that keeps passes of its own");
     let (w, h) = (80, 45);
-    let t = truth(&scene, w, h, 2, &indicatif::ProgressBar::hidden()).expect("a reference");
-    let image = ImageShare::new(&scene, (w, h), &t[0], &archs, &limits).expect("the scene faces the light");
+    let t = truth(scene, w, h, 2, &indicatif::ProgressBar::hidden()).expect("a reference");
+    assert_eq!(t.len(), scene.lights.len(), "a reference a light");
+    let image = ImageShare::new(scene, (w, h), &t, &archs, &limits).expect("the scene faces its lights");
     let mut scratch = Scratch::default();
     let mut compared = 0;
-    for v in variants() {
-        for format in [DepthFormatKind::D16, DepthFormatKind::D24, DepthFormatKind::F32] {
-            for (map_size, filter) in [(64, Filter::Point), (128, Filter::Bilinear), (128, jittered(4))] {
+    for v in variants {
+        for &format in formats {
+            for &(map_size, filter) in maps {
                 let cfg = RenderConfig {
                     algorithm: v.algorithm,
                     format,
@@ -71,7 +80,7 @@ fn a_shared_render_is_its_own_render() {
                     ..RenderConfig::DEFAULT
                 };
                 let (own, own_costs) = cfg
-                    .check(&scene, &limits)
+                    .check(scene, &limits)
                     .and_then(|job| render_costed(&job, TruthSource::Given(t.clone()), &archs))
                     .expect("renders");
                 let Some(_) = LightKey::of(&cfg) else {
@@ -79,10 +88,12 @@ fn a_shared_render_is_its_own_render() {
                     continue;
                 };
                 let (metrics, _, costs) = with_format!(format, F => {
-                    let light = LightShare::new::<F>(&image, &cfg).expect("the light pass runs");
-                    render_shared::<F>(&image, &light, &cfg, &mut scratch).expect("a shared render")
+                    let lights: Vec<LightShare<_>> = (0..scene.lights.len())
+                        .map(|l| LightShare::new::<F>(&image, &cfg, l).expect("the light pass runs"))
+                        .collect();
+                    render_shared::<F>(&image, &lights, &cfg, &mut scratch).expect("a shared render")
                 });
-                assert_eq!(metrics, own.metrics, "{}", cfg.describe());
+                assert_eq!(metrics, own.frame_metrics(), "{}", cfg.describe());
                 for ((a, shared), own) in archs.iter().zip(&costs).zip(&own_costs) {
                     let own = serde_json::to_string(own.as_ref().expect("costed")).expect("serialises");
                     match shared {
@@ -97,8 +108,42 @@ fn a_shared_render_is_its_own_render() {
             }
         }
     }
+    compared
+}
+
+/// Every algorithm, format and a point filter, a bilinear one and a
+/// jittered one, on a scene of one light. If a share handed a probe the
+/// wrong events (a map of the wrong tiling, a camera probe that had not
+/// seen the visibility, the wrong filter's reading), a report would differ.
+#[test]
+fn a_shared_render_is_its_own_render() {
+    let scene = Scene::open("table-and-sphere", &Limits::DEFAULT).expect("bundled");
+    let formats = [DepthFormatKind::D16, DepthFormatKind::D24, DepthFormatKind::F32];
+    let maps = [(64, Filter::Point), (128, Filter::Bilinear), (128, jittered(4))];
     // 11 algorithms with maps × 3 formats × 3 maps, on the five that share.
-    assert_eq!(compared, 11 * 3 * 3 * 5);
+    assert_eq!(compare_shared(&scene, &variants(), &formats, &maps), 11 * 3 * 3 * 5);
+}
+
+/// The same of a scene of two lights: each light's pass shared, the
+/// camera probes told which light's map they read before each light's
+/// shading, the frame's metrics from the lights' parts. If the second
+/// light's shading read the first's map or reference, or an
+/// architecture's report lost a light's pass, a report or the metrics
+/// would differ.
+#[test]
+fn a_shared_render_of_two_lights_is_its_own_render() {
+    let scene = two_lights();
+    assert_eq!(scene.lights.len(), 2);
+    let variants: Vec<Variant> = variants()
+        .into_iter()
+        .filter(|v| {
+            matches!(v.algorithm, Algorithm::First | Algorithm::Dual { .. } | Algorithm::Silhouette { packed: true })
+        })
+        .collect();
+    let maps = [(64, Filter::Point), (128, jittered(4))];
+    // 5 variants (first depth at two biases, two dual depths, the packed
+    // silhouette map) × 2 maps, on the five that share.
+    assert_eq!(compare_shared(&scene, &variants, &[DepthFormatKind::D16], &maps), 5 * 2 * 5);
 }
 
 /// A scratch folder of this test process for `name`, removed when dropped.
@@ -121,11 +166,15 @@ fn outputs(d: &Path) -> Vec<(String, Vec<u8>)> {
 /// A study run from its shares writes every file byte for byte as the run
 /// that renders each configuration on its own passes: every algorithm,
 /// two formats, two map sides (one beyond the limits: its own skipped
-/// row), two filters, every bundled architecture.
+/// row), two filters, every bundled architecture, on a scene of one light
+/// and one of two.
 #[test]
 fn a_shared_study_writes_the_unshared_files() {
     let limits = Limits::DEFAULT;
-    let scenes = study::load_scenes(&["weiskopf-l"], &limits).expect("bundled");
+    let mut scenes = study::load_scenes(&["weiskopf-l"], &limits).expect("bundled");
+    let mut two = two_lights();
+    two.name = "two-lights".into();
+    scenes.push(two);
     let mut spec = Spec::quick(scenes);
     spec.variants = variants();
     spec.formats = vec![DepthFormatKind::D16, DepthFormatKind::F32];
@@ -139,7 +188,7 @@ fn a_shared_study_writes_the_unshared_files() {
     let hidden = indicatif::ProgressBar::hidden();
     let shared = study::run(&spec, Shard::ALL, &hidden).expect("runs");
     let unshared = study::run_unshared(&spec, Shard::ALL, &hidden).expect("runs");
-    assert_eq!(shared.len(), 12 * 2 * 2 * 2 * spec.archs.len());
+    assert_eq!(shared.len(), 2 * 12 * 2 * 2 * 2 * spec.archs.len());
     assert!(shared.iter().any(|r| r.reason.contains("max_map_side")), "a map beyond the limits is skipped");
     let (a, b) = (dir("shared"), dir("unshared"));
     study::write_run(&a, &shared, &Manifest::new(&spec, Shard::ALL, shared.len())).expect("write");
