@@ -291,3 +291,39 @@ pub struct TexelRead {
     /// Row of the texel.
     pub y: u32,
 }
+
+/// A rectangle of the map's texels read by the shadow unit at once (a box
+/// filter's footprint, all on the map): columns `x0..x1` of rows `y0..y1`,
+/// each texel's `buffers` in turn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct TexelRect {
+    /// First column.
+    pub x0: u32,
+    /// First row.
+    pub y0: u32,
+    /// One past the last column.
+    pub x1: u32,
+    /// One past the last row.
+    pub y1: u32,
+    /// The buffers read at each texel, in order (one or two).
+    pub buffers: [Option<Buffer>; 2],
+}
+
+impl TexelRect {
+    /// Its texels' reads, one at a time, in the order the unit reads them:
+    /// row by row from the top, each row from the left, each texel's
+    /// buffers in turn.
+    pub fn reads(self) -> impl Iterator<Item = TexelRead> {
+        (self.y0..self.y1).flat_map(move |y| {
+            (self.x0..self.x1)
+                .flat_map(move |x| self.buffers.into_iter().flatten().map(move |buffer| TexelRead { buffer, x, y }))
+        })
+    }
+
+    /// How many reads it is: texels times buffers.
+    #[must_use]
+    pub fn count(&self) -> u64 {
+        let side = |a: u32, b: u32| u64::from(b.saturating_sub(a));
+        side(self.x0, self.x1) * side(self.y0, self.y1) * self.buffers.iter().flatten().count() as u64
+    }
+}

@@ -13,7 +13,7 @@
 mod event;
 mod totals;
 
-pub use event::{Buffer, CullLevel, Event, FlushReason, Fragment, RejectReason, Tap, TexelRead};
+pub use event::{Buffer, CullLevel, Event, FlushReason, Fragment, RejectReason, Tap, TexelRead, TexelRect};
 pub use totals::{Counted, Totals};
 
 /// Receives unit events. Every method has an empty default.
@@ -54,6 +54,17 @@ pub trait Probe {
         let _ = read;
     }
 
+    /// A rectangle of texels the shadow unit read (only when
+    /// [`Probe::TEXELS`] is set): by default each of its reads
+    /// ([`TexelRect::reads`]) in turn, as [`Probe::texel_read`]. A probe
+    /// that models memory may take the rectangle at once.
+    #[inline(always)]
+    fn texels_read(&mut self, rect: TexelRect) {
+        for read in rect.reads() {
+            self.texel_read(read);
+        }
+    }
+
     /// A sample the shadow unit compared (only when [`Probe::TAPS`] is set).
     #[inline(always)]
     fn tap(&mut self, tap: Tap) {
@@ -86,6 +97,15 @@ pub trait Probe {
     fn texel_read_for(&mut self, tilings: Tilings, read: TexelRead) {
         if tilings.has(0) {
             self.texel_read(read);
+        }
+    }
+
+    /// A rectangle of texels read for only some tilings: by default each
+    /// of its reads in turn, as [`Probe::texel_read_for`].
+    #[inline(always)]
+    fn texels_read_for(&mut self, tilings: Tilings, rect: TexelRect) {
+        for read in rect.reads() {
+            self.texel_read_for(tilings, read);
         }
     }
 }
@@ -156,6 +176,16 @@ impl<P: Probe + ?Sized> Probe for &mut P {
     fn texel_read_for(&mut self, tilings: Tilings, read: TexelRead) {
         (**self).texel_read_for(tilings, read);
     }
+
+    #[inline(always)]
+    fn texels_read(&mut self, rect: TexelRect) {
+        (**self).texels_read(rect);
+    }
+
+    #[inline(always)]
+    fn texels_read_for(&mut self, tilings: Tilings, rect: TexelRect) {
+        (**self).texels_read_for(tilings, rect);
+    }
 }
 
 /// A probe that sees a shadow unit's events as those of `tilings` only:
@@ -191,5 +221,15 @@ impl<P: Probe> Probe for For<P> {
     #[inline(always)]
     fn texel_read_for(&mut self, tilings: Tilings, read: TexelRead) {
         self.probe.texel_read_for(Tilings(tilings.0 & self.tilings.0), read);
+    }
+
+    #[inline(always)]
+    fn texels_read(&mut self, rect: TexelRect) {
+        self.probe.texels_read_for(self.tilings, rect);
+    }
+
+    #[inline(always)]
+    fn texels_read_for(&mut self, tilings: Tilings, rect: TexelRect) {
+        self.probe.texels_read_for(Tilings(tilings.0 & self.tilings.0), rect);
     }
 }

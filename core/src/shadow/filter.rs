@@ -7,7 +7,7 @@ use super::{
 use crate::budget::MAP_FRACTION_BITS;
 use crate::depth::{DepthFormat, PlaneZ};
 use crate::grid::TileRect;
-use crate::probe::{Event, Probe};
+use crate::probe::{Event, NoProbe, Probe, TexelRect};
 #[cfg(feature = "tilings")]
 use crate::probe::{For, Tilings};
 
@@ -129,7 +129,8 @@ fn read<F: DepthFormat, P: Probe, K: Built>(
 }
 
 /// The commonest filter, inline: a box all on the map against one receiver
-/// depth, already biased and rounded, so that each texel is a compare.
+/// depth, already biased and rounded, so that each texel is a compare; its
+/// texels reported as one rectangle ([`Probe::texels_read`]).
 #[inline]
 fn uniform_box<F: DepthFormat, P: Probe>(
     map: &MapView<'_, F>,
@@ -138,10 +139,15 @@ fn uniform_box<F: DepthFormat, P: Probe>(
     receiver: i64,
     probe: &mut P,
 ) -> Shadow {
+    if P::TEXELS {
+        let mut buffers = map.buffers_read(test);
+        let buffers = [buffers.next(), buffers.next()];
+        probe.texels_read(TexelRect { x0: r.x0, y0: r.y0, x1: r.x1, y1: r.y1, buffers });
+    }
     let mut count = 0u64;
     for y in r.y0..r.y1 {
         for x in r.x0..r.x1 {
-            count += u64::from(map.compare(test, x, y, receiver, probe));
+            count += u64::from(map.compare(test, x, y, receiver, &mut NoProbe));
         }
     }
     let reads = r.area();

@@ -1,7 +1,7 @@
 //! Probes that pass the core's events on: to two probes ([`Tee`]) or to
 //! each of several ([`Fan`]).
 
-use umbra_core::probe::{Event, Fragment, Probe, Tap, TexelRead, Tilings};
+use umbra_core::probe::{Event, Fragment, Probe, Tap, TexelRead, TexelRect, Tilings};
 
 /// Forwards every event, fragment and texel read to two probes.
 #[derive(Clone, Debug, Default)]
@@ -54,6 +54,18 @@ impl<A: Probe, B: Probe> Probe for Tee<A, B> {
         self.0.texel_read_for(tilings, r);
         self.1.texel_read_for(tilings, r);
     }
+
+    #[inline]
+    fn texels_read(&mut self, r: TexelRect) {
+        self.0.texels_read(r);
+        self.1.texels_read(r);
+    }
+
+    #[inline]
+    fn texels_read_for(&mut self, tilings: Tilings, r: TexelRect) {
+        self.0.texels_read_for(tilings, r);
+        self.1.texels_read_for(tilings, r);
+    }
 }
 
 /// Every event to each of several probes, in order.
@@ -99,5 +111,15 @@ impl<P: Probe> Probe for Fan<P> {
     #[inline]
     fn texel_read_for(&mut self, tilings: Tilings, r: TexelRead) {
         self.0.iter_mut().for_each(|p| p.texel_read_for(tilings, r));
+    }
+
+    #[inline]
+    fn texels_read(&mut self, r: TexelRect) {
+        self.0.iter_mut().for_each(|p| p.texels_read(r));
+    }
+
+    #[inline]
+    fn texels_read_for(&mut self, tilings: Tilings, r: TexelRect) {
+        self.0.iter_mut().for_each(|p| p.texels_read_for(tilings, r));
     }
 }

@@ -14,7 +14,7 @@
 //! render's, bit for bit.
 
 use umbra_core::TileId;
-use umbra_core::probe::{Event, Probe, TexelRead, Tilings, Totals};
+use umbra_core::probe::{Event, Probe, TexelRead, TexelRect, Tilings, Totals};
 
 use super::shading::ShadeCounts;
 use super::{ArchProbe, COLOUR_BYTES, Phase, cache};
@@ -290,6 +290,42 @@ impl Tally {
     /// Record a texel read for the tilings in `tilings`: counted, and its
     /// address sent through each map cache.
     fn read(&mut self, tilings: Tilings, r: TexelRead) {
+        if self.addressing.is_none() {
+            return;
+        }
+        self.count_reads(tilings, 1);
+        self.access(tilings, r);
+    }
+
+    /// Record a rectangle of texel reads for the tilings in `tilings`:
+    /// counted at once, and each address sent through the map caches of
+    /// those tilings that have one, in the order the unit read them.
+    fn read_rect(&mut self, tilings: Tilings, rect: TexelRect) {
+        if self.addressing.is_none() {
+            return;
+        }
+        self.count_reads(tilings, rect.count());
+        if self.parts.iter().enumerate().any(|(k, p)| tilings.has(k) && !p.caches.is_empty()) {
+            rect.reads().for_each(|r| self.access(tilings, r));
+        }
+    }
+
+    /// Count `n` reads for the tilings in `tilings`, in the pixel's tile
+    /// once it is settled: once for all of them, or for each of those
+    /// they are theirs alone.
+    fn count_reads(&mut self, tilings: Tilings, n: u64) {
+        if tilings.0 & self.all.0 == self.all.0 {
+            self.common.pending_reads += n;
+        } else {
+            for (_, part) in self.parts.iter_mut().enumerate().filter(|(k, _)| tilings.has(*k)) {
+                part.own.pending_reads += n;
+            }
+        }
+    }
+
+    /// Send texel `r`'s address through the map caches of the tilings in
+    /// `tilings`, counting each cache's misses in the current tile.
+    fn access(&mut self, tilings: Tilings, r: TexelRead) {
         let Some(addressing) = self.addressing.as_ref() else { return };
         // Both depths of a texel are read in turn, and a row's texels one
         // after another: the Morton index of the last, or one step along x.
@@ -301,14 +337,11 @@ impl Tally {
         let address = addressing.address_at(r, self.texel.2);
         let line = address >> self.line_shift;
         let (current, per) = (self.current, self.geometries.len());
-        let every = tilings.0 & self.all.0 == self.all.0;
-        self.common.pending_reads += u64::from(every);
         for k in 0..self.parts.len() {
             if !tilings.has(k) {
                 continue;
             }
             let part = &mut self.parts[k];
-            part.own.pending_reads += u64::from(!every);
             if part.caches.is_empty() {
                 continue;
             }
@@ -393,6 +426,16 @@ impl Probe for Tally {
     #[inline]
     fn texel_read_for(&mut self, tilings: Tilings, r: TexelRead) {
         self.read(tilings, r);
+    }
+
+    #[inline]
+    fn texels_read(&mut self, rect: TexelRect) {
+        self.read_rect(Tilings(u8::MAX), rect);
+    }
+
+    #[inline]
+    fn texels_read_for(&mut self, tilings: Tilings, rect: TexelRect) {
+        self.read_rect(tilings, rect);
     }
 
     fn map_bound(&mut self, light: u16) {
