@@ -7,7 +7,8 @@ use glam::Mat4;
 use umbra_core::front::setup::Setup;
 use umbra_core::raster::bin::Bin;
 use umbra_core::shade::{
-    Normals, PixelResult, ShadeConfig, ShadeInputs, ShadeSetup, Shaded, ShadowUnit, shade_rect, shade_with,
+    Normals, PixelResult, SceneTriangle, ShadeConfig, ShadeInputs, ShadeSetup, Shaded, ShadowUnit, shade_rect,
+    shade_with,
 };
 use umbra_core::shadow::{MapView, Shadow, ShadowConfig};
 use umbra_core::{
@@ -18,6 +19,7 @@ use umbra_core::{
 use super::PassError;
 use crate::base::maps::Tiling;
 use crate::pass::light::{DEFAULT_BIN_CAPACITY, DEFAULT_SETUPS, LightMaps};
+use crate::world::occluders::Lit;
 use crate::world::scene::Scene;
 
 /// What the camera pass produced.
@@ -58,10 +60,19 @@ pub struct Visibility {
     pub raster: RasterConfig,
 }
 
-/// Entries of the shading unit's setup store: more than the triangles a
-/// row of a 1920-pixel image of the bundled scenes crosses, so that each
-/// visible triangle is set up about once a pass.
-pub const SHADE_SETUPS: usize = 256;
+/// Entries of the shading unit's setup store for an image `width` pixels
+/// wide: twice as many as the triangles a row can cross (one a pixel, a
+/// scene of triangles smaller than pixels), a power of two from 256 to
+/// 8192, so that each visible triangle is set up about once a band of
+/// rows however small the triangles. (256 entries, the least, hold more
+/// than the triangles a row of the bundled scenes crosses; a
+/// million-triangle city at 1920×1080 crosses thousands.)
+#[must_use]
+pub const fn shade_setups(width: u32) -> usize {
+    let twice = 2 * width as usize;
+    let pow = if twice <= 256 { 256 } else { twice.next_power_of_two() };
+    if pow > 8192 { 8192 } else { pow }
+}
 
 /// The camera pass's memory, kept from frame to frame as hardware keeps its
 /// framebuffer: the visibility unit's depth, ids, tile states, bins and
@@ -221,7 +232,7 @@ pub fn render_into<F: DepthFormat, U: ShadowUnit<F>, R: PixelResult, P: Probe>(
 ) -> Result<(), PassError> {
     let Visibility { camera, .. } = visibility(frame, scene, (options.width, options.height), options.tiling, probe)?;
     let CameraFrame { ids, shade_setups, .. } = frame;
-    shade(scene, (ids, camera), view, unit, options, probe, out, shade_setups, None)
+    shade((scene, &scene.triangles()), (ids, camera), view, unit, options, probe, out, shade_setups, None)
 }
 
 /// What reads a shading's pixels as the shading writes them: told, after
@@ -236,7 +247,9 @@ pub(crate) struct Bands<'b, R> {
 
 /// The shading unit alone over a visibility pass's `ids` seen through
 /// `camera` (a [`visibility`] pass drawn before, for any number of
-/// shadings: its ids do not depend on the tiling), against `view` with
+/// shadings: its ids do not depend on the tiling) of `scene`, whose
+/// [`Scene::triangles`] are `triangles` (worked out once for every
+/// shading of its frame), against `view` with
 /// shadow unit `unit`, into `out` (row-major) with the setup store
 /// `setups`, reporting every event to `probe`, and `bands` told of each
 /// band of rows as it is written. Its events are those the shading of
@@ -246,7 +259,7 @@ pub(crate) struct Bands<'b, R> {
 /// As [`render`].
 #[allow(clippy::too_many_arguments, reason = "the unit's inputs, its store, its probe and its reader")]
 pub(crate) fn shade<F: DepthFormat, U: ShadowUnit<F>, R: PixelResult, P: Probe>(
-    scene: &Scene,
+    (scene, triangles): (&Scene, &[SceneTriangle]),
     (ids, camera): (&[u32], Mat4),
     view: &MapView<'_, F>,
     unit: &U,
@@ -257,11 +270,10 @@ pub(crate) fn shade<F: DepthFormat, U: ShadowUnit<F>, R: PixelResult, P: Probe>(
     bands: Option<Bands<'_, R>>,
 ) -> Result<(), PassError> {
     let cfg = shade_config(scene, camera, options);
-    let triangles = scene.triangles();
     let source = |id: u32| triangles.get(id as usize).copied();
     // Every pixel is written: the fill only sizes a new frame.
     out.resize(ids.len(), R::BACKGROUND);
-    setups.resize(SHADE_SETUPS, ShadeSetup::EMPTY);
+    setups.resize(shade_setups(cfg.width), ShadeSetup::EMPTY);
     let inputs = ShadeInputs { cfg: &cfg, map: view, scene: &source, unit };
     let Some(Bands { rows, then }) = bands else {
         shade_with(&inputs, ids, out, setups, probe)?;
@@ -316,7 +328,7 @@ pub fn streamed<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
     let mut state = [TileState::cleared(D24::FAR, 0)];
     let mut bins = [Bin::<DEFAULT_BIN_CAPACITY>::new()];
     let mut store = vec![Setup::EMPTY; triangles.len().clamp(1, DEFAULT_SETUPS)];
-    let mut shade_setups = vec![ShadeSetup::EMPTY; SHADE_SETUPS];
+    let mut shade_setups = vec![ShadeSetup::EMPTY; self::shade_setups(width)];
     let buffers = TileBuffers::<D24, DEFAULT_BIN_CAPACITY> {
         depth: &mut depth,
         ids: &mut ids,
@@ -352,7 +364,8 @@ pub fn streamed<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
 }
 
 /// The shading unit over `frame`'s last [`visibility`] pass against
-/// `view` with shadow unit `unit` for `scene`'s light, its pixels as an
+/// `view` with shadow unit `unit` for `scene`'s light (with its
+/// [`Scene::triangles`]), its pixels as an
 /// image (the frame's own pixels left as they were): a camera pass that
 /// tests several lights shades once per light over one visibility pass.
 ///
@@ -360,7 +373,7 @@ pub fn streamed<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
 /// As [`render`].
 pub(crate) fn shade_visible<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
     frame: &mut CameraFrame,
-    scene: &Scene,
+    scene: (&Scene, &[SceneTriangle]),
     view: &MapView<'_, F>,
     unit: &U,
     options: &CameraOptions,
@@ -389,7 +402,8 @@ pub(crate) fn lit_pass<P: Probe>(ids: &[u32], width: u32, probe: &mut P) {
     }
 }
 
-/// The camera pass of depth-fail shadow volumes into `frame`: the
+/// The camera pass of depth-fail shadow volumes into `frame` of a scene
+/// with its [`Scene::triangles`]: the
 /// visibility unit (walking the image as `tiling` says), then, for each
 /// of `lit` (the scene lit by each of its lights in turn), the stencil
 /// unit over every occluder's volume and the lit pass over every covered
@@ -400,18 +414,17 @@ pub(crate) fn lit_pass<P: Probe>(ids: &[u32], width: u32, probe: &mut P) {
 /// [`PassError`] for an unusable size or a malformed mesh.
 pub(crate) fn volumes<P: Probe>(
     frame: &mut CameraFrame,
-    (scene, lit): (&Scene, &[&Scene]),
+    (scene, triangles, lit): (&Scene, &[SceneTriangle], &[Lit<'_>]),
     size: (u32, u32),
     tiling: Tiling,
     probe: &mut P,
 ) -> Result<Vec<CameraImage>, PassError> {
     let vis = visibility(frame, scene, size, tiling, probe)?;
-    let triangles = scene.triangles();
     let mut images = Vec::with_capacity(lit.len());
     for one in lit {
-        let occluders = crate::world::occluders::Occluders::new(one);
+        let (occluders, one) = (one.occluders(), &one.scene);
         let stencil =
-            crate::pass::occluders::stencil::<D24, _>(one, &occluders, &vis.camera, vis.raster, &frame.z, probe)?;
+            crate::pass::occluders::stencil::<D24, _>(one, occluders, &vis.camera, vis.raster, &frame.z, probe)?;
         lit_pass(&frame.ids, size.0, probe);
         let pixels = frame
             .ids

@@ -66,7 +66,9 @@ fn trace(scene: &Scene, cfg: &RenderConfig, arch: &Arch) -> Vec<u64> {
         reading(ArchProbe::new(arch, PassKind::Camera, checked.image, DepthFormatKind::D24, 1), cfg, &units, true);
     let mut recorder = Recorder { probe, addresses: Vec::new() };
     let lights = vec![NoProbe; scene.lights.len().max(1)];
-    passes::<D24, _, _>(scene, cfg, checked, &mut Vec::new(), lights, &mut recorder, arch.tiling()).expect("renders");
+    let lit = crate::world::occluders::Lit::each(scene);
+    passes::<D24, _, _>((scene, &lit), cfg, checked, &mut Vec::new(), lights, &mut recorder, arch.tiling())
+        .expect("renders");
     recorder.addresses
 }
 

@@ -21,7 +21,7 @@ use crate::cost::timing::{ArchProbe, PassKind};
 use crate::input::limits::Limits;
 use crate::pass::algorithm::{MapKind, Units};
 use crate::pass::camera::{CameraFrame, lit_pass, visibility};
-use crate::world::occluders::Occluders;
+use crate::world::occluders::Lit;
 use crate::world::scene::Scene;
 
 /// How an architecture needs the passes drawn: its [`Tiling`], and
@@ -153,9 +153,11 @@ pub(super) struct SceneCounts {
 }
 
 impl SceneCounts {
-    pub(super) fn of(scene: &Scene) -> Self {
+    /// The counts of `scene`, lit by each of its lights as `lit` holds it:
+    /// the silhouette edges are its first light's.
+    pub(super) fn of(scene: &Scene, lit: &[Lit<'_>]) -> Self {
         let triangles: usize = scene.objects.iter().map(|o| o.mesh.triangles.len()).sum();
-        let edges = Occluders::new(scene).silhouette_edges().len();
+        let edges = lit.first().map_or(0, |l| l.occluders().silhouette_edges().len());
         Self { triangles: triangles as u64, silhouette_edges: edges as u64 }
     }
 }
@@ -181,7 +183,7 @@ pub(super) fn report<const L: bool, const C: bool>(
 
 /// The reports of the probes, once the passes have run.
 fn reports<const L: bool, const C: bool>(
-    scene: &Scene,
+    (scene, counts): (&Scene, SceneCounts),
     cfg: &RenderConfig,
     config: &str,
     lights: Vec<Fan<ArchProbe<L>>>,
@@ -190,7 +192,6 @@ fn reports<const L: bool, const C: bool>(
     if camera.is_empty() {
         return Vec::new();
     }
-    let counts = SceneCounts::of(scene);
     // Per light, per architecture: per architecture, per light.
     let mut per_arch: Vec<Vec<ArchProbe<L>>> = camera.iter().map(|_| Vec::with_capacity(lights.len())).collect();
     for Fan(probes) in lights {
@@ -220,7 +221,7 @@ fn reports<const L: bool, const C: bool>(
 /// # Errors
 /// See [`RenderError`].
 pub fn cost(job: &Checked<'_>, arch: &Arch) -> Result<CostReport, RenderError> {
-    cost_group(job, &[arch], true).map(|mut r| r.remove(0))
+    cost_group(job, &Lit::each(job.scene()), &[arch], true).map(|mut r| r.remove(0))
 }
 
 /// The cost of drawing `scene` from its camera at `width × height` without
@@ -246,16 +247,22 @@ pub(crate) fn cost_unshadowed(
         reference_rays: 1,
         ..RenderConfig::DEFAULT
     };
-    cost_group(&cfg.check(scene, limits)?, &[arch], false).map(|mut r| r.remove(0))
+    cost_group(&cfg.check(scene, limits)?, &Lit::each(scene), &[arch], false).map(|mut r| r.remove(0))
 }
 
 /// The cost on `archs`, which share a [`Shape`] (the first's), from one
-/// run of the passes.
-fn cost_group(job: &Checked<'_>, archs: &[&Arch], shadowed: bool) -> Result<Vec<CostReport>, RenderError> {
+/// run of the passes of `job`'s scene lit as `lit` holds it.
+fn cost_group(
+    job: &Checked<'_>,
+    lit: &[Lit<'_>],
+    archs: &[&Arch],
+    shadowed: bool,
+) -> Result<Vec<CostReport>, RenderError> {
     let Some(first) = archs.first() else { return Ok(Vec::new()) };
     let (scene, cfg) = (job.scene(), job.config());
     let Shape { tiling, light_addresses: light_detail, camera_addresses: camera_detail } = shape(first);
     let checked = job.targets(tiling.tile)?;
+    let scene = (scene, lit);
     with_format!(cfg.format, F => match (light_detail, camera_detail) {
         (false, false) => cost_in::<F, false, false>(scene, cfg, checked, archs, shadowed),
         (true, false) => cost_in::<F, true, false>(scene, cfg, checked, archs, shadowed),
@@ -265,7 +272,7 @@ fn cost_group(job: &Checked<'_>, archs: &[&Arch], shadowed: bool) -> Result<Vec<
 }
 
 fn cost_in<F: DepthFormat, const L: bool, const C: bool>(
-    scene: &Scene,
+    (scene, lit): (&Scene, &[Lit<'_>]),
     cfg: &RenderConfig,
     checked: Targets,
     archs: &[&Arch],
@@ -276,7 +283,7 @@ fn cost_in<F: DepthFormat, const L: bool, const C: bool>(
     let drawing = archs.first().map_or(Tiling::DEFAULT, |a| a.tiling());
     let config = if shadowed {
         let frames = &mut Vec::new();
-        light = passes::<F, _, _>(scene, cfg, checked, frames, light, &mut camera, drawing)?.light_probes;
+        light = passes::<F, _, _>((scene, lit), cfg, checked, frames, light, &mut camera, drawing)?.light_probes;
         cfg.describe()
     } else {
         let mut frame = CameraFrame::default();
@@ -285,7 +292,7 @@ fn cost_in<F: DepthFormat, const L: bool, const C: bool>(
         lit_pass(frame.ids(), size.0, &mut camera);
         format!("no shadow, image {}x{}", cfg.width, cfg.height)
     };
-    Ok(reports(scene, cfg, &config, light, camera))
+    Ok(reports((scene, SceneCounts::of(scene, lit)), cfg, &config, light, camera))
 }
 
 /// The render of `cfg` (as [`super::render`]) and its cost on each
@@ -306,17 +313,19 @@ pub fn render_costed(
     let (scene, cfg) = (job.scene(), job.config());
     let checked = job.targets(RasterConfig::DEFAULT_TILE_SIZE)?;
     let shared: Vec<&Arch> = archs.iter().filter(|a| shape(a) == own).collect();
+    let lit = Lit::each(scene);
+    let counts = SceneCounts::of(scene, &lit);
     let (render, costed) = with_format!(cfg.format, F => {
         let (light, mut camera) = probes::<F, false, false>(cfg, checked, (&shared, scene.lights.len()), true);
-        let (render, light) = render_in::<F, _, _>(scene, cfg, checked, truth_from, (light, &mut camera))?;
-        (render, reports(scene, cfg, &cfg.describe(), light, camera))
+        let (render, light) = render_in::<F, _, _>((scene, &lit), cfg, checked, truth_from, (light, &mut camera))?;
+        (render, reports((scene, counts), cfg, &cfg.describe(), light, camera))
     });
     // The shared reports, in the architectures' order.
     let mut costed = costed.into_iter();
     let mut out: Vec<Option<Result<CostReport, RenderError>>> =
         archs.iter().map(|a| if shape(a) == own { costed.next().map(Ok) } else { None }).collect();
     // The other tilings, each group in one run.
-    cost_others(job, archs, &mut out);
+    cost_others((job, &lit), archs, &mut out);
     Ok((render, out.into_iter().map(|r| r.unwrap_or_else(|| Err(RenderError::Cost("not costed".into())))).collect()))
 }
 
@@ -324,7 +333,11 @@ pub fn render_costed(
 /// architectures from one run of the passes (as [`render_costed`] costs
 /// those that do not draw as the render does). A costing that fails is
 /// that architecture's error.
-pub(crate) fn cost_others(job: &Checked<'_>, archs: &[Arch], out: &mut [Option<Result<CostReport, RenderError>>]) {
+pub(crate) fn cost_others(
+    (job, lit): (&Checked<'_>, &[Lit<'_>]),
+    archs: &[Arch],
+    out: &mut [Option<Result<CostReport, RenderError>>],
+) {
     let mut groups: Vec<(Shape, Vec<usize>)> = Vec::new();
     for (k, a) in archs.iter().enumerate().filter(|&(k, _)| out[k].is_none()) {
         match groups.iter_mut().find(|g| g.0 == shape(a)) {
@@ -334,7 +347,7 @@ pub(crate) fn cost_others(job: &Checked<'_>, archs: &[Arch], out: &mut [Option<R
     }
     for (_, members) in groups {
         let group: Vec<&Arch> = members.iter().map(|&k| &archs[k]).collect();
-        match cost_group(job, &group, true) {
+        match cost_group(job, lit, &group, true) {
             Ok(reports) => members.iter().zip(reports).for_each(|(&k, r)| out[k] = Some(Ok(r))),
             Err(e) => {
                 let text = e.to_string();

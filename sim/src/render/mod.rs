@@ -19,8 +19,6 @@ pub mod replay;
 mod request;
 pub(crate) mod shared;
 
-use std::borrow::Cow;
-
 use indicatif::ProgressBar;
 use umbra_core::depth::Texel;
 use umbra_core::shade::{MapUnit, ShadowUnit, SilhouetteUnit};
@@ -47,7 +45,7 @@ use crate::pass::light::{self, DEFAULT_BIN_CAPACITY, LightFrame, LightMaps, Ligh
 use crate::pass::occluders::{SilReader, SilTexels};
 use crate::truth::metrics::Fields;
 use crate::truth::reference::{PixelTruth, Reference, ReferenceError};
-use crate::world::occluders::Occluders;
+use crate::world::occluders::Lit;
 use crate::world::scene::{LightSource, Scene};
 
 /// Why a render failed.
@@ -177,7 +175,8 @@ pub fn render(job: &Checked<'_>, truth_from: TruthSource<'_>) -> Result<Render, 
     let (scene, cfg) = (job.scene(), job.config());
     let checked = job.targets(RasterConfig::DEFAULT_TILE_SIZE)?;
     let none = (vec![umbra_core::NoProbe; scene.lights.len().max(1)], &mut umbra_core::NoProbe);
-    Ok(with_format!(cfg.format, F => render_in::<F, _, _>(scene, cfg, checked, truth_from, none)?.0))
+    let lit = Lit::each(scene);
+    Ok(with_format!(cfg.format, F => render_in::<F, _, _>((scene, &lit), cfg, checked, truth_from, none)?.0))
 }
 
 /// The references `truth_from` names for the render's image, one per
@@ -256,15 +255,6 @@ fn light_sources(scene: &Scene) -> Vec<LightSource> {
     }
 }
 
-/// The scene lit by each of its lights in turn: itself when it has one.
-pub(crate) fn lit_scenes(scene: &Scene) -> Vec<Cow<'_, Scene>> {
-    if scene.lights.len() <= 1 {
-        vec![Cow::Borrowed(scene)]
-    } else {
-        (0..scene.lights.len()).map(|k| Cow::Owned(scene.lit_by(k))).collect()
-    }
-}
-
 /// Tell `probe` that the shadow unit reads light `k`'s map, when the pass
 /// tests more than one of `lights`.
 fn bind<P: Probe>(probe: &mut P, k: usize, lights: usize) {
@@ -293,7 +283,8 @@ pub(crate) fn camera_options(
     })
 }
 
-/// The passes of a render: a light pass per shadow-casting light, each
+/// The passes of a render of `scene`, lit by each of its lights as `lit`
+/// holds it ([`Lit::each`]): a light pass per shadow-casting light, each
 /// reporting to its own of `light_probes` (one per light) and drawing into
 /// its own of `frames` (with its silhouette pass, for a silhouette map),
 /// then the camera pass: the visibility unit once and the shading unit
@@ -302,7 +293,7 @@ pub(crate) fn camera_options(
 /// light probes, one camera image per light, and each light's silhouette
 /// map (none for other algorithms), for the judge to read.
 pub(super) fn passes<F: DepthFormat, L: Probe, C: Probe>(
-    scene: &Scene,
+    (scene, lit): (&Scene, &[Lit<'_>]),
     cfg: &RenderConfig,
     checked: Targets,
     frames: &mut Vec<LightFrame<F::Texel>>,
@@ -314,18 +305,17 @@ pub(super) fn passes<F: DepthFormat, L: Probe, C: Probe>(
     let light_config = LightPassConfig { raster: checked.map, unit: units.unit, max_z_cull: true };
     let mut camera = CameraFrame::default();
     let size = (checked.image.width(), checked.image.height());
-    let lit = lit_scenes(scene);
-    let lit: Vec<&Scene> = lit.iter().map(AsRef::as_ref).collect();
     debug_assert_eq!(light_probes.len(), lit.len(), "one light probe per light");
+    let triangles = scene.triangles();
     if units.map == MapKind::Volumes {
-        let images = volumes(&mut camera, (scene, &lit), size, tiling, camera_probe)?;
-        return Ok(Passes { light_probes, images, silhouettes: Vec::new() });
+        let images = volumes(&mut camera, (scene, &triangles, lit), size, tiling, camera_probe)?;
+        return Ok(Passes { light_probes, images, silhouettes: Vec::new(), triangles });
     }
     frames.resize_with(lit.len(), LightFrame::new);
     let drawing = LightOptions { per_draw: tiling.per_draw, ..LightOptions::default() };
     let mut views = Vec::with_capacity(lit.len());
     let mut probes = Vec::with_capacity(lit.len());
-    for ((one, frame), probe) in lit.iter().zip(frames.iter_mut()).zip(light_probes) {
+    for ((one, frame), probe) in lit.iter().map(|l| &*l.scene).zip(frames.iter_mut()).zip(light_probes) {
         let draws = one.draws_culled(one.light().view_projection(), |solid| units.cull(solid, cfg.culling));
         let (maps, probe) = light::render::<F, _, DEFAULT_BIN_CAPACITY>(frame, light_config, &draws, drawing, probe)?;
         views.push(map_view::<F>(maps, units.front_culled)?);
@@ -337,23 +327,24 @@ pub(super) fn passes<F: DepthFormat, L: Probe, C: Probe>(
         // Each light's silhouette pass over its map, its events to its
         // light probe (part of the light side).
         for ((one, view), probe) in lit.iter().zip(&views).zip(probes.iter_mut()) {
-            let light = one.light().view_projection();
-            let texels = SilTexels::draw(packed, &Occluders::new(one), &light, view, options.shadow, probe)
+            let light = one.scene.light().view_projection();
+            let texels = SilTexels::draw(packed, one.occluders(), &light, view, options.shadow, probe)
                 .map_err(PassError::from)?;
             silhouettes.push(texels);
         }
     }
     visibility(&mut camera, scene, size, tiling, camera_probe)?;
     let mut images = Vec::with_capacity(lit.len());
-    for (k, (one, view)) in lit.iter().zip(&views).enumerate() {
+    for (k, (one, view)) in lit.iter().map(|l| &*l.scene).zip(&views).enumerate() {
         bind(camera_probe, k, lit.len());
-        let shade = Shade { camera: &mut camera, scene: one, view, options: &options, probe: &mut *camera_probe };
+        let scene = (one, triangles.as_slice());
+        let shade = Shade { camera: &mut camera, scene, view, options: &options, probe: &mut *camera_probe };
         images.push(match silhouettes.get(k) {
             Some(texels) => texels.read(view.raster(), shade).map_err(PassError::from)??,
             None => shade.read(&MapUnit)?,
         });
     }
-    Ok(Passes { light_probes: probes, images, silhouettes })
+    Ok(Passes { light_probes: probes, images, silhouettes, triangles })
 }
 
 /// What a render's passes leave ([`passes`]).
@@ -364,13 +355,15 @@ pub(super) struct Passes<L> {
     pub(super) images: Vec<CameraImage>,
     /// Each light's silhouette map, for an algorithm that draws one.
     pub(super) silhouettes: Vec<SilTexels>,
+    /// The scene's triangles ([`Scene::triangles`]), as the shading read them.
+    pub(super) triangles: Vec<umbra_core::shade::SceneTriangle>,
 }
 
 /// The shading of the visible pixels against one light's map, through the
 /// shadow unit it is given.
 struct Shade<'a, 'v, F: DepthFormat, C> {
     camera: &'a mut CameraFrame,
-    scene: &'a Scene,
+    scene: (&'a Scene, &'a [umbra_core::shade::SceneTriangle]),
     view: &'a MapView<'v, F>,
     options: &'a CameraOptions,
     probe: &'a mut C,
@@ -394,7 +387,7 @@ impl<F: DepthFormat, C: Probe> SilReader for Shade<'_, '_, F, C> {
 /// besides (the architectures costed from the same passes): one per light
 /// for the light passes, one for the camera pass.
 pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
-    scene: &Scene,
+    (scene, lit): (&Scene, &[Lit<'_>]),
     cfg: &RenderConfig,
     checked: Targets,
     truth_from: TruthSource<'_>,
@@ -404,8 +397,8 @@ pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
     let mut camera_events = Counters::new(&checked.image);
     let mut frames = Vec::new();
     let light_probes = light_also.into_iter().map(|also| Tee(Counters::new(&checked.map), also)).collect();
-    let Passes { light_probes: probes, images, silhouettes } = passes::<F, _, _>(
-        scene,
+    let Passes { light_probes: probes, images, silhouettes, triangles } = passes::<F, _, _>(
+        (scene, lit),
         cfg,
         checked,
         &mut frames,
@@ -426,15 +419,15 @@ pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
     let truths = truths_of(cfg, truth_from, (&ids, seen.camera), (&reference, &light_sources(scene)), scene)?;
     let units = cfg.algorithm.units::<F>(cfg.bias);
     let options = camera_options(cfg, &units, (seen.width, seen.height), Tiling::DEFAULT)?;
-    let lit = lit_scenes(scene);
     let mut parts = Vec::with_capacity(images.len());
     for (k, ((image, truth), events)) in images.into_iter().zip(truths).zip(light_events).enumerate() {
         let fields = Fields::new(&truth, image.width);
         let maps = frames.get(k).and_then(LightFrame::maps);
         let view = maps.map(|m| map_view::<F>(m, units.front_culled)).transpose()?;
-        let one = lit.get(k).map_or(scene, AsRef::as_ref);
+        let one = lit.get(k).map_or(scene, |l| &*l.scene);
         let inputs = PassInputs {
             scene: one,
+            triangles: &triangles,
             seen: (&ids, image.camera),
             view: view.as_ref(),
             options: &options,

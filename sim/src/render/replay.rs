@@ -24,6 +24,8 @@ use crate::world::scene::{LightSource, Scene};
 pub(crate) struct PassInputs<'a, F: DepthFormat> {
     /// The scene.
     pub scene: &'a Scene,
+    /// Its [`Scene::triangles`].
+    pub triangles: &'a [SceneTriangle],
     /// The visible triangle of each pixel, and the camera it was seen through.
     pub seen: (&'a [u32], Mat4),
     /// The map the camera pass read (`None` for shadow volumes, which
@@ -136,7 +138,7 @@ struct Replay<'a, F: DepthFormat, U> {
     ids: &'a [u32],
     view: &'a MapView<'a, F>,
     unit: &'a U,
-    triangles: Vec<SceneTriangle>,
+    triangles: &'a [SceneTriangle],
     reference: &'a Reference,
     light: DMat4,
     light_source: LightSource,
@@ -158,7 +160,7 @@ impl<'a, F: DepthFormat, U: ShadowUnit<F>> Replay<'a, F, U> {
             ids: what.seen.0,
             view,
             unit,
-            triangles: what.scene.triangles(),
+            triangles: what.triangles,
             reference,
             light,
             light_source: what.scene.light().source(),
@@ -180,7 +182,7 @@ impl<'a, F: DepthFormat, U: ShadowUnit<F>> Replay<'a, F, U> {
             x1: (k1 - k0 + k0 % width) as u32,
             y1: (k0 / width) as u32 + 1,
         };
-        let triangles = &self.triangles;
+        let triangles = self.triangles;
         let source = |i: u32| triangles.get(i as usize).copied();
         self.taps.clear();
         self.out.clear();

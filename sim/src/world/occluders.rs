@@ -5,7 +5,9 @@
 //! mesh"). Then the two passes that use them: the silhouette map and the
 //! depth-fail shadow volumes.
 
+use std::borrow::Cow;
 use std::collections::HashMap;
+use std::sync::OnceLock;
 
 use glam::Vec3;
 
@@ -26,6 +28,36 @@ pub(crate) struct Occluder {
 pub(crate) struct Occluders {
     /// Every occluder triangle.
     pub triangles: Vec<Occluder>,
+}
+
+/// The scene as one of its shadow-casting lights alone lights it (the
+/// scene itself when it has one light), and its occluders under that
+/// light, worked out once, when first asked for: only the silhouette map
+/// and shadow volumes read them, and every pass of a render (each tiling's,
+/// each configuration's in a study) reads the same.
+#[derive(Debug)]
+pub(crate) struct Lit<'s> {
+    /// The scene with this light alone.
+    pub(crate) scene: Cow<'s, Scene>,
+    occluders: OnceLock<Occluders>,
+}
+
+impl<'s> Lit<'s> {
+    /// The scene lit by each of its shadow-casting lights in turn (by
+    /// [`Scene::light`] when it has none).
+    pub(crate) fn each(scene: &'s Scene) -> Vec<Self> {
+        let lit = |scene| Self { scene, occluders: OnceLock::new() };
+        if scene.lights.len() <= 1 {
+            vec![lit(Cow::Borrowed(scene))]
+        } else {
+            (0..scene.lights.len()).map(|k| lit(Cow::Owned(scene.lit_by(k)))).collect()
+        }
+    }
+
+    /// The occluders of the scene under this light.
+    pub(crate) fn occluders(&self) -> &Occluders {
+        self.occluders.get_or_init(|| Occluders::new(&self.scene))
+    }
 }
 
 /// The bit pattern of a position: edges are matched by exact position, so

@@ -28,6 +28,7 @@ use crate::cost::arch::{Arch, PARAMS, Unit};
 use crate::cost::dram::Purpose;
 use crate::cost::report::CostReport;
 use crate::render::{Checked, RenderError, cost_others};
+use crate::world::occluders::Lit;
 
 /// Keys up to which every coalition is costed; beyond, orders are sampled.
 pub const EXACT_KEYS: usize = 12;
@@ -382,11 +383,12 @@ pub fn attribute(job: &Checked<'_>, a: &Arch, b: &Arch) -> Result<Attribution, R
 /// Every coalition's cost, [`GROUP`] architectures to a grouped costing.
 fn cost_all(job: &Checked<'_>, archs: &BTreeMap<u64, Arch>) -> Result<BTreeMap<u64, Value>, RenderError> {
     let entries: Vec<(&u64, &Arch)> = archs.iter().collect();
+    let lit = Lit::each(job.scene());
     let mut values = BTreeMap::new();
     for chunk in entries.chunks(GROUP) {
         let group: Vec<Arch> = chunk.iter().map(|(_, a)| (*a).clone()).collect();
         let mut out: Vec<Option<Result<CostReport, RenderError>>> = group.iter().map(|_| None).collect();
-        cost_others(job, &group, &mut out);
+        cost_others((job, &lit), &group, &mut out);
         for ((m, _), r) in chunk.iter().zip(out) {
             let r = r.unwrap_or_else(|| Err(RenderError::Cost("not costed".into())))?;
             values.insert(**m, Value::of(&r));

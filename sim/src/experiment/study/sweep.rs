@@ -170,7 +170,7 @@ impl Spec {
         let tilings = crate::render::shared::tilings(&self.archs) as u64;
         let texels = u64::from(map) * u64::from(map);
         let casting = self.scenes.iter().map(|s| s.lights.len().max(1) as u64).max().unwrap_or(1);
-        let shares = crate::render::shared::image_bytes(pixels, tilings, casting).saturating_add(
+        let shares = crate::render::shared::image_bytes(pixels, tilings, (most, casting)).saturating_add(
             crate::render::shared::light_bytes(texels, tilings, casting).saturating_mul(self.variants.len() as u64),
         );
         // A scene of several lights is held once more for each light, as

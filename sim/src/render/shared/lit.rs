@@ -84,7 +84,7 @@ impl<T: umbra_core::depth::Texel> LightShare<T> {
         cfg: &RenderConfig,
         light: usize,
     ) -> Option<Self> {
-        let scene: &crate::world::scene::Scene = &image.lights.get(light)?.scene;
+        let scene: &crate::world::scene::Scene = &image.lit.get(light)?.scene;
         let units = cfg.algorithm.units::<F>(cfg.bias);
         let (shapes, lit_by) = assign(image.archs, (Tiling::DEFAULT, false), |a: &Arch| {
             let s = shape(a);

@@ -103,13 +103,15 @@ impl LightKey {
 }
 
 /// Bytes an [`ImageShare`] holds beside its references and its scenes,
-/// at most, for an image of `pixels` drawn in `tilings` tilings, shaded
-/// against `lights` lights: each tiling's depth and ids, and for each
-/// light its reference's fields and the footprints it keeps (a map
-/// position of 12 bytes a pixel each).
+/// at most, for an image of `pixels` drawn in `tilings` tilings of a scene
+/// of `triangles` triangles, shaded against `lights` lights: each
+/// tiling's depth and ids, the triangles as the shading reads them, and
+/// for each light its reference's fields and the footprints it keeps (a
+/// map position of 12 bytes a pixel each).
 #[must_use]
-pub(crate) const fn image_bytes(pixels: u64, tilings: u64, lights: u64) -> u64 {
-    pixels * (8 * tilings + lights * (32 + 12 * seen::KEPT_FOOTPRINTS as u64))
+pub(crate) const fn image_bytes(pixels: u64, tilings: u64, (triangles, lights): (u64, u64)) -> u64 {
+    let triangle = core::mem::size_of::<umbra_core::shade::SceneTriangle>() as u64;
+    pixels * (8 * tilings + lights * (32 + 12 * seen::KEPT_FOOTPRINTS as u64)) + triangles * triangle
 }
 
 /// Bytes a key's [`LightShare`]s hold, at most, for maps of `texels`

@@ -3,13 +3,12 @@
 //! beside the map: the scene as that light lights it, its exact
 //! reference and the reference's fields.
 
-use std::borrow::Cow;
 use std::sync::{Arc, Mutex};
 
 use glam::Mat4;
 use rayon::prelude::*;
 use umbra_core::probe::{Probe, Totals};
-use umbra_core::shade::Shaded;
+use umbra_core::shade::{SceneTriangle, Shaded};
 use umbra_core::{DepthFormatKind, RasterConfig};
 
 use super::assign;
@@ -24,7 +23,7 @@ use crate::pass::camera::{CameraFrame, Visibility, visibility};
 use crate::render::costed::{SceneCounts, shape};
 use crate::truth::metrics::{Fields, Footprints};
 use crate::truth::reference::{PixelTruth, Reference};
-use crate::world::occluders::Occluders;
+use crate::world::occluders::Lit;
 use crate::world::scene::Scene;
 
 /// One visibility pass, in one tiling, and what it left.
@@ -58,20 +57,22 @@ pub(crate) struct ImageShare<'s> {
     /// For each architecture that [`shares`](super::shares), its entry in `seen`.
     pub(super) seen_by: Vec<Option<usize>>,
     pub(super) counts: SceneCounts,
-    /// Each shadow-casting light's, in the scene's order.
+    /// The scene's triangles ([`Scene::triangles`]), for every shading.
+    pub(super) triangles: Vec<SceneTriangle>,
+    /// The scene as each shadow-casting light lights it, in the scene's
+    /// order.
+    pub(super) lit: Vec<Lit<'s>>,
+    /// What each light's shadings read beside its map, in the same order.
     pub(super) lights: Vec<Lighting<'s>>,
 }
 
-/// What the shadings against one light read beside its map: the scene as
-/// that light alone lights it (the scene itself when it has one light),
-/// the light's exact reference with its [`Fields`], its occluders (for a
-/// silhouette map) and the map's footprints kept over renders.
+/// What the shadings against one light read beside its map and the scene
+/// as it lights it: the light's exact reference with its [`Fields`], and
+/// the map's footprints kept over renders.
 #[derive(Debug)]
 pub(super) struct Lighting<'s> {
-    pub(super) scene: Cow<'s, Scene>,
     pub(super) truth: &'s [Option<PixelTruth>],
     pub(super) fields: Fields,
-    pub(super) occluders: Occluders,
     /// The map's footprints over renders of this image, kept for the
     /// configurations whose visible points on the map are the same (at
     /// most [`KEPT_FOOTPRINTS`]: one a map side).
@@ -113,7 +114,7 @@ impl<'s> ImageShare<'s> {
         limits: &Limits,
     ) -> Option<Self> {
         let pixels = u64::from(size.0) * u64::from(size.1);
-        let lit = crate::render::lit_scenes(scene);
+        let lit = Lit::each(scene);
         let measured = |t: &[Option<PixelTruth>]| t.len() as u64 == pixels && t.iter().flatten().any(|t| t.faces_light);
         if truths.len() != lit.len() || !truths.iter().all(|t| measured(t)) {
             return None;
@@ -143,16 +144,9 @@ impl<'s> ImageShare<'s> {
             pass.class = seen.iter().position(|s| s.frame.ids() == pass.frame.ids()).unwrap_or(pass.class);
             seen.push(pass);
         }
-        let lights = lit
-            .into_iter()
-            .zip(truths)
-            .map(|(lit, truth)| Lighting {
-                occluders: Occluders::new(&lit),
-                scene: lit,
-                truth,
-                fields: Fields::new(truth, size.0),
-                footprints: Mutex::new(Vec::new()),
-            })
+        let lights = truths
+            .iter()
+            .map(|truth| Lighting { truth, fields: Fields::new(truth, size.0), footprints: Mutex::new(Vec::new()) })
             .collect();
         Some(Self {
             scene,
@@ -162,17 +156,25 @@ impl<'s> ImageShare<'s> {
             limits: *limits,
             seen,
             seen_by,
-            counts: SceneCounts::of(scene),
+            counts: SceneCounts::of(scene, &lit),
+            triangles: scene.triangles(),
+            lit,
             lights,
         })
     }
 }
 
-impl ImageShare<'_> {
+impl<'s> ImageShare<'s> {
     /// The scene's shadow-casting lights (one for a scene of none).
     #[must_use]
     pub(crate) fn lights(&self) -> usize {
         self.lights.len()
+    }
+
+    /// The scene as each of its shadow-casting lights lights it.
+    #[must_use]
+    pub(crate) fn lit(&self) -> &[Lit<'s>] {
+        &self.lit
     }
 }
 

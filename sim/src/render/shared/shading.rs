@@ -6,7 +6,7 @@ use core::ops::Range;
 
 use glam::Mat4;
 use umbra_core::probe::{Probe, Totals};
-use umbra_core::shade::{MapUnit, PixelResult, ShadeSetup, Shaded, ShadowUnit, SilhouetteUnit};
+use umbra_core::shade::{MapUnit, PixelResult, SceneTriangle, ShadeSetup, Shaded, ShadowUnit, SilhouetteUnit};
 use umbra_core::shadow::{MapView, Shadow, TileBounds};
 use umbra_core::silhouette::SilStore;
 use umbra_core::{DepthFormat, RasterConfig};
@@ -25,6 +25,7 @@ use crate::render::camera_options;
 use crate::render::replay::{PassInputs, ShadowSource, with_judge};
 use crate::render::{RenderConfig, RenderError};
 use crate::truth::metrics::{Metrics, Sums};
+use crate::world::occluders::Lit;
 use crate::world::scene::Scene;
 
 /// Buffers a configuration's shading reuses from the last one a thread
@@ -75,8 +76,8 @@ pub(crate) fn render_shared<F: DepthFormat>(
     let mut light_probes: Vec<Vec<Kept>> = (0..image.archs.len()).map(|_| Vec::with_capacity(lights.len())).collect();
     let mut camera_totals = image.seen[0].totals;
     let mut parts = Vec::with_capacity(lights.len());
-    for (l, (lighting, light)) in image.lights.iter().zip(lights).enumerate() {
-        let one = Light { lighting, light, index: l, of: lights.len() };
+    for (l, ((lighting, lit), light)) in image.lights.iter().zip(&image.lit).zip(lights).enumerate() {
+        let one = Light { lighting, lit, light, index: l, of: lights.len() };
         let each = One { image, light: one, options: &options, units: &units };
         parts.push(each.shade::<F>(scratch, (&mut cameras, &mut light_probes), &mut camera_totals)?);
     }
@@ -91,11 +92,13 @@ pub(crate) fn render_shared<F: DepthFormat>(
     Some((metrics, camera_totals, costs))
 }
 
-/// One light of a shared render: what its shadings read and its share of
-/// the configuration's key, its index among the scene's `of` lights.
+/// One light of a shared render: what its shadings read, the scene as it
+/// lights it, and its share of the configuration's key, its index among
+/// the scene's `of` lights.
 #[derive(Clone, Copy)]
 struct Light<'i, 's, T> {
     lighting: &'i Lighting<'s>,
+    lit: &'i Lit<'s>,
     light: &'i LightShare<T>,
     index: usize,
     of: usize,
@@ -122,7 +125,7 @@ impl<T: umbra_core::depth::Texel> One<'_, '_, T> {
         (cameras, light_probes): (&mut [Option<Kept>], &mut [Vec<Kept>]),
         camera_totals: &mut Totals,
     ) -> Option<Metrics> {
-        let Self { image, light: Light { lighting, light, index, of }, options, units } = *self;
+        let Self { image, light: Light { lighting, lit, light, index, of }, options, units } = *self;
         let Scratch { pixels, others, setups } = scratch;
         let mut metrics = None;
         for (k, Class { seen, bounds, members }) in classes(image, light)?.into_iter().enumerate() {
@@ -143,12 +146,12 @@ impl<T: umbra_core::depth::Texel> One<'_, '_, T> {
                 map_view::<F>(&light.lit[bounds[0]].maps, units.front_culled).ok()?.with_tilings(&tilings).ok()?;
             let seen = &image.seen[seen];
             let seen = (seen.frame.ids(), seen.camera);
-            let scene: &Scene = &lighting.scene;
+            let scene: &Scene = &lit.scene;
             // The silhouette pass over this shading's map, once: its events
             // to the light probes, its texels to the shading and the judge.
             let silhouette = match units.map {
                 MapKind::Silhouette { packed } => {
-                    Some(lights.run(Silhouettes { lighting, view: &view, options, packed }).ok()?)
+                    Some(lights.run(Silhouettes { lit, view: &view, options, packed }).ok()?)
                 }
                 MapKind::Depth | MapKind::Volumes => None,
             };
@@ -159,7 +162,8 @@ impl<T: umbra_core::depth::Texel> One<'_, '_, T> {
                 // map's footprint one kept when the pixels' points are its
                 // own.
                 let source = ShadowSource::of(units.map, silhouette);
-                let inputs = PassInputs { scene, seen, view: Some(&view), options, source };
+                let triangles = &image.triangles;
+                let inputs = PassInputs { scene, triangles, seen, view: Some(&view), options, source };
                 let mut sums = Sums::new(pixels.len());
                 let kept = lighting.kept_footprints();
                 let mut fit = vec![true; kept.len()];
@@ -171,7 +175,15 @@ impl<T: umbra_core::depth::Texel> One<'_, '_, T> {
                         }
                     };
                     let bands = Some(Bands { rows: BAND_ROWS, then: &mut then });
-                    let pass = Shading { scene, view: &view, options, seen, out: &mut *pixels, setups, bands };
+                    let pass = Shading {
+                        scene: (scene, &image.triangles),
+                        view: &view,
+                        options,
+                        seen,
+                        out: &mut *pixels,
+                        setups,
+                        bands,
+                    };
                     pass.run(image.size, silhouette, &mut probes, camera_totals)
                 });
                 done.ok()?.ok()?;
@@ -179,7 +191,15 @@ impl<T: umbra_core::depth::Texel> One<'_, '_, T> {
                 let footprints = lighting.footprints(pixels, image.size.0, fits);
                 metrics = Some(sums.finish(pixels, lighting.truth, &lighting.fields, Some(&footprints)).0);
             } else {
-                let pass = Shading { scene, view: &view, options, seen, out: &mut *others, setups, bands: None };
+                let pass = Shading {
+                    scene: (scene, &image.triangles),
+                    view: &view,
+                    options,
+                    seen,
+                    out: &mut *others,
+                    setups,
+                    bands: None,
+                };
                 pass.run(image.size, silhouette, &mut probes, &mut umbra_core::NoProbe).ok()?;
             }
             for (i, p) in lights.into_kept() {
@@ -250,8 +270,8 @@ const BAND_ROWS: u32 = 16;
 /// One shading of a configuration: the map it reads, the visibility it
 /// shades, the buffers it writes and what reads them as they are written.
 struct Shading<'p, 'v, F: DepthFormat, R> {
-    /// The scene as the map's light lights it.
-    scene: &'p Scene,
+    /// The scene as the map's light lights it, and its triangles.
+    scene: (&'p Scene, &'p [SceneTriangle]),
     view: &'p MapView<'v, F>,
     options: &'p CameraOptions,
     seen: (&'p [u32], Mat4),
@@ -302,7 +322,7 @@ impl<F: DepthFormat, R: PixelResult> Shading<'_, '_, F, R> {
 
 /// The silhouette pass over a shading's map, as [`Reporting`].
 struct Silhouettes<'p, 'v, F: DepthFormat> {
-    lighting: &'p Lighting<'p>,
+    lit: &'p Lit<'p>,
     view: &'p MapView<'v, F>,
     options: &'p CameraOptions,
     packed: bool,
@@ -312,9 +332,9 @@ impl<F: DepthFormat> Reporting for Silhouettes<'_, '_, F> {
     type Out = Result<SilTexels, RenderError>;
 
     fn run<P: Probe>(self, probe: &mut P) -> Self::Out {
-        let light = self.lighting.scene.light().view_projection();
+        let light = self.lit.scene.light().view_projection();
         let shadow = self.options.shadow;
-        Ok(SilTexels::draw(self.packed, &self.lighting.occluders, &light, self.view, shadow, probe)
+        Ok(SilTexels::draw(self.packed, self.lit.occluders(), &light, self.view, shadow, probe)
             .map_err(PassError::from)?)
     }
 }

@@ -109,7 +109,8 @@ fn run_shared<F: DepthFormat>(
 ) -> Option<Vec<Row>> {
     let cfg = render_config(spec, c);
     let (metrics, camera, mut costs) = render_shared::<F>(image, lights, &cfg, scratch)?;
-    cost_others(&cfg.check(&spec.scenes[c.scene], &spec.limits).ok()?, &spec.archs, &mut costs);
+    let job = cfg.check(&spec.scenes[c.scene], &spec.limits).ok()?;
+    cost_others((&job, image.lit()), &spec.archs, &mut costs);
     let costs = costs.into_iter().map(|r| r.unwrap_or_else(|| Err(RenderError::Cost("not costed".into()))));
     Some(rows_of(spec, c, &Ok((RowMetrics::new(&metrics, tangent_share(&camera)), costs.collect()))))
 }
