@@ -24,7 +24,7 @@ use umbra::core::shadow::{Bias, DepthTest, Filter, MapView, ShadowConfig};
 use umbra::core::{ConfigError, CullMode, D24, DepthUnit, Event, LightPassConfig, NoProbe, Probe, RasterConfig};
 use umbra::sim::base::maps::Tiling;
 use umbra::sim::experiment::presets::FILTERS;
-use umbra::sim::pass::camera::{CameraFrame, map_view, shade_setups, visibility};
+use umbra::sim::pass::camera::{CameraFrame, SHADE_SETUPS, map_view, visibility};
 use umbra::sim::pass::light::{LightMaps, LightOptions};
 use umbra::sim::world::scene::Scene;
 use umbra::sim::world::scene_file::BUNDLED;
@@ -83,7 +83,7 @@ fn shade_scene(
     let triangles = scene.triangles();
     let source = |id: u32| triangles.get(id as usize).copied();
     let mut pixels = vec![Shaded::BACKGROUND; ids.len()];
-    let mut setups = vec![ShadeSetup::EMPTY; shade_setups(width)];
+    let mut setups = vec![ShadeSetup::EMPTY; SHADE_SETUPS];
     for &(shadow, virtual_samples, normals) in configs {
         let light = scene.light().view_projection();
         let cfg = ShadeConfig { camera, light, width, height, shadow, virtual_samples, normals, seed: 0x5eed };

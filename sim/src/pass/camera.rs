@@ -60,18 +60,24 @@ pub struct Visibility {
     pub raster: RasterConfig,
 }
 
-/// Entries of the shading unit's setup store for an image `width` pixels
-/// wide: twice as many as the triangles a row can cross (one a pixel, a
-/// scene of triangles smaller than pixels), a power of two from 256 to
-/// 8192, so that each visible triangle is set up about once a band of
-/// rows however small the triangles. (256 entries, the least, hold more
-/// than the triangles a row of the bundled scenes crosses; a
-/// million-triangle city at 1920×1080 crosses thousands.)
+/// Entries of the shading unit's setup store: more than the triangles a
+/// row of a 1920-pixel image of the bundled scenes crosses, so that each
+/// visible triangle is set up about once a pass; a frame whose rows cross
+/// more triangles gets more.
+pub const SHADE_SETUPS: usize = 256;
+
+/// Entries of the shading unit's setup store for a visibility pass's
+/// `ids`, rows of `width`: twice the most triangles a row crosses (its
+/// runs of one id), a power of two from [`SHADE_SETUPS`] to 8192, so that
+/// each visible triangle is set up about once a band of rows however small
+/// the triangles (a million-triangle city at 1920×1080 crosses thousands a
+/// row), and a scene that needs no more keeps a store no longer to empty.
+/// The results and events do not depend on it, only the work.
 #[must_use]
-pub const fn shade_setups(width: u32) -> usize {
-    let twice = 2 * width as usize;
-    let pow = if twice <= 256 { 256 } else { twice.next_power_of_two() };
-    if pow > 8192 { 8192 } else { pow }
+pub(crate) fn shade_setups(ids: &[u32], width: u32) -> usize {
+    let runs = |row: &[u32]| 1 + row.windows(2).filter(|w| w[0] != w[1]).count();
+    let most = ids.chunks(width.max(1) as usize).map(runs).max().unwrap_or(1);
+    (2 * most).next_power_of_two().clamp(SHADE_SETUPS, 8192)
 }
 
 /// The camera pass's memory, kept from frame to frame as hardware keeps its
@@ -273,7 +279,7 @@ pub(crate) fn shade<F: DepthFormat, U: ShadowUnit<F>, R: PixelResult, P: Probe>(
     let source = |id: u32| triangles.get(id as usize).copied();
     // Every pixel is written: the fill only sizes a new frame.
     out.resize(ids.len(), R::BACKGROUND);
-    setups.resize(shade_setups(cfg.width), ShadeSetup::EMPTY);
+    setups.resize(shade_setups(ids, cfg.width), ShadeSetup::EMPTY);
     let inputs = ShadeInputs { cfg: &cfg, map: view, scene: &source, unit };
     let Some(Bands { rows, then }) = bands else {
         shade_with(&inputs, ids, out, setups, probe)?;
@@ -328,7 +334,7 @@ pub fn streamed<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
     let mut state = [TileState::cleared(D24::FAR, 0)];
     let mut bins = [Bin::<DEFAULT_BIN_CAPACITY>::new()];
     let mut store = vec![Setup::EMPTY; triangles.len().clamp(1, DEFAULT_SETUPS)];
-    let mut shade_setups = vec![ShadeSetup::EMPTY; self::shade_setups(width)];
+    let mut shade_setups = vec![ShadeSetup::EMPTY; SHADE_SETUPS];
     let buffers = TileBuffers::<D24, DEFAULT_BIN_CAPACITY> {
         depth: &mut depth,
         ids: &mut ids,
