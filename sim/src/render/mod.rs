@@ -432,6 +432,7 @@ pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
             view: view.as_ref(),
             options: &options,
             source: ShadowSource::of(units.map, silhouettes.get(k)),
+            memo: None,
         };
         let (metrics, verdicts) = judged(&inputs, &image.pixels, (&truth, &fields, &reference), None)
             .map_err(|e| if several { RenderError::Pass(e).of_light(k) } else { RenderError::Pass(e) })?;

@@ -14,7 +14,7 @@ use crate::pass::PassError;
 use crate::pass::algorithm::MapKind;
 use crate::pass::camera::{CameraOptions, shade_config};
 use crate::pass::occluders::{SilReader, SilTexels};
-use crate::truth::cause::{Cause, Judge, Judged, Rays, Receiver, Sight, Taps};
+use crate::truth::cause::{Cause, Judge, Judged, OccluderMemo, Rays, Receiver, Sight, Taps};
 use crate::truth::metrics::{Attribution, Fields, Footprints, Metrics, Verdict, compare_with};
 use crate::truth::reference::{PixelTruth, Reference, surface_point};
 use crate::world::scene::{LightSource, Scene};
@@ -35,6 +35,9 @@ pub(crate) struct PassInputs<'a, F: DepthFormat> {
     pub options: &'a CameraOptions,
     /// What the shadow unit read.
     pub source: ShadowSource<'a>,
+    /// The occluders the judge's rays found for earlier renders of the
+    /// same image and light, to ask first (`None`: none kept).
+    pub memo: Option<&'a OccluderMemo>,
 }
 
 /// What a camera pass's shadow unit read, for its judge to read the same.
@@ -165,7 +168,7 @@ impl<'a, F: DepthFormat, U: ShadowUnit<F>> Replay<'a, F, U> {
             light,
             light_source: what.scene.light().source(),
             camera_inverse: cfg.camera.as_dmat4().inverse(),
-            rays: Rays::new(reference, &light, size),
+            rays: Rays::new(reference, &light, size, what.memo),
             taps: Taps::default(),
             setups: vec![ShadeSetup::EMPTY; 16],
             out: Vec::new(),
@@ -228,7 +231,7 @@ impl<'a, F: DepthFormat, U: ShadowUnit<F>> Replay<'a, F, U> {
         let size = (f64::from(self.cfg.width), f64::from(self.cfg.height));
         let cause = judge.cause(self.taps.of_column(x), &plane, |t| {
             let Some(tri) = triangle else { return Sight::Clear };
-            match self.rays.occluder(t.x, t.y, &tri) {
+            match self.rays.occluder(t.x, t.y, (id, &tri)) {
                 Some(_) if dark => Sight::Occluded,
                 Some(occluder) => {
                     let own = *own.get_or_insert_with(|| {

@@ -21,6 +21,9 @@
 //! Acne, detachment and leaks are the artifacts; aliasing and penumbra
 //! are the map's resolution and the filter at work.
 
+use std::collections::HashMap;
+use std::sync::Mutex;
+
 use glam::{DMat4, DVec3, DVec4};
 use umbra_core::probe::{Event, Probe, Tap};
 use umbra_core::shadow::{DepthTest, Filter, Shadow};
@@ -254,25 +257,74 @@ pub(crate) struct Rays<'r> {
     reference: &'r Reference,
     inverse: DMat4,
     size: (u32, u32),
+    memo: Option<&'r OccluderMemo>,
+}
+
+/// The occluders [`Rays::occluder`] found for one image and light, kept
+/// for the renders that ask again: a study's configurations with maps of
+/// one side judge the same texels' rays against the same receivers. Keyed
+/// by the map's side, the texel and the receiver's triangle; at most
+/// [`OccluderMemo::MAX`] entries, the first found.
+#[derive(Debug, Default)]
+pub(crate) struct OccluderMemo(Mutex<HashMap<MemoKey, Option<u32>>>);
+
+/// An [`OccluderMemo`]'s key: the map's size, the texel, the receiver's
+/// triangle.
+type MemoKey = ((u32, u32), i64, i64, u32);
+
+impl OccluderMemo {
+    /// The most entries a memo keeps.
+    pub(crate) const MAX: usize = 1 << 19;
+    /// Bytes a memo holds at most: each entry's key and value, and the
+    /// table's room around them.
+    pub(crate) const BYTES: u64 = 2 * 48 * Self::MAX as u64;
+
+    /// The entry of `key`, or `find`'s answer, kept while there is room.
+    fn get_or(&self, key: MemoKey, find: impl FnOnce() -> Option<u32>) -> Option<u32> {
+        if let Some(found) = self.0.lock().ok().and_then(|m| m.get(&key).copied()) {
+            return found;
+        }
+        let found = find();
+        if let Ok(mut m) = self.0.lock()
+            && m.len() < Self::MAX
+        {
+            m.insert(key, found);
+        }
+        found
+    }
 }
 
 impl<'r> Rays<'r> {
-    /// The rays of a `size` map seen through `light` (world to light clip).
+    /// The rays of a `size` map seen through `light` (world to light
+    /// clip), their occluders kept in `memo` when one is given (it must be
+    /// of this light and reference).
     #[must_use]
-    pub(crate) fn new(reference: &'r Reference, light: &DMat4, size: (u32, u32)) -> Self {
-        Self { reference, inverse: light.inverse(), size }
+    pub(crate) fn new(
+        reference: &'r Reference,
+        light: &DMat4,
+        size: (u32, u32),
+        memo: Option<&'r OccluderMemo>,
+    ) -> Self {
+        Self { reference, inverse: light.inverse(), size, memo }
     }
 
     /// The object whose surface the exact light ray through the centre of
     /// texel `(x, y)` meets inside the light's frustum (past its near
     /// plane, short of its far plane) before it reaches the plane of
-    /// `receiver` (world space): the true occluder of that tap the map
-    /// could hold, if there is one. `None` too for a texel outside the map.
+    /// `receiver` (world space; triangle `id` of the reference): the true
+    /// occluder of that tap the map could hold, if there is one. `None`
+    /// too for a texel outside the map.
     #[must_use]
-    pub(crate) fn occluder(&self, x: i64, y: i64, receiver: &[DVec3; 3]) -> Option<u32> {
-        let inside = (0..i64::from(self.size.0)).contains(&x) && (0..i64::from(self.size.1)).contains(&y);
-        let (near, dir, t, normal) = self.to_plane(x, y, receiver).filter(|_| inside)?;
-        self.reference.first_in_front((near, near + dir * t.min(1.0)), (near + dir * t, normal))
+    pub(crate) fn occluder(&self, x: i64, y: i64, (id, receiver): (u32, &[DVec3; 3])) -> Option<u32> {
+        let find = || {
+            let inside = (0..i64::from(self.size.0)).contains(&x) && (0..i64::from(self.size.1)).contains(&y);
+            let (near, dir, t, normal) = self.to_plane(x, y, receiver).filter(|_| inside)?;
+            self.reference.first_in_front((near, near + dir * t.min(1.0)), (near + dir * t, normal))
+        };
+        match self.memo {
+            Some(memo) => memo.get_or((self.size, x, y, id), find),
+            None => find(),
+        }
     }
 
     /// Whether the exact ray from the light through the centre of texel

@@ -106,12 +106,13 @@ impl LightKey {
 /// at most, for an image of `pixels` drawn in `tilings` tilings of a scene
 /// of `triangles` triangles, shaded against `lights` lights: each
 /// tiling's depth and ids, the triangles as the shading reads them, and
-/// for each light its reference's fields and the footprints it keeps (a
-/// map position of 12 bytes a pixel each).
+/// for each light its reference's fields, the footprints it keeps (a
+/// map position of 12 bytes a pixel each) and its judge's occluders.
 #[must_use]
 pub(crate) const fn image_bytes(pixels: u64, tilings: u64, (triangles, lights): (u64, u64)) -> u64 {
     let triangle = core::mem::size_of::<umbra_core::shade::SceneTriangle>() as u64;
-    pixels * (8 * tilings + lights * (32 + 12 * seen::KEPT_FOOTPRINTS as u64)) + triangles * triangle
+    let light = pixels * (32 + 12 * seen::KEPT_FOOTPRINTS as u64) + crate::truth::cause::OccluderMemo::BYTES;
+    pixels * 8 * tilings + lights * light + triangles * triangle
 }
 
 /// Bytes a key's [`LightShare`]s hold, at most, for maps of `texels`

@@ -21,6 +21,7 @@ use crate::input::limits::Limits;
 use crate::pass::PassError;
 use crate::pass::camera::{CameraFrame, Visibility, visibility};
 use crate::render::costed::{SceneCounts, shape};
+use crate::truth::cause::OccluderMemo;
 use crate::truth::metrics::{Fields, Footprints};
 use crate::truth::reference::{PixelTruth, Reference};
 use crate::world::occluders::Lit;
@@ -67,12 +68,14 @@ pub(crate) struct ImageShare<'s> {
 }
 
 /// What the shadings against one light read beside its map and the scene
-/// as it lights it: the light's exact reference with its [`Fields`], and
-/// the map's footprints kept over renders.
+/// as it lights it: the light's exact reference with its [`Fields`], the
+/// occluders its judge found, and the map's footprints kept over renders.
 #[derive(Debug)]
 pub(super) struct Lighting<'s> {
     pub(super) truth: &'s [Option<PixelTruth>],
     pub(super) fields: Fields,
+    /// The occluders the judge's rays found, for every configuration.
+    pub(super) occluders: OccluderMemo,
     /// The map's footprints over renders of this image, kept for the
     /// configurations whose visible points on the map are the same (at
     /// most [`KEPT_FOOTPRINTS`]: one a map side).
@@ -146,7 +149,12 @@ impl<'s> ImageShare<'s> {
         }
         let lights = truths
             .iter()
-            .map(|truth| Lighting { truth, fields: Fields::new(truth, size.0), footprints: Mutex::new(Vec::new()) })
+            .map(|truth| Lighting {
+                truth,
+                fields: Fields::new(truth, size.0),
+                occluders: OccluderMemo::default(),
+                footprints: Mutex::new(Vec::new()),
+            })
             .collect();
         Some(Self {
             scene,

@@ -163,7 +163,8 @@ impl<T: umbra_core::depth::Texel> One<'_, '_, T> {
                 // own.
                 let source = ShadowSource::of(units.map, silhouette);
                 let triangles = &image.triangles;
-                let inputs = PassInputs { scene, triangles, seen, view: Some(&view), options, source };
+                let memo = Some(&lighting.occluders);
+                let inputs = PassInputs { scene, triangles, seen, view: Some(&view), options, source, memo };
                 let mut sums = Sums::new(pixels.len());
                 let kept = lighting.kept_footprints();
                 let mut fit = vec![true; kept.len()];
