@@ -156,16 +156,17 @@ impl<'s> ImageShare<'s> {
                 footprints: Mutex::new(Vec::new()),
             })
             .collect();
+        let triangles = scene.triangles();
         Some(Self {
             scene,
             size,
-            reference: Reference::of(scene).ok()?,
+            reference: Reference::with_objects(&triangles, &scene.triangle_objects()).ok()?,
             archs,
             limits: *limits,
             seen,
             seen_by,
             counts: SceneCounts::of(scene, &lit),
-            triangles: scene.triangles(),
+            triangles,
             lit,
             lights,
         })
