@@ -1,73 +1,68 @@
-//! The Python package builds into the workspace's target folder and reuses
-//! what the workspace built there: cargo reuses a crate's build only under
-//! the same release profile and the same version of every package, so
-//! `python/` must state the folder, the profile and the versions as the
-//! workspace does.
+//! The Python package reuses what the workspace built: cargo reuses a
+//! crate's build only under the same profile, the same path from the
+//! workspace's root, the same versions and the same features of it and of
+//! every crate below it. So `python/` is a member of the workspace (one
+//! root, one `Cargo.lock`, one release profile, one target folder), and
+//! `umbra-sim` turns on in its dependencies' dependencies what the
+//! package's numpy and pyo3 turn on (`sim/Cargo.toml`): `pip install
+//! ./python` after `cargo umbra` then builds only the extension's crates.
 
 use std::collections::BTreeMap;
 use std::path::Path;
+use std::process::Command;
 
 /// The repository's root.
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
 
-/// `[[package]]` name → versions in a `Cargo.lock` (a name can be locked
-/// at more than one version).
-fn locked(path: &Path) -> BTreeMap<String, Vec<String>> {
-    let text = std::fs::read_to_string(path).expect("a lock file");
-    let mut packages: BTreeMap<String, Vec<String>> = BTreeMap::new();
-    for block in text.split("[[package]]").skip(1) {
-        let field = |key: &str| {
-            block.lines().find_map(|l| {
-                l.strip_prefix(key)?
-                    .trim()
-                    .strip_prefix('=')?
-                    .trim()
-                    .strip_prefix('"')?
-                    .strip_suffix('"')
-                    .map(str::to_owned)
-            })
-        };
-        let (Some(name), Some(version)) = (field("name "), field("version ")) else {
-            panic!("{}: a package without name or version", path.display())
-        };
-        packages.entry(name).or_default().push(version);
+#[test]
+fn python_is_a_member_of_the_workspace() {
+    let manifest = std::fs::read_to_string(root().join("Cargo.toml")).expect("the workspace's manifest");
+    let members = manifest.lines().find(|l| l.starts_with("members")).expect("a members line");
+    assert!(members.contains("\"python\""), "{members}");
+    let python = std::fs::read_to_string(root().join("python/Cargo.toml")).expect("python/Cargo.toml");
+    for own in ["[workspace]", "[profile."] {
+        assert!(!python.contains(own), "python/Cargo.toml has its own {own}");
     }
-    packages
+    for own in ["python/Cargo.lock", "python/.cargo"] {
+        assert!(!root().join(own).exists(), "{own} would part the package's build from the workspace's");
+    }
 }
 
-/// The lines of `[profile.release]` in a manifest, comments dropped.
-fn release_profile(path: &Path) -> Vec<String> {
-    let text = std::fs::read_to_string(path).expect("a manifest");
-    text.lines()
-        .skip_while(|l| l.trim() != "[profile.release]")
-        .skip(1)
-        .take_while(|l| !l.trim_start().starts_with('['))
-        .map(|l| l.split('#').next().unwrap_or("").trim().to_owned())
-        .filter(|l| !l.is_empty())
-        .collect()
+/// Each package's features (`cargo tree`'s lines `name version [features]`)
+/// in the build of `packages`, normal and build-time dependencies apart.
+fn features(packages: &[&str]) -> BTreeMap<String, String> {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let mut found = BTreeMap::new();
+    for edges in ["normal", "build"] {
+        let mut command = Command::new(&cargo);
+        command.current_dir(root()).args(["tree", "--offline", "--locked", "--prefix", "none", "-f", "{p} [{f}]"]);
+        for p in packages {
+            command.args(["-p", p]);
+        }
+        let out = command.args(["-e", edges]).output().expect("cargo tree runs");
+        assert!(out.status.success(), "cargo tree: {}", String::from_utf8_lossy(&out.stderr));
+        for line in String::from_utf8_lossy(&out.stdout).lines() {
+            let line = line.trim_end_matches(" (*)").replace(" (proc-macro)", "");
+            if let Some((package, features)) = line.split_once(" [") {
+                found.insert(format!("{edges} {package}"), features.trim_end_matches(']').to_owned());
+            }
+        }
+    }
+    found
 }
 
 #[test]
-fn python_reuses_the_workspaces_build() {
-    let workspace = locked(&root().join("Cargo.lock"));
-    let python = locked(&root().join("python/Cargo.lock"));
-    let shared: Vec<&String> = python.keys().filter(|n| workspace.contains_key(*n)).collect();
-    // serde, rayon, image, gltf, … and the model's own crates.
-    assert!(shared.len() > 50, "{} packages shared", shared.len());
-    for name in shared {
-        for v in &python[name] {
-            assert!(
-                workspace[name].contains(v),
-                "python/Cargo.lock has {name} {v}; the workspace's {:?}",
-                workspace[name]
-            );
-        }
+#[ignore = "needs the Python package's dependencies downloaded (`cargo clippy --workspace` fetches them); .ci/run runs it"]
+fn python_builds_the_workspaces_crates_with_their_features() {
+    let workspace = features(&["umbra-cli", "umbra"]);
+    let python = features(&["umbra-python"]);
+    let shared: Vec<&String> = python.keys().filter(|p| workspace.contains_key(*p)).collect();
+    // serde, rayon, image, gltf, parry, … and the model's own crates.
+    assert!(shared.len() > 100, "{} packages shared", shared.len());
+    assert!(shared.iter().any(|p| p.starts_with("normal umbra-sim ")), "{shared:?}");
+    for p in shared {
+        assert_eq!(python[p], workspace[p], "{p}: the Python package's features, then the command's");
     }
-    let profile = release_profile(&root().join("Cargo.toml"));
-    assert!(profile.iter().any(|l| l.starts_with("lto")), "{profile:?}");
-    assert_eq!(release_profile(&root().join("python/Cargo.toml")), profile);
-    let config = std::fs::read_to_string(root().join("python/.cargo/config.toml")).expect("python/.cargo/config.toml");
-    assert!(config.lines().any(|l| l.replace(' ', "") == "target-dir=\"../target\""), "{config}");
 }
