@@ -238,6 +238,14 @@ pub enum ConfigError {
         /// What is missing.
         missing: &'static str,
     },
+    /// A cascade selector's registers: more than eight cascades, a band
+    /// register per split missing, or splits and bands out of order.
+    Cascades {
+        /// Split registers given.
+        splits: usize,
+        /// Band registers given.
+        bands: usize,
+    },
 }
 
 impl fmt::Display for ConfigError {
@@ -262,6 +270,10 @@ impl fmt::Display for ConfigError {
                 write!(f, "this light pass is not built with the {unit:?} depth unit{ids} {cull} max-z culling")
             }
             Self::ShadowNotBuilt { missing } => write!(f, "this shadow unit is not built with {missing}"),
+            Self::Cascades { splits, bands } => write!(
+                f,
+                "cascade selector: {splits} splits and {bands} bands, which must be as many, at most 7, increasing, each band at or below its split and above the previous split"
+            ),
         }
     }
 }

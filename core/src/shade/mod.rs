@@ -35,6 +35,7 @@
 //! triangle's plane (two more evaluations, for the jittered filter only).
 
 mod blocks;
+pub mod cascade;
 mod divider;
 mod interp;
 pub mod stream;

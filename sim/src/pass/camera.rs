@@ -112,6 +112,13 @@ impl CameraFrame {
         &self.ids
     }
 
+    /// The depth buffer of the last visibility pass, row-major, in
+    /// [`D24`].
+    #[must_use]
+    pub fn depth(&self) -> &[u32] {
+        &self.z
+    }
+
     /// The last pass's image, taken out of the frame.
     #[must_use]
     pub fn take_image(&mut self) -> CameraImage {
@@ -129,11 +136,12 @@ fn camera_matrix(scene: &Scene, width: u32, height: u32) -> Mat4 {
 }
 
 /// The shading unit's configuration for `options`, seen through `camera`,
-/// against the scene's light: flat tangent planes, the fixed seed.
-pub(crate) fn shade_config(scene: &Scene, camera: Mat4, options: &CameraOptions) -> ShadeConfig {
+/// against the map drawn through `light` (a light's view-projection):
+/// flat tangent planes, the fixed seed.
+pub(crate) fn shade_config(light: Mat4, camera: Mat4, options: &CameraOptions) -> ShadeConfig {
     ShadeConfig {
         camera,
-        light: scene.light().view_projection(),
+        light,
         width: options.width,
         height: options.height,
         shadow: options.shadow,
@@ -238,7 +246,8 @@ pub fn render_into<F: DepthFormat, U: ShadowUnit<F>, R: PixelResult, P: Probe>(
 ) -> Result<(), PassError> {
     let Visibility { camera, .. } = visibility(frame, scene, (options.width, options.height), options.tiling, probe)?;
     let CameraFrame { ids, shade_setups, .. } = frame;
-    shade((scene, &scene.triangles()), (ids, camera), view, unit, options, probe, out, shade_setups, None)
+    let light = scene.light().view_projection();
+    shade((light, &scene.triangles()), (ids, camera), view, unit, options, probe, out, shade_setups, None)
 }
 
 /// What reads a shading's pixels as the shading writes them: told, after
@@ -253,9 +262,10 @@ pub(crate) struct Bands<'b, R> {
 
 /// The shading unit alone over a visibility pass's `ids` seen through
 /// `camera` (a [`visibility`] pass drawn before, for any number of
-/// shadings: its ids do not depend on the tiling) of `scene`, whose
+/// shadings: its ids do not depend on the tiling) of a scene whose
 /// [`Scene::triangles`] are `triangles` (worked out once for every
-/// shading of its frame), against `view` with
+/// shading of its frame), against `view`, drawn through `light` (the
+/// light's view-projection), with
 /// shadow unit `unit`, into `out` (row-major) with the setup store
 /// `setups`, reporting every event to `probe`, and `bands` told of each
 /// band of rows as it is written. Its events are those the shading of
@@ -265,7 +275,7 @@ pub(crate) struct Bands<'b, R> {
 /// As [`render`].
 #[allow(clippy::too_many_arguments, reason = "the unit's inputs, its store, its probe and its reader")]
 pub(crate) fn shade<F: DepthFormat, U: ShadowUnit<F>, R: PixelResult, P: Probe>(
-    (scene, triangles): (&Scene, &[SceneTriangle]),
+    (light, triangles): (Mat4, &[SceneTriangle]),
     (ids, camera): (&[u32], Mat4),
     view: &MapView<'_, F>,
     unit: &U,
@@ -275,7 +285,7 @@ pub(crate) fn shade<F: DepthFormat, U: ShadowUnit<F>, R: PixelResult, P: Probe>(
     setups: &mut Vec<ShadeSetup>,
     bands: Option<Bands<'_, R>>,
 ) -> Result<(), PassError> {
-    let cfg = shade_config(scene, camera, options);
+    let cfg = shade_config(light, camera, options);
     let source = |id: u32| triangles.get(id as usize).copied();
     // Every pixel is written: the fill only sizes a new frame.
     out.resize(ids.len(), R::BACKGROUND);
@@ -325,7 +335,7 @@ pub fn streamed<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
     let raster = RasterConfig::new(width, height, tiling.tile, RasterConfig::DEFAULT_SUBPIXEL_BITS)?;
     let vis = LightPassConfig { raster, unit: DepthUnit::Single, max_z_cull: true };
     let camera = camera_matrix(scene, width, height);
-    let cfg = shade_config(scene, camera, options);
+    let cfg = shade_config(scene.light().view_projection(), camera, options);
     let triangles = scene.triangles();
     let source = |id: u32| triangles.get(id as usize).copied();
     let tile = (tiling.tile * tiling.tile) as usize;
@@ -369,17 +379,18 @@ pub fn streamed<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
     Ok(CameraImage { width, height, pixels: image, camera })
 }
 
-/// The shading unit over `frame`'s last [`visibility`] pass against
-/// `view` with shadow unit `unit` for `scene`'s light (with its
-/// [`Scene::triangles`]), its pixels as an
-/// image (the frame's own pixels left as they were): a camera pass that
-/// tests several lights shades once per light over one visibility pass.
+/// The shading unit over `frame`'s last [`visibility`] pass (or the
+/// pixels of it `only` leaves covered: a cascade's) against `view`, drawn
+/// through `light` (a scene's [`Scene::triangles`] beside it), with
+/// shadow unit `unit`, its pixels as an image (the frame's own pixels
+/// left as they were): a camera pass that tests several lights shades
+/// once per light over one visibility pass.
 ///
 /// # Errors
 /// As [`render`].
 pub(crate) fn shade_visible<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
-    frame: &mut CameraFrame,
-    scene: (&Scene, &[SceneTriangle]),
+    (frame, only): (&mut CameraFrame, Option<&[u32]>),
+    light: (Mat4, &[SceneTriangle]),
     view: &MapView<'_, F>,
     unit: &U,
     options: &CameraOptions,
@@ -387,7 +398,8 @@ pub(crate) fn shade_visible<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
 ) -> Result<CameraImage, PassError> {
     let mut pixels = Vec::new();
     let CameraFrame { ids, shade_setups, camera, size, .. } = frame;
-    shade(scene, (ids, *camera), view, unit, options, probe, &mut pixels, shade_setups, None)?;
+    let ids = only.unwrap_or(ids);
+    shade(light, (ids, *camera), view, unit, options, probe, &mut pixels, shade_setups, None)?;
     Ok(CameraImage { width: size.0, height: size.1, pixels, camera: *camera })
 }
 

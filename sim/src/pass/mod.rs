@@ -1,9 +1,11 @@
 //! The passes over buffers the simulator owns: the light pass (whole or in
 //! bands on every core), the camera pass, and the silhouette and stencil
-//! passes over a scene's occluders; which units each algorithm uses.
+//! passes over a scene's occluders; which units each algorithm uses; a
+//! directional light's cascades.
 
 pub mod algorithm;
 pub mod camera;
+pub mod cascade;
 pub mod light;
 pub(crate) mod occluders;
 

@@ -111,7 +111,7 @@ pub(crate) fn volume_light(scene: &Scene, camera: &Mat4) -> VolumeLight {
             let t = if near > 0.0 && near.is_finite() { (2.0 * far / near).min(1e6) } else { 1e6 };
             VolumeLight { clip: clip4(s.position.extend(1.0)), point: true, t }
         }
-        Light::Directional(_) => {
+        Light::Directional(..) => {
             let (lo, hi) = points.fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| (lo.min(p), hi.max(p)));
             let diagonal = (hi - lo).length();
             let towards = (-light.direction()).normalize_or_zero();

@@ -65,9 +65,10 @@ fn trace(scene: &Scene, cfg: &RenderConfig, arch: &Arch) -> Vec<u64> {
     let probe =
         reading(ArchProbe::new(arch, PassKind::Camera, checked.image, DepthFormatKind::D24, 1), cfg, &units, true);
     let mut recorder = Recorder { probe, addresses: Vec::new() };
-    let lights = vec![NoProbe; scene.lights.len().max(1)];
+    let slots = super::map_slots(scene, cfg, checked.map).expect("maps");
+    let lights = vec![NoProbe; slots.len()];
     let lit = crate::world::occluders::Lit::each(scene);
-    passes::<D24, _, _>((scene, &lit), cfg, checked, &mut Vec::new(), lights, &mut recorder, arch.tiling())
+    passes::<D24, _, _>((scene, &lit), cfg, (checked, &slots), &mut Vec::new(), lights, &mut recorder, arch.tiling())
         .expect("renders");
     recorder.addresses
 }

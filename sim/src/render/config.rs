@@ -8,7 +8,8 @@ use umbra_core::{DepthFormatKind, RasterConfig};
 
 use super::{Algorithm, Culling, RenderError};
 use crate::input::limits::{Footprint, Limits};
-use crate::world::scene::Scene;
+use crate::world::cascade::Cascades;
+use crate::world::scene::{Light, Scene};
 
 /// What to render and how.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -38,6 +39,9 @@ pub struct RenderConfig {
     /// The light pass's culling per object class.
     #[serde(serialize_with = "crate::base::text::serialize")]
     pub culling: Culling,
+    /// Every directional light's cascades (`None`: each light's own, as
+    /// its scene gives them; one map for a light that gives none).
+    pub cascades: Option<Cascades>,
 }
 
 /// A render configuration no render takes, naming the quantity and the value.
@@ -122,6 +126,7 @@ impl RenderConfig {
         height: 540,
         reference_rays: 4,
         culling: Culling::ALGORITHM,
+        cascades: None,
     };
 
     /// Reference rays per pixel side a render takes: the one statement of
@@ -174,6 +179,24 @@ impl RenderConfig {
         Ok(self)
     }
 
+    /// The cascades light `k` of `scene` is drawn through: a directional
+    /// light's, as this configuration or the scene gives them; one map
+    /// for any other light, and for shadow volumes, which draw none.
+    #[must_use]
+    pub fn cascades_of(&self, scene: &Scene, k: usize) -> Cascades {
+        match scene.lights.get(k) {
+            Some(Light::Directional(_, own)) if self.algorithm != Algorithm::Volumes => self.cascades.unwrap_or(*own),
+            _ => Cascades::ONE,
+        }
+    }
+
+    /// Whether any light of `scene` is drawn through cascades: a study
+    /// renders such a configuration on its own.
+    #[must_use]
+    pub fn cascaded(&self, scene: &Scene) -> bool {
+        (0..scene.lights.len()).any(|k| self.cascades_of(scene, k).cascaded())
+    }
+
     /// The configuration in words, every field (for the records outputs carry).
     #[must_use]
     pub fn describe(&self) -> String {
@@ -181,8 +204,9 @@ impl RenderConfig {
         if self.algorithm == Algorithm::Volumes {
             return format!("volumes, image {}x{}, {}² reference rays", self.width, self.height, self.reference_rays);
         }
+        let cascades = self.cascades.map_or_else(String::new, |c| format!(", cascades {c}"));
         format!(
-            "{}, {}, map {}², filter {}, bias {}, virtual samples {}, culling {}, image {}x{}, {}² reference rays",
+            "{}, {}, map {}², filter {}, bias {}, virtual samples {}, culling {}{cascades}, image {}x{}, {}² reference rays",
             self.algorithm.flags().trim_start_matches("--algo "),
             self.format.name(),
             self.map_size,

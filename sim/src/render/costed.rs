@@ -11,7 +11,9 @@ use umbra_core::shadow::Filter;
 use umbra_core::silhouette::{Packed, SilPoint, SilStore};
 use umbra_core::{DepthFormat, DepthFormatKind, RasterConfig};
 
-use super::{Algorithm, Checked, Render, RenderConfig, RenderError, Targets, TruthSource, passes, render_in};
+use super::{
+    Algorithm, Checked, MapSlot, Render, RenderConfig, RenderError, Targets, TruthSource, map_slots, passes, render_in,
+};
 use crate::base::maps::{Tiling, with_format};
 use crate::base::probes::Fan;
 use crate::cost::arch::Arch;
@@ -126,46 +128,65 @@ pub(super) fn reading<const C: bool>(
 }
 
 /// The passes' probes of `archs` for `cfg` on `checked`: each light
-/// pass's (one per of `lights`), the camera pass's.
+/// pass's (one per map of `slots`, or one on the map target when the
+/// pass is not `shadowed`), the camera pass's.
 fn probes<F: DepthFormat, const L: bool, const C: bool>(
     cfg: &RenderConfig,
-    checked: Targets,
-    (archs, lights): (&[&Arch], usize),
+    (checked, slots): (Targets, &[MapSlot]),
+    archs: &[&Arch],
     shadowed: bool,
 ) -> (Vec<Fan<ArchProbe<L>>>, Fan<ArchProbe<C>>) {
     let units = cfg.algorithm.units::<F>(cfg.bias);
-    let light = || {
+    let light = |raster| {
         Fan(archs
             .iter()
-            .map(|a| ArchProbe::<L>::new(a, PassKind::Light, checked.map, cfg.format, units.unit.buffers()))
+            .map(|a| ArchProbe::<L>::new(a, PassKind::Light, raster, cfg.format, units.unit.buffers()))
             .collect())
     };
     let camera = archs.iter().map(|a| camera_probe::<C>(a, cfg, checked.image, &units, shadowed)).collect();
-    ((0..lights.max(1)).map(|_| light()).collect(), Fan(camera))
+    let rasters: Vec<RasterConfig> =
+        if shadowed && !slots.is_empty() { slots.iter().map(|s| s.raster).collect() } else { vec![checked.map] };
+    (rasters.into_iter().map(light).collect(), Fan(camera))
+}
+
+/// Each map's name in a cost report's timeline ([`MapSlot::key`]), and
+/// the shadings a pixel gets (one a light).
+pub(super) fn map_names(slots: &[MapSlot]) -> (Vec<String>, usize) {
+    let lights = slots.iter().map(|s| s.light + 1).max().unwrap_or(1);
+    let cascaded = |k: usize| slots.iter().filter(|s| s.light == k).count() > 1;
+    (slots.iter().map(|s| s.key(cascaded(s.light))).collect(), lights)
 }
 
 /// What a cost report says of the scene beside its passes: its triangles
-/// and its occluders' silhouette edges (Sen et al.'s bandwidth model).
-#[derive(Clone, Copy, Debug)]
+/// and its occluders' silhouette edges (Sen et al.'s bandwidth model),
+/// and its maps' names and the shadings a pixel gets ([`map_names`]).
+#[derive(Clone, Debug)]
 pub(super) struct SceneCounts {
     triangles: u64,
     silhouette_edges: u64,
+    maps: (Vec<String>, usize),
 }
 
 impl SceneCounts {
     /// The counts of `scene`, lit by each of its lights as `lit` holds it:
     /// the silhouette edges are its first light's.
-    pub(super) fn of(scene: &Scene, lit: &[Lit<'_>]) -> Self {
+    /// (`slots` empty: one map a light, as a shared study draws them.)
+    pub(super) fn of(scene: &Scene, lit: &[Lit<'_>], slots: &[MapSlot]) -> Self {
         let triangles: usize = scene.objects.iter().map(|o| o.mesh.triangles.len()).sum();
         let edges = lit.first().map_or(0, |l| l.occluders().silhouette_edges().len());
-        Self { triangles: triangles as u64, silhouette_edges: edges as u64 }
+        let maps = if slots.is_empty() {
+            ((0..lit.len()).map(Scene::light_key).collect(), lit.len())
+        } else {
+            map_names(slots)
+        };
+        Self { triangles: triangles as u64, silhouette_edges: edges as u64, maps }
     }
 }
 
 /// The report of one architecture's probes (each light pass's, the
 /// camera pass's), once the passes have run.
 pub(super) fn report<const L: bool, const C: bool>(
-    (scene, counts): (&str, SceneCounts),
+    (scene, counts): (&str, &SceneCounts),
     cfg: &RenderConfig,
     config: &str,
     mut lights: Vec<ArchProbe<L>>,
@@ -174,8 +195,9 @@ pub(super) fn report<const L: bool, const C: bool>(
     lights.iter_mut().for_each(ArchProbe::finish);
     camera.finish();
     let silicon = Silicon::of(&camera.arch, &demand(cfg));
-    let mut r =
-        CostReport::new((scene, config.to_owned()), &lights, &camera, lookup_samples(cfg).0).with_silicon(silicon);
+    let (names, shadings) = &counts.maps;
+    let samples = (lookup_samples(cfg).0, *shadings);
+    let mut r = CostReport::new((scene, config.to_owned()), (&lights, names), &camera, samples).with_silicon(silicon);
     r.sen.triangles = counts.triangles;
     r.sen.silhouette_edges = counts.silhouette_edges;
     r
@@ -197,7 +219,7 @@ fn reports<const L: bool, const C: bool>(
     for Fan(probes) in lights {
         per_arch.iter_mut().zip(probes).for_each(|(mine, p)| mine.push(p));
     }
-    per_arch.into_iter().zip(camera).map(|(l, c)| report((&scene.name, counts), cfg, config, l, c)).collect()
+    per_arch.into_iter().zip(camera).map(|(l, c)| report((&scene.name, &counts), cfg, config, l, c)).collect()
 }
 
 /// The cost of a render, checked for its scene ([`RenderConfig::check`]),
@@ -278,12 +300,13 @@ fn cost_in<F: DepthFormat, const L: bool, const C: bool>(
     archs: &[&Arch],
     shadowed: bool,
 ) -> Result<Vec<CostReport>, RenderError> {
-    let lights = if shadowed { scene.lights.len() } else { 1 };
-    let (mut light, mut camera) = probes::<F, L, C>(cfg, checked, (archs, lights), shadowed);
+    let slots = if shadowed { map_slots(scene, cfg, checked.map)? } else { Vec::new() };
+    let (mut light, mut camera) = probes::<F, L, C>(cfg, (checked, &slots), archs, shadowed);
     let drawing = archs.first().map_or(Tiling::DEFAULT, |a| a.tiling());
     let config = if shadowed {
         let frames = &mut Vec::new();
-        light = passes::<F, _, _>((scene, lit), cfg, checked, frames, light, &mut camera, drawing)?.light_probes;
+        let targets = (checked, slots.as_slice());
+        light = passes::<F, _, _>((scene, lit), cfg, targets, frames, light, &mut camera, drawing)?.light_probes;
         cfg.describe()
     } else {
         let mut frame = CameraFrame::default();
@@ -292,7 +315,7 @@ fn cost_in<F: DepthFormat, const L: bool, const C: bool>(
         lit_pass(frame.ids(), size.0, &mut camera);
         format!("no shadow, image {}x{}", cfg.width, cfg.height)
     };
-    Ok(reports((scene, SceneCounts::of(scene, lit)), cfg, &config, light, camera))
+    Ok(reports((scene, SceneCounts::of(scene, lit, &slots)), cfg, &config, light, camera))
 }
 
 /// The render of `cfg` (as [`super::render`]) and its cost on each
@@ -314,9 +337,10 @@ pub fn render_costed(
     let checked = job.targets(RasterConfig::DEFAULT_TILE_SIZE)?;
     let shared: Vec<&Arch> = archs.iter().filter(|a| shape(a) == own).collect();
     let lit = Lit::each(scene);
-    let counts = SceneCounts::of(scene, &lit);
+    let slots = map_slots(scene, cfg, checked.map)?;
+    let counts = SceneCounts::of(scene, &lit, &slots);
     let (render, costed) = with_format!(cfg.format, F => {
-        let (light, mut camera) = probes::<F, false, false>(cfg, checked, (&shared, scene.lights.len()), true);
+        let (light, mut camera) = probes::<F, false, false>(cfg, (checked, &slots), &shared, true);
         let (render, light) = render_in::<F, _, _>((scene, &lit), cfg, checked, truth_from, (light, &mut camera))?;
         (render, reports((scene, counts), cfg, &cfg.describe(), light, camera))
     });

@@ -97,13 +97,14 @@ fn light_view(light: &Light) -> Value {
             "near": n(p.near),
             "far": n(p.far),
         }),
-        Light::Directional(o) => serde_json::json!({
+        Light::Directional(o, cascades) => serde_json::json!({
             "kind": "directional",
             "position": xyz(o.position),
             "target": xyz(o.target),
             "extent": n(o.extent),
             "near": n(o.near),
             "far": n(o.far),
+            "cascades": cascades.to_string(),
         }),
     }
 }

@@ -7,12 +7,14 @@
 pub mod arrays;
 #[cfg(test)]
 mod cache_trace;
+mod cascaded;
 mod config;
 mod costed;
 pub mod files;
 #[cfg(test)]
 mod ledger_property;
 pub mod params;
+mod passes;
 pub mod pictures;
 mod produced;
 pub mod replay;
@@ -21,15 +23,16 @@ pub(crate) mod shared;
 
 use indicatif::ProgressBar;
 use umbra_core::depth::Texel;
-use umbra_core::shade::{MapUnit, ShadowUnit, SilhouetteUnit};
-use umbra_core::shadow::{MapView, ShadowConfig, ShadowConfigError};
-use umbra_core::silhouette::SilStore;
+use umbra_core::shadow::{ShadowConfig, ShadowConfigError};
 use umbra_core::{DepthFormat, DepthUnit, LightPassConfig, Probe, RasterConfig, TileState};
 
+pub use self::cascaded::CascadePart;
 pub(crate) use self::config::Targets;
 pub use self::config::{Checked, RenderConfig, RenderConfigError};
 pub use self::costed::{cost, render_costed};
 pub(crate) use self::costed::{cost_others, cost_unshadowed};
+pub(crate) use self::passes::{MapSlot, map_slots};
+use self::passes::{Passes, passes};
 pub use self::produced::{LightPart, PartRef, Render};
 use self::replay::{PassInputs, ShadowSource, judged};
 pub use self::request::RenderRequest;
@@ -38,11 +41,9 @@ use crate::base::maps::{Tiling, with_format};
 use crate::base::probes::Tee;
 use crate::input::limits::LimitError;
 use crate::pass::PassError;
-use crate::pass::algorithm::MapKind;
 pub(crate) use crate::pass::algorithm::{Algorithm, Culling};
-use crate::pass::camera::{CameraFrame, CameraImage, CameraOptions, map_view, shade_visible, visibility, volumes};
-use crate::pass::light::{self, DEFAULT_BIN_CAPACITY, LightFrame, LightMaps, LightOptions, RawMaps};
-use crate::pass::occluders::{SilReader, SilTexels};
+use crate::pass::camera::{CameraFrame, CameraOptions, map_view, visibility};
+use crate::pass::light::{self, LightFrame, LightMaps, RawMaps};
 use crate::truth::metrics::Fields;
 use crate::truth::reference::{PixelTruth, Reference, ReferenceError};
 use crate::world::occluders::Lit;
@@ -174,7 +175,7 @@ pub enum TruthSource<'p> {
 pub fn render(job: &Checked<'_>, truth_from: TruthSource<'_>) -> Result<Render, RenderError> {
     let (scene, cfg) = (job.scene(), job.config());
     let checked = job.targets(RasterConfig::DEFAULT_TILE_SIZE)?;
-    let none = (vec![umbra_core::NoProbe; scene.lights.len().max(1)], &mut umbra_core::NoProbe);
+    let none = (vec![umbra_core::NoProbe; map_slots(scene, cfg, checked.map)?.len()], &mut umbra_core::NoProbe);
     let lit = Lit::each(scene);
     Ok(with_format!(cfg.format, F => render_in::<F, _, _>((scene, &lit), cfg, checked, truth_from, none)?.0))
 }
@@ -255,14 +256,6 @@ fn light_sources(scene: &Scene) -> Vec<LightSource> {
     }
 }
 
-/// Tell `probe` that the shadow unit reads light `k`'s map, when the pass
-/// tests more than one of `lights`.
-fn bind<P: Probe>(probe: &mut P, k: usize, lights: usize) {
-    if lights > 1 {
-        probe.map_bound(u16::try_from(k).unwrap_or(u16::MAX));
-    }
-}
-
 /// The camera pass's options for `cfg`, whose algorithm uses `units`, at
 /// `size` in `tiling`.
 ///
@@ -283,106 +276,6 @@ pub(crate) fn camera_options(
     })
 }
 
-/// The passes of a render of `scene`, lit by each of its lights as `lit`
-/// holds it ([`Lit::each`]): a light pass per shadow-casting light, each
-/// reporting to its own of `light_probes` (one per light) and drawing into
-/// its own of `frames` (with its silhouette pass, for a silhouette map),
-/// then the camera pass: the visibility unit once and the shading unit
-/// once per light against that light's map (the probe told which map it
-/// reads), or the stencil unit once per light for shadow volumes. The
-/// light probes, one camera image per light, and each light's silhouette
-/// map (none for other algorithms), for the judge to read.
-pub(super) fn passes<F: DepthFormat, L: Probe, C: Probe>(
-    (scene, lit): (&Scene, &[Lit<'_>]),
-    cfg: &RenderConfig,
-    checked: Targets,
-    frames: &mut Vec<LightFrame<F::Texel>>,
-    light_probes: Vec<L>,
-    camera_probe: &mut C,
-    tiling: Tiling,
-) -> Result<Passes<L>, RenderError> {
-    let units = cfg.algorithm.units::<F>(cfg.bias);
-    let light_config = LightPassConfig { raster: checked.map, unit: units.unit, max_z_cull: true };
-    let mut camera = CameraFrame::default();
-    let size = (checked.image.width(), checked.image.height());
-    debug_assert_eq!(light_probes.len(), lit.len(), "one light probe per light");
-    let triangles = scene.triangles();
-    if units.map == MapKind::Volumes {
-        let images = volumes(&mut camera, (scene, &triangles, lit), size, tiling, camera_probe)?;
-        return Ok(Passes { light_probes, images, silhouettes: Vec::new(), triangles });
-    }
-    frames.resize_with(lit.len(), LightFrame::new);
-    let drawing = LightOptions { per_draw: tiling.per_draw, ..LightOptions::default() };
-    let mut views = Vec::with_capacity(lit.len());
-    let mut probes = Vec::with_capacity(lit.len());
-    for ((one, frame), probe) in lit.iter().map(|l| &*l.scene).zip(frames.iter_mut()).zip(light_probes) {
-        let draws = one.draws_culled(one.light().view_projection(), |solid| units.cull(solid, cfg.culling));
-        let (maps, probe) = light::render::<F, _, DEFAULT_BIN_CAPACITY>(frame, light_config, &draws, drawing, probe)?;
-        views.push(map_view::<F>(maps, units.front_culled)?);
-        probes.push(probe);
-    }
-    let options = camera_options(cfg, &units, size, tiling)?;
-    let mut silhouettes = Vec::new();
-    if let MapKind::Silhouette { packed } = units.map {
-        // Each light's silhouette pass over its map, its events to its
-        // light probe (part of the light side).
-        for ((one, view), probe) in lit.iter().zip(&views).zip(probes.iter_mut()) {
-            let light = one.scene.light().view_projection();
-            let texels = SilTexels::draw(packed, one.occluders(), &light, view, options.shadow, probe)
-                .map_err(PassError::from)?;
-            silhouettes.push(texels);
-        }
-    }
-    visibility(&mut camera, scene, size, tiling, camera_probe)?;
-    let mut images = Vec::with_capacity(lit.len());
-    for (k, (one, view)) in lit.iter().map(|l| &*l.scene).zip(&views).enumerate() {
-        bind(camera_probe, k, lit.len());
-        let scene = (one, triangles.as_slice());
-        let shade = Shade { camera: &mut camera, scene, view, options: &options, probe: &mut *camera_probe };
-        images.push(match silhouettes.get(k) {
-            Some(texels) => texels.read(view.raster(), shade).map_err(PassError::from)??,
-            None => shade.read(&MapUnit)?,
-        });
-    }
-    Ok(Passes { light_probes: probes, images, silhouettes, triangles })
-}
-
-/// What a render's passes leave ([`passes`]).
-pub(super) struct Passes<L> {
-    /// The light probes, one a light.
-    pub(super) light_probes: Vec<L>,
-    /// One camera image a light.
-    pub(super) images: Vec<CameraImage>,
-    /// Each light's silhouette map, for an algorithm that draws one.
-    pub(super) silhouettes: Vec<SilTexels>,
-    /// The scene's triangles ([`Scene::triangles`]), as the shading read them.
-    pub(super) triangles: Vec<umbra_core::shade::SceneTriangle>,
-}
-
-/// The shading of the visible pixels against one light's map, through the
-/// shadow unit it is given.
-struct Shade<'a, 'v, F: DepthFormat, C> {
-    camera: &'a mut CameraFrame,
-    scene: (&'a Scene, &'a [umbra_core::shade::SceneTriangle]),
-    view: &'a MapView<'v, F>,
-    options: &'a CameraOptions,
-    probe: &'a mut C,
-}
-
-impl<F: DepthFormat, C: Probe> Shade<'_, '_, F, C> {
-    fn read<U: ShadowUnit<F>>(self, unit: &U) -> Result<CameraImage, RenderError> {
-        Ok(shade_visible(self.camera, self.scene, self.view, unit, self.options, self.probe)?)
-    }
-}
-
-impl<F: DepthFormat, C: Probe> SilReader for Shade<'_, '_, F, C> {
-    type Out = Result<CameraImage, RenderError>;
-
-    fn read<S: SilStore>(self, unit: &SilhouetteUnit<'_, '_, S>) -> Self::Out {
-        Shade::read(self, unit)
-    }
-}
-
 /// The render of `cfg`, its events counted, and reporting to more probes
 /// besides (the architectures costed from the same passes): one per light
 /// for the light passes, one for the camera pass.
@@ -396,21 +289,24 @@ pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
     let command = cfg.command(scene);
     let mut camera_events = Counters::new(&checked.image);
     let mut frames = Vec::new();
-    let light_probes = light_also.into_iter().map(|also| Tee(Counters::new(&checked.map), also)).collect();
-    let Passes { light_probes: probes, images, silhouettes, triangles } = passes::<F, _, _>(
+    let slots = map_slots(scene, cfg, checked.map)?;
+    let light_probes =
+        light_also.into_iter().zip(&slots).map(|(also, slot)| Tee(Counters::new(&slot.raster), also)).collect();
+    let Passes { light_probes: probes, images, silhouettes, triangles, drawn, plans } = passes::<F, _, _>(
         (scene, lit),
         cfg,
-        checked,
+        (checked, &slots),
         &mut frames,
         light_probes,
         &mut Tee(&mut camera_events, camera_also),
         Tiling::DEFAULT,
     )?;
     let (light_events, light_also): (Vec<Counters>, Vec<L>) = probes.into_iter().map(|Tee(a, b)| (a, b)).unzip();
-    let several = light_events.len() > 1;
-    for (k, (frame, events)) in frames.iter().zip(&light_events).enumerate() {
+    let several = images.len() > 1;
+    for (((slot, frame), events), light) in slots.iter().zip(&frames).zip(&light_events).zip(&drawn) {
         if frame.maps().is_some() {
-            crate::pass::light::EmptyMap::check(&events.totals, &Scene::light_key(k), Some(scene.lights[k].planes()))?;
+            let key = slot.key(plans.get(slot.light).is_some_and(Option::is_some));
+            crate::pass::light::EmptyMap::check(&events.totals, &key, Some(light.planes()))?;
         }
     }
     let reference = Reference::of(scene)?;
@@ -419,24 +315,9 @@ pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
     let truths = truths_of(cfg, truth_from, (&ids, seen.camera), (&reference, &light_sources(scene)), scene)?;
     let units = cfg.algorithm.units::<F>(cfg.bias);
     let options = camera_options(cfg, &units, (seen.width, seen.height), Tiling::DEFAULT)?;
-    let mut parts = Vec::with_capacity(images.len());
-    for (k, ((image, truth), events)) in images.into_iter().zip(truths).zip(light_events).enumerate() {
-        let fields = Fields::new(&truth, image.width);
-        let maps = frames.get(k).and_then(LightFrame::maps);
-        let view = maps.map(|m| map_view::<F>(m, units.front_culled)).transpose()?;
-        let one = lit.get(k).map_or(scene, |l| &*l.scene);
-        let inputs = PassInputs {
-            scene: one,
-            triangles: &triangles,
-            seen: (&ids, image.camera),
-            view: view.as_ref(),
-            options: &options,
-            source: ShadowSource::of(units.map, silhouettes.get(k)),
-            memo: None,
-        };
-        let (metrics, verdicts) = judged(&inputs, &image.pixels, (&truth, &fields, &reference), None)
-            .map_err(|e| if several { RenderError::Pass(e).of_light(k) } else { RenderError::Pass(e) })?;
-        let maps = maps.map_or_else(
+    let of_light = |e: RenderError, k: usize| if several { e.of_light(k) } else { e };
+    let raw = |maps: Option<&LightMaps<F::Texel>>| {
+        maps.map_or_else(
             // Shadow volumes draw no map: one far texel stands for it.
             || LightMaps {
                 config: LightPassConfig { raster: checked.map, unit: DepthUnit::Single, max_z_cull: true },
@@ -445,16 +326,95 @@ pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
                 tiles: vec![TileState::cleared(F::Texel::to_raw(F::FAR), 1)],
             },
             light::widen,
-        );
-        let maps = RawMaps { format: cfg.format, maps };
-        parts.push(LightPart { image, maps, truth, metrics, verdicts, light_events: events });
+        )
+    };
+    let mut events = light_events.into_iter();
+    let mut parts = Vec::with_capacity(images.len());
+    for (k, ((image, truth), plan)) in images.into_iter().zip(truths).zip(plans).enumerate() {
+        let fields = Fields::new(&truth, image.width);
+        let maps: Vec<usize> = (0..slots.len()).filter(|&m| slots[m].light == k).collect();
+        let views = maps
+            .iter()
+            .map(|&m| {
+                frames.get(m).and_then(LightFrame::maps).map(|f| map_view::<F>(f, units.front_culled)).transpose()
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let inputs: Vec<PassInputs<'_, F>> = maps
+            .iter()
+            .zip(&views)
+            .map(|(&m, view)| PassInputs {
+                light: drawn[m],
+                triangles: &triangles,
+                seen: (&ids, image.camera),
+                view: view.as_ref(),
+                options: &options,
+                source: ShadowSource::of(units.map, silhouettes.get(m)),
+                memo: None,
+            })
+            .collect();
+        let (metrics, verdicts, cascades, cascade_of) = match &plan {
+            Some((_, cascade_of)) => {
+                let (m, v, each) =
+                    cascaded::judged(&inputs, (&image.pixels, cascade_of), (&truth, &fields, &reference))
+                        .map_err(|e| of_light(RenderError::Pass(e), k))?;
+                (m, v, each, cascade_of.clone())
+            }
+            None => {
+                let (m, v) = judged(&inputs[0], &image.pixels, (&truth, &fields, &reference), None)
+                    .map_err(|e| of_light(RenderError::Pass(e), k))?;
+                (m, v, Vec::new(), Vec::new())
+            }
+        };
+        let mut raws =
+            maps.iter().map(|&m| RawMaps { format: cfg.format, maps: raw(frames.get(m).and_then(LightFrame::maps)) });
+        let mut counted = maps.iter().map(|_| events.next().unwrap_or_default()).collect::<Vec<_>>().into_iter();
+        let light_events = counted.next().unwrap_or_default();
+        let first = raws.next().unwrap_or_else(|| unreachable!("a light draws a map"));
+        let cascades = match plan {
+            Some((plan, _)) => cascades
+                .into_iter()
+                .enumerate()
+                .map(|(c, metrics)| CascadePart {
+                    light: plan.lights[c],
+                    slice: [plan.distances[c], plan.distances[c + 1]],
+                    side: plan.sides[c],
+                    metrics,
+                    events: if c == 0 { light_events.totals } else { counted.next().unwrap_or_default().totals },
+                })
+                .collect(),
+            None => Vec::new(),
+        };
+        parts.push(LightPart {
+            image,
+            maps: first,
+            truth,
+            metrics,
+            verdicts,
+            light_events,
+            cascades,
+            cascade_maps: raws.collect(),
+            cascade_of,
+        });
     }
     let first = parts.remove(0);
-    let LightPart { image, maps, truth, metrics, verdicts, light_events } = first;
+    let LightPart { image, maps, truth, metrics, verdicts, light_events, cascades, cascade_maps, cascade_of } = first;
     let size = (image.width, image.height);
     let shadowless =
         scene.shadowless.iter().map(|l| reference.facing(&ids, &image.camera, size, &l.source())).collect();
-    let render =
-        Render { image, maps, truth, metrics, verdicts, light_events, camera_events, command, more: parts, shadowless };
+    let render = Render {
+        image,
+        maps,
+        truth,
+        metrics,
+        verdicts,
+        light_events,
+        camera_events,
+        command,
+        more: parts,
+        shadowless,
+        cascades,
+        cascade_maps,
+        cascade_of,
+    };
     Ok((render, light_also))
 }

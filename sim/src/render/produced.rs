@@ -3,6 +3,7 @@
 //! and metrics), the camera pass's events, and the frame's metrics over
 //! its lights.
 
+use super::CascadePart;
 use crate::base::counters::Counters;
 use crate::pass::camera::CameraImage;
 use crate::pass::light::RawMaps;
@@ -36,6 +37,15 @@ pub struct Render {
     /// Each light that casts no shadow's cosine at each pixel's surface
     /// ([`Reference::facing`](crate::truth::reference::Reference::facing)), for the shaded picture.
     pub shadowless: Vec<Vec<f64>>,
+    /// The first light's cascades, nearest first (empty for one map):
+    /// [`Render::maps`] and [`Render::light_events`] are its first
+    /// cascade's.
+    pub cascades: Vec<CascadePart>,
+    /// The maps of the first light's cascades after the first.
+    pub cascade_maps: Vec<RawMaps>,
+    /// The cascade each pixel read, for a cascaded first light (empty
+    /// otherwise).
+    pub cascade_of: Vec<u8>,
 }
 
 /// What a render produced for one of its lights: the maps its light pass
@@ -52,8 +62,15 @@ pub struct LightPart {
     pub metrics: Metrics,
     /// Each pixel's verdict for this light.
     pub verdicts: Vec<Verdict>,
-    /// Events of its light pass.
+    /// Events of its light pass (its first cascade's, for a cascaded
+    /// light).
     pub light_events: Counters,
+    /// Its cascades, nearest first (empty for one map).
+    pub cascades: Vec<CascadePart>,
+    /// The maps of its cascades after the first.
+    pub cascade_maps: Vec<RawMaps>,
+    /// The cascade each pixel read, for a cascaded light (empty otherwise).
+    pub cascade_of: Vec<u8>,
 }
 
 impl Render {
@@ -67,6 +84,9 @@ impl Render {
             metrics: &self.metrics,
             verdicts: &self.verdicts,
             light_events: &self.light_events,
+            cascades: &self.cascades,
+            cascade_maps: &self.cascade_maps,
+            cascade_of: &self.cascade_of,
         };
         core::iter::once(first).chain(self.more.iter().map(|p| PartRef {
             image: &p.image,
@@ -75,6 +95,9 @@ impl Render {
             metrics: &p.metrics,
             verdicts: &p.verdicts,
             light_events: &p.light_events,
+            cascades: &p.cascades,
+            cascade_maps: &p.cascade_maps,
+            cascade_of: &p.cascade_of,
         }))
     }
 
@@ -102,6 +125,12 @@ pub struct PartRef<'r> {
     pub metrics: &'r Metrics,
     /// Its verdicts.
     pub verdicts: &'r [Verdict],
-    /// Its light pass's events.
+    /// Its light pass's events (its first cascade's).
     pub light_events: &'r Counters,
+    /// Its cascades.
+    pub cascades: &'r [CascadePart],
+    /// The maps of its cascades after the first.
+    pub cascade_maps: &'r [RawMaps],
+    /// The cascade each pixel read (empty for one map).
+    pub cascade_of: &'r [u8],
 }

@@ -17,14 +17,15 @@ use crate::pass::occluders::{SilReader, SilTexels};
 use crate::truth::cause::{Cause, Judge, Judged, OccluderMemo, Rays, Receiver, Sight, Taps};
 use crate::truth::metrics::{Attribution, Fields, Footprints, Metrics, Verdict, compare_with};
 use crate::truth::reference::{PixelTruth, Reference, surface_point};
-use crate::world::scene::{LightSource, Scene};
+use crate::world::scene::{Light, LightSource};
 
 /// What a render's judge reads: the scene, the visibility it shaded (ids
 /// and camera), the map and the camera options, and the exact reference.
 pub(crate) struct PassInputs<'a, F: DepthFormat> {
-    /// The scene.
-    pub scene: &'a Scene,
-    /// Its [`Scene::triangles`].
+    /// The light whose map the shading read (a cascade's, for a cascaded
+    /// light).
+    pub light: Light,
+    /// The scene's [`Scene::triangles`](crate::world::scene::Scene::triangles).
     pub triangles: &'a [SceneTriangle],
     /// The visible triangle of each pixel, and the camera it was seen through.
     pub seen: (&'a [u32], Mat4),
@@ -154,7 +155,7 @@ struct Replay<'a, F: DepthFormat, U> {
 
 impl<'a, F: DepthFormat, U: ShadowUnit<F>> Replay<'a, F, U> {
     fn new(what: &PassInputs<'a, F>, view: &'a MapView<'a, F>, unit: &'a U, reference: &'a Reference) -> Self {
-        let cfg = shade_config(what.scene, what.seen.1, what.options);
+        let cfg = shade_config(what.light.view_projection(), what.seen.1, what.options);
         let light = cfg.light.as_dmat4();
         let raster = view.raster();
         let size = (raster.width(), raster.height());
@@ -166,7 +167,7 @@ impl<'a, F: DepthFormat, U: ShadowUnit<F>> Replay<'a, F, U> {
             triangles: what.triangles,
             reference,
             light,
-            light_source: what.scene.light().source(),
+            light_source: what.light.source(),
             camera_inverse: cfg.camera.as_dmat4().inverse(),
             rays: Rays::new(reference, &light, size, what.memo),
             taps: Taps::default(),

@@ -3,6 +3,7 @@
 //! casts shadows with (Sen et al.'s silhouette edges and volumes), and a
 //! scene's light moved where its user puts it.
 
+pub mod cascade;
 pub mod gltf;
 pub mod mesh;
 pub(crate) mod occluders;

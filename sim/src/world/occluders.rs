@@ -72,7 +72,7 @@ fn facing(light: &Light, p: &[Vec3; 3]) -> f64 {
     let n = (b - a).cross(c - a);
     let towards = match light {
         Light::Spot(s) | Light::Cone(s) => s.position.as_dvec3() - (a + b + c) / 3.0,
-        Light::Directional(_) => -light.direction().as_dvec3(),
+        Light::Directional(..) => -light.direction().as_dvec3(),
     };
     n.dot(towards)
 }

@@ -80,14 +80,17 @@ impl Scene {
         })?;
         let moved = match self.lights.first() {
             Some(Light::Cone(cone)) => Light::Cone(Perspective { fov_degrees: cone.fov_degrees, ..view }),
-            Some(Light::Directional(_)) => Light::Directional(Orthographic {
-                position: view.position,
-                target: view.target,
-                extent: radius * 1.05,
-                near: view.near,
-                far: view.far,
-                up: view.up,
-            }),
+            Some(Light::Directional(_, cascades)) => Light::Directional(
+                Orthographic {
+                    position: view.position,
+                    target: view.target,
+                    extent: radius * 1.05,
+                    near: view.near,
+                    far: view.far,
+                    up: view.up,
+                },
+                *cascades,
+            ),
             Some(Light::Spot(_)) | None => Light::Spot(view),
         };
         match self.lights.first_mut() {

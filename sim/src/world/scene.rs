@@ -175,7 +175,7 @@ impl Camera {
     pub const fn as_light(&self) -> Light {
         match *self {
             Self::Perspective(p) => Light::Spot(p),
-            Self::Orthographic(o) => Light::Directional(o),
+            Self::Orthographic(o) => Light::Directional(o, crate::world::cascade::Cascades::ONE),
         }
     }
 }
@@ -192,13 +192,14 @@ pub enum Light {
     /// else, so a surface outside it is not lit by it, nor measured
     /// against it.
     Cone(Perspective),
-    /// An orthographic directional light.
-    Directional(Orthographic),
+    /// An orthographic directional light, drawn through one map or
+    /// through cascades ([`crate::world::cascade`]).
+    Directional(Orthographic, crate::world::cascade::Cascades),
 }
 
 /// A view matrix looking from `eye` at `target` with `up` up, or `Vec3::Z`
 /// when the view looks along `up`.
-fn look_at(eye: Vec3, target: Vec3, up: Vec3) -> Mat4 {
+pub(crate) fn look_at(eye: Vec3, target: Vec3, up: Vec3) -> Mat4 {
     let dir = (target - eye).normalize_or(Vec3::NEG_Y);
     let up = if dir.cross(up).length_squared() < 1e-6 { Vec3::Z } else { up };
     glam::camera::rh::view::look_at_mat4(eye, target, up)
@@ -210,7 +211,7 @@ impl Light {
     pub const fn planes(&self) -> (f32, f32) {
         match self {
             Self::Spot(p) | Self::Cone(p) => (p.near, p.far),
-            Self::Directional(o) => (o.near, o.far),
+            Self::Directional(o, _) => (o.near, o.far),
         }
     }
 
@@ -219,7 +220,7 @@ impl Light {
     pub fn view_projection(&self) -> Mat4 {
         match self {
             Self::Spot(p) | Self::Cone(p) => p.view_projection(),
-            Self::Directional(o) => o.view_projection_aspect(1.0),
+            Self::Directional(o, _) => o.view_projection_aspect(1.0),
         }
     }
 
@@ -228,7 +229,7 @@ impl Light {
     pub(crate) fn direction(&self) -> Vec3 {
         match self {
             Self::Spot(p) | Self::Cone(p) => p.target - p.position,
-            Self::Directional(o) => o.target - o.position,
+            Self::Directional(o, _) => o.target - o.position,
         }
     }
 
@@ -240,7 +241,7 @@ impl Light {
             Self::Cone(p) => {
                 LightSource::Spot { position: p.position.as_dvec3(), frustum: p.view_projection().as_dmat4() }
             }
-            Self::Directional(_) => LightSource::Directional(self.direction().as_dvec3()),
+            Self::Directional(..) => LightSource::Directional(self.direction().as_dvec3()),
         }
     }
 }

@@ -39,7 +39,7 @@ fn scene(occluders: Vec<Mesh>) -> Scene {
     Scene {
         name: "square".into(),
         objects,
-        lights: vec![Light::Directional(light)],
+        lights: vec![Light::Directional(light, umbra::sim::world::cascade::Cascades::ONE)],
         camera: Camera::Perspective(camera),
         image: [320, 240],
         source: String::new(),

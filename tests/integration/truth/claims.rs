@@ -25,7 +25,7 @@ fn lit_from(mut scene: Scene, position: [f32; 3]) -> Scene {
     let p = umbra::core::glam::Vec3::from_array(position);
     match &mut scene.lights[0] {
         Light::Spot(view) | Light::Cone(view) => view.position = p,
-        Light::Directional(view) => view.position = p,
+        Light::Directional(view, _) => view.position = p,
     }
     scene.name = format!("{} lit from {position:?}", scene.name);
     scene

@@ -300,15 +300,18 @@ const fn culled(t: &Totals) -> u64 {
 }
 
 impl CostReport {
-    /// Combine the probes of the light pass and the camera pass of `scene`
-    /// rendered with `config` (described in words), whose filter takes
-    /// `samples_per_pixel` depth samples.
+    /// Combine the probes of the light passes (one a map, each named by
+    /// `maps`: `lights[k]`, or `lights[k].cascades[c]`) and the camera
+    /// pass of `scene` rendered with `config` (described in words), whose
+    /// filter takes `samples_per_pixel` depth samples and whose shading
+    /// unit shades each covered pixel `shadings` times (once a light; a
+    /// cascaded light's blend bands add theirs as lookups, not shadings).
     #[must_use]
     pub(crate) fn new<const L: bool, const C: bool>(
         (scene, config): (&str, String),
-        lights: &[ArchProbe<L>],
+        (lights, maps): (&[ArchProbe<L>], &[String]),
         camera: &ArchProbe<C>,
-        samples_per_pixel: u64,
+        (samples_per_pixel, shadings): (u64, usize),
     ) -> Self {
         let arch = camera.arch.clone();
         // The light passes run one after another: their times, ledgers,
@@ -324,17 +327,16 @@ impl CostReport {
             .zip(&each)
             .enumerate()
             .map(|(k, (l, t))| {
-                let name = if several {
-                    format!("light {}", crate::world::scene::Scene::light_key(k))
-                } else {
-                    "light".to_owned()
+                let name = match maps.get(k) {
+                    Some(map) if several => format!("light {map}"),
+                    _ => "light".to_owned(),
                 };
                 PassTimeline::of(name, l, t.clone())
             })
             .collect();
         timeline.push(PassTimeline::of("camera".to_owned(), camera, ct.clone()));
         // The shading unit shades each covered pixel once per light.
-        let looked_up = lights.len().max(1) as u64;
+        let looked_up = shadings.max(1) as u64;
         let pixels = ce.pixels_shaded / looked_up;
         let fill = ce.fragments;
         let drew = le.submitted + ce.submitted > 0;

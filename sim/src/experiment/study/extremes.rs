@@ -64,7 +64,7 @@ fn near_far_name(ratio: f64) -> String {
 #[must_use]
 pub(crate) fn grazing_scene(degrees: f64) -> Scene {
     let mut s = Scene::bundled("grazing").expect("the bundled grazing scene is valid");
-    if let Some(Light::Directional(o)) = s.lights.first_mut() {
+    if let Some(Light::Directional(o, _)) = s.lights.first_mut() {
         let d = o.position - o.target;
         let horizontal = Vec3::new(d.x, 0.0, d.z).length();
         #[allow(clippy::cast_possible_truncation, reason = "a height well inside f32")]

@@ -61,7 +61,7 @@ impl Kept {
     /// probe, once the passes have run: `None` for probes of another kind
     /// than one another (one architecture's are all of one).
     pub(super) fn report(
-        names: (&str, SceneCounts),
+        names: (&str, &SceneCounts),
         cfg: &RenderConfig,
         config: &str,
         lights: Vec<Self>,

@@ -165,7 +165,7 @@ impl<'s> ImageShare<'s> {
             limits: *limits,
             seen,
             seen_by,
-            counts: SceneCounts::of(scene, &lit),
+            counts: SceneCounts::of(scene, &lit, &[]),
             triangles,
             lit,
             lights,

@@ -82,7 +82,7 @@ pub(crate) fn render_shared<F: DepthFormat>(
         parts.push(each.shade::<F>(scratch, (&mut cameras, &mut light_probes), &mut camera_totals)?);
     }
     let config = cfg.describe();
-    let names = (image.scene.name.as_str(), image.counts);
+    let names = (image.scene.name.as_str(), &image.counts);
     let costs = cameras
         .into_iter()
         .zip(light_probes)
@@ -164,7 +164,8 @@ impl<T: umbra_core::depth::Texel> One<'_, '_, T> {
                 let source = ShadowSource::of(units.map, silhouette);
                 let triangles = &image.triangles;
                 let memo = Some(&lighting.occluders);
-                let inputs = PassInputs { scene, triangles, seen, view: Some(&view), options, source, memo };
+                let inputs =
+                    PassInputs { light: scene.light(), triangles, seen, view: Some(&view), options, source, memo };
                 let mut sums = Sums::new(pixels.len());
                 let kept = lighting.kept_footprints();
                 let mut fit = vec![true; kept.len()];
@@ -177,7 +178,7 @@ impl<T: umbra_core::depth::Texel> One<'_, '_, T> {
                     };
                     let bands = Some(Bands { rows: BAND_ROWS, then: &mut then });
                     let pass = Shading {
-                        scene: (scene, &image.triangles),
+                        light: (scene.light().view_projection(), &image.triangles),
                         view: &view,
                         options,
                         seen,
@@ -193,7 +194,7 @@ impl<T: umbra_core::depth::Texel> One<'_, '_, T> {
                 metrics = Some(sums.finish(pixels, lighting.truth, &lighting.fields, Some(&footprints)).0);
             } else {
                 let pass = Shading {
-                    scene: (scene, &image.triangles),
+                    light: (scene.light().view_projection(), &image.triangles),
                     view: &view,
                     options,
                     seen,
@@ -271,8 +272,8 @@ const BAND_ROWS: u32 = 16;
 /// One shading of a configuration: the map it reads, the visibility it
 /// shades, the buffers it writes and what reads them as they are written.
 struct Shading<'p, 'v, F: DepthFormat, R> {
-    /// The scene as the map's light lights it, and its triangles.
-    scene: (&'p Scene, &'p [SceneTriangle]),
+    /// The map's light's view-projection, and the scene's triangles.
+    light: (glam::Mat4, &'p [SceneTriangle]),
     view: &'p MapView<'v, F>,
     options: &'p CameraOptions,
     seen: (&'p [u32], Mat4),
@@ -368,8 +369,8 @@ impl<F: DepthFormat, R: PixelResult, U: ShadowUnit<F>, A: Probe> Reporting for U
     type Out = Result<(), RenderError>;
 
     fn run<P: Probe>(self, probe: &mut P) -> Self::Out {
-        let Shading { scene, view, options, seen, out, setups, bands } = self.shading;
-        shade(scene, seen, view, self.unit, options, &mut Tee(self.also, probe), out, setups, bands)?;
+        let Shading { light, view, options, seen, out, setups, bands } = self.shading;
+        shade(light, seen, view, self.unit, options, &mut Tee(self.also, probe), out, setups, bands)?;
         Ok(())
     }
 }

@@ -12,7 +12,7 @@ use crate::truth::reference::PixelTruth;
 /// from the light (the terminator's reach).
 #[derive(Clone, Debug)]
 pub struct Fields {
-    pub(super) width: usize,
+    pub(crate) width: usize,
     pub(super) to_edge: Vec<u32>,
     pub(super) to_lit_edge: Vec<(u32, usize)>,
     pub(super) to_away: Vec<u32>,

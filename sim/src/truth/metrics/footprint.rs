@@ -20,10 +20,13 @@ pub(super) type Derivatives = (Option<DVec2>, Option<DVec2>);
 
 /// Each evaluated pixel's light-space point of a `width`-wide render,
 /// converted once, from which the map's footprint at any pixel follows.
-pub(super) struct Points {
+pub(super) struct Points<'p> {
     points: Vec<Option<DVec2>>,
     width: usize,
     height: usize,
+    /// Each pixel's map (a cascade), where the render read several: a
+    /// neighbour on another map gives no derivative.
+    parts: &'p [u8],
 }
 
 std::thread_local! {
@@ -32,8 +35,8 @@ std::thread_local! {
     static SPARE_POINTS: core::cell::RefCell<Vec<Option<DVec2>>> = const { core::cell::RefCell::new(Vec::new()) };
 }
 
-impl Points {
-    pub(super) fn new(render: &[Shaded], truth: &[Option<PixelTruth>], width: usize) -> Self {
+impl<'p> Points<'p> {
+    pub(super) fn new(render: &[Shaded], truth: &[Option<PixelTruth>], width: usize, parts: &'p [u8]) -> Self {
         let mut points = SPARE_POINTS.with(|p| p.take());
         points.clear();
         points.extend(render.iter().zip(truth).map(|(s, t)| {
@@ -42,7 +45,7 @@ impl Points {
             Some(DVec2::new(l.x.to_num(), l.y.to_num()))
         }));
         let height = render.len().checked_div(width).unwrap_or(0);
-        Self { points, width, height }
+        Self { points, width, height, parts }
     }
 
     /// Give the buffer back for the next measure on this thread.
@@ -60,9 +63,13 @@ impl Points {
     /// neighbour on its surface that way).
     pub(super) fn footprint(&self, k: usize) -> Derivatives {
         let Some(c) = self.at(k) else { return (None, None) };
+        let part = self.parts.get(k);
         let derivative = |before: Option<usize>, after: Option<usize>| {
-            let near =
-                |n: Option<usize>| n.and_then(|n| self.at(n)).filter(|p| (*p - c).length() <= SAME_SURFACE_TEXELS);
+            let near = |n: Option<usize>| {
+                n.filter(|&n| self.parts.get(n) == part)
+                    .and_then(|n| self.at(n))
+                    .filter(|p| (*p - c).length() <= SAME_SURFACE_TEXELS)
+            };
             match (near(before), near(after)) {
                 (Some(a), Some(b)) => Some((b - a) / 2.0),
                 (Some(a), None) => Some(c - a),
@@ -86,6 +93,22 @@ pub(crate) struct Footprints {
     points: Vec<Option<[i32; 2]>>,
     pub(super) x: [f64; 2],
     pub(super) y: [f64; 2],
+    /// The 95th percentile over the 5th, along x and along y.
+    pub(super) spread: [f64; 2],
+}
+
+/// The 95th percentile of `v` over its 5th (`0` when the 5th is `0`, or
+/// `v` empty).
+#[allow(clippy::cast_precision_loss, clippy::cast_possible_truncation, clippy::cast_sign_loss, reason = "an index")]
+fn spread(v: &mut [f64]) -> f64 {
+    if v.is_empty() {
+        return 0.0;
+    }
+    let last = (v.len() - 1) as f64;
+    let at = |q: f64| (last * q).round() as usize;
+    let p5 = *v.select_nth_unstable_by(at(0.05), f64::total_cmp).1;
+    let p95 = *v.select_nth_unstable_by(at(0.95), f64::total_cmp).1;
+    if p5 > 0.0 { p95 / p5 } else { 0.0 }
 }
 
 /// A pixel's light-space point in map coordinates' bits.
@@ -97,7 +120,15 @@ impl Footprints {
     /// The footprint of a `width`-wide render.
     #[must_use]
     pub(crate) fn of(render: &[Shaded], truth: &[Option<PixelTruth>], width: usize) -> Self {
-        let points = Points::new(render, truth, width);
+        Self::of_parts(render, truth, width, &[])
+    }
+
+    /// The footprint of a `width`-wide render whose pixels read the maps
+    /// `parts` names (a cascade each; empty for one map): each derivative
+    /// between neighbours on the same map.
+    #[must_use]
+    pub(crate) fn of_parts(render: &[Shaded], truth: &[Option<PixelTruth>], width: usize, parts: &[u8]) -> Self {
+        let points = Points::new(render, truth, width, parts);
         let (mut along_x, mut along_y) = (Vec::new(), Vec::new());
         for k in 0..render.len() {
             let (x, y) = points.footprint(k);
@@ -105,7 +136,8 @@ impl Footprints {
             along_y.extend(y.map(DVec2::length));
         }
         points.recycle();
-        Self { points: render.iter().map(exact).collect(), x: quantiles(along_x), y: quantiles(along_y) }
+        let spread = [spread(&mut along_x), spread(&mut along_y)];
+        Self { points: render.iter().map(exact).collect(), x: quantiles(along_x), y: quantiles(along_y), spread }
     }
 
     /// Whether `render`'s pixels lie at exactly these points on the map (so

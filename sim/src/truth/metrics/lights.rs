@@ -49,6 +49,7 @@ impl Metrics {
                 largest(&mut m.penumbra_width[k], l.penumbra_width[k]);
                 largest(&mut m.footprint_x[k], l.footprint_x[k]);
                 largest(&mut m.footprint_y[k], l.footprint_y[k]);
+                largest(&mut m.footprint_spread[k], l.footprint_spread[k]);
             }
             for k in 1..3 {
                 largest(&mut m.displacement[k], l.displacement[k]);

@@ -174,6 +174,17 @@ pub struct Metrics {
     /// The same along y.
     #[serde(rename = "footprint_y_texels_per_px", serialize_with = "median_p95")]
     pub footprint_y: [f64; 2],
+    /// How unevenly the map's texels spread over the view: the 95th
+    /// percentile of the footprint over its 5th, along x and along y (1:
+    /// every pixel the same share of texels; `0` when the 5th is `0`).
+    /// Zhang et al. (2006, §3) split cascades to keep it small.
+    #[serde(serialize_with = "along_x_y")]
+    pub footprint_spread: [f64; 2],
+}
+
+/// Along x and along y, named.
+fn along_x_y<S: serde::Serializer>(v: &[f64; 2], s: S) -> Result<S::Ok, S::Error> {
+    s.collect_map([("x", v[0]), ("y", v[1])])
 }
 
 /// Mean, 95th percentile and largest, named.

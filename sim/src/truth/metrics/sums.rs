@@ -156,7 +156,7 @@ impl Sums {
                 &worked
             }
         };
-        (m.footprint_x, m.footprint_y) = (footprints.x, footprints.y);
+        (m.footprint_x, m.footprint_y, m.footprint_spread) = (footprints.x, footprints.y, footprints.spread);
         m.penumbra_width = quantiles(penumbra_width);
         m.displacement = summary(&mut pixels);
         m.displacement_texels = summary(&mut texels);

@@ -152,14 +152,17 @@ fn light(l: &Placed<Lamp>, sphere: Sphere) -> Result<Light, (String, crate::worl
         Lamp::Directional => {
             let r = sphere.radius.max(1e-6);
             let position = sphere.center - l.forward * 2.0 * r;
-            Ok(Light::Directional(Orthographic {
-                position: position.as_vec3(),
-                target: sphere.center.as_vec3(),
-                extent: f32_of(r * 1.01),
-                near: f32_of(r * 0.99),
-                far: f32_of(r * 3.01),
-                up,
-            }))
+            Ok(Light::Directional(
+                Orthographic {
+                    position: position.as_vec3(),
+                    target: sphere.center.as_vec3(),
+                    extent: f32_of(r * 1.01),
+                    near: f32_of(r * 0.99),
+                    far: f32_of(r * 3.01),
+                    up,
+                },
+                crate::world::cascade::Cascades::ONE,
+            ))
         }
     }
 }

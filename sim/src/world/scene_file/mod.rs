@@ -398,17 +398,23 @@ impl Scene {
                     &key,
                     &ViewFile { position: *position, target: *target, fov: *fov, near: *near, far: *far },
                 )?),
-                LightFile::Directional { position, target, extent, near, far, .. } => {
+                LightFile::Directional { position, target, extent, near, far, cascades, .. } => {
                     let (near, far) = c.near_far(&key, *near, *far)?;
                     let (position, target) = c.eye(&key, *position, *target)?;
-                    Light::Directional(Orthographic {
+                    let view = Orthographic {
                         position,
                         target,
                         extent: c.range(&format!("{key}.extent"), *extent, 1e-6, 1e6)?,
                         near,
                         far,
                         up: Vec3::Y,
-                    })
+                    };
+                    let cascades = cascades
+                        .as_ref()
+                        .map(|t| t.read().map_err(|e| c.err(&format!("{key}.cascades"), Problem::Syntax(e))))
+                        .transpose()?
+                        .unwrap_or_default();
+                    Light::Directional(view, cascades)
                 }
             });
         }

@@ -35,8 +35,45 @@ pub(super) struct ViewFile {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields, tag = "kind", rename_all = "lowercase")]
 pub(super) enum LightFile {
-    Spot { position: Exact<3>, target: Exact<3>, fov: f64, near: f64, far: f64, shadows: Option<bool> },
-    Directional { position: Exact<3>, target: Exact<3>, extent: f64, near: f64, far: f64, shadows: Option<bool> },
+    Spot {
+        position: Exact<3>,
+        target: Exact<3>,
+        fov: f64,
+        near: f64,
+        far: f64,
+        shadows: Option<bool>,
+    },
+    Directional {
+        position: Exact<3>,
+        target: Exact<3>,
+        extent: f64,
+        near: f64,
+        far: f64,
+        shadows: Option<bool>,
+        /// Its cascades: a count, or their spelling (`"4,lambda=0.7"`).
+        cascades: Option<CascadesText>,
+    },
+}
+
+/// A light's `cascades`: a count, or the cascades' one spelling.
+#[derive(Deserialize)]
+#[serde(untagged)]
+pub(super) enum CascadesText {
+    /// `cascades = 4`.
+    Count(i64),
+    /// `cascades = "4,lambda=0.7"`.
+    Spelled(String),
+}
+
+impl CascadesText {
+    /// The cascades it spells.
+    pub(super) fn read(&self) -> Result<crate::world::cascade::Cascades, String> {
+        match self {
+            Self::Count(n) => n.to_string().parse(),
+            Self::Spelled(s) => s.parse(),
+        }
+        .map_err(|e: crate::world::cascade::CascadesError| e.to_string())
+    }
 }
 
 impl LightFile {

@@ -357,7 +357,8 @@ fn blocks<'c>(
     let mut alone = Vec::new();
     let mut blocks: Vec<((DepthFormatKind, u32), Vec<&Config>)> = Vec::new();
     for &c in rendered {
-        if !shared || LightKey::of(&render_config(spec, c)).is_none() {
+        let cfg = render_config(spec, c);
+        if !shared || LightKey::of(&cfg).is_none() || cfg.cascaded(&spec.scenes[c.scene]) {
             alone.push(c);
             continue;
         }

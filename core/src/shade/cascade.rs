@@ -1,0 +1,150 @@
+//! The cascade selector of a camera pass that reads cascaded maps (Zhang
+//! et al. 2006, parallel-split shadow maps §3; Microsoft's "Cascaded
+//! Shadow Maps"): the camera's depth range is split into slices, each
+//! lit through a map of its own, and each pixel reads the map of the
+//! slice its depth lies in.
+//!
+//! The unit compares the pixel's depth-buffer value (the visibility
+//! unit's, in the camera's [`D24`](crate::D24) format) with one split
+//! register a boundary, as hardware does: no division, no view-space
+//! depth. A pixel within a boundary's blend band (from the band
+//! register up to the split) reads both maps and mixes the two
+//! fractions by where it lies in the band, in the depth buffer's own
+//! units, with an 8-bit weight.
+
+use crate::config::ConfigError;
+use crate::shadow::Shadow;
+
+/// The most cascades a selector holds.
+pub const MAX_CASCADES: usize = 8;
+
+/// What the selector decides for a pixel: the cascade whose map it
+/// reads, and, in a blend band, the weight (of 256) of the next
+/// cascade's fraction.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Pick {
+    /// The cascade, `0` nearest the camera.
+    pub cascade: u8,
+    /// Within the band before the next cascade: the next cascade's weight
+    /// out of 256 (`1..=255`); `None` outside every band.
+    pub next_weight: Option<u16>,
+}
+
+/// The selector's registers: where each cascade after the first begins,
+/// and where the band blending into it begins, as depth-buffer values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CascadeSelect {
+    count: u8,
+    /// `splits[i]`: the least depth read through cascade `i + 1`.
+    splits: [u32; MAX_CASCADES - 1],
+    /// `bands[i]`: the least depth whose pixel blends cascade `i` into
+    /// `i + 1` (equal to `splits[i]` for no band).
+    bands: [u32; MAX_CASCADES - 1],
+}
+
+impl CascadeSelect {
+    /// One cascade: every pixel reads map 0.
+    pub const ONE: Self = Self { count: 1, splits: [u32::MAX; MAX_CASCADES - 1], bands: [u32::MAX; MAX_CASCADES - 1] };
+
+    /// A selector of `splits.len() + 1` cascades: `splits` the depths at
+    /// which each cascade after the first begins, `bands` where each
+    /// boundary's blend band begins (`bands[i] <= splits[i]`; equal for
+    /// none).
+    ///
+    /// # Errors
+    /// [`ConfigError::Cascades`] for more than [`MAX_CASCADES`] cascades,
+    /// `bands` of another length, splits that do not increase, or a band
+    /// that starts after its split or before the previous split.
+    pub fn new(splits: &[u32], bands: &[u32]) -> Result<Self, ConfigError> {
+        let n = splits.len();
+        if n >= MAX_CASCADES || bands.len() != n {
+            return Err(ConfigError::Cascades { splits: n, bands: bands.len() });
+        }
+        let mut s = Self::ONE;
+        let mut previous = 0;
+        for (i, (&split, &band)) in splits.iter().zip(bands).enumerate() {
+            if split <= previous && i > 0 || band > split || band < previous {
+                return Err(ConfigError::Cascades { splits: n, bands: bands.len() });
+            }
+            s.splits[i] = split;
+            s.bands[i] = band;
+            previous = split;
+        }
+        s.count = u8::try_from(n + 1).unwrap_or(1);
+        Ok(s)
+    }
+
+    /// How many cascades it selects among.
+    #[must_use]
+    pub const fn count(&self) -> u8 {
+        self.count
+    }
+
+    /// The cascade a pixel of depth-buffer value `z` reads, and its
+    /// blend weight.
+    #[must_use]
+    #[inline]
+    pub fn pick(&self, z: u32) -> Pick {
+        let last = usize::from(self.count) - 1;
+        let cascade = self.splits.iter().take(last).take_while(|&&s| z >= s).count();
+        let next_weight = match (self.splits.get(cascade), self.bands.get(cascade)) {
+            (Some(&split), Some(&band)) if cascade < last && z >= band && band < split => {
+                // z < split: the weight is below 256.
+                let w = (u64::from(z - band) << 8) / u64::from(split - band);
+                u16::try_from(w.max(1)).ok()
+            }
+            _ => None,
+        };
+        Pick { cascade: u8::try_from(cascade).unwrap_or(0), next_weight }
+    }
+}
+
+/// The fraction of a pixel in a blend band: `near`'s (its own cascade's)
+/// and `far`'s (the next's) mixed as `(near·(256 − w) + far·w) / 256`,
+/// rounded to nearest.
+#[must_use]
+#[inline]
+pub fn blend(near: Shadow, far: Shadow, next_weight: u16) -> Shadow {
+    let w = u64::from(next_weight.min(256));
+    let mixed = (u64::from(near.to_bits()) * (256 - w) + u64::from(far.to_bits()) * w + 128) >> 8;
+    Shadow::from_bits(u32::try_from(mixed).unwrap_or(u32::MAX))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Worked by hand: splits at 100 and 200, a band from 150 to 200.
+    #[test]
+    fn picks_by_the_split_registers() {
+        let s = CascadeSelect::new(&[100, 200], &[100, 150]).expect("valid");
+        assert_eq!(s.pick(0), Pick { cascade: 0, next_weight: None });
+        assert_eq!(s.pick(99), Pick { cascade: 0, next_weight: None });
+        assert_eq!(s.pick(100), Pick { cascade: 1, next_weight: None });
+        assert_eq!(s.pick(149), Pick { cascade: 1, next_weight: None });
+        // (175 − 150)·256 / 50 = 128.
+        assert_eq!(s.pick(175), Pick { cascade: 1, next_weight: Some(128) });
+        assert_eq!(s.pick(150), Pick { cascade: 1, next_weight: Some(1) });
+        assert_eq!(s.pick(199), Pick { cascade: 1, next_weight: Some(250) });
+        assert_eq!(s.pick(200), Pick { cascade: 2, next_weight: None });
+        assert_eq!(s.pick(u32::MAX), Pick { cascade: 2, next_weight: None });
+        assert_eq!(CascadeSelect::ONE.pick(u32::MAX), Pick { cascade: 0, next_weight: None });
+    }
+
+    #[test]
+    fn refuses_registers_out_of_order() {
+        assert!(CascadeSelect::new(&[200, 100], &[200, 100]).is_err());
+        assert!(CascadeSelect::new(&[100], &[101]).is_err());
+        assert!(CascadeSelect::new(&[100, 200], &[100, 99]).is_err());
+        assert!(CascadeSelect::new(&[1, 2, 3, 4, 5, 6, 7, 8], &[1, 2, 3, 4, 5, 6, 7, 8]).is_err());
+        assert!(CascadeSelect::new(&[1, 2, 3, 4, 5, 6, 7], &[1, 2, 3, 4, 5, 6, 7]).is_ok());
+    }
+
+    #[test]
+    fn blends_to_the_nearest_step() {
+        let (a, b) = (Shadow::ZERO, Shadow::ONE);
+        assert_eq!(blend(a, b, 128), Shadow::from_num(0.5));
+        assert_eq!(blend(b, a, 64), Shadow::from_num(0.75));
+        assert_eq!(blend(b, b, 200), Shadow::ONE);
+    }
+}

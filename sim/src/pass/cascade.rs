@@ -1,0 +1,177 @@
+//! A directional light's cascades in the passes: each cascade's light
+//! fitted to its slice of the view ([`Plan::new`]), and the camera pass's
+//! choice of a cascade per pixel by its depth (the core's
+//! [`CascadeSelect`]), with each pixel in a blend band reading two maps
+//! ([`Picks`]). Each cascade's map is an ordinary map, drawn and tested
+//! as one light's; the shading unit shades the pixels that read each
+//! cascade in turn (as a renderer's projection pass per cascade does,
+//! its depth-bounds test the selector) and the results are put together
+//! per pixel.
+
+use glam::{Mat4, Vec3, Vec4};
+use umbra_core::depth::DepthFormat;
+use umbra_core::shade::Shaded;
+use umbra_core::shade::cascade::{CascadeSelect, Pick, blend};
+use umbra_core::{D24, NO_TRIANGLE};
+
+use super::PassError;
+use super::camera::CameraImage;
+use crate::world::cascade::{Cascades, Fit, fit, on_axis, slice_corners};
+use crate::world::scene::{Camera, Light, Orthographic};
+
+/// One directional light's cascades, planned for a view: each cascade's
+/// light, its map side, the view distances that bound the slices, and the
+/// selector's registers.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Plan {
+    /// Each cascade's light: the scene's, fitted to its slice.
+    pub lights: Vec<Light>,
+    /// Each cascade's map side.
+    pub sides: Vec<u32>,
+    /// The view distances bounding the slices, `count + 1` of them.
+    pub distances: Vec<f32>,
+    /// The selector's split and band registers.
+    pub select: CascadeSelect,
+}
+
+/// The visibility pass a plan reads: the camera's matrix, the image's
+/// size, and its depth and ids.
+#[derive(Clone, Copy, Debug)]
+pub struct Seen<'a> {
+    /// World to camera clip space.
+    pub camera: Mat4,
+    /// Width and height in pixels.
+    pub size: (u32, u32),
+    /// The depth buffer, row-major, in [`D24`].
+    pub depth: &'a [u32],
+    /// The visible triangle per pixel.
+    pub ids: &'a [u32],
+}
+
+impl Seen<'_> {
+    /// The depth-buffer value at view distance `d` along the camera's axis.
+    fn depth_at(&self, camera: &Camera, d: f32) -> u32 {
+        let c = self.camera * on_axis(camera, d).extend(1.0);
+        D24::quantize(if c.w > 0.0 { c.z / c.w } else { 0.0 })
+    }
+
+    /// Each visible pixel's world point, from its depth (f32: a fit needs
+    /// no more) and its view distance.
+    fn samples(&self, camera: &Camera) -> Vec<(Vec3, f32)> {
+        let inverse = self.camera.inverse();
+        let (eye, ahead) = (on_axis(camera, 0.0), on_axis(camera, 1.0) - on_axis(camera, 0.0));
+        let (w, h) = self.size;
+        #[allow(clippy::cast_precision_loss, reason = "pixel coordinates and 24-bit depths")]
+        let point = |k: usize, z: u32| {
+            let (x, y) = ((k % w as usize) as f32 + 0.5, (k / w as usize) as f32 + 0.5);
+            let ndc = Vec4::new(2.0 * x / w as f32 - 1.0, 1.0 - 2.0 * y / h as f32, D24::unquantize(z) as f32, 1.0);
+            let p = inverse * ndc;
+            let p = p.truncate() / p.w;
+            (p, (p - eye).dot(ahead))
+        };
+        let covered = self.ids.iter().zip(self.depth).enumerate().filter(|(_, (id, _))| **id != NO_TRIANGLE);
+        covered.map(|(k, (_, &z))| point(k, z)).collect()
+    }
+}
+
+impl Plan {
+    /// The plan of `cascades` for the directional `light` seen by
+    /// `camera` in `seen`, each map `map_size` texels a side unless the
+    /// cascades give their own.
+    ///
+    /// # Errors
+    /// [`PassError::Config`] for selector registers the core refuses.
+    pub fn new(
+        (light, cascades): (&Orthographic, &Cascades),
+        camera: &Camera,
+        seen: &Seen<'_>,
+        map_size: u32,
+    ) -> Result<Self, PassError> {
+        let (near, far) = camera.planes();
+        #[allow(clippy::cast_precision_loss, reason = "an aspect ratio")]
+        let aspect = seen.size.0 as f32 / seen.size.1.max(1) as f32;
+        let samples = if cascades.fit == Fit::Samples { seen.samples(camera) } else { Vec::new() };
+        // Sample distribution: the depth range narrowed to the visible samples'.
+        let range = samples.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), s| (lo.min(s.1), hi.max(s.1)));
+        let (near, far) = if range.0 < range.1 { (range.0.max(near), range.1.min(far)) } else { (near, far) };
+        let distances = cascades.distances(near, far);
+        let n = cascades.count();
+        let sides: Vec<u32> = (0..n).map(|c| cascades.side(c, map_size)).collect();
+        let mut lights = Vec::with_capacity(n);
+        for (c, d) in distances.windows(2).enumerate() {
+            let inside: Vec<Vec3> = samples.iter().filter(|s| (d[0]..=d[1]).contains(&s.1)).map(|s| s.0).collect();
+            let fitted = if inside.is_empty() {
+                fit(light, slice_corners(camera, aspect, d[0], d[1]), sides[c])
+            } else {
+                fit(light, inside, sides[c])
+            };
+            lights.push(Light::Directional(fitted.unwrap_or(*light), Cascades::ONE));
+        }
+        let splits: Vec<u32> = distances[1..n].iter().map(|&d| seen.depth_at(camera, d)).collect();
+        let bands: Vec<u32> = distances
+            .windows(2)
+            .take(n - 1)
+            .map(|d| seen.depth_at(camera, d[1] - cascades.blend * (d[1] - d[0])))
+            .collect();
+        // Splits closer than a depth-buffer step apart merge: the later wins.
+        let mut registers = (Vec::with_capacity(n - 1), Vec::with_capacity(n - 1));
+        for (&s, &b) in splits.iter().zip(&bands) {
+            let previous = registers.0.last().copied().unwrap_or(0);
+            registers.0.push(s.max(previous));
+            registers.1.push(b.clamp(previous, s.max(previous)));
+        }
+        let select = CascadeSelect::new(&registers.0, &registers.1)?;
+        Ok(Self { lights, sides, distances, select })
+    }
+}
+
+/// Each pixel's pick: the cascade it reads, and the next's weight in a
+/// blend band.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Picks(Vec<Pick>);
+
+impl Picks {
+    /// The selector's pick for each pixel of `seen`.
+    #[must_use]
+    pub fn new(select: &CascadeSelect, seen: &Seen<'_>) -> Self {
+        Self(seen.depth.iter().map(|&z| select.pick(z)).collect())
+    }
+
+    /// Each pixel's cascade.
+    #[must_use]
+    pub fn cascades(&self) -> Vec<u8> {
+        self.0.iter().map(|p| p.cascade).collect()
+    }
+
+    /// `ids` with every pixel that does not read cascade `c` (its own, or
+    /// the next one in a blend band) left uncovered: the pixels cascade
+    /// `c`'s shading shades.
+    #[must_use]
+    pub fn ids_reading(&self, ids: &[u32], c: usize) -> Vec<u32> {
+        ids.iter()
+            .zip(&self.0)
+            .map(|(&id, p)| {
+                let own = usize::from(p.cascade) == c;
+                let blends_in = usize::from(p.cascade) + 1 == c && p.next_weight.is_some();
+                if own || blends_in { id } else { NO_TRIANGLE }
+            })
+            .collect()
+    }
+
+    /// Cascade `c`'s shading `image` put into `into`, the light's image:
+    /// each pixel of its own as it is, each pixel of the previous cascade's
+    /// blend band mixed with what that cascade gave it (the cascades are
+    /// put in nearest first).
+    pub fn put(&self, into: &mut CameraImage, image: &CameraImage, c: usize) {
+        for ((to, from), p) in into.pixels.iter_mut().zip(&image.pixels).zip(&self.0) {
+            if usize::from(p.cascade) == c {
+                *to = *from;
+            } else if usize::from(p.cascade) + 1 == c
+                && let Some(w) = p.next_weight
+                && from.triangle != NO_TRIANGLE
+            {
+                *to = Shaded { shadow: blend(to.shadow, from.shadow, w), ..*to };
+            }
+        }
+    }
+}

@@ -1,0 +1,215 @@
+//! A render's passes: a light pass per map (one a shadow-casting light,
+//! or one a cascade of a cascaded directional light), then the camera
+//! pass: the visibility unit once, the shading unit once per map over
+//! the pixels that read it, a cascaded light's cascades put together per
+//! pixel ([`crate::pass::cascade`]).
+
+use umbra_core::shade::{MapUnit, ShadowUnit, SilhouetteUnit};
+use umbra_core::shadow::MapView;
+use umbra_core::silhouette::SilStore;
+use umbra_core::{DepthFormat, LightPassConfig, Probe, RasterConfig};
+
+use super::{RenderConfig, RenderError, Targets, camera_options};
+use crate::base::maps::Tiling;
+use crate::pass::PassError;
+use crate::pass::algorithm::MapKind;
+use crate::pass::camera::{CameraFrame, CameraImage, CameraOptions, map_view, shade_visible, visibility, volumes};
+use crate::pass::cascade::{Picks, Plan, Seen};
+use crate::pass::light::{self, DEFAULT_BIN_CAPACITY, LightFrame, LightOptions};
+use crate::pass::occluders::{SilReader, SilTexels};
+use crate::world::occluders::Lit;
+use crate::world::scene::{Light, Scene};
+
+/// One map a render draws: light `light`'s, or cascade `cascade` of it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct MapSlot {
+    /// The shadow-casting light, by index.
+    pub(crate) light: usize,
+    /// Its cascade (`0` for a light of one map).
+    pub(crate) cascade: usize,
+    /// The map's target.
+    pub(crate) raster: RasterConfig,
+}
+
+impl MapSlot {
+    /// The map's name in files and messages: `lights[k]`, and
+    /// `lights[k].cascades[c]` for a cascade.
+    #[must_use]
+    pub(crate) fn key(&self, cascaded: bool) -> String {
+        let light = Scene::light_key(self.light);
+        if cascaded { format!("{light}.cascades[{}]", self.cascade) } else { light }
+    }
+}
+
+/// The maps a render of `cfg` draws of `scene`, in tiles of the map
+/// target `map`'s: one per shadow-casting light (one for a scene of
+/// none, or for shadow volumes), a cascaded light's one per cascade at
+/// its side.
+///
+/// # Errors
+/// [`RenderError::MapSize`] for a cascade's side the core refuses.
+pub(crate) fn map_slots(scene: &Scene, cfg: &RenderConfig, map: RasterConfig) -> Result<Vec<MapSlot>, RenderError> {
+    let mut slots = Vec::new();
+    for light in 0..scene.lights.len().max(1) {
+        let cascades = cfg.cascades_of(scene, light);
+        if !cascades.cascaded() {
+            slots.push(MapSlot { light, cascade: 0, raster: map });
+            continue;
+        }
+        for cascade in 0..cascades.count() {
+            let side = cascades.side(cascade, cfg.map_size);
+            let raster =
+                RasterConfig::new(side, side, map.tile_size(), map.subpixel_bits()).map_err(RenderError::MapSize)?;
+            slots.push(MapSlot { light, cascade, raster });
+        }
+    }
+    Ok(slots)
+}
+
+/// Tell `probe` that the shadow unit reads map `m` of `maps`, when the
+/// pass reads more than one.
+fn bind<P: Probe>(probe: &mut P, m: usize, maps: usize) {
+    if maps > 1 {
+        probe.map_bound(u16::try_from(m).unwrap_or(u16::MAX));
+    }
+}
+
+/// What a render's passes leave ([`passes`]).
+pub(super) struct Passes<L> {
+    /// The light probes, one a map.
+    pub(super) light_probes: Vec<L>,
+    /// One camera image a light, a cascaded light's cascades put together.
+    pub(super) images: Vec<CameraImage>,
+    /// Each map's silhouette map, for an algorithm that draws one.
+    pub(super) silhouettes: Vec<SilTexels>,
+    /// The scene's triangles ([`Scene::triangles`]), as the shading read them.
+    pub(super) triangles: Vec<umbra_core::shade::SceneTriangle>,
+    /// The light each map was drawn through (a cascade's, fitted).
+    pub(super) drawn: Vec<Light>,
+    /// Each light's cascades, planned for the view, and each pixel's
+    /// cascade; `None` for a light of one map.
+    pub(super) plans: Vec<Option<(Plan, Vec<u8>)>>,
+}
+
+/// The passes of a render of `scene`, lit by each of its lights as `lit`
+/// holds it ([`Lit::each`]), drawing the maps `slots` ([`map_slots`]):
+/// the visibility unit, then a light pass per map, each reporting to its
+/// own of `light_probes` and drawing into its own of `frames` (with its
+/// silhouette pass, for a silhouette map), then the shading unit once per
+/// map over the pixels that read it (the probe told which map it reads),
+/// or the stencil unit once per light for shadow volumes. The light
+/// probes, one camera image per light, and each map's silhouette map
+/// (none for other algorithms), for the judge to read.
+#[allow(clippy::too_many_arguments, reason = "the scene, the configuration, the targets and the probes")]
+pub(super) fn passes<F: DepthFormat, L: Probe, C: Probe>(
+    (scene, lit): (&Scene, &[Lit<'_>]),
+    cfg: &RenderConfig,
+    (checked, slots): (Targets, &[MapSlot]),
+    frames: &mut Vec<LightFrame<F::Texel>>,
+    light_probes: Vec<L>,
+    camera_probe: &mut C,
+    tiling: Tiling,
+) -> Result<Passes<L>, RenderError> {
+    let units = cfg.algorithm.units::<F>(cfg.bias);
+    let mut camera = CameraFrame::default();
+    let size = (checked.image.width(), checked.image.height());
+    debug_assert_eq!(light_probes.len(), slots.len(), "one light probe per map");
+    let triangles = scene.triangles();
+    if units.map == MapKind::Volumes {
+        let images = volumes(&mut camera, (scene, &triangles, lit), size, tiling, camera_probe)?;
+        let drawn = lit.iter().map(|l| l.scene.light()).collect();
+        let plans = lit.iter().map(|_| None).collect();
+        return Ok(Passes { light_probes, images, silhouettes: Vec::new(), triangles, drawn, plans });
+    }
+    let vis = visibility(&mut camera, scene, size, tiling, camera_probe)?;
+    let seen = Seen { camera: vis.camera, size, depth: camera.depth(), ids: camera.ids() };
+    let mut plans = Vec::with_capacity(lit.len());
+    for (k, one) in lit.iter().enumerate() {
+        plans.push(match one.scene.light() {
+            Light::Directional(view, _) if cfg.cascades_of(scene, k).cascaded() => {
+                let plan = Plan::new((&view, &cfg.cascades_of(scene, k)), &scene.camera, &seen, cfg.map_size)?;
+                let picks = Picks::new(&plan.select, &seen);
+                Some((plan, picks))
+            }
+            _ => None,
+        });
+    }
+    let drawn: Vec<Light> = slots
+        .iter()
+        .map(|s| match &plans[s.light] {
+            Some((plan, _)) => plan.lights[s.cascade],
+            None => lit[s.light].scene.light(),
+        })
+        .collect();
+    frames.resize_with(slots.len(), LightFrame::new);
+    let drawing = LightOptions { per_draw: tiling.per_draw, ..LightOptions::default() };
+    let mut views = Vec::with_capacity(slots.len());
+    let mut probes = Vec::with_capacity(slots.len());
+    for (((slot, light), frame), probe) in slots.iter().zip(&drawn).zip(frames.iter_mut()).zip(light_probes) {
+        let one = &lit[slot.light].scene;
+        let draws = one.draws_culled(light.view_projection(), |solid| units.cull(solid, cfg.culling));
+        let light_config = LightPassConfig { raster: slot.raster, unit: units.unit, max_z_cull: true };
+        let (maps, probe) = light::render::<F, _, DEFAULT_BIN_CAPACITY>(frame, light_config, &draws, drawing, probe)?;
+        views.push(map_view::<F>(maps, units.front_culled)?);
+        probes.push(probe);
+    }
+    let options = camera_options(cfg, &units, size, tiling)?;
+    let mut silhouettes = Vec::new();
+    if let MapKind::Silhouette { packed } = units.map {
+        // Each map's silhouette pass, its events to its light probe (part
+        // of the light side).
+        for (((slot, light), view), probe) in slots.iter().zip(&drawn).zip(&views).zip(probes.iter_mut()) {
+            let occluders = lit[slot.light].occluders();
+            let texels = SilTexels::draw(packed, occluders, &light.view_projection(), view, options.shadow, probe)
+                .map_err(PassError::from)?;
+            silhouettes.push(texels);
+        }
+    }
+    let mut images: Vec<CameraImage> = Vec::with_capacity(lit.len());
+    for (m, (slot, view)) in slots.iter().zip(&views).enumerate() {
+        bind(camera_probe, m, slots.len());
+        let picks = plans[slot.light].as_ref().map(|p| &p.1);
+        let only = picks.map(|p| p.ids_reading(camera.ids(), slot.cascade));
+        let shade = Shade {
+            camera: (&mut camera, only.as_deref()),
+            light: (drawn[m].view_projection(), triangles.as_slice()),
+            view,
+            options: &options,
+            probe: &mut *camera_probe,
+        };
+        let image = match silhouettes.get(m) {
+            Some(texels) => texels.read(view.raster(), shade).map_err(PassError::from)??,
+            None => shade.read(&MapUnit)?,
+        };
+        match (picks, images.get_mut(slot.light)) {
+            (Some(picks), Some(into)) => picks.put(into, &image, slot.cascade),
+            _ => images.push(image),
+        }
+    }
+    let plans = plans.into_iter().map(|p| p.map(|(plan, picks)| (plan, picks.cascades()))).collect();
+    Ok(Passes { light_probes: probes, images, silhouettes, triangles, drawn, plans })
+}
+
+/// The shading of the visible pixels (or those a cascade reads) against
+/// one map, through the shadow unit it is given.
+struct Shade<'a, 'v, F: DepthFormat, C> {
+    camera: (&'a mut CameraFrame, Option<&'a [u32]>),
+    light: (umbra_core::glam::Mat4, &'a [umbra_core::shade::SceneTriangle]),
+    view: &'a MapView<'v, F>,
+    options: &'a CameraOptions,
+    probe: &'a mut C,
+}
+
+impl<F: DepthFormat, C: Probe> Shade<'_, '_, F, C> {
+    fn read<U: ShadowUnit<F>>(self, unit: &U) -> Result<CameraImage, RenderError> {
+        Ok(shade_visible(self.camera, self.light, self.view, unit, self.options, self.probe)?)
+    }
+}
+
+impl<F: DepthFormat, C: Probe> SilReader for Shade<'_, '_, F, C> {
+    type Out = Result<CameraImage, RenderError>;
+
+    fn read<S: SilStore>(self, unit: &SilhouetteUnit<'_, '_, S>) -> Self::Out {
+        Shade::read(self, unit)
+    }
+}
