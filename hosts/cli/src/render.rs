@@ -240,6 +240,7 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits, style: Style) -> Result
         table.row(row(None, &m));
     }
     say!("{}", table.markdown().trim_end());
+    cascades(&r, several)?;
     say!(
         "artifacts (wrong by their cause, shade off the reference by more than {} or on the wrong side of ½): {} acne ({} on terminators; {:.1} px of excess shadow), {} detachment ({:.1} px of missing shadow), {} leaks ({:.1} px of missing shadow), {} clipped ({:.1} px of missing shadow, occluders outside the light's frustum): {:.3} % artifacts",
         SHADE_STEP,
@@ -299,4 +300,40 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits, style: Style) -> Result
         );
     }
     crate::say::wrote(&out, &manifest, &replaced)
+}
+
+/// Each cascaded light's cascades, a row each: the slice of the view it
+/// holds, its map, its pixels' errors and the map's footprint on them.
+fn cascades(r: &umbra_sim::Render, several: bool) -> Result<()> {
+    for (k, part) in r.parts().enumerate().filter(|(_, p)| !p.cascades.is_empty()) {
+        let heads = [
+            ("cascade", Align::Left),
+            ("slice (view distance)", Align::Left),
+            ("map", Align::Right),
+            ("pixels evaluated", Align::Right),
+            ("misclassified", Align::Right),
+            ("aliasing px", Align::Right),
+            ("artifacts", Align::Right),
+            ("texels a pixel along x (median)", Align::Right),
+            ("footprint spread (p95 / p5, x)", Align::Right),
+        ];
+        let mut table = Table::new(&heads);
+        for (c, cascade) in part.cascades.iter().enumerate() {
+            let m = &cascade.metrics;
+            let name = if several { format!("{}.cascades[{c}]", Scene::light_key(k)) } else { c.to_string() };
+            table.row(vec![
+                name,
+                format!("{:.2} – {:.2}", cascade.slice[0], cascade.slice[1]),
+                format!("{}²", cascade.side),
+                m.evaluated.to_string(),
+                format!("{:.3} %", m.misclassified_percent),
+                m.aliasing.to_string(),
+                format!("{:.3} %", m.artifact_percent),
+                format!("{:.3}", m.footprint_x[0]),
+                format!("{:.1}", m.footprint_spread[0]),
+            ]);
+        }
+        say!("{}", table.markdown().trim_end());
+    }
+    Ok(())
 }

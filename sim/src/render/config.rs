@@ -65,6 +65,19 @@ pub enum RenderConfigError {
         /// `map_size`, `width` or `height`.
         quantity: &'static str,
     },
+    /// A cascade split given outside the camera's depth range, or not
+    /// beyond the one before.
+    #[error(
+        "cascades: the split at view distance {split} does not lie beyond the one before and between the camera's near plane {near} and far plane {far}"
+    )]
+    Split {
+        /// The split given.
+        split: f32,
+        /// The camera's near plane.
+        near: f32,
+        /// Its far plane.
+        far: f32,
+    },
 }
 
 /// A render configuration checked once, against its scene and the
@@ -254,7 +267,27 @@ impl RenderConfig {
         limits.check_triangles(triangles)?;
         let pixels = u64::from(self.width) * u64::from(self.height);
         let lights = (scene.lights.len() + scene.shadowless.len()) as u64;
-        limits.check_memory("the render", Footprint::render_lit(pixels, self.map_size, triangles, lights))?;
+        // Each cascade a map of its own, and an image its shading writes.
+        let (near, far) = scene.camera.planes();
+        let mut extra = 0u64;
+        for k in 0..scene.lights.len() {
+            let cascades = self.cascades_of(scene, k);
+            if !cascades.cascaded() {
+                continue;
+            }
+            if let Some(split) = cascades.misplaced_split(near, far) {
+                return Err(RenderConfigError::Split { split, near, far }.into());
+            }
+            for c in 0..cascades.count() {
+                let side = cascades.side(c, self.map_size);
+                limits.check_map(side)?;
+                let texels = u64::from(side) * u64::from(side);
+                extra = extra.saturating_add(texels.saturating_mul(Footprint::PER_TEXEL));
+            }
+            extra = extra.saturating_add(pixels.saturating_mul(Footprint::PER_PIXEL));
+        }
+        let footprint = Footprint::render_lit(pixels, self.map_size, triangles, lights).saturating_add(extra);
+        limits.check_memory("the render", footprint)?;
         let checked = Checked { scene, config: self };
         checked.targets(RasterConfig::DEFAULT_TILE_SIZE)?;
         Ok(checked)

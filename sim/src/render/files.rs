@@ -41,13 +41,20 @@ pub fn write_render(folder: &mut OutputFolder, job: &Checked<'_>, r: &Render) ->
         };
         let file = |stem: &str, ext: &str| format!("{stem}{named}.{ext}");
         write_shadow_term(folder, &file("shadow", "png"), (part.image, part.truth), &detail)?;
-        write_error_image(folder, &file("error", "png"), part.image, part.verdicts, (part.truth, &detail))?;
-        let maps = part.maps;
-        let (w, h) = (maps.maps.config.raster.width(), maps.maps.config.raster.height());
-        for (name, data) in maps.stored() {
-            let map = RawMap { format: maps.format, width: w, height: h, raw: data };
-            write_npy(folder, &file(name, "npy"), &map)?;
-            write_preview(folder, &file(name, "png"), &map, (&map_title(name), &detail))?;
+        let truth = (part.truth, part.cascade_of, detail.as_str());
+        write_error_image(folder, &file("error", "png"), part.image, part.verdicts, truth)?;
+        // A cascaded light's first cascade's maps as its own, the
+        // others' suffixed `-cascade<c>`.
+        for (c, maps) in core::iter::once(part.maps).chain(part.cascade_maps).enumerate() {
+            let (w, h) = (maps.maps.config.raster.width(), maps.maps.config.raster.height());
+            let cascade = if c > 0 { format!("-cascade{c}") } else { String::new() };
+            for (name, data) in maps.stored() {
+                let map = RawMap { format: maps.format, width: w, height: h, raw: data };
+                let stem = format!("{name}{cascade}");
+                let title = if part.cascades.is_empty() { map_title(name) } else { format!("cascade {c}: {}", map_title(name)) };
+                write_npy(folder, &file(&stem, "npy"), &map)?;
+                write_preview(folder, &file(&stem, "png"), &map, (&title, &detail))?;
+            }
         }
         // Pixel by pixel, for scripts: the shadow term, the reference and the verdicts.
         let arrays = PixelArrays::of_part(part);
@@ -77,16 +84,37 @@ pub fn write_render(folder: &mut OutputFolder, job: &Checked<'_>, r: &Render) ->
             let each = r.parts().map(|p| serde_json::to_value(p.metrics).unwrap_or(Value::Null)).collect();
             fields.insert("lights".to_owned(), Value::Array(each));
         }
+        // Each light's cascades (none for a light of one map), when any
+        // light has them: each one's slice, map side, light and metrics.
+        if r.parts().any(|p| !p.cascades.is_empty()) {
+            let cascades = r.parts().map(|p| p.cascades.iter().map(cascade_record).collect::<Value>()).collect();
+            fields.insert("cascades".to_owned(), cascades);
+        }
     }
     folder.write_text("metrics.json", &serde_json::to_string_pretty(&record).unwrap_or_default())?;
     Ok(())
 }
 
+/// An f32 as its shortest decimal (0.55, not 0.550000011920929).
+fn shortest(v: f32) -> f64 {
+    v.to_string().parse::<f64>().unwrap_or(f64::from(v))
+}
+
+/// A cascade as `metrics.json` records it: the view distances its slice
+/// lies between, its map's side, its light and its metrics.
+fn cascade_record(c: &super::CascadePart) -> Value {
+    serde_json::json!({
+        "slice": c.slice.map(shortest),
+        "map_side_texels": c.side,
+        "light_view": light_view(&c.light),
+        "metrics": serde_json::to_value(c.metrics).unwrap_or(Value::Null),
+    })
+}
+
 /// A light's view as `metrics.json` records it: its kind, where it is,
 /// where it looks, and its frustum.
 fn light_view(light: &Light) -> Value {
-    // Each f32 as its shortest decimal (0.55, not 0.550000011920929).
-    let n = |v: f32| v.to_string().parse::<f64>().unwrap_or(f64::from(v));
+    let n = shortest;
     let xyz = |v: glam::Vec3| serde_json::json!([n(v.x), n(v.y), n(v.z)]);
     match light {
         Light::Spot(p) | Light::Cone(p) => serde_json::json!({

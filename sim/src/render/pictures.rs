@@ -163,6 +163,18 @@ fn colour_of(cause: Cause) -> [u8; 3] {
     ERROR_COLOURS.iter().find(|(c, _, _)| *c == cause).map_or([0; 3], |&(_, _, rgb)| rgb)
 }
 
+/// The colour of a cascade boundary on the error map: where a pixel's
+/// right or lower neighbour reads another cascade.
+pub const CASCADE_BOUNDARY: [u8; 3] = [230, 0, 160];
+
+/// Whether pixel `k` of a `width`-wide image whose pixels read the
+/// cascades `cascade_of` lies on a boundary between two.
+fn on_boundary(cascade_of: &[u8], k: usize, width: usize) -> bool {
+    let here = cascade_of.get(k);
+    let differs = |n: usize| cascade_of.get(n).is_some_and(|c| Some(c) != here);
+    (k % width + 1 < width && differs(k + 1)) || differs(k + width)
+}
+
 /// Artifact pixels (acne, detachment, leaks, clipped occluders) ringed on the error map when
 /// there are at most this many.
 pub(crate) const RINGS: usize = 2000;
@@ -172,8 +184,10 @@ pub(crate) const RINGS: usize = 2000;
 /// the light from `truth`, so the geometry stays readable; [`BACKGROUND`]
 /// where there is no surface), each wrong pixel in its class's colour
 /// ([`ERROR_COLOURS`]), each artifact pixel ringed in its colour (up to
-/// `RINGS` of them), framed with `detail` and a key giving each class and
-/// its count. The body's pixel `(x, y)` is at
+/// `RINGS` of them), for a cascaded light each boundary between two
+/// cascades of `cascade_of` (each pixel's; empty for one map) where no
+/// wrong pixel is, in [`CASCADE_BOUNDARY`], framed with `detail` and a
+/// key giving each class and its count. The body's pixel `(x, y)` is at
 /// [`BODY_ORIGIN`](crate::output::picture::BODY_ORIGIN) + `(x, y)`.
 ///
 /// # Errors
@@ -184,7 +198,7 @@ pub fn write_error_image(
     name: &str,
     image: &CameraImage,
     verdicts: &[Verdict],
-    (truth, detail): (&[Option<PixelTruth>], &str),
+    (truth, cascade_of, detail): (&[Option<PixelTruth>], &[u8], &str),
 ) -> Result<PathBuf, OutputError> {
     use plotters::prelude::*;
     let count = |v: Verdict| verdicts.iter().filter(|&&x| x == v).count();
@@ -194,6 +208,7 @@ pub fn write_error_image(
         let colour = match v {
             Verdict::Wrong(cause) => colour_of(*cause),
             _ if p.triangle == umbra_core::NO_TRIANGLE => BACKGROUND,
+            _ if on_boundary(cascade_of, k, w as usize) => CASCADE_BOUNDARY,
             _ => {
                 let lambert = lambert(truth, k);
                 let lit = if *v == Verdict::Right { 1.0 - p.shadow.to_num::<f64>() } else { 0.0 };
@@ -229,6 +244,10 @@ pub fn write_error_image(
         .iter()
         .map(|&(cause, name, rgb)| (rgb, format!("{name} {}", count(Verdict::Wrong(cause)))))
         .collect();
+    if !cascade_of.is_empty() {
+        let n = cascade_of.iter().max().map_or(1, |&c| usize::from(c) + 1);
+        swatches.push((CASCADE_BOUNDARY, format!("cascade boundary ({n} read)")));
+    }
     swatches.push(([225; 3], "right".into()));
     swatches.push((BACKGROUND, "no surface".into()));
     let frame = Frame {

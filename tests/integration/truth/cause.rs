@@ -298,7 +298,7 @@ fn the_error_map_paints_each_class_its_colour() {
         umbra::sim::output::folder::Claim::new(umbra::sim::output::folder::RunKind::Render),
     )
     .expect("folder");
-    let path = write_error_image(&mut folder, "error.png", &r.image, &r.verdicts, (&r.truth, "wang-molnar-4"))
+    let path = write_error_image(&mut folder, "error.png", &r.image, &r.verdicts, (&r.truth, &[], "wang-molnar-4"))
         .expect("written");
     let png = image::open(&path).expect("a PNG").to_rgb8();
     let _ = std::fs::remove_dir_all(&dir);

@@ -9,7 +9,6 @@ use crate::cost::arch::derived::latency_ceiling;
 use crate::cost::silicon::{Kind, Silicon};
 use crate::cost::work::Bottleneck;
 use crate::output::table::{Align, Table};
-use crate::world::scene::Scene;
 
 impl CostReport {
     /// The report as Markdown.
@@ -56,7 +55,8 @@ impl CostReport {
         columns.push((format!("{unit} bound ({bounds})"), Align::Left));
         let mut table = Table::new(&columns);
         // Each light's pass when there are several, then their sum.
-        let each = self.light_passes.iter().enumerate().map(|(k, t)| (format!("light {}", Scene::light_key(k)), t));
+        // Each named as the timeline names it (`light lights[1]`, `light lights[0].cascades[2]`).
+        let each = self.light_passes.iter().zip(&self.timeline).map(|(t, line)| (line.name.clone(), t));
         let light = if self.light_passes.is_empty() { "light" } else { "light, every pass" };
         let rows = each.chain([(light.to_owned(), &self.light), ("camera".to_owned(), &self.camera)]);
         for (name, t) in rows {

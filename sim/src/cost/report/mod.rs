@@ -262,7 +262,7 @@ impl Serialize for BoundCycles {
 /// What the timeline draws of one pass.
 #[derive(Clone, Debug)]
 pub struct PassTimeline {
-    /// Its name: `light`, `light lights[1]`, `camera`.
+    /// Its name: `light`, `light lights[1]`, `light lights[0].cascades[2]`, `camera`.
     pub name: String,
     /// Its time.
     pub timing: PassTiming,
