@@ -158,11 +158,25 @@ impl Picks {
             .collect()
     }
 
+    /// Whether any pixel lies in a blend band.
+    #[must_use]
+    pub fn blends(&self) -> bool {
+        self.0.iter().any(|p| p.next_weight.is_some())
+    }
+
     /// Cascade `c`'s shading `image` put into `into`, the light's image:
     /// each pixel of its own as it is, each pixel of the previous cascade's
     /// blend band mixed with what that cascade gave it (the cascades are
-    /// put in nearest first).
-    pub fn put(&self, into: &mut CameraImage, image: &CameraImage, c: usize) {
+    /// put in nearest first); `own`, where kept, each pixel of its own
+    /// unmixed (what its own cascade's shadow unit gave it).
+    pub fn put(&self, (into, own): (&mut CameraImage, Option<&mut Vec<Shaded>>), image: &CameraImage, c: usize) {
+        if let Some(own) = own {
+            for ((to, from), p) in own.iter_mut().zip(&image.pixels).zip(&self.0) {
+                if usize::from(p.cascade) == c {
+                    *to = *from;
+                }
+            }
+        }
         for ((to, from), p) in into.pixels.iter_mut().zip(&image.pixels).zip(&self.0) {
             if usize::from(p.cascade) == c {
                 *to = *from;

@@ -31,15 +31,18 @@ pub struct CascadePart {
     pub events: umbra_core::probe::Totals,
 }
 
-/// The causes each cascade's judge found, kept for the light's.
+/// The causes each cascade's judge found, kept for the light's: the judge
+/// reads each pixel as its own cascade shaded it (`own`: in a blend band,
+/// before the next cascade's fraction is mixed in).
 struct Recording<'a> {
     judge: &'a mut dyn Attribution,
+    own: &'a [Shaded],
     kept: &'a mut [Option<Judged>],
 }
 
 impl Attribution for Recording<'_> {
-    fn causes(&mut self, wrong: &[(usize, bool)], render: &[Shaded]) -> Vec<Judged> {
-        let judged = self.judge.causes(wrong, render);
+    fn causes(&mut self, wrong: &[(usize, bool)], _: &[Shaded]) -> Vec<Judged> {
+        let judged = self.judge.causes(wrong, self.own);
         for (&(k, _), j) in wrong.iter().zip(&judged) {
             if let Some(slot) = self.kept.get_mut(k) {
                 *slot = Some(*j);
@@ -71,14 +74,17 @@ impl Attribution for Recorded<'_> {
 
 /// A cascaded light's image `pixels`, whose pixel `k` read cascade
 /// `cascade_of[k]` (shaded as `each[c]` says, the judge's inputs of
-/// cascade `c`), judged against the light's reference: the light's
-/// metrics and verdicts, and each cascade's metrics.
+/// cascade `c`; `own` each pixel as that cascade shaded it, before a
+/// blend band mixed it), judged against the light's reference: the
+/// light's metrics and verdicts, and each cascade's metrics. A pixel is
+/// wrong or right by its mixed fraction, and wrong for the cause its own
+/// cascade's taps give.
 ///
 /// # Errors
 /// [`PassError`] when a silhouette map cannot be read again.
 pub(super) fn judged<F: DepthFormat>(
     each: &[PassInputs<'_, F>],
-    (pixels, cascade_of): (&[Shaded], &[u8]),
+    (pixels, own, cascade_of): (&[Shaded], &[Shaded], &[u8]),
     (truth, fields, reference): (&[Option<PixelTruth>], &Fields, &Reference),
 ) -> Result<(Metrics, Vec<Verdict>, Vec<Metrics>), PassError> {
     let mut kept = vec![None; pixels.len()];
@@ -87,7 +93,7 @@ pub(super) fn judged<F: DepthFormat>(
         let mine: Vec<Option<PixelTruth>> =
             truth.iter().zip(cascade_of).map(|(t, &k)| if usize::from(k) == c { *t } else { None }).collect();
         let (metrics, _) = with_judge(what, (reference, fields), |judge| {
-            compare_with(pixels, &mine, fields, &mut Recording { judge, kept: &mut kept }, None)
+            compare_with(pixels, &mine, fields, &mut Recording { judge, own, kept: &mut kept }, None)
         })?;
         cascades.push(metrics);
     }

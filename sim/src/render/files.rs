@@ -51,7 +51,11 @@ pub fn write_render(folder: &mut OutputFolder, job: &Checked<'_>, r: &Render) ->
             for (name, data) in maps.stored() {
                 let map = RawMap { format: maps.format, width: w, height: h, raw: data };
                 let stem = format!("{name}{cascade}");
-                let title = if part.cascades.is_empty() { map_title(name) } else { format!("cascade {c}: {}", map_title(name)) };
+                let title = if part.cascades.is_empty() {
+                    map_title(name)
+                } else {
+                    format!("cascade {c}: {}", map_title(name))
+                };
                 write_npy(folder, &file(&stem, "npy"), &map)?;
                 write_preview(folder, &file(&stem, "png"), &map, (&title, &detail))?;
             }

@@ -353,10 +353,10 @@ pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
             })
             .collect();
         let (metrics, verdicts, cascades, cascade_of) = match &plan {
-            Some((_, cascade_of)) => {
-                let (m, v, each) =
-                    cascaded::judged(&inputs, (&image.pixels, cascade_of), (&truth, &fields, &reference))
-                        .map_err(|e| of_light(RenderError::Pass(e), k))?;
+            Some((_, cascade_of, own)) => {
+                let pixels = (&image.pixels[..], own.as_deref().unwrap_or(&image.pixels), &cascade_of[..]);
+                let (m, v, each) = cascaded::judged(&inputs, pixels, (&truth, &fields, &reference))
+                    .map_err(|e| of_light(RenderError::Pass(e), k))?;
                 (m, v, each, cascade_of.clone())
             }
             None => {
@@ -371,7 +371,7 @@ pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
         let light_events = counted.next().unwrap_or_default();
         let first = raws.next().unwrap_or_else(|| unreachable!("a light draws a map"));
         let cascades = match plan {
-            Some((plan, _)) => cascades
+            Some((plan, ..)) => cascades
                 .into_iter()
                 .enumerate()
                 .map(|(c, metrics)| CascadePart {

@@ -86,10 +86,15 @@ pub(super) struct Passes<L> {
     pub(super) triangles: Vec<umbra_core::shade::SceneTriangle>,
     /// The light each map was drawn through (a cascade's, fitted).
     pub(super) drawn: Vec<Light>,
-    /// Each light's cascades, planned for the view, and each pixel's
-    /// cascade; `None` for a light of one map.
-    pub(super) plans: Vec<Option<(Plan, Vec<u8>)>>,
+    /// Each light's cascades, planned for the view, each pixel's cascade,
+    /// and, where blend bands mix two cascades, each pixel as its own
+    /// cascade shaded it; `None` for a light of one map.
+    pub(super) plans: Vec<Option<Cascaded>>,
 }
+
+/// A cascaded light's plan, each pixel's cascade, and each pixel as its
+/// own cascade shaded it where blend bands mix two (`None` otherwise).
+pub(super) type Cascaded = (Plan, Vec<u8>, Option<Vec<umbra_core::shade::Shaded>>);
 
 /// The passes of a render of `scene`, lit by each of its lights as `lit`
 /// holds it ([`Lit::each`]), drawing the maps `slots` ([`map_slots`]):
@@ -166,6 +171,7 @@ pub(super) fn passes<F: DepthFormat, L: Probe, C: Probe>(
         }
     }
     let mut images: Vec<CameraImage> = Vec::with_capacity(lit.len());
+    let mut unmixed: Vec<Option<Vec<umbra_core::shade::Shaded>>> = vec![None; lit.len()];
     for (m, (slot, view)) in slots.iter().zip(&views).enumerate() {
         bind(camera_probe, m, slots.len());
         let picks = plans[slot.light].as_ref().map(|p| &p.1);
@@ -182,11 +188,17 @@ pub(super) fn passes<F: DepthFormat, L: Probe, C: Probe>(
             None => shade.read(&MapUnit)?,
         };
         match (picks, images.get_mut(slot.light)) {
-            (Some(picks), Some(into)) => picks.put(into, &image, slot.cascade),
-            _ => images.push(image),
+            (Some(picks), Some(into)) => picks.put((into, unmixed[slot.light].as_mut()), &image, slot.cascade),
+            (picks, _) => {
+                if picks.is_some_and(Picks::blends) {
+                    unmixed[slot.light] = Some(image.pixels.clone());
+                }
+                images.push(image);
+            }
         }
     }
-    let plans = plans.into_iter().map(|p| p.map(|(plan, picks)| (plan, picks.cascades()))).collect();
+    let plans =
+        plans.into_iter().zip(unmixed).map(|(p, own)| p.map(|(plan, picks)| (plan, picks.cascades(), own))).collect();
     Ok(Passes { light_probes: probes, images, silhouettes, triangles, drawn, plans })
 }
 
