@@ -62,7 +62,7 @@ fn every_candidate(scene: &Scene, spec: &PlanSpec) -> Vec<Measured> {
                         width: IMAGE[0],
                         height: IMAGE[1],
                         reference_rays: 4,
-                        cascades: None,
+                        cascades: v.cascades,
                     };
                     let job = cfg.check(scene, &Limits::DEFAULT).expect("valid");
                     let r = render(&job, TruthSource::Given(reference.clone())).expect("renders");

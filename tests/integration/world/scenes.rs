@@ -46,7 +46,7 @@ pub fn with(from: &str, to: &str) -> Result<Scene, SceneError> {
 
 #[test]
 fn every_bundled_scene_loads() {
-    assert_eq!(BUNDLED.len(), 15);
+    assert_eq!(BUNDLED.len(), 16);
     for (name, _) in BUNDLED {
         let s = Scene::bundled(name).unwrap_or_else(|e| panic!("{e}"));
         assert!(!s.objects.is_empty() && !s.lights.is_empty(), "{name}");

@@ -59,6 +59,28 @@ pub const REFERENCE_RAYS: u32 = 4;
 pub const DEFAULT_BUDGETS: [Budget; 2] =
     [Budget { measure: Measure::Artifacts, percent: 0.1 }, Budget { measure: Measure::Misclassified, percent: 2.0 }];
 
+/// The cascades the planner's space adds for a scene lit by a directional
+/// light: four, split by the practical scheme (Zhang et al. 2006).
+pub const CASCADES: usize = 4;
+
+/// `variants`, and for a scene with a directional light each that draws a
+/// map again through [`CASCADES`] cascades: a view that needs them (the
+/// camera among what the light covers, near and far) finds them cheaper
+/// than one map large enough; one that does not finds one map cheaper.
+fn with_cascades(scene: &Scene, variants: Vec<Variant>) -> Vec<Variant> {
+    let directional = scene.lights.iter().any(|l| matches!(l, crate::world::scene::Light::Directional(..)));
+    let Ok(cascades) = crate::world::cascade::Cascades::practical(CASCADES) else { return variants };
+    if !directional {
+        return variants;
+    }
+    let cascaded: Vec<Variant> = variants
+        .iter()
+        .filter(|v| v.algorithm != crate::render::Algorithm::Volumes)
+        .map(|v| v.clone().with_cascades(cascades))
+        .collect();
+    variants.into_iter().chain(cascaded).collect()
+}
+
 /// What the planner may choose from, and the budgets it must meet.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PlanSpec {
@@ -87,7 +109,9 @@ pub struct PlanSpec {
 impl PlanSpec {
     /// The quick sweep's algorithms and depth formats, map sides 128 to
     /// 2048, the point, bilinear and 3×3 box filters, Talisman, the
-    /// scene's own image.
+    /// scene's own image. A scene lit by a directional light gets each
+    /// algorithm that draws a map twice: through one map a light, and
+    /// through [`CASCADES`] cascades of the map's side each.
     ///
     /// # Panics
     /// Never: the bundled sweep files are validated by the tests.
@@ -96,7 +120,7 @@ impl PlanSpec {
         let quick = SweepFile::bundled("quick").and_then(|f| f.spec(&Limits::DEFAULT)).expect("the bundled sweep");
         Self {
             budgets,
-            variants: quick.variants,
+            variants: with_cascades(scene, quick.variants),
             formats: quick.formats,
             map_sizes: vec![128, 256, 512, 1024, 2048],
             filters: FILTERS[..3].to_vec(),

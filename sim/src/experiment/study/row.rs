@@ -119,6 +119,11 @@ pub struct RowConfig {
     /// `jitter16`, `jitter8,res-factor=1.5`: [`Filter`]'s `Display`).
     #[serde(with = "crate::base::text")]
     pub filter_name: Filter,
+    /// Every directional light's cascades as `umbra render --cascades`
+    /// spells them (`scene`: each light's own; rows written before
+    /// cascades read as `scene`).
+    #[serde(default = "scene_cascades")]
+    pub cascades: String,
     /// Architecture name (`-` when the sweep has none; with its
     /// parameter-axis values when the sweep has such axes).
     pub arch: String,
@@ -239,6 +244,7 @@ impl Row {
                 depth_format: c.format,
                 map_side_texels: c.map_size,
                 filter_name: spec.filters[c.filter],
+                cascades: v.cascades.map_or_else(scene_cascades, |k| k.to_string()),
                 arch: name,
                 base_arch,
                 arch_params: point.map(super::ArchPoint::params).unwrap_or_default(),
@@ -316,6 +322,14 @@ impl Row {
             let _ = write!(s, " cull {}", c.culling);
         }
         let _ = write!(s, ", {}, {}², {}", c.depth_format, c.map_side_texels, c.filter_name);
+        if c.cascades != scene_cascades() {
+            let _ = write!(s, ", cascades {}", c.cascades);
+        }
         s
     }
+}
+
+/// The cascades of a row that asks for none: each light's own.
+fn scene_cascades() -> String {
+    "scene".to_owned()
 }

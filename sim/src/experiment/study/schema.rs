@@ -46,6 +46,7 @@ const DECLARED: &[Declared] = &[
     Declared::Param("depth"),
     Declared::Param("map"),
     Declared::Param("filter"),
+    Declared::Param("cascades"),
     Declared::Own("arch", "text", "-", "the architecture point's name (- without architectures)"),
     Declared::Own("base_arch", "text", "-", "the architecture it was made from (- without architectures)"),
     Declared::Own("arch_params", "text", "-", "its axis assignments, key=value,… as the sweep file spells them"),
@@ -137,8 +138,8 @@ mod tests {
         }
         assert_eq!(
             PARAMS.len(),
-            12,
-            "the parameters: algo, bias1, offset, depth, map, filter, bias, width, height, rays, virtual samples, cull"
+            13,
+            "the parameters: algo, bias1, offset, depth, map, filter, bias, width, height, rays, virtual samples, cull, cascades"
         );
     }
 }

@@ -7,6 +7,7 @@ use super::StudyError;
 use crate::cost::arch::Arch;
 use crate::input::limits::{Footprint, LimitError, Limits};
 use crate::render::{Algorithm, Culling};
+use crate::world::cascade::Cascades;
 use crate::world::scene::Scene;
 
 /// One point on the study's algorithm axis: a shadow algorithm with its
@@ -21,13 +22,16 @@ pub struct Variant {
     pub virtual_samples: bool,
     /// The light pass's culling.
     pub culling: Culling,
+    /// Every directional light's cascades (`None`: each light's own, as
+    /// its scene gives them).
+    pub cascades: Option<Cascades>,
 }
 
 impl Variant {
     /// An algorithm at a bias, virtual samples on, the algorithm's own culling.
     #[must_use]
     pub const fn new(algorithm: Algorithm, bias: f64) -> Self {
-        Self { algorithm, bias, virtual_samples: true, culling: Culling::ALGORITHM }
+        Self { algorithm, bias, virtual_samples: true, culling: Culling::ALGORITHM, cascades: None }
     }
 
     /// The same with virtual samples off.
@@ -42,6 +46,13 @@ impl Variant {
     #[must_use]
     pub const fn without_culling(mut self) -> Self {
         self.culling = Culling::OFF;
+        self
+    }
+
+    /// The same drawn through `cascades` for every directional light.
+    #[must_use]
+    pub const fn with_cascades(mut self, cascades: Cascades) -> Self {
+        self.cascades = Some(cascades);
         self
     }
 }

@@ -51,7 +51,7 @@ mod meshes;
 mod schema;
 
 /// The bundled scenes, by name: the papers' set-ups, built procedurally.
-pub const BUNDLED: [(&str, &str); 15] = [
+pub const BUNDLED: [(&str, &str); 16] = [
     ("table-and-sphere", include_str!("../../../../scenes/table-and-sphere.toml")),
     ("wang-molnar-4", include_str!("../../../../scenes/wang-molnar-4.toml")),
     ("reeves-sphere", include_str!("../../../../scenes/reeves-sphere.toml")),
@@ -65,6 +65,7 @@ pub const BUNDLED: [(&str, &str); 15] = [
     ("crowd-overhead", include_str!("../../../../scenes/crowd-overhead.toml")),
     ("crowd-grazing", include_str!("../../../../scenes/crowd-grazing.toml")),
     ("grazing", include_str!("../../../../scenes/grazing.toml")),
+    ("street", include_str!("../../../../scenes/street.toml")),
     ("factory", include_str!("../../../../scenes/factory.toml")),
     ("quad", include_str!("../../../../scenes/quad.toml")),
 ];

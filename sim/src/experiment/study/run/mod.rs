@@ -38,6 +38,7 @@ pub fn render_config(spec: &Spec, c: &Config) -> RenderConfig {
         height: spec.images[c.image][1],
         reference_rays: spec.reference_rays,
         culling: v.culling,
+        cascades: v.cascades,
         ..RenderConfig::DEFAULT
     }
 }

@@ -22,8 +22,10 @@
 //! ```
 //!
 //! An algorithm entry may list `bias`, `bias1` (bias-range), `offset`
-//! (dual), `virtual_samples` and `cull` (as `umbra render --cull` takes it);
-//! each list multiplies the variants.
+//! (dual), `virtual_samples`, `cull` (as `umbra render --cull` takes it)
+//! and `cascades` (as `umbra render --cascades` takes them: `"1"`, `"4"`,
+//! `"4,lambda=1,sides=2048/1024/512/256"`, `"scene"`); each list
+//! multiplies the variants.
 
 use std::path::{Path, PathBuf};
 
@@ -157,6 +159,8 @@ struct AlgorithmText {
     virtual_samples: Option<Vec<bool>>,
     #[serde(default)]
     cull: Option<Vec<String>>,
+    #[serde(default)]
+    cascades: Option<Vec<String>>,
 }
 
 /// A sweep file's text and where it came from.
@@ -390,6 +394,7 @@ impl SweepFile {
                 ("offset", a.offset.as_ref().map_or(1, Vec::len)),
                 ("virtual_samples", a.virtual_samples.as_ref().map_or(1, Vec::len)),
                 ("cull", a.cull.as_ref().map_or(1, Vec::len)),
+                ("cascades", a.cascades.as_ref().map_or(1, Vec::len)),
             ];
             let mut n = 1usize;
             for (key, len) in lists {
@@ -451,6 +456,18 @@ impl SweepFile {
             .iter()
             .map(|c| c.parse::<Culling>().map_err(|e| self.err(format!("{key}.cull"), e.to_string())))
             .collect::<Result<Vec<_>, _>>()?;
+        let cascades = a
+            .cascades
+            .clone()
+            .unwrap_or_else(|| vec!["scene".to_owned()])
+            .iter()
+            .map(|c| match c.trim() {
+                "scene" => Ok(None),
+                c => c.parse().map(Some).map_err(|e: crate::world::cascade::CascadesError| {
+                    self.err(format!("{key}.cascades"), e.to_string())
+                }),
+            })
+            .collect::<Result<Vec<_>, _>>()?;
         let needs = |what: &str| self.err(format!("{key}.{what}"), format!("`{}` needs `{what}`", a.algo));
         if a.algo == "bias-range" && a.bias1.is_none() {
             return Err(needs("bias1"));
@@ -477,7 +494,9 @@ impl SweepFile {
             for &bias in &biases {
                 for &vs in a.virtual_samples.as_deref().unwrap_or(&[true]) {
                     for &culling in &culls {
-                        out.push(Variant { algorithm, bias, virtual_samples: vs, culling });
+                        for &cascades in &cascades {
+                            out.push(Variant { algorithm, bias, virtual_samples: vs, culling, cascades });
+                        }
                     }
                 }
             }

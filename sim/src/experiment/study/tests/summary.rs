@@ -40,6 +40,7 @@ fn row(
             depth_format: umbra_core::DepthFormatKind::D16,
             map_side_texels: 256,
             filter_name: umbra_core::shadow::Filter::Point,
+            cascades: "scene".into(),
             arch: arch.into(),
             base_arch: arch.into(),
             arch_params: params.into(),
