@@ -105,6 +105,9 @@ pub fn render<'py>(
             r.parts().map(|p| serde_json::to_value(p.metrics)).collect::<Result<Vec<_>, _>>().map_err(|e| error(&e))?;
         fields.insert("lights".to_owned(), serde_json::Value::Array(each));
     }
+    if let (Some(cascades), Some(fields)) = (umbra_sim::render::files::cascades_json(&r), record.as_object_mut()) {
+        fields.insert("cascades".to_owned(), cascades);
+    }
     let metrics = record.to_string();
     let arrays = PixelArrays::of(&r);
     let out = PyDict::new(py);

@@ -299,3 +299,14 @@ def test_a_light_moves_where_it_is_put():
     with pytest.raises(umbra.UmbraError) as e:
         umbra.scene("table-and-sphere", light_from=(0, 0.5, 0))
     assert "within its bounds' sphere" in str(e.value)
+
+
+def test_cascades_are_a_keyword_as_on_the_command_line(tmp_path):
+    out = tmp_path / "street"
+    done = cli("render", "street", "--cascades", "3,lambda=1", *flags(**SMALL), "--out", str(out))
+    assert done.returncode == 0, done.stderr
+    r = umbra.render("street", cascades="3,lambda=1", **SMALL)
+    written = json.loads((out / "metrics.json").read_text())
+    assert r["misclassified_percent"] == written["misclassified_percent"]
+    assert len(r["cascades"][0]) == 3 and r["cascades"] == written["cascades"]
+    assert r["shadow"].tobytes() == np.load(out / "shadow.npy").tobytes()

@@ -186,6 +186,24 @@ pub struct StorageBytes {
     pub stored_tiles: u64,
 }
 
+impl StorageBytes {
+    /// This map's bytes and `other`'s, kept side by side (a cascade's
+    /// maps): each scheme's bytes, texels and tiles added; the buffers a
+    /// map, as each keeps them.
+    #[must_use]
+    pub const fn plus(&self, other: &Self) -> Self {
+        Self {
+            raw: self.raw + other.raw,
+            bounding_box: self.bounding_box + other.bounding_box,
+            tiles: self.tiles + other.tiles,
+            buffers: self.buffers,
+            box_texels: self.box_texels + other.box_texels,
+            grid_tiles: self.grid_tiles + other.grid_tiles,
+            stored_tiles: self.stored_tiles + other.stored_tiles,
+        }
+    }
+}
+
 /// The tile grid of a map: tiles across and down.
 fn grid(shape: &MapShape, tile: u32) -> (u32, u32) {
     (shape.width.div_ceil(tile), shape.height.div_ceil(tile))

@@ -16,8 +16,88 @@ use umbra_core::{D24, NO_TRIANGLE};
 
 use super::PassError;
 use super::camera::CameraImage;
-use crate::world::cascade::{Cascades, Fit, fit, on_axis, slice_corners};
-use crate::world::scene::{Camera, Light, Orthographic};
+use crate::world::cascade::{Cascades, Fit};
+use crate::world::scene::{Camera, Light, Orthographic, look_at};
+
+/// Texels kept free at each side of a fitted cascade's map, so that a
+/// filter's taps round a point at the edge of what the cascade holds
+/// still read the map (the widest built-in filter reaches 2 texels, a
+/// bilinear tap 1).
+pub const MARGIN_TEXELS: u32 = 4;
+
+/// The camera's view direction and its basis: where it looks from, the
+/// unit vector it looks along, and its right and up vectors.
+fn basis(camera: &Camera) -> (Vec3, Vec3, Vec3, Vec3) {
+    let (eye, target, up) = match camera {
+        Camera::Perspective(p) => (p.position, p.target, p.up),
+        Camera::Orthographic(o) => (o.position, o.target, o.up),
+    };
+    let to_world = look_at(eye, target, up).inverse();
+    let forward = to_world.transform_vector3(Vec3::NEG_Z).normalize_or_zero();
+    (eye, forward, to_world.transform_vector3(Vec3::X), to_world.transform_vector3(Vec3::Y))
+}
+
+/// The point `d` along the camera's view axis.
+#[must_use]
+pub fn on_axis(camera: &Camera, d: f32) -> Vec3 {
+    let (eye, forward, _, _) = basis(camera);
+    eye + forward * d
+}
+
+/// The eight corners of the camera's view (for an image of `aspect =
+/// width / height`) between the view distances `d0` and `d1`.
+#[must_use]
+pub fn slice_corners(camera: &Camera, aspect: f32, d0: f32, d1: f32) -> [Vec3; 8] {
+    let (eye, forward, right, up) = basis(camera);
+    let half = |d: f32| match camera {
+        Camera::Perspective(p) => {
+            let h = d * (p.fov_degrees.to_radians() / 2.0).tan();
+            (h * aspect, h)
+        }
+        Camera::Orthographic(o) => (o.extent * aspect, o.extent),
+    };
+    let mut corners = [Vec3::ZERO; 8];
+    for (k, corner) in corners.iter_mut().enumerate() {
+        let d = if k < 4 { d0 } else { d1 };
+        let (w, h) = half(d);
+        let sx = if k & 1 == 0 { -1.0 } else { 1.0 };
+        let sy = if k & 2 == 0 { -1.0 } else { 1.0 };
+        *corner = eye + forward * d + right * (sx * w) + up * (sy * h);
+    }
+    corners
+}
+
+/// `light` moved across its own direction and narrowed to the least
+/// square that holds `points` (within its own square: what it did not
+/// cover, no cascade does), with [`MARGIN_TEXELS`] free at each side of
+/// a `side`-texel map; its direction, depth range and up stay. `None`
+/// for no point inside the light's square.
+#[must_use]
+pub fn fit(light: &Orthographic, points: impl IntoIterator<Item = Vec3>, side: u32) -> Option<Orthographic> {
+    let view: Mat4 = look_at(light.position, light.target, light.up);
+    let e = light.extent;
+    let (mut lo, mut hi) = (glam::Vec2::splat(f32::INFINITY), glam::Vec2::splat(f32::NEG_INFINITY));
+    for p in points {
+        let q = view.transform_point3(p).truncate().clamp(glam::Vec2::splat(-e), glam::Vec2::splat(e));
+        lo = lo.min(q);
+        hi = hi.max(q);
+    }
+    if !(lo.x <= hi.x && lo.y <= hi.y) {
+        return None;
+    }
+    let centre = (lo + hi) / 2.0;
+    let half = ((hi - lo) / 2.0).max_element().max(e * 1e-6);
+    // The margin's texels out of the side.
+    #[allow(clippy::cast_precision_loss, reason = "a map side below 2^14")]
+    let free = side as f32 / (side.saturating_sub(2 * MARGIN_TEXELS).max(1)) as f32;
+    let across = view.inverse().transform_vector3(centre.extend(0.0));
+    Some(Orthographic {
+        position: light.position + across,
+        target: light.target + across,
+        extent: (half * free).min(e * free),
+        ..*light
+    })
+}
 
 /// One directional light's cascades, planned for a view: each cascade's
 /// light, its map side, the view distances that bound the slices, and the

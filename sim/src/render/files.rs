@@ -88,15 +88,22 @@ pub fn write_render(folder: &mut OutputFolder, job: &Checked<'_>, r: &Render) ->
             let each = r.parts().map(|p| serde_json::to_value(p.metrics).unwrap_or(Value::Null)).collect();
             fields.insert("lights".to_owned(), Value::Array(each));
         }
-        // Each light's cascades (none for a light of one map), when any
-        // light has them: each one's slice, map side, light and metrics.
-        if r.parts().any(|p| !p.cascades.is_empty()) {
-            let cascades = r.parts().map(|p| p.cascades.iter().map(cascade_record).collect::<Value>()).collect();
+        if let Some(cascades) = cascades_json(r) {
             fields.insert("cascades".to_owned(), cascades);
         }
     }
     folder.write_text("metrics.json", &serde_json::to_string_pretty(&record).unwrap_or_default())?;
     Ok(())
+}
+
+/// Each light's cascades as `metrics.json` records them (an empty list
+/// for a light of one map), when any light has them: each one's slice,
+/// map side, light and metrics; `None` when no light has cascades.
+#[must_use]
+pub fn cascades_json(r: &Render) -> Option<Value> {
+    r.parts()
+        .any(|p| !p.cascades.is_empty())
+        .then(|| r.parts().map(|p| p.cascades.iter().map(cascade_record).collect::<Value>()).collect())
 }
 
 /// An f32 as its shortest decimal (0.55, not 0.550000011920929).

@@ -262,3 +262,45 @@ fn the_planner_gives_the_street_cascades_and_the_view_from_above_one_map() {
         assert_eq!(p.config.cascades.is_some(), cascaded, "{}: {:?}", scene.name, p.config);
     }
 }
+
+/// Every algorithm that draws a map draws one a cascade and tests each
+/// pixel against its own: first depth with a bias and a bias range,
+/// second depth, the midpoint, dual depth and silhouette maps; each
+/// cascade's light pass draws fragments and each cascade's pixels are
+/// counted once in the light's. Shadow volumes draw no map and ignore
+/// cascades.
+#[test]
+fn every_algorithm_tests_each_cascade() {
+    use umbra::sim::Algorithm;
+    let scene = street();
+    let reference = truth(&scene, 160, 90, 1, &ProgressBar::hidden()).expect("reference");
+    let small = |algorithm, bias| RenderConfig {
+        algorithm,
+        bias,
+        width: 160,
+        height: 90,
+        map_size: 128,
+        reference_rays: 1,
+        cascades: Some("3".parse().expect("three")),
+        ..RenderConfig::DEFAULT
+    };
+    for (algorithm, bias) in [
+        (Algorithm::First, 0.002),
+        (Algorithm::BiasRange { hi: 0.004 }, 0.001),
+        (Algorithm::Second, 0.0),
+        (Algorithm::Midpoint, 0.0),
+        (Algorithm::Dual { offset: 0.005 }, 0.0),
+        (Algorithm::Silhouette { packed: true }, 0.002),
+    ] {
+        let r = rendered(&scene, small(algorithm, bias), &reference);
+        assert_eq!(r.cascades.len(), 3, "{algorithm:?}");
+        assert_eq!(r.cascade_maps.len(), 2, "{algorithm:?}");
+        assert!(r.cascades.iter().all(|c| c.events.fragments > 0), "{algorithm:?}");
+        let each: u64 = r.cascades.iter().map(|c| c.metrics.evaluated).sum();
+        assert_eq!(each, r.metrics.evaluated, "{algorithm:?}: every evaluated pixel in one cascade");
+        let wrong: u64 = r.cascades.iter().map(|c| c.metrics.false_shadow + c.metrics.false_light).sum();
+        assert_eq!(wrong, r.metrics.false_shadow + r.metrics.false_light, "{algorithm:?}");
+    }
+    let volumes = rendered(&scene, small(Algorithm::Volumes, 0.0), &reference);
+    assert!(volumes.cascades.is_empty() && volumes.cascade_of.is_empty());
+}

@@ -441,15 +441,20 @@ pub fn plan(scene: &Scene, spec: &PlanSpec, progress: &ProgressBar) -> Result<Pl
     let configs = study.configs();
     let config = render_config(&study, &configs[index]);
     let r = render(&config.check(scene, &spec.limits)?, TruthSource::Quiet)?;
-    let raster = r.maps.maps.config.raster;
-    let shape = MapShape::of_format(raster.width(), raster.height(), r.maps.format);
+    // Every map the pick draws: each cascade's beside the first.
+    let stored = |maps: &light::RawMaps| {
+        let raster = maps.maps.config.raster;
+        let shape = MapShape::of_format(raster.width(), raster.height(), maps.format);
+        storage_bytes(&shape, &maps.buffers(), REEVES_TILE).map_err(|e| PlanError::Spec(format!("map storage: {e}")))
+    };
     let storage = if config.algorithm == crate::pass::algorithm::Algorithm::Volumes {
         None
     } else {
-        Some(
-            storage_bytes(&shape, &r.maps.buffers(), REEVES_TILE)
-                .map_err(|e| PlanError::Spec(format!("map storage: {e}")))?,
-        )
+        let mut all = stored(&r.maps)?;
+        for maps in &r.cascade_maps {
+            all = all.plus(&stored(maps)?);
+        }
+        Some(all)
     };
     Ok(Plan {
         budgets: budgets.clone(),
