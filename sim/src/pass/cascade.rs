@@ -141,7 +141,11 @@ impl Seen<'_> {
         let inverse = self.camera.inverse();
         let (eye, ahead) = (on_axis(camera, 0.0), on_axis(camera, 1.0) - on_axis(camera, 0.0));
         let (w, h) = self.size;
-        #[allow(clippy::cast_precision_loss, reason = "pixel coordinates and 24-bit depths")]
+        #[allow(
+            clippy::cast_precision_loss,
+            clippy::cast_possible_truncation,
+            reason = "pixel coordinates and 24-bit depths, for a fit"
+        )]
         let point = |k: usize, z: u32| {
             let (x, y) = ((k % w as usize) as f32 + 0.5, (k / w as usize) as f32 + 0.5);
             let ndc = Vec4::new(2.0 * x / w as f32 - 1.0, 1.0 - 2.0 * y / h as f32, D24::unquantize(z) as f32, 1.0);

@@ -412,7 +412,7 @@ impl Scene {
                     };
                     let cascades = cascades
                         .as_ref()
-                        .map(|t| t.read().map_err(|e| c.err(&format!("{key}.cascades"), Problem::Syntax(e))))
+                        .map(|t| t.read().map_err(|e| c.err(format!("{key}.cascades"), Problem::Syntax(e))))
                         .transpose()?
                         .unwrap_or_default();
                     Light::Directional(view, cascades)
