@@ -51,10 +51,12 @@ impl CascadeSelect {
     /// boundary's blend band begins (`bands[i] <= splits[i]`; equal for
     /// none).
     ///
+    /// Two equal splits leave the cascade between them empty.
+    ///
     /// # Errors
     /// [`ConfigError::Cascades`] for more than [`MAX_CASCADES`] cascades,
-    /// `bands` of another length, splits that do not increase, or a band
-    /// that starts after its split or before the previous split.
+    /// `bands` of another length, splits that decrease, or a band that
+    /// starts after its split or before the previous split.
     pub fn new(splits: &[u32], bands: &[u32]) -> Result<Self, ConfigError> {
         let n = splits.len();
         if n >= MAX_CASCADES || bands.len() != n {
@@ -63,7 +65,7 @@ impl CascadeSelect {
         let mut s = Self::ONE;
         let mut previous = 0;
         for (i, (&split, &band)) in splits.iter().zip(bands).enumerate() {
-            if split <= previous && i > 0 || band > split || band < previous {
+            if split < previous || band > split || band < previous {
                 return Err(ConfigError::Cascades { splits: n, bands: bands.len() });
             }
             s.splits[i] = split;
@@ -136,6 +138,9 @@ mod tests {
         assert!(CascadeSelect::new(&[200, 100], &[200, 100]).is_err());
         assert!(CascadeSelect::new(&[100], &[101]).is_err());
         assert!(CascadeSelect::new(&[100, 200], &[100, 99]).is_err());
+        // Equal splits: the cascade between is empty.
+        let s = CascadeSelect::new(&[100, 100], &[100, 100]).expect("valid");
+        assert_eq!(s.pick(100).cascade, 2);
         assert!(CascadeSelect::new(&[1, 2, 3, 4, 5, 6, 7, 8], &[1, 2, 3, 4, 5, 6, 7, 8]).is_err());
         assert!(CascadeSelect::new(&[1, 2, 3, 4, 5, 6, 7], &[1, 2, 3, 4, 5, 6, 7]).is_ok());
     }

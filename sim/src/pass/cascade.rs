@@ -197,7 +197,8 @@ impl Plan {
             .take(n - 1)
             .map(|d| seen.depth_at(camera, d[1] - cascades.blend * (d[1] - d[0])))
             .collect();
-        // Splits closer than a depth-buffer step apart merge: the later wins.
+        // Splits closer than a depth-buffer step apart are equal: the
+        // cascade between them is empty.
         let mut registers = (Vec::with_capacity(n - 1), Vec::with_capacity(n - 1));
         for (&s, &b) in splits.iter().zip(&bands) {
             let previous = registers.0.last().copied().unwrap_or(0);
