@@ -178,7 +178,11 @@ impl Plan {
         // Sample distribution: the depth range narrowed to the visible samples'.
         let range = samples.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), s| (lo.min(s.1), hi.max(s.1)));
         let (near, far) = if range.0 < range.1 { (range.0.max(near), range.1.min(far)) } else { (near, far) };
-        let distances = cascades.distances(near, far);
+        // Given splits outside a narrowed range leave their cascades empty.
+        let mut distances = cascades.distances(near, far);
+        for k in 1..distances.len() {
+            distances[k] = distances[k].clamp(distances[k - 1], far);
+        }
         let n = cascades.count();
         let sides: Vec<u32> = (0..n).map(|c| cascades.side(c, map_size)).collect();
         let mut lights = Vec::with_capacity(n);
