@@ -88,7 +88,7 @@ fn demand(cfg: &RenderConfig) -> Demand {
     Demand {
         depth_buffers: units.unit.buffers(),
         depth_bits: cfg.format.bits(),
-        map: [cfg.map_size, cfg.map_size],
+        map: [largest_map(cfg); 2],
         image: [cfg.width, cfg.height],
         buffers_read: if two { 2 } else { 1 },
         samples_per_lookup: u32::try_from(samples).unwrap_or(u32::MAX),
@@ -99,6 +99,12 @@ fn demand(cfg: &RenderConfig) -> Demand {
         silhouette_bits,
         volumes: units.map == MapKind::Volumes,
     }
+}
+
+/// The largest map side `cfg` draws: its map's, or the largest cascade's
+/// it asks for (the bin heads' count follows it).
+fn largest_map(cfg: &RenderConfig) -> u32 {
+    cfg.cascades.map_or(cfg.map_size, |c| (0..c.count()).map(|k| c.side(k, cfg.map_size)).max().unwrap_or(cfg.map_size))
 }
 
 /// The camera pass's probe of `arch` for `cfg` on `image`: one that reads
