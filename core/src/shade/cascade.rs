@@ -10,10 +10,19 @@
 //! depth. A pixel within a boundary's blend band (from the band
 //! register up to the split) reads both maps and mixes the two
 //! fractions by where it lies in the band, in the depth buffer's own
-//! units, with an 8-bit weight.
+//! units, with an 8-bit weight. [`shade_cascaded`] is the shading unit
+//! with the selector in front: pixel by pixel, each against the map its
+//! pick names, the probe told each time the map changes.
 
+use glam::Mat4;
+
+use super::{Normals, PixelResult, ShadeInputs, ShadeSetup, Shaded, ShadowUnit, TriangleSource, setup_of, shade_pixel};
 use crate::config::ConfigError;
-use crate::shadow::Shadow;
+use crate::depth::DepthFormat;
+use crate::grid::TileRect;
+use crate::light_pass::NO_TRIANGLE;
+use crate::probe::{Event, Probe};
+use crate::shadow::{Built, Shadow};
 
 /// The most cascades a selector holds.
 pub const MAX_CASCADES: usize = 8;
@@ -110,6 +119,124 @@ pub fn blend(near: Shadow, far: Shadow, next_weight: u16) -> Shadow {
     let w = u64::from(next_weight.min(256));
     let mixed = (u64::from(near.to_bits()) * (256 - w) + u64::from(far.to_bits()) * w + 128) >> 8;
     Shadow::from_bits(u32::try_from(mixed).unwrap_or(u32::MAX))
+}
+
+/// A cascaded light as the shading unit reads it: each cascade's inputs
+/// (its light's configuration, its map and its shadow unit, nearest
+/// first), the map each is bound as ([`Probe::map_bound`]: a render's
+/// maps numbered across its lights and cascades), and the selector.
+pub struct Cascaded<'a, F: DepthFormat, S, U> {
+    /// Each cascade's shading inputs.
+    pub each: &'a [ShadeInputs<'a, F, S, U>],
+    /// Each cascade's map as the probe is told it.
+    pub bound: &'a [u16],
+    /// The split and band registers.
+    pub select: &'a CascadeSelect,
+}
+
+/// One pixel shaded against cascade `c`: its setup from the cascade's
+/// store, the shading unit's event, its result; `None` for a triangle the
+/// scene does not have.
+#[allow(clippy::too_many_arguments, reason = "the unit's inputs, its store, the pixel and the probe")]
+fn shade_one<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, P: Probe>(
+    inputs: &ShadeInputs<'_, F, S, U>,
+    store: &mut [ShadeSetup],
+    light_inverse_transpose: &Mat4,
+    probe: &mut P,
+    (px, py): (u32, u32),
+    id: u32,
+) -> Option<Shaded> {
+    let interp = setup_of(inputs.cfg, inputs.map, inputs.scene, store, id)?;
+    probe.event(Event::PixelShaded { x: px, y: py });
+    Some(shade_pixel(inputs.cfg, inputs.map, inputs.unit, probe, light_inverse_transpose, (px, py), interp))
+}
+
+/// Shade every pixel of `rect` (as [`shade_rect`](super::shade_rect)
+/// does) against the cascade the selector picks for its depth-buffer
+/// value in `depth`: the probe told of each change of map as the pixels
+/// come, a pixel in a blend band shaded by both cascades (two lookups,
+/// two events) and its fractions mixed ([`blend`]). `out` receives each
+/// result, and `own`, where given, each pixel as its own cascade shaded
+/// it, unmixed. `setups` is shared out among the cascades, an equal part
+/// each (at least one entry).
+///
+/// # Errors
+/// [`ConfigError::Cascades`] when the inputs, the bound maps and the
+/// selector count different cascades; as [`shade_rect`](super::shade_rect)
+/// for the window and the buffers.
+#[allow(clippy::too_many_lines, reason = "one loop over the pixels, its checks before it")]
+pub fn shade_cascaded<F: DepthFormat, S: TriangleSource, U: ShadowUnit<F>, R: PixelResult, P: Probe>(
+    cascaded: &Cascaded<'_, F, S, U>,
+    rect: TileRect,
+    (ids, depth): (&[u32], &[u32]),
+    (out, mut own): (&mut [R], Option<&mut [Shaded]>),
+    setups: &mut [ShadeSetup],
+    probe: &mut P,
+) -> Result<(), ConfigError> {
+    let &Cascaded { each, bound, select } = cascaded;
+    let n = each.len();
+    if n == 0 || n != usize::from(select.count()) || bound.len() != n {
+        return Err(ConfigError::Cascades { splits: n.saturating_sub(1), bands: bound.len().saturating_sub(1) });
+    }
+    let Some(first) = each.first() else { return Ok(()) };
+    for inputs in each {
+        if let Some(missing) = U::Built::missing(&inputs.cfg.shadow, inputs.cfg.normals == Normals::Smooth) {
+            return Err(ConfigError::ShadowNotBuilt { missing });
+        }
+    }
+    let TileRect { x0, y0, x1, y1 } = rect;
+    let (width, height) = (first.cfg.width, first.cfg.height);
+    if x0 > x1 || y0 > y1 || x1 > width || y1 > height {
+        return Err(ConfigError::Window { x0, y0, width: x1.wrapping_sub(x0), height: y1.wrapping_sub(y0) });
+    }
+    let texels = ((x1 - x0) as usize).saturating_mul((y1 - y0) as usize);
+    let own_len = own.as_ref().map_or(texels, |o| o.len());
+    for (buffer, found) in [("ids", ids.len()), ("depth", depth.len()), ("out", out.len()), ("own", own_len)] {
+        if found != texels {
+            return Err(ConfigError::BufferLength { buffer, expected: texels, found });
+        }
+    }
+    let across = (x1 - x0) as usize;
+    if across == 0 {
+        return Ok(());
+    }
+    let mut spare = [ShadeSetup::EMPTY; MAX_CASCADES];
+    let setups = if setups.len() < n { &mut spare[..n] } else { setups };
+    setups.fill(ShadeSetup::EMPTY);
+    let per = setups.len() / n;
+    let mut lit = [Mat4::IDENTITY; MAX_CASCADES];
+    for (l, inputs) in lit.iter_mut().zip(each) {
+        *l = inputs.cfg.light.inverse().transpose();
+    }
+    // The map the unit reads, told to the probe when it changes.
+    let mut reading: Option<usize> = None;
+    for (k, ((&id, &z), o)) in ids.iter().zip(depth).zip(out.iter_mut()).enumerate() {
+        #[allow(clippy::cast_possible_truncation, reason = "within the rectangle's sides")]
+        let (px, py) = (x0 + (k % across) as u32, y0 + (k / across) as u32);
+        let pick = select.pick(z);
+        let mut shade = |c: usize, probe: &mut P| {
+            let (inputs, store, light) = (each.get(c)?, setups.get_mut(c * per..(c + 1) * per)?, lit.get(c)?);
+            if reading != Some(c) {
+                probe.map_bound(bound.get(c).copied().unwrap_or(u16::MAX));
+                reading = Some(c);
+            }
+            shade_one(inputs, store, light, probe, (px, py), id)
+        };
+        let c = usize::from(pick.cascade);
+        let mine = if id == NO_TRIANGLE { None } else { shade(c, probe) };
+        let mixed = match (mine, pick.next_weight) {
+            (Some(near), Some(w)) => {
+                let far = shade(c + 1, probe).map_or(near.shadow, |f| f.shadow);
+                Some(Shaded { shadow: blend(near.shadow, far, w), ..near })
+            }
+            (shaded, _) => shaded,
+        };
+        *o = mixed.map_or(R::BACKGROUND, R::keep);
+        if let Some(slot) = own.as_deref_mut().and_then(|o| o.get_mut(k)) {
+            *slot = mine.unwrap_or(Shaded::BACKGROUND);
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -3,19 +3,15 @@
 //! choice of a cascade per pixel by its depth (the core's
 //! [`CascadeSelect`]), with each pixel in a blend band reading two maps
 //! ([`Picks`]). Each cascade's map is an ordinary map, drawn and tested
-//! as one light's; the shading unit shades the pixels that read each
-//! cascade in turn (as a renderer's projection pass per cascade does,
-//! its depth-bounds test the selector) and the results are put together
-//! per pixel.
+//! as one light's; the shading unit reads them pixel by pixel, each
+//! against its pick (`camera::shade_cascades`).
 
 use glam::{Mat4, Vec3, Vec4};
 use umbra_core::depth::DepthFormat;
-use umbra_core::shade::Shaded;
-use umbra_core::shade::cascade::{CascadeSelect, Pick, blend};
+use umbra_core::shade::cascade::{CascadeSelect, Pick};
 use umbra_core::{D24, NO_TRIANGLE};
 
 use super::PassError;
-use super::camera::CameraImage;
 use crate::world::cascade::{Cascades, Fit};
 use crate::world::scene::{Camera, Light, Orthographic, look_at};
 
@@ -232,49 +228,9 @@ impl Picks {
         self.0.iter().map(|p| p.cascade).collect()
     }
 
-    /// `ids` with every pixel that does not read cascade `c` (its own, or
-    /// the next one in a blend band) left uncovered: the pixels cascade
-    /// `c`'s shading shades.
-    #[must_use]
-    pub fn ids_reading(&self, ids: &[u32], c: usize) -> Vec<u32> {
-        ids.iter()
-            .zip(&self.0)
-            .map(|(&id, p)| {
-                let own = usize::from(p.cascade) == c;
-                let blends_in = usize::from(p.cascade) + 1 == c && p.next_weight.is_some();
-                if own || blends_in { id } else { NO_TRIANGLE }
-            })
-            .collect()
-    }
-
     /// Whether any pixel lies in a blend band.
     #[must_use]
     pub fn blends(&self) -> bool {
         self.0.iter().any(|p| p.next_weight.is_some())
-    }
-
-    /// Cascade `c`'s shading `image` put into `into`, the light's image:
-    /// each pixel of its own as it is, each pixel of the previous cascade's
-    /// blend band mixed with what that cascade gave it (the cascades are
-    /// put in nearest first); `own`, where kept, each pixel of its own
-    /// unmixed (what its own cascade's shadow unit gave it).
-    pub fn put(&self, (into, own): (&mut CameraImage, Option<&mut Vec<Shaded>>), image: &CameraImage, c: usize) {
-        if let Some(own) = own {
-            for ((to, from), p) in own.iter_mut().zip(&image.pixels).zip(&self.0) {
-                if usize::from(p.cascade) == c {
-                    *to = *from;
-                }
-            }
-        }
-        for ((to, from), p) in into.pixels.iter_mut().zip(&image.pixels).zip(&self.0) {
-            if usize::from(p.cascade) == c {
-                *to = *from;
-            } else if usize::from(p.cascade) + 1 == c
-                && let Some(w) = p.next_weight
-                && from.triangle != NO_TRIANGLE
-            {
-                *to = Shaded { shadow: blend(to.shadow, from.shadow, w), ..*to };
-            }
-        }
     }
 }

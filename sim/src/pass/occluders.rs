@@ -83,6 +83,52 @@ impl SilTexels {
     }
 }
 
+impl SilTexels {
+    /// `reader` given the silhouette units over each of `all` (a cascaded
+    /// light's maps, all of one store), each for a depth map of the size
+    /// `maps` gives in turn.
+    ///
+    /// # Errors
+    /// [`ConfigError`] when texels do not fit their map's size, or `all`
+    /// mixes packed and unpacked texels.
+    pub(crate) fn read_all<R: SilReaderAll>(
+        all: &[&Self],
+        maps: &[RasterConfig],
+        reader: R,
+    ) -> Result<R::Out, ConfigError> {
+        fn views<'t, S: SilStore>(
+            all: impl Iterator<Item = Option<&'t [S]>>,
+            maps: &[RasterConfig],
+        ) -> Result<Vec<SilhouetteMap<'t, S>>, ConfigError> {
+            all.zip(maps)
+                .map(|(t, m)| {
+                    let t = t.ok_or(ConfigError::Cascades { splits: maps.len(), bands: 0 })?;
+                    SilhouetteMap::view(m.width(), m.height(), t)
+                })
+                .collect()
+        }
+        Ok(match all.first() {
+            Some(Self::Packed(_)) => {
+                let maps = views(all.iter().map(|t| if let Self::Packed(p) = t { Some(&p[..]) } else { None }), maps)?;
+                reader.read_all(&maps.iter().map(SilhouetteUnit).collect::<Vec<_>>())
+            }
+            _ => {
+                let maps = views(all.iter().map(|t| if let Self::Points(p) = t { Some(&p[..]) } else { None }), maps)?;
+                reader.read_all(&maps.iter().map(SilhouetteUnit).collect::<Vec<_>>())
+            }
+        })
+    }
+}
+
+/// What reads several silhouette maps of one store through their shadow
+/// units ([`SilTexels::read_all`]).
+pub(crate) trait SilReaderAll {
+    /// What the reading gives.
+    type Out;
+    /// Read through `units`.
+    fn read_all<S: SilStore>(self, units: &[SilhouetteUnit<'_, '_, S>]) -> Self::Out;
+}
+
 /// What reads a silhouette map through its shadow unit, whatever the
 /// map's store ([`SilTexels::read`]).
 pub(crate) trait SilReader {

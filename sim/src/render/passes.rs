@@ -4,6 +4,7 @@
 //! the pixels that read it, a cascaded light's cascades put together per
 //! pixel ([`crate::pass::cascade`]).
 
+use umbra_core::glam::Mat4;
 use umbra_core::shade::{MapUnit, ShadowUnit, SilhouetteUnit};
 use umbra_core::shadow::MapView;
 use umbra_core::silhouette::SilStore;
@@ -13,10 +14,12 @@ use super::{RenderConfig, RenderError, Targets, camera_options};
 use crate::base::maps::Tiling;
 use crate::pass::PassError;
 use crate::pass::algorithm::MapKind;
-use crate::pass::camera::{CameraFrame, CameraImage, CameraOptions, map_view, shade_visible, visibility, volumes};
+use crate::pass::camera::{
+    CameraFrame, CameraImage, CameraOptions, map_view, shade_cascades, shade_visible, visibility, volumes,
+};
 use crate::pass::cascade::{Picks, Plan, Seen};
 use crate::pass::light::{self, DEFAULT_BIN_CAPACITY, LightFrame, LightOptions};
-use crate::pass::occluders::{SilReader, SilTexels};
+use crate::pass::occluders::{SilReader, SilReaderAll, SilTexels};
 use crate::world::occluders::Lit;
 use crate::world::scene::{Light, Scene};
 
@@ -171,41 +174,90 @@ pub(super) fn passes<F: DepthFormat, L: Probe, C: Probe>(
         }
     }
     let mut images: Vec<CameraImage> = Vec::with_capacity(lit.len());
-    let mut unmixed: Vec<Option<Vec<umbra_core::shade::Shaded>>> = vec![None; lit.len()];
-    for (m, (slot, view)) in slots.iter().zip(&views).enumerate() {
-        bind(camera_probe, m, slots.len());
-        let picks = plans[slot.light].as_ref().map(|p| &p.1);
-        let only = picks.map(|p| p.ids_reading(camera.ids(), slot.cascade));
-        let shade = Shade {
-            camera: (&mut camera, only.as_deref()),
-            light: (drawn[m].view_projection(), triangles.as_slice()),
-            view,
-            options: &options,
-            probe: &mut *camera_probe,
-        };
-        let image = match silhouettes.get(m) {
-            Some(texels) => texels.read(view.raster(), shade).map_err(PassError::from)??,
-            None => shade.read(&MapUnit)?,
-        };
-        match (picks, images.get_mut(slot.light)) {
-            (Some(picks), Some(into)) => picks.put((into, unmixed[slot.light].as_mut()), &image, slot.cascade),
-            (picks, _) => {
-                if picks.is_some_and(Picks::blends) {
-                    unmixed[slot.light] = Some(image.pixels.clone());
-                }
-                images.push(image);
+    let mut unmixed = Vec::with_capacity(lit.len());
+    let mut next = 0;
+    for (k, plan) in plans.iter().enumerate() {
+        let maps = next..next + slots.iter().filter(|s| s.light == k).count();
+        next = maps.end;
+        let (image, own) = match plan {
+            None => {
+                let m = maps.start;
+                bind(camera_probe, m, slots.len());
+                let shade = Shade {
+                    camera: &mut camera,
+                    light: (drawn[m].view_projection(), triangles.as_slice()),
+                    view: &views[m],
+                    options: &options,
+                    probe: &mut *camera_probe,
+                };
+                let image = match silhouettes.get(m) {
+                    Some(texels) => texels.read(views[m].raster(), shade).map_err(PassError::from)??,
+                    None => shade.read(&MapUnit)?,
+                };
+                (image, None)
             }
-        }
+            Some((plan, picks)) => {
+                let lights: Vec<Mat4> = drawn[maps.clone()].iter().map(Light::view_projection).collect();
+                let bound: Vec<u16> = maps.clone().map(|m| u16::try_from(m).unwrap_or(u16::MAX)).collect();
+                let cascades = Cascades {
+                    camera: &mut camera,
+                    light: (&lights, triangles.as_slice()),
+                    views: &views[maps.clone()],
+                    select: (&plan.select, &bound),
+                    options: &options,
+                    own: picks.blends(),
+                    probe: &mut *camera_probe,
+                };
+                if silhouettes.is_empty() {
+                    cascades.read_all(&vec![MapUnit; maps.len()])?
+                } else {
+                    let texels: Vec<&SilTexels> = silhouettes[maps.clone()].iter().collect();
+                    let rasters: Vec<RasterConfig> = views[maps].iter().map(|v| *v.raster()).collect();
+                    SilTexels::read_all(&texels, &rasters, cascades).map_err(PassError::from)??
+                }
+            }
+        };
+        images.push(image);
+        unmixed.push(own);
     }
     let plans =
         plans.into_iter().zip(unmixed).map(|(p, own)| p.map(|(plan, picks)| (plan, picks.cascades(), own))).collect();
     Ok(Passes { light_probes: probes, images, silhouettes, triangles, drawn, plans })
 }
 
-/// The shading of the visible pixels (or those a cascade reads) against
-/// one map, through the shadow unit it is given.
+/// A cascaded light's shading: every pixel against the cascade its depth
+/// picks, through the shadow units it is given, one a cascade.
+struct Cascades<'a, 'v, F: DepthFormat, C> {
+    camera: &'a mut CameraFrame,
+    light: (&'a [Mat4], &'a [umbra_core::shade::SceneTriangle]),
+    views: &'a [MapView<'v, F>],
+    select: (&'a umbra_core::shade::cascade::CascadeSelect, &'a [u16]),
+    options: &'a CameraOptions,
+    own: bool,
+    probe: &'a mut C,
+}
+
+type Shaded = (CameraImage, Option<Vec<umbra_core::shade::Shaded>>);
+
+impl<F: DepthFormat, C: Probe> Cascades<'_, '_, F, C> {
+    fn read_all<U: ShadowUnit<F>>(self, units: &[U]) -> Result<Shaded, RenderError> {
+        let Self { camera, light, views, select, options, own, probe } = self;
+        Ok(shade_cascades(camera, light, (views, units), select, options, own, probe)?)
+    }
+}
+
+impl<F: DepthFormat, C: Probe> SilReaderAll for Cascades<'_, '_, F, C> {
+    type Out = Result<Shaded, RenderError>;
+
+    fn read_all<S: SilStore>(self, units: &[SilhouetteUnit<'_, '_, S>]) -> Self::Out {
+        Cascades::read_all(self, units)
+    }
+}
+
+/// The shading of the visible pixels against one map, through the shadow
+/// unit it is given.
 struct Shade<'a, 'v, F: DepthFormat, C> {
-    camera: (&'a mut CameraFrame, Option<&'a [u32]>),
+    camera: &'a mut CameraFrame,
     light: (umbra_core::glam::Mat4, &'a [umbra_core::shade::SceneTriangle]),
     view: &'a MapView<'v, F>,
     options: &'a CameraOptions,

@@ -304,3 +304,32 @@ fn every_algorithm_tests_each_cascade() {
     let volumes = rendered(&scene, small(Algorithm::Volumes, 0.0), &reference);
     assert!(volumes.cascades.is_empty() && volumes.cascade_of.is_empty());
 }
+
+/// The shading unit reads each pixel through its own cascade, pixel by
+/// pixel: every pixel of cascade `c` is what the scene lit by cascade
+/// `c`'s light alone, through one map of that cascade's side, gives it,
+/// bit for bit (its fraction, its point on the map).
+#[test]
+fn each_pixel_is_its_cascade_alone() {
+    let scene = street();
+    let reference = truth(&scene, 160, 90, 1, &ProgressBar::hidden()).expect("reference");
+    let small = RenderConfig { width: 160, height: 90, map_size: 256, reference_rays: 1, ..RenderConfig::DEFAULT };
+    let r = rendered(
+        &scene,
+        RenderConfig { cascades: Some("3,sides=256/128/128".parse().expect("three")), ..small },
+        &reference,
+    );
+    let mut checked = 0;
+    for (c, cascade) in r.cascades.iter().enumerate() {
+        let mut alone = scene.clone();
+        alone.lights = vec![cascade.light];
+        let one = rendered(&alone, RenderConfig { map_size: cascade.side, ..small }, &reference);
+        for (k, &of) in r.cascade_of.iter().enumerate() {
+            if usize::from(of) == c && r.image.pixels[k].triangle != umbra::sim::core::NO_TRIANGLE {
+                assert_eq!(r.image.pixels[k], one.image.pixels[k], "pixel {k} of cascade {c}");
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 10_000, "{checked} pixels checked");
+}
