@@ -333,3 +333,25 @@ fn each_pixel_is_its_cascade_alone() {
     }
     assert!(checked > 10_000, "{checked} pixels checked");
 }
+
+/// In a scene of a sun and a spot light (the bundled example city), the
+/// sun is drawn through its cascades and the spot light as before: its
+/// part is the render without cascades' part, bit for bit, and the
+/// frame's evaluated pairs are the two lights' together.
+#[test]
+fn a_cascaded_sun_beside_a_spot_light() {
+    let scene =
+        Scene::open(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/city.glb"), &Limits::DEFAULT).expect("opens");
+    let small = RenderConfig { width: 160, height: 90, map_size: 256, reference_rays: 1, ..RenderConfig::DEFAULT };
+    let reference = truth(&scene, 160, 90, 1, &ProgressBar::hidden()).expect("reference");
+    let plain = rendered(&scene, small, &reference);
+    let r = rendered(&scene, RenderConfig { cascades: Some("3".parse().expect("three")), ..small }, &reference);
+    let sun = scene.lights.iter().position(|l| matches!(l, Light::Directional(..))).expect("a sun");
+    let (mine, before): (Vec<_>, Vec<_>) = (r.parts().collect(), plain.parts().collect());
+    assert_eq!((mine.len(), mine[sun].cascades.len()), (2, 3));
+    for (k, (a, b)) in mine.iter().zip(&before).enumerate().filter(|(k, _)| *k != sun) {
+        assert!(a.cascades.is_empty(), "lights[{k}]");
+        assert_eq!((a.metrics, &a.image.pixels), (b.metrics, &b.image.pixels), "lights[{k}]");
+    }
+    assert_eq!(r.frame_metrics().evaluated, mine.iter().map(|p| p.metrics.evaluated).sum::<u64>());
+}
