@@ -306,16 +306,18 @@ pub(super) fn render(args: &RenderArgs, limits: &Limits, style: Style) -> Result
 /// holds, its map, its pixels' errors and the map's footprint on them.
 fn cascades(r: &umbra_sim::Render, several: bool) -> Result<()> {
     for (k, part) in r.parts().enumerate().filter(|(_, p)| !p.cascades.is_empty()) {
+        // The slice in view distance; the map's footprint along x, its
+        // median and its 95th percentile over its 5th (`footprint_spread`).
         let heads = [
             ("cascade", Align::Left),
-            ("slice (view distance)", Align::Left),
+            ("slice", Align::Left),
             ("map", Align::Right),
-            ("pixels evaluated", Align::Right),
+            ("evaluated", Align::Right),
             ("misclassified", Align::Right),
-            ("aliasing px", Align::Right),
+            ("aliasing", Align::Right),
             ("artifacts", Align::Right),
-            ("texels a pixel along x (median)", Align::Right),
-            ("footprint spread (p95 / p5, x)", Align::Right),
+            ("texels/px x", Align::Right),
+            ("spread x", Align::Right),
         ];
         let mut table = Table::new(&heads);
         for (c, cascade) in part.cascades.iter().enumerate() {
