@@ -120,6 +120,14 @@ impl CameraFrame {
         &self.z
     }
 
+    /// What a shading over the last visibility pass reads and keeps: its
+    /// ids and depth, the shading unit's setup store, the camera's
+    /// matrix and the image's size.
+    #[allow(clippy::type_complexity, reason = "the frame's parts a shading borrows at once")]
+    pub(crate) fn for_shading(&mut self) -> ((&[u32], &[u32]), &mut Vec<ShadeSetup>, Mat4, (u32, u32)) {
+        ((&self.ids, &self.z), &mut self.shade_setups, self.camera, self.size)
+    }
+
     /// The last pass's image, taken out of the frame.
     #[must_use]
     pub fn take_image(&mut self) -> CameraImage {
@@ -400,49 +408,6 @@ pub(crate) fn shade_visible<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
     let CameraFrame { ids, shade_setups, camera, size, .. } = frame;
     shade(light, (ids, *camera), view, unit, options, probe, &mut pixels, shade_setups, None)?;
     Ok(CameraImage { width: size.0, height: size.1, pixels, camera: *camera })
-}
-
-/// A cascaded light's shading over `frame`'s last [`visibility`] pass:
-/// each pixel against the cascade the selector `select` picks for its
-/// depth (the core's [`shade_cascaded`](umbra_core::shade::cascade::shade_cascaded)),
-/// cascade `c`'s map `views[c]` drawn through `lights[c]` and read
-/// through `units[c]`, bound as map `bound[c]`; the scene's
-/// [`Scene::triangles`] beside them. The light's image, and, when `own`,
-/// each pixel as its own cascade shaded it before a blend band mixed it.
-///
-/// # Errors
-/// As [`render`], and [`PassError::Config`] for inputs of different
-/// lengths.
-#[allow(clippy::too_many_arguments, reason = "each cascade's map, light and unit, the selector, the probe")]
-pub(crate) fn shade_cascades<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
-    frame: &mut CameraFrame,
-    (lights, triangles): (&[Mat4], &[SceneTriangle]),
-    (views, units): (&[MapView<'_, F>], &[U]),
-    (select, bound): (&umbra_core::shade::cascade::CascadeSelect, &[u16]),
-    options: &CameraOptions,
-    own: bool,
-    probe: &mut P,
-) -> Result<(CameraImage, Option<Vec<Shaded>>), PassError> {
-    use umbra_core::shade::cascade::{Cascaded, shade_cascaded};
-    let CameraFrame { ids, z, shade_setups: store, camera, size, .. } = frame;
-    let configs: Vec<ShadeConfig> = lights.iter().map(|&l| shade_config(l, *camera, options)).collect();
-    let source = |id: u32| triangles.get(id as usize).copied();
-    let each: Vec<ShadeInputs<'_, F, _, U>> = configs
-        .iter()
-        .zip(views)
-        .zip(units)
-        .map(|((cfg, map), unit)| ShadeInputs { cfg, map, scene: &source, unit })
-        .collect();
-    if each.len() != lights.len() {
-        return Err(umbra_core::ConfigError::Cascades { splits: lights.len(), bands: each.len() }.into());
-    }
-    let mut pixels = vec![Shaded::BACKGROUND; ids.len()];
-    let mut unmixed = own.then(|| vec![Shaded::BACKGROUND; ids.len()]);
-    store.resize(lights.len() * shade_setups(ids, size.0), ShadeSetup::EMPTY);
-    let rect = TileRect { x0: 0, y0: 0, x1: size.0, y1: size.1 };
-    let cascaded = Cascaded { each: &each, bound, select };
-    shade_cascaded(&cascaded, rect, (ids, z), (&mut pixels, unmixed.as_deref_mut()), store, probe)?;
-    Ok((CameraImage { width: size.0, height: size.1, pixels, camera: *camera }, unmixed))
 }
 
 /// The lit pass of a frame whose shadows the shading unit does not test

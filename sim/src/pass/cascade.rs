@@ -4,14 +4,18 @@
 //! [`CascadeSelect`]), with each pixel in a blend band reading two maps
 //! ([`Picks`]). Each cascade's map is an ordinary map, drawn and tested
 //! as one light's; the shading unit reads them pixel by pixel, each
-//! against its pick (`camera::shade_cascades`).
+//! against its pick (`shade_cascades`).
 
 use glam::{Mat4, Vec3, Vec4};
 use umbra_core::depth::DepthFormat;
-use umbra_core::shade::cascade::{CascadeSelect, Pick};
+use umbra_core::shade::cascade::{CascadeSelect, Cascaded, Pick, shade_cascaded};
+use umbra_core::shade::{SceneTriangle, ShadeConfig, ShadeInputs, ShadeSetup, Shaded, ShadowUnit};
+use umbra_core::shadow::MapView;
 use umbra_core::{D24, NO_TRIANGLE};
+use umbra_core::{Probe, TileRect};
 
 use super::PassError;
+use super::camera::{CameraFrame, CameraImage, CameraOptions, shade_config, shade_setups};
 use crate::world::cascade::{Cascades, Fit};
 use crate::world::scene::{Camera, Light, Orthographic, look_at};
 
@@ -233,4 +237,46 @@ impl Picks {
     pub fn blends(&self) -> bool {
         self.0.iter().any(|p| p.next_weight.is_some())
     }
+}
+
+/// A cascaded light's shading over `frame`'s last visibility pass:
+/// each pixel against the cascade the selector `select` picks for its
+/// depth (the core's [`shade_cascaded`](umbra_core::shade::cascade::shade_cascaded)),
+/// cascade `c`'s map `views[c]` drawn through `lights[c]` and read
+/// through `units[c]`, bound as map `bound[c]`; the scene's
+/// `Scene::triangles` beside them. The light's image, and, when `own`,
+/// each pixel as its own cascade shaded it before a blend band mixed it.
+///
+/// # Errors
+/// As the camera pass's, and [`PassError::Config`] for inputs of different
+/// lengths.
+#[allow(clippy::too_many_arguments, reason = "each cascade's map, light and unit, the selector, the probe")]
+pub(crate) fn shade_cascades<F: DepthFormat, U: ShadowUnit<F>, P: Probe>(
+    frame: &mut CameraFrame,
+    (lights, triangles): (&[Mat4], &[SceneTriangle]),
+    (views, units): (&[MapView<'_, F>], &[U]),
+    (select, bound): (&umbra_core::shade::cascade::CascadeSelect, &[u16]),
+    options: &CameraOptions,
+    own: bool,
+    probe: &mut P,
+) -> Result<(CameraImage, Option<Vec<Shaded>>), PassError> {
+    let ((ids, z), store, camera, size) = frame.for_shading();
+    let configs: Vec<ShadeConfig> = lights.iter().map(|&l| shade_config(l, camera, options)).collect();
+    let source = |id: u32| triangles.get(id as usize).copied();
+    let each: Vec<ShadeInputs<'_, F, _, U>> = configs
+        .iter()
+        .zip(views)
+        .zip(units)
+        .map(|((cfg, map), unit)| ShadeInputs { cfg, map, scene: &source, unit })
+        .collect();
+    if each.len() != lights.len() {
+        return Err(umbra_core::ConfigError::Cascades { splits: lights.len(), bands: each.len() }.into());
+    }
+    let mut pixels = vec![Shaded::BACKGROUND; ids.len()];
+    let mut unmixed = own.then(|| vec![Shaded::BACKGROUND; ids.len()]);
+    store.resize(lights.len() * shade_setups(ids, size.0), ShadeSetup::EMPTY);
+    let rect = TileRect { x0: 0, y0: 0, x1: size.0, y1: size.1 };
+    let cascaded = Cascaded { each: &each, bound, select };
+    shade_cascaded(&cascaded, rect, (ids, z), (&mut pixels, unmixed.as_deref_mut()), store, probe)?;
+    Ok((CameraImage { width: size.0, height: size.1, pixels, camera }, unmixed))
 }

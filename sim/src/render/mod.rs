@@ -367,23 +367,25 @@ pub(super) fn render_in<F: DepthFormat, L: Probe, C: Probe>(
         };
         let mut raws =
             maps.iter().map(|&m| RawMaps { format: cfg.format, maps: raw(frames.get(m).and_then(LightFrame::maps)) });
-        let mut counted = maps.iter().map(|_| events.next().unwrap_or_default()).collect::<Vec<_>>().into_iter();
-        let light_events = counted.next().unwrap_or_default();
-        let first = raws.next().unwrap_or_else(|| unreachable!("a light draws a map"));
+        // Every light draws a map: a slot a light, at least.
+        let Some(first) = raws.next() else { return Err(RenderError::nothing_evaluated(scene)) };
+        let counted: Vec<Counters> = events.by_ref().take(maps.len()).collect();
         let cascades = match plan {
             Some((plan, ..)) => cascades
                 .into_iter()
+                .zip(&counted)
                 .enumerate()
-                .map(|(c, metrics)| CascadePart {
+                .map(|(c, (metrics, events))| CascadePart {
                     light: plan.lights[c],
                     slice: [plan.distances[c], plan.distances[c + 1]],
                     side: plan.sides[c],
                     metrics,
-                    events: if c == 0 { light_events.totals } else { counted.next().unwrap_or_default().totals },
+                    events: events.totals,
                 })
                 .collect(),
             None => Vec::new(),
         };
+        let light_events = counted.into_iter().next().unwrap_or_default();
         parts.push(LightPart {
             image,
             maps: first,

@@ -335,9 +335,9 @@ pub const PARAMS: &[RenderParam] = &[
         meaning: "every directional light's cascades as umbra render --cascades spells them (scene: each light's own)",
         values: "`scene` (each directional light's own, one map unless its scene file says `cascades`), or `N` cascades (1 to 8) split by Zhang et al.'s practical scheme, optionally followed by `,lambda=<0..1>` (1 logarithmic, 0 uniform; 0.5 unless given), `,splits=D1/D2/…` (view distances instead), `,sides=S` or `,sides=S1/S2/…` (each cascade's map side; the map's unless given), `,fit=samples` (each cascade fitted to the visible samples of its slice) and `,blend=B` (the last fraction B of each cascade's depth range blends into the next): `4`, `4,lambda=0.7,sides=2048/1024/1024/512`",
         written: Written::Changed,
-        get: |r| Some(r.config.cascades.map_or_else(|| "scene".to_owned(), |c| c.to_string())),
+        get: |r| Some(crate::world::cascade::choice_text(r.config.cascades)),
         set: |r, v| {
-            r.config.cascades = if v.trim() == "scene" { None } else { Some(spelled(v)?) };
+            r.config.cascades = crate::world::cascade::read_choice(v).map_err(|e| e.to_string())?;
             Ok(())
         },
     },

@@ -14,10 +14,8 @@ use super::{RenderConfig, RenderError, Targets, camera_options};
 use crate::base::maps::Tiling;
 use crate::pass::PassError;
 use crate::pass::algorithm::MapKind;
-use crate::pass::camera::{
-    CameraFrame, CameraImage, CameraOptions, map_view, shade_cascades, shade_visible, visibility, volumes,
-};
-use crate::pass::cascade::{Picks, Plan, Seen};
+use crate::pass::camera::{CameraFrame, CameraImage, CameraOptions, map_view, shade_visible, visibility, volumes};
+use crate::pass::cascade::{Picks, Plan, Seen, shade_cascades};
 use crate::pass::light::{self, DEFAULT_BIN_CAPACITY, LightFrame, LightOptions};
 use crate::pass::occluders::{SilReader, SilReaderAll, SilTexels};
 use crate::world::occluders::Lit;
@@ -237,17 +235,19 @@ struct Cascades<'a, 'v, F: DepthFormat, C> {
     probe: &'a mut C,
 }
 
-type Shaded = (CameraImage, Option<Vec<umbra_core::shade::Shaded>>);
+/// A light's image, and each pixel as its own cascade shaded it where a blend
+/// band mixed two.
+type LightImage = (CameraImage, Option<Vec<umbra_core::shade::Shaded>>);
 
 impl<F: DepthFormat, C: Probe> Cascades<'_, '_, F, C> {
-    fn read_all<U: ShadowUnit<F>>(self, units: &[U]) -> Result<Shaded, RenderError> {
+    fn read_all<U: ShadowUnit<F>>(self, units: &[U]) -> Result<LightImage, RenderError> {
         let Self { camera, light, views, select, options, own, probe } = self;
         Ok(shade_cascades(camera, light, (views, units), select, options, own, probe)?)
     }
 }
 
 impl<F: DepthFormat, C: Probe> SilReaderAll for Cascades<'_, '_, F, C> {
-    type Out = Result<Shaded, RenderError>;
+    type Out = Result<LightImage, RenderError>;
 
     fn read_all<S: SilStore>(self, units: &[SilhouetteUnit<'_, '_, S>]) -> Self::Out {
         Cascades::read_all(self, units)

@@ -7,10 +7,9 @@
 //!
 //! This module is what a scene or a user asks for: how many cascades,
 //! where the slices split ([`Cascades::distances`]), each map's side, how
-//! each is fitted and the blend band, in one spelling. The passes fit
-//! each cascade's light to its slice (`crate::pass::cascade`): an
-//! ordinary orthographic light, whose map is drawn and tested as any
-//! other.
+//! each is fitted and the blend band, in one spelling. The passes above
+//! fit each cascade's light to its slice: an ordinary orthographic
+//! light, whose map is drawn and tested as any other.
 
 use core::fmt;
 use core::str::FromStr;
@@ -160,6 +159,25 @@ impl Cascades {
         }
         None
     }
+}
+
+/// How a render parameter or a sweep spells "each light's own
+/// cascades", as the scene gives them.
+pub const SCENE: &str = "scene";
+
+/// A choice of cascades as the render parameter spells it: [`SCENE`] for
+/// each light's own (`None`), or the cascades' spelling.
+#[must_use]
+pub fn choice_text(choice: Option<Cascades>) -> String {
+    choice.map_or_else(|| SCENE.to_owned(), |c| c.to_string())
+}
+
+/// A choice of cascades read back from [`choice_text`]'s spelling.
+///
+/// # Errors
+/// [`CascadesError`] for text that is neither [`SCENE`] nor cascades.
+pub fn read_choice(text: &str) -> Result<Option<Cascades>, CascadesError> {
+    if text.trim() == SCENE { Ok(None) } else { text.parse().map(Some) }
 }
 
 impl Default for Cascades {

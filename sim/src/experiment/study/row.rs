@@ -244,7 +244,7 @@ impl Row {
                 depth_format: c.format,
                 map_side_texels: c.map_size,
                 filter_name: spec.filters[c.filter],
-                cascades: v.cascades.map_or_else(scene_cascades, |k| k.to_string()),
+                cascades: crate::world::cascade::choice_text(v.cascades),
                 arch: name,
                 base_arch,
                 arch_params: point.map(super::ArchPoint::params).unwrap_or_default(),
@@ -331,5 +331,5 @@ impl Row {
 
 /// The cascades of a row that asks for none: each light's own.
 fn scene_cascades() -> String {
-    "scene".to_owned()
+    crate::world::cascade::SCENE.to_owned()
 }

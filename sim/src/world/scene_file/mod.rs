@@ -42,9 +42,9 @@ use glam::{EulerRot, Mat4, Quat, Vec3};
 use crate::input::kind::FileKind;
 use crate::input::limits::{FileError, LimitError, Limits};
 use crate::world::mesh::MeshError;
-use crate::world::scene::{Camera, Light, Object, Orthographic, Scene};
+use crate::world::scene::{Camera, Object, Scene};
 use meshes::{build_mesh, generated_triangles};
-use schema::{Check, LightFile, MeshFile, SceneFile, ViewFile};
+use schema::{Check, LightFile, MeshFile, SceneFile};
 
 mod gltf;
 mod meshes;
@@ -394,30 +394,7 @@ impl Scene {
         for (i, l) in parsed.lights.iter().enumerate() {
             let key = format!("lights[{i}]");
             let into = if l.casts() { &mut lights } else { &mut shadowless };
-            into.push(match l {
-                LightFile::Spot { position, target, fov, near, far, .. } => Light::Spot(c.view(
-                    &key,
-                    &ViewFile { position: *position, target: *target, fov: *fov, near: *near, far: *far },
-                )?),
-                LightFile::Directional { position, target, extent, near, far, cascades, .. } => {
-                    let (near, far) = c.near_far(&key, *near, *far)?;
-                    let (position, target) = c.eye(&key, *position, *target)?;
-                    let view = Orthographic {
-                        position,
-                        target,
-                        extent: c.range(&format!("{key}.extent"), *extent, 1e-6, 1e6)?,
-                        near,
-                        far,
-                        up: Vec3::Y,
-                    };
-                    let cascades = cascades
-                        .as_ref()
-                        .map(|t| t.read().map_err(|e| c.err(format!("{key}.cascades"), Problem::Syntax(e))))
-                        .transpose()?
-                        .unwrap_or_default();
-                    Light::Directional(view, cascades)
-                }
-            });
+            into.push(c.light(&key, l)?);
         }
         if parsed.objects.is_empty() {
             return Err(c.err("objects", Problem::Missing("object")));

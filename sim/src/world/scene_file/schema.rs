@@ -8,7 +8,7 @@ use serde::Deserialize;
 use crate::input::exact::Exact;
 
 use super::{MAX_SUBDIVISION, Problem, SceneError};
-use crate::world::scene::Perspective;
+use crate::world::scene::{Light, Orthographic, Perspective};
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -258,6 +258,28 @@ impl Check<'_> {
             }
         }
         Ok(())
+    }
+
+    /// A light as the file gives it, checked: a spot light's view, or a
+    /// directional light's view and its cascades.
+    pub(super) fn light(&self, key: &str, l: &LightFile) -> Result<Light, SceneError> {
+        Ok(match l {
+            LightFile::Spot { position, target, fov, near, far, .. } => Light::Spot(
+                self.view(key, &ViewFile { position: *position, target: *target, fov: *fov, near: *near, far: *far })?,
+            ),
+            LightFile::Directional { position, target, extent, near, far, cascades, .. } => {
+                let (near, far) = self.near_far(key, *near, *far)?;
+                let (position, target) = self.eye(key, *position, *target)?;
+                let extent = self.range(&format!("{key}.extent"), *extent, 1e-6, 1e6)?;
+                let view = Orthographic { position, target, extent, near, far, up: Vec3::Y };
+                let cascades = cascades
+                    .as_ref()
+                    .map(|t| t.read().map_err(|e| self.err(format!("{key}.cascades"), Problem::Syntax(e))))
+                    .transpose()?
+                    .unwrap_or_default();
+                Light::Directional(view, cascades)
+            }
+        })
     }
 
     pub(super) fn view(&self, key: &str, v: &ViewFile) -> Result<Perspective, SceneError> {

@@ -33,13 +33,15 @@ use serde::Deserialize;
 use umbra_core::shadow::{Bias, DepthTest, Filter, Jitter, MapCoord, ShadowConfig};
 use umbra_core::{DepthFormatKind, RasterConfig};
 
+mod algorithms;
 mod arch_points;
 
-use super::{Spec, Variant, repeated};
+use algorithms::AlgorithmText;
+
+use super::{Spec, repeated};
 use crate::experiment::study::budget::written::Written;
 use crate::input::exact::Exact;
 use crate::input::limits::Limits;
-use crate::render::{Algorithm, Culling, RenderConfig};
 use crate::world::scene::Scene;
 use crate::world::scene_file::BUNDLED;
 
@@ -143,24 +145,6 @@ impl AxisValue {
             Self::Flag(b) => b.to_string(),
         }
     }
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct AlgorithmText {
-    algo: String,
-    #[serde(default)]
-    bias: Option<Vec<f64>>,
-    #[serde(default)]
-    bias1: Option<f64>,
-    #[serde(default)]
-    offset: Option<Vec<f64>>,
-    #[serde(default)]
-    virtual_samples: Option<Vec<bool>>,
-    #[serde(default)]
-    cull: Option<Vec<String>>,
-    #[serde(default)]
-    cascades: Option<Vec<String>>,
 }
 
 /// A sweep file's text and where it came from.
@@ -440,67 +424,5 @@ impl SweepFile {
         ShadowConfig::new(DepthTest::First, Bias::default(), filter, false)
             .map_err(|e| self.err(key, e.to_string()))?;
         Ok(filter)
-    }
-
-    /// The variants of one algorithm entry: every combination of its lists.
-    fn variants(&self, key: &str, a: &AlgorithmText) -> Result<Vec<Variant>, SweepError> {
-        let one = |v: &Option<Vec<f64>>, default: f64| v.clone().unwrap_or_else(|| vec![default]);
-        let biases = one(&a.bias, 0.0);
-        for (k, &b) in biases.iter().chain(a.bias1.iter()).enumerate() {
-            RenderConfig::depth("bias", b).map_err(|e| self.err(format!("{key}.bias"), format!("value {k}: {e}")))?;
-        }
-        let culls = a
-            .cull
-            .clone()
-            .unwrap_or_else(|| vec!["algorithm".to_owned()])
-            .iter()
-            .map(|c| c.parse::<Culling>().map_err(|e| self.err(format!("{key}.cull"), e.to_string())))
-            .collect::<Result<Vec<_>, _>>()?;
-        let cascades = a
-            .cascades
-            .clone()
-            .unwrap_or_else(|| vec!["scene".to_owned()])
-            .iter()
-            .map(|c| match c.trim() {
-                "scene" => Ok(None),
-                c => c.parse().map(Some).map_err(|e: crate::world::cascade::CascadesError| {
-                    self.err(format!("{key}.cascades"), e.to_string())
-                }),
-            })
-            .collect::<Result<Vec<_>, _>>()?;
-        let needs = |what: &str| self.err(format!("{key}.{what}"), format!("`{}` needs `{what}`", a.algo));
-        if a.algo == "bias-range" && a.bias1.is_none() {
-            return Err(needs("bias1"));
-        }
-        let named = |offset| {
-            Algorithm::named(&a.algo, a.bias1.unwrap_or_default(), offset)
-                .map_err(|e| self.err(format!("{key}.algo"), e.to_string()))
-        };
-        // Only dual depth has an offset axis: any other is one algorithm.
-        let algorithms = if a.algo == "dual" {
-            let offsets = a.offset.as_deref().ok_or_else(|| needs("offset"))?;
-            offsets
-                .iter()
-                .map(|&o| {
-                    RenderConfig::depth("offset", o).map_err(|e| self.err(format!("{key}.offset"), e.to_string()))?;
-                    named(o)
-                })
-                .collect::<Result<Vec<_>, _>>()?
-        } else {
-            vec![named(0.0)?]
-        };
-        let mut out = Vec::new();
-        for &algorithm in &algorithms {
-            for &bias in &biases {
-                for &vs in a.virtual_samples.as_deref().unwrap_or(&[true]) {
-                    for &culling in &culls {
-                        for &cascades in &cascades {
-                            out.push(Variant { algorithm, bias, virtual_samples: vs, culling, cascades });
-                        }
-                    }
-                }
-            }
-        }
-        Ok(out)
     }
 }
